@@ -1,0 +1,67 @@
+# Encoder-interface reference models and testbench generator.
+#
+#   make demo        vectors, waves and transcript of the seed SSI scenario in out/
+#   make test        everything: cargo tests, every core's vectors in Icarus and
+#                    Verilator, committed vectors == fresh ones, Verilator lint
+#   make vectors     regenerate vectors/<core>/ from the built-in scenarios
+#   make sim CORE=ssi_master SIM=icarus|verilator [SCENARIO=ssi_seed_12bit] [WAVES=1]
+#   make waves CORE=ssi_master [SCENARIO=ssi_seed_12bit]   open GTKWave on the saved layout
+#   make synth       yosys + nextpnr-ice40 (hx8k) for every core: logic cells and Fmax
+#   make bench       model vs Verilator vs Icarus cycles per second
+#   make deps        install Icarus, Verilator, yosys, nextpnr, GTKWave, sigrok-cli if missing
+
+CORE ?= ssi_master
+SIM ?= icarus
+WAVES ?= 0
+SCENARIO ?=
+CARGO ?= cargo
+TBGEN := target/release/tbgen
+
+.PHONY: all demo vectors test deps build cargo-test hdl-test check-vectors lint sim waves synth bench clean
+
+all: vectors
+
+deps:
+	@scripts/deps.sh
+
+build:
+	$(CARGO) build --release --locked -p tbgen
+
+demo: build
+	$(TBGEN) gen ssi_seed_12bit --out out
+	@echo "open the waves with: gtkwave out/ssi_seed_12bit.gtkw"
+
+vectors: build
+	$(TBGEN) gen --all --out vectors
+
+test: deps build cargo-test lint hdl-test check-vectors
+	@echo "make test: all checks passed"
+
+cargo-test:
+	$(CARGO) test --workspace --locked --release
+
+lint:
+	@scripts/lint.sh
+
+hdl-test:
+	@scripts/regress.sh
+
+check-vectors: build
+	@scripts/check_vectors.sh
+
+sim:
+	@scripts/regress.sh --core $(CORE) --sim $(SIM) $(if $(SCENARIO),--scenario $(SCENARIO)) $(if $(filter 1,$(WAVES)),--waves)
+
+waves:
+	@scenario="$(SCENARIO)"; \
+	 if [ -z "$$scenario" ]; then scenario=$$(ls vectors/$(CORE)/*.gtkw | head -n 1 | xargs basename | sed 's/\.gtkw$$//'); fi; \
+	 cd vectors/$(CORE) && gtkwave "$$scenario.gtkw"
+
+synth:
+	@scripts/synth.sh
+
+bench: build
+	@scripts/bench.sh
+
+clean:
+	rm -rf build out

@@ -1,0 +1,32 @@
+//! Cycle-accurate models of the master side of position-encoder interfaces,
+//! of the encoders they talk to, and of the cable between them.
+//!
+//! Time is a count of system-clock cycles of a documented frequency `f_sys`
+//! ([`time::Timebase`]). Every model is a synchronous machine stepped once per
+//! rising edge of that clock: `step(&mut self, &In) -> Out`, where `In` and `Out`
+//! are plain structs whose field names equal the Verilog port names of the
+//! matching core in `hdl/rtl/`. The caller owns time; nothing here sleeps,
+//! reads a wall clock or keeps hidden timers.
+//!
+//! ```
+//! use model::ssi::{Bench, BenchConfig};
+//!
+//! // The seed's 12-bit SSI example (SAR58K24 manual): the encoder holds 495.
+//! let mut cfg = BenchConfig::seed_example();
+//! cfg.positions = vec![495];
+//! let run = Bench::new(&cfg).unwrap().run_to_end();
+//! assert_eq!(run.transactions[0].position, Some(495));
+//! ```
+
+pub mod crc;
+pub mod error;
+pub mod gray;
+pub mod line;
+pub mod ports;
+pub mod ssi;
+pub mod time;
+pub mod trace;
+
+pub use error::{ConfigError, Result};
+pub use ports::{Port, Ports};
+pub use time::Timebase;

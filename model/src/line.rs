@@ -1,0 +1,307 @@
+//! The cable between master and encoder: one delay line per direction, with
+//! optional jitter, and a half-duplex RS-485 pair with driver enables.
+//!
+//! A cable of length `L` delays each direction by `L × ns_per_m` (5 ns/m by
+//! default, the propagation delay of twisted pair with a velocity factor of
+//! about 0.67), rounded to the nearest system-clock cycle. Transceiver delays
+//! belong to the devices at either end, not to the cable.
+
+use std::collections::VecDeque;
+
+use rand::{Rng, SeedableRng};
+use rand_pcg::Pcg64Mcg;
+use serde::{Deserialize, Serialize};
+
+use crate::{ConfigError, Result, Timebase};
+
+/// A cable as a scenario file describes it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct CableConfig {
+    /// Length in metres (0 to 1000).
+    pub length_m: f64,
+    /// One-way propagation delay per metre in nanoseconds.
+    pub ns_per_m: f64,
+    /// Peak jitter added to each edge, in nanoseconds (uniform in ±jitter).
+    pub jitter_ns: f64,
+    /// Seed of the jitter's random sequence, so that a scenario replays exactly.
+    pub seed: u64,
+}
+
+impl Default for CableConfig {
+    fn default() -> Self {
+        CableConfig { length_m: 0.0, ns_per_m: 5.0, jitter_ns: 0.0, seed: 1 }
+    }
+}
+
+impl CableConfig {
+    /// Checks the fields; `prefix` is the scenario table the cable sits in.
+    pub fn validate(&self, prefix: &str) -> Result<()> {
+        if !(0.0..=1000.0).contains(&self.length_m) {
+            return Err(ConfigError::invalid(
+                format!("{prefix}.length_m"),
+                format!("{} m is outside 0 to 1000 m", self.length_m),
+                "give the cable length in metres, 0 to 1000",
+            ));
+        }
+        if !(0.0..=50.0).contains(&self.ns_per_m) {
+            return Err(ConfigError::invalid(
+                format!("{prefix}.ns_per_m"),
+                format!("{} ns/m is not a cable propagation delay", self.ns_per_m),
+                "use about 5 ns/m for twisted pair",
+            ));
+        }
+        if !(0.0..=10_000.0).contains(&self.jitter_ns) {
+            return Err(ConfigError::invalid(
+                format!("{prefix}.jitter_ns"),
+                format!("{} ns is not a usable jitter", self.jitter_ns),
+                "give the peak jitter in ns, 0 for none",
+            ));
+        }
+        Ok(())
+    }
+
+    /// One-way delay in system-clock cycles (nearest whole cycle).
+    pub fn delay_cycles(&self, tb: &Timebase) -> u64 {
+        tb.cycles_nearest_ns(self.length_m * self.ns_per_m)
+    }
+
+    /// Peak jitter in system-clock cycles (nearest whole cycle).
+    pub fn jitter_cycles(&self, tb: &Timebase) -> u64 {
+        tb.cycles_nearest_ns(self.jitter_ns)
+    }
+
+    /// The two delay lines of this cable: (master to device, device to master).
+    /// The second line's jitter sequence is seeded differently from the first.
+    pub fn lines(&self, tb: &Timebase, idle: bool) -> (DelayLine, DelayLine) {
+        let (delay, jitter) = (self.delay_cycles(tb), self.jitter_cycles(tb));
+        (
+            DelayLine::with_jitter(delay, jitter, self.seed, idle),
+            DelayLine::with_jitter(delay, jitter, self.seed.wrapping_add(0x9E37_79B9), idle),
+        )
+    }
+}
+
+/// One direction of a cable: a level that enters at cycle `t` leaves at
+/// `t + delay` (± jitter). With no delay the output follows the input in the
+/// same cycle. Edges never overtake one another: a jittered edge that would
+/// arrive at or before the previous one is held until the cycle after it.
+#[derive(Debug, Clone)]
+pub struct DelayLine {
+    delay: u64,
+    jitter: u64,
+    rng: Pcg64Mcg,
+    now: u64,
+    last_input: bool,
+    output: bool,
+    last_due: Option<u64>,
+    pending: VecDeque<(u64, bool)>,
+}
+
+impl DelayLine {
+    /// A line of `delay` cycles without jitter, idle at `idle`.
+    pub fn new(delay: u64, idle: bool) -> Self {
+        DelayLine::with_jitter(delay, 0, 1, idle)
+    }
+
+    /// A line of `delay` cycles whose edges move by up to ±`jitter` cycles.
+    pub fn with_jitter(delay: u64, jitter: u64, seed: u64, idle: bool) -> Self {
+        DelayLine {
+            delay,
+            jitter,
+            rng: Pcg64Mcg::seed_from_u64(seed),
+            now: 0,
+            last_input: idle,
+            output: idle,
+            last_due: None,
+            pending: VecDeque::new(),
+        }
+    }
+
+    /// The nominal delay in cycles.
+    pub fn delay(&self) -> u64 {
+        self.delay
+    }
+
+    /// Advances one cycle: `input` is the level at the sending end now; the
+    /// result is the level at the receiving end now.
+    pub fn step(&mut self, input: bool) -> bool {
+        if input != self.last_input {
+            self.last_input = input;
+            let mut due = self.now + self.delay;
+            if self.jitter > 0 {
+                let j = self.rng.random_range(0..=2 * self.jitter) as i64 - self.jitter as i64;
+                due = (due as i64 + j).max(self.now as i64) as u64;
+            }
+            // Keep edges in order and at least one cycle apart, so none is lost.
+            if let Some(last) = self.last_due {
+                due = due.max(last + 1);
+            }
+            self.last_due = Some(due);
+            self.pending.push_back((due, input));
+        }
+        while let Some(&(due, level)) = self.pending.front() {
+            if due > self.now {
+                break;
+            }
+            self.output = level;
+            self.pending.pop_front();
+        }
+        self.now += 1;
+        self.output
+    }
+}
+
+/// What one end of a half-duplex pair drives: its driver enable and the level
+/// it would put on the line.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Drive {
+    /// RS-485 driver enable (DE).
+    pub enable: bool,
+    /// The level driven while enabled.
+    pub level: bool,
+}
+
+/// What a receiver at one end of a half-duplex pair sees.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Sensed {
+    /// The received level. With no driver on the line it is the fail-safe
+    /// idle level; with two it is the level of the nearer driver.
+    pub level: bool,
+    /// Both drivers are on at this end of the cable in this cycle.
+    pub contention: bool,
+}
+
+/// A half-duplex RS-485 pair between a master (end A) and a device (end B).
+/// Each end's driver state travels to the other end through its own delay
+/// line. A receiver sees its own driver at once and the far driver delayed.
+#[derive(Debug, Clone)]
+pub struct HalfDuplexLine {
+    idle: bool,
+    a_to_b_enable: DelayLine,
+    a_to_b_level: DelayLine,
+    b_to_a_enable: DelayLine,
+    b_to_a_level: DelayLine,
+    contention_cycles: u64,
+}
+
+impl HalfDuplexLine {
+    /// A pair with `delay` cycles each way whose fail-safe biasing holds
+    /// the undriven line at `idle` (high on a correctly terminated RS-485 bus).
+    pub fn new(delay: u64, idle: bool) -> Self {
+        HalfDuplexLine {
+            idle,
+            a_to_b_enable: DelayLine::new(delay, false),
+            a_to_b_level: DelayLine::new(delay, idle),
+            b_to_a_enable: DelayLine::new(delay, false),
+            b_to_a_level: DelayLine::new(delay, idle),
+            contention_cycles: 0,
+        }
+    }
+
+    /// Advances one cycle with what each end drives now; returns what the
+    /// receivers at A and at B see now.
+    pub fn step(&mut self, a: Drive, b: Drive) -> (Sensed, Sensed) {
+        let far_a = Drive { enable: self.b_to_a_enable.step(b.enable), level: self.b_to_a_level.step(b.level) };
+        let far_b = Drive { enable: self.a_to_b_enable.step(a.enable), level: self.a_to_b_level.step(a.level) };
+        let at_a = resolve(a, far_a, self.idle);
+        let at_b = resolve(b, far_b, self.idle);
+        if at_a.contention || at_b.contention {
+            self.contention_cycles += 1;
+        }
+        (at_a, at_b)
+    }
+
+    /// Cycles in which two drivers were on at either end.
+    pub fn contention_cycles(&self) -> u64 {
+        self.contention_cycles
+    }
+}
+
+fn resolve(near: Drive, far: Drive, idle: bool) -> Sensed {
+    match (near.enable, far.enable) {
+        (true, true) => Sensed { level: near.level, contention: true },
+        (true, false) => Sensed { level: near.level, contention: false },
+        (false, true) => Sensed { level: far.level, contention: false },
+        (false, false) => Sensed { level: idle, contention: false },
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn run(line: &mut DelayLine, inputs: &[bool]) -> Vec<bool> {
+        inputs.iter().map(|&i| line.step(i)).collect()
+    }
+
+    #[test]
+    fn a_line_without_delay_passes_the_level_in_the_same_cycle() {
+        let mut line = DelayLine::new(0, true);
+        assert_eq!(run(&mut line, &[true, false, false, true]), vec![true, false, false, true]);
+    }
+
+    #[test]
+    fn a_line_of_three_cycles_shifts_every_edge_by_three() {
+        let mut line = DelayLine::new(3, true);
+        let input = [true, false, false, true, false, true, true, true, true];
+        let out = run(&mut line, &input);
+        assert_eq!(out, vec![true, true, true, true, false, false, true, false, true]);
+    }
+
+    #[test]
+    fn a_hundred_metre_cable_at_fifty_megahertz_delays_twenty_five_cycles() {
+        let tb = Timebase::from_mhz(50.0).unwrap();
+        let cable = CableConfig { length_m: 100.0, ..CableConfig::default() };
+        assert_eq!(cable.delay_cycles(&tb), 25);
+    }
+
+    #[test]
+    fn jittered_edges_stay_in_order_and_within_the_bound() {
+        let mut line = DelayLine::with_jitter(10, 4, 7, false);
+        let mut input_edges = vec![];
+        let mut output_edges = vec![];
+        let (mut last_in, mut last_out) = (false, false);
+        for t in 0..2000u64 {
+            let level = t < 1900 && (t / 13) % 2 == 1; // quiet at the end so every edge comes out
+            if level != last_in {
+                input_edges.push(t);
+                last_in = level;
+            }
+            let out = line.step(level);
+            if out != last_out {
+                output_edges.push(t);
+                last_out = out;
+            }
+        }
+        assert_eq!(input_edges.len(), output_edges.len());
+        let mut moved = 0;
+        for (i, o) in input_edges.iter().zip(&output_edges) {
+            assert!(*o >= i + 6 && *o <= i + 14, "edge at {i} came out at {o}");
+            moved += (*o != i + 10) as u32;
+        }
+        assert!(moved > 0, "jitter moved no edge");
+    }
+
+    #[test]
+    fn half_duplex_receivers_see_the_far_driver_late_and_flag_two_drivers() {
+        let mut pair = HalfDuplexLine::new(2, true);
+        let master = Drive { enable: true, level: false };
+        let device_off = Drive::default();
+        let (a, b) = pair.step(master, device_off);
+        assert_eq!((a.level, b.level), (false, true), "device sees the master two cycles late");
+        pair.step(master, device_off);
+        let (_, b) = pair.step(master, device_off);
+        assert!(!b.level);
+        let device_on = Drive { enable: true, level: true };
+        let (a, b) = pair.step(master, device_on);
+        assert!(b.contention && !a.contention);
+        assert_eq!(pair.contention_cycles(), 1);
+        let off = Drive::default();
+        let (a, b) = pair.step(off, device_on);
+        assert!(!a.contention && b.contention, "the master's last driven bits are still on their way to the device");
+        assert_eq!(pair.contention_cycles(), 2);
+        let (a, _) = pair.step(off, device_on);
+        assert!(a.level && !a.contention, "the device's answer reaches the master two cycles after it drove");
+    }
+}

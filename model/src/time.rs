@@ -1,0 +1,142 @@
+//! The system clock: every duration in the project becomes a whole number of
+//! its cycles, with the rounding stated where it happens.
+//!
+//! Scenario files speak in physical units (MHz, kHz, µs, metres); models speak
+//! in cycles. This module is the only place where one becomes the other, so a
+//! reviewer can check every conversion in one page.
+
+use crate::{ConfigError, Result};
+
+/// Picoseconds per second: VCD files use a 1 ps timescale so that any
+/// `f_sys` with a whole-picosecond period is represented exactly.
+pub const PS_PER_S: u64 = 1_000_000_000_000;
+
+/// The system clock of a model and of the RTL core that mirrors it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Timebase {
+    f_sys_hz: u64,
+}
+
+impl Timebase {
+    /// A system clock of `f_sys_hz`. Its period must be a whole number of
+    /// picoseconds (true of every practical FPGA clock: 50, 64, 80, 100 MHz...).
+    pub fn new(f_sys_hz: u64) -> Result<Self> {
+        if f_sys_hz == 0 || f_sys_hz > 1_000_000_000 {
+            return Err(ConfigError::invalid(
+                "f_sys_mhz",
+                format!("{} Hz is not a usable system clock", f_sys_hz),
+                "give a frequency between 1 Hz and 1000 MHz",
+            ));
+        }
+        if PS_PER_S % f_sys_hz != 0 {
+            return Err(ConfigError::invalid(
+                "f_sys_mhz",
+                format!("the period of {} Hz is not a whole number of picoseconds", f_sys_hz),
+                "choose a frequency that divides 10^12 Hz·ps, e.g. 50, 64, 80 or 100 MHz",
+            ));
+        }
+        Ok(Timebase { f_sys_hz })
+    }
+
+    /// A system clock given in MHz, as scenario files give it.
+    pub fn from_mhz(f_sys_mhz: f64) -> Result<Self> {
+        let hz = (f_sys_mhz * 1e6).round();
+        if !(hz.is_finite() && hz >= 1.0) || (hz - f_sys_mhz * 1e6).abs() > 1e-3 {
+            return Err(ConfigError::invalid(
+                "f_sys_mhz",
+                format!("{} MHz is not a whole number of hertz", f_sys_mhz),
+                "give the system clock in MHz with at most 6 decimals",
+            ));
+        }
+        Timebase::new(hz as u64)
+    }
+
+    /// The system clock frequency in hertz.
+    pub fn f_sys_hz(&self) -> u64 {
+        self.f_sys_hz
+    }
+
+    /// One system-clock period in picoseconds (exact).
+    pub fn period_ps(&self) -> u64 {
+        PS_PER_S / self.f_sys_hz
+    }
+
+    /// The time of cycle `n` in picoseconds.
+    pub fn ps_at(&self, cycle: u64) -> u64 {
+        cycle * self.period_ps()
+    }
+
+    /// The fewest whole cycles that last at least `ns` nanoseconds: for
+    /// minimum times a datasheet guarantees (`t_m`, `T_cs`, recovery times).
+    pub fn cycles_at_least_ns(&self, ns: f64) -> u64 {
+        let exact = ns * 1e3 / self.period_ps() as f64;
+        // Tolerate float noise so that 4000 ns at 50 MHz is exactly 200 cycles.
+        (exact - 1e-9).ceil().max(0.0) as u64
+    }
+
+    /// The whole number of cycles nearest to `ns` nanoseconds: for delays that
+    /// are estimates rather than limits (cable propagation).
+    pub fn cycles_nearest_ns(&self, ns: f64) -> u64 {
+        (ns * 1e3 / self.period_ps() as f64).round().max(0.0) as u64
+    }
+
+    /// The divider that makes a bit clock of `f_hz` from `f_sys`, which must be
+    /// exact and even (the bit clock is high for half of it and low for half).
+    /// `field` names the scenario field the frequency came from.
+    pub fn even_divider(&self, f_hz: f64, field: &str) -> Result<u64> {
+        let ratio = self.f_sys_hz as f64 / f_hz;
+        let divider = ratio.round();
+        if !(ratio.is_finite()) || (ratio - divider).abs() > 1e-6 || divider < 4.0 || divider as u64 % 2 != 0 {
+            let suggestion = even_near(ratio);
+            return Err(ConfigError::invalid(
+                field,
+                format!(
+                    "{} kHz is f_sys / {:.3}, not f_sys divided by an even whole number of at least 4",
+                    f_hz / 1e3,
+                    ratio
+                ),
+                format!(
+                    "use {} kHz (f_sys / {}) or change f_sys_mhz",
+                    self.f_sys_hz as f64 / suggestion as f64 / 1e3,
+                    suggestion
+                ),
+            ));
+        }
+        Ok(divider as u64)
+    }
+}
+
+fn even_near(ratio: f64) -> u64 {
+    let r = if ratio.is_finite() { ratio.max(4.0) } else { 4.0 };
+    let even = (r / 2.0).round() as u64 * 2;
+    even.max(4)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fifty_megahertz_has_a_twenty_nanosecond_period() {
+        let tb = Timebase::from_mhz(50.0).unwrap();
+        assert_eq!(tb.period_ps(), 20_000);
+        assert_eq!(tb.cycles_at_least_ns(4000.0), 200);
+        assert_eq!(tb.cycles_at_least_ns(4001.0), 201);
+        assert_eq!(tb.cycles_nearest_ns(29.0), 1);
+    }
+
+    #[test]
+    fn a_period_that_is_not_whole_picoseconds_is_refused_with_the_field_named() {
+        let err = Timebase::from_mhz(3.0).unwrap_err();
+        assert_eq!(err.field(), "f_sys_mhz");
+    }
+
+    #[test]
+    fn bit_clock_dividers_must_be_exact_and_even() {
+        let tb = Timebase::from_mhz(50.0).unwrap();
+        assert_eq!(tb.even_divider(250e3, "master.clock_khz").unwrap(), 200);
+        let err = tb.even_divider(300e3, "master.clock_khz").unwrap_err();
+        assert_eq!(err.field(), "master.clock_khz");
+        assert!(err.to_string().contains("use "), "{}", err);
+    }
+}

@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# lint.sh: Verilator --lint-only -Wall on every core in hdl/rtl/, with its
+# default parameters and with the parameters of every committed vector file,
+# so that width corners (1-bit, 64-bit) are linted too. Any warning fails.
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+cd "$root"
+status=0 runs=0
+for rtl in hdl/rtl/*.v; do
+    core=$(basename "$rtl" .v)
+    param_sets=("")
+    if [ -d "vectors/$core" ]; then
+        while IFS= read -r p; do param_sets+=("$p"); done < <(sed -n 's#^// params: ##p' vectors/"$core"/*.hex | sort -u)
+    fi
+    for params in "${param_sets[@]}"; do
+        gargs=()
+        for p in $params; do gargs+=("-G$p"); done
+        runs=$((runs + 1))
+        if ! out=$(verilator --lint-only -Wall -Ihdl/rtl --top-module "$core" "${gargs[@]}" "$rtl" 2>&1); then
+            echo "lint FAIL $core ${params:-(defaults)}"
+            echo "$out" | head -n 20
+            status=1
+        fi
+    done
+done
+echo "lint: $runs runs over $(ls hdl/rtl/*.v | wc -l) cores, $([ $status = 0 ] && echo clean || echo WARNINGS)"
+exit $status

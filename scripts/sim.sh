@@ -1,0 +1,73 @@
+#!/usr/bin/env bash
+# sim.sh: replay one golden vector file against its core in Icarus or Verilator.
+#
+#   scripts/sim.sh <core> <icarus|verilator> <vectors.hex> [waves.vcd]
+#
+# Reads the vector file's header (params, records, f_sys_hz), builds the
+# core's testbench hdl/tb/<core>/tb_<core>.v with those parameters (cached
+# under build/sim/<core>/<sim>/<parameter hash>/, so scenarios that share a
+# configuration share one build), runs it, and exits with the simulator's
+# status: 0 when every output matched every cycle, non-zero at the first
+# mismatch. With a fourth argument the RTL waveform is dumped there.
+set -euo pipefail
+
+usage() { echo "usage: $0 <core> <icarus|verilator> <vectors.hex> [waves.vcd]" >&2; exit 2; }
+[ $# -ge 3 ] || usage
+core=$1 sim=$2 vectors=$3 waves=${4:-}
+root=$(cd "$(dirname "$0")/.." && pwd)
+tb="$root/hdl/tb/$core/tb_$core.v"
+[ -f "$tb" ] || { echo "sim.sh: no testbench $tb for core '$core'" >&2; exit 2; }
+[ -f "$vectors" ] || { echo "sim.sh: no vector file $vectors" >&2; exit 2; }
+
+header() { sed -n "s#^// $1: ##p" "$vectors" | head -n 1; }
+records=$(header records)
+params=$(header params)
+f_sys_hz=$(header f_sys_hz)
+header_core=$(header core)
+[ -n "$records" ] && [ -n "$f_sys_hz" ] || { echo "sim.sh: $vectors has no tbgen header (records:, f_sys_hz:)" >&2; exit 2; }
+[ "$header_core" = "$core" ] || { echo "sim.sh: $vectors is for core '$header_core', not '$core'" >&2; exit 2; }
+
+# Half a system-clock period in femtoseconds (the testbench timescale is 1 fs).
+half_fs=$(( 500000000000000 / f_sys_hz ))
+rtl=("$root"/hdl/rtl/*.v)
+trace=0
+[ -n "$waves" ] && trace=1
+key=$(printf '%s\n' "$params" "$half_fs" "$trace" | cat - "$tb" "$root/hdl/tb/common/vector_player.vh" "${rtl[@]}" | sha1sum | cut -c1-12)
+build="$root/build/sim/$core/$sim/$key"
+mkdir -p "$build"
+
+plusargs=("+vectors=$vectors" "+records=$records")
+[ -n "$waves" ] && plusargs+=("+waves=$waves")
+
+case "$sim" in
+icarus)
+    if [ ! -f "$build/tb.vvp" ]; then
+        pargs=()
+        for p in $params; do pargs+=("-Ptb_$core.$p"); done
+        iverilog -g2005 -Wall -Wno-timescale -s "tb_$core" -I "$root/hdl/tb/common" \
+            "${pargs[@]}" "-Ptb_$core.HALF_PERIOD_FS=$half_fs" \
+            -o "$build/tb.vvp.tmp" "$tb" "${rtl[@]}" > "$build/build.log" 2>&1 \
+            || { cat "$build/build.log" >&2; exit 1; }
+        mv "$build/tb.vvp.tmp" "$build/tb.vvp"
+    fi
+    exec vvp -n "$build/tb.vvp" "${plusargs[@]}"
+    ;;
+verilator)
+    if [ ! -x "$build/Vtb" ]; then
+        gargs=()
+        for p in $params; do gargs+=("-G$p"); done
+        targs=()
+        [ "$trace" = 1 ] && targs+=(--trace)
+        verilator --binary --timing -j 2 -Wno-fatal -Wno-lint -Wno-style "${targs[@]}" \
+            --top-module "tb_$core" -I"$root/hdl/tb/common" \
+            "${gargs[@]}" "-GHALF_PERIOD_FS=$half_fs" \
+            --Mdir "$build/obj" -o Vtb "$tb" "${rtl[@]}" > "$build/build.log" 2>&1 \
+            || { cat "$build/build.log" >&2; exit 1; }
+        mv "$build/obj/Vtb" "$build/Vtb"
+    fi
+    exec "$build/Vtb" "${plusargs[@]}"
+    ;;
+*)
+    usage
+    ;;
+esac

@@ -1,0 +1,74 @@
+//! The one error type of `tbgen`. Every message names the file, the line or
+//! field, and the fix; [`Error::exit_code`] is 2 for bad input, 1 otherwise.
+
+use std::path::PathBuf;
+
+/// What can go wrong in `tbgen`.
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    /// The scenario file is not valid TOML or has a misspelt or mistyped field.
+    #[error("{file}:{line}:{column}: {message}")]
+    ScenarioSyntax {
+        /// The scenario file (or `builtin:<name>`).
+        file: String,
+        /// 1-based line.
+        line: usize,
+        /// 1-based column.
+        column: usize,
+        /// The parser's message (it names the field).
+        message: String,
+    },
+    /// The scenario parses but asks for something the model cannot do.
+    #[error("{file}:{line}: {source}")]
+    ScenarioValue {
+        /// The scenario file (or `builtin:<name>`).
+        file: String,
+        /// 1-based line of the field, or of the table it belongs in.
+        line: usize,
+        /// The model's error, which names the field and the fix.
+        source: model::ConfigError,
+    },
+    /// A structural problem the parser cannot see (no protocol table, bad name).
+    #[error("{file}: {message}")]
+    Scenario {
+        /// The scenario file (or `builtin:<name>`).
+        file: String,
+        /// What is wrong and how to fix it.
+        message: String,
+    },
+    /// Neither a built-in scenario nor an existing file.
+    #[error("no scenario `{0}`: `tbgen list` shows the built-in ones; a file must end in .toml")]
+    UnknownScenario(String),
+    /// A CRC name not in the catalogue.
+    #[error("no CRC algorithm `{0}`; known: {1}")]
+    UnknownCrc(String, String),
+    /// A bit string with something other than 0 and 1.
+    #[error("bits `{0}`: give the bits as a string of 0 and 1 in wire order, e.g. 1000101011100011")]
+    BadBits(String),
+    /// Reading or writing a file failed.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// The operating system's error.
+        source: std::io::Error,
+    },
+}
+
+impl Error {
+    /// The process exit status for this error: 2 for bad input, 1 for the rest.
+    pub fn exit_code(&self) -> i32 {
+        match self {
+            Error::Io { .. } => 1,
+            _ => 2,
+        }
+    }
+
+    /// Wraps an I/O error with the path it concerns.
+    pub fn io(path: impl Into<PathBuf>, source: std::io::Error) -> Self {
+        Error::Io { path: path.into(), source }
+    }
+}
+
+/// Result alias of `tbgen`.
+pub type Result<T, E = Error> = std::result::Result<T, E>;

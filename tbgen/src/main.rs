@@ -1,0 +1,137 @@
+//! The `tbgen` command line. See `tbgen --help`.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::time::Instant;
+
+use clap::{Parser, Subcommand};
+use tbgen::{builtin, crc_cmd, generate, Error};
+
+#[derive(Parser)]
+#[command(
+    name = "tbgen",
+    version,
+    about = "Golden vectors, waveforms and transcripts for encoder-interface cores",
+    long_about = "Runs the cycle-accurate model of an encoder-interface master, its encoder and the cable \
+between them, and writes what the Verilog core in hdl/ must reproduce cycle for cycle."
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// List the built-in scenarios.
+    #[command(after_help = "Example:\n  tbgen list")]
+    List,
+    /// Generate <name>.hex, .vcd, .json and .gtkw for scenarios.
+    #[command(after_help = "Examples:\n  tbgen gen ssi_seed_12bit --out build/out\n  tbgen gen my_scenario.toml --out build/out\n  tbgen gen --all --out vectors        # every built-in, into vectors/<core>/")]
+    Gen {
+        /// Built-in scenario names or paths to scenario .toml files.
+        scenarios: Vec<String>,
+        /// Every built-in scenario, each into <out>/<core>/.
+        #[arg(long, conflicts_with = "scenarios")]
+        all: bool,
+        /// Output folder.
+        #[arg(long, short)]
+        out: PathBuf,
+    },
+    /// Compute a CRC of the catalogue over a bit string given in wire order.
+    #[command(after_help = "Examples:\n  tbgen crc biss-crc6 100010101110001110     # the seed's BiSS-C example: CRC 110101, wire 001010\n  tbgen crc --list")]
+    Crc {
+        /// Algorithm name (see --list).
+        #[arg(required_unless_present = "list")]
+        algorithm: Option<String>,
+        /// Bits as a 0/1 string in wire order.
+        #[arg(required_unless_present = "list")]
+        bits: Option<String>,
+        /// List the catalogue.
+        #[arg(long)]
+        list: bool,
+    },
+    /// Time the model alone on a scenario (used by `make bench`).
+    #[command(after_help = "Example:\n  tbgen bench scenarios/bench/ssi_bench.toml")]
+    Bench {
+        /// Built-in scenario name or scenario .toml file.
+        scenario: String,
+    },
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match run(cli.command) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("tbgen: error: {e}");
+            ExitCode::from(e.exit_code() as u8)
+        }
+    }
+}
+
+fn run(command: Command) -> Result<(), Error> {
+    match command {
+        Command::List => {
+            for s in builtin::all()? {
+                println!("{:<28} {:<12} {}", s.name, s.core(), s.description);
+            }
+        }
+        Command::Gen { scenarios, all, out } => {
+            let chosen = if all {
+                builtin::all()?
+            } else if scenarios.is_empty() {
+                return Err(Error::UnknownScenario("(none given: name one, or pass --all)".into()));
+            } else {
+                scenarios.iter().map(|s| builtin::resolve(s)).collect::<Result<Vec<_>, _>>()?
+            };
+            for s in &chosen {
+                let dir = if all { out.join(s.core()) } else { out.clone() };
+                let summary = generate::generate(s, &dir)?;
+                println!(
+                    "{}: {} cycles, {} records, {} transactions -> {}",
+                    s.name,
+                    summary.cycles,
+                    summary.records,
+                    summary.transactions,
+                    dir.join(&s.name).display()
+                );
+            }
+        }
+        Command::Crc { algorithm, bits, list } => {
+            if list {
+                for a in model::crc::CATALOGUE {
+                    println!("{:<16} {:>2}-bit  {}", a.name, a.width, a.source);
+                }
+            } else {
+                print!("{}", crc_cmd::report(algorithm.as_deref().unwrap_or(""), bits.as_deref().unwrap_or(""))?);
+            }
+        }
+        Command::Bench { scenario } => bench(&scenario)?,
+    }
+    Ok(())
+}
+
+/// Model-only speed, and the speed of writing the waveform as well.
+fn bench(arg: &str) -> Result<(), Error> {
+    let s = builtin::resolve(arg)?;
+    let tbgen::scenario::Setup::Ssi(cfg) = &s.setup;
+    let value_error = |source| Error::ScenarioValue { file: s.origin.clone(), line: 1, source };
+    let started = Instant::now();
+    let run = model::ssi::Bench::new(cfg).map_err(value_error)?.run_to_end();
+    let model_s = started.elapsed().as_secs_f64();
+    let dir = std::env::temp_dir().join(format!("tbgen-bench-{}", std::process::id()));
+    let started = Instant::now();
+    let summary = generate::generate(&s, &dir)?;
+    let gen_s = started.elapsed().as_secs_f64();
+    let vcd_bytes = std::fs::metadata(&summary.files[1]).map(|m| m.len()).unwrap_or(0);
+    let _ = std::fs::remove_dir_all(&dir);
+    println!("scenario: {}", s.name);
+    println!("cycles: {}", run.cycles);
+    println!("model_seconds: {model_s:.6}");
+    println!("model_cycles_per_second: {:.0}", run.cycles as f64 / model_s);
+    println!("gen_seconds: {gen_s:.6}");
+    println!("gen_cycles_per_second: {:.0}", run.cycles as f64 / gen_s);
+    println!("vcd_bytes: {vcd_bytes}");
+    println!("vcd_bytes_per_second: {:.0}", vcd_bytes as f64 / gen_s);
+    Ok(())
+}

@@ -1,0 +1,182 @@
+//! Scenario files: TOML read with serde, checked before anything is written.
+//!
+//! ```toml
+//! name = "ssi_seed_12bit"            # file names of the outputs; [a-z0-9_]
+//! description = "what it shows"
+//!
+//! [ssi]                              # the protocol's table: its fields are
+//! f_sys_mhz = 50                     # model::ssi::BenchConfig's
+//! positions = [495]
+//! [ssi.master]
+//! bits = 12
+//! clock_khz = 250
+//! ```
+
+use std::path::Path;
+
+use serde::Deserialize;
+
+use crate::{Error, Result};
+
+/// A scenario file as written.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ScenarioFile {
+    name: String,
+    #[serde(default)]
+    description: String,
+    ssi: Option<model::ssi::BenchConfig>,
+}
+
+/// The set-up a scenario describes, one variant per protocol.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Setup {
+    /// An SSI reader, encoder and cable.
+    Ssi(model::ssi::BenchConfig),
+}
+
+/// A checked scenario.
+#[derive(Debug, Clone)]
+pub struct Scenario {
+    /// Output file stem, `[a-z0-9_]+`.
+    pub name: String,
+    /// One line on what the scenario shows.
+    pub description: String,
+    /// The set-up.
+    pub setup: Setup,
+    /// Where it came from (`path` or `builtin:<name>`), for messages.
+    pub origin: String,
+    text: String,
+}
+
+impl Scenario {
+    /// Parses and checks a scenario; `origin` is named in every message.
+    pub fn parse(text: &str, origin: &str) -> Result<Scenario> {
+        let file: ScenarioFile = toml::from_str(text).map_err(|e| {
+            let (line, column) = e.span().map(|s| line_column(text, s.start)).unwrap_or((1, 1));
+            Error::ScenarioSyntax { file: origin.into(), line, column, message: e.message().trim().to_string() }
+        })?;
+        if file.name.is_empty() || !file.name.chars().all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '_') {
+            return Err(Error::Scenario {
+                file: origin.into(),
+                message: format!("name `{}`: use lower-case letters, digits and `_` (it names the output files)", file.name),
+            });
+        }
+        let setup = match file.ssi {
+            Some(cfg) => Setup::Ssi(cfg),
+            None => {
+                return Err(Error::Scenario {
+                    file: origin.into(),
+                    message: "no protocol table: add one, e.g. `[ssi]` with its fields (see scenarios/ssi/)".into(),
+                })
+            }
+        };
+        let scenario = Scenario { name: file.name, description: file.description, setup, origin: origin.into(), text: text.into() };
+        scenario.check()?;
+        Ok(scenario)
+    }
+
+    /// Reads and checks a scenario file.
+    pub fn load(path: &Path) -> Result<Scenario> {
+        let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+        Scenario::parse(&text, &path.display().to_string())
+    }
+
+    /// The core the scenario's vectors drive (`ssi_master`...).
+    pub fn core(&self) -> &'static str {
+        match self.setup {
+            Setup::Ssi(_) => "ssi_master",
+        }
+    }
+
+    /// The protocol table's name in the file.
+    fn table(&self) -> &'static str {
+        match self.setup {
+            Setup::Ssi(_) => "ssi",
+        }
+    }
+
+    /// Runs the model's own checks and places any error on a line of the file.
+    fn check(&self) -> Result<()> {
+        let result = match &self.setup {
+            Setup::Ssi(cfg) => cfg.validate(),
+        };
+        result.map_err(|source| Error::ScenarioValue {
+            file: self.origin.clone(),
+            line: self.line_of(&format!("{}.{}", self.table(), source.field())),
+            source,
+        })
+    }
+
+    /// The 1-based line where a dotted field (`ssi.master.clock_khz`) is set,
+    /// or else where its table starts, or else 1.
+    pub fn line_of(&self, dotted: &str) -> usize {
+        let dotted = dotted.split('[').next().unwrap_or(dotted);
+        let (table, key) = match dotted.rsplit_once('.') {
+            Some((t, k)) => (t, k),
+            None => ("", dotted),
+        };
+        let mut current = String::new();
+        let mut table_line = None;
+        for (i, raw) in self.text.lines().enumerate() {
+            let line = raw.trim();
+            if let Some(header) = line.strip_prefix('[').and_then(|l| l.split(']').next()) {
+                current = header.trim().to_string();
+                if current == table {
+                    table_line = Some(i + 1);
+                }
+                continue;
+            }
+            let in_table = current == table;
+            let dotted_key = line.split('=').next().unwrap_or("").trim();
+            let full = if current.is_empty() { dotted_key.to_string() } else { format!("{current}.{dotted_key}") };
+            if (in_table && dotted_key == key) || full == dotted {
+                return i + 1;
+            }
+        }
+        table_line.unwrap_or(1)
+    }
+}
+
+fn line_column(text: &str, offset: usize) -> (usize, usize) {
+    let before = &text[..offset.min(text.len())];
+    let line = before.matches('\n').count() + 1;
+    let column = before.rsplit('\n').next().map(|l| l.chars().count()).unwrap_or(0) + 1;
+    (line, column)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const GOOD: &str = "name = \"t\"\n[ssi]\npositions = [1]\n[ssi.master]\nbits = 12\nclock_khz = 250\n";
+
+    #[test]
+    fn a_good_file_parses() {
+        let s = Scenario::parse(GOOD, "t.toml").unwrap();
+        assert_eq!(s.core(), "ssi_master");
+    }
+
+    #[test]
+    fn a_misspelt_field_is_named_with_its_line() {
+        let text = GOOD.replace("clock_khz", "clock_kHz");
+        let err = Scenario::parse(&text, "t.toml").unwrap_err();
+        let msg = err.to_string();
+        assert!(msg.starts_with("t.toml:6:"), "{msg}");
+        assert!(msg.contains("clock_kHz"), "{msg}");
+    }
+
+    #[test]
+    fn an_impossible_value_is_placed_on_its_line_with_the_fix() {
+        let text = GOOD.replace("250", "300");
+        let msg = Scenario::parse(&text, "t.toml").unwrap_err().to_string();
+        assert!(msg.starts_with("t.toml:6: field `master.clock_khz`"), "{msg}");
+        assert!(msg.contains("use "), "{msg}");
+    }
+
+    #[test]
+    fn a_file_without_a_protocol_table_says_what_to_add() {
+        let msg = Scenario::parse("name = \"x\"\n", "x.toml").unwrap_err().to_string();
+        assert!(msg.contains("[ssi]"), "{msg}");
+    }
+}

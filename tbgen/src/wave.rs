@@ -1,0 +1,147 @@
+//! VCD waveforms through a thin typed wrapper over the `vcd` crate.
+//!
+//! The wrapper knows every signal's width, writes a value only when it
+//! changes, refuses to write time backwards, and always declares vectors with
+//! their range (`o_position [11:0]`) so that every viewer shows the same name.
+//! Scopes: `top.line` holds the line-level scalars (clock, data, driver
+//! enables) so that scalar-only readers such as sigrok can decode them;
+//! `top.<core>` holds the core's ports; `top.decoded` holds the model's view.
+//! The timescale is 1 ps, so any `f_sys` with a whole-picosecond period is exact.
+
+use std::io::{self, Write};
+
+use model::trace::{Layout, Sample, Sink};
+use model::Port;
+use vcd::{IdCode, ReferenceIndex, SimulationCommand, TimescaleUnit, Value, VarType};
+
+/// One declared signal.
+#[derive(Debug, Clone, Copy)]
+struct Signal {
+    id: IdCode,
+    width: u32,
+}
+
+/// A VCD writer for one bench layout.
+pub struct Waves<W: Write> {
+    vcd: vcd::Writer<W>,
+    signals: Vec<Signal>,
+    last: Vec<Option<u64>>,
+    last_time: Option<u64>,
+    period_ps: u64,
+    scratch: Vec<u64>,
+}
+
+/// The full hierarchical names of a layout's signals as `Waves` declares
+/// them, by scope, for the `.gtkw` writer: `(scope, [name])`.
+pub fn signal_names(core: &str, layout: &Layout) -> Vec<(String, Vec<String>)> {
+    let name = |scope: &str, p: &Port| {
+        if p.width == 1 {
+            format!("top.{scope}.{}", p.name)
+        } else {
+            format!("top.{scope}.{}[{}:0]", p.name, p.width - 1)
+        }
+    };
+    let mut ports: Vec<String> = layout.inputs.iter().map(|p| name(core, p)).collect();
+    ports.extend(layout.outputs.iter().map(|p| name(core, p)));
+    vec![
+        ("line".to_string(), layout.line.iter().map(|p| name("line", p)).collect()),
+        (core.to_string(), ports),
+        ("decoded".to_string(), layout.decoded.iter().map(|p| name("decoded", p)).collect()),
+    ]
+}
+
+impl<W: Write> Waves<W> {
+    /// Writes the header for `layout` of `core` at a system-clock period of `period_ps`.
+    pub fn new(out: W, core: &str, layout: &Layout, period_ps: u64, comment: &str) -> io::Result<Self> {
+        let mut vcd = vcd::Writer::new(out);
+        vcd.comment(comment)?;
+        vcd.timescale(1, TimescaleUnit::PS)?;
+        vcd.add_module("top")?;
+        let mut signals = Vec::new();
+        let groups: [(&str, Vec<Port>); 3] = [
+            ("line", layout.line.clone()),
+            (core, layout.inputs.iter().chain(&layout.outputs).copied().collect()),
+            ("decoded", layout.decoded.clone()),
+        ];
+        for (scope, ports) in groups.iter() {
+            vcd.add_module(scope)?;
+            for p in ports {
+                if *scope == "line" && p.width != 1 {
+                    return Err(io::Error::new(io::ErrorKind::InvalidInput, format!("line signal {} must be a scalar", p.name)));
+                }
+                let index = (p.width > 1).then(|| ReferenceIndex::Range(p.width as i32 - 1, 0));
+                let id = vcd.add_var(VarType::Wire, p.width, p.name, index)?;
+                signals.push(Signal { id, width: p.width });
+            }
+            vcd.upscope()?;
+        }
+        vcd.upscope()?;
+        vcd.enddefinitions()?;
+        let n = signals.len();
+        Ok(Waves { vcd, signals, last: vec![None; n], last_time: None, period_ps, scratch: Vec::with_capacity(n) })
+    }
+
+    fn write_value(&mut self, index: usize, value: u64) -> io::Result<()> {
+        let s = self.signals[index];
+        if s.width == 1 {
+            self.vcd.change_scalar(s.id, value & 1 == 1)
+        } else {
+            let bits = (0..s.width).rev().map(|b| if (value >> b) & 1 == 1 { Value::V1 } else { Value::V0 });
+            self.vcd.change_vector(s.id, bits)
+        }
+    }
+
+    /// Records the values of cycle `cycle`; writes only the signals that changed.
+    pub fn at_cycle(&mut self, cycle: u64, s: &Sample) -> io::Result<()> {
+        let time = cycle * self.period_ps;
+        if let Some(last) = self.last_time {
+            if time <= last {
+                return Err(io::Error::new(
+                    io::ErrorKind::InvalidInput,
+                    format!("time {time} ps is not after {last} ps: waveforms never go backwards"),
+                ));
+            }
+        }
+        let mut values = std::mem::take(&mut self.scratch);
+        values.clear();
+        values.extend_from_slice(&s.line);
+        values.extend_from_slice(&s.inputs);
+        values.extend_from_slice(&s.outputs);
+        values.extend_from_slice(&s.decoded);
+        let first = self.last_time.is_none();
+        let changed: Vec<usize> = (0..values.len()).filter(|&i| self.last[i] != Some(values[i])).collect();
+        if !changed.is_empty() {
+            self.vcd.timestamp(time)?;
+            self.last_time = Some(time);
+            if first {
+                self.vcd.begin(SimulationCommand::Dumpvars)?;
+            }
+            for i in changed {
+                self.write_value(i, values[i])?;
+                self.last[i] = Some(values[i]);
+            }
+            if first {
+                self.vcd.end()?;
+            }
+        }
+        self.scratch = values;
+        Ok(())
+    }
+
+    /// Writes a closing timestamp at the end of cycle `cycles - 1` so viewers
+    /// show the whole run, and flushes.
+    pub fn finish(mut self, cycles: u64) -> io::Result<()> {
+        let end = cycles * self.period_ps;
+        if self.last_time.is_none_or(|t| end > t) {
+            self.vcd.timestamp(end)?;
+        }
+        self.vcd.flush()
+    }
+}
+
+impl<W: Write> Sink for Waves<W> {
+    type Error = io::Error;
+    fn sample(&mut self, cycle: u64, sample: &Sample) -> io::Result<()> {
+        self.at_cycle(cycle, sample)
+    }
+}
