@@ -14,7 +14,7 @@
 //! // The seed's 12-bit SSI example (SAR58K24 manual): the encoder holds 495.
 //! let mut cfg = BenchConfig::seed_example();
 //! cfg.positions = vec![495];
-//! let run = Bench::new(&cfg).unwrap().run_to_end();
+//! let run = model::testbench::run_to_end(Bench::new(&cfg).unwrap());
 //! assert_eq!(run.transactions[0].position, Some(495));
 //! ```
 
@@ -24,9 +24,11 @@ pub mod gray;
 pub mod line;
 pub mod ports;
 pub mod ssi;
+pub mod testbench;
 pub mod time;
 pub mod trace;
 
 pub use error::{ConfigError, Result};
 pub use ports::{Port, Ports};
+pub use testbench::{Run, Setup, Testbench, Transaction};
 pub use time::Timebase;

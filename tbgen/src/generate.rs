@@ -8,9 +8,10 @@ use std::fs::{self, File};
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
+use model::testbench::{self, Testbench, Transaction as _};
 use model::trace::{Sample, Sink};
 
-use crate::scenario::{Scenario, Setup};
+use crate::scenario::{Scenario, Visitor};
 use crate::vectors::{Header, VectorWriter};
 use crate::wave::{signal_names, Waves};
 use crate::{gtkw, transcript, Error, Result};
@@ -87,23 +88,36 @@ impl<W: Write> Sink for Both<'_, W> {
 
 /// Runs `scenario` and writes `<name>.hex`, `.vcd`, `.json` and `.gtkw` into `out_dir`.
 pub fn generate(scenario: &Scenario, out_dir: &Path) -> Result<Summary> {
-    fs::create_dir_all(out_dir).map_err(|e| Error::io(out_dir, e))?;
-    let staged = Staged::new(out_dir, &scenario.name);
-    let Setup::Ssi(cfg) = &scenario.setup;
-    let value_error = |source| Error::ScenarioValue { file: scenario.origin.clone(), line: 1, source };
+    scenario.setup.accept(Generate { scenario, out_dir })
+}
+
+struct Generate<'a> {
+    scenario: &'a Scenario,
+    out_dir: &'a Path,
+}
+
+impl Visitor for Generate<'_> {
+    type Output = Result<Summary>;
+    fn visit<S: model::Setup>(self, cfg: &S) -> Result<Summary> {
+        write_outputs(self.scenario, cfg, self.out_dir)
+    }
+}
+
+fn write_outputs<S: model::Setup>(scenario: &Scenario, cfg: &S, out_dir: &Path) -> Result<Summary> {
+    let value_error = |source| scenario.value_error(source);
     let tb = cfg.timebase().map_err(value_error)?;
     let params = cfg.verilog_parameters().map_err(value_error)?;
-    let bench = model::ssi::Bench::new(cfg).map_err(value_error)?;
+    let bench = cfg.bench().map_err(value_error)?;
+    fs::create_dir_all(out_dir).map_err(|e| Error::io(out_dir, e))?;
+    let staged = Staged::new(out_dir, &scenario.name);
     let layout = bench.layout().clone();
-    let core = scenario.core();
+    let core = S::CORE;
 
     let mut vectors = VectorWriter::new(&layout.inputs, &layout.outputs);
     let comment = format!("tbgen {}: scenario {} for {core}, f_sys {} Hz", env!("CARGO_PKG_VERSION"), scenario.name, tb.f_sys_hz());
     let vcd_path = staged.temp(1).to_path_buf();
     let mut waves = Waves::new(staged.create(1)?, core, &layout, tb.period_ps(), &comment).map_err(|e| Error::io(&vcd_path, e))?;
-    let run = bench
-        .run(&mut Both { vectors: &mut vectors, waves: &mut waves })
-        .map_err(|e| Error::io(&vcd_path, e))?;
+    let run = testbench::run(bench, &mut Both { vectors: &mut vectors, waves: &mut waves }).map_err(|e| Error::io(&vcd_path, e))?;
     waves.finish(run.cycles).map_err(|e| Error::io(&vcd_path, e))?;
 
     let header = Header {
@@ -132,10 +146,10 @@ pub fn generate(scenario: &Scenario, out_dir: &Path) -> Result<Summary> {
         .map_err(|e| Error::io(staged.temp(2), e))?;
 
     // Frame the first transaction, with a little idle line on either side.
-    let window = match run.transactions.first() {
-        Some(t) => {
-            let lead = (t.done_cycle - t.start_cycle) / 20 + 10;
-            (t.start_cycle.saturating_sub(lead) * tb.period_ps(), (t.done_cycle + lead) * tb.period_ps())
+    let window = match run.transactions.first().map(|t| t.span()) {
+        Some((start, end)) => {
+            let lead = (end - start) / 20 + 10;
+            (start.saturating_sub(lead) * tb.period_ps(), (end + lead) * tb.period_ps())
         }
         None => (0, run.cycles * tb.period_ps()),
     };

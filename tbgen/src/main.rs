@@ -5,6 +5,7 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use clap::{Parser, Subcommand};
+use tbgen::scenario::Visitor;
 use tbgen::{builtin, crc_cmd, generate, Error};
 
 #[derive(Parser)]
@@ -114,11 +115,7 @@ fn run(command: Command) -> Result<(), Error> {
 /// Model-only speed, and the speed of writing the waveform as well.
 fn bench(arg: &str) -> Result<(), Error> {
     let s = builtin::resolve(arg)?;
-    let tbgen::scenario::Setup::Ssi(cfg) = &s.setup;
-    let value_error = |source| Error::ScenarioValue { file: s.origin.clone(), line: 1, source };
-    let started = Instant::now();
-    let run = model::ssi::Bench::new(cfg).map_err(value_error)?.run_to_end();
-    let model_s = started.elapsed().as_secs_f64();
+    let (cycles, model_s) = s.setup.accept(TimeModel).map_err(|e| s.value_error(e))?;
     let dir = std::env::temp_dir().join(format!("tbgen-bench-{}", std::process::id()));
     let started = Instant::now();
     let summary = generate::generate(&s, &dir)?;
@@ -126,12 +123,24 @@ fn bench(arg: &str) -> Result<(), Error> {
     let vcd_bytes = std::fs::metadata(&summary.files[1]).map(|m| m.len()).unwrap_or(0);
     let _ = std::fs::remove_dir_all(&dir);
     println!("scenario: {}", s.name);
-    println!("cycles: {}", run.cycles);
+    println!("cycles: {cycles}");
     println!("model_seconds: {model_s:.6}");
-    println!("model_cycles_per_second: {:.0}", run.cycles as f64 / model_s);
+    println!("model_cycles_per_second: {:.0}", cycles as f64 / model_s);
     println!("gen_seconds: {gen_s:.6}");
-    println!("gen_cycles_per_second: {:.0}", run.cycles as f64 / gen_s);
+    println!("gen_cycles_per_second: {:.0}", cycles as f64 / gen_s);
     println!("vcd_bytes: {vcd_bytes}");
     println!("vcd_bytes_per_second: {:.0}", vcd_bytes as f64 / gen_s);
     Ok(())
+}
+
+/// Runs a scenario's model alone, recording nothing: (cycles, seconds).
+struct TimeModel;
+impl Visitor for TimeModel {
+    type Output = model::Result<(u64, f64)>;
+    fn visit<S: model::Setup>(self, cfg: &S) -> Self::Output {
+        let bench = cfg.bench()?;
+        let started = Instant::now();
+        let run = model::testbench::run_to_end(bench);
+        Ok((run.cycles, started.elapsed().as_secs_f64()))
+    }
 }

@@ -28,11 +28,48 @@ struct ScenarioFile {
     ssi: Option<model::ssi::BenchConfig>,
 }
 
-/// The set-up a scenario describes, one variant per protocol.
+/// The set-up a scenario describes, one variant per protocol. To add a
+/// protocol: a variant here, a field in `ScenarioFile`, and one arm in
+/// `Scenario::parse` and in [`Setup::accept`].
 #[derive(Debug, Clone, PartialEq)]
 pub enum Setup {
     /// An SSI reader, encoder and cable.
     Ssi(model::ssi::BenchConfig),
+}
+
+/// Something done with a scenario's set-up whatever its protocol: the
+/// generic code in `generate` and `main` is written once against
+/// [`model::Setup`] and reached through [`Setup::accept`].
+pub trait Visitor {
+    /// What the visit returns.
+    type Output;
+    /// Does the work for one protocol's configuration.
+    fn visit<S: model::Setup>(self, setup: &S) -> Self::Output;
+}
+
+impl Setup {
+    /// Hands the protocol's configuration to `visitor`.
+    pub fn accept<V: Visitor>(&self, visitor: V) -> V::Output {
+        match self {
+            Setup::Ssi(cfg) => visitor.visit(cfg),
+        }
+    }
+}
+
+struct CoreAndTable;
+impl Visitor for CoreAndTable {
+    type Output = (&'static str, &'static str);
+    fn visit<S: model::Setup>(self, _: &S) -> Self::Output {
+        (S::CORE, S::TABLE)
+    }
+}
+
+struct Validate;
+impl Visitor for Validate {
+    type Output = model::Result<()>;
+    fn visit<S: model::Setup>(self, setup: &S) -> Self::Output {
+        setup.validate()
+    }
 }
 
 /// A checked scenario.
@@ -84,28 +121,26 @@ impl Scenario {
 
     /// The core the scenario's vectors drive (`ssi_master`...).
     pub fn core(&self) -> &'static str {
-        match self.setup {
-            Setup::Ssi(_) => "ssi_master",
-        }
+        self.setup.accept(CoreAndTable).0
     }
 
     /// The protocol table's name in the file.
     fn table(&self) -> &'static str {
-        match self.setup {
-            Setup::Ssi(_) => "ssi",
-        }
+        self.setup.accept(CoreAndTable).1
     }
 
     /// Runs the model's own checks and places any error on a line of the file.
     fn check(&self) -> Result<()> {
-        let result = match &self.setup {
-            Setup::Ssi(cfg) => cfg.validate(),
-        };
-        result.map_err(|source| Error::ScenarioValue {
+        self.setup.accept(Validate).map_err(|source| self.value_error(source))
+    }
+
+    /// A model error placed on the line of the field it names.
+    pub fn value_error(&self, source: model::ConfigError) -> Error {
+        Error::ScenarioValue {
             file: self.origin.clone(),
             line: self.line_of(&format!("{}.{}", self.table(), source.field())),
             source,
-        })
+        }
     }
 
     /// The 1-based line where a dotted field (`ssi.master.clock_khz`) is set,

@@ -18,7 +18,8 @@ use super::master::{In, Master, MasterConfig, Out};
 use super::Code;
 use crate::line::{CableConfig, DelayLine};
 use crate::ports::{Port, Ports};
-use crate::trace::{Discard, Layout, Sample, Sink};
+use crate::testbench::{self, Setup, Testbench};
+use crate::trace::{Layout, Sample};
 use crate::{ConfigError, Result, Timebase};
 
 /// The reader's settings in a scenario file's units (`[master]`).
@@ -157,11 +158,6 @@ impl BenchConfig {
         }
     }
 
-    /// The system clock.
-    pub fn timebase(&self) -> Result<Timebase> {
-        Timebase::from_mhz(self.f_sys_mhz)
-    }
-
     /// The reader's configuration in cycles (the Verilog parameters).
     pub fn master_config(&self) -> Result<MasterConfig> {
         let tb = self.timebase()?;
@@ -221,7 +217,7 @@ impl BenchConfig {
 
     /// The Verilog parameters of `ssi_master` for this set-up, in the order the
     /// vector header lists them.
-    pub fn verilog_parameters(&self) -> Result<Vec<(&'static str, u64)>> {
+    fn parameters(&self) -> Result<Vec<(&'static str, u64)>> {
         let c = self.master_config()?;
         Ok(vec![
             ("BITS", c.bits as u64),
@@ -236,7 +232,7 @@ impl BenchConfig {
     }
 
     /// Checks everything; the error names the scenario field.
-    pub fn validate(&self) -> Result<()> {
+    fn check(&self) -> Result<()> {
         self.cable.validate("cable")?;
         self.master_config()?;
         self.encoder_config()?;
@@ -263,6 +259,28 @@ impl BenchConfig {
     }
 }
 
+impl Setup for BenchConfig {
+    type Bench = Bench;
+    const CORE: &'static str = "ssi_master";
+    const TABLE: &'static str = "ssi";
+
+    fn validate(&self) -> Result<()> {
+        self.check()
+    }
+
+    fn timebase(&self) -> Result<Timebase> {
+        Timebase::from_mhz(self.f_sys_mhz)
+    }
+
+    fn verilog_parameters(&self) -> Result<Vec<(&'static str, u64)>> {
+        self.parameters()
+    }
+
+    fn bench(&self) -> Result<Bench> {
+        Bench::new(self)
+    }
+}
+
 /// One read as the transcript reports it.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Transaction {
@@ -286,21 +304,18 @@ pub struct Transaction {
     pub errors: Vec<String>,
 }
 
-/// The result of a run.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Run {
-    /// Cycles simulated.
-    pub cycles: u64,
-    /// One entry per read, in order.
-    pub transactions: Vec<Transaction>,
-}
-
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Host {
     WaitUntil(u64),
     WaitDone,
     WaitIdle,
     Finished(u64),
+}
+
+impl testbench::Transaction for Transaction {
+    fn span(&self) -> (u64, u64) {
+        (self.start_cycle, self.done_cycle)
+    }
 }
 
 /// Host, reader, cable and encoder.
@@ -328,7 +343,7 @@ const TAIL_CYCLES: u64 = 16;
 impl Bench {
     /// A bench in its reset state.
     pub fn new(cfg: &BenchConfig) -> Result<Self> {
-        cfg.validate()?;
+        cfg.check()?;
         let tb = cfg.timebase()?;
         let master = Master::new(cfg.master_config()?)?;
         let encoder = Encoder::new(cfg.encoder_config()?)?;
@@ -375,36 +390,33 @@ impl Bench {
         self
     }
 
-    /// The signals each sample carries.
-    pub fn layout(&self) -> &Layout {
+    /// Runs to the end with nothing recorded.
+    pub fn run_to_end(self) -> testbench::Run<Transaction> {
+        testbench::run_to_end(self)
+    }
+}
+
+impl Testbench for Bench {
+    type Transaction = Transaction;
+
+    fn layout(&self) -> &Layout {
         &self.layout
     }
 
-    /// Whether the host has finished and the tail has run.
-    pub fn finished(&self) -> bool {
+    fn finished(&self) -> bool {
         matches!(self.host, Host::Finished(end) if self.cycle >= end)
     }
 
-    /// Runs to the end with nothing recorded.
-    pub fn run_to_end(self) -> Run {
-        match self.run(&mut Discard) {
-            Ok(run) => run,
-            Err(never) => match never {},
-        }
+    fn cycle(&self) -> u64 {
+        self.cycle
     }
 
-    /// Runs to the end, handing every cycle's sample to `sink`.
-    pub fn run<S: Sink>(mut self, sink: &mut S) -> std::result::Result<Run, S::Error> {
-        let mut sample = Sample::for_layout(&self.layout);
-        while !self.finished() {
-            self.step(&mut sample);
-            sink.sample(self.cycle - 1, &sample)?;
-        }
-        Ok(Run { cycles: self.cycle, transactions: self.transactions })
+    fn into_transactions(self) -> Vec<Transaction> {
+        self.transactions
     }
 
     /// One system-clock cycle of the whole set-up.
-    pub fn step(&mut self, sample: &mut Sample) {
+    fn step(&mut self, sample: &mut Sample) {
         let start = self.host_decides();
         let pin = self.stuck.unwrap_or(self.data_at_master);
         let input = In { i_start: start, i_ssi_data: pin };
@@ -427,7 +439,9 @@ impl Bench {
         self.last_out = out;
         self.cycle += 1;
     }
+}
 
+impl Bench {
     fn host_decides(&mut self) -> bool {
         match self.host {
             Host::WaitUntil(at) if self.cycle >= at && !self.last_out.o_busy => {
