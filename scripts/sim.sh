@@ -35,6 +35,10 @@ trace=0
 key=$(printf '%s\n' "$params" "$half_fs" "$trace" | cat - "$tb" "$root/hdl/tb/common/vector_player.vh" "${rtl[@]}" | sha1sum | cut -c1-12)
 build="$root/build/sim/$core/$sim/$key"
 mkdir -p "$build"
+# Parallel runs (cargo's test threads, make -j) may want the same build:
+# one builds while the others wait on the lock, then all reuse it.
+exec 9> "$build/.lock"
+flock 9
 
 plusargs=("+vectors=$vectors" "+records=$records")
 [ -n "$waves" ] && plusargs+=("+waves=$waves")
@@ -50,6 +54,7 @@ icarus)
             || { cat "$build/build.log" >&2; exit 1; }
         mv "$build/tb.vvp.tmp" "$build/tb.vvp"
     fi
+    flock -u 9
     exec vvp -n "$build/tb.vvp" "${plusargs[@]}"
     ;;
 verilator)
@@ -65,6 +70,7 @@ verilator)
             || { cat "$build/build.log" >&2; exit 1; }
         mv "$build/obj/Vtb" "$build/Vtb"
     fi
+    flock -u 9
     exec "$build/Vtb" "${plusargs[@]}"
     ;;
 *)

@@ -91,7 +91,13 @@ impl Scenario {
     pub fn parse(text: &str, origin: &str) -> Result<Scenario> {
         let file: ScenarioFile = toml::from_str(text).map_err(|e| {
             let (line, column) = e.span().map(|s| line_column(text, s.start)).unwrap_or((1, 1));
-            Error::ScenarioSyntax { file: origin.into(), line, column, message: e.message().trim().to_string() }
+            let mut message = e.message().trim().to_string();
+            if let Some(field) = field_on_line(text, line) {
+                if !message.contains(&field) {
+                    message = format!("field `{field}`: {message}");
+                }
+            }
+            Error::ScenarioSyntax { file: origin.into(), line, column, message }
         })?;
         if file.name.is_empty() || !file.name.chars().all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '_') {
             return Err(Error::Scenario {
@@ -171,6 +177,21 @@ impl Scenario {
         }
         table_line.unwrap_or(1)
     }
+}
+
+/// The dotted name (`ssi.master.bits`) of the key set on 1-based `line`, if any.
+fn field_on_line(text: &str, line: usize) -> Option<String> {
+    let mut table = String::new();
+    for (i, raw) in text.lines().enumerate() {
+        let l = raw.trim();
+        if let Some(header) = l.strip_prefix('[').and_then(|h| h.split(']').next()) {
+            table = header.trim().to_string();
+        } else if i + 1 == line {
+            let key = l.split_once('=')?.0.trim();
+            return Some(if table.is_empty() { key.to_string() } else { format!("{table}.{key}") });
+        }
+    }
+    None
 }
 
 fn line_column(text: &str, offset: usize) -> (usize, usize) {

@@ -75,6 +75,15 @@ initial begin
     if (mem[0] !== 64'd0) begin
         $fatal(1, "%0s: the first record must be at cycle 0", vector_file);
     end
+    // Cycle stamps strictly increase. In a 2-state simulator (Verilator) the
+    // words a short file leaves unread are 0, which this catches; in a
+    // 4-state one (Icarus) they are x, which the check above catches.
+    for (rec = 1; rec < records; rec = rec + 1) begin
+        if (!(mem[rec * WORDS] > mem[(rec - 1) * WORDS])) begin
+            $fatal(1, "%0s holds fewer than %0d records, or its cycle stamps do not increase at record %0d",
+                   vector_file, records, rec);
+        end
+    end
     last_cycle = mem[(records - 1) * WORDS];
     rec = 0;
     cycle = 0;

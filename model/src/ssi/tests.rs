@@ -4,7 +4,6 @@ use proptest::prelude::*;
 
 use super::*;
 use crate::line::CableConfig;
-use crate::Setup;
 
 fn read(cfg: &BenchConfig) -> Vec<Transaction> {
     Bench::new(cfg).expect("valid scenario").run_to_end().transactions
