@@ -126,6 +126,11 @@ impl DelayLine {
     /// Advances one cycle: `input` is the level at the sending end now; the
     /// result is the level at the receiving end now.
     pub fn step(&mut self, input: bool) -> bool {
+        // Most cycles carry no edge and have none in flight.
+        if input == self.last_input && self.pending.is_empty() {
+            self.now += 1;
+            return self.output;
+        }
         if input != self.last_input {
             self.last_input = input;
             let mut due = self.now + self.delay;

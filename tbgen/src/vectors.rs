@@ -116,10 +116,15 @@ impl Sink for VectorWriter {
         };
         if changed {
             self.record(cycle, s);
-        }
-        match &mut self.previous {
-            Some(p) => p.clone_from(s),
-            None => self.previous = Some(s.clone()),
+            match &mut self.previous {
+                Some(p) => {
+                    // Same lengths every cycle: copy in place, no allocation.
+                    p.inputs.copy_from_slice(&s.inputs);
+                    p.outputs.copy_from_slice(&s.outputs);
+                    p.care.copy_from_slice(&s.care);
+                }
+                None => self.previous = Some(s.clone()),
+            }
         }
         self.last_cycle = Some(cycle);
         Ok(())

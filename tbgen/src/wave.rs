@@ -25,10 +25,10 @@ struct Signal {
 pub struct Waves<W: Write> {
     vcd: vcd::Writer<W>,
     signals: Vec<Signal>,
-    last: Vec<Option<u64>>,
+    /// The values last written, in declaration order (line, ports, decoded).
+    last: Vec<u64>,
     last_time: Option<u64>,
     period_ps: u64,
-    scratch: Vec<u64>,
 }
 
 /// The full hierarchical names of a layout's signals as `Waves` declares
@@ -78,7 +78,7 @@ impl<W: Write> Waves<W> {
         vcd.upscope()?;
         vcd.enddefinitions()?;
         let n = signals.len();
-        Ok(Waves { vcd, signals, last: vec![None; n], last_time: None, period_ps, scratch: Vec::with_capacity(n) })
+        Ok(Waves { vcd, signals, last: vec![0; n], last_time: None, period_ps })
     }
 
     fn write_value(&mut self, index: usize, value: u64) -> io::Result<()> {
@@ -102,29 +102,38 @@ impl<W: Write> Waves<W> {
                 ));
             }
         }
-        let mut values = std::mem::take(&mut self.scratch);
-        values.clear();
-        values.extend_from_slice(&s.line);
-        values.extend_from_slice(&s.inputs);
-        values.extend_from_slice(&s.outputs);
-        values.extend_from_slice(&s.decoded);
         let first = self.last_time.is_none();
-        let changed: Vec<usize> = (0..values.len()).filter(|&i| self.last[i] != Some(values[i])).collect();
-        if !changed.is_empty() {
-            self.vcd.timestamp(time)?;
-            self.last_time = Some(time);
-            if first {
-                self.vcd.begin(SimulationCommand::Dumpvars)?;
+        // Fast path: most cycles change nothing; compare whole groups first.
+        let groups: [&[u64]; 4] = [&s.line, &s.inputs, &s.outputs, &s.decoded];
+        if !first {
+            let mut at = 0;
+            let mut same = true;
+            for g in groups {
+                same &= self.last[at..at + g.len()] == *g;
+                at += g.len();
             }
-            for i in changed {
-                self.write_value(i, values[i])?;
-                self.last[i] = Some(values[i]);
-            }
-            if first {
-                self.vcd.end()?;
+            if same {
+                return Ok(());
             }
         }
-        self.scratch = values;
+        self.vcd.timestamp(time)?;
+        self.last_time = Some(time);
+        if first {
+            self.vcd.begin(SimulationCommand::Dumpvars)?;
+        }
+        let mut i = 0;
+        for g in groups {
+            for &value in g {
+                if first || self.last[i] != value {
+                    self.write_value(i, value)?;
+                    self.last[i] = value;
+                }
+                i += 1;
+            }
+        }
+        if first {
+            self.vcd.end()?;
+        }
         Ok(())
     }
 
