@@ -156,6 +156,11 @@ impl Ports for Out {
 #[derive(Debug, Clone)]
 pub struct Master {
     cfg: MasterConfig,
+    // Constants of the configuration, worked out once (the RTL's localparams).
+    half: u64,
+    mask: u64,
+    capture_at: u64,
+    sampled: u32,
     state: State,
     cnt: u64,
     bit_count: u32,
@@ -174,6 +179,10 @@ impl Master {
     pub fn new(cfg: MasterConfig) -> Result<Self> {
         cfg.validate()?;
         Ok(Master {
+            half: cfg.clocks_per_bit / 2,
+            mask: if cfg.bits == 64 { u64::MAX } else { (1u64 << cfg.bits) - 1 },
+            capture_at: cfg.capture_count(),
+            sampled: cfg.sampled_bits(),
             cfg,
             state: State::Idle,
             cnt: 0,
@@ -231,9 +240,7 @@ impl Master {
     /// One rising edge of the system clock: every register takes its next
     /// value, computed from the registers' present values and `input`.
     pub fn step(&mut self, input: &In) -> Out {
-        let cfg = &self.cfg;
-        let half = cfg.clocks_per_bit / 2;
-        let mask = if cfg.bits == 64 { u64::MAX } else { (1u64 << cfg.bits) - 1 };
+        let half = self.half;
         let mut next = Out { o_done: false, o_err_idle: false, o_err_double: false, o_err_wire: false, ..self.out };
         let mut state = self.state;
         let mut cnt = self.cnt;
@@ -242,7 +249,7 @@ impl Master {
                 if input.i_start {
                     if self.data_sync {
                         state = State::Latch;
-                        cnt = cfg.t_cs_clocks - 1;
+                        cnt = self.cfg.t_cs_clocks - 1;
                         next.o_ssi_clk = false;
                         next.o_busy = true;
                         self.bit_count = 0;
@@ -267,12 +274,12 @@ impl Master {
                 }
             }
             State::Low => {
-                if self.cnt == cfg.capture_count() {
-                    self.capture(self.data_sync, mask);
+                if self.cnt == self.capture_at {
+                    self.capture(self.data_sync);
                 }
                 if self.cnt == 0 {
                     next.o_ssi_clk = true;
-                    if self.bit_count == self.cfg.sampled_bits() {
+                    if self.bit_count == self.sampled {
                         state = State::Pause;
                         cnt = self.cfg.pause_clocks - 1;
                         next.o_done = true;
@@ -305,7 +312,8 @@ impl Master {
     }
 
     /// Shifts one sampled bit into the value, its copy or the wire check.
-    fn capture(&mut self, bit: bool, mask: u64) {
+    fn capture(&mut self, bit: bool) {
+        let mask = self.mask;
         let k = self.bit_count;
         let bits = self.cfg.bits;
         self.raw = (self.raw << 1) | bit as u128;
