@@ -2,7 +2,8 @@
 #
 #   make demo        vectors, waves and transcript of the seed SSI scenario in out/
 #   make test        everything: cargo tests, every core's vectors in Icarus and
-#                    Verilator, committed vectors == fresh ones, Verilator lint
+#                    Verilator, committed vectors == fresh ones, Verilator lint,
+#                    every .gtkw layout opened in GTKWave (headless)
 #   make vectors     regenerate vectors/<core>/ from the built-in scenarios
 #   make sim CORE=ssi_master SIM=icarus|verilator [SCENARIO=ssi_seed_12bit] [WAVES=1]
 #   make waves CORE=ssi_master [SCENARIO=ssi_seed_12bit]   open GTKWave on the saved layout
@@ -17,7 +18,7 @@ SCENARIO ?=
 CARGO ?= cargo
 TBGEN := target/release/tbgen
 
-.PHONY: all demo vectors test deps build cargo-test hdl-test check-vectors lint sim waves synth bench clean
+.PHONY: all demo vectors test deps build cargo-test hdl-test check-vectors check-gtkw lint sim waves synth bench clean
 
 all: vectors
 
@@ -34,7 +35,7 @@ demo: build
 vectors: build
 	$(TBGEN) gen --all --out vectors
 
-test: deps build cargo-test lint hdl-test check-vectors
+test: deps build cargo-test lint hdl-test check-vectors check-gtkw
 	@echo "make test: all checks passed"
 
 cargo-test:
@@ -48,6 +49,9 @@ hdl-test:
 
 check-vectors: build
 	@scripts/check_vectors.sh
+
+check-gtkw:
+	@scripts/check_gtkw.sh
 
 sim:
 	@scripts/regress.sh --core $(CORE) --sim $(SIM) $(if $(SCENARIO),--scenario $(SCENARIO)) $(if $(filter 1,$(WAVES)),--waves)

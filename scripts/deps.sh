@@ -18,6 +18,7 @@
 #             yosys               [yosys]
 #             nextpnr-ice40       [nextpnr-ice40]
 #             gtkwave             [gtkwave]
+#             xvfb-run, xauth     [xvfb, xauth]  GTKWave headless in make test
 #             sigrok-cli          [sigrok-cli]  + the protocol decoders for `-P uart`;
 #                                               on Debian they ship inside
 #                                               libsigrokdecode4 (/usr/share/libsigrokdecode/decoders)
@@ -47,6 +48,8 @@ REQUIRED_TOOLS=(
     "nextpnr-ice40:nextpnr-ice40"
     "gtkwave:gtkwave"
     "sigrok-cli:sigrok-cli"
+    "xvfb-run:xvfb"
+    "xauth:xauth"
 )
 OPTIONAL_TOOLS=(
     "icepack:fpga-icestorm"
@@ -181,6 +184,8 @@ print_versions() {
     # gtkwave --version needs a display (GTK init fails first): ask dpkg instead.
     ver_line gtkwave       "GTKWave $(pkg_version gtkwave) (Debian package)"
     ver_line sigrok-cli    "$(first_line sigrok-cli --version), decoders: $SIGROK_DECODERS_PKG $(pkg_version "$SIGROK_DECODERS_PKG")"
+    # xvfb-run lets make test open GTKWave headless (scripts/check_gtkw.sh).
+    ver_line xvfb-run      "xvfb $(pkg_version xvfb)"
     # icepack/icetime have no version option: report the package.
     if have icepack; then
         ver_line icepack/icetime "fpga-icestorm $(pkg_version fpga-icestorm) (optional)"

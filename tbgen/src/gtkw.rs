@@ -11,8 +11,11 @@ const FLAG_HEX: &str = "@22";
 const FLAG_GROUP_OPEN: &str = "@800200";
 const FLAG_GROUP_CLOSE: &str = "@1000200";
 
-/// Window width in pixels the zoom is computed for.
+/// Window size, and the widths of the hierarchy and signal-name panes; the
+/// zoom is computed for what is left: the waveform pane.
 const WINDOW_PX: f64 = 1400.0;
+const SST_PX: f64 = 260.0;
+const NAMES_PX: f64 = 300.0;
 
 /// What to show.
 pub struct Layout<'a> {
@@ -30,16 +33,16 @@ pub struct Layout<'a> {
 pub fn write(out: &mut impl Write, layout: &Layout) -> io::Result<()> {
     let (start, end) = layout.window_ps;
     let span = (end.saturating_sub(start)).max(1) as f64;
-    // GTKWave's zoom z shows 2^-z time units per pixel.
-    let zoom = -(span / WINDOW_PX).log2();
+    // GTKWave's zoom z shows 2^-z time units per pixel (checked under Xvfb).
+    let zoom = -(span / (WINDOW_PX - SST_PX - NAMES_PX)).log2();
     writeln!(out, "[*] tbgen layout for scenario {}", layout.scenario)?;
     writeln!(out, "[dumpfile] \"{}\"", layout.dumpfile)?;
     writeln!(out, "[timestart] {start}")?;
     writeln!(out, "[size] {} 800", WINDOW_PX as u32)?;
     writeln!(out, "[pos] -1 -1")?;
     writeln!(out, "*{zoom:.6} {start} -1 -1 -1 -1 -1 -1 -1 -1 -1 -1 -1 -1 -1 -1 -1 -1 -1 -1 -1 -1 -1 -1 -1 -1 -1 -1")?;
-    writeln!(out, "[sst_width] 260")?;
-    writeln!(out, "[signals_width] 300")?;
+    writeln!(out, "[sst_width] {}", SST_PX as u32)?;
+    writeln!(out, "[signals_width] {}", NAMES_PX as u32)?;
     writeln!(out, "[sst_expanded] 1")?;
     writeln!(out, "[sst_vpaned_height] 200")?;
     for (title, names) in layout.groups {
