@@ -154,3 +154,21 @@ impl<W: Write> Sink for Waves<W> {
         self.at_cycle(cycle, sample)
     }
 }
+
+/// The scalar signals of a VCD only: vector declarations and vector value
+/// changes removed. sigrok-cli 0.5 (libsigrok's VCD input) stops reading at
+/// the first vector value without a word, so this is the file to give it (or
+/// PulseView); the line-level signals are all scalars and all kept.
+pub fn scalars_only(vcd_text: &str) -> String {
+    let mut out = String::with_capacity(vcd_text.len());
+    for line in vcd_text.lines() {
+        let t = line.trim_start();
+        let is_vector_var = t.starts_with("$var") && t.split_whitespace().nth(2).is_some_and(|w| w != "1");
+        if is_vector_var || t.starts_with('b') || t.starts_with('B') {
+            continue;
+        }
+        out.push_str(line);
+        out.push('\n');
+    }
+    out
+}
