@@ -18,11 +18,13 @@
 //! assert_eq!(run.transactions[0].position, Some(495));
 //! ```
 
+pub mod angle;
 pub mod crc;
 pub mod error;
 pub mod gray;
 pub mod line;
 pub mod ports;
+pub mod sar58k24;
 pub mod ssi;
 pub mod testbench;
 pub mod time;

@@ -16,6 +16,7 @@ use serde::{Deserialize, Serialize};
 use super::encoder::{AfterLsb, Encoder, EncoderConfig};
 use super::master::{In, Master, MasterConfig, Out};
 use super::Code;
+pub use crate::angle::angle_deg;
 use crate::line::{CableConfig, DelayLine};
 use crate::ports::{Port, Ports};
 use crate::testbench::{self, Setup, Testbench};
@@ -517,13 +518,6 @@ impl Bench {
         }
         self.transactions.push(t);
     }
-}
-
-/// `θ = 360° × a / 2^n`, cut (not rounded) to four decimals as the seed prints
-/// it: 495 of 4096 is 43.505859…°, which the seed writes 43.5058°.
-pub fn angle_deg(position: u64, bits: u32) -> f64 {
-    let angle = 360.0 * position as f64 / 2f64.powi(bits as i32);
-    (angle * 1e4 + 1e-7).floor() / 1e4
 }
 
 fn bit_string(value: u128, bits: u32) -> String {
