@@ -63,6 +63,16 @@ fn check_with_vcd_crate(path: &Path) -> HashMap<String, u32> {
     names
 }
 
+/// Per core: the output pulses that end a transaction, the output holding its
+/// result, and the transcript field that must equal it.
+fn transaction_signals(core: &str) -> (&'static [&'static str], &'static str, &'static str) {
+    match core {
+        "ssi_master" => (&["o_done"], "o_position", "position"),
+        "uart_rx" => (&["o_valid", "o_frame_err", "o_start_err"], "o_data", "received"),
+        other => panic!("no transaction signals listed for core {other}: add them to transaction_signals"),
+    }
+}
+
 #[test]
 fn every_builtin_scenario_writes_four_files_that_independent_readers_accept() {
     let dir = tempfile::tempdir().unwrap();
@@ -91,8 +101,9 @@ fn every_builtin_scenario_writes_four_files_that_independent_readers_accept() {
         let mut wave = wellen::simple::read(&summary.files[1]).expect("wellen reads the VCD");
         let h = wave.hierarchy();
         let mut seen = 0;
-        let mut done_ref = None;
-        let mut position_ref = None;
+        let (pulse_names, value_name, value_field) = transaction_signals(scenario.core());
+        let mut pulse_refs = Vec::new();
+        let mut value_ref = None;
         for var_ref in h.all_vars() {
             let var = &h[var_ref];
             let name = var.full_name(h);
@@ -102,36 +113,42 @@ fn every_builtin_scenario_writes_four_files_that_independent_readers_accept() {
                 let index = var.index().expect("vectors carry [msb:lsb]");
                 assert_eq!((index.msb(), index.lsb()), (width as i64 - 1, 0), "{name}");
             }
-            if name == format!("top.{}.o_done", scenario.core()) {
-                done_ref = Some(var.signal_ref());
+            if pulse_names.iter().any(|p| name == format!("top.{}.{p}", scenario.core())) {
+                pulse_refs.push(var.signal_ref());
             }
-            if name == format!("top.{}.o_position", scenario.core()) {
-                position_ref = Some(var.signal_ref());
+            if name == format!("top.{}.{value_name}", scenario.core()) {
+                value_ref = Some(var.signal_ref());
             }
             seen += 1;
         }
         assert_eq!(seen, declared.len());
         assert!(wave.time_table().windows(2).all(|w| w[0] < w[1]), "wellen: time strictly increasing");
 
-        // The transcript and the waveform tell the same story: one o_done per
-        // transaction, and o_position at each o_done equals the transcript's.
+        // The transcript and the waveform tell the same story: one result
+        // pulse per transaction, and the result port at each pulse holds the
+        // transcript's value.
         let transcript: serde_json::Value = serde_json::from_str(&fs::read_to_string(&summary.files[2]).unwrap()).unwrap();
         let transactions = transcript["transactions"].as_array().unwrap();
-        let (done_ref, position_ref) = (done_ref.unwrap(), position_ref.unwrap());
-        wave.load_signals(&[done_ref, position_ref]);
-        let done = wave.get_signal(done_ref).unwrap();
-        let position = wave.get_signal(position_ref).unwrap();
-        let rises: Vec<_> = done
-            .iter_changes()
-            .filter(|(_, v)| v.to_bit_string().as_deref() == Some("1"))
-            .map(|(t, _)| t)
+        assert_eq!(pulse_refs.len(), pulse_names.len(), "{}: result pulses not all in the VCD", scenario.name);
+        let value_ref = value_ref.expect("result port in the VCD");
+        let mut load = pulse_refs.clone();
+        load.push(value_ref);
+        wave.load_signals(&load);
+        let mut rises: Vec<_> = pulse_refs
+            .iter()
+            .flat_map(|r| {
+                let signal = wave.get_signal(*r).unwrap();
+                signal.iter_changes().filter(|(_, v)| v.to_bit_string().as_deref() == Some("1")).map(|(t, _)| t).collect::<Vec<_>>()
+            })
             .collect();
-        assert_eq!(rises.len(), transactions.len(), "{}: o_done pulses", scenario.name);
+        rises.sort();
+        assert_eq!(rises.len(), transactions.len(), "{}: result pulses vs transactions", scenario.name);
+        let value = wave.get_signal(value_ref).unwrap();
         for (t, tr) in rises.iter().zip(transactions) {
-            if let Some(p) = tr["position"].as_u64() {
-                let offset = position.get_offset(*t).unwrap();
-                let bits = position.get_value_at(&offset, 0).to_bit_string().unwrap();
-                assert_eq!(u64::from_str_radix(&bits, 2).unwrap(), p, "{}", scenario.name);
+            if let Some(expected) = tr[value_field].as_u64() {
+                let offset = value.get_offset(*t).unwrap();
+                let bits = value.get_value_at(&offset, 0).to_bit_string().unwrap();
+                assert_eq!(u64::from_str_radix(&bits, 2).unwrap(), expected, "{}", scenario.name);
             }
         }
     }

@@ -29,6 +29,7 @@ pub mod ssi;
 pub mod testbench;
 pub mod time;
 pub mod trace;
+pub mod uart;
 
 pub use error::{ConfigError, Result};
 pub use ports::{Port, Ports};

@@ -17,6 +17,12 @@ pub const FILES: &[(&str, &str)] = &[
     ("ssi/monoflop_violation.toml", include_str!("../../scenarios/ssi/monoflop_violation.toml")),
     ("ssi/long_cable_1mhz.toml", include_str!("../../scenarios/ssi/long_cable_1mhz.toml")),
     ("ssi/wide_64bit.toml", include_str!("../../scenarios/ssi/wide_64bit.toml")),
+    ("uart/esl_10mbps_all_bytes.toml", include_str!("../../scenarios/uart/esl_10mbps_all_bytes.toml")),
+    ("uart/tformat_2m5_jitter.toml", include_str!("../../scenarios/uart/tformat_2m5_jitter.toml")),
+    ("uart/baud_plus_3.toml", include_str!("../../scenarios/uart/baud_plus_3.toml")),
+    ("uart/baud_minus_3.toml", include_str!("../../scenarios/uart/baud_minus_3.toml")),
+    ("uart/baud_plus_6.toml", include_str!("../../scenarios/uart/baud_plus_6.toml")),
+    ("uart/glitch_and_break.toml", include_str!("../../scenarios/uart/glitch_and_break.toml")),
 ];
 
 /// Every built-in scenario, parsed.

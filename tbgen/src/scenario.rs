@@ -26,6 +26,7 @@ struct ScenarioFile {
     #[serde(default)]
     description: String,
     ssi: Option<model::ssi::BenchConfig>,
+    uart: Option<model::uart::BenchConfig>,
 }
 
 /// The set-up a scenario describes, one variant per protocol. To add a
@@ -35,6 +36,8 @@ struct ScenarioFile {
 pub enum Setup {
     /// An SSI reader, encoder and cable.
     Ssi(model::ssi::BenchConfig),
+    /// The 10-bit frame receiver fed by a sender with baud error and jitter.
+    Uart(model::uart::BenchConfig),
 }
 
 /// Something done with a scenario's set-up whatever its protocol: the
@@ -52,6 +55,7 @@ impl Setup {
     pub fn accept<V: Visitor>(&self, visitor: V) -> V::Output {
         match self {
             Setup::Ssi(cfg) => visitor.visit(cfg),
+            Setup::Uart(cfg) => visitor.visit(cfg),
         }
     }
 }
@@ -105,15 +109,19 @@ impl Scenario {
                 message: format!("name `{}`: use lower-case letters, digits and `_` (it names the output files)", file.name),
             });
         }
-        let setup = match file.ssi {
-            Some(cfg) => Setup::Ssi(cfg),
-            None => {
-                return Err(Error::Scenario {
-                    file: origin.into(),
-                    message: "no protocol table: add one, e.g. `[ssi]` with its fields (see scenarios/ssi/)".into(),
-                })
-            }
-        };
+        let mut setups = Vec::new();
+        setups.extend(file.ssi.map(Setup::Ssi));
+        setups.extend(file.uart.map(Setup::Uart));
+        if setups.len() != 1 {
+            return Err(Error::Scenario {
+                file: origin.into(),
+                message: format!(
+                    "{} protocol tables: give exactly one, e.g. `[ssi]` or `[uart]` with its fields (see scenarios/)",
+                    setups.len()
+                ),
+            });
+        }
+        let setup = setups.remove(0);
         let scenario = Scenario { name: file.name, description: file.description, setup, origin: origin.into(), text: text.into() };
         scenario.check()?;
         Ok(scenario)
@@ -234,5 +242,11 @@ mod tests {
     fn a_file_without_a_protocol_table_says_what_to_add() {
         let msg = Scenario::parse("name = \"x\"\n", "x.toml").unwrap_err().to_string();
         assert!(msg.contains("[ssi]"), "{msg}");
+    }
+
+    #[test]
+    fn a_file_with_two_protocol_tables_is_refused() {
+        let msg = Scenario::parse(&format!("{GOOD}[uart]\nbaud = 10e6\n"), "x.toml").unwrap_err().to_string();
+        assert!(msg.contains("2 protocol tables"), "{msg}");
     }
 }

@@ -1,0 +1,199 @@
+//! The frame receiver, cycle for cycle the same machine as `hdl/rtl/uart_rx.v`.
+
+use crate::ports::{Port, Ports};
+use crate::{ConfigError, Result};
+
+/// The receiver's configuration; `clocks_per_bit` is the Verilog `CLOCKS_PER_BIT`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ReceiverConfig {
+    /// System clocks per bit (f_sys / baud), at least 6.
+    pub clocks_per_bit: u64,
+}
+
+impl ReceiverConfig {
+    /// Checks the configuration.
+    pub fn validate(&self) -> Result<()> {
+        if !(6..=65_535).contains(&self.clocks_per_bit) {
+            return Err(ConfigError::invalid(
+                "baud",
+                format!("f_sys / baud = {} clocks per bit", self.clocks_per_bit),
+                "give f_sys at least 6 times the baud rate (10 Mbps wants 60 MHz or more) and at most 65535 times",
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// The receiver's states; the RTL's `localparam`s carry the same names and codes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum State {
+    /// Line high, waiting for a start bit.
+    Idle = 0,
+    /// Half a bit to the middle of the start bit.
+    Start = 1,
+    /// Eight data bits.
+    Data = 2,
+    /// The stop bit.
+    Stop = 3,
+    /// After a framing error: waiting for the line to go high.
+    Recover = 4,
+}
+
+/// Inputs at one rising edge of the system clock.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct In {
+    /// The receive line (RS-485 receiver output), asynchronous.
+    pub i_rx: bool,
+}
+
+/// Registered outputs after one rising edge.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Out {
+    /// The last byte received (valid with `o_valid`, and with `o_frame_err`).
+    pub o_data: u8,
+    /// One-cycle pulse: a byte with a good stop bit.
+    pub o_valid: bool,
+    /// One-cycle pulse: the stop bit was 0.
+    pub o_frame_err: bool,
+    /// One-cycle pulse: a low pulse too short to be a start bit.
+    pub o_start_err: bool,
+    /// A frame is being received.
+    pub o_busy: bool,
+}
+
+impl Ports for In {
+    fn write_values(&self, dst: &mut [u64]) {
+        dst[0] = self.i_rx as u64;
+    }
+}
+
+impl Ports for Out {
+    fn write_values(&self, dst: &mut [u64]) {
+        dst[0] = self.o_data as u64;
+        dst[1] = self.o_valid as u64;
+        dst[2] = self.o_frame_err as u64;
+        dst[3] = self.o_start_err as u64;
+        dst[4] = self.o_busy as u64;
+    }
+}
+
+/// The receiver. One [`Receiver::step`] is one rising edge of the system clock.
+#[derive(Debug, Clone)]
+pub struct Receiver {
+    cfg: ReceiverConfig,
+    state: State,
+    cnt: u64,
+    bit_index: u8,
+    shift: u8,
+    rx_meta: bool,
+    rx_sync: bool,
+    out: Out,
+}
+
+impl Receiver {
+    /// A receiver in its reset state.
+    pub fn new(cfg: ReceiverConfig) -> Result<Self> {
+        cfg.validate()?;
+        Ok(Receiver { cfg, state: State::Idle, cnt: 0, bit_index: 0, shift: 0, rx_meta: true, rx_sync: true, out: Out::default() })
+    }
+
+    /// The state after the last step.
+    pub fn state(&self) -> State {
+        self.state
+    }
+
+    /// The data bit being received (0..7).
+    pub fn bit_index(&self) -> u8 {
+        self.bit_index
+    }
+
+    /// The input ports, in vector order.
+    pub fn input_ports() -> Vec<Port> {
+        vec![Port::new("i_rx", 1)]
+    }
+
+    /// The output ports, in vector order.
+    pub fn output_ports() -> Vec<Port> {
+        vec![
+            Port::new("o_data", 8),
+            Port::new("o_valid", 1),
+            Port::new("o_frame_err", 1),
+            Port::new("o_start_err", 1),
+            Port::new("o_busy", 1),
+        ]
+    }
+
+    /// One rising edge of the system clock.
+    pub fn step(&mut self, input: &In) -> Out {
+        let bit = self.cfg.clocks_per_bit;
+        let half = bit / 2;
+        let mut next = Out { o_valid: false, o_frame_err: false, o_start_err: false, ..self.out };
+        let mut state = self.state;
+        let mut cnt = self.cnt;
+        let sample = self.rx_sync;
+        match self.state {
+            State::Idle => {
+                if !sample {
+                    state = State::Start;
+                    cnt = half - 1;
+                    next.o_busy = true;
+                }
+            }
+            State::Start => {
+                if self.cnt == 0 {
+                    if sample {
+                        state = State::Idle;
+                        next.o_busy = false;
+                        next.o_start_err = true;
+                    } else {
+                        state = State::Data;
+                        cnt = bit - 1;
+                        self.bit_index = 0;
+                    }
+                } else {
+                    cnt -= 1;
+                }
+            }
+            State::Data => {
+                if self.cnt == 0 {
+                    self.shift = (self.shift >> 1) | ((sample as u8) << 7);
+                    cnt = bit - 1;
+                    if self.bit_index == 7 {
+                        state = State::Stop;
+                    } else {
+                        self.bit_index += 1;
+                    }
+                } else {
+                    cnt -= 1;
+                }
+            }
+            State::Stop => {
+                if self.cnt == 0 {
+                    next.o_data = self.shift;
+                    if sample {
+                        state = State::Idle;
+                        next.o_busy = false;
+                        next.o_valid = true;
+                    } else {
+                        state = State::Recover;
+                        next.o_frame_err = true;
+                    }
+                } else {
+                    cnt -= 1;
+                }
+            }
+            State::Recover => {
+                if sample {
+                    state = State::Idle;
+                    next.o_busy = false;
+                }
+            }
+        }
+        self.state = state;
+        self.cnt = cnt;
+        self.rx_sync = self.rx_meta;
+        self.rx_meta = input.i_rx;
+        self.out = next;
+        next
+    }
+}

@@ -1,0 +1,84 @@
+//! Behaviour of the frame receiver: every byte, back-to-back frames, glitches,
+//! breaks, and the baud-error tolerance measured against the formula.
+
+use super::*;
+use crate::testbench::run_to_end;
+use crate::Setup;
+
+fn receive(cfg: &BenchConfig) -> Vec<Transaction> {
+    run_to_end(cfg.bench().unwrap()).transactions
+}
+
+fn all_bytes() -> BenchConfig {
+    BenchConfig { bytes: (0..=255).collect(), ..BenchConfig::default() }
+}
+
+#[test]
+fn every_byte_arrives_back_to_back_at_10_mbps() {
+    // Seed 000: 10 Mbps, 10-bit frames (start 0, 8 bits LSB first, stop 1).
+    let events = receive(&all_bytes());
+    assert_eq!(events.len(), 256);
+    for (i, e) in events.iter().enumerate() {
+        assert_eq!((e.kind, e.received, e.sent), ("byte", Some(i as u8), Some(i as u8)));
+    }
+}
+
+#[test]
+fn a_byte_is_received_one_frame_after_its_start_bit() {
+    let events = receive(&BenchConfig { bytes: vec![0xA5], ..BenchConfig::default() });
+    let e = &events[0];
+    // 9.5 bits to mid-stop, plus 2 synchroniser cycles and 1 output register.
+    let latency = e.cycle - e.sent_cycle.unwrap();
+    assert!((96..=99).contains(&latency), "latency {latency}");
+}
+
+#[test]
+fn a_glitch_shorter_than_half_a_bit_is_rejected_and_a_break_is_one_framing_error() {
+    let cfg = BenchConfig {
+        bytes: vec![0x3C, 0x3C],
+        gap_bits: 50.0,
+        low: vec![LowPulse { at_us: 0.1, width_ns: 30.0 }, LowPulse { at_us: 20.0, width_ns: 3000.0 }],
+        ..BenchConfig::default()
+    };
+    let kinds: Vec<_> = receive(&cfg).iter().map(|e| e.kind).collect();
+    assert_eq!(kinds, vec!["start_error", "byte", "byte", "frame_error"]);
+}
+
+#[test]
+fn t_format_rate_with_its_permissible_jitter_loses_nothing() {
+    // Seed 002: 2.5 Mbps, permissible jitter ±100 ns.
+    let cfg = BenchConfig { baud: 2.5e6, jitter_ns: 100.0, ..all_bytes() };
+    let events = receive(&cfg);
+    assert_eq!(events.len(), 256);
+    assert!(events.iter().all(|e| e.kind == "byte" && e.received == e.sent));
+}
+
+#[test]
+fn the_tolerance_formula_at_10_clocks_per_bit() {
+    let (low, high) = tolerance(10, 0.0);
+    assert!((low + 5.263).abs() < 0.01, "{low}");
+    assert!((high - 4.167).abs() < 0.01, "{high}");
+}
+
+#[test]
+fn inside_the_tolerance_no_byte_is_lost_and_well_outside_every_frame_is_hurt() {
+    // Sweep the sender's baud error; compare with `tolerance`, which allows
+    // one cycle of edge quantisation. Inside (with a margin of 0.25 %) every
+    // byte must arrive intact; 1.5 % beyond the bound no byte may.
+    let (low, high) = tolerance(10, 0.0);
+    let mut step = -80;
+    while step <= 80 {
+        let error = step as f64 / 10.0;
+        let cfg = BenchConfig { error_percent: error, ..all_bytes() };
+        let events = receive(&cfg);
+        let intact = events.iter().filter(|e| e.kind == "byte" && e.received == e.sent).count();
+        if error > low + 0.25 && error < high - 0.25 {
+            assert_eq!(intact, 256, "error {error} %: only {intact} of 256 intact");
+        }
+        if error < low - 1.5 || error > high + 1.5 {
+            assert!(intact < 256 / 4, "error {error} %: {intact} of 256 intact outside the tolerance");
+        }
+        step += 5;
+    }
+}
+

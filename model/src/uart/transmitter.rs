@@ -1,0 +1,110 @@
+//! A sender of 10-bit frames with a baud error and jitter, for benches: it
+//! places each bit edge at its exact time in picoseconds and rounds to the
+//! system clock, so a 3 % fast sender drifts as a real one does.
+
+use std::collections::VecDeque;
+
+use rand::{Rng, SeedableRng};
+use rand_pcg::Pcg64Mcg;
+
+/// One frame the transmitter has started: its first cycle and its byte.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Sent {
+    /// Cycle of the start bit's falling edge.
+    pub start_cycle: u64,
+    /// The byte.
+    pub byte: u8,
+}
+
+/// The sender.
+#[derive(Debug, Clone)]
+pub struct Transmitter {
+    period_ps: f64,
+    bit_ps: f64,
+    jitter_ps: f64,
+    rng: Pcg64Mcg,
+    /// Pending levels as (time in ps, level), in time order.
+    edges: VecDeque<(f64, bool)>,
+    queued_until_ps: f64,
+    level: bool,
+    cycle: u64,
+    sent: Vec<Sent>,
+    pending_frames: VecDeque<(f64, u8)>,
+}
+
+impl Transmitter {
+    /// A sender at `baud × (1 + error_percent / 100)` on a system clock of
+    /// `period_ps`, each edge moved by up to ±`jitter_ps`.
+    pub fn new(period_ps: u64, baud: f64, error_percent: f64, jitter_ps: f64, seed: u64) -> Self {
+        Transmitter {
+            period_ps: period_ps as f64,
+            bit_ps: 1e12 / (baud * (1.0 + error_percent / 100.0)),
+            jitter_ps,
+            rng: Pcg64Mcg::seed_from_u64(seed),
+            edges: VecDeque::new(),
+            queued_until_ps: 0.0,
+            level: true,
+            cycle: 0,
+            sent: Vec::new(),
+            pending_frames: VecDeque::new(),
+        }
+    }
+
+    /// The length of one bit in ps.
+    pub fn bit_ps(&self) -> f64 {
+        self.bit_ps
+    }
+
+    /// Queues `byte` to start no earlier than `at_ps`, after `gap_bits` idle
+    /// bits following the previous frame.
+    pub fn send(&mut self, byte: u8, at_ps: f64, gap_bits: f64) {
+        let start = at_ps.max(self.queued_until_ps + gap_bits * self.bit_ps);
+        let mut bits = [true; 10];
+        bits[0] = false;
+        for (i, b) in bits.iter_mut().enumerate().take(9).skip(1) {
+            *b = (byte >> (i - 1)) & 1 == 1;
+        }
+        let mut previous = true;
+        for (i, &b) in bits.iter().enumerate() {
+            if b != previous {
+                let j = if self.jitter_ps > 0.0 { self.rng.random_range(-self.jitter_ps..=self.jitter_ps) } else { 0.0 };
+                self.edges.push_back((start + i as f64 * self.bit_ps + j, b));
+                previous = b;
+            }
+        }
+        self.pending_frames.push_back((start, byte));
+        self.queued_until_ps = start + 10.0 * self.bit_ps;
+    }
+
+    /// The time in ps at which everything queued has been sent.
+    pub fn idle_from_ps(&self) -> f64 {
+        self.queued_until_ps
+    }
+
+    /// Frames started so far.
+    pub fn sent(&self) -> &[Sent] {
+        &self.sent
+    }
+
+    /// The line level during the current cycle; then advances one cycle.
+    /// An edge at time `t` shows from the first cycle that starts at or after `t`.
+    pub fn step(&mut self) -> bool {
+        let now = self.cycle as f64 * self.period_ps;
+        while let Some(&(t, level)) = self.edges.front() {
+            if t > now {
+                break;
+            }
+            self.level = level;
+            self.edges.pop_front();
+        }
+        while let Some(&(t, byte)) = self.pending_frames.front() {
+            if t > now {
+                break;
+            }
+            self.sent.push(Sent { start_cycle: self.cycle, byte });
+            self.pending_frames.pop_front();
+        }
+        self.cycle += 1;
+        self.level
+    }
+}
