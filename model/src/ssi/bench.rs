@@ -256,6 +256,19 @@ impl BenchConfig {
                 return Err(ConfigError::invalid(field, format!("{us}"), "give a non-negative time in µs"));
             }
         }
+        // Refuse up front a run the vector format cannot hold, rather than
+        // simulate for minutes and fail at the end.
+        let tb = self.timebase()?;
+        let m = self.master_config()?;
+        let per_read = m.read_cycles() + m.pause_clocks + tb.cycles_at_least_ns(self.host.gap_us * 1e3) + 4;
+        let total = (self.read_count() as u128) * per_read as u128 + tb.cycles_at_least_ns(self.host.first_start_us * 1e3) as u128;
+        if total > MAX_CYCLES as u128 {
+            return Err(ConfigError::invalid(
+                "reads",
+                format!("{} reads take about {total} cycles, more than the {MAX_CYCLES} a vector file holds", self.read_count()),
+                "ask for fewer reads, or shorter pauses and gaps",
+            ));
+        }
         Ok(())
     }
 }
@@ -337,6 +350,9 @@ pub struct Bench {
     transactions: Vec<Transaction>,
     layout: Layout,
 }
+
+/// The longest run a vector file can hold (its cycle stamps are 32 bits).
+pub const MAX_CYCLES: u64 = u32::MAX as u64;
 
 /// Cycles the bench keeps running after the last read, so the waves show the idle line.
 const TAIL_CYCLES: u64 = 16;

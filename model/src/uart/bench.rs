@@ -108,6 +108,17 @@ impl BenchConfig {
                 return Err(ConfigError::invalid(format!("low[{i}]"), "bad time or width", "give at_us ≥ 0 and a positive width_ns"));
             }
         }
+        // Refuse up front a run the vector format cannot hold (32-bit cycle stamps).
+        let frames = (self.bytes.len() * self.repeat) as f64;
+        let total = (self.first_us * 1e-6 + frames * (10.0 + self.gap_bits) / self.baud) * self.timebase()?.f_sys_hz() as f64
+            + self.low.iter().map(|p| (p.at_us * 1e-6 + p.width_ns * 1e-9) * self.timebase().map_or(0.0, |t| t.f_sys_hz() as f64)).fold(0.0, f64::max);
+        if total > u32::MAX as f64 {
+            return Err(ConfigError::invalid(
+                "bytes",
+                format!("the run takes about {total:.0} cycles, more than the {} a vector file holds", u32::MAX),
+                "send fewer bytes, or shorter gaps",
+            ));
+        }
         let _ = cfg;
         Ok(())
     }

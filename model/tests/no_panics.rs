@@ -1,0 +1,110 @@
+//! Whatever a scenario file says, the model answers with a value or a
+//! `ConfigError` naming the field, never a panic: arbitrary numbers
+//! (NaN, infinities, zero, huge) in every field of every protocol's setup,
+//! then a few thousand cycles of any setup that was accepted.
+
+use model::testbench::Testbench;
+use model::{ssi, uart, Setup};
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use proptest::prelude::*;
+
+static SSI_RAN: AtomicUsize = AtomicUsize::new(0);
+static UART_RAN: AtomicUsize = AtomicUsize::new(0);
+
+/// Realistic values most of the time (so that many setups are accepted and
+/// run), and the nasty ones often enough.
+fn any_f64(usual: &'static [f64]) -> impl Strategy<Value = f64> {
+    prop_oneof![
+        19 => proptest::sample::select(usual),
+        1 => nasty_f64(),
+    ]
+}
+
+fn nasty_f64() -> impl Strategy<Value = f64> {
+    prop_oneof![
+        Just(f64::NAN),
+        Just(f64::INFINITY),
+        Just(f64::NEG_INFINITY),
+        Just(0.0),
+        Just(-1.0),
+        Just(1e300),
+        0.0f64..2000.0,
+        any::<f64>(),
+    ]
+}
+
+fn step_a_while<B: Testbench>(mut bench: B) {
+    for _ in 0..5000 {
+        if bench.finished() {
+            break;
+        }
+        bench.step(None);
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 400, failure_persistence: None, ..ProptestConfig::default() })]
+
+    #[test]
+    fn any_ssi_setup_is_accepted_or_refused_by_field(
+        f_sys in any_f64(&[50.0, 100.0]), clock in any_f64(&[250.0, 500.0, 1000.0]), t_cs in any_f64(&[4.0, 2.0]),
+        pause in any_f64(&[510.0, 40.0]), delay in any_f64(&[0.0, 100.0]), monoflop in any_f64(&[20.0, 500.0]),
+        out_delay in any_f64(&[100.0, 0.0]), cable in any_f64(&[0.0, 10.0, 100.0]), jitter in any_f64(&[0.0, 20.0]),
+        bits in prop_oneof![4 => Just(12u32), 1 => 0u32..70], enc_bits in prop_oneof![4 => Just(12u32), 1 => 0u32..70], reads in prop_oneof![4 => Just(None), 4 => Just(Some(3usize)), 1 => proptest::option::of(0usize..20_000_000)],
+        position in prop_oneof![4 => 0u64..4096, 1 => any::<u64>()], step in any::<u64>(), flags in any::<[bool; 4]>(),
+    ) {
+        let cfg = ssi::BenchConfig {
+            f_sys_mhz: f_sys,
+            master: ssi::MasterSettings {
+                bits, clock_khz: clock, t_cs_us: t_cs, pause_us: pause, sample_delay_ns: delay,
+                double_read: flags[0], wire_check: flags[1],
+                code: if flags[2] { ssi::Code::Gray } else { ssi::Code::Binary },
+            },
+            encoder: ssi::EncoderSettings { bits: enc_bits, monoflop_us: monoflop, output_delay_ns: out_delay, ..Default::default() },
+            cable: model::line::CableConfig { length_m: cable, jitter_ns: jitter, ..Default::default() },
+            positions: vec![position],
+            reads,
+            step,
+            fault: flags[3].then_some(ssi::StuckFault { level: true, from_read: 1 }),
+            ..Default::default()
+        };
+        match cfg.validate() {
+            Ok(()) => {
+                step_a_while(cfg.bench().expect("a validated setup builds"));
+                SSI_RAN.fetch_add(1, Ordering::Relaxed);
+            }
+            Err(e) => prop_assert!(!e.field().is_empty()),
+        }
+    }
+
+    #[test]
+    fn any_uart_setup_is_accepted_or_refused_by_field(
+        f_sys in any_f64(&[100.0, 80.0]), baud in any_f64(&[10e6, 2.5e6]), error in any_f64(&[0.0, 3.0, -6.0]),
+        jitter in any_f64(&[0.0, 20.0]), gap in any_f64(&[0.0, 3.0]), first in any_f64(&[0.5, 0.0]),
+        at in any_f64(&[0.1, 5.0]), width in any_f64(&[30.0, 3000.0]),
+        bytes in proptest::collection::vec(any::<u8>(), 0..4), repeat in prop_oneof![Just(1usize), 0usize..3_000_000],
+    ) {
+        let cfg = uart::BenchConfig {
+            f_sys_mhz: f_sys, baud, error_percent: error, jitter_ns: jitter, gap_bits: gap, first_us: first,
+            bytes, repeat, low: vec![uart::LowPulse { at_us: at, width_ns: width }], ..Default::default()
+        };
+        match cfg.validate() {
+            Ok(()) => {
+                step_a_while(cfg.bench().expect("a validated setup builds"));
+                UART_RAN.fetch_add(1, Ordering::Relaxed);
+            }
+            Err(e) => prop_assert!(!e.field().is_empty()),
+        }
+    }
+}
+
+#[test]
+fn the_property_tests_above_run_many_accepted_setups() {
+    // Runs after them in the same binary only by luck of ordering, so it runs
+    // them itself: their counters must show real runs, not only refusals.
+    any_ssi_setup_is_accepted_or_refused_by_field();
+    any_uart_setup_is_accepted_or_refused_by_field();
+    let (ssi, uart) = (SSI_RAN.load(Ordering::Relaxed), UART_RAN.load(Ordering::Relaxed));
+    assert!(ssi >= 20 && uart >= 20, "accepted and run: ssi {ssi}, uart {uart}");
+}
