@@ -38,8 +38,10 @@ vectors: build
 test: deps build cargo-test lint hdl-test check-vectors check-gtkw
 	@echo "make test: all checks passed"
 
+# The dev profile, so that arithmetic overflow panics in tests instead of
+# wrapping silently as it would in release.
 cargo-test:
-	$(CARGO) test --workspace --locked --release
+	$(CARGO) test --workspace --locked
 
 lint:
 	@scripts/lint.sh

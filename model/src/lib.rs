@@ -27,6 +27,7 @@ pub mod ports;
 pub mod sar58k24;
 pub mod ssi;
 pub mod testbench;
+pub mod tformat;
 pub mod time;
 pub mod trace;
 pub mod uart;

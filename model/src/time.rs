@@ -106,8 +106,10 @@ impl Timebase {
     }
 }
 
+/// The even divider nearest `ratio`, at least 4 (for the error's suggestion).
 fn even_near(ratio: f64) -> u64 {
-    let r = if ratio.is_finite() { ratio.max(4.0) } else { 4.0 };
+    // Clamp first: an absurd ratio (a clock of 1e-300 kHz) must not overflow.
+    let r = if ratio.is_finite() { ratio.clamp(4.0, 1e12) } else { 4.0 };
     let even = (r / 2.0).round() as u64 * 2;
     even.max(4)
 }

@@ -163,11 +163,11 @@ impl BenchConfig {
     pub fn master_config(&self) -> Result<MasterConfig> {
         let tb = self.timebase()?;
         let m = &self.master;
-        if !(m.clock_khz > 0.0) {
+        if m.clock_khz.is_nan() || m.clock_khz <= 0.0 {
             return Err(ConfigError::invalid("master.clock_khz", "not a positive frequency", "give the SSI clock in kHz, e.g. 250"));
         }
         for (field, value) in [("master.t_cs_us", m.t_cs_us), ("master.pause_us", m.pause_us), ("master.sample_delay_ns", m.sample_delay_ns)] {
-            if !(value >= 0.0 && value < 1e7) {
+            if !(0.0..1e7).contains(&value) {
                 return Err(ConfigError::invalid(field, format!("{value}"), "give a non-negative time"));
             }
         }
@@ -190,7 +190,7 @@ impl BenchConfig {
         let tb = self.timebase()?;
         let e = &self.encoder;
         for (field, value) in [("encoder.monoflop_us", e.monoflop_us), ("encoder.output_delay_ns", e.output_delay_ns)] {
-            if !(value >= 0.0 && value < 1e7) {
+            if !(0.0..1e7).contains(&value) {
                 return Err(ConfigError::invalid(field, format!("{value}"), "give a non-negative time"));
             }
         }

@@ -68,7 +68,7 @@ impl BenchConfig {
     /// The receiver's configuration (the Verilog parameters).
     pub fn receiver_config(&self) -> Result<ReceiverConfig> {
         let tb = self.timebase()?;
-        if !(self.baud >= 1.0) {
+        if self.baud.is_nan() || self.baud < 1.0 {
             return Err(ConfigError::invalid("baud", format!("{}", self.baud), "give the bit rate in bit/s, e.g. 10e6"));
         }
         let ratio = tb.f_sys_hz() as f64 / self.baud;

@@ -1,0 +1,369 @@
+//! Host, half-duplex RS-485 pair and encoder, stepped together, with a host
+//! script of operations. Implements [`Setup`]/[`Testbench`] so that `tbgen`
+//! can drive it as soon as the `tformat_host` core exists.
+
+use serde::{Deserialize, Serialize};
+
+use super::encoder::{Encoder, EncoderConfig, EncoderSettings};
+use super::frames::DataId;
+use super::host::{Host, HostConfig, In, Out};
+use crate::line::{CableConfig, Drive, HalfDuplexLine};
+use crate::ports::Port;
+use crate::testbench::{self, Setup, Testbench};
+use crate::trace::{Layout, Sample};
+use crate::{ConfigError, Result, Timebase};
+
+/// The host's settings in a scenario's units (`[tformat.host]`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct HostSettings {
+    /// Answer timeout after the request, µs.
+    pub timeout_us: f64,
+    /// Interval between the ten reset requests, µs (seed: ≥ 40 ms).
+    pub repeat_gap_us: f64,
+}
+
+impl Default for HostSettings {
+    fn default() -> Self {
+        HostSettings { timeout_us: 10.0, repeat_gap_us: 40_000.0 }
+    }
+}
+
+/// One host operation (`[[tformat.ops]]`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Operation {
+    /// The Data ID code: 0, 1, 2, 3, 6, 7, 8, 0xC or 0xD (others are sent as
+    /// asked, to see the encoder's Table 5 answer).
+    pub data_id: u8,
+    /// EEPROM address (6, D).
+    #[serde(default)]
+    pub address: u8,
+    /// EEPROM data (6).
+    #[serde(default)]
+    pub data: u8,
+    /// Idle time before the operation, µs.
+    #[serde(default = "default_gap")]
+    pub gap_us: f64,
+}
+
+fn default_gap() -> f64 {
+    5.0
+}
+
+/// Everything a scenario says about a T-format set-up (`[tformat]`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct BenchConfig {
+    /// System clock in MHz.
+    pub f_sys_mhz: f64,
+    /// Bit rate in bit/s (seed: 2.5 Mbps).
+    pub baud: f64,
+    /// The host.
+    pub host: HostSettings,
+    /// The encoder.
+    pub encoder: EncoderSettings,
+    /// The cable.
+    pub cable: CableConfig,
+    /// What the host does, in order.
+    pub ops: Vec<Operation>,
+}
+
+impl Default for BenchConfig {
+    fn default() -> Self {
+        BenchConfig {
+            f_sys_mhz: 100.0,
+            baud: 2.5e6,
+            host: HostSettings::default(),
+            encoder: EncoderSettings::default(),
+            cable: CableConfig { length_m: 10.0, ..CableConfig::default() },
+            ops: vec![Operation { data_id: 0, address: 0, data: 0, gap_us: 5.0 }],
+        }
+    }
+}
+
+impl BenchConfig {
+    fn clocks_per_bit(&self) -> Result<u64> {
+        let tb = self.timebase()?;
+        let ratio = tb.f_sys_hz() as f64 / self.baud;
+        if !(ratio.is_finite() && (ratio - ratio.round()).abs() < 1e-6) {
+            return Err(ConfigError::invalid("baud", format!("f_sys / baud = {ratio}"), "use a baud rate that divides f_sys (2.5 Mbps at 100 MHz)"));
+        }
+        Ok(ratio.round() as u64)
+    }
+
+    /// The host's configuration in cycles (the Verilog parameters).
+    pub fn host_config(&self) -> Result<HostConfig> {
+        let tb = self.timebase()?;
+        for (f, v) in [("host.timeout_us", self.host.timeout_us), ("host.repeat_gap_us", self.host.repeat_gap_us)] {
+            if !(v > 0.0 && v < 1e7) {
+                return Err(ConfigError::invalid(f, format!("{v}"), "give a positive time in µs"));
+            }
+        }
+        let cfg = HostConfig {
+            clocks_per_bit: self.clocks_per_bit()?,
+            timeout_clocks: tb.cycles_at_least_ns(self.host.timeout_us * 1e3),
+            repeat_gap_clocks: tb.cycles_at_least_ns(self.host.repeat_gap_us * 1e3),
+        };
+        cfg.validate()?;
+        Ok(cfg)
+    }
+
+    /// The encoder's configuration in cycles.
+    pub fn encoder_config(&self) -> Result<EncoderConfig> {
+        let tb = self.timebase()?;
+        let e = &self.encoder;
+        for (f, v) in [
+            ("encoder.answer_delay_us", e.answer_delay_us),
+            ("encoder.eeprom_write_us", e.eeprom_write_us),
+            ("encoder.reset_interval_us", e.reset_interval_us),
+        ] {
+            if !(0.0..1e7).contains(&v) {
+                return Err(ConfigError::invalid(f, format!("{v}"), "give a non-negative time in µs"));
+            }
+        }
+        Ok(EncoderConfig {
+            clocks_per_bit: self.clocks_per_bit()?,
+            answer_delay: tb.cycles_nearest_ns(e.answer_delay_us * 1e3),
+            eeprom_write: tb.cycles_at_least_ns(e.eeprom_write_us * 1e3),
+            reset_interval: tb.cycles_at_least_ns(e.reset_interval_us * 1e3),
+            settings: e.clone(),
+        })
+    }
+
+    fn check(&self) -> Result<()> {
+        self.cable.validate("cable")?;
+        self.host_config()?;
+        self.encoder_config()?;
+        if self.ops.is_empty() || self.ops.len() > 100_000 {
+            return Err(ConfigError::invalid("ops", format!("{} operations", self.ops.len()), "list 1 to 100 000 operations"));
+        }
+        for (i, op) in self.ops.iter().enumerate() {
+            if op.data_id > 0xF || op.address > 0x7F || !(0.0..1e7).contains(&op.gap_us) {
+                return Err(ConfigError::invalid(format!("ops[{i}]"), "data_id above 0xF, address above 127 or a bad gap", "give data_id 0..0xF, address 0..127, gap_us ≥ 0"));
+            }
+        }
+        Ok(())
+    }
+}
+
+impl Setup for BenchConfig {
+    type Bench = Bench;
+    const CORE: &'static str = "tformat_host";
+    const TABLE: &'static str = "tformat";
+
+    fn validate(&self) -> Result<()> {
+        self.check()
+    }
+
+    fn timebase(&self) -> Result<Timebase> {
+        Timebase::from_mhz(self.f_sys_mhz)
+    }
+
+    fn verilog_parameters(&self) -> Result<Vec<(&'static str, u64)>> {
+        let h = self.host_config()?;
+        Ok(vec![("CLOCKS_PER_BIT", h.clocks_per_bit), ("TIMEOUT_CLOCKS", h.timeout_clocks), ("REPEAT_GAP_CLOCKS", h.repeat_gap_clocks)])
+    }
+
+    fn bench(&self) -> Result<Bench> {
+        Bench::new(self)
+    }
+}
+
+/// One host operation as the transcript reports it.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Transaction {
+    /// 0-based operation number.
+    pub index: usize,
+    /// Cycle of the start pulse.
+    pub start_cycle: u64,
+    /// Cycle of `o_done`.
+    pub done_cycle: u64,
+    /// The Data ID code asked for.
+    pub data_id: u8,
+    /// The request fields the host sent (the last of them, for a reset sent ten times).
+    pub sent: Vec<u8>,
+    /// The answer fields the host received (the last answer, for a reset).
+    pub received: Vec<u8>,
+    /// Decoded single-turn data (17 bits).
+    pub abs: u32,
+    /// Decoded multi-turn data (16 bits).
+    pub abm: u16,
+    /// Decoded status field.
+    pub sf: u8,
+    /// Decoded ENID.
+    pub enid: u8,
+    /// Decoded ALMC.
+    pub almc: u8,
+    /// Decoded EEPROM fields (ADF with its busy bit, EDF).
+    pub adf: u8,
+    /// EEPROM data field.
+    pub edf: u8,
+    /// What the host flagged: `crc`, `timeout`, `frame`, `cf_mismatch`, `comm_alarm`.
+    pub errors: Vec<&'static str>,
+    /// The encoder's single-turn and multi-turn values when the answer was sent.
+    pub encoder_position: (u32, u16),
+}
+
+impl testbench::Transaction for Transaction {
+    fn span(&self) -> (u64, u64) {
+        (self.start_cycle, self.done_cycle)
+    }
+}
+
+/// Host, line and encoder.
+pub struct Bench {
+    cfg: BenchConfig,
+    host: Host,
+    encoder: Encoder,
+    line: HalfDuplexLine,
+    at_host: bool,
+    encoder_drive: Drive,
+    next_op: usize,
+    start_at: u64,
+    waiting: bool,
+    last_out: Out,
+    cycle: u64,
+    end: Option<u64>,
+    open: Option<Transaction>,
+    transactions: Vec<Transaction>,
+    tb: Timebase,
+    layout: Layout,
+}
+
+impl Bench {
+    /// A bench in its reset state.
+    pub fn new(cfg: &BenchConfig) -> Result<Self> {
+        cfg.check()?;
+        let tb = cfg.timebase()?;
+        let layout = Layout {
+            inputs: vec![Port::new("i_start", 1), Port::new("i_data_id", 4), Port::new("i_address", 7), Port::new("i_wdata", 8), Port::new("i_rx", 1)],
+            outputs: vec![Port::new("o_tx", 1), Port::new("o_tx_en", 1), Port::new("o_busy", 1), Port::new("o_done", 1)],
+            line: vec![Port::new("tx_en_host", 1), Port::new("tx_en_encoder", 1), Port::new("line_at_host", 1), Port::new("line_at_encoder", 1)],
+            decoded: vec![Port::new("state", 3)],
+        };
+        Ok(Bench {
+            host: Host::new(cfg.host_config()?)?,
+            encoder: Encoder::new(cfg.encoder_config()?),
+            line: HalfDuplexLine::new(cfg.cable.delay_cycles(&tb), true),
+            at_host: true,
+            encoder_drive: Drive::default(),
+            next_op: 0,
+            start_at: tb.cycles_at_least_ns(cfg.ops[0].gap_us * 1e3),
+            waiting: false,
+            last_out: Out { o_tx: true, ..Out::default() },
+            cycle: 0,
+            end: None,
+            open: None,
+            transactions: Vec::new(),
+            tb,
+            layout,
+            cfg: cfg.clone(),
+        })
+    }
+
+    /// Cycles the RS-485 pair had two drivers on.
+    pub fn contention_cycles(&self) -> u64 {
+        self.line.contention_cycles()
+    }
+
+    /// The encoder emulator (for tests that look inside it).
+    pub fn encoder(&self) -> &Encoder {
+        &self.encoder
+    }
+}
+
+impl Testbench for Bench {
+    type Transaction = Transaction;
+
+    fn layout(&self) -> &Layout {
+        &self.layout
+    }
+
+    fn step(&mut self, sample: Option<&mut Sample>) {
+        let mut input = In { i_rx: self.at_host, ..In::default() };
+        if !self.waiting && self.end.is_none() && self.cycle >= self.start_at && !self.last_out.o_busy {
+            let op = &self.cfg.ops[self.next_op];
+            input = In { i_start: true, i_data_id: op.data_id, i_address: op.address, i_wdata: op.data, i_rx: self.at_host };
+            let sent = match DataId::from_code(op.data_id) {
+                Some(id) => super::frames::request(id, op.address, op.data),
+                None => vec![super::frames::control_field_for_code(op.data_id)],
+            };
+            self.open = Some(Transaction {
+                index: self.next_op,
+                start_cycle: self.cycle,
+                done_cycle: 0,
+                data_id: op.data_id,
+                sent,
+                received: Vec::new(),
+                abs: 0,
+                abm: 0,
+                sf: 0,
+                enid: 0,
+                almc: 0,
+                adf: 0,
+                edf: 0,
+                errors: Vec::new(),
+                encoder_position: (0, 0),
+            });
+            self.waiting = true;
+        }
+        let out = self.host.step(&input);
+        let host_drive = Drive { enable: out.o_tx_en, level: out.o_tx };
+        let (at_host, at_encoder) = self.line.step(host_drive, self.encoder_drive);
+        self.encoder_drive = self.encoder.step(at_encoder.level);
+        self.at_host = at_host.level;
+        if out.o_done {
+            if let Some(mut t) = self.open.take() {
+                t.done_cycle = self.cycle;
+                t.received = self.host.fields().to_vec();
+                t.abs = out.o_abs;
+                t.abm = out.o_abm;
+                t.sf = out.o_sf;
+                t.enid = out.o_enid;
+                t.almc = out.o_almc;
+                t.adf = out.o_adf;
+                t.edf = out.o_edf;
+                for (flag, name) in [
+                    (out.o_err_crc, "crc"),
+                    (out.o_err_timeout, "timeout"),
+                    (out.o_err_frame, "frame"),
+                    (out.o_err_cf, "cf_mismatch"),
+                    (out.o_err_comm, "comm_alarm"),
+                ] {
+                    if flag {
+                        t.errors.push(name);
+                    }
+                }
+                t.encoder_position = (self.encoder.single_turn(), self.encoder.multi_turn());
+                self.transactions.push(t);
+            }
+            self.waiting = false;
+            self.next_op += 1;
+            if self.next_op == self.cfg.ops.len() {
+                self.end = Some(self.cycle + 16);
+            } else {
+                self.start_at = self.cycle + self.tb.cycles_at_least_ns(self.cfg.ops[self.next_op].gap_us * 1e3);
+            }
+        }
+        self.last_out = out;
+        self.cycle += 1;
+        let Some(sample) = sample else { return };
+        sample.inputs.copy_from_slice(&[input.i_start as u64, input.i_data_id as u64, input.i_address as u64, input.i_wdata as u64, input.i_rx as u64]);
+        sample.outputs.copy_from_slice(&[out.o_tx as u64, out.o_tx_en as u64, out.o_busy as u64, out.o_done as u64]);
+        sample.line.copy_from_slice(&[host_drive.enable as u64, self.encoder_drive.enable as u64, at_host.level as u64, at_encoder.level as u64]);
+        sample.decoded[0] = self.host.state() as u64;
+    }
+
+    fn finished(&self) -> bool {
+        self.end.is_some_and(|e| self.cycle >= e)
+    }
+
+    fn cycle(&self) -> u64 {
+        self.cycle
+    }
+
+    fn into_transactions(self) -> Vec<Transaction> {
+        self.transactions
+    }
+}

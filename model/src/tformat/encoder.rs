@@ -1,0 +1,376 @@
+//! A Tamagawa Smart Abs (TS5669 N127, seed 002) as the host sees it on the
+//! line: request detection (7.1, 8.1), the answers of Table 2, EEPROM with
+//! its busy status (Table 4), the resets sent ten times (9.), and every
+//! answer Tables 5 and 6 prescribe for an abnormal request.
+
+use serde::{Deserialize, Serialize};
+
+use super::frames::{self, Alarms, DataId, Status};
+use crate::line::Drive;
+
+/// What the emulated encoder holds, as a scenario sets it (`[tformat.encoder]`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct EncoderSettings {
+    /// Single-turn position, 17 bits.
+    pub single_turn: u32,
+    /// Multi-turn count, 16 bits.
+    pub multi_turn: u16,
+    /// Error flags (ALMC).
+    pub alarms: Alarms,
+    /// Answer delay after the request's last delimiter, µs (seed: 3 µs typ.).
+    pub answer_delay_us: f64,
+    /// EEPROM write time, µs (seed: 18 ms max.).
+    pub eeprom_write_us: f64,
+    /// Shortest interval between the ten reset requests that still counts, µs (seed: 40 ms).
+    pub reset_interval_us: f64,
+    /// EEPROM contents at start, address 0 first (the rest 0, as shipped).
+    pub eeprom: Vec<u8>,
+}
+
+impl Default for EncoderSettings {
+    fn default() -> Self {
+        EncoderSettings {
+            single_turn: 0x1_2345,
+            multi_turn: 0x0102,
+            alarms: Alarms::default(),
+            answer_delay_us: 3.0,
+            eeprom_write_us: 18_000.0,
+            reset_interval_us: 40_000.0,
+            eeprom: Vec::new(),
+        }
+    }
+}
+
+/// The encoder's configuration in cycles.
+#[derive(Debug, Clone, PartialEq)]
+pub struct EncoderConfig {
+    /// Clocks per bit of the line.
+    pub clocks_per_bit: u64,
+    /// Cycles from the end of the request's last delimiter to the answer's start bit.
+    pub answer_delay: u64,
+    /// Cycles the EEPROM stays busy after an accepted write.
+    pub eeprom_write: u64,
+    /// Shortest interval between counted reset requests, in cycles.
+    pub reset_interval: u64,
+    /// Initial state.
+    pub settings: EncoderSettings,
+}
+
+/// Addresses 0..79 are open to the user (seed 002, 6.1.1).
+pub const EEPROM_SIZE: usize = 80;
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Rx {
+    /// Waiting for a falling edge.
+    Hunt,
+    /// Sampling bit `n` (0 = start, 9 = delimiter) at `at`.
+    Bit { n: u8, at: u64 },
+}
+
+/// What the receiver made of the request so far.
+#[derive(Debug, Clone, Default)]
+struct Request {
+    fields: Vec<u8>,
+    delimiter_error: bool,
+}
+
+/// The emulator. One [`Encoder::step`] is one system-clock cycle.
+#[derive(Debug, Clone)]
+pub struct Encoder {
+    cfg: EncoderConfig,
+    single_turn: u32,
+    multi_turn: u16,
+    alarms: Alarms,
+    eeprom: [u8; EEPROM_SIZE],
+    busy_until: u64,
+    pending_write: Option<(u8, u8)>,
+    reset_count: (Option<DataId>, u32, u64),
+    pending_reset: Option<(DataId, u64)>,
+    now: u64,
+    last_level: bool,
+    rx: Rx,
+    shift: u8,
+    request: Request,
+    /// The answer being sent: bits still to go, and when the next one starts.
+    tx_bits: Vec<bool>,
+    tx_index: usize,
+    tx_next_at: u64,
+    answer_at: Option<(u64, Vec<u8>)>,
+    driving: bool,
+    level: bool,
+    answered: Vec<(u64, Vec<u8>)>,
+}
+
+impl Encoder {
+    /// An encoder at power-on.
+    pub fn new(cfg: EncoderConfig) -> Self {
+        let mut eeprom = [0u8; EEPROM_SIZE];
+        for (i, b) in cfg.settings.eeprom.iter().take(EEPROM_SIZE).enumerate() {
+            eeprom[i] = *b;
+        }
+        Encoder {
+            single_turn: cfg.settings.single_turn & 0x1_FFFF,
+            multi_turn: cfg.settings.multi_turn,
+            alarms: cfg.settings.alarms,
+            eeprom,
+            busy_until: 0,
+            pending_write: None,
+            reset_count: (None, 0, 0),
+            pending_reset: None,
+            now: 0,
+            last_level: true,
+            rx: Rx::Hunt,
+            shift: 0,
+            request: Request::default(),
+            tx_bits: Vec::new(),
+            tx_index: 0,
+            tx_next_at: 0,
+            answer_at: None,
+            driving: false,
+            level: true,
+            answered: Vec::new(),
+            cfg,
+        }
+    }
+
+    /// The shaft turns: new single-turn and multi-turn values.
+    pub fn set_position(&mut self, single_turn: u32, multi_turn: u16) {
+        self.single_turn = single_turn & 0x1_FFFF;
+        self.multi_turn = multi_turn;
+    }
+
+    /// Single-turn position now.
+    pub fn single_turn(&self) -> u32 {
+        self.single_turn
+    }
+
+    /// Multi-turn count now.
+    pub fn multi_turn(&self) -> u16 {
+        self.multi_turn
+    }
+
+    /// Error flags now.
+    pub fn alarms(&self) -> Alarms {
+        self.alarms
+    }
+
+    /// One EEPROM byte.
+    pub fn eeprom(&self, address: usize) -> u8 {
+        self.eeprom[address]
+    }
+
+    /// Every answer sent so far: (cycle of its first start bit, fields).
+    pub fn answered(&self) -> &[(u64, Vec<u8>)] {
+        &self.answered
+    }
+
+    /// One cycle with the line level at the encoder's pins; returns what the
+    /// encoder drives (it listens only while it does not drive).
+    pub fn step(&mut self, line: bool) -> Drive {
+        self.apply_pending();
+        if !self.driving {
+            self.receive(line);
+        }
+        self.transmit();
+        self.last_level = line;
+        self.now += 1;
+        Drive { enable: self.driving, level: self.level }
+    }
+
+    fn apply_pending(&mut self) {
+        if let Some((address, data)) = self.pending_write {
+            if self.now >= self.busy_until {
+                self.eeprom[address as usize] = data;
+                self.pending_write = None;
+            }
+        }
+        if let Some((id, at)) = self.pending_reset {
+            if self.now >= at {
+                self.execute_reset(id);
+                self.pending_reset = None;
+            }
+        }
+    }
+
+    /// Bit-level receiver: a start is the first 0 after idle; if the three
+    /// bits after it are not the sink code, the search goes on from the next
+    /// falling edge (7.1, 8.1).
+    fn receive(&mut self, line: bool) {
+        let c = self.cfg.clocks_per_bit;
+        match self.rx {
+            Rx::Hunt => {
+                if self.last_level && !line {
+                    self.rx = Rx::Bit { n: 0, at: self.now + c / 2 };
+                    self.shift = 0;
+                }
+            }
+            Rx::Bit { n, at } => {
+                if self.now < at {
+                    return;
+                }
+                match n {
+                    0 if line => self.rx = Rx::Hunt, // glitch
+                    0 => self.rx = Rx::Bit { n: 1, at: at + c },
+                    1..=8 => {
+                        self.shift |= (line as u8) << (n - 1);
+                        let first_field = self.request.fields.is_empty();
+                        if n == 3 && first_field && self.shift & 0b111 != frames::SINK_CODE {
+                            // Table 5/6 no. 1: not for us; keep searching.
+                            self.rx = Rx::Hunt;
+                            return;
+                        }
+                        self.rx = Rx::Bit { n: n + 1, at: at + c };
+                    }
+                    _ => {
+                        self.request.fields.push(self.shift);
+                        self.request.delimiter_error |= !line;
+                        self.rx = Rx::Hunt;
+                        self.field_received(at + c / 2);
+                    }
+                }
+            }
+        }
+    }
+
+    /// A whole field arrived; `end` is when its delimiter ends.
+    fn field_received(&mut self, end: u64) {
+        let cf = frames::parse_control_field(self.request.fields[0]);
+        let id = DataId::from_code(cf.code);
+        let expected = match id {
+            Some(DataId::Id6) => 4,
+            Some(DataId::IdD) => 3,
+            _ => 1,
+        };
+        // A delimiter error or bad parity ends the request at once (we
+        // cannot trust its Data ID to say how many fields follow).
+        if self.request.fields.len() < expected && cf.parity_ok && !self.request.delimiter_error {
+            return;
+        }
+        let request = std::mem::take(&mut self.request);
+        let answer = self.answer(&request);
+        self.answer_at = Some((end + self.cfg.answer_delay, answer));
+    }
+
+    /// The answer to a complete request (Tables 2, 4, 5, 6).
+    fn answer(&mut self, request: &Request) -> Vec<u8> {
+        let cf = frames::parse_control_field(request.fields[0]);
+        let mut status = self.alarms.status();
+        status.ca0 = !cf.parity_ok;
+        status.ca1 = request.delimiter_error;
+        let id = DataId::from_code(cf.code).filter(|_| cf.parity_ok && !request.delimiter_error);
+        match id {
+            Some(id @ (DataId::Id0 | DataId::Id1 | DataId::Id2 | DataId::Id3)) => self.readout(id, status),
+            Some(id @ (DataId::Id7 | DataId::Id8 | DataId::IdC)) => {
+                self.count_reset(id);
+                self.readout(id, status)
+            }
+            Some(id @ (DataId::Id6 | DataId::IdD)) => {
+                let address = request.fields.get(1).copied().unwrap_or(0xFF) & 0x7F;
+                let crc_good = frames::crc_ok(&request.fields);
+                if !crc_good || address as usize >= EEPROM_SIZE {
+                    return self.readout(DataId::Id3, status); // Table 6 no. 2, 6
+                }
+                let busy = self.now < self.busy_until;
+                let edf = if busy {
+                    0x00
+                } else if id == DataId::Id6 {
+                    let data = request.fields[2];
+                    self.pending_write = Some((address, data));
+                    self.busy_until = self.now + self.cfg.eeprom_write;
+                    data
+                } else {
+                    self.eeprom[address as usize]
+                };
+                frames::with_crc(&[id.control_field(), address | (busy as u8) << 7, edf])
+            }
+            // Table 5 no. 2-4, Table 6 no. 3-5: the Data ID 3 answer.
+            None => self.readout(DataId::Id3, status),
+        }
+    }
+
+    fn readout(&self, id: DataId, status: Status) -> Vec<u8> {
+        let abs = frames::le24(self.single_turn);
+        let abm = frames::le24(self.multi_turn as u32);
+        let mut fields = vec![id.control_field(), status.byte()];
+        match id {
+            DataId::Id1 => fields.extend_from_slice(&abm),
+            DataId::Id2 => fields.push(frames::ENID),
+            DataId::Id3 => {
+                fields.extend_from_slice(&abs);
+                fields.push(frames::ENID);
+                fields.extend_from_slice(&abm);
+                fields.push(self.alarms.byte());
+            }
+            _ => fields.extend_from_slice(&abs),
+        }
+        frames::with_crc(&fields)
+    }
+
+    /// Ten requests of the same reset, each at least the reset interval after
+    /// the one before, execute it; anything else starts the count again.
+    fn count_reset(&mut self, id: DataId) {
+        let (last_id, count, last_at) = self.reset_count;
+        let counts = last_id == Some(id) && self.now >= last_at + self.cfg.reset_interval;
+        let count = if counts { count + 1 } else { 1 };
+        self.reset_count = (Some(id), count, self.now);
+        if count == 10 {
+            self.reset_count = (None, 0, 0);
+            let delay = if id == DataId::Id8 { self.cfg.eeprom_write } else { 0 };
+            self.pending_reset = Some((id, self.now + delay));
+        }
+    }
+
+    fn execute_reset(&mut self, id: DataId) {
+        let a = &mut self.alarms;
+        // Latched errors (9.): over-speed, counter overflow, multi-turn error,
+        // counting error, battery error.
+        let clear_latched = |a: &mut Alarms| {
+            a.over_speed = false;
+            a.counter_overflow = false;
+            a.multi_turn_error = false;
+            a.counting_error = false;
+            a.battery_error = false;
+        };
+        match id {
+            DataId::Id7 => clear_latched(a),
+            DataId::IdC => {
+                clear_latched(a);
+                self.multi_turn = 0;
+            }
+            DataId::Id8 => self.single_turn = 0,
+            _ => {}
+        }
+    }
+
+    /// Sends the pending answer when its time comes, back-to-back fields.
+    fn transmit(&mut self) {
+        if !self.driving {
+            if let Some((at, _)) = &self.answer_at {
+                if self.now >= *at {
+                    let (_, fields) = self.answer_at.take().unwrap_or_default();
+                    self.tx_bits = fields.iter().flat_map(|&b| frame_bits(b)).collect();
+                    self.tx_index = 0;
+                    self.tx_next_at = self.now;
+                    self.driving = true;
+                    self.answered.push((self.now, fields));
+                }
+            }
+        }
+        if self.driving && self.now >= self.tx_next_at {
+            if self.tx_index == self.tx_bits.len() {
+                self.driving = false;
+                self.level = true;
+                return;
+            }
+            self.level = self.tx_bits[self.tx_index];
+            self.tx_index += 1;
+            self.tx_next_at += self.cfg.clocks_per_bit;
+        }
+    }
+}
+
+/// The ten bits of one field on the line: start 0, data LSB first, delimiter 1.
+pub fn frame_bits(byte: u8) -> impl Iterator<Item = bool> {
+    std::iter::once(false).chain((0..8).map(move |i| (byte >> i) & 1 == 1)).chain(std::iter::once(true))
+}

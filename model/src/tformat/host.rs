@@ -1,0 +1,335 @@
+//! The T-format host, cycle by cycle: the machine `hdl/rtl/tformat_host.v`
+//! will mirror (the RTL is not written yet; this model already drives the
+//! encoder emulator in tests).
+
+use super::frames::{self, DataId};
+use crate::uart::{self, Receiver, ReceiverConfig};
+use crate::{ConfigError, Result};
+
+/// The host's configuration in cycles; each field is the Verilog parameter
+/// of the same name in upper case.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct HostConfig {
+    /// System clocks per bit (f_sys / 2.5 Mbps).
+    pub clocks_per_bit: u64,
+    /// Cycles from the end of the request to the answer's start bit before
+    /// the host gives up (`o_err_timeout`).
+    pub timeout_clocks: u64,
+    /// Cycles from one reset request to the next of the ten (seed: ≥ 40 ms).
+    pub repeat_gap_clocks: u64,
+}
+
+impl HostConfig {
+    /// Checks the configuration; field names are those of `[tformat.host]`.
+    pub fn validate(&self) -> Result<()> {
+        ReceiverConfig { clocks_per_bit: self.clocks_per_bit }.validate()?;
+        if self.timeout_clocks < self.clocks_per_bit {
+            return Err(ConfigError::invalid("host.timeout_us", "shorter than one bit", "wait at least the encoder's 3 µs answer delay plus a bit"));
+        }
+        if self.repeat_gap_clocks < 20 * self.clocks_per_bit {
+            return Err(ConfigError::invalid("host.repeat_gap_us", "shorter than a request and its answer", "give the seed's 40 000 µs or at least 20 bits"));
+        }
+        Ok(())
+    }
+}
+
+/// The host's states; the RTL's `localparam`s will carry the same names and codes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum State {
+    /// Waiting for `i_start`.
+    Idle = 0,
+    /// Driving the request.
+    Send = 1,
+    /// Driver off, waiting for the answer's start bit.
+    Wait = 2,
+    /// Receiving the answer's fields.
+    Recv = 3,
+    /// Between two of the ten reset requests.
+    Gap = 4,
+}
+
+/// Inputs at one rising edge.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct In {
+    /// Host: start an operation (one-cycle pulse; ignored while busy).
+    pub i_start: bool,
+    /// Host: the Data ID code (0, 1, 2, 3, 6, 7, 8, C, D).
+    pub i_data_id: u8,
+    /// Host: EEPROM address (6, D).
+    pub i_address: u8,
+    /// Host: EEPROM data to write (6).
+    pub i_wdata: u8,
+    /// Line: the RS-485 receiver output.
+    pub i_rx: bool,
+}
+
+impl Default for In {
+    fn default() -> Self {
+        In { i_start: false, i_data_id: 0, i_address: 0, i_wdata: 0, i_rx: true }
+    }
+}
+
+/// Registered outputs after one rising edge.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Out {
+    /// Line: the level driven.
+    pub o_tx: bool,
+    /// Line: RS-485 driver enable.
+    pub o_tx_en: bool,
+    /// Host: an operation is under way.
+    pub o_busy: bool,
+    /// Host: one-cycle pulse at the end of an operation, results valid.
+    pub o_done: bool,
+    /// The answer's control field.
+    pub o_cf: u8,
+    /// The answer's status field.
+    pub o_sf: u8,
+    /// Single-turn data (ABS, 17 bits).
+    pub o_abs: u32,
+    /// Multi-turn data (ABM, 16 bits).
+    pub o_abm: u16,
+    /// Encoder ID.
+    pub o_enid: u8,
+    /// ALMC.
+    pub o_almc: u8,
+    /// EEPROM address field of the answer (bit 7: busy).
+    pub o_adf: u8,
+    /// EEPROM data field of the answer.
+    pub o_edf: u8,
+    /// The answer's CRC did not match.
+    pub o_err_crc: bool,
+    /// No answer began within the timeout.
+    pub o_err_timeout: bool,
+    /// A framing error, or not the number of fields the request asks for.
+    pub o_err_frame: bool,
+    /// The answer's control field is not the request's (an abnormal request
+    /// answered with Data ID 3 data, or an answer to someone else).
+    pub o_err_cf: bool,
+    /// ca0 or ca1 set: the encoder saw a parity or delimiter error.
+    pub o_err_comm: bool,
+}
+
+/// The most fields an answer has (Data ID 3).
+pub const MAX_FIELDS: usize = 11;
+
+/// The host. One [`Host::step`] is one rising edge of the system clock.
+#[derive(Debug, Clone)]
+pub struct Host {
+    cfg: HostConfig,
+    state: State,
+    rx: Receiver,
+    /// The receiver's registered outputs, as the RTL's FSM sees them: the
+    /// values after the previous edge.
+    rx_out: uart::Out,
+    id: u8,
+    request: [u8; 4],
+    request_len: u8,
+    field: u8,
+    bit: u8,
+    cnt: u64,
+    repeats_left: u8,
+    fields: [u8; MAX_FIELDS],
+    count: u8,
+    crc: u8,
+    idle: u64,
+    errors: (bool, bool, bool),
+    out: Out,
+}
+
+impl Host {
+    /// A host in its reset state.
+    pub fn new(cfg: HostConfig) -> Result<Self> {
+        cfg.validate()?;
+        Ok(Host {
+            rx: Receiver::new(ReceiverConfig { clocks_per_bit: cfg.clocks_per_bit })?,
+            rx_out: uart::Out::default(),
+            cfg,
+            state: State::Idle,
+            id: 0,
+            request: [0; 4],
+            request_len: 0,
+            field: 0,
+            bit: 0,
+            cnt: 0,
+            repeats_left: 0,
+            fields: [0; MAX_FIELDS],
+            count: 0,
+            crc: 0,
+            idle: 0,
+            errors: (false, false, false),
+            out: Out { o_tx: true, ..Out::default() },
+        })
+    }
+
+    /// The state after the last step.
+    pub fn state(&self) -> State {
+        self.state
+    }
+
+    /// Fields received in the current answer.
+    pub fn fields(&self) -> &[u8] {
+        &self.fields[..self.count as usize]
+    }
+
+    /// One rising edge of the system clock.
+    pub fn step(&mut self, input: &In) -> Out {
+        let c = self.cfg.clocks_per_bit;
+        let mut next = Out { o_done: false, ..self.out };
+        let rx = self.rx_out;
+        match self.state {
+            State::Idle => {
+                if input.i_start {
+                    self.id = input.i_data_id & 0xF;
+                    let id = DataId::from_code(self.id);
+                    let set = frames::request(id.unwrap_or(DataId::Id0), input.i_address, input.i_wdata);
+                    // An undefined code is sent as asked: the encoder answers
+                    // it with Data ID 3 data (Table 5 no. 2).
+                    let mut bytes = set.clone();
+                    bytes[0] = frames::control_field_for_code(self.id);
+                    self.request = [0; 4];
+                    self.request[..bytes.len()].copy_from_slice(&bytes);
+                    self.request_len = bytes.len() as u8;
+                    self.repeats_left = if id.is_some_and(|d| d.is_reset()) { 10 } else { 1 };
+                    self.errors = (false, false, false);
+                    next.o_busy = true;
+                    next.o_err_crc = false;
+                    next.o_err_timeout = false;
+                    next.o_err_frame = false;
+                    next.o_err_cf = false;
+                    next.o_err_comm = false;
+                    self.begin_send(&mut next);
+                }
+            }
+            State::Send => {
+                if self.cnt == 0 {
+                    self.bit += 1;
+                    if self.bit == 10 {
+                        self.bit = 0;
+                        self.field += 1;
+                    }
+                    if self.field == self.request_len {
+                        next.o_tx_en = false;
+                        next.o_tx = true;
+                        self.state = State::Wait;
+                        self.cnt = self.cfg.timeout_clocks - 1;
+                        self.count = 0;
+                        self.crc = 0;
+                    } else {
+                        next.o_tx = bit_of(self.request[self.field as usize], self.bit);
+                        self.cnt = c - 1;
+                    }
+                } else {
+                    self.cnt -= 1;
+                }
+            }
+            State::Wait => {
+                if rx.o_busy {
+                    self.state = State::Recv;
+                    self.idle = 0;
+                } else if self.cnt == 0 {
+                    self.errors.1 = true;
+                    self.finish(&mut next);
+                } else {
+                    self.cnt -= 1;
+                }
+            }
+            State::Recv => {
+                if rx.o_valid || rx.o_frame_err {
+                    if (self.count as usize) < MAX_FIELDS {
+                        self.fields[self.count as usize] = rx.o_data;
+                    }
+                    self.count = self.count.saturating_add(1);
+                    self.crc ^= rx.o_data;
+                    self.errors.2 |= rx.o_frame_err;
+                    self.idle = 0;
+                } else if !rx.o_busy {
+                    self.idle += 1;
+                    if self.idle == c {
+                        self.finish(&mut next);
+                    }
+                } else {
+                    self.idle = 0;
+                }
+            }
+            State::Gap => {
+                if self.cnt == 0 {
+                    self.begin_send(&mut next);
+                } else {
+                    self.cnt -= 1;
+                }
+            }
+        }
+        // The receiver listens only while the driver is off.
+        self.rx_out = self.rx.step(&uart::In { i_rx: input.i_rx || self.out.o_tx_en });
+        self.out = next;
+        next
+    }
+
+    fn begin_send(&mut self, next: &mut Out) {
+        self.state = State::Send;
+        self.field = 0;
+        self.bit = 0;
+        self.cnt = self.cfg.clocks_per_bit - 1;
+        next.o_tx_en = true;
+        next.o_tx = false; // start bit of the first field
+    }
+
+    /// End of one request's answer: check it, publish it, repeat or finish.
+    fn finish(&mut self, next: &mut Out) {
+        let timeout = self.errors.1;
+        let request_cf = self.request[0];
+        let expected = DataId::from_code(self.id).map_or(11, |d| d.answer_fields()) as u8;
+        let f = self.fields;
+        let cf = f[0];
+        if !timeout {
+            next.o_cf = cf;
+            match DataId::from_code((cf >> 3) & 0xF) {
+                Some(DataId::Id6 | DataId::IdD) => {
+                    next.o_adf = f[1];
+                    next.o_edf = f[2];
+                }
+                received => {
+                    next.o_sf = f[1];
+                    match received {
+                        Some(DataId::Id1) => next.o_abm = u16::from_le_bytes([f[2], f[3]]),
+                        Some(DataId::Id2) => next.o_enid = f[2],
+                        Some(DataId::Id3) => {
+                            next.o_abs = u32::from_le_bytes([f[2], f[3], f[4] & 0x01, 0]);
+                            next.o_enid = f[5];
+                            next.o_abm = u16::from_le_bytes([f[6], f[7]]);
+                            next.o_almc = f[9];
+                        }
+                        _ => next.o_abs = u32::from_le_bytes([f[2], f[3], f[4] & 0x01, 0]),
+                    }
+                }
+            }
+        }
+        let sf_comm = !timeout && !DataId::from_code((cf >> 3) & 0xF).is_some_and(|d| d.is_eeprom()) && f[1] & 0xC0 != 0;
+        next.o_err_timeout |= timeout;
+        next.o_err_crc |= !timeout && self.crc != 0;
+        next.o_err_frame |= !timeout && (self.errors.2 || self.count != expected);
+        next.o_err_cf |= !timeout && cf != request_cf;
+        next.o_err_comm |= sf_comm;
+        self.errors = (false, false, false);
+        self.repeats_left -= 1;
+        if self.repeats_left == 0 {
+            self.state = State::Idle;
+            next.o_busy = false;
+            next.o_done = true;
+        } else {
+            self.state = State::Gap;
+            // The gap runs from the end of this answer; the seed asks for 40 ms
+            // between requests, which this more than keeps.
+            self.cnt = self.cfg.repeat_gap_clocks - 1;
+        }
+    }
+}
+
+/// Bit `n` (0 = start, 1..8 = data LSB first, 9 = delimiter) of a field.
+fn bit_of(byte: u8, n: u8) -> bool {
+    match n {
+        0 => false,
+        1..=8 => (byte >> (n - 1)) & 1 == 1,
+        _ => true,
+    }
+}

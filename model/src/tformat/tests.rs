@@ -1,0 +1,148 @@
+//! The T-format host against the Smart Abs emulator: every Data ID, EEPROM,
+//! resets, and the abnormal-request answers of Tables 5 and 6.
+
+use super::frames::{Alarms, DataId};
+use super::*;
+use crate::testbench::run_to_end;
+use crate::Setup;
+
+fn op(data_id: u8) -> Operation {
+    Operation { data_id, address: 0, data: 0, gap_us: 5.0 }
+}
+
+fn run(cfg: &BenchConfig) -> (Vec<Transaction>, u64) {
+    let bench = cfg.bench().unwrap();
+    let r = run_to_end(bench);
+    (r.transactions, r.cycles)
+}
+
+fn contention_free(cfg: &BenchConfig) -> Vec<Transaction> {
+    let mut bench = cfg.bench().unwrap();
+    while !crate::testbench::Testbench::finished(&bench) {
+        crate::testbench::Testbench::step(&mut bench, None);
+    }
+    assert_eq!(bench.contention_cycles(), 0, "two drivers on the line");
+    crate::testbench::Testbench::into_transactions(bench)
+}
+
+#[test]
+fn readouts_0_1_2_3_decode_what_the_encoder_holds() {
+    let cfg = BenchConfig {
+        encoder: EncoderSettings { single_turn: 0x1_ABCD, multi_turn: 0xBEEF, ..EncoderSettings::default() },
+        ops: vec![op(0), op(1), op(2), op(3)],
+        ..BenchConfig::default()
+    };
+    let ts = contention_free(&cfg);
+    assert!(ts.iter().all(|t| t.errors.is_empty()), "{ts:?}");
+    assert_eq!(ts[0].abs, 0x1_ABCD);
+    assert_eq!(ts[0].received.len(), 6, "Table 2: CF SF ABS0 ABS1 ABS2 CRC");
+    assert_eq!(ts[1].abm, 0xBEEF);
+    assert_eq!(ts[2].enid, 0x11, "ENID is fixed as 11H");
+    assert_eq!(ts[2].received.len(), 4);
+    assert_eq!((ts[3].abs, ts[3].abm, ts[3].enid, ts[3].received.len()), (0x1_ABCD, 0xBEEF, 0x11, 11));
+}
+
+#[test]
+fn the_answer_begins_3_us_after_the_request() {
+    // Seed 002, 7.1: "The Data frame is transmitted at 3 micro-seconds (typ.)
+    // after receiving the Delimiter signal of Request frame."
+    let cfg = BenchConfig { cable: crate::line::CableConfig::default(), ..BenchConfig::default() };
+    let bench = cfg.bench().unwrap();
+    let mut b = bench;
+    while !crate::testbench::Testbench::finished(&b) {
+        crate::testbench::Testbench::step(&mut b, None);
+    }
+    let start = b.encoder().answered()[0].0;
+    // Request: start bit from cycle 500 (5 µs), 10 bits of 40 cycles end at
+    // 900; with no cable the answer's start bit is at 900 + 300.
+    assert_eq!(start, 500 + 400 + 300, "request end + 3 µs");
+}
+
+#[test]
+fn alarms_reach_almc_and_the_status_field() {
+    let alarms = Alarms { battery_alarm: true, counting_error: true, ..Alarms::default() };
+    let cfg = BenchConfig { encoder: EncoderSettings { alarms, ..EncoderSettings::default() }, ops: vec![op(3)], ..BenchConfig::default() };
+    let t = &run(&cfg).0[0];
+    assert_eq!(t.almc, alarms.byte());
+    assert_eq!(t.sf & 0x30, 0x30, "ea0 and ea1");
+    assert!(t.errors.is_empty(), "encoder errors are data, not communication errors");
+}
+
+#[test]
+fn eeprom_write_is_busy_then_reads_back() {
+    // Table 4: a write is accepted (EDF echoed); requests during the write get
+    // busy and 00; after it, the read returns the data.
+    let cfg = BenchConfig {
+        encoder: EncoderSettings { eeprom_write_us: 100.0, ..EncoderSettings::default() },
+        ops: vec![
+            Operation { data_id: 6, address: 5, data: 0xA5, gap_us: 5.0 },
+            Operation { data_id: 0xD, address: 5, data: 0, gap_us: 5.0 },
+            Operation { data_id: 0xD, address: 5, data: 0, gap_us: 200.0 },
+        ],
+        ..BenchConfig::default()
+    };
+    let ts = contention_free(&cfg);
+    assert!(ts.iter().all(|t| t.errors.is_empty()), "{ts:?}");
+    assert_eq!((ts[0].adf, ts[0].edf), (5, 0xA5));
+    assert_eq!((ts[1].adf, ts[1].edf), (0x85, 0x00), "busy");
+    assert_eq!((ts[2].adf, ts[2].edf), (5, 0xA5));
+}
+
+#[test]
+fn an_eeprom_address_not_open_to_the_user_gets_data_id_3() {
+    // Table 6 no. 2.
+    let cfg = BenchConfig { ops: vec![Operation { data_id: 0xD, address: 80, data: 0, gap_us: 5.0 }], ..BenchConfig::default() };
+    let t = &run(&cfg).0[0];
+    assert_eq!(t.received.len(), 11);
+    assert!(t.errors.contains(&"cf_mismatch") && t.errors.contains(&"frame"), "{:?}", t.errors);
+}
+
+#[test]
+fn an_undefined_data_id_is_answered_with_data_id_3_and_flagged() {
+    // Table 5 no. 2: Data ID 5 is not in Table 1.
+    let t = &run(&BenchConfig { ops: vec![op(5)], ..BenchConfig::default() }).0[0];
+    assert_eq!(t.received[0], DataId::Id3.control_field());
+    assert!(t.errors.contains(&"cf_mismatch"), "{:?}", t.errors);
+}
+
+#[test]
+fn ten_resets_40_ms_apart_clear_the_multi_turn_count() {
+    // Seed 002, 9.: Data ID C, ten times, 40 ms or more apart. Scaled down:
+    // the emulator's interval and the host's gap are both 400 µs here.
+    let cfg = BenchConfig {
+        host: HostSettings { repeat_gap_us: 400.0, ..HostSettings::default() },
+        encoder: EncoderSettings {
+            multi_turn: 777,
+            reset_interval_us: 400.0,
+            alarms: Alarms { multi_turn_error: true, ..Alarms::default() },
+            ..EncoderSettings::default()
+        },
+        ops: vec![op(0xC), op(3)],
+        ..BenchConfig::default()
+    };
+    let ts = contention_free(&cfg);
+    assert!(ts[0].errors.is_empty(), "{:?}", ts[0].errors);
+    assert_eq!((ts[1].abm, ts[1].almc), (0, 0));
+}
+
+#[test]
+fn resets_sent_too_close_together_do_not_count() {
+    let cfg = BenchConfig {
+        host: HostSettings { repeat_gap_us: 100.0, ..HostSettings::default() },
+        encoder: EncoderSettings { multi_turn: 777, reset_interval_us: 400.0, ..EncoderSettings::default() },
+        ops: vec![op(0xC), op(1)],
+        ..BenchConfig::default()
+    };
+    assert_eq!(run(&cfg).0[1].abm, 777);
+}
+
+#[test]
+fn no_encoder_on_the_line_times_out() {
+    let cfg = BenchConfig { encoder: EncoderSettings { answer_delay_us: 50.0, ..EncoderSettings::default() }, ..BenchConfig::default() };
+    let mut bench = cfg.bench().unwrap();
+    while !crate::testbench::Testbench::finished(&bench) {
+        crate::testbench::Testbench::step(&mut bench, None);
+    }
+    let ts = crate::testbench::Testbench::into_transactions(bench);
+    assert_eq!(ts[0].errors, vec!["timeout"]);
+}
