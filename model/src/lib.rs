@@ -18,6 +18,7 @@
 //! assert_eq!(run.transactions[0].position, Some(495));
 //! ```
 
+pub mod biss;
 pub mod crc;
 pub mod error;
 pub mod gray;

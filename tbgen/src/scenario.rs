@@ -26,6 +26,7 @@ struct ScenarioFile {
     #[serde(default)]
     description: String,
     ssi: Option<model::ssi::BenchConfig>,
+    biss: Option<model::biss::BenchConfig>,
 }
 
 /// The set-up a scenario describes, one variant per protocol. To add a
@@ -35,6 +36,8 @@ struct ScenarioFile {
 pub enum Setup {
     /// An SSI reader, encoder and cable.
     Ssi(model::ssi::BenchConfig),
+    /// A BiSS-C master, a chain of slaves and a cable.
+    Biss(model::biss::BenchConfig),
 }
 
 /// Something done with a scenario's set-up whatever its protocol: the
@@ -52,6 +55,7 @@ impl Setup {
     pub fn accept<V: Visitor>(&self, visitor: V) -> V::Output {
         match self {
             Setup::Ssi(cfg) => visitor.visit(cfg),
+            Setup::Biss(cfg) => visitor.visit(cfg),
         }
     }
 }
@@ -99,12 +103,19 @@ impl Scenario {
                 message: format!("name `{}`: use lower-case letters, digits and `_` (it names the output files)", file.name),
             });
         }
-        let setup = match file.ssi {
-            Some(cfg) => Setup::Ssi(cfg),
-            None => {
+        let setup = match (file.ssi, file.biss) {
+            (Some(cfg), None) => Setup::Ssi(cfg),
+            (None, Some(cfg)) => Setup::Biss(cfg),
+            (Some(_), Some(_)) => {
                 return Err(Error::Scenario {
                     file: origin.into(),
-                    message: "no protocol table: add one, e.g. `[ssi]` with its fields (see scenarios/ssi/)".into(),
+                    message: "two protocol tables: keep one of `[ssi]` and `[biss]` per scenario file".into(),
+                })
+            }
+            (None, None) => {
+                return Err(Error::Scenario {
+                    file: origin.into(),
+                    message: "no protocol table: add one, e.g. `[ssi]` or `[biss]` with its fields (see scenarios/ssi/, scenarios/biss/)".into(),
                 })
             }
         };
