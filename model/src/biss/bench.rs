@@ -280,9 +280,12 @@ impl BenchConfig {
             return Err(ConfigError::invalid("slaves", format!("{} slaves", self.slaves.len()), "give 1 to 3 [[slaves]] tables"));
         }
         self.cable.validate("cable")?;
-        self.master_config()?;
+        // The slaves first: the master's per-slave lists default to theirs.
         for i in 0..self.slaves.len() {
             self.slave_config(i)?;
+        }
+        self.master_config()?;
+        for i in 0..self.slaves.len() {
             let s = &self.slaves[i];
             let limit = if s.bits == 64 { u64::MAX } else { (1u64 << s.bits) - 1 };
             if let Some((j, p)) = s.positions.iter().enumerate().find(|(_, p)| **p > limit) {

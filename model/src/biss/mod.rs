@@ -7,6 +7,16 @@
 //! ([`crate::line`]); [`Bench`] adds a host that starts frames and register
 //! accesses.
 //!
+//! ```
+//! use model::biss::{Bench, BenchConfig};
+//!
+//! // Seed 001, BiSS-C: 16-bit 1000101011100011 = 35555 = 195.3094°, nE = 1, nW = 0.
+//! let run = Bench::new(&BenchConfig::seed_example()).unwrap().run_to_end();
+//! let slave = &run.transactions[0].slaves[0];
+//! assert_eq!((slave.position, slave.angle_deg, slave.warning, slave.crc_ok), (35555, 195.3094, true, true));
+//! assert!(slave.sent_bits.ends_with("001010")); // the CRC 110101, inverted on the wire
+//! ```
+//!
 //! # What the seed fixes
 //! MA and SLO idle high. "The first rising edge of MA+ is used to latch the
 //! sensor state. The second rising edge of MA+ triggers the encoder to pull

@@ -255,6 +255,20 @@ fn campaign_catches_every_one_and_two_bit_corruption() {
     }
 }
 
+#[test]
+fn every_single_and_double_flip_of_the_seed_frame_is_detected() {
+    // Seed 001 example frame (24 covered and CRC bits): all 24 single and 276 double corruptions.
+    let n = 16 + 2 + 6;
+    let position = 0b1000_1010_1110_0011;
+    assert!(!campaign::detected(16, position, &[]), "a clean frame passes");
+    for i in 0..n {
+        assert!(campaign::detected(16, position, &[i]), "bit {i}");
+        for j in i + 1..n {
+            assert!(campaign::detected(16, position, &[i, j]), "bits {i}, {j}");
+        }
+    }
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(24))]
     #[test]
