@@ -19,6 +19,7 @@
 //! ```
 
 pub mod angle;
+pub mod biss;
 pub mod crc;
 pub mod error;
 pub mod gray;

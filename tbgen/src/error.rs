@@ -45,6 +45,9 @@ pub enum Error {
     /// A bit string with something other than 0 and 1.
     #[error("bits `{0}`: give the bits as a string of 0 and 1 in wire order, e.g. 1000101011100011")]
     BadBits(String),
+    /// A waveform that cannot be decoded, or a bad decode option.
+    #[error("{0}")]
+    Decode(String),
     /// Reading or writing a file failed.
     #[error("{path}: {source}")]
     Io {

@@ -18,6 +18,7 @@
 //! generate::generate(&scenario, std::path::Path::new("out")).unwrap();
 //! ```
 
+pub mod biss_tools;
 pub mod builtin;
 pub mod crc_cmd;
 pub mod error;

@@ -6,7 +6,8 @@ use std::time::Instant;
 
 use clap::{Parser, Subcommand};
 use tbgen::scenario::Visitor;
-use tbgen::{builtin, crc_cmd, generate, Error};
+use tbgen::scenario::Setup;
+use tbgen::{biss_tools, builtin, crc_cmd, generate, Error};
 
 #[derive(Parser)]
 #[command(
@@ -50,6 +51,37 @@ enum Command {
         /// List the catalogue.
         #[arg(long)]
         list: bool,
+    },
+    /// Print a protocol's cycle budget and position-read rate for a scenario.
+    #[command(after_help = "Examples:\n  tbgen timing biss                          # the seed scenario biss_seed_16bit\n  tbgen timing biss biss_clock_1mhz_100m")]
+    Timing {
+        /// Protocol (biss).
+        protocol: String,
+        /// Built-in scenario name or scenario .toml file of that protocol.
+        scenario: Option<String>,
+    },
+    /// Decode a captured waveform (VCD) into a JSON transcript on stdout.
+    #[command(after_help = "Example:\n  tbgen decode biss vectors/biss_master/biss_seed_16bit.vcd --bits 16")]
+    Decode {
+        /// Protocol (biss).
+        protocol: String,
+        /// The VCD file.
+        file: PathBuf,
+        /// Dotted path of the MA scalar at the master.
+        #[arg(long, default_value = "top.line.ma_master")]
+        ma: String,
+        /// Dotted path of the SLO scalar at the master.
+        #[arg(long, default_value = "top.line.slo_master")]
+        slo: String,
+        /// Data bits of each slave, comma-separated, chain order.
+        #[arg(long, value_delimiter = ',', default_value = "16")]
+        bits: Vec<u32>,
+        /// CRC width of each slave (default 6 for all).
+        #[arg(long, value_delimiter = ',')]
+        crc_width: Vec<u32>,
+        /// CRC polynomial of each slave without the top term (default 3 = x^6 + x + 1).
+        #[arg(long, value_delimiter = ',')]
+        crc_poly: Vec<u64>,
     },
     /// Time the model alone on a scenario (used by `make bench`).
     #[command(after_help = "Example:\n  tbgen bench scenarios/bench/ssi_bench.toml")]
@@ -108,6 +140,30 @@ fn run(command: Command) -> Result<(), Error> {
             }
         }
         Command::Bench { scenario } => bench(&scenario)?,
+        Command::Timing { protocol, scenario } => {
+            if protocol != "biss" {
+                return Err(Error::Decode(format!("timing: protocol `{protocol}` has no cycle budget yet; use `biss`")));
+            }
+            let s = builtin::resolve(scenario.as_deref().unwrap_or("biss_seed_16bit"))?;
+            let Setup::Biss(cfg) = &s.setup else {
+                return Err(Error::Decode(format!("timing biss: scenario `{}` is not a BiSS-C scenario", s.name)));
+            };
+            print!("{}", biss_tools::timing_report(cfg, &s.name).map_err(|e| s.value_error(e))?);
+        }
+        Command::Decode { protocol, file, ma, slo, bits, crc_width, crc_poly } => {
+            if protocol != "biss" {
+                return Err(Error::Decode(format!("decode: protocol `{protocol}` has no decoder yet; use `biss`")));
+            }
+            let n = bits.len();
+            let crc_width = if crc_width.is_empty() { vec![6; n] } else { crc_width };
+            let crc_poly = if crc_poly.is_empty() { vec![3; n] } else { crc_poly };
+            if crc_width.len() != n || crc_poly.len() != n || bits.iter().any(|b| !(1..=64).contains(b)) || crc_width.iter().any(|w| !(1..=8).contains(w)) {
+                return Err(Error::Decode("decode biss: give --bits (1..64 each) and, if any, one --crc-width (1..8) and --crc-poly per slave".into()));
+            }
+            let layout = biss_tools::Layout { bits, crc_width, crc_poly };
+            let decoded = biss_tools::decode(&file, &ma, &slo, &layout)?;
+            println!("{}", serde_json::to_string_pretty(&decoded).map_err(|e| Error::Decode(e.to_string()))?);
+        }
     }
     Ok(())
 }

@@ -27,6 +27,7 @@ struct ScenarioFile {
     description: String,
     ssi: Option<model::ssi::BenchConfig>,
     uart: Option<model::uart::BenchConfig>,
+    biss: Option<model::biss::BenchConfig>,
 }
 
 /// The set-up a scenario describes, one variant per protocol. To add a
@@ -38,6 +39,8 @@ pub enum Setup {
     Ssi(model::ssi::BenchConfig),
     /// The 10-bit frame receiver fed by a sender with baud error and jitter.
     Uart(model::uart::BenchConfig),
+    /// A BiSS-C master, a chain of slaves and a cable.
+    Biss(model::biss::BenchConfig),
 }
 
 /// Something done with a scenario's set-up whatever its protocol: the
@@ -56,6 +59,7 @@ impl Setup {
         match self {
             Setup::Ssi(cfg) => visitor.visit(cfg),
             Setup::Uart(cfg) => visitor.visit(cfg),
+            Setup::Biss(cfg) => visitor.visit(cfg),
         }
     }
 }
@@ -112,11 +116,12 @@ impl Scenario {
         let mut setups = Vec::new();
         setups.extend(file.ssi.map(Setup::Ssi));
         setups.extend(file.uart.map(Setup::Uart));
+        setups.extend(file.biss.map(Setup::Biss));
         if setups.len() != 1 {
             return Err(Error::Scenario {
                 file: origin.into(),
                 message: format!(
-                    "{} protocol tables: give exactly one, e.g. `[ssi]` or `[uart]` with its fields (see scenarios/)",
+                    "{} protocol tables: give exactly one, e.g. `[ssi]`, `[biss]` or `[uart]` with its fields (see scenarios/)",
                     setups.len()
                 ),
             });

@@ -92,6 +92,41 @@ pub const BISS_CRC6: Algorithm = Algorithm {
              warning bits, and a 6-bit negative logic CRC check code' and the 16-bit example",
 };
 
+/// BiSS-C control-frame CRC-4 (register access).
+///
+/// **Generator** `x^4 + x + 1` (normal `0x03`), initial value 0, no
+/// reflection, sent **inverted**, MSB first: the same conventions as
+/// [`BISS_CRC6`] with a 4-bit generator. Seed 001 names BiSS-C and its CDS bit
+/// but not the control frame; the CRC-4 comes from the public BiSS C protocol
+/// description (register access), as encoder manuals restate it
+/// ("Polynomial: X^4 + X^1 + 1 (binary: 10011)", "inverted output") and as
+/// `docs/timing/biss.md` records.
+///
+/// **Covered bits, in wire order:** for the address part CTS, ID2..ID0,
+/// ADR6..ADR0 (11 bits, not the start bit); for the data part D7..D0.
+///
+/// **On the wire** 4 bits, MSB first, inverted ([`Algorithm::wire_xor`] = `0xF`).
+pub const BISS_CTRL_CRC4: Algorithm = Algorithm {
+    name: "biss-ctrl-crc4",
+    title: "BiSS-C control-frame CRC-4",
+    width: 4,
+    poly: 0x03,
+    init: 0x00,
+    refin: false,
+    refout: false,
+    xorout: 0x00,
+    check: 0x0E,
+    residue: 0x00,
+    wire_xor: 0x0F,
+    wire_order: WireOrder::MsbFirst,
+    pad_to_multiple: 1,
+    poly_equation: "x^4 + x + 1",
+    stated_hex: None,
+    covers: "control frame: CTS, ID2..ID0, ADR6..ADR0 MSB first; or D7..D0 MSB first (not the start bits)",
+    source: "seed 001 (SAR58K24 manual) BiSS-C section for the frame; control-frame CRC from the public \
+             BiSS C protocol description (register access), see docs/timing/biss.md",
+};
+
 /// Tamagawa T-format CRC-8 (seed 002, 6.3.4 "CRC Field (CRC)", Figure 7).
 ///
 /// **Generator** `G(X) = X^8 + 1` (normal `0x01`), initial value 0 (the seed

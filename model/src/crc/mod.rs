@@ -160,6 +160,7 @@ pub struct Algorithm {
 pub const CATALOGUE: &[&Algorithm] = &[
     &ENDAT_CRC5,
     &BISS_CRC6,
+    &BISS_CTRL_CRC4,
     &TFORMAT_CRC8,
     &ESL_CRC8,
     &ESL_CRC16_CH1,

@@ -176,7 +176,7 @@ fn catalogue_entries_are_well_formed_and_found_by_name() {
         );
     }
     assert_eq!(by_name("crc-32"), None);
-    assert_eq!(CATALOGUE.len(), 8);
+    assert_eq!(CATALOGUE.len(), 9);
 }
 
 #[test]
@@ -231,6 +231,16 @@ const CRATE_BISS: crc::Algorithm<u8> = crc::Algorithm {
     check: 0x11,
     residue: 0x00,
 };
+const CRATE_BISS_CTRL: crc::Algorithm<u8> = crc::Algorithm {
+    width: 4,
+    poly: 0x03,
+    init: 0x00,
+    refin: false,
+    refout: false,
+    xorout: 0x00,
+    check: 0x0E,
+    residue: 0x00,
+};
 const CRATE_TFORMAT: crc::Algorithm<u8> = crc::Algorithm {
     width: 8,
     poly: 0x01,
@@ -278,6 +288,7 @@ fn crate_checksum(alg: &Algorithm, data: &[u8]) -> u64 {
     match alg.name {
         "endat-crc5" => crc::Crc::<u8>::new(&CRATE_ENDAT).checksum(data).into(),
         "biss-crc6" => crc::Crc::<u8>::new(&CRATE_BISS).checksum(data).into(),
+        "biss-ctrl-crc4" => crc::Crc::<u8>::new(&CRATE_BISS_CTRL).checksum(data).into(),
         "tformat-crc8" => crc::Crc::<u8>::new(&CRATE_TFORMAT).checksum(data).into(),
         "esl-crc8" => crc::Crc::<u8>::new(&CRATE_ESL8).checksum(data).into(),
         "esl-crc16-ch1" => crc::Crc::<u16>::new(&CRATE_ESL16_CH1).checksum(data).into(),
@@ -400,6 +411,7 @@ fn wire_residues_are_the_documented_constants() {
     let expected = [
         ("endat-crc5", 0x08),
         ("biss-crc6", 0x02),
+        ("biss-ctrl-crc4", 0x02),
         ("tformat-crc8", 0),
         ("esl-crc8", 0),
         ("esl-crc16-ch1", 0),
@@ -410,6 +422,18 @@ fn wire_residues_are_the_documented_constants() {
     for (name, residue) in expected {
         assert_eq!(by_name(name).unwrap().wire_residue(), residue, "{name}");
     }
+}
+
+#[test]
+fn biss_control_crc4_is_x4_x_1_from_zero_sent_inverted() {
+    // Public BiSS C protocol description (register access), restated in docs/timing/biss.md:
+    // x^4 + x + 1, start value 0, transmitted inverted, MSB first.
+    // x^3 * x^4 = x^7 = x^3 + x + 1 (mod x^4 + x + 1): the message 1000 leaves 1011.
+    let crc = BISS_CTRL_CRC4.checksum_bits(&bits("1000"));
+    assert_eq!(crc, 0b1011);
+    assert_eq!(bit_string(&BISS_CTRL_CRC4.wire_bits(crc)), "0100");
+    // x^4 = x + 1: the message 0001 leaves 0011.
+    assert_eq!(BISS_CTRL_CRC4.checksum_bits(&bits("0001")), 0b0011);
 }
 
 #[test]

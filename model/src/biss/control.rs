@@ -1,0 +1,102 @@
+//! The BiSS-C control frame: register read and write, one bit per frame.
+//!
+//! The seed says nothing about it beyond the CDS bit; this layout follows the
+//! public BiSS C protocol description (register access with `CTS = 1`), as
+//! vendor manuals and MCU reference manuals restate it (see
+//! `docs/timing/biss.md` for the sources and the choices made here).
+//!
+//! The master sends one control bit per frame, **CDM**, as the inverted MA
+//! level during the BiSS timeout. Every slave answers with its **CDS** bit at
+//! the head of its part of the next frame: the CDS of frame `k + 1` answers
+//! the CDM of frame `k`. Index `k` counts frames from the master's start bit.
+//!
+//! ```text
+//!  k     0  1   2..4     5..11    12..15   16 17 18  19..26      27..30    31  32
+//!  CDM   S  CTS ID2..ID0 A6..A0   C3..C0   R  W  S   D7..D0 (wr) C3..C0(wr) P   0
+//!  CDS   0  0   0        0        0        0  R  W   S           D7..D0    C3..C0 P
+//!                                                    (k = 19)    (20..27)  (28..31) (32)
+//! ```
+//! * At least 14 frames with `CDM = 0` come before `S`; 14 zeros also cancel
+//!   a control frame at any point (a read holds CDM at 0 for only 13 frames).
+//! * `CTS = 1`: register access. `ID` is the slave's 3-bit ID (here its chain
+//!   position unless configured), `A6..A0` the register address.
+//! * The address CRC `C3..C0` is [`crate::crc::BISS_CTRL_CRC4`] over CTS, ID
+//!   and ADR (11 bits, MSB first), sent inverted. The data CRC is the same
+//!   algorithm over the 8 data bits.
+//! * Read: `R W = 1 0`; the master sends 0 from `k = 19` to 31. Write:
+//!   `R W = 0 1`, then the data and its CRC.
+//! * The addressed slave echoes R and W (`k = 17, 18`) only if CTS = 1, the
+//!   ID is its own and the address CRC is right; then its start bit (`k = 19`),
+//!   the 8 data bits (the register on a read, the received data on a write)
+//!   and their CRC. A write is carried out when the slave has received a
+//!   data CRC that matches. Every other slave keeps CDS at 0.
+//! * The master fails the access (`o_reg_err`) when R, W or S is not echoed,
+//!   the returned CRC-4 is wrong, a write echo differs from the data sent, the
+//!   stop bit is not 0, or a frame of the access fails.
+
+/// Consecutive `CDM = 0` frames that precede a start bit and cancel a frame.
+pub const SYNC_ZEROS: u32 = 14;
+/// Index of the address CRC's first bit.
+pub const K_ADDR_CRC: u32 = 12;
+/// Index of R.
+pub const K_R: u32 = 16;
+/// Index of W.
+pub const K_W: u32 = 17;
+/// Index of the master's data start bit (and the slave's answering start).
+pub const K_S2: u32 = 18;
+/// Index of the first data bit the master sends (write).
+pub const K_DATA: u32 = 19;
+/// Index of the first data-CRC bit the master sends (write).
+pub const K_DATA_CRC: u32 = 27;
+/// Index of the stop bit.
+pub const K_P: u32 = 31;
+/// The last index of a control frame as the master sees it (the slave's stop bit arrives).
+pub const K_LAST: u32 = 32;
+
+/// One register access as the host asks for it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Access {
+    /// Write (`true`) or read.
+    pub write: bool,
+    /// Slave ID, 0 to 7.
+    pub id: u8,
+    /// Register address, 0 to 127.
+    pub addr: u8,
+    /// Data to write (ignored on a read).
+    pub wdata: u8,
+}
+
+/// The 11 address-CRC bits (CTS = 1, ID, ADR), MSB first.
+pub fn address_bits(id: u8, addr: u8) -> Vec<bool> {
+    let mut bits = vec![true];
+    bits.extend((0..3).rev().map(|i| (id >> i) & 1 == 1));
+    bits.extend((0..7).rev().map(|i| (addr >> i) & 1 == 1));
+    bits
+}
+
+/// The 8 data bits, MSB first.
+pub fn data_bits(data: u8) -> Vec<bool> {
+    (0..8).rev().map(|i| (data >> i) & 1 == 1).collect()
+}
+
+/// The whole CDM sequence of one access, `k = 0..=K_P`, as a string of 0 and 1
+/// (for transcripts and tests; the master builds it bit-serially).
+pub fn cdm_sequence(a: &Access) -> Vec<bool> {
+    let crc = &crate::crc::BISS_CTRL_CRC4;
+    let addr = address_bits(a.id, a.addr);
+    let mut v = vec![true];
+    v.extend(&addr);
+    v.extend(crc.wire_bits(crc.checksum_bits(&addr)));
+    v.push(!a.write);
+    v.push(a.write);
+    v.push(true);
+    if a.write {
+        let d = data_bits(a.wdata);
+        v.extend(&d);
+        v.extend(crc.wire_bits(crc.checksum_bits(&d)));
+    } else {
+        v.extend([false; 12]);
+    }
+    v.push(false);
+    v
+}

@@ -1,0 +1,773 @@
+//! The BiSS-C master, cycle for cycle the same machine as `hdl/rtl/biss_master.v`.
+
+use super::control::{self, Access};
+use super::data_crc;
+use crate::crc::{BitSerial, BISS_CTRL_CRC4};
+use crate::ports::{Port, Ports};
+use crate::{ConfigError, Result};
+
+/// Synchroniser depth on `i_slo` (fixed, as in the RTL).
+pub const SYNC_STAGES: u64 = 2;
+/// Slaves one master serves in a chain (the RTL packs per-slave parameters 8 bits each).
+pub const MAX_SLAVES: usize = 3;
+/// Width of `o_delay` and of the delay counter.
+pub const DELAY_BITS: u32 = 16;
+
+/// The master's configuration, in cycles; each field is the Verilog parameter
+/// of the same name in upper case (per-slave lists are packed 8 bits per
+/// slave, slave 0 in bits 7..0).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct MasterConfig {
+    /// Slaves in the chain, 1 to 3 (`SLAVES`).
+    pub slaves: u32,
+    /// Data bits of each slave, 1 to 64 (`SLAVE_BITS`).
+    pub slave_bits: Vec<u32>,
+    /// CRC width of each slave, 1 to 8 (`SLAVE_CRC_WIDTH`); BiSS-C: 6.
+    pub slave_crc_width: Vec<u32>,
+    /// CRC polynomial of each slave, normal notation without the top term
+    /// (`SLAVE_CRC_POLY`); BiSS-C `x^6 + x + 1`: 0x03.
+    pub slave_crc_poly: Vec<u64>,
+    /// System clocks per MA period, even, at least 8 (`CLOCKS_PER_BIT`).
+    pub clocks_per_bit: u64,
+    /// Longest delay from the second rising MA edge to the ack at the
+    /// synchroniser output that the master compensates, cycles (`MAX_DELAY`).
+    pub max_delay: u64,
+    /// Longest wait for the start bit after the ack, for SLO to go low and
+    /// high after the last clock, and for a late ack (`TIMEOUT_CLOCKS`).
+    pub timeout_clocks: u64,
+}
+
+/// Packs per-slave values 8 bits each, slave 0 lowest (the RTL's parameter form).
+pub fn pack8(values: &[u64]) -> u64 {
+    values.iter().enumerate().fold(0, |acc, (i, v)| acc | ((v & 0xFF) << (8 * i)))
+}
+
+impl MasterConfig {
+    /// Checks the configuration; field names are those of a scenario's `[master]` table.
+    pub fn validate(&self) -> Result<()> {
+        let n = self.slaves as usize;
+        if !(1..=MAX_SLAVES).contains(&n) {
+            return Err(ConfigError::invalid("slaves", format!("{n} slaves"), "give 1 to 3 slaves"));
+        }
+        for (field, len) in [
+            ("master.bits", self.slave_bits.len()),
+            ("master.crc_width", self.slave_crc_width.len()),
+            ("master.crc_poly", self.slave_crc_poly.len()),
+        ] {
+            if len != n {
+                return Err(ConfigError::invalid(field, format!("{len} entries for {n} slaves"), "give one entry per slave"));
+            }
+        }
+        for i in 0..n {
+            if !(1..=64).contains(&self.slave_bits[i]) {
+                return Err(ConfigError::invalid(
+                    format!("master.bits[{i}]"),
+                    format!("{} bits", self.slave_bits[i]),
+                    "give 1 to 64 data bits",
+                ));
+            }
+            let w = self.slave_crc_width[i];
+            if !(1..=8).contains(&w) {
+                return Err(ConfigError::invalid(format!("master.crc_width[{i}]"), format!("{w} bits"), "give a CRC of 1 to 8 bits (BiSS-C: 6)"));
+            }
+            let p = self.slave_crc_poly[i];
+            if p >= 1 << w || p & 1 == 0 {
+                return Err(ConfigError::invalid(
+                    format!("master.crc_poly[{i}]"),
+                    format!("{p:#x} for a {w}-bit CRC"),
+                    "give the generator without its top term, with the +1 term (BiSS-C x^6 + x + 1: 0x03)",
+                ));
+            }
+        }
+        if self.clocks_per_bit < 8 || self.clocks_per_bit % 2 != 0 || self.clocks_per_bit > 4096 {
+            return Err(ConfigError::invalid(
+                "master.clock_khz",
+                format!("MA is f_sys / {}", self.clocks_per_bit),
+                "make f_sys an even multiple of MA, 8 to 4096 times (10 MHz needs f_sys of at least 80 MHz)",
+            ));
+        }
+        if self.max_delay < 1 || self.max_delay >= 1 << DELAY_BITS {
+            return Err(ConfigError::invalid(
+                "master.max_delay_ns",
+                format!("{} cycles", self.max_delay),
+                "give a compensation range of 1 to 65535 system clocks",
+            ));
+        }
+        if self.timeout_clocks < 2 * self.clocks_per_bit || self.timeout_clocks >= 1 << 24 {
+            return Err(ConfigError::invalid(
+                "master.timeout_us",
+                format!("{} cycles", self.timeout_clocks),
+                "give a timeout of at least two MA periods and below 2^24 system clocks",
+            ));
+        }
+        Ok(())
+    }
+
+    /// The widest slave's data bits (the width of `o_data`).
+    pub fn data_width(&self) -> u32 {
+        self.slave_bits.iter().copied().max().unwrap_or(1)
+    }
+
+    /// Bits after the ack in one frame: start, then per slave CDS, data, nE, nW, CRC.
+    pub fn frame_bits(&self) -> u64 {
+        1 + (0..self.slaves as usize).map(|i| 1 + self.slave_bits[i] as u64 + 2 + self.slave_crc_width[i] as u64).sum::<u64>()
+    }
+
+    /// The Verilog parameters, in vector-header order.
+    pub fn parameters(&self) -> Vec<(&'static str, u64)> {
+        let bits: Vec<u64> = self.slave_bits.iter().map(|&b| b as u64).collect();
+        let widths: Vec<u64> = self.slave_crc_width.iter().map(|&b| b as u64).collect();
+        vec![
+            ("SLAVES", self.slaves as u64),
+            ("SLAVE_BITS", pack8(&bits)),
+            ("SLAVE_CRC_WIDTH", pack8(&widths)),
+            ("SLAVE_CRC_POLY", pack8(&self.slave_crc_poly)),
+            ("CLOCKS_PER_BIT", self.clocks_per_bit),
+            ("MAX_DELAY", self.max_delay),
+            ("TIMEOUT_CLOCKS", self.timeout_clocks),
+        ]
+    }
+}
+
+/// The master's states; the RTL's `localparam`s carry the same names and codes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum State {
+    /// MA high, waiting for `i_start`.
+    Idle = 0,
+    /// Clocking; after the second rising edge, measuring the delay to the ack.
+    Ack = 1,
+    /// Sampling for the start bit (the slave is busy while SLO stays low).
+    Start = 2,
+    /// The CDS bit of the current slave.
+    Cds = 3,
+    /// The data bits of the current slave, MSB first.
+    Data = 4,
+    /// nE, the error bit (active low).
+    Err = 5,
+    /// nW, the warning bit (active low).
+    Warn = 6,
+    /// The inverted CRC of the current slave.
+    Crc = 7,
+    /// Stopping MA at `!CDM`; waiting for SLO low (the slave's timeout phase).
+    Stop = 8,
+    /// Waiting for SLO high (the slave is ready again).
+    Timeout = 9,
+    /// No ack within `MAX_DELAY`: MA stopped high, watching for a late ack.
+    NoAck = 10,
+}
+
+/// Inputs sampled at one rising edge of the system clock.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct In {
+    /// Host: start one frame (one-cycle pulse; ignored while busy).
+    pub i_start: bool,
+    /// Line: SLO as it arrives at the master's receiver.
+    pub i_slo: bool,
+    /// Host: start a register access (one-cycle pulse; ignored while `o_reg_busy`).
+    pub i_reg_start: bool,
+    /// Host: the access is a write.
+    pub i_reg_write: bool,
+    /// Host: slave ID (its position in the chain, 0 nearest the master's SLO input).
+    pub i_reg_id: u8,
+    /// Host: register address, 7 bits.
+    pub i_reg_addr: u8,
+    /// Host: data to write.
+    pub i_reg_wdata: u8,
+}
+
+/// Registered outputs after one rising edge of the system clock.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Out {
+    /// Line: MA to the slaves.
+    pub o_ma: bool,
+    /// Host: a frame is under way.
+    pub o_busy: bool,
+    /// Host: one-cycle pulse at the end of every frame (or refused start).
+    pub o_done: bool,
+    /// With `o_done`: SLO was low at the start; nothing was clocked.
+    pub o_err_line: bool,
+    /// With `o_done`: no ack at all (slave absent, SLO stuck high, open line).
+    pub o_err_ack: bool,
+    /// With `o_done`: the ack came later than `MAX_DELAY` (cable too long).
+    pub o_err_delay: bool,
+    /// With `o_done`: no start bit within `TIMEOUT_CLOCKS` of the ack.
+    pub o_err_start: bool,
+    /// With `o_done`: SLO did not return high within `TIMEOUT_CLOCKS`.
+    pub o_err_timeout: bool,
+    /// The last measured delay, edge 2 to the ack at the synchroniser, cycles.
+    pub o_delay: u64,
+    /// One-cycle pulse: one slave's result is on the outputs below.
+    pub o_slave_valid: bool,
+    /// Which slave (chain position).
+    pub o_slave_index: u8,
+    /// Its data, right-aligned.
+    pub o_data: u64,
+    /// Its CRC did not match (data, nE, nW or CRC corrupted).
+    pub o_crc_err: bool,
+    /// Its error bit was active (nE = 0).
+    pub o_error: bool,
+    /// Its warning bit was active (nW = 0).
+    pub o_warning: bool,
+    /// Its CDS bit.
+    pub o_cds: bool,
+    /// Host: a register access is pending or under way.
+    pub o_reg_busy: bool,
+    /// Host: one-cycle pulse at the end of a register access (with `o_done`).
+    pub o_reg_done: bool,
+    /// With `o_reg_done`: the access failed (not acknowledged, CRC-4, echo, frame error).
+    pub o_reg_err: bool,
+    /// With `o_reg_done`: the register's value (read) or its echo (write).
+    pub o_reg_rdata: u8,
+}
+
+impl Ports for In {
+    fn write_values(&self, dst: &mut [u64]) {
+        dst[0] = self.i_start as u64;
+        dst[1] = self.i_slo as u64;
+        dst[2] = self.i_reg_start as u64;
+        dst[3] = self.i_reg_write as u64;
+        dst[4] = self.i_reg_id as u64;
+        dst[5] = self.i_reg_addr as u64;
+        dst[6] = self.i_reg_wdata as u64;
+    }
+}
+
+impl Ports for Out {
+    fn write_values(&self, dst: &mut [u64]) {
+        let v = [
+            self.o_ma as u64,
+            self.o_busy as u64,
+            self.o_done as u64,
+            self.o_err_line as u64,
+            self.o_err_ack as u64,
+            self.o_err_delay as u64,
+            self.o_err_start as u64,
+            self.o_err_timeout as u64,
+            self.o_delay,
+            self.o_slave_valid as u64,
+            self.o_slave_index as u64,
+            self.o_data,
+            self.o_crc_err as u64,
+            self.o_error as u64,
+            self.o_warning as u64,
+            self.o_cds as u64,
+            self.o_reg_busy as u64,
+            self.o_reg_done as u64,
+            self.o_reg_err as u64,
+            self.o_reg_rdata as u64,
+        ];
+        dst[..v.len()].copy_from_slice(&v);
+    }
+}
+
+/// Every register of the master except the CRC shift registers.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct Regs {
+    state: State,
+    cnt: u64,
+    delay_cnt: u64,
+    smp_cnt: u64,
+    ma: bool,
+    ma_cnt: u64,
+    ma_run: bool,
+    ma_edges: u8,
+    ma_stop: bool,
+    ma_stop_level: bool,
+    slo_meta: bool,
+    slo_sync: bool,
+    slave: u8,
+    bit_cnt: u32,
+    data: u64,
+    crc_bad: bool,
+    nerr: bool,
+    nwarn: bool,
+    cds: bool,
+    e_delay: bool,
+    e_start: bool,
+    frame_cds: bool,
+    frame_crc_bad: bool,
+    cdm: bool,
+    zeros: u32,
+    reg_pending: bool,
+    ctl_active: bool,
+    ctl_k: u32,
+    acc: Access,
+    reg_bad: bool,
+    rdata: u8,
+}
+
+/// The BiSS-C master. One [`Master::step`] is one rising edge of the system clock.
+#[derive(Debug, Clone)]
+pub struct Master {
+    cfg: MasterConfig,
+    r: Regs,
+    crc: BitSerial,
+    crc4_tx: BitSerial,
+    crc4_rx: BitSerial,
+    crcs: Vec<BitSerial>,
+    raw: Vec<bool>,
+    out: Out,
+}
+
+impl Master {
+    /// A master in its reset state.
+    pub fn new(cfg: MasterConfig) -> Result<Self> {
+        cfg.validate()?;
+        let crcs: Vec<BitSerial> = (0..cfg.slaves as usize).map(|i| BitSerial::new(&data_crc(cfg.slave_crc_width[i], cfg.slave_crc_poly[i]))).collect();
+        Ok(Master {
+            r: Regs {
+                state: State::Idle,
+                cnt: 0,
+                delay_cnt: 0,
+                smp_cnt: 0,
+                ma: true,
+                ma_cnt: 0,
+                ma_run: false,
+                ma_edges: 0,
+                ma_stop: false,
+                ma_stop_level: true,
+                slo_meta: true,
+                slo_sync: true,
+                slave: 0,
+                bit_cnt: 0,
+                data: 0,
+                crc_bad: false,
+                nerr: true,
+                nwarn: true,
+                cds: false,
+                e_delay: false,
+                e_start: false,
+                frame_cds: false,
+                frame_crc_bad: false,
+                cdm: false,
+                zeros: 0,
+                reg_pending: false,
+                ctl_active: false,
+                ctl_k: 0,
+                acc: Access::default(),
+                reg_bad: false,
+                rdata: 0,
+            },
+            crc: crcs[0].clone(),
+            crc4_tx: BitSerial::new(&BISS_CTRL_CRC4),
+            crc4_rx: BitSerial::new(&BISS_CTRL_CRC4),
+            crcs,
+            raw: Vec::new(),
+            out: Out { o_ma: true, ..Out::default() },
+            cfg,
+        })
+    }
+
+    /// The configuration.
+    pub fn config(&self) -> &MasterConfig {
+        &self.cfg
+    }
+
+    /// The state after the last step.
+    pub fn state(&self) -> State {
+        self.r.state
+    }
+
+    /// The slave being decoded.
+    pub fn slave(&self) -> u8 {
+        self.r.slave
+    }
+
+    /// The CDM bit of the current (or next) frame.
+    pub fn cdm(&self) -> bool {
+        self.r.cdm
+    }
+
+    /// Index of the control bit in the current frame, if a control frame is running.
+    pub fn control_index(&self) -> Option<u32> {
+        self.r.ctl_active.then_some(self.r.ctl_k)
+    }
+
+    /// Every bit sampled since the last start (start bit first), for transcripts.
+    pub fn sampled_bits(&self) -> &[bool] {
+        &self.raw
+    }
+
+    /// The input ports, in vector order.
+    pub fn input_ports(&self) -> Vec<Port> {
+        vec![
+            Port::new("i_start", 1),
+            Port::new("i_slo", 1),
+            Port::new("i_reg_start", 1),
+            Port::new("i_reg_write", 1),
+            Port::new("i_reg_id", 3),
+            Port::new("i_reg_addr", 7),
+            Port::new("i_reg_wdata", 8),
+        ]
+    }
+
+    /// The output ports, in vector order.
+    pub fn output_ports(&self) -> Vec<Port> {
+        vec![
+            Port::new("o_ma", 1),
+            Port::new("o_busy", 1),
+            Port::new("o_done", 1),
+            Port::new("o_err_line", 1),
+            Port::new("o_err_ack", 1),
+            Port::new("o_err_delay", 1),
+            Port::new("o_err_start", 1),
+            Port::new("o_err_timeout", 1),
+            Port::new("o_delay", DELAY_BITS),
+            Port::new("o_slave_valid", 1),
+            Port::new("o_slave_index", 2),
+            Port::new("o_data", self.cfg.data_width()),
+            Port::new("o_crc_err", 1),
+            Port::new("o_error", 1),
+            Port::new("o_warning", 1),
+            Port::new("o_cds", 1),
+            Port::new("o_reg_busy", 1),
+            Port::new("o_reg_done", 1),
+            Port::new("o_reg_err", 1),
+            Port::new("o_reg_rdata", 8),
+        ]
+    }
+
+    /// One rising edge of the system clock: every register takes its next
+    /// value, computed from the registers' present values and `input`.
+    pub fn step(&mut self, input: &In) -> Out {
+        let cfg = &self.cfg;
+        let c = self.r;
+        let mut n = c;
+        let half = cfg.clocks_per_bit / 2;
+        let period = cfg.clocks_per_bit;
+        let mut o = Out {
+            o_done: false,
+            o_err_line: false,
+            o_err_ack: false,
+            o_err_delay: false,
+            o_err_start: false,
+            o_err_timeout: false,
+            o_slave_valid: false,
+            o_reg_done: false,
+            o_reg_err: false,
+            ..self.out
+        };
+
+        // MA generator: toggles every H cycles while running; stops at a
+        // half-period boundary where MA equals the requested stop level.
+        if c.ma_run {
+            if c.ma_cnt == 0 {
+                if c.ma_stop && c.ma == c.ma_stop_level {
+                    n.ma_run = false;
+                } else {
+                    n.ma = !c.ma;
+                    n.ma_cnt = half - 1;
+                    if !c.ma {
+                        n.ma_edges = (c.ma_edges + 1).min(2);
+                        if c.ma_edges == 1 {
+                            n.delay_cnt = 1;
+                        }
+                    }
+                }
+            } else {
+                n.ma_cnt = c.ma_cnt - 1;
+            }
+        }
+
+        // Bit sampling: once per MA period, in the middle of each cell as it arrives.
+        let sampling = matches!(c.state, State::Start | State::Cds | State::Data | State::Err | State::Warn | State::Crc);
+        let sample = sampling && c.smp_cnt == 0;
+        if sampling {
+            n.smp_cnt = if c.smp_cnt == 0 { period - 1 } else { c.smp_cnt - 1 };
+        }
+        let b = c.slo_sync;
+        if sample && (c.state != State::Start || b) {
+            self.raw.push(b);
+        }
+        let mut finish: Option<(bool, bool)> = None; // (err_ack, err_timeout) of the finishing step
+
+        match c.state {
+            State::Idle => {
+                if input.i_start {
+                    if c.slo_sync {
+                        n.state = State::Ack;
+                        n.ma = false;
+                        n.ma_cnt = half - 1;
+                        n.ma_run = true;
+                        n.ma_edges = 0;
+                        n.ma_stop = false;
+                        n.delay_cnt = 0;
+                        n.e_delay = false;
+                        n.e_start = false;
+                        n.slave = 0;
+                        n.frame_cds = false;
+                        n.frame_crc_bad = false;
+                        o.o_busy = true;
+                        self.raw.clear();
+                    } else {
+                        o.o_done = true;
+                        o.o_err_line = true;
+                    }
+                }
+            }
+            State::Ack => {
+                if c.ma_edges == 2 {
+                    if !c.slo_sync {
+                        n.state = State::Start;
+                        n.smp_cnt = half + period - 1;
+                        n.cnt = 0;
+                        o.o_delay = c.delay_cnt;
+                    } else if c.delay_cnt == cfg.max_delay {
+                        n.state = State::NoAck;
+                        n.ma_stop = true;
+                        n.ma_stop_level = true;
+                        n.cnt = 0;
+                    } else {
+                        n.delay_cnt = c.delay_cnt + 1;
+                    }
+                }
+            }
+            State::Start => {
+                n.cnt = c.cnt + 1;
+                if sample && b {
+                    n.state = State::Cds;
+                } else if c.cnt == cfg.timeout_clocks {
+                    n.state = State::Timeout;
+                    n.e_start = true;
+                    n.ma_stop = true;
+                    n.ma_stop_level = true;
+                    n.cnt = 0;
+                }
+            }
+            State::Cds => {
+                if sample {
+                    let i = c.slave as usize;
+                    n.cds = b;
+                    if c.ctl_active && c.acc.id == c.slave {
+                        n.frame_cds = b;
+                    }
+                    n.state = State::Data;
+                    n.bit_cnt = cfg.slave_bits[i] - 1;
+                    n.data = 0;
+                    self.crc = self.crcs[i].clone();
+                    self.crc.reset();
+                }
+            }
+            State::Data => {
+                if sample {
+                    let bits = cfg.slave_bits[c.slave as usize];
+                    let mask = if bits == 64 { u64::MAX } else { (1u64 << bits) - 1 };
+                    n.data = ((c.data << 1) | b as u64) & mask;
+                    self.crc.push(b);
+                    if c.bit_cnt == 0 {
+                        n.state = State::Err;
+                    } else {
+                        n.bit_cnt = c.bit_cnt - 1;
+                    }
+                }
+            }
+            State::Err => {
+                if sample {
+                    n.nerr = b;
+                    self.crc.push(b);
+                    n.state = State::Warn;
+                }
+            }
+            State::Warn => {
+                if sample {
+                    n.nwarn = b;
+                    self.crc.push(b);
+                    n.state = State::Crc;
+                    n.bit_cnt = cfg.slave_crc_width[c.slave as usize] - 1;
+                    n.crc_bad = false;
+                }
+            }
+            State::Crc => {
+                if sample {
+                    let w = cfg.slave_crc_width[c.slave as usize];
+                    let msb = (self.crc.register() >> (w - 1)) & 1 == 1;
+                    // The CRC is sent inverted: the wire bit must be the complement of the remainder's MSB.
+                    let bad = c.crc_bad || b == msb;
+                    n.crc_bad = bad;
+                    self.crc.push(msb); // shifts the remainder without feedback
+                    if c.bit_cnt == 0 {
+                        o.o_slave_valid = true;
+                        o.o_slave_index = c.slave;
+                        o.o_data = c.data;
+                        o.o_crc_err = bad;
+                        o.o_error = !c.nerr;
+                        o.o_warning = !c.nwarn;
+                        o.o_cds = c.cds;
+                        if c.ctl_active && c.acc.id == c.slave {
+                            n.frame_crc_bad = bad;
+                        }
+                        if (c.slave as u32) + 1 < cfg.slaves {
+                            n.slave = c.slave + 1;
+                            n.state = State::Cds;
+                        } else {
+                            n.state = State::Stop;
+                            n.ma_stop = true;
+                            n.ma_stop_level = !c.cdm;
+                            n.cnt = 0;
+                        }
+                    } else {
+                        n.bit_cnt = c.bit_cnt - 1;
+                    }
+                }
+            }
+            State::Stop => {
+                n.cnt = c.cnt + 1;
+                if !c.slo_sync {
+                    n.state = State::Timeout;
+                } else if c.cnt >= cfg.timeout_clocks {
+                    finish = Some((false, true));
+                }
+            }
+            State::Timeout => {
+                n.cnt = c.cnt + 1;
+                if c.slo_sync && !c.ma_run {
+                    finish = Some((false, false));
+                } else if c.cnt >= cfg.timeout_clocks {
+                    finish = Some((false, true));
+                }
+            }
+            State::NoAck => {
+                n.cnt = c.cnt + 1;
+                if !c.slo_sync {
+                    n.e_delay = true;
+                    n.state = State::Timeout;
+                } else if c.cnt >= cfg.timeout_clocks {
+                    finish = Some((true, false));
+                }
+            }
+        }
+
+        if let Some((err_ack, err_timeout)) = finish {
+            n.state = State::Idle;
+            n.ma = true;
+            n.ma_run = false;
+            o.o_busy = false;
+            o.o_done = true;
+            o.o_err_ack = err_ack;
+            o.o_err_delay = c.e_delay;
+            o.o_err_start = c.e_start;
+            o.o_err_timeout = err_timeout;
+            let frame_ok = !(err_ack || err_timeout || c.e_delay || c.e_start);
+            self.control(&c, &mut n, &mut o, frame_ok);
+        }
+
+        // Register requests are taken whenever no access is pending.
+        if input.i_reg_start && !c.reg_pending && !c.ctl_active {
+            n.reg_pending = true;
+            n.acc = Access { write: input.i_reg_write, id: input.i_reg_id & 7, addr: input.i_reg_addr & 0x7F, wdata: input.i_reg_wdata };
+            o.o_reg_busy = true;
+        }
+
+        n.slo_sync = c.slo_meta;
+        n.slo_meta = input.i_slo;
+        o.o_ma = n.ma;
+        self.r = n;
+        self.out = o;
+        o
+    }
+
+    /// The control-frame sequencer, run once at the end of every frame: it
+    /// takes the CDS bit the frame brought back and chooses the next CDM.
+    fn control(&mut self, c: &Regs, n: &mut Regs, o: &mut Out, frame_ok: bool) {
+        let sent = c.cdm && frame_ok;
+        let zeros = if sent { 0 } else { (c.zeros + 1).min(control::SYNC_ZEROS) };
+        n.zeros = zeros;
+        n.cdm = false;
+        if c.ctl_active {
+            let k = c.ctl_k;
+            let a = c.acc;
+            let cds = c.frame_cds;
+            let mut end: Option<bool> = None; // Some(error)
+            if !frame_ok || c.frame_crc_bad {
+                end = Some(true);
+            } else {
+                match k {
+                    control::K_W => {
+                        if cds != !a.write {
+                            end = Some(true);
+                        }
+                    }
+                    control::K_S2 => {
+                        if cds != a.write {
+                            end = Some(true);
+                        }
+                    }
+                    control::K_DATA => {
+                        if !cds {
+                            end = Some(true);
+                        }
+                        self.crc4_rx.reset();
+                    }
+                    20..=27 => {
+                        n.rdata = (c.rdata << 1) | cds as u8;
+                        self.crc4_rx.push(cds);
+                    }
+                    28..=31 => {
+                        let msb = (self.crc4_rx.register() >> 3) & 1 == 1;
+                        if cds == msb {
+                            n.reg_bad = true;
+                        }
+                        self.crc4_rx.push(msb);
+                    }
+                    control::K_LAST => {
+                        let bad = c.reg_bad || cds || (a.write && c.rdata != a.wdata);
+                        end = Some(bad);
+                    }
+                    _ => {}
+                }
+            }
+            match end {
+                Some(err) => {
+                    n.ctl_active = false;
+                    o.o_reg_done = true;
+                    o.o_reg_err = err;
+                    o.o_reg_rdata = c.rdata;
+                    o.o_reg_busy = false;
+                }
+                None => {
+                    let k = k + 1;
+                    n.ctl_k = k;
+                    n.cdm = self.cdm_bit(&a, k);
+                }
+            }
+        } else if c.reg_pending && zeros >= control::SYNC_ZEROS {
+            n.reg_pending = false;
+            n.ctl_active = true;
+            n.ctl_k = 0;
+            n.cdm = true;
+            n.reg_bad = false;
+            n.rdata = 0;
+            self.crc4_tx.reset();
+            self.crc4_rx.reset();
+        }
+    }
+
+    /// CDM bit `k` of the access `a`; pushes the bits the CRC-4 covers.
+    fn cdm_bit(&mut self, a: &Access, k: u32) -> bool {
+        let tx = &mut self.crc4_tx;
+        let covered = |tx: &mut BitSerial, bit: bool| {
+            tx.push(bit);
+            bit
+        };
+        let crc_out = |tx: &mut BitSerial| {
+            let msb = (tx.register() >> 3) & 1 == 1;
+            tx.push(msb);
+            !msb
+        };
+        match k {
+            1 => covered(tx, true),
+            2..=4 => covered(tx, (a.id >> (4 - k)) & 1 == 1),
+            5..=11 => covered(tx, (a.addr >> (11 - k)) & 1 == 1),
+            12..=15 => crc_out(tx),
+            control::K_R => !a.write,
+            control::K_W => a.write,
+            control::K_S2 => {
+                tx.reset();
+                true
+            }
+            19..=26 => a.write && covered(tx, (a.wdata >> (26 - k)) & 1 == 1),
+            27..=30 => a.write && crc_out(tx),
+            _ => false,
+        }
+    }
+}

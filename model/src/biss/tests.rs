@@ -1,0 +1,289 @@
+//! Behaviour of the BiSS-C master, slaves and control frame, each test citing what it pins down.
+
+use proptest::prelude::*;
+
+use super::*;
+use crate::crc::BISS_CRC6;
+use crate::line::CableConfig;
+use crate::Setup;
+
+fn frames(cfg: &BenchConfig) -> Vec<Transaction> {
+    Bench::new(cfg).expect("valid scenario").run_to_end().transactions
+}
+
+fn bits(s: &str) -> Vec<bool> {
+    s.chars().map(|c| c == '1').collect()
+}
+
+#[test]
+fn seed_example_crc_of_1000101011100011_with_ne_1_nw_0_is_110101_sent_as_001010() {
+    // Seed 001, BiSS-C: "the complete data information code is 100010101110001110 ...
+    // the calculated CRC check code is 110101, with its negative logic being 001010".
+    let crc = BISS_CRC6.checksum_bits(&bits("100010101110001110"));
+    assert_eq!(crc, 0b110101);
+    assert_eq!(BISS_CRC6.wire_bits(crc), bits("001010"));
+}
+
+#[test]
+fn seed_example_frame_decodes_to_35555_and_195_3094_degrees_with_the_warning_set() {
+    // Seed 001, BiSS-C: 16-bit 1000101011100011 = 35555, θ = 195.3094°; nE = 1, nW = 0.
+    let t = &frames(&BenchConfig::seed_example())[0];
+    assert!(t.errors.is_empty(), "{:?}", t.errors);
+    let s = &t.slaves[0];
+    assert_eq!(s.sent_bits, "0".to_string() + "1000101011100011" + "10" + "001010");
+    assert_eq!(s.position, 35555);
+    assert_eq!(s.angle_deg, 195.3094);
+    assert!(s.crc_ok && !s.error && s.warning && !s.cds);
+    assert_eq!(t.received_bits, "1".to_string() + &s.sent_bits, "start bit, then the section");
+}
+
+#[test]
+fn the_ack_comes_with_the_second_rising_edge_and_the_delay_is_measured_each_frame() {
+    // Seed 001: "The second rising edge of MA+ triggers the encoder to pull SLO+ low".
+    let mut cfg = BenchConfig::seed_example();
+    cfg.cable = CableConfig { length_m: 0.0, ..CableConfig::default() };
+    cfg.slaves[0].output_delay_ns = 0.0;
+    let d0 = frames(&cfg)[0].delay_cycles.unwrap();
+    // No cable, no output delay: one cycle to the pin (registered transceiver) and two of synchroniser.
+    assert_eq!(d0, 1 + SYNC_STAGES);
+    cfg.cable.length_m = 100.0;
+    let d100 = frames(&cfg)[0].delay_cycles.unwrap();
+    // 100 m at 5 ns/m, both ways, at 80 MHz: 2 × 40 cycles more.
+    assert_eq!(d100 - d0, 80);
+}
+
+#[test]
+fn cable_of_0_to_100_m_at_10_mhz_gives_zero_bit_errors() {
+    // Issue 4: line-delay compensation; 0 to 100 m at 10 MHz without a bit error.
+    for length in [0.0, 1.0, 7.0, 13.0, 25.0, 50.0, 75.0, 99.0, 100.0] {
+        let mut cfg = BenchConfig::seed_example();
+        cfg.cable = CableConfig { length_m: length, ..CableConfig::default() };
+        cfg.slaves[0].positions = vec![0, 0xFFFF, 0xA5A5, 0x5A5A, 35555];
+        cfg.host.frames = 5;
+        let ts = frames(&cfg);
+        for (k, t) in ts.iter().enumerate() {
+            assert!(t.errors.is_empty(), "{length} m frame {k}: {:?}", t.errors);
+            assert_eq!(t.slaves[0].position, cfg.position_at(0, k), "{length} m frame {k}");
+        }
+    }
+}
+
+#[test]
+fn jitter_of_one_cycle_each_way_on_100_m_at_2_5_mhz_still_reads_clean() {
+    // The delay is measured on one (jittered) ack edge, not averaged: the margin is
+    // half a bit cell less the jitter of the ack and of the bit edges.
+    let mut cfg = BenchConfig::seed_example();
+    cfg.master.clock_khz = 2500.0;
+    cfg.cable = CableConfig { length_m: 100.0, jitter_ns: 12.0, seed: 7, ..CableConfig::default() };
+    cfg.slaves[0].step = 4099;
+    cfg.host.frames = 20;
+    for t in frames(&cfg) {
+        assert!(t.errors.is_empty(), "{:?}", t.errors);
+    }
+}
+
+#[test]
+fn a_flipped_data_ne_nw_or_crc_bit_is_a_crc_error() {
+    for bit in [0, 7, 15, 16, 17, 18, 23] {
+        let mut cfg = BenchConfig::seed_example();
+        cfg.flips = vec![FlipFault { frame: 0, slave: 0, bits: vec![bit] }];
+        let t = &frames(&cfg)[0];
+        assert!(!t.slaves[0].crc_ok, "bit {bit}");
+        assert_eq!(t.errors, vec!["crc_error_slave0"], "bit {bit}");
+    }
+}
+
+#[test]
+fn an_absent_slave_leaves_slo_high_and_is_no_ack_not_a_frame() {
+    // An open RS-485 line idles high: it must not read as a valid frame.
+    let mut cfg = BenchConfig::seed_example();
+    cfg.stuck = Some(StuckFault { level: true, from_frame: 0 });
+    let t = &frames(&cfg)[0];
+    assert_eq!(t.errors, vec!["no_ack"]);
+    assert!(t.slaves.is_empty());
+}
+
+#[test]
+fn slo_stuck_low_refuses_the_start() {
+    let mut cfg = BenchConfig::seed_example();
+    cfg.host.frames = 2;
+    cfg.stuck = Some(StuckFault { level: false, from_frame: 1 });
+    let ts = frames(&cfg);
+    assert!(ts[0].errors.is_empty());
+    assert_eq!(ts[1].errors, vec!["line_low_at_start"]);
+}
+
+#[test]
+fn a_start_bit_later_than_the_timeout_is_flagged() {
+    let mut cfg = BenchConfig::seed_example();
+    cfg.slaves[0].busy_ns = 60_000.0; // longer than the master's 40 µs timeout
+    let t = &frames(&cfg)[0];
+    assert_eq!(t.errors, vec!["no_start_bit"]);
+    assert!(t.slaves.is_empty());
+}
+
+#[test]
+fn a_cable_longer_than_the_compensation_range_is_flagged_not_misread() {
+    let mut cfg = BenchConfig::seed_example();
+    cfg.master.max_delay_ns = 500.0;
+    cfg.cable = CableConfig { length_m: 100.0, ..CableConfig::default() };
+    let t = &frames(&cfg)[0];
+    assert_eq!(t.errors, vec!["delay_beyond_compensation"]);
+    assert!(t.slaves.is_empty());
+}
+
+#[test]
+fn three_slaves_of_different_widths_are_each_decoded_and_crc_checked() {
+    let mut cfg = BenchConfig::seed_example();
+    cfg.slaves = vec![
+        SlaveSettings { bits: 12, positions: vec![0xABC], ..SlaveSettings::default() },
+        SlaveSettings { bits: 26, positions: vec![0x2AA_AAAA], error: true, ..SlaveSettings::default() },
+        SlaveSettings { bits: 64, positions: vec![0xDEAD_BEEF_0123_4567], crc_width: 8, crc_poly: 0x07, ..SlaveSettings::default() },
+    ];
+    cfg.flips = vec![FlipFault { frame: 1, slave: 1, bits: vec![3] }];
+    cfg.host.frames = 2;
+    let ts = frames(&cfg);
+    let p: Vec<u64> = ts[0].slaves.iter().map(|s| s.position).collect();
+    assert_eq!(p, vec![0xABC, 0x2AA_AAAA, 0xDEAD_BEEF_0123_4567]);
+    assert!(ts[0].slaves.iter().all(|s| s.crc_ok));
+    assert!(ts[0].slaves[1].error && !ts[0].slaves[0].error);
+    let ok: Vec<bool> = ts[1].slaves.iter().map(|s| s.crc_ok).collect();
+    assert_eq!(ok, vec![true, false, true], "only the corrupted slave fails");
+}
+
+#[test]
+fn a_master_expecting_the_wrong_width_sees_crc_errors() {
+    let mut cfg = BenchConfig::seed_example();
+    cfg.master.bits = Some(vec![15]);
+    assert!(!frames(&cfg)[0].slaves[0].crc_ok);
+}
+
+#[test]
+fn register_read_returns_the_slave_register_over_the_control_frame() {
+    let mut cfg = BenchConfig::seed_example();
+    cfg.slaves[0].registers = (0..128).map(|a| (a as u8).wrapping_mul(37) ^ 0x5A).collect();
+    cfg.host.registers = vec![RegOp { write: false, id: 0, addr: 0x42, data: 0 }];
+    let ts = frames(&cfg);
+    let r = ts.iter().find_map(|t| t.register.clone()).expect("the access ends");
+    assert!(r.ok);
+    assert_eq!(r.rdata, 0x42u8.wrapping_mul(37) ^ 0x5A);
+    // 14 zeros, then control bits k = 0..=32 (the last frame brings the slave's stop bit).
+    assert_eq!(ts.len(), 14 + 33);
+    assert!(ts.iter().all(|t| t.errors.is_empty()));
+}
+
+#[test]
+fn register_write_then_read_back_across_frames() {
+    let mut cfg = BenchConfig::seed_example();
+    cfg.host.registers = vec![RegOp { write: true, id: 0, addr: 0x11, data: 0xC3 }, RegOp { write: false, id: 0, addr: 0x11, data: 0 }];
+    let bench = Bench::new(&cfg).unwrap();
+    let run = bench.run_to_end();
+    let regs: Vec<RegResult> = run.transactions.iter().filter_map(|t| t.register.clone()).collect();
+    assert_eq!(regs.len(), 2);
+    assert!(regs[0].ok && regs[1].ok, "{regs:?}");
+    assert_eq!(regs[0].rdata, 0xC3, "the write is echoed");
+    assert_eq!(regs[1].rdata, 0xC3, "and reads back");
+}
+
+#[test]
+fn cdm_is_the_inverted_ma_level_during_the_timeout() {
+    // Public BiSS C description: "The inverse state of the MA line during the BiSS time-out is the state of the CDM bit".
+    let mut cfg = BenchConfig::seed_example();
+    cfg.host.registers = vec![RegOp { write: false, id: 0, addr: 0x01, data: 0 }];
+    let ts = frames(&cfg);
+    let sent: String = ts[14..14 + 32].iter().map(|t| if t.cdm { '1' } else { '0' }).collect();
+    let expected = control::cdm_sequence(&control::Access { write: false, id: 0, addr: 0x01, wdata: 0 });
+    assert_eq!(sent, expected.iter().map(|&b| if b { '1' } else { '0' }).collect::<String>());
+}
+
+#[test]
+fn a_crc4_error_in_the_read_answer_fails_the_access() {
+    let mut cfg = BenchConfig::seed_example();
+    cfg.slaves[0].cds_crc_error = true;
+    cfg.host.registers = vec![RegOp { write: false, id: 0, addr: 3, data: 0 }];
+    let r = frames(&cfg).iter().find_map(|t| t.register.clone()).unwrap();
+    assert!(!r.ok);
+}
+
+#[test]
+fn a_cdm_bit_misread_by_the_slave_fails_the_address_crc4_and_the_access() {
+    for k in [3, 8, 13] {
+        let mut cfg = BenchConfig::seed_example();
+        cfg.slaves[0].cdm_flip_at = Some(k);
+        cfg.host.registers = vec![RegOp { write: true, id: 0, addr: 9, data: 0x77 }, RegOp { write: false, id: 0, addr: 9, data: 0 }];
+        let bench = Bench::new(&cfg).unwrap();
+        let regs: Vec<RegResult> = bench.run_to_end().transactions.iter().filter_map(|t| t.register.clone()).collect();
+        assert!(!regs[0].ok, "k = {k}");
+        assert!(regs[1].ok && regs[1].rdata == 0, "k = {k}: the refused write left the register alone");
+    }
+}
+
+#[test]
+fn an_access_to_an_id_nobody_has_is_not_acknowledged() {
+    let mut cfg = BenchConfig::seed_example();
+    cfg.host.registers = vec![RegOp { write: false, id: 5, addr: 3, data: 0 }];
+    assert!(!frames(&cfg).iter().find_map(|t| t.register.clone()).unwrap().ok);
+}
+
+#[test]
+fn impossible_ma_frequency_is_refused_naming_the_field() {
+    let mut cfg = BenchConfig::seed_example();
+    cfg.master.clock_khz = 12_000.0;
+    assert_eq!(Bench::new(&cfg).err().unwrap().field(), "master.clock_khz");
+    cfg.master.clock_khz = 3_000.0; // 80 MHz / 26.67
+    assert_eq!(Bench::new(&cfg).err().unwrap().field(), "master.clock_khz");
+}
+
+#[test]
+fn verilog_parameters_pack_per_slave_values_eight_bits_each() {
+    let mut cfg = BenchConfig::seed_example();
+    cfg.slaves = vec![SlaveSettings { bits: 12, ..SlaveSettings::default() }, SlaveSettings { bits: 40, ..SlaveSettings::default() }];
+    let p = cfg.verilog_parameters().unwrap();
+    assert!(p.contains(&("SLAVE_BITS", 12 | 40 << 8)));
+    assert!(p.contains(&("SLAVE_CRC_WIDTH", 6 | 6 << 8)));
+}
+
+#[test]
+fn campaign_catches_every_one_and_two_bit_corruption() {
+    // Issue 4: at least 100 000 random corruptions; every 1- and 2-bit one detected.
+    let report = campaign::run(100_000, 16, 6, 2024);
+    println!("{report}");
+    assert_eq!(report.total(), 100_000);
+    for k in [1, 2] {
+        let c = report.by_flips[&k];
+        assert!(c.detected > 10_000 && c.undetected == 0, "{k} bits: {c:?}");
+    }
+}
+
+#[test]
+fn every_single_and_double_flip_of_the_seed_frame_is_detected() {
+    // Seed 001 example frame (24 covered and CRC bits): all 24 single and 276 double corruptions.
+    let n = 16 + 2 + 6;
+    let position = 0b1000_1010_1110_0011;
+    assert!(!campaign::detected(16, position, &[]), "a clean frame passes");
+    for i in 0..n {
+        assert!(campaign::detected(16, position, &[i]), "bit {i}");
+        for j in i + 1..n {
+            assert!(campaign::detected(16, position, &[i, j]), "bits {i}, {j}");
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(24))]
+    #[test]
+    fn any_width_position_and_cable_round_trips(bits in 1u32..=64, raw in any::<u64>(), cable in 0.0f64..100.0, mhz in prop::sample::select(vec![1000.0, 2500.0, 5000.0, 10000.0])) {
+        let mask = if bits == 64 { u64::MAX } else { (1u64 << bits) - 1 };
+        let cfg = BenchConfig {
+            master: MasterSettings { clock_khz: mhz, ..MasterSettings::default() },
+            slaves: vec![SlaveSettings { bits, positions: vec![raw & mask, !raw & mask], timeout_us: 2.0, ..SlaveSettings::default() }],
+            cable: CableConfig { length_m: cable, ..CableConfig::default() },
+            host: HostSettings { frames: 2, ..HostSettings::default() },
+            ..BenchConfig::default()
+        };
+        let ts = frames(&cfg);
+        prop_assert!(ts.iter().all(|t| t.errors.is_empty()), "{:?}", ts.iter().map(|t| t.errors.clone()).collect::<Vec<_>>());
+        prop_assert_eq!(ts[0].slaves[0].position, raw & mask);
+        prop_assert_eq!(ts[1].slaves[0].position, !raw & mask);
+    }
+}
