@@ -29,10 +29,15 @@ header_core=$(header core)
 
 # Half a system-clock period in femtoseconds (the testbench timescale is 1 fs).
 half_fs=$(( 500000000000000 / f_sys_hz ))
+# The vector memory, in 64-bit words: 4 Mi words, doubled until the file
+# fits, so that ordinary files share one build and long benches still fit.
+words=$(header words_per_record)
+max_words=$(( 1 << 22 ))
+while [ $(( records * words )) -gt "$max_words" ]; do max_words=$(( max_words * 2 )); done
 rtl=("$root"/hdl/rtl/*.v)
 trace=0
 [ -n "$waves" ] && trace=1
-key=$(printf '%s\n' "$params" "$half_fs" "$trace" | cat - "$tb" "$root/hdl/tb/common/vector_player.vh" "${rtl[@]}" | sha1sum | cut -c1-12)
+key=$(printf '%s\n' "$params" "$half_fs" "$trace" "$max_words" | cat - "$tb" "$root/hdl/tb/common/vector_player.vh" "${rtl[@]}" | sha1sum | cut -c1-12)
 build="$root/build/sim/$core/$sim/$key"
 mkdir -p "$build"
 # Parallel runs (cargo's test threads, make -j) may want the same build:
@@ -49,7 +54,7 @@ icarus)
         pargs=()
         for p in $params; do pargs+=("-Ptb_$core.$p"); done
         iverilog -g2005 -Wall -Wno-timescale -s "tb_$core" -I "$root/hdl/tb/common" \
-            "${pargs[@]}" "-Ptb_$core.HALF_PERIOD_FS=$half_fs" \
+            "${pargs[@]}" "-Ptb_$core.HALF_PERIOD_FS=$half_fs" "-Ptb_$core.MAX_WORDS=$max_words" \
             -o "$build/tb.vvp.tmp" "$tb" "${rtl[@]}" > "$build/build.log" 2>&1 \
             || { cat "$build/build.log" >&2; exit 1; }
         mv "$build/tb.vvp.tmp" "$build/tb.vvp"
@@ -65,7 +70,7 @@ verilator)
         [ "$trace" = 1 ] && targs+=(--trace)
         verilator --binary --timing -j 2 -Wno-fatal -Wno-lint -Wno-style "${targs[@]}" \
             --top-module "tb_$core" -I"$root/hdl/tb/common" \
-            "${gargs[@]}" "-GHALF_PERIOD_FS=$half_fs" \
+            "${gargs[@]}" "-GHALF_PERIOD_FS=$half_fs" "-GMAX_WORDS=$max_words" \
             --Mdir "$build/obj" -o Vtb "$tb" "${rtl[@]}" > "$build/build.log" 2>&1 \
             || { cat "$build/build.log" >&2; exit 1; }
         mv "$build/obj/Vtb" "$build/Vtb"
