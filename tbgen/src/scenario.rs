@@ -27,6 +27,7 @@ struct ScenarioFile {
     description: String,
     ssi: Option<model::ssi::BenchConfig>,
     uart: Option<model::uart::BenchConfig>,
+    tformat: Option<model::tformat::BenchConfig>,
     biss: Option<model::biss::BenchConfig>,
 }
 
@@ -39,6 +40,8 @@ pub enum Setup {
     Ssi(model::ssi::BenchConfig),
     /// The 10-bit frame receiver fed by a sender with baud error and jitter.
     Uart(model::uart::BenchConfig),
+    /// A T-format host, a Smart Abs emulator and a half-duplex cable.
+    Tformat(model::tformat::BenchConfig),
     /// A BiSS-C master, a chain of slaves and a cable.
     Biss(model::biss::BenchConfig),
 }
@@ -59,6 +62,7 @@ impl Setup {
         match self {
             Setup::Ssi(cfg) => visitor.visit(cfg),
             Setup::Uart(cfg) => visitor.visit(cfg),
+            Setup::Tformat(cfg) => visitor.visit(cfg),
             Setup::Biss(cfg) => visitor.visit(cfg),
         }
     }
@@ -116,6 +120,7 @@ impl Scenario {
         let mut setups = Vec::new();
         setups.extend(file.ssi.map(Setup::Ssi));
         setups.extend(file.uart.map(Setup::Uart));
+        setups.extend(file.tformat.map(Setup::Tformat));
         setups.extend(file.biss.map(Setup::Biss));
         if setups.len() != 1 {
             return Err(Error::Scenario {

@@ -8,7 +8,7 @@ use super::encoder::{Encoder, EncoderConfig, EncoderSettings};
 use super::frames::DataId;
 use super::host::{Host, HostConfig, In, Out};
 use crate::line::{CableConfig, Drive, HalfDuplexLine};
-use crate::ports::Port;
+use crate::ports::{Port, Ports};
 use crate::testbench::{self, Setup, Testbench};
 use crate::trace::{Layout, Sample};
 use crate::{ConfigError, Result, Timebase};
@@ -72,7 +72,7 @@ pub struct BenchConfig {
 impl Default for BenchConfig {
     fn default() -> Self {
         BenchConfig {
-            f_sys_mhz: 100.0,
+            f_sys_mhz: 80.0,
             baud: 2.5e6,
             host: HostSettings::default(),
             encoder: EncoderSettings::default(),
@@ -237,8 +237,8 @@ impl Bench {
         cfg.check()?;
         let tb = cfg.timebase()?;
         let layout = Layout {
-            inputs: vec![Port::new("i_start", 1), Port::new("i_data_id", 4), Port::new("i_address", 7), Port::new("i_wdata", 8), Port::new("i_rx", 1)],
-            outputs: vec![Port::new("o_tx", 1), Port::new("o_tx_en", 1), Port::new("o_busy", 1), Port::new("o_done", 1)],
+            inputs: Host::input_ports(),
+            outputs: Host::output_ports(),
             line: vec![Port::new("tx_en_host", 1), Port::new("tx_en_encoder", 1), Port::new("line_at_host", 1), Port::new("line_at_encoder", 1)],
             decoded: vec![Port::new("state", 3)],
         };
@@ -349,8 +349,8 @@ impl Testbench for Bench {
         self.last_out = out;
         self.cycle += 1;
         let Some(sample) = sample else { return };
-        sample.inputs.copy_from_slice(&[input.i_start as u64, input.i_data_id as u64, input.i_address as u64, input.i_wdata as u64, input.i_rx as u64]);
-        sample.outputs.copy_from_slice(&[out.o_tx as u64, out.o_tx_en as u64, out.o_busy as u64, out.o_done as u64]);
+        input.write_values(&mut sample.inputs);
+        out.write_values(&mut sample.outputs);
         sample.line.copy_from_slice(&[host_drive.enable as u64, self.encoder_drive.enable as u64, at_host.level as u64, at_encoder.level as u64]);
         sample.decoded[0] = self.host.state() as u64;
     }

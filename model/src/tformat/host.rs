@@ -112,6 +112,73 @@ pub struct Out {
 /// The most fields an answer has (Data ID 3).
 pub const MAX_FIELDS: usize = 11;
 
+impl Host {
+    /// The input ports, in vector order (the Verilog port names).
+    pub fn input_ports() -> Vec<crate::Port> {
+        use crate::Port;
+        vec![Port::new("i_start", 1), Port::new("i_data_id", 4), Port::new("i_address", 7), Port::new("i_wdata", 8), Port::new("i_rx", 1)]
+    }
+
+    /// The output ports, in vector order (the Verilog port names).
+    pub fn output_ports() -> Vec<crate::Port> {
+        use crate::Port;
+        vec![
+            Port::new("o_tx", 1),
+            Port::new("o_tx_en", 1),
+            Port::new("o_busy", 1),
+            Port::new("o_done", 1),
+            Port::new("o_cf", 8),
+            Port::new("o_sf", 8),
+            Port::new("o_abs", 17),
+            Port::new("o_abm", 16),
+            Port::new("o_enid", 8),
+            Port::new("o_almc", 8),
+            Port::new("o_adf", 8),
+            Port::new("o_edf", 8),
+            Port::new("o_err_crc", 1),
+            Port::new("o_err_timeout", 1),
+            Port::new("o_err_frame", 1),
+            Port::new("o_err_cf", 1),
+            Port::new("o_err_comm", 1),
+        ]
+    }
+}
+
+impl crate::Ports for In {
+    fn write_values(&self, dst: &mut [u64]) {
+        dst[0] = self.i_start as u64;
+        dst[1] = (self.i_data_id & 0xF) as u64;
+        dst[2] = (self.i_address & 0x7F) as u64;
+        dst[3] = self.i_wdata as u64;
+        dst[4] = self.i_rx as u64;
+    }
+}
+
+impl crate::Ports for Out {
+    fn write_values(&self, dst: &mut [u64]) {
+        let v = [
+            self.o_tx as u64,
+            self.o_tx_en as u64,
+            self.o_busy as u64,
+            self.o_done as u64,
+            self.o_cf as u64,
+            self.o_sf as u64,
+            self.o_abs as u64,
+            self.o_abm as u64,
+            self.o_enid as u64,
+            self.o_almc as u64,
+            self.o_adf as u64,
+            self.o_edf as u64,
+            self.o_err_crc as u64,
+            self.o_err_timeout as u64,
+            self.o_err_frame as u64,
+            self.o_err_cf as u64,
+            self.o_err_comm as u64,
+        ];
+        dst.copy_from_slice(&v);
+    }
+}
+
 /// The host. One [`Host::step`] is one rising edge of the system clock.
 #[derive(Debug, Clone)]
 pub struct Host {
@@ -122,10 +189,15 @@ pub struct Host {
     /// values after the previous edge.
     rx_out: uart::Out,
     id: u8,
-    request: [u8; 4],
-    request_len: u8,
-    field: u8,
-    bit: u8,
+    /// The request's control field, for the answer's check.
+    req_cf: u8,
+    /// Every bit of the request as it goes on the line, first bit in bit 0
+    /// (start, data LSB first, delimiter per field; at most 4 fields).
+    req_bits: u64,
+    req_nbits: u8,
+    /// The bits still to send and how many.
+    shift: u64,
+    bits_left: u8,
     cnt: u64,
     repeats_left: u8,
     fields: [u8; MAX_FIELDS],
@@ -146,10 +218,11 @@ impl Host {
             cfg,
             state: State::Idle,
             id: 0,
-            request: [0; 4],
-            request_len: 0,
-            field: 0,
-            bit: 0,
+            req_cf: 0,
+            req_bits: 0,
+            req_nbits: 0,
+            shift: 0,
+            bits_left: 0,
             cnt: 0,
             repeats_left: 0,
             fields: [0; MAX_FIELDS],
@@ -186,9 +259,9 @@ impl Host {
                     // it with Data ID 3 data (Table 5 no. 2).
                     let mut bytes = set.clone();
                     bytes[0] = frames::control_field_for_code(self.id);
-                    self.request = [0; 4];
-                    self.request[..bytes.len()].copy_from_slice(&bytes);
-                    self.request_len = bytes.len() as u8;
+                    self.req_cf = bytes[0];
+                    self.req_bits = bytes.iter().rev().fold(0u64, |acc, &b| (acc << 10) | (1 << 9) | (u64::from(b) << 1));
+                    self.req_nbits = 10 * bytes.len() as u8;
                     self.repeats_left = if id.is_some_and(|d| d.is_reset()) { 10 } else { 1 };
                     self.errors = (false, false, false);
                     next.o_busy = true;
@@ -202,12 +275,7 @@ impl Host {
             }
             State::Send => {
                 if self.cnt == 0 {
-                    self.bit += 1;
-                    if self.bit == 10 {
-                        self.bit = 0;
-                        self.field += 1;
-                    }
-                    if self.field == self.request_len {
+                    if self.bits_left == 0 {
                         next.o_tx_en = false;
                         next.o_tx = true;
                         self.state = State::Wait;
@@ -215,7 +283,9 @@ impl Host {
                         self.count = 0;
                         self.crc = 0;
                     } else {
-                        next.o_tx = bit_of(self.request[self.field as usize], self.bit);
+                        next.o_tx = self.shift & 1 == 1;
+                        self.shift >>= 1;
+                        self.bits_left -= 1;
                         self.cnt = c - 1;
                     }
                 } else {
@@ -265,19 +335,20 @@ impl Host {
         next
     }
 
+    /// Drives the request's first bit (the first start bit) and loads the rest.
     fn begin_send(&mut self, next: &mut Out) {
         self.state = State::Send;
-        self.field = 0;
-        self.bit = 0;
+        self.shift = self.req_bits >> 1;
+        self.bits_left = self.req_nbits - 1;
         self.cnt = self.cfg.clocks_per_bit - 1;
         next.o_tx_en = true;
-        next.o_tx = false; // start bit of the first field
+        next.o_tx = self.req_bits & 1 == 1;
     }
 
     /// End of one request's answer: check it, publish it, repeat or finish.
     fn finish(&mut self, next: &mut Out) {
         let timeout = self.errors.1;
-        let request_cf = self.request[0];
+        let request_cf = self.req_cf;
         let expected = DataId::from_code(self.id).map_or(11, |d| d.answer_fields()) as u8;
         let f = self.fields;
         let cf = f[0];
@@ -322,14 +393,5 @@ impl Host {
             // between requests, which this more than keeps.
             self.cnt = self.cfg.repeat_gap_clocks - 1;
         }
-    }
-}
-
-/// Bit `n` (0 = start, 1..8 = data LSB first, 9 = delimiter) of a field.
-fn bit_of(byte: u8, n: u8) -> bool {
-    match n {
-        0 => false,
-        1..=8 => (byte >> (n - 1)) & 1 == 1,
-        _ => true,
     }
 }

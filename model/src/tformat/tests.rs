@@ -53,9 +53,9 @@ fn the_answer_begins_3_us_after_the_request() {
         crate::testbench::Testbench::step(&mut b, None);
     }
     let start = b.encoder().answered()[0].0;
-    // Request: start bit from cycle 500 (5 µs), 10 bits of 40 cycles end at
-    // 900; with no cable the answer's start bit is at 900 + 300.
-    assert_eq!(start, 500 + 400 + 300, "request end + 3 µs");
+    // At 80 MHz: start bit from cycle 400 (5 µs), 10 bits of 32 cycles end
+    // at 720; with no cable the answer's start bit is at 720 + 240 (3 µs).
+    assert_eq!(start, 400 + 320 + 240, "request end + 3 µs");
 }
 
 #[test]
