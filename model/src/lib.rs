@@ -19,6 +19,7 @@
 //! ```
 
 pub mod crc;
+pub mod endat;
 pub mod error;
 pub mod gray;
 pub mod line;
