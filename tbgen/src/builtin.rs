@@ -17,6 +17,22 @@ pub const FILES: &[(&str, &str)] = &[
     ("ssi/monoflop_violation.toml", include_str!("../../scenarios/ssi/monoflop_violation.toml")),
     ("ssi/long_cable_1mhz.toml", include_str!("../../scenarios/ssi/long_cable_1mhz.toml")),
     ("ssi/wide_64bit.toml", include_str!("../../scenarios/ssi/wide_64bit.toml")),
+    ("endat/pos21_1mhz.toml", include_str!("../../scenarios/endat/pos21_1mhz.toml")),
+    ("endat/pos22_ad_8mhz_100m.toml", include_str!("../../scenarios/endat/pos22_ad_8mhz_100m.toml")),
+    ("endat/memory_21.toml", include_str!("../../scenarios/endat/memory_21.toml")),
+    ("endat/continuous_clock.toml", include_str!("../../scenarios/endat/continuous_clock.toml")),
+    ("endat/clock_100khz.toml", include_str!("../../scenarios/endat/clock_100khz.toml")),
+    ("endat/clock_4mhz.toml", include_str!("../../scenarios/endat/clock_4mhz.toml")),
+    ("endat/clock_16mhz.toml", include_str!("../../scenarios/endat/clock_16mhz.toml")),
+    ("endat/fault_absent_stuck.toml", include_str!("../../scenarios/endat/fault_absent_stuck.toml")),
+    ("endat/fault_bit_flips.toml", include_str!("../../scenarios/endat/fault_bit_flips.toml")),
+    ("endat/fault_busy.toml", include_str!("../../scenarios/endat/fault_busy.toml")),
+    ("endat/fault_delay_drift.toml", include_str!("../../scenarios/endat/fault_delay_drift.toml")),
+    ("endat/fault_error_types.toml", include_str!("../../scenarios/endat/fault_error_types.toml")),
+    ("endat/fault_line.toml", include_str!("../../scenarios/endat/fault_line.toml")),
+    ("endat/fault_meas_inconsistent.toml", include_str!("../../scenarios/endat/fault_meas_inconsistent.toml")),
+    ("endat/fault_start_late.toml", include_str!("../../scenarios/endat/fault_start_late.toml")),
+    ("endat/fault_stuck_high.toml", include_str!("../../scenarios/endat/fault_stuck_high.toml")),
 ];
 
 /// Every built-in scenario, parsed.

@@ -26,6 +26,7 @@ struct ScenarioFile {
     #[serde(default)]
     description: String,
     ssi: Option<model::ssi::BenchConfig>,
+    endat: Option<model::endat::BenchConfig>,
 }
 
 /// The set-up a scenario describes, one variant per protocol. To add a
@@ -35,6 +36,8 @@ struct ScenarioFile {
 pub enum Setup {
     /// An SSI reader, encoder and cable.
     Ssi(model::ssi::BenchConfig),
+    /// An EnDat master, encoder emulator and cable.
+    Endat(model::endat::BenchConfig),
 }
 
 /// Something done with a scenario's set-up whatever its protocol: the
@@ -52,6 +55,7 @@ impl Setup {
     pub fn accept<V: Visitor>(&self, visitor: V) -> V::Output {
         match self {
             Setup::Ssi(cfg) => visitor.visit(cfg),
+            Setup::Endat(cfg) => visitor.visit(cfg),
         }
     }
 }
@@ -99,12 +103,19 @@ impl Scenario {
                 message: format!("name `{}`: use lower-case letters, digits and `_` (it names the output files)", file.name),
             });
         }
-        let setup = match file.ssi {
-            Some(cfg) => Setup::Ssi(cfg),
-            None => {
+        let setup = match (file.ssi, file.endat) {
+            (Some(_), Some(_)) => {
                 return Err(Error::Scenario {
                     file: origin.into(),
-                    message: "no protocol table: add one, e.g. `[ssi]` with its fields (see scenarios/ssi/)".into(),
+                    message: "both [ssi] and [endat]: a scenario describes one protocol; split it in two files".into(),
+                })
+            }
+            (Some(cfg), None) => Setup::Ssi(cfg),
+            (None, Some(cfg)) => Setup::Endat(cfg),
+            (None, None) => {
+                return Err(Error::Scenario {
+                    file: origin.into(),
+                    message: "no protocol table: add one, e.g. `[ssi]` or `[endat]` with its fields (see scenarios/ssi/, scenarios/endat/)".into(),
                 })
             }
         };

@@ -627,7 +627,13 @@ impl Bench {
             layout,
             tb,
             cfg: cfg.clone(),
-        })
+        }
+        .with_first_faults())
+    }
+
+    fn with_first_faults(mut self) -> Self {
+        self.apply_faults(0);
+        self
     }
 
     /// Runs to the end with nothing recorded.
@@ -651,7 +657,6 @@ impl Bench {
             if self.cycle >= at && !self.last_out.o_busy {
                 let k = self.next;
                 let req = self.requests[k].clone();
-                self.apply_faults(k);
                 self.encoder.set_position(self.cfg.position_at(k));
                 self.encoder.advance_per_latch = self.cfg.step;
                 if req.measure {
@@ -748,6 +753,8 @@ impl Bench {
         }
         if self.host == Host::WaitIdle && !out.o_busy {
             self.host = if self.next < self.requests.len() {
+                // Faults appear while the line is idle before the request, as a real break would.
+                self.apply_faults(self.next);
                 Host::WaitUntil(self.cycle + self.gap)
             } else {
                 Host::Finished(self.cycle + TAIL_CYCLES)
