@@ -225,6 +225,7 @@ reg [CNT_W-1:0] cnt_reg = 0, cnt_next;
 reg [15:0]      fall_idx_reg = 0, fall_idx_next;
 reg [15:0]      stop_idx_reg = NONE, stop_idx_next;
 reg [15:0]      blk_idx_reg = NONE, blk_idx_next;
+reg [15:0]      blk_m1_reg = NONE - 16'd1, blk_m1_next;
 reg [2:0]       kind_reg = KIND_POS21, kind_next;
 reg [5:0]       mode_reg = 0, mode_next;
 reg [7:0]       mrs_reg = 0, mrs_next;
@@ -273,6 +274,11 @@ reg [23:0]      meas_sum_reg = 0, meas_sum_next;
 reg [15:0]      meas_min_reg = 16'hFFFF, meas_min_next;
 reg [15:0]      meas_max_reg = 0, meas_max_next;
 reg             meas_bad_reg = 1'b0, meas_bad_next;
+reg             meas_evt_reg = 1'b0, meas_evt_next;
+reg             meas_evt_bad_reg = 1'b0, meas_evt_bad_next;
+reg             meas_eval1_reg = 1'b0, meas_eval1_next;
+reg             meas_eval2_reg = 1'b0, meas_eval2_next;
+reg [15:0]      meas_mean_reg = 0, meas_mean_next;
 reg [15:0]      delay_reg = FIXED_D, delay_next;
 reg             delay_valid_reg = 1'b0, delay_valid_next;
 
@@ -345,7 +351,10 @@ assign o_delay = delay_reg;
 wire [4:0] lfsr_pushed;
 crc_serial #(.WIDTH(5), .POLY(5'h0B)) rx_crc (.i_crc(lfsr_reg), .i_bit(data_sync_reg), .o_crc(lfsr_pushed));
 
-wire [23:0] blk_payload = {i_mrs, i_param};
+// The block's CRC is computed from the registered MRS code and parameter and written into
+// tx_bits during the first low phase (it is first needed 30 clocks later): no path from the
+// host inputs through the 24-step chain.
+wire [23:0] blk_payload = {mrs_reg, param_reg};
 wire [4:0] blk_chain [0:24];
 assign blk_chain[0] = 5'h1F;
 genvar gi;
@@ -354,7 +363,7 @@ generate
         crc_serial #(.WIDTH(5), .POLY(5'h0B)) step (.i_crc(blk_chain[gi]), .i_bit(blk_payload[23 - gi]), .o_crc(blk_chain[gi + 1]));
     end
 endgenerate
-wire [4:0] blk_crc = ~blk_chain[24];  // MakeCrcNorm(i_mrs, i_param)
+wire [4:0] blk_crc = ~blk_chain[24];  // MakeCrcNorm(mrs_reg, param_reg)
 
 /* Derived values of the current transaction */
 wire        is22 = (kind_reg == KIND_POS22) || (kind_reg == KIND_BLOCK22);
@@ -368,14 +377,26 @@ wire [15:0] frame_len = {8'd0, nf} + {8'd0, head_len} + 16'd5 + (ads == 2'd2 ? 1
 wire [15:0] d_use = (meas_frame_reg || !((DELAY_COMP != 0) && delay_valid_reg)) ? FIXED_D : delay_reg;
 wire        edge_any = data_sync_reg != data_prev_reg;
 wire        edge_rise = data_sync_reg && !data_prev_reg;
-wire [16:0] k_next = {1'b0, fall_idx_reg} + 17'd1;
-wire [16:0] blk_end = {1'b0, blk_idx_reg} + {1'b0, BLOCK_BITS};
-wire        in_block = (kind_reg == KIND_BLOCK22) && (k_next >= {1'b0, blk_idx_reg}) && (k_next < blk_end);
+wire [15:0] k_next = fall_idx_reg + 16'd1;
+// The next falling edge k = fall_idx + 1 is compared through registered forms (timing closure):
+// k >= blk_idx <=> fall_idx >= blk_idx - 1, and k < blk_idx + 29 <=> fall_idx < stop_idx (= blk_idx + 28).
+// The three are registered: they are read at the end of a high phase, at least half a
+// period after fall_idx last changed, and blk/stop only leave NONE many clocks before a block.
+wire        in_block_now = (kind_reg == KIND_BLOCK22) && (fall_idx_reg >= blk_m1_reg) && (fall_idx_reg < stop_idx_reg);
+wire        drive_mode_now = (fall_idx_reg >= 16'd1) && (fall_idx_reg < k_off - 16'd1);
+wire        rx_begin_now = (fall_idx_reg == k_off);
+reg         in_block = 1'b0;
+reg         drive_mode = 1'b0;
+reg         rx_begin = 1'b0;
+always @(posedge i_clk) begin
+    in_block <= in_block_now;
+    drive_mode <= drive_mode_now;
+    rx_begin <= rx_begin_now;
+end
 wire [47:0] bit_at = {47'd0, data_sync_reg} << seg_cnt_reg;
 
 // Scratch values of the combinational block (declared here for Verilog-2005).
 reg        crc_bad;
-reg        frame_bad;
 reg        do_done;
 reg        do_abort;
 reg        abort_timeout;
@@ -386,12 +407,9 @@ reg [7:0]  ack_a;
 reg [15:0] ack_d;
 reg        ok1, ok2;
 reg [4:0]  i1, i2;
-reg        m_bad;
-reg [23:0] m_sum;
-reg [15:0] m_min, m_max;
-reg        m_round_bad;
-reg [7:0]  m_k;
-reg [23:0] m_mean_wide;
+/* verilator lint_off UNUSEDSIGNAL */
+reg [23:0] m_mean_wide;  // the mean of 16-bit captures fits 16 bits; the top byte is always 0
+/* verilator lint_on UNUSEDSIGNAL */
 reg [15:0] m_mean;
 reg        m_ok;
 reg        start_ok;
@@ -403,6 +421,7 @@ always @* begin
     fall_idx_next = fall_idx_reg;
     stop_idx_next = stop_idx_reg;
     blk_idx_next = blk_idx_reg;
+    blk_m1_next = blk_m1_reg;
     kind_next = kind_reg;
     mode_next = mode_reg;
     mrs_next = mrs_reg;
@@ -439,6 +458,11 @@ always @* begin
     meas_min_next = meas_min_reg;
     meas_max_next = meas_max_reg;
     meas_bad_next = meas_bad_reg;
+    meas_evt_next = meas_evt_reg;
+    meas_evt_bad_next = meas_evt_bad_reg;
+    meas_eval1_next = meas_eval1_reg;
+    meas_eval2_next = meas_eval2_reg;
+    meas_mean_next = meas_mean_reg;
     delay_next = delay_reg;
     delay_valid_next = delay_valid_reg;
     ad1_on_next = ad1_on_reg;
@@ -472,7 +496,6 @@ always @* begin
     meas_done_next = 1'b0;
     err_meas_next = 1'b0;
     crc_bad = 1'b0;
-    frame_bad = 1'b0;
     do_done = 1'b0;
     do_abort = 1'b0;
     abort_timeout = 1'b0;
@@ -485,12 +508,6 @@ always @* begin
     ok2 = 1'b0;
     i1 = 5'd0;
     i2 = 5'd0;
-    m_bad = 1'b0;
-    m_sum = 24'd0;
-    m_min = 16'd0;
-    m_max = 16'd0;
-    m_round_bad = 1'b0;
-    m_k = 8'd0;
     m_mean_wide = 24'd0;
     m_mean = 16'd0;
     m_ok = 1'b0;
@@ -534,6 +551,7 @@ always @* begin
                         bad_ad2_next = 1'b0;
                         if (kind_reg == KIND_BLOCK22) begin
                             blk_idx_next = smp_idx_reg + frame_len + GAP16;
+                            blk_m1_next = smp_idx_reg + frame_len + GAP16 - 16'd1;
                             stop_idx_next = smp_idx_reg + frame_len + GAP16 + BLOCK_BITS - 16'd1;
                         end else if (cont_left_reg <= 8'd1) begin
                             stop_idx_next = smp_idx_reg + frame_len;
@@ -677,45 +695,51 @@ always @* begin
             end
         end
     end
-    /* Bookkeeping of a measurement frame */
+    /* A measurement frame ended: its bookkeeping runs in the next cycles */
     if ((do_abort || do_done) && meas_frame_reg) begin
-        frame_bad = do_abort ? 1'b1 : bad_head_next;
-        m_bad = frame_bad || !meas_got_reg;
-        m_k = meas_k_reg + 8'd1;
-        m_sum = meas_sum_reg + (m_bad ? 24'd0 : {8'd0, meas_cap_reg});
-        m_min = (m_bad || meas_cap_reg >= meas_min_reg) ? meas_min_reg : meas_cap_reg;
-        m_max = (m_bad || meas_cap_reg <= meas_max_reg) ? meas_max_reg : meas_cap_reg;
-        m_round_bad = meas_bad_reg || m_bad;
-        if (m_k == MEAS_N) begin
-            m_mean_wide = (m_sum + MEAS_ROUND) >> MEAS_LOG2;
-            m_mean = m_mean_wide[15:0];
-            m_ok = !m_round_bad && ({8'd0, m_max} <= {8'd0, m_mean} + {8'd0, TOL16}) && ({8'd0, m_mean} <= {8'd0, m_min} + {8'd0, TOL16})
-                   && (m_mean <= DMAX16) && (m_mean >= 16'd1) && (m_mean_wide[23:16] == 8'd0);
-            meas_k_next = 8'd0;
-            meas_sum_next = 24'd0;
-            meas_min_next = 16'hFFFF;
-            meas_max_next = 16'd0;
-            meas_bad_next = 1'b0;
-            if (m_ok) begin
-                delay_next = m_mean;
-                delay_valid_next = 1'b1;
-                meas_on_next = 1'b0;
-                meas_done_next = 1'b1;
-            end else if (meas_round_reg + 8'd1 < RETRIES) begin
-                meas_round_next = meas_round_reg + 8'd1;
-            end else begin
-                delay_next = FIXED_D;
-                delay_valid_next = 1'b0;
-                meas_on_next = 1'b0;
-                meas_done_next = 1'b1;
-                err_meas_next = 1'b1;
-            end
+        meas_evt_next = 1'b1;
+        meas_evt_bad_next = do_abort ? 1'b1 : (bad_head_next || !meas_got_reg);
+    end
+    /* Measurement bookkeeping in three registered stages (timing closure): accumulate, mean, check */
+    if (meas_evt_reg) begin
+        meas_evt_next = 1'b0;
+        meas_k_next = meas_k_reg + 8'd1;
+        meas_sum_next = meas_sum_reg + (meas_evt_bad_reg ? 24'd0 : {8'd0, meas_cap_reg});
+        meas_min_next = (meas_evt_bad_reg || meas_cap_reg >= meas_min_reg) ? meas_min_reg : meas_cap_reg;
+        meas_max_next = (meas_evt_bad_reg || meas_cap_reg <= meas_max_reg) ? meas_max_reg : meas_cap_reg;
+        meas_bad_next = meas_bad_reg || meas_evt_bad_reg;
+        meas_eval1_next = (meas_k_reg + 8'd1 == MEAS_N);
+    end
+    if (meas_eval1_reg) begin
+        meas_eval1_next = 1'b0;
+        meas_eval2_next = 1'b1;
+        m_mean_wide = (meas_sum_reg + MEAS_ROUND) >> MEAS_LOG2;
+        meas_mean_next = m_mean_wide[15:0];
+    end
+    if (meas_eval2_reg) begin
+        m_mean = meas_mean_reg;
+        m_ok = !meas_bad_reg && ({1'b0, meas_max_reg} <= {1'b0, m_mean} + {1'b0, TOL16})
+               && ({1'b0, m_mean} <= {1'b0, meas_min_reg} + {1'b0, TOL16})
+               && (m_mean <= DMAX16) && (m_mean >= 16'd1);
+        meas_eval2_next = 1'b0;
+        meas_k_next = 8'd0;
+        meas_sum_next = 24'd0;
+        meas_min_next = 16'hFFFF;
+        meas_max_next = 16'd0;
+        meas_bad_next = 1'b0;
+        if (m_ok) begin
+            delay_next = m_mean;
+            delay_valid_next = 1'b1;
+            meas_on_next = 1'b0;
+            meas_done_next = 1'b1;
+        end else if (meas_round_reg + 8'd1 < RETRIES) begin
+            meas_round_next = meas_round_reg + 8'd1;
         end else begin
-            meas_k_next = m_k;
-            meas_sum_next = m_sum;
-            meas_min_next = m_min;
-            meas_max_next = m_max;
-            meas_bad_next = m_round_bad;
+            delay_next = FIXED_D;
+            delay_valid_next = 1'b0;
+            meas_on_next = 1'b0;
+            meas_done_next = 1'b1;
+            err_meas_next = 1'b1;
         end
     end
 
@@ -755,9 +779,10 @@ always @* begin
                 mode_next = start_meas ? 6'b000111 : i_mode;
                 mrs_next = start_meas ? 8'd0 : i_mrs;
                 param_next = start_meas ? 16'd0 : i_param;
-                tx_bits_next = start_meas ? {6'b000111, 24'd0, 5'h1C} : {i_mode, i_mrs, i_param, blk_crc};
+                tx_bits_next = start_meas ? {6'b000111, 29'd0} : {i_mode, i_mrs, i_param, 5'd0};
                 stop_idx_next = NONE;
                 blk_idx_next = NONE;
+                blk_m1_next = NONE - 16'd1;
                 meas_frame_next = start_meas;
                 meas_got_next = 1'b0;
                 cont_left_next = (!start_meas && i_mode == 6'b000111 && i_cont_values > 8'd1) ? i_cont_values : 8'd1;
@@ -768,6 +793,7 @@ always @* begin
             end
         end
         FIRST: begin
+            tx_bits_next = {tx_bits_reg[34:5], blk_crc};
             if (cnt_reg == 0) begin
                 state_next = HIGH;
                 clk_out_next = 1'b1;
@@ -795,9 +821,9 @@ always @* begin
                 end else begin
                     state_next = LOW;
                     clk_out_next = 1'b0;
-                    fall_idx_next = k_next[15:0];
+                    fall_idx_next = k_next;
                     cnt_next = half_last;
-                    if ((k_next >= 17'd2 && k_next < {1'b0, k_off}) || in_block) begin
+                    if (drive_mode || in_block) begin
                         oe_next = 1'b1;
                         dout_next = tx_bits_reg[34];
                         tx_bits_next = {tx_bits_reg[33:0], 1'b0};
@@ -805,10 +831,10 @@ always @* begin
                         oe_next = 1'b0;
                         dout_next = 1'b0;
                     end
-                    if (k_next == {1'b0, k_off} + 17'd1) begin
+                    if (rx_begin) begin
                         rx_on_next = 1'b1;
                         rx_cnt_next = d_use - 16'd1;
-                        smp_idx_next = k_next[15:0];
+                        smp_idx_next = k_next;
                         phase_next = RX_TURN;
                     end
                 end
@@ -847,6 +873,7 @@ always @(posedge i_clk) begin
     fall_idx_reg <= fall_idx_next;
     stop_idx_reg <= stop_idx_next;
     blk_idx_reg <= blk_idx_next;
+    blk_m1_reg <= blk_m1_next;
     kind_reg <= kind_next;
     mode_reg <= mode_next;
     mrs_reg <= mrs_next;
@@ -885,6 +912,11 @@ always @(posedge i_clk) begin
     meas_min_reg <= meas_min_next;
     meas_max_reg <= meas_max_next;
     meas_bad_reg <= meas_bad_next;
+    meas_evt_reg <= meas_evt_next;
+    meas_evt_bad_reg <= meas_evt_bad_next;
+    meas_eval1_reg <= meas_eval1_next;
+    meas_eval2_reg <= meas_eval2_next;
+    meas_mean_reg <= meas_mean_next;
     delay_reg <= delay_next;
     delay_valid_reg <= delay_valid_next;
     ad1_on_reg <= ad1_on_next;
@@ -928,6 +960,7 @@ always @(posedge i_clk) begin
         fall_idx_reg <= 16'd0;
         stop_idx_reg <= NONE;
         blk_idx_reg <= NONE;
+        blk_m1_reg <= NONE - 16'd1;
         kind_reg <= KIND_POS21;
         mode_reg <= 6'd0;
         mrs_reg <= 8'd0;
@@ -966,6 +999,11 @@ always @(posedge i_clk) begin
         meas_min_reg <= 16'hFFFF;
         meas_max_reg <= 16'd0;
         meas_bad_reg <= 1'b0;
+        meas_evt_reg <= 1'b0;
+        meas_evt_bad_reg <= 1'b0;
+        meas_eval1_reg <= 1'b0;
+        meas_eval2_reg <= 1'b0;
+        meas_mean_reg <= 16'd0;
         delay_reg <= FIXED_D;
         delay_valid_reg <= 1'b0;
         ad1_on_reg <= 1'b0;

@@ -21,6 +21,8 @@ pub const FILES: &[(&str, &str)] = &[
     ("endat/pos22_ad_8mhz_100m.toml", include_str!("../../scenarios/endat/pos22_ad_8mhz_100m.toml")),
     ("endat/memory_21.toml", include_str!("../../scenarios/endat/memory_21.toml")),
     ("endat/continuous_clock.toml", include_str!("../../scenarios/endat/continuous_clock.toml")),
+    ("endat/params_22_2mhz.toml", include_str!("../../scenarios/endat/params_22_2mhz.toml")),
+    ("endat/test_comm_21.toml", include_str!("../../scenarios/endat/test_comm_21.toml")),
     ("endat/clock_100khz.toml", include_str!("../../scenarios/endat/clock_100khz.toml")),
     ("endat/clock_4mhz.toml", include_str!("../../scenarios/endat/clock_4mhz.toml")),
     ("endat/clock_16mhz.toml", include_str!("../../scenarios/endat/clock_16mhz.toml")),

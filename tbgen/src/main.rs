@@ -6,7 +6,7 @@ use std::time::Instant;
 
 use clap::{Parser, Subcommand};
 use tbgen::scenario::Visitor;
-use tbgen::{builtin, crc_cmd, generate, Error};
+use tbgen::{builtin, crc_cmd, generate, timing_cmd, Error};
 
 #[derive(Parser)]
 #[command(
@@ -50,6 +50,23 @@ enum Command {
         /// List the catalogue.
         #[arg(long)]
         list: bool,
+    },
+    /// Cycle-time budget of a protocol configuration, phase by phase, and the read rate.
+    #[command(after_help = "Examples:\n  tbgen timing endat endat_pos22_ad_8mhz_100m --ads 2\n  tbgen timing endat my.toml --command pos21 --diagram")]
+    Timing {
+        /// Protocol (only `endat`).
+        protocol: String,
+        /// Built-in scenario name or scenario .toml file.
+        scenario: String,
+        /// Mode command to budget (`pos22`, `pos21`, `send21`, ...).
+        #[arg(long, default_value = "pos22")]
+        command: String,
+        /// Additional data selected (0, 1 or 2; type 2.2 commands).
+        #[arg(long, default_value_t = 0)]
+        ads: u64,
+        /// Also print the model's waveform of the scenario's first request.
+        #[arg(long)]
+        diagram: bool,
     },
     /// Time the model alone on a scenario (used by `make bench`).
     #[command(after_help = "Example:\n  tbgen bench scenarios/bench/ssi_bench.toml")]
@@ -108,6 +125,13 @@ fn run(command: Command) -> Result<(), Error> {
             }
         }
         Command::Bench { scenario } => bench(&scenario)?,
+        Command::Timing { protocol, scenario, command, ads, diagram } => {
+            if protocol != "endat" {
+                return Err(Error::UnknownScenario(format!("timing for protocol `{protocol}`: only `endat` has a budget")));
+            }
+            let s = builtin::resolve(&scenario)?;
+            print!("{}", timing_cmd::report(&s, &command, ads, diagram)?);
+        }
     }
     Ok(())
 }

@@ -438,6 +438,11 @@ struct Regs {
     meas_min: u64,
     meas_max: u64,
     meas_bad: bool,
+    meas_evt: bool,
+    meas_evt_bad: bool,
+    meas_eval1: bool,
+    meas_eval2: bool,
+    meas_mean: u64,
     delay: u64,
     delay_valid: bool,
     // additional-data selection as the master requested it
@@ -542,6 +547,11 @@ impl Master {
             meas_min: SAT16,
             meas_max: 0,
             meas_bad: false,
+            meas_evt: false,
+            meas_evt_bad: false,
+            meas_eval1: false,
+            meas_eval2: false,
+            meas_mean: 0,
             delay: cfg.fixed_delay(),
             delay_valid: false,
             ad1_on: false,
@@ -627,6 +637,8 @@ impl Master {
                 n.rx_cnt = c.rx_cnt - 1;
             }
         }
+
+        self.meas_stages(&c, &mut n);
 
         // ---- transmitter: clock, mode bits, parameter block ---------------------------
         let cfg = &self.cfg;
@@ -886,7 +898,8 @@ impl Master {
         n.stop_idx = c.fall_idx;
         n.err_frame = true;
         if c.meas_frame {
-            self.meas_account(c, n, true);
+            n.meas_evt = true;
+            n.meas_evt_bad = true;
         } else {
             n.out.o_done = true;
             n.out.o_err_timeout = timeout;
@@ -905,7 +918,8 @@ impl Master {
             n.rx_on = false;
         }
         if c.meas_frame {
-            self.meas_account(c, n, n.bad_head);
+            n.meas_evt = true;
+            n.meas_evt_bad = n.bad_head || !c.meas_got;
             return;
         }
         let is22 = matches!(c.kind, FrameKind::Pos22 | FrameKind::Block22);
@@ -959,20 +973,36 @@ impl Master {
         n.out.o_err_ack = other;
     }
 
-    /// Bookkeeping of one measurement frame.
-    fn meas_account(&self, c: &Regs, n: &mut Regs, frame_bad: bool) {
+    /// Bookkeeping of the measurement, in three registered stages so that no
+    /// long adder chain follows the frame's last sample (timing closure): the
+    /// frame's capture is accumulated one cycle after the frame ends, the mean
+    /// is formed in the next, and checked in the one after.
+    fn meas_stages(&self, c: &Regs, n: &mut Regs) {
         let cfg = &self.cfg;
-        let bad = frame_bad || !c.meas_got;
-        let cap = c.meas_cap;
-        let k = c.meas_k + 1;
-        let sum = c.meas_sum + if bad { 0 } else { cap };
-        let min = if bad { c.meas_min } else { c.meas_min.min(cap) };
-        let max = if bad { c.meas_max } else { c.meas_max.max(cap) };
-        let round_bad = c.meas_bad || bad;
-        if k == cfg.meas_count {
-            let log2 = cfg.meas_count.trailing_zeros();
-            let mean = (sum + cfg.meas_count / 2) >> log2;
-            let ok = !round_bad && max <= mean + cfg.delay_tol && mean <= min + cfg.delay_tol && mean <= cfg.delay_max && mean >= 1;
+        if c.meas_evt {
+            let bad = c.meas_evt_bad;
+            let cap = c.meas_cap;
+            n.meas_evt = false;
+            n.meas_k = c.meas_k + 1;
+            n.meas_sum = c.meas_sum + if bad { 0 } else { cap };
+            n.meas_min = if bad { c.meas_min } else { c.meas_min.min(cap) };
+            n.meas_max = if bad { c.meas_max } else { c.meas_max.max(cap) };
+            n.meas_bad = c.meas_bad || bad;
+            n.meas_eval1 = c.meas_k + 1 == cfg.meas_count;
+        }
+        if c.meas_eval1 {
+            n.meas_eval1 = false;
+            n.meas_eval2 = true;
+            n.meas_mean = (c.meas_sum + cfg.meas_count / 2) >> cfg.meas_count.trailing_zeros();
+        }
+        if c.meas_eval2 {
+            let mean = c.meas_mean;
+            let ok = !c.meas_bad
+                && c.meas_max <= mean + cfg.delay_tol
+                && mean <= c.meas_min + cfg.delay_tol
+                && mean <= cfg.delay_max
+                && mean >= 1;
+            n.meas_eval2 = false;
             n.meas_k = 0;
             n.meas_sum = 0;
             n.meas_min = SAT16;
@@ -992,12 +1022,6 @@ impl Master {
                 n.out.o_meas_done = true;
                 n.out.o_err_meas = true;
             }
-        } else {
-            n.meas_k = k;
-            n.meas_sum = sum;
-            n.meas_min = min;
-            n.meas_max = max;
-            n.meas_bad = round_bad;
         }
     }
 }
