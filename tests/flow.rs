@@ -71,6 +71,7 @@ fn transaction_signals(core: &str) -> (&'static [&'static str], &'static str, &'
         "uart_rx" => (&["o_valid", "o_frame_err", "o_start_err"], "o_data", "received"),
         "biss_master" => (&["o_done"], "o_delay", "delay_cycles"),
         "tformat_host" => (&["o_done"], "o_abs", "abs"),
+        "endat_master" => (&["o_done", "o_meas_done"], "o_position", "position"),
         other => panic!("no transaction signals listed for core {other}: add them to transaction_signals"),
     }
 }

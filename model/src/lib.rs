@@ -21,6 +21,7 @@
 pub mod angle;
 pub mod biss;
 pub mod crc;
+pub mod endat;
 pub mod error;
 pub mod gray;
 pub mod line;

@@ -25,6 +25,7 @@ pub mod error;
 pub mod generate;
 pub mod gtkw;
 pub mod scenario;
+pub mod timing_cmd;
 pub mod transcript;
 pub mod vectors;
 pub mod wave;

@@ -7,7 +7,7 @@ use std::time::Instant;
 use clap::{Parser, Subcommand};
 use tbgen::scenario::Visitor;
 use tbgen::scenario::Setup;
-use tbgen::{biss_tools, builtin, crc_cmd, generate, Error};
+use tbgen::{biss_tools, builtin, crc_cmd, generate, timing_cmd, Error};
 
 #[derive(Parser)]
 #[command(
@@ -52,13 +52,23 @@ enum Command {
         #[arg(long)]
         list: bool,
     },
-    /// Print a protocol's cycle budget and position-read rate for a scenario.
-    #[command(after_help = "Examples:\n  tbgen timing biss                          # the seed scenario biss_seed_16bit\n  tbgen timing biss biss_clock_1mhz_100m")]
+    /// Print a protocol's cycle budget, phase by phase, and its position-read rate.
+    #[command(after_help = "Examples:\n  tbgen timing biss                          # the seed scenario biss_seed_16bit\n  tbgen timing biss biss_clock_1mhz_100m\n  tbgen timing endat endat_pos22_ad_8mhz_100m --ads 2\n  tbgen timing endat my.toml --command pos21 --diagram")]
     Timing {
-        /// Protocol (biss).
+        /// Protocol: `biss` or `endat`.
         protocol: String,
-        /// Built-in scenario name or scenario .toml file of that protocol.
+        /// Built-in scenario name or scenario .toml file of that protocol
+        /// (default: biss_seed_16bit, endat_pos22_ad_8mhz_100m).
         scenario: Option<String>,
+        /// EnDat: mode command to budget (`pos22`, `pos21`, `send21`, ...).
+        #[arg(long, default_value = "pos22")]
+        command: String,
+        /// EnDat: additional data selected (0, 1 or 2; type 2.2 commands).
+        #[arg(long, default_value_t = 0)]
+        ads: u64,
+        /// EnDat: also print the model's waveform of the scenario's first request.
+        #[arg(long)]
+        diagram: bool,
     },
     /// Decode a captured waveform (VCD) into a JSON transcript on stdout.
     #[command(after_help = "Example:\n  tbgen decode biss vectors/biss_master/biss_seed_16bit.vcd --bits 16")]
@@ -140,16 +150,20 @@ fn run(command: Command) -> Result<(), Error> {
             }
         }
         Command::Bench { scenario } => bench(&scenario)?,
-        Command::Timing { protocol, scenario } => {
-            if protocol != "biss" {
-                return Err(Error::Decode(format!("timing: protocol `{protocol}` has no cycle budget yet; use `biss`")));
+        Command::Timing { protocol, scenario, command, ads, diagram } => match protocol.as_str() {
+            "biss" => {
+                let s = builtin::resolve(scenario.as_deref().unwrap_or("biss_seed_16bit"))?;
+                let Setup::Biss(cfg) = &s.setup else {
+                    return Err(Error::Decode(format!("timing biss: scenario `{}` is not a BiSS-C scenario", s.name)));
+                };
+                print!("{}", biss_tools::timing_report(cfg, &s.name).map_err(|e| s.value_error(e))?);
             }
-            let s = builtin::resolve(scenario.as_deref().unwrap_or("biss_seed_16bit"))?;
-            let Setup::Biss(cfg) = &s.setup else {
-                return Err(Error::Decode(format!("timing biss: scenario `{}` is not a BiSS-C scenario", s.name)));
-            };
-            print!("{}", biss_tools::timing_report(cfg, &s.name).map_err(|e| s.value_error(e))?);
-        }
+            "endat" => {
+                let s = builtin::resolve(scenario.as_deref().unwrap_or("endat_pos22_ad_8mhz_100m"))?;
+                print!("{}", timing_cmd::report(&s, &command, ads, diagram)?);
+            }
+            other => return Err(Error::Decode(format!("timing: protocol `{other}` has no cycle budget yet; use `biss` or `endat`"))),
+        },
         Command::Decode { protocol, file, ma, slo, bits, crc_width, crc_poly } => {
             if protocol != "biss" {
                 return Err(Error::Decode(format!("decode: protocol `{protocol}` has no decoder yet; use `biss`")));

@@ -29,6 +29,7 @@ struct ScenarioFile {
     uart: Option<model::uart::BenchConfig>,
     tformat: Option<model::tformat::BenchConfig>,
     biss: Option<model::biss::BenchConfig>,
+    endat: Option<model::endat::BenchConfig>,
 }
 
 /// The set-up a scenario describes, one variant per protocol. To add a
@@ -44,6 +45,8 @@ pub enum Setup {
     Tformat(model::tformat::BenchConfig),
     /// A BiSS-C master, a chain of slaves and a cable.
     Biss(model::biss::BenchConfig),
+    /// An EnDat master, encoder emulator and cable.
+    Endat(model::endat::BenchConfig),
 }
 
 /// Something done with a scenario's set-up whatever its protocol: the
@@ -64,6 +67,7 @@ impl Setup {
             Setup::Uart(cfg) => visitor.visit(cfg),
             Setup::Tformat(cfg) => visitor.visit(cfg),
             Setup::Biss(cfg) => visitor.visit(cfg),
+            Setup::Endat(cfg) => visitor.visit(cfg),
         }
     }
 }
@@ -122,11 +126,12 @@ impl Scenario {
         setups.extend(file.uart.map(Setup::Uart));
         setups.extend(file.tformat.map(Setup::Tformat));
         setups.extend(file.biss.map(Setup::Biss));
+        setups.extend(file.endat.map(Setup::Endat));
         if setups.len() != 1 {
             return Err(Error::Scenario {
                 file: origin.into(),
                 message: format!(
-                    "{} protocol tables: give exactly one, e.g. `[ssi]`, `[biss]` or `[uart]` with its fields (see scenarios/)",
+                    "{} protocol tables: give exactly one, e.g. `[ssi]`, `[endat]`, `[biss]`, `[tformat]` or `[uart]` with its fields (see scenarios/)",
                     setups.len()
                 ),
             });

@@ -1,0 +1,302 @@
+//! Behaviour of the EnDat master and encoder, each test citing what it pins down.
+
+use rand::{Rng, SeedableRng};
+use rand_pcg::Pcg64Mcg;
+
+use super::master::{catalogue_engine, lfsr_push_for_test};
+use super::seed_reference::{make_crc_norm, make_crc_pos};
+use super::*;
+use crate::line::CableConfig;
+
+fn run(cfg: &BenchConfig) -> Vec<Transaction> {
+    Bench::new(cfg).expect("valid scenario").run_to_end().transactions
+}
+
+fn commands(ts: &[Transaction]) -> Vec<&Transaction> {
+    ts.iter().filter(|t| t.request.is_some()).collect()
+}
+
+fn fast(clock_khz: f64, f_sys: f64, cable_m: f64) -> BenchConfig {
+    let mut cfg = BenchConfig::example();
+    cfg.f_sys_mhz = f_sys;
+    cfg.master.clock_khz = clock_khz;
+    cfg.master.delay_comp = true;
+    cfg.master.recovery_short = true;
+    cfg.encoder.recovery_short = true;
+    cfg.encoder.t_m_us = 2.0;
+    cfg.cable = CableConfig { length_m: cable_m, ..CableConfig::default() };
+    cfg
+}
+
+#[test]
+fn seed_crc_examples_hold_through_the_endat_helpers() {
+    // Seed A4 4.4.2: MakeCrcNorm(13, 32793) = 14; MakeCrcPos(25, 0, 1, 1, 0, 104462) = 3.
+    assert_eq!(crc_norm(13, 32793), 14);
+    assert_eq!(make_crc_norm(13, 32793), 14);
+    assert_eq!(crc_pos(false, Some(true), 104_462, 25), 3);
+    assert_eq!(make_crc_pos(25, 0, 1, 1, 0, 104_462), 3);
+}
+
+#[test]
+fn endat_crc_helpers_agree_with_the_seeds_c_functions_on_random_inputs() {
+    // Seed A4: the C functions are the reference.
+    let mut rng = Pcg64Mcg::seed_from_u64(4);
+    for _ in 0..20_000 {
+        let (p8, p16): (u8, u16) = (rng.random(), rng.random());
+        assert_eq!(crc_norm(p8, p16) as u32, make_crc_norm(p8 as u32, p16 as u32));
+        let bits = rng.random_range(1..=48u32);
+        let v: u64 = rng.random::<u64>() & ((1u64 << bits) - 1);
+        let (e1, e2, is22): (bool, bool, bool) = (rng.random(), rng.random(), rng.random());
+        let reference = make_crc_pos(bits, e1 as u32, e2 as u32, is22 as u32, (v >> 32) as u32, v as u32);
+        assert_eq!(crc_pos(e1, is22.then_some(e2), v, bits) as u32, reference);
+    }
+}
+
+#[test]
+fn the_masters_lfsr_is_the_catalogue_engine() {
+    // One CRC engine for everything (docs/crc.md): the master's register update is BitSerial's.
+    let mut rng = Pcg64Mcg::seed_from_u64(5);
+    for _ in 0..200 {
+        let mut reg = 0x1F;
+        let mut engine = catalogue_engine();
+        for _ in 0..rng.random_range(1..80) {
+            let b: bool = rng.random();
+            reg = lfsr_push_for_test(reg, b);
+            engine.push(b);
+        }
+        assert_eq!(reg, engine.register());
+    }
+    assert_eq!(crate::crc::ENDAT_CRC5.wire_residue(), CRC_RESIDUE);
+}
+
+#[test]
+fn a_type_21_position_read_returns_the_encoders_position() {
+    // Seed 2.3.1.1: "Encoder send position values" 000111, F1, position LSB first, CRC.
+    let mut cfg = BenchConfig::example();
+    cfg.positions = vec![104_462, 0, (1 << 25) - 1];
+    cfg.commands = vec![HostCommand { repeat: 3, ..HostCommand::new(Command::Pos21) }];
+    let ts = run(&cfg);
+    assert_eq!(ts.iter().map(|t| t.position).collect::<Vec<_>>(), vec![Some(104_462), Some(0), Some((1 << 25) - 1)]);
+    assert!(ts.iter().all(|t| t.errors.is_empty()), "{ts:#?}");
+    assert_eq!(ts[0].f2, Some(true), "F2 is not sent with type 2.1 commands and reads inactive");
+}
+
+#[test]
+fn additional_data_2_then_1_follow_the_position_after_their_selection() {
+    // Seed 2.3.5, 2.4.2.2: select with 001001 + MRS code 0x4C (temperature 1) and 0x52 (acceleration).
+    let mut cfg = fast(8000.0, 64.0, 20.0);
+    cfg.positions = vec![12_345];
+    cfg.commands = vec![
+        HostCommand::with(Command::Select22, 0x4C, 0),
+        HostCommand::with(Command::Select22, 0x52, 0),
+        HostCommand::new(Command::Pos22),
+    ];
+    let ts = run(&cfg);
+    let c = commands(&ts);
+    assert_eq!(c[0].ad1, None);
+    assert_eq!(c[1].ad1.as_deref(), Some("4c0c3b"), "{c:#?}"); // RM, I = 12, 3131 = 313.1 K
+    let last = c[2];
+    assert_eq!(last.position, Some(12_345));
+    assert_eq!(last.ad2.as_deref(), Some("5204b0"), "{last:#?}"); // I = 18, 1200
+    assert_eq!(last.ad1.as_deref(), Some("4c0c3b"));
+    assert!(last.errors.is_empty(), "{last:#?}");
+}
+
+#[test]
+fn delay_compensation_reads_without_error_at_8_mhz_through_0_to_100_m() {
+    // Seed 2.1.2: with delay compensation 8 MHz for up to 100 m; t_D = 0.2 µs + 0.01 µs/m, ±10 %.
+    let mut rng = Pcg64Mcg::seed_from_u64(8);
+    for length in [0.0, 10.0, 35.0, 60.0, 100.0] {
+        for tolerance in [0.9, 1.0, 1.1] {
+            let mut cfg = fast(8000.0, 64.0, length);
+            cfg.cable.ns_per_m = 5.0 * tolerance;
+            cfg.encoder.output_delay_ns = 200.0 * tolerance;
+            cfg.positions = (0..6).map(|_| rng.random::<u64>() & ((1 << 25) - 1)).collect();
+            cfg.commands = vec![HostCommand { repeat: 6, ..HostCommand::new(Command::Pos22) }];
+            let ts = run(&cfg);
+            assert_eq!(ts[0].kind, "delay_measurement");
+            assert_eq!(ts[0].delay_cycles, Some(cfg.expected_delay().unwrap()), "{length} m ×{tolerance}");
+            let got: Vec<_> = commands(&ts).iter().map(|t| t.position.unwrap()).collect();
+            assert_eq!(got, cfg.positions, "{length} m ×{tolerance}: {ts:#?}");
+            assert!(commands(&ts).iter().all(|t| t.errors.is_empty()), "{length} m: {ts:#?}");
+        }
+    }
+}
+
+#[test]
+fn reading_word_13_gives_the_clocks_per_position() {
+    // Seed 2.4.1, 2.5, 3.5.6: select 0xA1 (manufacturer parameters), read address 13 = 0x8000 | 25.
+    let mut cfg = BenchConfig::example();
+    cfg.commands = vec![HostCommand::with(Command::Select21, 0xA1, 0), HostCommand::with(Command::Send21, 13, 0)];
+    let ts = run(&cfg);
+    assert_eq!(ts[0].ack, Some((0xA1, 0)));
+    assert_eq!(ts[1].ack, Some((13, 0x8019)));
+    assert!(ts.iter().all(|t| t.errors.is_empty()), "{ts:#?}");
+}
+
+#[test]
+fn writing_protected_memory_is_answered_inverted_and_flagged_as_type_ii() {
+    // Seed A2 4.2.2 (cause 9): write into the factory-protected manufacturer area.
+    let mut cfg = BenchConfig::example();
+    cfg.commands = vec![HostCommand::with(Command::Select21, 0xA1, 0), HostCommand::with(Command::Receive21, 8, 0x1234)];
+    let ts = run(&cfg);
+    assert_eq!(ts[1].ack, Some((!8u8, !0x1234u16)));
+    assert_eq!(ts[1].errors, vec!["type_ii"]);
+}
+
+#[test]
+fn an_invalid_mode_command_gets_no_start_bit_and_is_flagged_type_i() {
+    // Seed A2 4.2.1: mode bits disrupted (000000 is no mode command) → no start bit; clock high, wait t_m.
+    let mut cfg = BenchConfig::example();
+    cfg.commands = vec![HostCommand { raw_mode: Some(0), ..HostCommand::new(Command::Pos21) }, HostCommand::new(Command::Pos21)];
+    cfg.positions = vec![5, 6];
+    let ts = run(&cfg);
+    assert_eq!(ts[0].errors, vec!["no_start_bit"]);
+    assert_eq!(ts[0].encoder_answer, "type_i");
+    assert_eq!(ts[1].position, Some(6), "the encoder answers again after t_m");
+}
+
+#[test]
+fn an_impermissible_additional_datum_is_answered_with_i_31_type_iii() {
+    // Seed A2 4.2.3 (cause 13): I = 26 is not assignable → I = 31 until a valid selection.
+    let mut cfg = fast(4000.0, 64.0, 10.0);
+    cfg.commands = vec![HostCommand::with(Command::Select22, 0x5A, 0), HostCommand::new(Command::Pos22)];
+    let ts = run(&cfg);
+    let c = commands(&ts);
+    assert_eq!(c[1].ad2.as_deref().map(|s| &s[..2]), Some("5f"));
+    assert_eq!(c[1].errors, vec!["type_iii"]);
+}
+
+#[test]
+fn a_continuous_clock_reads_successive_values_with_at_most_7_low_bits_between() {
+    // Seed 2.3.1.1 figure 15: continuous clock only with 000111; max 7 low bits between values.
+    let mut cfg = BenchConfig::example();
+    cfg.positions = vec![1000];
+    cfg.step = 3;
+    cfg.commands = vec![HostCommand { cont_values: 4, ..HostCommand::new(Command::Pos21) }];
+    let ts = run(&cfg);
+    assert_eq!(ts.iter().map(|t| t.position).collect::<Vec<_>>(), vec![Some(1000), Some(1003), Some(1006), Some(1009)], "{ts:#?}");
+    assert!(ts.iter().all(|t| t.errors.is_empty()));
+}
+
+#[test]
+fn the_budget_equals_the_models_position_read_cycle() {
+    // The RTL is tested against the model cycle for cycle; the model against the budget here.
+    for (clock, f_sys, cable, comp) in [(1000.0, 64.0, 10.0, false), (8000.0, 64.0, 100.0, true), (2000.0, 64.0, 0.0, false)] {
+        let mut cfg = if comp { fast(clock, f_sys, cable) } else { BenchConfig::example() };
+        cfg.master.clock_khz = clock;
+        cfg.cable.length_m = cable;
+        cfg.commands = vec![HostCommand { repeat: 2, ..HostCommand::new(Command::Pos22) }];
+        let ts = run(&cfg);
+        let c = commands(&ts);
+        let b = budget::budget(&cfg, Command::Pos22).unwrap();
+        assert!(c.iter().all(|t| t.errors.is_empty()), "{c:#?}");
+        assert_eq!(c[1].start_cycle - c[0].start_cycle, b.cycle_clocks, "{clock} kHz: {}", b.render());
+        assert_eq!(c[0].done_cycle - c[0].start_cycle, b.latency_clocks, "{clock} kHz");
+    }
+}
+
+/// Whether two flipped bits of one CRC field (at distance `dist`) can escape the CRC:
+/// x^5 + x^3 + x + 1 = (x + 1)(x^4 + x^3 + 1), and x^4 + x^3 + 1 is primitive of period 15,
+/// so x^dist + 1 is a multiple of the generator exactly when 15 divides `dist`.
+fn double_error_undetectable(dist: usize) -> bool {
+    dist % 15 == 0
+}
+
+#[test]
+fn a_corruption_campaign_detects_every_1_bit_error_and_every_2_bit_error_the_crc_can_see() {
+    // Seed A4: "All single errors ... can be detected. The detection of high-order data
+    // transmission errors depends on the data word length."
+    let mut rng = Pcg64Mcg::seed_from_u64(2024);
+    let frames = 100_000;
+    let mut by_flips = [(0u64, 0u64, 0u64); 9]; // (frames, detected, undetected)
+    let mut double_blind = (0u64, 0u64); // (2-bit flips 15 apart in one field, of them undetected)
+    let checker = FrameChecker::new(Command::Pos22.code(), 25, true, true);
+    let n = checker.frame_bits() as usize;
+    let field = |i: usize| if i < 32 { 0 } else { 1 + (i - 32) / 29 };
+    for _ in 0..frames {
+        let pos = rng.random::<u64>() & ((1 << 25) - 1);
+        let f1: bool = rng.random();
+        let mut bits = vec![f1, !f1];
+        bits.extend((0..25).map(|i| (pos >> i) & 1 == 1));
+        bits.extend(crc_wire(crc_pos(f1, Some(!f1), pos, 25)));
+        for _ in 0..2 {
+            let w: u32 = rng.random::<u32>() & 0xFF_FFFF;
+            bits.extend((0..24).rev().map(|i| (w >> i) & 1 == 1));
+            bits.extend(crc_wire(crc_norm((w >> 16) as u8, w as u16)));
+        }
+        assert_eq!(bits.len(), n);
+        let clean = checker.check(&bits);
+        assert!(!clean.bad_head && !clean.bad_ad1 && !clean.bad_ad2 && clean.data == pos);
+        let k = match rng.random_range(0..10) {
+            0..=3 => 1,
+            4..=6 => 2,
+            _ => rng.random_range(3..=8),
+        };
+        let mut flipped = bits.clone();
+        let mut chosen: Vec<usize> = Vec::new();
+        while chosen.len() < k {
+            let i = rng.random_range(0..n);
+            if !chosen.contains(&i) {
+                chosen.push(i);
+                flipped[i] = !flipped[i];
+            }
+        }
+        let r = checker.check(&flipped);
+        let detected = r.bad_head || r.bad_ad1 || r.bad_ad2;
+        by_flips[k].0 += 1;
+        if detected {
+            by_flips[k].1 += 1;
+        } else {
+            by_flips[k].2 += 1;
+        }
+        if k == 2 {
+            let blind = field(chosen[0]) == field(chosen[1]) && double_error_undetectable(chosen[0].abs_diff(chosen[1]));
+            if blind {
+                double_blind.0 += 1;
+                double_blind.1 += !detected as u64;
+            } else {
+                assert!(detected, "2-bit error at {chosen:?} escaped although its distance is no multiple of 15");
+            }
+        }
+    }
+    println!("EnDat 2.2 frame (F1 F2, 25-bit position, CRC, two additional data with CRCs), {frames} corrupted frames:");
+    println!("flipped bits | frames | detected | undetected | undetected rate");
+    let mut more = (0u64, 0u64);
+    for (k, (f, d, u)) in by_flips.iter().enumerate().skip(1) {
+        if *f > 0 {
+            println!("{k:>12} | {f:>6} | {d:>8} | {u:>10} | {:.5}", *u as f64 / *f as f64);
+        }
+        if k >= 3 {
+            more.0 += f;
+            more.1 += u;
+        }
+    }
+    println!(
+        "2-bit flips 15 apart inside one CRC field: {} of them, {} undetected (the generator's factor x^4+x^3+1 has period 15)",
+        double_blind.0, double_blind.1
+    );
+    println!("3 to 8 bits: undetected rate {:.5} (CRC-5 theoretical 2^-5 = {:.5})", more.1 as f64 / more.0 as f64, 1.0 / 32.0);
+    assert_eq!(by_flips[1].2, 0, "every single-bit error is detected");
+    assert_eq!(by_flips[2].2, double_blind.1, "the only 2-bit escapes are the ones 15 apart");
+    assert_eq!(double_blind.0, double_blind.1, "a 2-bit error 15 apart in one field always escapes");
+    assert!(by_flips.iter().map(|x| x.0).sum::<u64>() >= 100_000);
+    assert!((more.1 as f64 / more.0 as f64) < 1.0 / 32.0 * 1.5);
+}
+
+#[test]
+fn every_2_bit_error_in_a_frame_of_at_most_15_bits_is_detected() {
+    // The other side of the period-15 argument: a 2.1 frame with a 9-bit position (F1 + 9 + CRC = 15 bits).
+    let checker = FrameChecker::new(Command::Pos21.code(), 9, false, false);
+    let mut bits = vec![false];
+    bits.extend((0..9).map(|i| (0x1A5u64 >> i) & 1 == 1));
+    bits.extend(crc_wire(crc_pos(false, None, 0x1A5, 9)));
+    for i in 0..bits.len() {
+        for j in i + 1..bits.len() {
+            let mut f = bits.clone();
+            f[i] = !f[i];
+            f[j] = !f[j];
+            assert!(checker.check(&f).bad_head, "flips {i} {j}");
+        }
+    }
+}
