@@ -23,6 +23,7 @@
 //   line        ‾\_request_/‾‾‾‾‾‾‾‾‾‾‾\_CF_/\_SF_/\_ABS0..2_/\_CRC_/‾‾‾‾‾‾‾‾‾‾‾
 //                          |<-- 3 us -->|<-- 6 fields back to back -->|
 //   state       IDLE| SEND |    WAIT    |            RECV             |1 bit|IDLE
+//   (after a flawed answer: QUIET until the receiver has been idle 20 bits, then o_done)
 //   o_done      _______________________________________________________________/‾\_
 //
 // Checks at the end of each answer: CRC (the XOR of all fields, CRC
@@ -76,7 +77,9 @@ module tformat_host #(
 
 localparam integer CNT_MAX = (REPEAT_GAP_CLOCKS > TIMEOUT_CLOCKS) ? REPEAT_GAP_CLOCKS : TIMEOUT_CLOCKS;
 localparam integer CNT_W = $clog2(CNT_MAX + 1);
-localparam integer IDLE_W = $clog2(CLOCKS_PER_BIT + 1);
+// The idle counter also times QUIET: 20 bit times (model::tformat::QUIET_BITS).
+localparam integer QUIET_CLOCKS = 20 * CLOCKS_PER_BIT;
+localparam integer IDLE_W = $clog2(QUIET_CLOCKS + 1);
 localparam [31:0] BIT_LAST_32 = CLOCKS_PER_BIT - 1;
 localparam [31:0] TIMEOUT_LAST_32 = TIMEOUT_CLOCKS - 1;
 localparam [31:0] GAP_LAST_32 = REPEAT_GAP_CLOCKS - 1;
@@ -84,7 +87,9 @@ localparam [31:0] CPB_32 = CLOCKS_PER_BIT;
 localparam [CNT_W-1:0] BIT_LAST = BIT_LAST_32[CNT_W-1:0];
 localparam [CNT_W-1:0] TIMEOUT_LAST = TIMEOUT_LAST_32[CNT_W-1:0];
 localparam [CNT_W-1:0] GAP_LAST = GAP_LAST_32[CNT_W-1:0];
+localparam [31:0] QUIET_32 = QUIET_CLOCKS;
 localparam [IDLE_W-1:0] END_IDLE = CPB_32[IDLE_W-1:0];
+localparam [IDLE_W-1:0] QUIET_IDLE = QUIET_32[IDLE_W-1:0];
 
 // Sink code in bits 0..2 of every control field (model::tformat::frames::SINK_CODE).
 localparam [2:0] SINK_CODE = 3'b010;
@@ -95,7 +100,8 @@ localparam [2:0]
     SEND = 3'd1,
     WAIT = 3'd2,
     RECV = 3'd3,
-    GAP  = 3'd4;
+    GAP  = 3'd4,
+    QUIET = 3'd5;
 
 initial begin
     if (CLOCKS_PER_BIT < 6) $error("tformat_host: CLOCKS_PER_BIT must be at least 6");
@@ -216,6 +222,13 @@ end
 
 reg finish;
 reg finish_timeout;
+
+// The checks of one answer, from the fields and running XOR as they stand.
+// `timeout_now` is the WAIT state's timeout, from registers only.
+wire timeout_now = (state_reg == WAIT) && !rx_busy && (cnt_reg == 0);
+wire crc_bad = !timeout_now && crc_reg != 8'd0;
+wire frame_bad = !timeout_now && (frame_bad_reg || count_reg != expected_fields);
+wire cf_bad = !timeout_now && f0_reg != req_cf_reg;
 
 always @* begin
     state_next = state_reg;
@@ -342,6 +355,21 @@ always @* begin
                 cnt_next = cnt_reg - 1'b1;
             end
         end
+        QUIET: begin
+            // After a flawed answer: wait until the line has been quiet for
+            // two fields, so the next request cannot land on the rest of an
+            // answer whose framing was lost.
+            if (rx_busy) begin
+                idle_next = 0;
+            end else begin
+                idle_next = idle_reg + 1'b1;
+                if (idle_reg + 1'b1 == QUIET_IDLE) begin
+                    state_next = IDLE;
+                    busy_next = 1'b0;
+                    done_next = 1'b1;
+                end
+            end
+        end
         default: begin
             state_next = IDLE;
         end
@@ -369,13 +397,16 @@ always @* begin
             end
         end
         err_timeout_next = err_timeout_reg | finish_timeout;
-        err_crc_next = err_crc_reg | (!finish_timeout && crc_reg != 8'd0);
-        err_frame_next = err_frame_reg | (!finish_timeout && (frame_bad_reg || count_reg != expected_fields));
-        err_cf_next = err_cf_reg | (!finish_timeout && f0_reg != req_cf_reg);
+        err_crc_next = err_crc_reg | crc_bad;
+        err_frame_next = err_frame_reg | frame_bad;
+        err_cf_next = err_cf_reg | cf_bad;
         err_comm_next = err_comm_reg | (!finish_timeout && !answer_is_eeprom && f1_reg[7:6] != 2'b00);
         frame_bad_next = 1'b0;
         repeats_next = repeats_reg - 1'b1;
-        if (repeats_reg == 4'd1) begin
+        if (repeats_reg == 4'd1 && (finish_timeout || crc_bad || frame_bad || cf_bad)) begin
+            state_next = QUIET;
+            idle_next = 0;
+        end else if (repeats_reg == 4'd1) begin
             state_next = IDLE;
             busy_next = 1'b0;
             done_next = 1'b1;

@@ -29,6 +29,7 @@ pub const FILES: &[(&str, &str)] = &[
     ("tformat/abnormal_requests.toml", include_str!("../../scenarios/tformat/abnormal_requests.toml")),
     ("tformat/no_answer.toml", include_str!("../../scenarios/tformat/no_answer.toml")),
     ("tformat/long_cable_100m.toml", include_str!("../../scenarios/tformat/long_cable_100m.toml")),
+    ("tformat/answer_bit_flips.toml", include_str!("../../scenarios/tformat/answer_bit_flips.toml")),
     ("biss/seed_16bit.toml", include_str!("../../scenarios/biss/seed_16bit.toml")),
     ("biss/width_12bit.toml", include_str!("../../scenarios/biss/width_12bit.toml")),
     ("biss/width_24bit.toml", include_str!("../../scenarios/biss/width_24bit.toml")),

@@ -138,6 +138,11 @@ impl BenchConfig {
         if self.ops.is_empty() || self.ops.len() > 100_000 {
             return Err(ConfigError::invalid("ops", format!("{} operations", self.ops.len()), "list 1 to 100 000 operations"));
         }
+        for (i, f) in self.encoder.flips.iter().enumerate() {
+            if f.bit > 9 || f.field >= 11 {
+                return Err(ConfigError::invalid(format!("encoder.flips[{i}]"), "field above 10 or bit above 9", "give field 0..10 and bit 0..9 (0 start, 1..8 data, 9 delimiter)"));
+            }
+        }
         for (i, op) in self.ops.iter().enumerate() {
             if op.data_id > 0xF || op.address > 0x7F || !(0.0..1e7).contains(&op.gap_us) {
                 return Err(ConfigError::invalid(format!("ops[{i}]"), "data_id above 0xF, address above 127 or a bad gap", "give data_id 0..0xF, address 0..127, gap_us ≥ 0"));

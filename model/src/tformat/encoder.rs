@@ -26,6 +26,20 @@ pub struct EncoderSettings {
     pub reset_interval_us: f64,
     /// EEPROM contents at start, address 0 first (the rest 0, as shipped).
     pub eeprom: Vec<u8>,
+    /// Faults: bits of answers inverted on the line, after the CRC is made.
+    pub flips: Vec<AnswerFlip>,
+}
+
+/// One bit of one answer inverted on the line (`[[tformat.encoder.flips]]`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AnswerFlip {
+    /// Which answer (0 = the first the encoder sends).
+    pub answer: usize,
+    /// Which field of it (0 = CF).
+    pub field: usize,
+    /// Which of its 10 bits: 0 start, 1..8 data LSB first, 9 delimiter.
+    pub bit: u8,
 }
 
 impl Default for EncoderSettings {
@@ -38,6 +52,7 @@ impl Default for EncoderSettings {
             eeprom_write_us: 18_000.0,
             reset_interval_us: 40_000.0,
             eeprom: Vec::new(),
+            flips: Vec::new(),
         }
     }
 }
@@ -350,6 +365,12 @@ impl Encoder {
                 if self.now >= *at {
                     let (_, fields) = self.answer_at.take().unwrap_or_default();
                     self.tx_bits = fields.iter().flat_map(|&b| frame_bits(b)).collect();
+                    let n = self.answered.len();
+                    for f in self.cfg.settings.flips.iter().filter(|f| f.answer == n) {
+                        if let Some(b) = self.tx_bits.get_mut(f.field * 10 + f.bit as usize) {
+                            *b = !*b;
+                        }
+                    }
                     self.tx_index = 0;
                     self.tx_next_at = self.now;
                     self.driving = true;

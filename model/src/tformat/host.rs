@@ -46,7 +46,16 @@ pub enum State {
     Recv = 3,
     /// Between two of the ten reset requests.
     Gap = 4,
+    /// After a flawed answer: waiting for the line to fall quiet, so that
+    /// the next request cannot land on the rest of an answer whose framing
+    /// was lost ("never transmit any Request while it transmits the data").
+    Quiet = 5,
 }
+
+/// Bit times of idle receiver that end `Quiet`: two fields, longer than any
+/// run of ones inside an answer (a delimiter, a start bit turned 1, eight
+/// data ones and a delimiter).
+pub const QUIET_BITS: u64 = 20;
 
 /// Inputs at one rising edge.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -328,6 +337,18 @@ impl Host {
                     self.cnt -= 1;
                 }
             }
+            State::Quiet => {
+                if rx.o_busy {
+                    self.idle = 0;
+                } else {
+                    self.idle += 1;
+                    if self.idle == QUIET_BITS * c {
+                        self.state = State::Idle;
+                        next.o_busy = false;
+                        next.o_done = true;
+                    }
+                }
+            }
         }
         // The receiver listens only while the driver is off.
         self.rx_out = self.rx.step(&uart::In { i_rx: input.i_rx || self.out.o_tx_en });
@@ -376,14 +397,20 @@ impl Host {
             }
         }
         let sf_comm = !timeout && !DataId::from_code((cf >> 3) & 0xF).is_some_and(|d| d.is_eeprom()) && f[1] & 0xC0 != 0;
+        let crc_bad = !timeout && self.crc != 0;
+        let frame_bad = !timeout && (self.errors.2 || self.count != expected);
+        let cf_bad = !timeout && cf != request_cf;
         next.o_err_timeout |= timeout;
-        next.o_err_crc |= !timeout && self.crc != 0;
-        next.o_err_frame |= !timeout && (self.errors.2 || self.count != expected);
-        next.o_err_cf |= !timeout && cf != request_cf;
+        next.o_err_crc |= crc_bad;
+        next.o_err_frame |= frame_bad;
+        next.o_err_cf |= cf_bad;
         next.o_err_comm |= sf_comm;
         self.errors = (false, false, false);
         self.repeats_left -= 1;
-        if self.repeats_left == 0 {
+        if self.repeats_left == 0 && (timeout || crc_bad || frame_bad || cf_bad) {
+            self.state = State::Quiet;
+            self.idle = 0;
+        } else if self.repeats_left == 0 {
             self.state = State::Idle;
             next.o_busy = false;
             next.o_done = true;

@@ -23,6 +23,9 @@
 //!   number of fields the request asks for (Table 2; 4 for EEPROM), framing,
 //!   the answer's control field against the request's (an abnormal request is
 //!   answered with Data ID 3 data, Table 5), and ca0/ca1 in the status field.
+//! * After a flawed answer the host waits in `QUIET` until its receiver has
+//!   been idle for 20 bits before it reports `o_done`, so the next request
+//!   cannot land on the rest of an answer whose framing was lost.
 //! * Resets (7, 8, C) are one host operation: ten requests, each answered,
 //!   `REPEAT_GAP_CLOCKS` apart (seed: 40 ms or more).
 //!
@@ -45,7 +48,7 @@ pub mod frames;
 mod host;
 
 pub use bench::{Bench, BenchConfig, HostSettings, Operation, Transaction};
-pub use encoder::{Encoder, EncoderConfig, EncoderSettings, EEPROM_SIZE};
+pub use encoder::{AnswerFlip, Encoder, EncoderConfig, EncoderSettings, EEPROM_SIZE};
 pub use host::{Host, HostConfig, In, Out, State};
 
 #[cfg(test)]

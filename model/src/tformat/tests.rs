@@ -146,3 +146,36 @@ fn no_encoder_on_the_line_times_out() {
     let ts = crate::testbench::Testbench::into_transactions(bench);
     assert_eq!(ts[0].errors, vec!["timeout"]);
 }
+
+#[test]
+fn every_single_bit_flip_of_an_answer_is_flagged() {
+    // Data bits break the CRC; a start bit or delimiter breaks framing or the
+    // field count. None may reach the host as a clean answer.
+    for field in 0..6 {
+        for bit in 0..10u8 {
+            let cfg = BenchConfig {
+                encoder: EncoderSettings { flips: vec![AnswerFlip { answer: 0, field, bit }], ..EncoderSettings::default() },
+                ..BenchConfig::default()
+            };
+            let t = &run(&cfg).0[0];
+            assert!(!t.errors.is_empty(), "field {field} bit {bit} went through: {t:?}");
+        }
+    }
+}
+
+#[test]
+fn after_an_answer_whose_framing_was_lost_the_host_waits_for_quiet_before_the_next_request() {
+    // A flipped delimiter or start bit can end the answer early at the host
+    // while the encoder still sends; without the quiet wait the next request
+    // would land on the rest of that answer (seed 002, 10.: "never transmit
+    // any Request to Smart Abs while it transmits the data").
+    let flips = vec![AnswerFlip { answer: 0, field: 2, bit: 9 }, AnswerFlip { answer: 1, field: 4, bit: 0 }];
+    let cfg = BenchConfig {
+        encoder: EncoderSettings { flips, single_turn: 0x0F0F0, ..EncoderSettings::default() },
+        ops: vec![op(0), op(0), op(0)],
+        ..BenchConfig::default()
+    };
+    let ts = contention_free(&cfg);
+    assert!(ts[0].errors.contains(&"frame") && ts[1].errors.contains(&"frame"), "{ts:?}");
+    assert!(ts[2].errors.is_empty() && ts[2].abs == 0x0F0F0, "{:?}", ts[2]);
+}
