@@ -7,7 +7,7 @@ use std::time::Instant;
 use clap::{Parser, Subcommand};
 use tbgen::scenario::Visitor;
 use tbgen::scenario::Setup;
-use tbgen::{biss_tools, builtin, crc_cmd, generate, timing_cmd, Error};
+use tbgen::{biss_tools, builtin, crc_cmd, generate, tformat_tools, timing_cmd, Error};
 
 #[derive(Parser)]
 #[command(
@@ -53,12 +53,12 @@ enum Command {
         list: bool,
     },
     /// Print a protocol's cycle budget, phase by phase, and its position-read rate.
-    #[command(after_help = "Examples:\n  tbgen timing biss                          # the seed scenario biss_seed_16bit\n  tbgen timing biss biss_clock_1mhz_100m\n  tbgen timing endat endat_pos22_ad_8mhz_100m --ads 2\n  tbgen timing endat my.toml --command pos21 --diagram")]
+    #[command(after_help = "Examples:\n  tbgen timing tformat tformat_readout_all_ids --data-id 3\n  tbgen timing biss                          # the seed scenario biss_seed_16bit\n  tbgen timing biss biss_clock_1mhz_100m\n  tbgen timing endat endat_pos22_ad_8mhz_100m --ads 2\n  tbgen timing endat my.toml --command pos21 --diagram")]
     Timing {
-        /// Protocol: `biss` or `endat`.
+        /// Protocol: `biss`, `endat` or `tformat`.
         protocol: String,
         /// Built-in scenario name or scenario .toml file of that protocol
-        /// (default: biss_seed_16bit, endat_pos22_ad_8mhz_100m).
+        /// (default: biss_seed_16bit, endat_pos22_ad_8mhz_100m, tformat_readout_all_ids).
         scenario: Option<String>,
         /// EnDat: mode command to budget (`pos22`, `pos21`, `send21`, ...).
         #[arg(long, default_value = "pos22")]
@@ -69,6 +69,9 @@ enum Command {
         /// EnDat: also print the model's waveform of the scenario's first request.
         #[arg(long)]
         diagram: bool,
+        /// T-format: the Data ID to budget (0, 1, 2, 3, 6, 7, 8, 0xC, 0xD).
+        #[arg(long, default_value = "0", value_parser = parse_data_id)]
+        data_id: u8,
     },
     /// Decode a captured waveform (VCD) into a JSON transcript on stdout.
     #[command(after_help = "Example:\n  tbgen decode biss vectors/biss_master/biss_seed_16bit.vcd --bits 16")]
@@ -99,6 +102,15 @@ enum Command {
         /// Built-in scenario name or scenario .toml file.
         scenario: String,
     },
+}
+
+/// A Data ID as written on the command line: decimal or 0x-prefixed hex.
+fn parse_data_id(text: &str) -> Result<u8, String> {
+    let value = match text.strip_prefix("0x").or_else(|| text.strip_prefix("0X")) {
+        Some(hex) => u8::from_str_radix(hex, 16),
+        None => text.parse::<u8>(),
+    };
+    value.ok().filter(|v| *v <= 0xF).ok_or_else(|| format!("`{text}`: give a Data ID from 0 to 15 (e.g. 3 or 0xD)"))
 }
 
 fn main() -> ExitCode {
@@ -150,7 +162,14 @@ fn run(command: Command) -> Result<(), Error> {
             }
         }
         Command::Bench { scenario } => bench(&scenario)?,
-        Command::Timing { protocol, scenario, command, ads, diagram } => match protocol.as_str() {
+        Command::Timing { protocol, scenario, command, ads, diagram, data_id } => match protocol.as_str() {
+            "tformat" => {
+                let s = builtin::resolve(scenario.as_deref().unwrap_or("tformat_readout_all_ids"))?;
+                let Setup::Tformat(cfg) = &s.setup else {
+                    return Err(Error::Decode(format!("timing tformat: scenario `{}` is not a T-format scenario", s.name)));
+                };
+                print!("{}", tformat_tools::timing_report(cfg, &s.name, data_id).map_err(|e| s.value_error(e))?);
+            }
             "biss" => {
                 let s = builtin::resolve(scenario.as_deref().unwrap_or("biss_seed_16bit"))?;
                 let Setup::Biss(cfg) = &s.setup else {
@@ -162,7 +181,7 @@ fn run(command: Command) -> Result<(), Error> {
                 let s = builtin::resolve(scenario.as_deref().unwrap_or("endat_pos22_ad_8mhz_100m"))?;
                 print!("{}", timing_cmd::report(&s, &command, ads, diagram)?);
             }
-            other => return Err(Error::Decode(format!("timing: protocol `{other}` has no cycle budget yet; use `biss` or `endat`"))),
+            other => return Err(Error::Decode(format!("timing: protocol `{other}` has no cycle budget yet; use `biss`, `endat` or `tformat`"))),
         },
         Command::Decode { protocol, file, ma, slo, bits, crc_width, crc_poly } => {
             if protocol != "biss" {
