@@ -306,12 +306,14 @@ wire addr_bit = addr_shifted[0];
 wire wdata_bit = wdata_shifted[0];
 wire addressed = ctl_active_reg && (acc_id_reg == {1'b0, slave_reg});
 
-// One push of bit d into a CRC-4 x^4 + x + 1.
-function [3:0] crc4_push(input [3:0] reg_value, input d);
-    begin
-        crc4_push = {reg_value[2:0], 1'b0} ^ ((reg_value[3] ^ d) ? 4'h3 : 4'h0);
-    end
-endfunction
+// The control CRC-4 x^4 + x + 1 advanced by one bit, with the shared LFSR
+// step every core uses: one instance per bit the frame may push now.
+wire [3:0] crc4_tx_one, crc4_tx_id, crc4_tx_addr, crc4_tx_wdata, crc4_rx_cds;
+crc_serial #(.WIDTH(4), .POLY(4'h3)) crc4_one   (.i_crc(crc4_tx_reg), .i_bit(1'b1),          .o_crc(crc4_tx_one));
+crc_serial #(.WIDTH(4), .POLY(4'h3)) crc4_id    (.i_crc(crc4_tx_reg), .i_bit(id_bit),        .o_crc(crc4_tx_id));
+crc_serial #(.WIDTH(4), .POLY(4'h3)) crc4_addr  (.i_crc(crc4_tx_reg), .i_bit(addr_bit),      .o_crc(crc4_tx_addr));
+crc_serial #(.WIDTH(4), .POLY(4'h3)) crc4_wdata (.i_crc(crc4_tx_reg), .i_bit(wdata_bit),     .o_crc(crc4_tx_wdata));
+crc_serial #(.WIDTH(4), .POLY(4'h3)) crc4_cds   (.i_crc(crc4_rx_reg), .i_bit(frame_cds_reg), .o_crc(crc4_rx_cds));
 
 reg       finish;
 reg       fin_ack;
@@ -579,7 +581,7 @@ always @* begin
                     end
                     6'd20, 6'd21, 6'd22, 6'd23, 6'd24, 6'd25, 6'd26, 6'd27: begin
                         rdata_next = {rdata_reg[6:0], frame_cds_reg};
-                        crc4_rx_next = crc4_push(crc4_rx_reg, frame_cds_reg);
+                        crc4_rx_next = crc4_rx_cds;
                     end
                     6'd28, 6'd29, 6'd30, 6'd31: begin
                         if (frame_cds_reg == crc4_rx_reg[3]) reg_bad_next = 1'b1;
@@ -602,14 +604,14 @@ always @* begin
                 // CDM bit k_next of the access; the CRC-4 covers CTS, ID, ADR and the write data.
                 ctl_k_next = k_next;
                 case (k_next)
-                    6'd1: begin cdm_next = 1'b1; crc4_tx_next = crc4_push(crc4_tx_reg, 1'b1); end
+                    6'd1: begin cdm_next = 1'b1; crc4_tx_next = crc4_tx_one; end
                     6'd2, 6'd3, 6'd4: begin
                         cdm_next = id_bit;
-                        crc4_tx_next = crc4_push(crc4_tx_reg, id_bit);
+                        crc4_tx_next = crc4_tx_id;
                     end
                     6'd5, 6'd6, 6'd7, 6'd8, 6'd9, 6'd10, 6'd11: begin
                         cdm_next = addr_bit;
-                        crc4_tx_next = crc4_push(crc4_tx_reg, addr_bit);
+                        crc4_tx_next = crc4_tx_addr;
                     end
                     6'd12, 6'd13, 6'd14, 6'd15: begin
                         cdm_next = !crc4_tx_reg[3];
@@ -621,7 +623,7 @@ always @* begin
                     6'd19, 6'd20, 6'd21, 6'd22, 6'd23, 6'd24, 6'd25, 6'd26: begin
                         if (acc_write_reg) begin
                             cdm_next = wdata_bit;
-                            crc4_tx_next = crc4_push(crc4_tx_reg, wdata_bit);
+                            crc4_tx_next = crc4_tx_wdata;
                         end
                     end
                     6'd27, 6'd28, 6'd29, 6'd30: begin
