@@ -2,7 +2,6 @@
 //! a captured MA/SLO waveform turned into a JSON transcript.
 
 use std::fmt::Write as _;
-use std::io::BufReader;
 use std::path::Path;
 
 use model::biss::{data_crc, BenchConfig};
@@ -10,7 +9,7 @@ use model::testbench;
 use model::Setup;
 use serde::Serialize;
 
-use crate::{Error, Result};
+use crate::{capture, Result};
 
 /// The cycle budget of one scenario, in TI's published form
 /// `t_cycle = T_MA × (frame bits) + line delay + t_busy + timeout`, beside
@@ -111,44 +110,14 @@ pub struct Layout {
     pub crc_poly: Vec<u64>,
 }
 
-fn level_at(changes: &[(u64, bool)], t: u64) -> bool {
-    match changes.partition_point(|&(ct, _)| ct <= t) {
-        0 => true,
-        i => changes[i - 1].1,
-    }
-}
-
 /// Decodes the MA and SLO scalars `ma` / `slo` (dotted paths, e.g.
 /// `top.line.ma_master`) of a VCD file into frames. The master end's signals
 /// are expected: the ack edge gives the round-trip delay, and each bit is
 /// read half an MA period after its rising edge plus that delay.
 pub fn decode(path: &Path, ma: &str, slo: &str, layout: &Layout) -> Result<Decoded> {
-    let file = std::fs::File::open(path).map_err(|e| Error::io(path, e))?;
-    let mut parser = vcd::Parser::new(BufReader::new(file));
-    let header = parser.parse_header().map_err(|e| Error::io(path, e))?;
-    let find = |name: &str| {
-        let parts: Vec<&str> = name.split('.').collect();
-        header.find_var(&parts).map(|v| v.code).ok_or_else(|| Error::Decode(format!("{}: no scalar `{name}` (give --ma/--slo as dotted paths)", path.display())))
-    };
-    let (ma_id, slo_id) = (find(ma)?, find(slo)?);
-    let (mut t, mut ma_ch, mut slo_ch) = (0u64, Vec::new(), Vec::new());
-    for cmd in parser {
-        match cmd.map_err(|e| Error::io(path, e))? {
-            vcd::Command::Timestamp(ts) => t = ts,
-            vcd::Command::ChangeScalar(i, v) if i == ma_id => ma_ch.push((t, v == vcd::Value::V1)),
-            vcd::Command::ChangeScalar(i, v) if i == slo_id => slo_ch.push((t, v == vcd::Value::V1)),
-            _ => {}
-        }
-    }
-    // Edges of MA.
-    let mut edges: Vec<(u64, bool)> = Vec::new();
-    let mut last = true;
-    for &(ct, v) in &ma_ch {
-        if v != last {
-            edges.push((ct, v));
-            last = v;
-        }
-    }
+    let signals = capture::read(path, &[(ma, "--ma"), (slo, "--slo")])?;
+    let (ma_line, slo_line) = (&signals[0], &signals[1]);
+    let edges = ma_line.edges();
     // Frames: a falling edge after a quiet MA high, and the rising edges that follow it.
     let mut frames = Vec::new();
     let mut i = 0;
@@ -172,13 +141,13 @@ pub fn decode(path: &Path, ma: &str, slo: &str, layout: &Layout) -> Result<Decod
             }
             j += 1;
         }
-        frames.push(decode_frame(frames.len(), t0, &rises, &slo_ch, layout));
+        frames.push(decode_frame(frames.len(), t0, &rises, slo_line, layout));
         i = j;
     }
     Ok(Decoded { format: "tbgen-biss-decode 1", file: path.display().to_string(), signals: [ma.into(), slo.into()], frames })
 }
 
-fn decode_frame(index: usize, t0: u64, rises: &[u64], slo: &[(u64, bool)], layout: &Layout) -> DecodedFrame {
+fn decode_frame(index: usize, t0: u64, rises: &[u64], slo: &capture::Signal, layout: &Layout) -> DecodedFrame {
     let mut f = DecodedFrame { index, start_ps: t0, delay_ps: None, slaves: Vec::new(), errors: Vec::new() };
     if rises.len() < 3 {
         f.errors.push("short_frame".into());
@@ -186,7 +155,9 @@ fn decode_frame(index: usize, t0: u64, rises: &[u64], slo: &[(u64, bool)], layou
     }
     let period = rises[2] - rises[1];
     let r2 = rises[1];
-    let ack = slo.iter().find(|&&(ct, v)| ct >= r2 && !v).map(|&(ct, _)| ct);
+    // The ack is SLO falling after the second rising edge; a line already low
+    // there (stuck low) has no ack.
+    let ack = slo.changes.iter().find(|&&(ct, v)| ct >= r2 && !v).map(|&(ct, _)| ct);
     let Some(ack) = ack else {
         f.errors.push("no_ack".into());
         return f;
@@ -195,7 +166,7 @@ fn decode_frame(index: usize, t0: u64, rises: &[u64], slo: &[(u64, bool)], layou
     f.delay_ps = Some(delay);
     // Cell m (m >= 1) follows rising edge 2 + m; read it in its middle.
     let mut m = 1u64;
-    let cell = |m: u64| level_at(slo, r2 + m * period + delay + period / 2);
+    let cell = |m: u64| slo.level_at(r2 + m * period + delay + period / 2);
     while !cell(m) {
         m += 1;
         if m > 10_000 {

@@ -20,6 +20,7 @@
 
 pub mod biss_tools;
 pub mod builtin;
+pub mod capture;
 pub mod crc_cmd;
 pub mod error;
 pub mod generate;

@@ -74,10 +74,23 @@ enum Command {
         data_id: u8,
     },
     /// Decode a captured waveform (VCD) into a JSON transcript on stdout.
+    #[command(subcommand)]
+    Decode(Decode),
+    /// Time the model alone on a scenario (used by `make bench`).
+    #[command(after_help = "Example:\n  tbgen bench scenarios/bench/ssi_bench.toml")]
+    Bench {
+        /// Built-in scenario name or scenario .toml file.
+        scenario: String,
+    },
+}
+
+/// One decoder per protocol: each reads the line-level scalars of a capture
+/// (signal names are options, defaulting to those `tbgen gen` writes).
+#[derive(Subcommand)]
+enum Decode {
+    /// BiSS-C: MA and SLO at the master.
     #[command(after_help = "Example:\n  tbgen decode biss vectors/biss_master/biss_seed_16bit.vcd --bits 16")]
-    Decode {
-        /// Protocol (biss).
-        protocol: String,
+    Biss {
         /// The VCD file.
         file: PathBuf,
         /// Dotted path of the MA scalar at the master.
@@ -95,12 +108,6 @@ enum Command {
         /// CRC polynomial of each slave without the top term (default 3 = x^6 + x + 1).
         #[arg(long, value_delimiter = ',')]
         crc_poly: Vec<u64>,
-    },
-    /// Time the model alone on a scenario (used by `make bench`).
-    #[command(after_help = "Example:\n  tbgen bench scenarios/bench/ssi_bench.toml")]
-    Bench {
-        /// Built-in scenario name or scenario .toml file.
-        scenario: String,
     },
 }
 
@@ -183,10 +190,7 @@ fn run(command: Command) -> Result<(), Error> {
             }
             other => return Err(Error::Decode(format!("timing: protocol `{other}` has no cycle budget yet; use `biss`, `endat` or `tformat`"))),
         },
-        Command::Decode { protocol, file, ma, slo, bits, crc_width, crc_poly } => {
-            if protocol != "biss" {
-                return Err(Error::Decode(format!("decode: protocol `{protocol}` has no decoder yet; use `biss`")));
-            }
+        Command::Decode(Decode::Biss { file, ma, slo, bits, crc_width, crc_poly }) => {
             let n = bits.len();
             let crc_width = if crc_width.is_empty() { vec![6; n] } else { crc_width };
             let crc_poly = if crc_poly.is_empty() { vec![3; n] } else { crc_poly };

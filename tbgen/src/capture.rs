@@ -1,0 +1,227 @@
+//! Reading a captured waveform: the part every `tbgen decode` shares.
+//!
+//! A capture is a VCD file, written by `tbgen gen`, by a user's own
+//! simulation or by a logic analyser's export. The decoders only need a few
+//! scalars from it, each as the list of its value changes in picoseconds;
+//! this module finds them by dotted path (`top.line.ma_master`), converts the
+//! file's timescale to picoseconds and answers "what was the level at time
+//! t". It also holds the UART-style byte reader that the RS-485 frame
+//! protocols (ESL, T-format) decode their lines with.
+//!
+//! Errors name the file and the signal, and say how to fix the call.
+
+use std::io::BufReader;
+use std::path::Path;
+
+use crate::{Error, Result};
+
+/// One scalar's value changes, in time order: `(time_ps, level)`. X and Z
+/// read as high, the level an idle RS-485 receiver with fail-safe biasing
+/// reports.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct Signal {
+    /// Dotted path the signal was found under.
+    pub name: String,
+    /// Changes in time order; repeated values are kept out.
+    pub changes: Vec<(u64, bool)>,
+}
+
+impl Signal {
+    /// The level at `t_ps` (the last change at or before it; high before the
+    /// first change).
+    pub fn level_at(&self, t_ps: u64) -> bool {
+        match self.changes.partition_point(|&(ct, _)| ct <= t_ps) {
+            0 => true,
+            i => self.changes[i - 1].1,
+        }
+    }
+
+    /// The edges: changes that differ from the level before them, starting
+    /// from an idle-high line.
+    pub fn edges(&self) -> Vec<(u64, bool)> {
+        let mut last = true;
+        let mut edges = Vec::new();
+        for &(t, v) in &self.changes {
+            if v != last {
+                edges.push((t, v));
+                last = v;
+            }
+        }
+        edges
+    }
+
+    /// The first time at or after `from_ps` at which the signal is `level`.
+    pub fn next_level(&self, from_ps: u64, level: bool) -> Option<u64> {
+        if self.level_at(from_ps) == level {
+            return Some(from_ps);
+        }
+        let i = self.changes.partition_point(|&(ct, _)| ct <= from_ps);
+        self.changes[i..].iter().find(|&&(_, v)| v == level).map(|&(t, _)| t)
+    }
+}
+
+/// The picoseconds of one unit of a VCD timescale.
+fn timescale_ps(header: &vcd::Header) -> Result<u64> {
+    let Some((n, unit)) = header.timescale else { return Ok(1) };
+    let unit_ps: u64 = match unit {
+        vcd::TimescaleUnit::S => 1_000_000_000_000,
+        vcd::TimescaleUnit::MS => 1_000_000_000,
+        vcd::TimescaleUnit::US => 1_000_000,
+        vcd::TimescaleUnit::NS => 1_000,
+        vcd::TimescaleUnit::PS => 1,
+        vcd::TimescaleUnit::FS => {
+            return Err(Error::Decode("a femtosecond timescale is finer than the decoders' picosecond resolution; re-export the capture in ps or coarser".into()));
+        }
+    };
+    Ok(n as u64 * unit_ps)
+}
+
+/// Reads the named scalars of a VCD file. `names` are dotted paths; the
+/// error for a missing one names the file, the path and `option` (the
+/// command-line flag that sets it).
+pub fn read(path: &Path, names: &[(&str, &str)]) -> Result<Vec<Signal>> {
+    let file = std::fs::File::open(path).map_err(|e| Error::io(path, e))?;
+    let mut parser = vcd::Parser::new(BufReader::new(file));
+    let header = parser.parse_header().map_err(|e| Error::io(path, e))?;
+    let scale = timescale_ps(&header)?;
+    let mut ids = Vec::with_capacity(names.len());
+    for &(name, option) in names {
+        let parts: Vec<&str> = name.split('.').collect();
+        let var = header.find_var(&parts).ok_or_else(|| Error::Decode(format!("{}: no signal `{name}`; give its dotted path with {option}", path.display())))?;
+        if var.size != 1 {
+            return Err(Error::Decode(format!("{}: `{name}` is {} bits wide; {option} needs a 1-bit line signal", path.display(), var.size)));
+        }
+        ids.push(var.code);
+    }
+    let mut signals: Vec<Signal> = names.iter().map(|&(n, _)| Signal { name: n.to_string(), changes: Vec::new() }).collect();
+    let mut t = 0u64;
+    for cmd in parser {
+        match cmd.map_err(|e| Error::io(path, e))? {
+            vcd::Command::Timestamp(ts) => {
+                t = ts.checked_mul(scale).ok_or_else(|| Error::Decode(format!("{}: timestamp {ts} overflows 64-bit picoseconds", path.display())))?;
+            }
+            vcd::Command::ChangeScalar(code, v) => {
+                let level = v != vcd::Value::V0;
+                for (sig, &id) in signals.iter_mut().zip(&ids) {
+                    if id == code {
+                        match sig.changes.last_mut() {
+                            Some(last) if last.0 == t => last.1 = level,
+                            Some(last) if last.1 == level => {}
+                            _ => sig.changes.push((t, level)),
+                        }
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    Ok(signals)
+}
+
+/// One byte read off a UART-style line: start bit 0, 8 data bits LSB first,
+/// stop bit 1 (the character of ESL and T-format).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct UartByte {
+    /// Falling edge of the start bit, ps.
+    pub start_ps: u64,
+    /// The data bits, LSB first on the wire.
+    pub value: u8,
+    /// The stop bit read low.
+    pub framing_error: bool,
+}
+
+/// Reads every character of `line` at `bit_ps` picoseconds per bit, sampling
+/// each bit in its middle from the start bit's falling edge. A start bit that
+/// is high again at its middle is a glitch and is skipped. A character with a
+/// low stop bit is kept and flagged; the reader then waits for the line to
+/// go high before it looks for the next start bit.
+pub fn uart_bytes(line: &Signal, bit_ps: u64) -> Vec<UartByte> {
+    let mut bytes = Vec::new();
+    let mut from = 0u64;
+    while let Some(fall) = line.next_level(from, false) {
+        // A line that is low from the start of the capture is not a start bit.
+        let fall = if fall == 0 && line.changes.first().is_some_and(|&(t, v)| t == 0 && !v) {
+            match line.next_level(0, true) {
+                Some(t) => {
+                    from = t;
+                    continue;
+                }
+                None => break,
+            }
+        } else {
+            fall
+        };
+        let mid = |k: u64| fall + k * bit_ps + bit_ps / 2;
+        if line.level_at(mid(0)) {
+            from = fall + 1;
+            from = line.next_level(from, true).unwrap_or(from);
+            continue;
+        }
+        let value = (0..8).fold(0u8, |acc, k| acc | ((line.level_at(mid(k + 1)) as u8) << k));
+        let stop = line.level_at(mid(9));
+        bytes.push(UartByte { start_ps: fall, value, framing_error: !stop });
+        from = if stop { mid(9) } else { line.next_level(mid(9), true).unwrap_or(u64::MAX) };
+        if from == u64::MAX {
+            break;
+        }
+    }
+    bytes
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn line_of(bits: &[bool], bit_ps: u64, idle_before: u64) -> Signal {
+        let mut changes = vec![(0, true)];
+        for (i, &b) in bits.iter().enumerate() {
+            let t = idle_before + i as u64 * bit_ps;
+            if changes.last().unwrap().1 != b {
+                changes.push((t, b));
+            }
+        }
+        if !changes.last().unwrap().1 {
+            changes.push((idle_before + bits.len() as u64 * bit_ps, true));
+        }
+        Signal { name: "line".into(), changes }
+    }
+
+    fn character(value: u8, stop: bool) -> Vec<bool> {
+        let mut bits = vec![false];
+        bits.extend((0..8).map(|k| value >> k & 1 == 1));
+        bits.push(stop);
+        bits
+    }
+
+    #[test]
+    fn every_byte_value_reads_back_at_10_mbps() {
+        let bit_ps = 100_000;
+        let mut bits = Vec::new();
+        for v in 0..=255u8 {
+            bits.extend(character(v, true));
+        }
+        let got = uart_bytes(&line_of(&bits, bit_ps, 1_000_000), bit_ps);
+        assert_eq!(got.len(), 256);
+        for (v, b) in got.iter().enumerate() {
+            assert_eq!((b.value, b.framing_error), (v as u8, false));
+            assert_eq!(b.start_ps, 1_000_000 + v as u64 * 10 * bit_ps);
+        }
+    }
+
+    #[test]
+    fn a_low_stop_bit_is_flagged_and_the_next_byte_still_reads() {
+        let bit_ps = 400_000;
+        let mut bits = character(0x5A, false);
+        bits.extend([true, true]);
+        bits.extend(character(0xC3, true));
+        let got = uart_bytes(&line_of(&bits, bit_ps, 0), bit_ps);
+        assert_eq!(got.iter().map(|b| (b.value, b.framing_error)).collect::<Vec<_>>(), vec![(0x5A, true), (0xC3, false)]);
+    }
+
+    #[test]
+    fn a_short_glitch_is_not_a_start_bit() {
+        let bit_ps = 100_000;
+        let line = Signal { name: "l".into(), changes: vec![(0, true), (500_000, false), (520_000, true)] };
+        assert!(uart_bytes(&line, bit_ps).is_empty());
+    }
+}
