@@ -297,7 +297,7 @@ impl Encoder {
                 } else {
                     self.eeprom[address as usize]
                 };
-                frames::with_crc(&[id.control_field(), address | (busy as u8) << 7, edf])
+                frames::eeprom_answer(id, address, busy, edf)
             }
             // Table 5 no. 2-4, Table 6 no. 3-5: the Data ID 3 answer.
             None => self.readout(DataId::Id3, status),
@@ -305,21 +305,7 @@ impl Encoder {
     }
 
     fn readout(&self, id: DataId, status: Status) -> Vec<u8> {
-        let abs = frames::le24(self.single_turn);
-        let abm = frames::le24(self.multi_turn as u32);
-        let mut fields = vec![id.control_field(), status.byte()];
-        match id {
-            DataId::Id1 => fields.extend_from_slice(&abm),
-            DataId::Id2 => fields.push(frames::ENID),
-            DataId::Id3 => {
-                fields.extend_from_slice(&abs);
-                fields.push(frames::ENID);
-                fields.extend_from_slice(&abm);
-                fields.push(self.alarms.byte());
-            }
-            _ => fields.extend_from_slice(&abs),
-        }
-        frames::with_crc(&fields)
+        frames::readout(id, status, self.single_turn, self.multi_turn, self.alarms.byte())
     }
 
     /// Ten requests of the same reset, each at least the reset interval after

@@ -213,6 +213,33 @@ pub fn request(id: DataId, address: u8, data: u8) -> Vec<u8> {
     }
 }
 
+/// The answer frame set to a readout or reset request (Table 2): CF, SF,
+/// then ABS0..2 (0, 7, 8, C), ABM0..2 (1), ENID (2), or ABS, ENID, ABM, ALMC
+/// (3), then the CRC.
+pub fn readout(id: DataId, status: Status, single_turn: u32, multi_turn: u16, almc: u8) -> Vec<u8> {
+    let abs = le24(single_turn & 0x1_FFFF);
+    let abm = le24(multi_turn as u32);
+    let mut fields = vec![id.control_field(), status.byte()];
+    match id {
+        DataId::Id1 => fields.extend_from_slice(&abm),
+        DataId::Id2 => fields.push(ENID),
+        DataId::Id3 => {
+            fields.extend_from_slice(&abs);
+            fields.push(ENID);
+            fields.extend_from_slice(&abm);
+            fields.push(almc);
+        }
+        _ => fields.extend_from_slice(&abs),
+    }
+    with_crc(&fields)
+}
+
+/// The answer frame set to an accepted EEPROM request (Table 4): CF, ADF
+/// (address, bit 7 busy), EDF, CRC.
+pub fn eeprom_answer(id: DataId, address: u8, busy: bool, edf: u8) -> Vec<u8> {
+    with_crc(&[id.control_field(), (address & 0x7F) | (busy as u8) << 7, edf])
+}
+
 /// Three little-endian bytes (ABS0..2, ABM0..2: "ABS0 is located to lower byte").
 pub fn le24(value: u32) -> [u8; 3] {
     let b = value.to_le_bytes();

@@ -43,6 +43,7 @@
 //!   the count again.
 
 mod bench;
+pub mod campaign;
 mod encoder;
 pub mod frames;
 mod host;
