@@ -112,6 +112,7 @@ impl BenchConfig {
     /// The encoder's configuration in cycles.
     pub fn encoder_config(&self) -> Result<EncoderConfig> {
         let tb = self.timebase()?;
+        let clocks_per_bit = self.clocks_per_bit()?;
         let e = &self.encoder;
         for (f, v) in [
             ("encoder.answer_delay_us", e.answer_delay_us),
@@ -122,8 +123,17 @@ impl BenchConfig {
                 return Err(ConfigError::invalid(f, format!("{v}"), "give a non-negative time in µs"));
             }
         }
+        if !(-10.0..=10.0).contains(&e.baud_error_percent) {
+            return Err(ConfigError::invalid("encoder.baud_error_percent", format!("{}", e.baud_error_percent), "give the answer's bit rate error within ±10 %"));
+        }
+        let quarter_bit_ns = 1e9 / self.baud / 4.0;
+        if !(0.0..=quarter_bit_ns).contains(&e.jitter_ns) {
+            return Err(ConfigError::invalid("encoder.jitter_ns", format!("{} ns", e.jitter_ns), format!("give a jitter from 0 to a quarter bit ({quarter_bit_ns} ns)")));
+        }
         Ok(EncoderConfig {
-            clocks_per_bit: self.clocks_per_bit()?,
+            clocks_per_bit,
+            answer_bit_clocks: clocks_per_bit as f64 / (1.0 + e.baud_error_percent / 100.0),
+            jitter_clocks: e.jitter_ns * 1e3 / tb.period_ps() as f64,
             answer_delay: tb.cycles_nearest_ns(e.answer_delay_us * 1e3),
             eeprom_write: tb.cycles_at_least_ns(e.eeprom_write_us * 1e3),
             reset_interval: tb.cycles_at_least_ns(e.reset_interval_us * 1e3),

@@ -3,6 +3,8 @@
 //! its busy status (Table 4), the resets sent ten times (9.), and every
 //! answer Tables 5 and 6 prescribe for an abnormal request.
 
+use rand::{Rng, SeedableRng};
+use rand_pcg::Pcg64Mcg;
 use serde::{Deserialize, Serialize};
 
 use super::frames::{self, Alarms, DataId, Status};
@@ -28,6 +30,13 @@ pub struct EncoderSettings {
     pub eeprom: Vec<u8>,
     /// Faults: bits of answers inverted on the line, after the CRC is made.
     pub flips: Vec<AnswerFlip>,
+    /// The answer's bit rate error in percent (positive = encoder fast).
+    pub baud_error_percent: f64,
+    /// Peak jitter of every edge inside a field against that field's start
+    /// edge, ns (seed 002, 6.1: "permissible jitter ±100 ns").
+    pub jitter_ns: f64,
+    /// Seed of the jitter.
+    pub seed: u64,
 }
 
 /// One bit of one answer inverted on the line (`[[tformat.encoder.flips]]`).
@@ -53,6 +62,9 @@ impl Default for EncoderSettings {
             reset_interval_us: 40_000.0,
             eeprom: Vec::new(),
             flips: Vec::new(),
+            baud_error_percent: 0.0,
+            jitter_ns: 0.0,
+            seed: 1,
         }
     }
 }
@@ -62,6 +74,10 @@ impl Default for EncoderSettings {
 pub struct EncoderConfig {
     /// Clocks per bit of the line.
     pub clocks_per_bit: u64,
+    /// Clocks per bit of the answers: `clocks_per_bit / (1 + baud error)`.
+    pub answer_bit_clocks: f64,
+    /// Peak jitter of the answers' edges in clocks.
+    pub jitter_clocks: f64,
     /// Cycles from the end of the request's last delimiter to the answer's start bit.
     pub answer_delay: u64,
     /// Cycles the EEPROM stays busy after an accepted write.
@@ -107,10 +123,12 @@ pub struct Encoder {
     rx: Rx,
     shift: u8,
     request: Request,
-    /// The answer being sent: bits still to go, and when the next one starts.
+    /// The answer being sent: its bits, the cycle each starts at (one more
+    /// entry: the driver's end), and the next to send.
     tx_bits: Vec<bool>,
+    tx_times: Vec<u64>,
     tx_index: usize,
-    tx_next_at: u64,
+    rng: Pcg64Mcg,
     answer_at: Option<(u64, Vec<u8>)>,
     driving: bool,
     level: bool,
@@ -139,8 +157,9 @@ impl Encoder {
             shift: 0,
             request: Request::default(),
             tx_bits: Vec::new(),
+            tx_times: Vec::new(),
             tx_index: 0,
-            tx_next_at: 0,
+            rng: Pcg64Mcg::seed_from_u64(cfg.settings.seed),
             answer_at: None,
             driving: false,
             level: true,
@@ -357,23 +376,40 @@ impl Encoder {
                             *b = !*b;
                         }
                     }
+                    self.tx_times = self.bit_times(self.now, self.tx_bits.len());
                     self.tx_index = 0;
-                    self.tx_next_at = self.now;
                     self.driving = true;
                     self.answered.push((self.now, fields));
                 }
             }
         }
-        if self.driving && self.now >= self.tx_next_at {
-            if self.tx_index == self.tx_bits.len() {
-                self.driving = false;
-                self.level = true;
-                return;
-            }
+        if !self.driving {
+            return;
+        }
+        while self.tx_index < self.tx_bits.len() && self.now >= self.tx_times[self.tx_index] {
             self.level = self.tx_bits[self.tx_index];
             self.tx_index += 1;
-            self.tx_next_at += self.cfg.clocks_per_bit;
         }
+        if self.tx_index == self.tx_bits.len() && self.now >= self.tx_times[self.tx_index] {
+            self.driving = false;
+            self.level = true;
+        }
+    }
+
+    /// The cycle each of `n` bits starts at, and the end: bit `i` starts at
+    /// `start + i × answer_bit_clocks` moved by the jitter (not a field's
+    /// start edge: the receiver's reference), from the first cycle at or
+    /// after that time. At the nominal rate without jitter that is
+    /// `start + i × clocks_per_bit`.
+    fn bit_times(&mut self, start: u64, n: usize) -> Vec<u64> {
+        let (bit, jitter) = (self.cfg.answer_bit_clocks, self.cfg.jitter_clocks);
+        let mut times: Vec<u64> = Vec::with_capacity(n + 1);
+        for i in 0..=n {
+            let j = if jitter > 0.0 && i % 10 != 0 && i < n { self.rng.random_range(-jitter..=jitter) } else { 0.0 };
+            let t = start + (i as f64 * bit + j).max(0.0).ceil() as u64;
+            times.push(times.last().map_or(t, |&last| t.max(last + 1)));
+        }
+        times
     }
 }
 

@@ -57,6 +57,28 @@ pub enum State {
 /// data ones and a delimiter).
 pub const QUIET_BITS: u64 = 20;
 
+/// The encoder baud errors (percent, positive = encoder fast) between which
+/// the host reads every answer without error, when every edge inside a
+/// field may move by up to `jitter_cycles` against the field's start edge:
+/// the receiver's window ([`uart::tolerance`]), and on the slow side the
+/// end-of-set rule: one field's start edge to the next's, `10·T`, must not
+/// exceed `HALF + 10·C` (the stop sample at `HALF + 9·C`, then one bit of
+/// idle line ends the answer).
+pub fn tolerance(clocks_per_bit: u64, jitter_cycles: f64) -> (f64, f64) {
+    let (low, high) = uart::tolerance(clocks_per_bit, jitter_cycles);
+    (low.max(always_flagged(clocks_per_bit).0), high)
+}
+
+/// The encoder baud errors beyond which every answer is flagged, whatever
+/// the jitter inside the fields and wherever the edges fall in a clock
+/// cycle: slow, the host ends the answer after its first field (`10·T >
+/// HALF + 10·C`); fast, the stop sample lands in the next start bit
+/// (`10·T ≤ HALF + 9·C`), a framing error.
+pub fn always_flagged(clocks_per_bit: u64) -> (f64, f64) {
+    let (c, half) = (clocks_per_bit as f64, (clocks_per_bit / 2) as f64);
+    ((10.0 * c / (half + 10.0 * c) - 1.0) * 100.0, (10.0 * c / (half + 9.0 * c) - 1.0) * 100.0)
+}
+
 /// Inputs at one rising edge.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct In {

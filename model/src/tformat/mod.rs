@@ -50,7 +50,7 @@ mod host;
 
 pub use bench::{Bench, BenchConfig, HostSettings, Operation, Transaction};
 pub use encoder::{AnswerFlip, Encoder, EncoderConfig, EncoderSettings, EEPROM_SIZE};
-pub use host::{Host, HostConfig, In, Out, State};
+pub use host::{always_flagged, tolerance, Host, HostConfig, In, Out, State};
 
 #[cfg(test)]
 mod tests;

@@ -241,3 +241,62 @@ fn a_campaign_of_100_000_random_corruptions_flags_every_one_bit_error_and_every_
     assert!((measured - theory).abs() < 0.2 * theory, "2-bit rate {measured} far from {theory}");
     assert!(more.1 as f64 / more.0 as f64 <= 1.0 / 256.0, "3 to 8 bits escape no more often than a random pattern");
 }
+
+/// Ten reads (Data IDs 0, 1, 2, 3, D twice) from an encoder whose answers run
+/// `error_percent` off the nominal rate with `jitter_ns` on every edge:
+/// (operations, operations flagged, operations passed with wrong fields).
+fn off_rate_reads(error_percent: f64, jitter_ns: f64, seed: u64) -> (usize, usize, usize) {
+    let ops = [0, 1, 2, 3, 0xD].iter().cycle().take(10).map(|&id| op(id)).collect();
+    let cfg = BenchConfig {
+        encoder: EncoderSettings {
+            baud_error_percent: error_percent,
+            jitter_ns,
+            seed,
+            single_turn: (seed as u32).wrapping_mul(0x9E37_79B9) & 0x1_FFFF,
+            multi_turn: (seed as u16).wrapping_mul(0x6F4B),
+            eeprom: vec![(seed as u8).wrapping_mul(37)],
+            ..EncoderSettings::default()
+        },
+        ops,
+        ..BenchConfig::default()
+    };
+    let mut bench = cfg.bench().unwrap();
+    while !crate::testbench::Testbench::finished(&bench) {
+        crate::testbench::Testbench::step(&mut bench, None);
+    }
+    assert_eq!(bench.contention_cycles(), 0, "two drivers at {error_percent} %");
+    let answers: Vec<Vec<u8>> = bench.encoder().answered().iter().map(|a| a.1.clone()).collect();
+    let ts = crate::testbench::Testbench::into_transactions(bench);
+    let flagged = ts.iter().filter(|t| !t.errors.is_empty()).count();
+    let wrong = ts.iter().zip(&answers).filter(|(t, a)| t.errors.is_empty() && &t.received != *a).count();
+    (ts.len(), flagged, wrong)
+}
+
+#[test]
+fn an_off_rate_or_jittery_encoder_is_read_without_error_inside_the_tolerance_and_always_flagged_beyond_it() {
+    // Seed 002, 6.1: 2.5 Mbps, "permissible jitter ±100 ns". The encoder's
+    // answers run −8 % to +8 % off in 0.1 % steps, without jitter and with
+    // ±100 ns (8 cycles at 80 MHz), ten reads a step.
+    let (clocks_per_bit, always) = (32, super::always_flagged(32));
+    println!("always flagged below {:+.2} % and above {:+.2} %", always.0, always.1);
+    for jitter_ns in [0.0, 100.0] {
+        let (low, high) = super::tolerance(clocks_per_bit, jitter_ns / 12.5);
+        println!("jitter ±{jitter_ns} ns: no error from {low:+.2} % to {high:+.2} %; between the bounds (error %: flagged, wrong but passed, of 10):");
+        let mut between = Vec::new();
+        for step in -80..=80 {
+            let e = step as f64 / 10.0;
+            let (n, flagged, wrong) = off_rate_reads(e, jitter_ns, (200 + step) as u64);
+            if (low..=high).contains(&e) {
+                assert_eq!((flagged, wrong), (0, 0), "{e} % inside the tolerance, ±{jitter_ns} ns");
+            } else if e < always.0 || e > always.1 {
+                assert_eq!(flagged, n, "{e} % beyond the bounds, ±{jitter_ns} ns: every read flagged");
+            } else {
+                between.push(format!("{e:+.1}: {flagged}, {wrong}"));
+                if jitter_ns == 0.0 {
+                    assert_eq!(wrong, 0, "{e} %: without jitter a misread breaks the framing");
+                }
+            }
+        }
+        println!("  {}", between.join("; "));
+    }
+}
