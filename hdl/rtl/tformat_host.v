@@ -23,7 +23,8 @@
 //   line        ‾\_request_/‾‾‾‾‾‾‾‾‾‾‾\_CF_/\_SF_/\_ABS0..2_/\_CRC_/‾‾‾‾‾‾‾‾‾‾‾
 //                          |<-- 3 us -->|<-- 6 fields back to back -->|
 //   state       IDLE| SEND |    WAIT    |            RECV             |1 bit|IDLE
-//   (after a flawed answer: QUIET until the receiver has been idle 20 bits, then o_done)
+//   (after a flawed answer: QUIET until the receiver has been idle 20 bits, at most 120 bits, then o_done;
+//    RECV ends with a framing error 120 bits after the answer's first start bit)
 //   o_done      _______________________________________________________________/‾\_
 //
 // Checks at the end of each answer: CRC (the XOR of all fields, CRC
@@ -75,7 +76,12 @@ module tformat_host #(
     input  wire        i_rx
 );
 
-localparam integer CNT_MAX = (REPEAT_GAP_CLOCKS > TIMEOUT_CLOCKS) ? REPEAT_GAP_CLOCKS : TIMEOUT_CLOCKS;
+// The counter also bounds RECV and QUIET: 120 bit times each
+// (model::tformat::ANSWER_LIMIT_BITS, QUIET_LIMIT_BITS: the longest answer
+// and one field more), so a stuck line or a second driver cannot hang the host.
+localparam integer LIMIT_CLOCKS = 120 * CLOCKS_PER_BIT;
+localparam integer CNT_MAX0 = (REPEAT_GAP_CLOCKS > TIMEOUT_CLOCKS) ? REPEAT_GAP_CLOCKS : TIMEOUT_CLOCKS;
+localparam integer CNT_MAX = (CNT_MAX0 > LIMIT_CLOCKS) ? CNT_MAX0 : LIMIT_CLOCKS;
 localparam integer CNT_W = $clog2(CNT_MAX + 1);
 // The idle counter also times QUIET: 20 bit times (model::tformat::QUIET_BITS).
 localparam integer QUIET_CLOCKS = 20 * CLOCKS_PER_BIT;
@@ -87,6 +93,8 @@ localparam [31:0] CPB_32 = CLOCKS_PER_BIT;
 localparam [CNT_W-1:0] BIT_LAST = BIT_LAST_32[CNT_W-1:0];
 localparam [CNT_W-1:0] TIMEOUT_LAST = TIMEOUT_LAST_32[CNT_W-1:0];
 localparam [CNT_W-1:0] GAP_LAST = GAP_LAST_32[CNT_W-1:0];
+localparam [31:0] LIMIT_LAST_32 = LIMIT_CLOCKS - 1;
+localparam [CNT_W-1:0] LIMIT_LAST = LIMIT_LAST_32[CNT_W-1:0];
 localparam [31:0] QUIET_32 = QUIET_CLOCKS;
 localparam [IDLE_W-1:0] END_IDLE = CPB_32[IDLE_W-1:0];
 localparam [IDLE_W-1:0] QUIET_IDLE = QUIET_32[IDLE_W-1:0];
@@ -227,7 +235,9 @@ reg finish_timeout;
 // `timeout_now` is the WAIT state's timeout, from registers only.
 wire timeout_now = (state_reg == WAIT) && !rx_busy && (cnt_reg == 0);
 wire crc_bad = !timeout_now && crc_reg != 8'd0;
-wire frame_bad = !timeout_now && (frame_bad_reg || count_reg != expected_fields);
+// RECV has run 120 bit times: the answer is over, whatever holds the line.
+wire too_long = (state_reg == RECV) && (cnt_reg == 0);
+wire frame_bad = !timeout_now && (frame_bad_reg || too_long || count_reg != expected_fields);
 wire cf_bad = !timeout_now && f0_reg != req_cf_reg;
 
 always @* begin
@@ -320,6 +330,7 @@ always @* begin
             if (rx_busy) begin
                 state_next = RECV;
                 idle_next = 0;
+                cnt_next = LIMIT_LAST;
             end else if (cnt_reg == 0) begin
                 finish = 1'b1;
                 finish_timeout = 1'b1;
@@ -328,7 +339,10 @@ always @* begin
             end
         end
         RECV: begin
-            if (rx_valid || rx_frame_err) begin
+            cnt_next = cnt_reg - 1'b1;
+            if (too_long) begin
+                finish = 1'b1;
+            end else if (rx_valid || rx_frame_err) begin
                 store = (count_reg < 8'd11);
                 count_next = (count_reg == 8'hFF) ? count_reg : count_reg + 1'b1;
                 crc_next = crc_reg ^ rx_data;
@@ -359,15 +373,19 @@ always @* begin
             // After a flawed answer: wait until the line has been quiet for
             // two fields, so the next request cannot land on the rest of an
             // answer whose framing was lost.
+            // A line that never falls quiet (stuck low, a second driver)
+            // ends QUIET after 120 bit times: the errors are flagged already.
             if (rx_busy) begin
                 idle_next = 0;
             end else begin
                 idle_next = idle_reg + 1'b1;
-                if (idle_reg + 1'b1 == QUIET_IDLE) begin
-                    state_next = IDLE;
-                    busy_next = 1'b0;
-                    done_next = 1'b1;
-                end
+            end
+            if ((!rx_busy && idle_reg + 1'b1 == QUIET_IDLE) || cnt_reg == 0) begin
+                state_next = IDLE;
+                busy_next = 1'b0;
+                done_next = 1'b1;
+            end else begin
+                cnt_next = cnt_reg - 1'b1;
             end
         end
         default: begin
@@ -406,6 +424,7 @@ always @* begin
         if (repeats_reg == 4'd1 && (finish_timeout || crc_bad || frame_bad || cf_bad)) begin
             state_next = QUIET;
             idle_next = 0;
+            cnt_next = LIMIT_LAST;
         end else if (repeats_reg == 4'd1) begin
             state_next = IDLE;
             busy_next = 1'b0;

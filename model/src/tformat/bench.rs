@@ -51,6 +51,37 @@ fn default_gap() -> f64 {
     5.0
 }
 
+/// A fault on the RS-485 pair (`[[tformat.line_faults]]`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LineFault {
+    /// What happens: `stuck_low` or `stuck_high` (a shorted pair, a failed
+    /// transceiver), or `second_driver` (another device sends `bytes`).
+    pub kind: LineFaultKind,
+    /// Start, µs after reset.
+    pub at_us: f64,
+    /// How long a stuck line lasts, µs (a second driver lasts its bytes).
+    #[serde(default)]
+    pub width_us: f64,
+    /// What a second driver sends, as 10-bit fields at the nominal rate.
+    #[serde(default)]
+    pub bytes: Vec<u8>,
+}
+
+/// The kinds of [`LineFault`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum LineFaultKind {
+    /// The pair reads low at both ends.
+    StuckLow,
+    /// The pair reads high at both ends.
+    StuckHigh,
+    /// A third device drives; both receivers hear it (it is assumed the
+    /// stronger driver), and the cycles it overlaps host or encoder count as
+    /// contention.
+    SecondDriver,
+}
+
 /// Everything a scenario says about a T-format set-up (`[tformat]`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -67,6 +98,8 @@ pub struct BenchConfig {
     pub cable: CableConfig,
     /// What the host does, in order.
     pub ops: Vec<Operation>,
+    /// Faults on the pair.
+    pub line_faults: Vec<LineFault>,
 }
 
 impl Default for BenchConfig {
@@ -78,6 +111,7 @@ impl Default for BenchConfig {
             encoder: EncoderSettings::default(),
             cable: CableConfig { length_m: 10.0, ..CableConfig::default() },
             ops: vec![Operation { data_id: 0, address: 0, data: 0, gap_us: 5.0 }],
+            line_faults: Vec::new(),
         }
     }
 }
@@ -151,6 +185,21 @@ impl BenchConfig {
         for (i, f) in self.encoder.flips.iter().enumerate() {
             if f.bit > 9 || f.field >= 11 {
                 return Err(ConfigError::invalid(format!("encoder.flips[{i}]"), "field above 10 or bit above 9", "give field 0..10 and bit 0..9 (0 start, 1..8 data, 9 delimiter)"));
+            }
+        }
+        for (i, f) in self.line_faults.iter().enumerate() {
+            let stuck = f.kind != LineFaultKind::SecondDriver;
+            if !(0.0..1e7).contains(&f.at_us) || !(0.0..1e7).contains(&f.width_us) || (stuck && f.width_us <= 0.0) || (!stuck && !(1..=1000).contains(&f.bytes.len())) {
+                return Err(ConfigError::invalid(
+                    format!("line_faults[{i}]"),
+                    "bad time, width or bytes",
+                    "give at_us ≥ 0; a stuck line a positive width_us; a second driver 1 to 1000 bytes",
+                ));
+            }
+        }
+        if let Some(t) = &self.encoder.truncate {
+            if t.bits == 0 || t.bits > 110 {
+                return Err(ConfigError::invalid("encoder.truncate.bits", format!("{}", t.bits), "give 1 to 110 bits (an answer has at most 11 fields of 10)"));
             }
         }
         for (i, op) in self.ops.iter().enumerate() {
@@ -232,6 +281,9 @@ pub struct Bench {
     host: Host,
     encoder: Encoder,
     line: HalfDuplexLine,
+    /// The faults as cycle windows: (first cycle, end cycle, kind, levels of a second driver per cycle offset).
+    faults: Vec<(u64, u64, LineFaultKind, Vec<bool>)>,
+    fault_contention: u64,
     at_host: bool,
     encoder_drive: Drive,
     next_op: usize,
@@ -261,6 +313,8 @@ impl Bench {
             host: Host::new(cfg.host_config()?)?,
             encoder: Encoder::new(cfg.encoder_config()?),
             line: HalfDuplexLine::new(cfg.cable.delay_cycles(&tb), true),
+            faults: fault_windows(cfg, &tb)?,
+            fault_contention: 0,
             at_host: true,
             encoder_drive: Drive::default(),
             next_op: 0,
@@ -277,9 +331,29 @@ impl Bench {
         })
     }
 
-    /// Cycles the RS-485 pair had two drivers on.
+    /// Cycles the RS-485 pair had two drivers on (host and encoder).
     pub fn contention_cycles(&self) -> u64 {
         self.line.contention_cycles()
+    }
+
+    /// Cycles a second driver overlapped the host's or the encoder's driver.
+    pub fn fault_contention_cycles(&self) -> u64 {
+        self.fault_contention
+    }
+
+    /// The level a line fault forces this cycle, if any.
+    fn forced_level(&mut self, host_drives: bool) -> Option<bool> {
+        let now = self.cycle;
+        let (from, _, kind, levels) = self.faults.iter().find(|(from, to, _, _)| (*from..*to).contains(&now))?;
+        let level = match kind {
+            LineFaultKind::StuckLow => false,
+            LineFaultKind::StuckHigh => true,
+            LineFaultKind::SecondDriver => levels[(now - from) as usize],
+        };
+        if *kind == LineFaultKind::SecondDriver && (host_drives || self.encoder_drive.enable) {
+            self.fault_contention += 1;
+        }
+        Some(level)
     }
 
     /// The encoder emulator (for tests that look inside it).
@@ -325,7 +399,11 @@ impl Testbench for Bench {
         }
         let out = self.host.step(&input);
         let host_drive = Drive { enable: out.o_tx_en, level: out.o_tx };
-        let (at_host, at_encoder) = self.line.step(host_drive, self.encoder_drive);
+        let (mut at_host, mut at_encoder) = self.line.step(host_drive, self.encoder_drive);
+        if let Some(level) = self.forced_level(host_drive.enable) {
+            at_host.level = level;
+            at_encoder.level = level;
+        }
         self.encoder_drive = self.encoder.step(at_encoder.level);
         self.at_host = at_host.level;
         if out.o_done {
@@ -381,4 +459,19 @@ impl Testbench for Bench {
     fn into_transactions(self) -> Vec<Transaction> {
         self.transactions
     }
+}
+
+/// The line faults as cycle windows; a second driver's levels cycle by cycle.
+fn fault_windows(cfg: &BenchConfig, tb: &Timebase) -> Result<Vec<(u64, u64, LineFaultKind, Vec<bool>)>> {
+    let c = cfg.clocks_per_bit()?;
+    Ok(cfg
+        .line_faults
+        .iter()
+        .map(|f| {
+            let from = tb.cycles_nearest_ns(f.at_us * 1e3);
+            let levels: Vec<bool> = f.bytes.iter().flat_map(|&b| super::encoder::frame_bits(b)).flat_map(|bit| std::iter::repeat_n(bit, c as usize)).collect();
+            let len = if f.kind == LineFaultKind::SecondDriver { levels.len() as u64 } else { tb.cycles_nearest_ns(f.width_us * 1e3).max(1) };
+            (from, from + len, f.kind, levels)
+        })
+        .collect())
 }

@@ -30,6 +30,8 @@ pub struct EncoderSettings {
     pub eeprom: Vec<u8>,
     /// Faults: bits of answers inverted on the line, after the CRC is made.
     pub flips: Vec<AnswerFlip>,
+    /// Fault: one answer cut short, the driver off after its first bits.
+    pub truncate: Option<AnswerTruncation>,
     /// The answer's bit rate error in percent (positive = encoder fast).
     pub baud_error_percent: f64,
     /// Peak jitter of every edge inside a field against that field's start
@@ -51,6 +53,16 @@ pub struct AnswerFlip {
     pub bit: u8,
 }
 
+/// One answer cut short (`[tformat.encoder.truncate]`): a truncated frame set.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AnswerTruncation {
+    /// Which answer (0 = the first the encoder sends).
+    pub answer: usize,
+    /// How many of its bits go on the line before the driver turns off.
+    pub bits: usize,
+}
+
 impl Default for EncoderSettings {
     fn default() -> Self {
         EncoderSettings {
@@ -62,6 +74,7 @@ impl Default for EncoderSettings {
             reset_interval_us: 40_000.0,
             eeprom: Vec::new(),
             flips: Vec::new(),
+            truncate: None,
             baud_error_percent: 0.0,
             jitter_ns: 0.0,
             seed: 1,
@@ -375,6 +388,9 @@ impl Encoder {
                         if let Some(b) = self.tx_bits.get_mut(f.field * 10 + f.bit as usize) {
                             *b = !*b;
                         }
+                    }
+                    if let Some(t) = self.cfg.settings.truncate.as_ref().filter(|t| t.answer == n) {
+                        self.tx_bits.truncate(t.bits);
                     }
                     self.tx_times = self.bit_times(self.now, self.tx_bits.len());
                     self.tx_index = 0;

@@ -79,6 +79,18 @@ pub fn always_flagged(clocks_per_bit: u64) -> (f64, f64) {
     ((10.0 * c / (half + 10.0 * c) - 1.0) * 100.0, (10.0 * c / (half + 9.0 * c) - 1.0) * 100.0)
 }
 
+/// Bit times from an answer's first start bit after which the host stops
+/// receiving and flags a framing error: the longest answer (11 fields) and
+/// one field more. A line held low, or a second driver that keeps sending,
+/// cannot keep the host in `Recv`.
+pub const ANSWER_LIMIT_BITS: u64 = 10 * (MAX_FIELDS as u64 + 1);
+
+/// Bit times after which `Quiet` gives up waiting for an idle line and ends
+/// the operation (its errors are already flagged): by then any answer that
+/// was in flight has ended; what still holds the line is a fault, and the
+/// user logic must not hang on it.
+pub const QUIET_LIMIT_BITS: u64 = ANSWER_LIMIT_BITS;
+
 /// Inputs at one rising edge.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct In {
@@ -327,6 +339,7 @@ impl Host {
                 if rx.o_busy {
                     self.state = State::Recv;
                     self.idle = 0;
+                    self.cnt = ANSWER_LIMIT_BITS * c - 1;
                 } else if self.cnt == 0 {
                     self.errors.1 = true;
                     self.finish(&mut next);
@@ -334,7 +347,12 @@ impl Host {
                     self.cnt -= 1;
                 }
             }
+            State::Recv if self.cnt == 0 => {
+                self.errors.2 = true;
+                self.finish(&mut next);
+            }
             State::Recv => {
+                self.cnt -= 1;
                 if rx.o_valid || rx.o_frame_err {
                     if (self.count as usize) < MAX_FIELDS {
                         self.fields[self.count as usize] = rx.o_data;
@@ -364,11 +382,13 @@ impl Host {
                     self.idle = 0;
                 } else {
                     self.idle += 1;
-                    if self.idle == QUIET_BITS * c {
-                        self.state = State::Idle;
-                        next.o_busy = false;
-                        next.o_done = true;
-                    }
+                }
+                if self.idle == QUIET_BITS * c || self.cnt == 0 {
+                    self.state = State::Idle;
+                    next.o_busy = false;
+                    next.o_done = true;
+                } else {
+                    self.cnt -= 1;
                 }
             }
         }
@@ -432,6 +452,7 @@ impl Host {
         if self.repeats_left == 0 && (timeout || crc_bad || frame_bad || cf_bad) {
             self.state = State::Quiet;
             self.idle = 0;
+            self.cnt = QUIET_LIMIT_BITS * self.cfg.clocks_per_bit - 1;
         } else if self.repeats_left == 0 {
             self.state = State::Idle;
             next.o_busy = false;

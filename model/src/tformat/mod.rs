@@ -24,7 +24,8 @@
 //!   the answer's control field against the request's (an abnormal request is
 //!   answered with Data ID 3 data, Table 5), and ca0/ca1 in the status field.
 //! * After a flawed answer the host waits in `QUIET` until its receiver has
-//!   been idle for 20 bits before it reports `o_done`, so the next request
+//!   been idle for 20 bits (at most 120 bits: a stuck line cannot hang it;
+//!   `RECV` is bounded the same way) before it reports `o_done`, so the next request
 //!   cannot land on the rest of an answer whose framing was lost.
 //! * Resets (7, 8, C) are one host operation: ten requests, each answered,
 //!   `REPEAT_GAP_CLOCKS` apart (seed: 40 ms or more).
@@ -48,8 +49,8 @@ mod encoder;
 pub mod frames;
 mod host;
 
-pub use bench::{Bench, BenchConfig, HostSettings, Operation, Transaction};
-pub use encoder::{AnswerFlip, Encoder, EncoderConfig, EncoderSettings, EEPROM_SIZE};
+pub use bench::{Bench, BenchConfig, HostSettings, LineFault, LineFaultKind, Operation, Transaction};
+pub use encoder::{AnswerFlip, AnswerTruncation, Encoder, EncoderConfig, EncoderSettings, EEPROM_SIZE};
 pub use host::{always_flagged, tolerance, Host, HostConfig, In, Out, State};
 
 #[cfg(test)]

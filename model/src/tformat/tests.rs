@@ -300,3 +300,65 @@ fn an_off_rate_or_jittery_encoder_is_read_without_error_inside_the_tolerance_and
         println!("  {}", between.join("; "));
     }
 }
+
+#[test]
+fn every_truncation_of_an_answer_is_flagged_unless_the_cut_tail_is_all_ones() {
+    // A truncated frame set: the encoder's driver turns off early and the
+    // fail-safe biased line reads 1. A cut tail of ones (the last delimiter,
+    // ones at the end of the CRC) leaves the wire as it was: nothing can see
+    // that. Every other cut is flagged.
+    for id in [0u8, 2, 3] {
+        let clean = run(&BenchConfig { ops: vec![op(id)], ..BenchConfig::default() }).0;
+        let answer = &clean[0].received;
+        let bits: Vec<bool> = answer.iter().flat_map(|&b| super::encoder::frame_bits(b)).collect();
+        for cut in 1..bits.len() {
+            let cfg = BenchConfig {
+                encoder: EncoderSettings { truncate: Some(AnswerTruncation { answer: 0, bits: cut }), ..EncoderSettings::default() },
+                ops: vec![op(id)],
+                ..BenchConfig::default()
+            };
+            let t = &contention_free(&cfg)[0];
+            let visible = bits[cut..].contains(&false);
+            assert_eq!(!t.errors.is_empty(), visible, "Data ID {id} cut after {cut} bits: {:?}", t.errors);
+        }
+    }
+}
+
+#[test]
+fn a_line_stuck_low_is_flagged_and_cannot_hang_the_host() {
+    // Held low from the middle of the first answer to the end of the run:
+    // every operation ends (o_done), every one flagged.
+    let cfg = BenchConfig {
+        line_faults: vec![LineFault { kind: LineFaultKind::StuckLow, at_us: 15.0, width_us: 5000.0, bytes: vec![] }],
+        ops: vec![op(0), op(3), op(0xD)],
+        ..BenchConfig::default()
+    };
+    let ts = run(&cfg).0;
+    assert_eq!(ts.len(), 3, "every operation ended");
+    assert!(ts.iter().all(|t| t.errors.contains(&"frame")), "{ts:?}");
+}
+
+#[test]
+fn a_line_stuck_high_times_out_and_a_second_driver_is_flagged() {
+    let stuck = BenchConfig {
+        line_faults: vec![LineFault { kind: LineFaultKind::StuckHigh, at_us: 10.0, width_us: 5000.0, bytes: vec![] }],
+        ops: vec![op(0), op(3)],
+        ..BenchConfig::default()
+    };
+    assert!(run(&stuck).0.iter().all(|t| t.errors == vec!["timeout"]));
+    // A second driver sending 0x00 fields: over the answer (from 13 µs), or
+    // over the request (from 6 µs): the answer is flagged either way.
+    for at_us in [6.0, 13.0, 20.0, 30.0] {
+        let cfg = BenchConfig {
+            line_faults: vec![LineFault { kind: LineFaultKind::SecondDriver, at_us, width_us: 0.0, bytes: vec![0x00, 0x00] }],
+            ..BenchConfig::default()
+        };
+        let mut bench = cfg.bench().unwrap();
+        while !crate::testbench::Testbench::finished(&bench) {
+            crate::testbench::Testbench::step(&mut bench, None);
+        }
+        assert!(bench.fault_contention_cycles() > 0, "{at_us} µs: the second driver overlapped a driver");
+        let ts = crate::testbench::Testbench::into_transactions(bench);
+        assert!(!ts[0].errors.is_empty(), "{at_us} µs: {:?}", ts[0]);
+    }
+}
