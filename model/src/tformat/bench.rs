@@ -8,6 +8,7 @@ use super::encoder::{Encoder, EncoderConfig, EncoderSettings};
 use super::frames::DataId;
 use super::host::{Host, HostConfig, In, Out};
 use crate::line::{CableConfig, Drive, HalfDuplexLine};
+use crate::uart::{self, Receiver, ReceiverConfig};
 use crate::ports::{Port, Ports};
 use crate::testbench::{self, Setup, Testbench};
 use crate::trace::{Layout, Sample};
@@ -249,6 +250,18 @@ pub struct Transaction {
     pub sent: Vec<u8>,
     /// The answer fields the host received (the last answer, for a reset).
     pub received: Vec<u8>,
+    /// Every request frame set the host drove (ten for a reset), as the
+    /// characters on the line at the host's pins while its driver was on,
+    /// read by a receiver that is never deaf: the request the host sent,
+    /// unless another driver overrode it. What an independent decoder of the
+    /// line must find.
+    pub wire_requests: Vec<Vec<u8>>,
+    /// For each of `wire_requests`, every character on the line at the
+    /// host's pins after it up to the next request (or the end of the run),
+    /// as received, a low stop bit included (the value is what the data
+    /// samples read): the answer, the rest of an answer whose framing the
+    /// host lost, anything another driver sent.
+    pub wire_answers: Vec<Vec<u8>>,
     /// Decoded single-turn data (17 bits).
     pub abs: u32,
     /// Decoded multi-turn data (16 bits).
@@ -284,6 +297,12 @@ pub struct Bench {
     /// The faults as cycle windows: (first cycle, end cycle, kind, levels of a second driver per cycle offset).
     faults: Vec<(u64, u64, LineFaultKind, Vec<bool>)>,
     fault_contention: u64,
+    /// A receiver on the line at the host's pins that listens all the time
+    /// (the host's own is deaf while it drives): the wire bytes of the
+    /// transcript.
+    wire_rx: Receiver,
+    /// The character `wire_rx` is receiving began while the host drove.
+    wire_from_host: bool,
     at_host: bool,
     encoder_drive: Drive,
     next_op: usize,
@@ -315,6 +334,8 @@ impl Bench {
             line: HalfDuplexLine::new(cfg.cable.delay_cycles(&tb), true),
             faults: fault_windows(cfg, &tb)?,
             fault_contention: 0,
+            wire_rx: Receiver::new(ReceiverConfig { clocks_per_bit: cfg.clocks_per_bit()? })?,
+            wire_from_host: false,
             at_host: true,
             encoder_drive: Drive::default(),
             next_op: 0,
@@ -356,6 +377,32 @@ impl Bench {
         Some(level)
     }
 
+    /// Feeds the always-listening receiver the host's input and files each
+    /// character it completes: a request character if it began while the
+    /// host drove, else an answer character of the latest request.
+    fn record_wire(&mut self, line: bool, out: &Out) {
+        let was_busy = self.wire_rx.state() != uart::State::Idle;
+        let rx = self.wire_rx.step(&uart::In { i_rx: line });
+        if rx.o_busy && !was_busy {
+            self.wire_from_host = out.o_tx_en || self.last_out.o_tx_en;
+        }
+        let latest = match self.open.as_mut() {
+            Some(t) => Some(t),
+            None => self.transactions.last_mut(),
+        };
+        let Some(t) = latest else { return };
+        if out.o_tx_en && !self.last_out.o_tx_en {
+            t.wire_requests.push(Vec::new());
+            t.wire_answers.push(Vec::new());
+        }
+        if rx.o_valid || rx.o_frame_err {
+            let to = if self.wire_from_host { &mut t.wire_requests } else { &mut t.wire_answers };
+            if let Some(set) = to.last_mut() {
+                set.push(rx.o_data);
+            }
+        }
+    }
+
     /// The encoder emulator (for tests that look inside it).
     pub fn encoder(&self) -> &Encoder {
         &self.encoder
@@ -385,6 +432,8 @@ impl Testbench for Bench {
                 data_id: op.data_id,
                 sent,
                 received: Vec::new(),
+                wire_requests: Vec::new(),
+                wire_answers: Vec::new(),
                 abs: 0,
                 abm: 0,
                 sf: 0,
@@ -399,6 +448,7 @@ impl Testbench for Bench {
         }
         let out = self.host.step(&input);
         let host_drive = Drive { enable: out.o_tx_en, level: out.o_tx };
+        self.record_wire(input.i_rx, &out);
         let (mut at_host, mut at_encoder) = self.line.step(host_drive, self.encoder_drive);
         if let Some(level) = self.forced_level(host_drive.enable) {
             at_host.level = level;

@@ -362,3 +362,34 @@ fn a_line_stuck_high_times_out_and_a_second_driver_is_flagged() {
         assert!(!ts[0].errors.is_empty(), "{at_us} µs: {:?}", ts[0]);
     }
 }
+
+#[test]
+fn the_transcript_carries_every_character_on_the_wire_at_the_host() {
+    // Clean reads: the wire holds exactly the request sent and the answer received.
+    let clean = run(&BenchConfig { ops: vec![op(0), op(3), Operation { data_id: 6, address: 5, data: 0xA5, gap_us: 5.0 }], ..BenchConfig::default() }).0;
+    for t in &clean {
+        assert_eq!((&t.wire_requests, &t.wire_answers), (&vec![t.sent.clone()], &vec![t.received.clone()]), "{t:?}");
+    }
+    // A reset: ten requests, ten answers, in order.
+    let cfg = BenchConfig {
+        host: HostSettings { repeat_gap_us: 400.0, ..HostSettings::default() },
+        encoder: EncoderSettings { reset_interval_us: 400.0, ..EncoderSettings::default() },
+        ops: vec![op(0xC)],
+        ..BenchConfig::default()
+    };
+    let t = &run(&cfg).0[0];
+    assert_eq!((t.wire_requests.len(), t.wire_answers.len()), (10, 10));
+    assert!(t.wire_requests.iter().all(|r| *r == t.sent) && t.wire_answers.iter().all(|a| *a == t.received));
+    // A start bit flipped in an answer: the host stops at the lost framing,
+    // the wire keeps the rest of the answer.
+    let flipped = BenchConfig { encoder: EncoderSettings { flips: vec![AnswerFlip { answer: 0, field: 3, bit: 0 }], ..EncoderSettings::default() }, ..BenchConfig::default() };
+    let t = &run(&flipped).0[0];
+    assert!(t.wire_answers[0].len() > t.received.len() && t.wire_answers[0].starts_with(&t.received[..2]), "{t:?}");
+    // Another driver over the request: the wire shows what it forced, not what the host sent.
+    let over_request = BenchConfig {
+        line_faults: vec![LineFault { kind: LineFaultKind::SecondDriver, at_us: 5.0, width_us: 0.0, bytes: vec![0x00] }],
+        ..BenchConfig::default()
+    };
+    let t = &run(&over_request).0[0];
+    assert_eq!((t.sent.clone(), t.wire_requests.clone()), (vec![0x02], vec![vec![0x00]]));
+}
