@@ -8,10 +8,10 @@ use super::encoder::{Encoder, EncoderConfig, EncoderSettings};
 use super::frames::DataId;
 use super::host::{Host, HostConfig, In, Out};
 use crate::line::{CableConfig, Drive, HalfDuplexLine};
-use crate::uart::{self, Receiver, ReceiverConfig};
 use crate::ports::{Port, Ports};
 use crate::testbench::{self, Setup, Testbench};
 use crate::trace::{Layout, Sample};
+use crate::uart::{self, Receiver, ReceiverConfig};
 use crate::{ConfigError, Result, Timebase};
 
 /// The host's settings in a scenario's units (`[tformat.host]`).
