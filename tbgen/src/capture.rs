@@ -60,6 +60,24 @@ impl Signal {
     }
 }
 
+impl Signal {
+    /// High whenever either signal is: what a receiver hears whose input is
+    /// forced high while its own driver is on (`line.or(&tx_en)`).
+    pub fn or(&self, other: &Signal) -> Signal {
+        let mut times: Vec<u64> = self.changes.iter().chain(&other.changes).map(|c| c.0).collect();
+        times.sort_unstable();
+        times.dedup();
+        let mut changes: Vec<(u64, bool)> = Vec::with_capacity(times.len());
+        for t in times {
+            let level = self.level_at(t) || other.level_at(t);
+            if changes.last().is_none_or(|&(_, last)| last != level) {
+                changes.push((t, level));
+            }
+        }
+        Signal { name: format!("{} | {}", self.name, other.name), changes }
+    }
+}
+
 /// The picoseconds of one unit of a VCD timescale.
 fn timescale_ps(header: &vcd::Header) -> Result<u64> {
     let Some((n, unit)) = header.timescale else { return Ok(1) };
@@ -216,6 +234,15 @@ mod tests {
         bits.extend(character(0xC3, true));
         let got = uart_bytes(&line_of(&bits, bit_ps, 0), bit_ps);
         assert_eq!(got.iter().map(|b| (b.value, b.framing_error)).collect::<Vec<_>>(), vec![(0x5A, true), (0xC3, false)]);
+    }
+
+    #[test]
+    fn or_is_high_whenever_either_signal_is() {
+        let line = Signal { name: "line".into(), changes: vec![(0, true), (100, false), (300, true), (500, false)] };
+        let en = Signal { name: "en".into(), changes: vec![(0, false), (50, true), (200, false)] };
+        let heard = line.or(&en);
+        assert_eq!(heard.changes, vec![(0, true), (200, false), (300, true), (500, false)]);
+        assert_eq!(heard.name, "line | en");
     }
 
     #[test]

@@ -27,6 +27,7 @@ pub mod generate;
 pub mod gtkw;
 pub mod scenario;
 pub mod timing_cmd;
+pub mod tformat_decode;
 pub mod tformat_tools;
 pub mod transcript;
 pub mod vectors;

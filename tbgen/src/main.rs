@@ -7,7 +7,7 @@ use std::time::Instant;
 use clap::{Parser, Subcommand};
 use tbgen::scenario::Visitor;
 use tbgen::scenario::Setup;
-use tbgen::{biss_tools, builtin, crc_cmd, generate, tformat_tools, timing_cmd, Error};
+use tbgen::{biss_tools, builtin, crc_cmd, generate, tformat_decode, tformat_tools, timing_cmd, Error};
 
 #[derive(Parser)]
 #[command(
@@ -109,6 +109,25 @@ enum Decode {
         #[arg(long, value_delimiter = ',')]
         crc_poly: Vec<u64>,
     },
+    /// T-format: the line and the driver enable at the host (the bytes alone
+    /// cannot tell a request from its answer).
+    #[command(after_help = "Examples:\n  tbgen decode tformat vectors/tformat_host/tformat_readout_all_ids.vcd\n  tbgen decode tformat capture.vcd --line top.ro --tx-en top.de --timeout-us 20")]
+    Tformat {
+        /// The VCD file.
+        file: PathBuf,
+        /// Dotted path of the RS-485 line (receiver output) at the host.
+        #[arg(long, default_value = "top.line.line_at_host")]
+        line: String,
+        /// Dotted path of the host's RS-485 driver enable.
+        #[arg(long, default_value = "top.line.tx_en_host")]
+        tx_en: String,
+        /// Bit rate in bit/s (seed: 2.5 Mbps).
+        #[arg(long, default_value_t = 2_500_000)]
+        baud: u64,
+        /// The host's answer timeout in µs (`[tformat.host] timeout_us`).
+        #[arg(long, default_value_t = 10.0)]
+        timeout_us: f64,
+    },
 }
 
 /// A Data ID as written on the command line: decimal or 0x-prefixed hex.
@@ -200,6 +219,14 @@ fn run(command: Command) -> Result<(), Error> {
             let layout = biss_tools::Layout { bits, crc_width, crc_poly };
             let decoded = biss_tools::decode(&file, &ma, &slo, &layout)?;
             println!("{}", serde_json::to_string_pretty(&decoded).map_err(|e| Error::Decode(e.to_string()))?);
+        }
+        Command::Decode(Decode::Tformat { file, line, tx_en, baud, timeout_us }) => {
+            if !(1_000..=100_000_000).contains(&baud) || !(timeout_us > 0.0 && timeout_us < 1e7) {
+                return Err(Error::Decode(format!("decode tformat: --baud {baud} or --timeout-us {timeout_us}: give a bit rate from 1000 to 100000000 bit/s and a positive timeout in µs")));
+            }
+            let options = tformat_decode::Options { line, tx_en, baud, timeout_us };
+            let transactions = tformat_decode::decode(&file, &options)?;
+            println!("{}", tformat_decode::to_json(&file, &options, &transactions)?);
         }
     }
     Ok(())
