@@ -98,3 +98,49 @@ fn sigrok_uart_decodes_the_bytes_the_frame_receiver_received() {
     }
     assert!(checked >= 300, "only {checked} bytes checked");
 }
+
+#[test]
+fn sigrok_uart_reads_at_the_tformat_host_every_request_and_answer_byte_of_the_transcript() {
+    // Issue 5's independent check for T-format: sigrok's `uart` decoder at
+    // 2.5 Mbps on the line at the host must find, in order, every character
+    // the transcript says was on the wire: each request, then what followed
+    // it (faults included: the transcript's wire bytes are read by a
+    // receiver that never goes deaf, as sigrok never does).
+    let dir = tempfile::tempdir().unwrap();
+    let (mut scenarios, mut checked) = (0, 0);
+    for scenario in builtin::all().unwrap().into_iter().filter(|s| s.core() == "tformat_host") {
+        let tbgen::scenario::Setup::Tformat(cfg) = &scenario.setup else { unreachable!() };
+        let summary = generate::generate(&scenario, dir.path()).unwrap();
+        let transcript: serde_json::Value = serde_json::from_str(&fs::read_to_string(&summary.files[2]).unwrap()).unwrap();
+        let bytes = |set: &serde_json::Value| -> Vec<u64> { set.as_array().unwrap().iter().map(|b| b.as_u64().unwrap()).collect() };
+        let mut expected = Vec::new();
+        for t in transcript["transactions"].as_array().unwrap() {
+            let (requests, answers) = (t["wire_requests"].as_array().unwrap(), t["wire_answers"].as_array().unwrap());
+            assert_eq!(requests.len(), answers.len(), "{}: one answer list per request", scenario.name);
+            for (request, answer) in requests.iter().zip(answers) {
+                expected.extend(bytes(request));
+                expected.extend(bytes(answer));
+            }
+        }
+        let scalars = dir.path().join(format!("{}.scalars.vcd", scenario.name));
+        fs::write(&scalars, wave::scalars_only(&fs::read_to_string(&summary.files[1]).unwrap())).unwrap();
+        let downsample = 1_000_000_000_000 / transcript["f_sys_hz"].as_u64().unwrap();
+        let out = Command::new("sigrok-cli")
+            .args(["-I", &format!("vcd:downsample={downsample}"), "-i", scalars.to_str().unwrap()])
+            .args(["-P", &format!("uart:rx=line_at_host:baudrate={}", cfg.baud as u64)])
+            .args(["-A", "uart=rx-data"])
+            .output()
+            .expect("sigrok-cli runs (make deps installs it)");
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        let decoded: Vec<u64> = String::from_utf8(out.stdout)
+            .unwrap()
+            .lines()
+            .filter_map(|l| l.strip_prefix("uart-1: "))
+            .map(|hex| u64::from_str_radix(hex.trim(), 16).unwrap())
+            .collect();
+        assert_eq!(decoded, expected, "{}: sigrok uart at the host vs the transcript's wire bytes", scenario.name);
+        checked += decoded.len();
+        scenarios += 1;
+    }
+    assert!(scenarios >= 15 && checked >= 300, "{scenarios} scenarios, {checked} bytes checked");
+}
