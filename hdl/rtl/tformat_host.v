@@ -89,15 +89,19 @@ localparam integer IDLE_W = $clog2(QUIET_CLOCKS + 1);
 localparam [31:0] BIT_LAST_32 = CLOCKS_PER_BIT - 1;
 localparam [31:0] TIMEOUT_LAST_32 = TIMEOUT_CLOCKS - 1;
 localparam [31:0] GAP_LAST_32 = REPEAT_GAP_CLOCKS - 1;
-localparam [31:0] CPB_32 = CLOCKS_PER_BIT;
 localparam [CNT_W-1:0] BIT_LAST = BIT_LAST_32[CNT_W-1:0];
 localparam [CNT_W-1:0] TIMEOUT_LAST = TIMEOUT_LAST_32[CNT_W-1:0];
 localparam [CNT_W-1:0] GAP_LAST = GAP_LAST_32[CNT_W-1:0];
 localparam [31:0] LIMIT_LAST_32 = LIMIT_CLOCKS - 1;
 localparam [CNT_W-1:0] LIMIT_LAST = LIMIT_LAST_32[CNT_W-1:0];
-localparam [31:0] QUIET_32 = QUIET_CLOCKS;
-localparam [IDLE_W-1:0] END_IDLE = CPB_32[IDLE_W-1:0];
-localparam [IDLE_W-1:0] QUIET_IDLE = QUIET_32[IDLE_W-1:0];
+// The idle counts are compared at their last value, before the increment:
+// `idle_reg + 1 == N` put the adder's carry chain in front of `finish` and
+// the output registers' enables (77 MHz on iCE40 HX8K); `idle_reg == N - 1`
+// is the same condition without it.
+localparam [31:0] END_IDLE_LAST_32 = CLOCKS_PER_BIT - 1;
+localparam [31:0] QUIET_IDLE_LAST_32 = QUIET_CLOCKS - 1;
+localparam [IDLE_W-1:0] END_IDLE_LAST = END_IDLE_LAST_32[IDLE_W-1:0];
+localparam [IDLE_W-1:0] QUIET_IDLE_LAST = QUIET_IDLE_LAST_32[IDLE_W-1:0];
 
 // Sink code in bits 0..2 of every control field (model::tformat::frames::SINK_CODE).
 localparam [2:0] SINK_CODE = 3'b010;
@@ -350,7 +354,7 @@ always @* begin
                 idle_next = 0;
             end else if (!rx_busy) begin
                 idle_next = idle_reg + 1'b1;
-                if (idle_reg + 1'b1 == END_IDLE) begin
+                if (idle_reg == END_IDLE_LAST) begin
                     finish = 1'b1;
                 end
             end else begin
@@ -380,7 +384,7 @@ always @* begin
             end else begin
                 idle_next = idle_reg + 1'b1;
             end
-            if ((!rx_busy && idle_reg + 1'b1 == QUIET_IDLE) || cnt_reg == 0) begin
+            if ((!rx_busy && idle_reg == QUIET_IDLE_LAST) || cnt_reg == 0) begin
                 state_next = IDLE;
                 busy_next = 1'b0;
                 done_next = 1'b1;
