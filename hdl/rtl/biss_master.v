@@ -9,10 +9,12 @@
 //   receiver; i_slo is asynchronous and passes a 2-flop synchroniser first.
 //   Pulse i_start for one cycle while o_busy is low. Each slave's result
 //   appears with a one-cycle o_slave_valid pulse (slave 0 first); o_done
-//   pulses once per start with the frame's error pulses. Pulse i_reg_start
-//   (with i_reg_write/_id/_addr/_wdata) while o_reg_busy is low; keep
-//   starting frames: the access needs 14 frames of CDM = 0 and 33 control
-//   frames; o_reg_done pulses with o_done of the last one.
+//   pulses once per start with the frame's error pulses. A register access is
+//   one host operation: pulse i_reg_start (with i_reg_write/_id/_addr/_wdata)
+//   while o_reg_busy is low and the core runs the frames itself, back to
+//   back (14 frames of CDM = 0, then the 33 frames of the control frame),
+//   each with its o_slave_valid results and o_done; o_reg_done pulses with
+//   o_done of the last one, with o_reg_rdata, o_reg_crc_err and o_reg_err.
 //
 // Parameters (the Rust MasterConfig field of the same name in lower case;
 // per-slave values packed 8 bits each, slave 0 in bits 7..0)
@@ -95,6 +97,7 @@ module biss_master #(
     output wire                  o_reg_done,
     output wire                  o_reg_err,
     output wire [7:0]            o_reg_rdata,
+    output wire                  o_reg_crc_err,
 
     /* BiSS line */
     output wire                  o_ma,
@@ -249,6 +252,7 @@ reg              reg_busy_reg = 1'b0, reg_busy_next;
 reg              reg_done_reg = 1'b0, reg_done_next;
 reg              reg_err_reg = 1'b0, reg_err_next;
 reg [7:0]        reg_rdata_reg = 8'd0, reg_rdata_next;
+reg              reg_crc_err_reg = 1'b0, reg_crc_err_next;
 
 assign o_ma = ma_reg;
 assign o_busy = busy_reg;
@@ -270,6 +274,7 @@ assign o_reg_busy = reg_busy_reg;
 assign o_reg_done = reg_done_reg;
 assign o_reg_err = reg_err_reg;
 assign o_reg_rdata = reg_rdata_reg;
+assign o_reg_crc_err = reg_crc_err_reg;
 
 // One wider than the data so that a 1-bit slave needs no special case; the
 // bit shifted out is dropped on purpose.
@@ -316,6 +321,7 @@ crc_serial #(.WIDTH(4), .POLY(4'h3)) crc4_wdata (.i_crc(crc4_tx_reg), .i_bit(wda
 crc_serial #(.WIDTH(4), .POLY(4'h3)) crc4_cds   (.i_crc(crc4_rx_reg), .i_bit(frame_cds_reg), .o_crc(crc4_rx_cds));
 
 reg       finish;
+reg       refused;
 reg       fin_ack;
 reg       fin_timeout;
 reg       frame_ok;
@@ -377,7 +383,9 @@ always @* begin
     slave_valid_next = 1'b0;
     reg_done_next = 1'b0;
     reg_err_next = 1'b0;
+    reg_crc_err_next = 1'b0;
     finish = 1'b0;
+    refused = 1'b0;
     fin_ack = 1'b0;
     fin_timeout = 1'b0;
     frame_ok = 1'b0;
@@ -407,7 +415,8 @@ always @* begin
 
     case (state_reg)
         IDLE: begin
-            if (i_start) begin
+            // A register access starts its own frames, back to back.
+            if (i_start || reg_pending_reg || ctl_active_reg) begin
                 if (slo_sync_reg) begin
                     state_next = ACK;
                     ma_next = 1'b0;
@@ -425,6 +434,7 @@ always @* begin
                 end else begin
                     done_next = 1'b1;
                     err_line_next = 1'b1;
+                    refused = 1'b1;
                 end
             end
         end
@@ -563,9 +573,13 @@ always @* begin
         err_start_next = e_start_reg;
         err_timeout_next = fin_timeout;
         frame_ok = !(fin_ack || fin_timeout || e_delay_reg || e_start_reg);
+    end
 
-        // Control-frame sequencer: take this frame's CDS, choose the next CDM.
-        zeros_next = (cdm_reg && frame_ok) ? 4'd0 : ((zeros_reg == SYNC_ZEROS) ? SYNC_ZEROS : zeros_reg + 4'd1);
+    // Control-frame sequencer, at the end of every frame and at a refused
+    // start: take this frame's CDS, choose the next CDM. Only frames that
+    // completed count as sent.
+    if (finish || refused) begin
+        if (frame_ok) zeros_next = cdm_reg ? 4'd0 : ((zeros_reg == SYNC_ZEROS) ? SYNC_ZEROS : zeros_reg + 4'd1);
         cdm_next = 1'b0;
         if (ctl_active_reg) begin
             if (!frame_ok || frame_crc_bad_reg) begin
@@ -598,6 +612,7 @@ always @* begin
                 ctl_active_next = 1'b0;
                 reg_done_next = 1'b1;
                 reg_err_next = ctl_err;
+                reg_crc_err_next = (ctl_k_reg == 6'd32) && reg_bad_reg;
                 reg_rdata_next = rdata_reg;
                 reg_busy_next = 1'b0;
             end else begin
@@ -635,6 +650,13 @@ always @* begin
                     default: cdm_next = 1'b0;
                 endcase
             end
+        end else if (reg_pending_reg && !frame_ok) begin
+            // A sync frame failed: the line cannot carry the access.
+            reg_pending_next = 1'b0;
+            reg_done_next = 1'b1;
+            reg_err_next = 1'b1;
+            reg_rdata_next = rdata_reg;
+            reg_busy_next = 1'b0;
         end else if (reg_pending_reg && (zeros_next >= SYNC_ZEROS)) begin
             reg_pending_next = 1'b0;
             ctl_active_next = 1'b1;
@@ -715,6 +737,7 @@ always @(posedge i_clk) begin
     reg_done_reg <= reg_done_next;
     reg_err_reg <= reg_err_next;
     reg_rdata_reg <= reg_rdata_next;
+    reg_crc_err_reg <= reg_crc_err_next;
 
     if (i_rst) begin
         state_reg <= IDLE;
@@ -773,6 +796,7 @@ always @(posedge i_clk) begin
         reg_done_reg <= 1'b0;
         reg_err_reg <= 1'b0;
         reg_rdata_reg <= 8'd0;
+        reg_crc_err_reg <= 1'b0;
     end
 end
 

@@ -35,7 +35,7 @@ endfunction
 
 localparam integer DATA_W = max_bits(SLAVE_BITS, SLAVES);
 localparam N_IN = 7;
-localparam N_OUT = 20;
+localparam N_OUT = 21;
 
 `include "vector_player.vh"
 
@@ -66,6 +66,7 @@ wire o_reg_busy;
 wire o_reg_done;
 wire o_reg_err;
 wire [7:0] o_reg_rdata;
+wire o_reg_crc_err;
 
 // Port order = the model's biss::Master::input_ports() / output_ports().
 task apply_inputs;
@@ -102,6 +103,7 @@ task check_outputs;
         `CHECK(17, "o_reg_done", o_reg_done)
         `CHECK(18, "o_reg_err", o_reg_err)
         `CHECK(19, "o_reg_rdata", o_reg_rdata)
+        `CHECK(20, "o_reg_crc_err", o_reg_crc_err)
     end
 endtask
 
@@ -141,6 +143,7 @@ biss_master #(
     .o_reg_done(o_reg_done),
     .o_reg_err(o_reg_err),
     .o_reg_rdata(o_reg_rdata),
+    .o_reg_crc_err(o_reg_crc_err),
     .o_ma(o_ma),
     .i_slo(i_slo)
 );

@@ -1,5 +1,10 @@
 //! A whole BiSS-C set-up: host, master, cable and a chain of slaves.
 //!
+//! The host runs its register accesses first, each as one operation (one
+//! `i_reg_start`, then it waits for `o_reg_done` while the master runs the
+//! frames), then starts frames until `frames` have run. Every frame, whoever
+//! started it, is a transaction.
+//!
 //! Each cycle `c`:
 //! 1. the host decides `i_start` and register requests; the master's SLO
 //!    input is the level that left the cable at the master's end in the
@@ -133,9 +138,9 @@ pub struct HostSettings {
     pub first_start_us: f64,
     /// Idle time between the end of one frame and the next start, µs.
     pub gap_us: f64,
-    /// Frames to run at least (more if register accesses need them).
+    /// Frames to run at least (the frames of register accesses count).
     pub frames: usize,
-    /// Register accesses, one after the other.
+    /// Register accesses, one after the other, before the host's own frames.
     pub registers: Vec<RegOp>,
 }
 
@@ -389,6 +394,8 @@ pub struct RegResult {
     pub rdata: u8,
     /// The access succeeded.
     pub ok: bool,
+    /// `false` when the slave's answer came with a wrong CRC-4 (`o_reg_crc_err`).
+    pub crc4_ok: bool,
     /// The CDM bits the master sent, `k = 0..=31`.
     pub cdm: String,
 }
@@ -398,7 +405,8 @@ pub struct RegResult {
 pub struct Transaction {
     /// 0-based frame number.
     pub index: usize,
-    /// Cycle of the host's start pulse.
+    /// The cycle the master left IDLE (the host's start pulse, or the
+    /// master's own start inside a register access).
     pub start_cycle: u64,
     /// Cycle of `o_done`.
     pub done_cycle: u64,
@@ -429,6 +437,7 @@ impl testbench::Transaction for Transaction {
 enum Host {
     WaitUntil(u64),
     WaitDone,
+    WaitRegDone,
     Finished(u64),
 }
 
@@ -530,21 +539,8 @@ impl Bench {
     fn host_decides(&mut self) -> In {
         let mut input = In { i_slo: self.stuck.unwrap_or(self.slo_at_master), ..In::default() };
         if let Host::WaitUntil(at) = self.host {
-            if self.cycle >= at && !self.last_out.o_busy {
-                let k = self.next_frame;
-                for i in 0..self.cfg.slaves.len() {
-                    let p = self.cfg.position_at(i, k);
-                    let s = &self.cfg.slaves[i];
-                    let error = s.error || s.error_frames.contains(&k);
-                    let warning = s.warning || s.warning_frames.contains(&k);
-                    let flips: Vec<u32> = self.cfg.flips.iter().filter(|f| f.frame == k && f.slave == i).flat_map(|f| f.bits.clone()).collect();
-                    let slave = &mut self.chain.slaves_mut()[i];
-                    slave.set_position(p);
-                    slave.set_flags(error, warning);
-                    slave.set_flips(flips);
-                }
-                input.i_start = true;
-                if self.open_op.is_none() && self.next_op < self.cfg.host.registers.len() && !self.last_out.o_reg_busy {
+            if self.cycle >= at && !self.last_out.o_busy && !self.last_out.o_reg_busy {
+                if self.next_op < self.cfg.host.registers.len() {
                     let op = self.cfg.host.registers[self.next_op];
                     self.next_op += 1;
                     self.open_op = Some(op);
@@ -553,24 +549,48 @@ impl Bench {
                     input.i_reg_id = op.id;
                     input.i_reg_addr = op.addr;
                     input.i_reg_wdata = op.data;
+                    self.host = Host::WaitRegDone;
+                } else {
+                    input.i_start = true;
+                    self.host = Host::WaitDone;
                 }
-                self.open = Some(Transaction {
-                    index: k,
-                    start_cycle: self.cycle,
-                    done_cycle: 0,
-                    delay_cycles: None,
-                    cdm: self.master.cdm(),
-                    control_index: self.master.control_index(),
-                    received_bits: String::new(),
-                    slaves: Vec::new(),
-                    errors: Vec::new(),
-                    register: None,
-                });
-                self.next_frame += 1;
-                self.host = Host::WaitDone;
             }
         }
         input
+    }
+
+    /// A frame begins when the master leaves IDLE (or refuses a start): the
+    /// slaves take this frame's position and flags before the first MA edge
+    /// reaches them.
+    fn frame_begins(&mut self, out: &Out) {
+        if self.last_out.o_busy || !(out.o_busy || out.o_done) {
+            return;
+        }
+        let k = self.next_frame;
+        for i in 0..self.cfg.slaves.len() {
+            let p = self.cfg.position_at(i, k);
+            let s = &self.cfg.slaves[i];
+            let error = s.error || s.error_frames.contains(&k);
+            let warning = s.warning || s.warning_frames.contains(&k);
+            let flips: Vec<u32> = self.cfg.flips.iter().filter(|f| f.frame == k && f.slave == i).flat_map(|f| f.bits.clone()).collect();
+            let slave = &mut self.chain.slaves_mut()[i];
+            slave.set_position(p);
+            slave.set_flags(error, warning);
+            slave.set_flips(flips);
+        }
+        self.open = Some(Transaction {
+            index: k,
+            start_cycle: self.cycle,
+            done_cycle: 0,
+            delay_cycles: None,
+            cdm: self.master.cdm(),
+            control_index: self.master.control_index(),
+            received_bits: String::new(),
+            slaves: Vec::new(),
+            errors: Vec::new(),
+            register: None,
+        });
+        self.next_frame += 1;
     }
 
     fn host_observes(&mut self, out: &Out) {
@@ -595,7 +615,7 @@ impl Bench {
                 }
             }
         }
-        if self.host == Host::WaitDone && out.o_done {
+        if out.o_done {
             if let Some(mut t) = self.open.take() {
                 t.done_cycle = self.cycle;
                 if !out.o_err_line && !out.o_err_ack && !out.o_err_delay {
@@ -624,6 +644,7 @@ impl Bench {
                             wdata: op.data,
                             rdata: out.o_reg_rdata,
                             ok: !out.o_reg_err,
+                            crc4_ok: !out.o_reg_crc_err,
                             cdm: bit_string(&cdm),
                         });
                     }
@@ -631,9 +652,16 @@ impl Bench {
                 self.transactions.push(t);
             }
             self.apply_stuck_before(self.next_frame);
-            let more_ops = self.open_op.is_some() || self.next_op < self.cfg.host.registers.len();
-            let more = (self.next_frame < self.cfg.host.frames || more_ops) && self.next_frame < self.cfg.frame_limit();
-            self.host = if more { Host::WaitUntil(self.cycle + self.gap_clocks) } else { Host::Finished(self.cycle + TAIL_CYCLES) };
+            let host_done = match self.host {
+                Host::WaitDone => true,
+                Host::WaitRegDone => out.o_reg_done,
+                _ => false,
+            };
+            if host_done {
+                let more_ops = self.next_op < self.cfg.host.registers.len();
+                let more = (self.next_frame < self.cfg.host.frames || more_ops) && self.next_frame < self.cfg.frame_limit();
+                self.host = if more { Host::WaitUntil(self.cycle + self.gap_clocks) } else { Host::Finished(self.cycle + TAIL_CYCLES) };
+            }
         }
     }
 }
@@ -660,6 +688,7 @@ impl Testbench for Bench {
     fn step(&mut self, sample: Option<&mut Sample>) {
         let input = self.host_decides();
         let out = self.master.step(&input);
+        self.frame_begins(&out);
         let ma_at_slave = self.ma_line.step(out.o_ma);
         let slo_from_slave = self.chain.step(ma_at_slave);
         self.slo_at_master = self.slo_line.step(slo_from_slave);

@@ -159,11 +159,14 @@ pub enum State {
 /// Inputs sampled at one rising edge of the system clock.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct In {
-    /// Host: start one frame (one-cycle pulse; ignored while busy).
+    /// Host: start one frame (one-cycle pulse; ignored while busy). A
+    /// register access runs its frames without it.
     pub i_start: bool,
     /// Line: SLO as it arrives at the master's receiver.
     pub i_slo: bool,
-    /// Host: start a register access (one-cycle pulse; ignored while `o_reg_busy`).
+    /// Host: start a register access, one host operation: the master runs
+    /// the sync and control frames by itself (one-cycle pulse; ignored while
+    /// `o_reg_busy`).
     pub i_reg_start: bool,
     /// Host: the access is a write.
     pub i_reg_write: bool,
@@ -218,6 +221,8 @@ pub struct Out {
     pub o_reg_err: bool,
     /// With `o_reg_done`: the register's value (read) or its echo (write).
     pub o_reg_rdata: u8,
+    /// With `o_reg_done`: the CRC-4 of the slave's answer did not match.
+    pub o_reg_crc_err: bool,
 }
 
 impl Ports for In {
@@ -255,6 +260,7 @@ impl Ports for Out {
             self.o_reg_done as u64,
             self.o_reg_err as u64,
             self.o_reg_rdata as u64,
+            self.o_reg_crc_err as u64,
         ];
         dst[..v.len()].copy_from_slice(&v);
     }
@@ -424,6 +430,7 @@ impl Master {
             Port::new("o_reg_done", 1),
             Port::new("o_reg_err", 1),
             Port::new("o_reg_rdata", 8),
+            Port::new("o_reg_crc_err", 1),
         ]
     }
 
@@ -445,6 +452,7 @@ impl Master {
             o_slave_valid: false,
             o_reg_done: false,
             o_reg_err: false,
+            o_reg_crc_err: false,
             ..self.out
         };
 
@@ -483,7 +491,8 @@ impl Master {
 
         match c.state {
             State::Idle => {
-                if input.i_start {
+                // A register access starts its own frames, back to back.
+                if input.i_start || c.reg_pending || c.ctl_active {
                     if c.slo_sync {
                         n.state = State::Ack;
                         n.ma = false;
@@ -502,6 +511,7 @@ impl Master {
                     } else {
                         o.o_done = true;
                         o.o_err_line = true;
+                        self.control(&c, &mut n, &mut o, false);
                     }
                 }
             }
@@ -666,11 +676,16 @@ impl Master {
         o
     }
 
-    /// The control-frame sequencer, run once at the end of every frame: it
-    /// takes the CDS bit the frame brought back and chooses the next CDM.
+    /// The control-frame sequencer, run once at the end of every frame (and
+    /// at a refused start): it takes the CDS bit the frame brought back and
+    /// chooses the next CDM. Only frames that completed count as sent: the
+    /// slave may not have seen the CDM of a failed one.
     fn control(&mut self, c: &Regs, n: &mut Regs, o: &mut Out, frame_ok: bool) {
-        let sent = c.cdm && frame_ok;
-        let zeros = if sent { 0 } else { (c.zeros + 1).min(control::SYNC_ZEROS) };
+        let zeros = match (frame_ok, c.cdm) {
+            (true, true) => 0,
+            (true, false) => (c.zeros + 1).min(control::SYNC_ZEROS),
+            (false, _) => c.zeros,
+        };
         n.zeros = zeros;
         n.cdm = false;
         if c.ctl_active {
@@ -721,6 +736,7 @@ impl Master {
                     n.ctl_active = false;
                     o.o_reg_done = true;
                     o.o_reg_err = err;
+                    o.o_reg_crc_err = k == control::K_LAST && c.reg_bad;
                     o.o_reg_rdata = c.rdata;
                     o.o_reg_busy = false;
                 }
@@ -730,6 +746,13 @@ impl Master {
                     n.cdm = self.cdm_bit(&a, k);
                 }
             }
+        } else if c.reg_pending && !frame_ok {
+            // A sync frame failed: the line cannot carry the access.
+            n.reg_pending = false;
+            o.o_reg_done = true;
+            o.o_reg_err = true;
+            o.o_reg_rdata = c.rdata;
+            o.o_reg_busy = false;
         } else if c.reg_pending && zeros >= control::SYNC_ZEROS {
             n.reg_pending = false;
             n.ctl_active = true;

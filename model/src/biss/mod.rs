@@ -58,6 +58,9 @@
 //!   low) is refused: `o_done` with `o_err_line` in the next cycle.
 //! * **Register access** (BiSS-C control frame): one CDM bit per frame out,
 //!   one CDS bit per frame back; see [`control`] and `docs/timing/biss.md`.
+//!   It is one host operation: after `i_reg_start` the master runs the sync
+//!   and control frames itself, back to back (IDLE restarts in the cycle
+//!   after `o_done`), and ends with `o_reg_done`.
 //!
 //! ```text
 //!  one slave, 2 data bits, CRC shown as c5..c0, H = CLOCKS_PER_BIT / 2, no cable

@@ -287,3 +287,81 @@ proptest! {
         prop_assert_eq!(ts[1].slaves[0].position, !raw & mask);
     }
 }
+
+/// A master and one slave wired directly (no host model, no cable): what
+/// the host sees at the core's ports.
+struct Wired {
+    master: Master,
+    chain: Chain,
+    slo: bool,
+}
+
+impl Wired {
+    fn new(cfg: &BenchConfig) -> Self {
+        let master = Master::new(cfg.master_config().unwrap()).unwrap();
+        let chain = Chain::new(vec![Slave::new(cfg.slave_config(0).unwrap()).unwrap()], 1);
+        Wired { master, chain, slo: true }
+    }
+
+    fn step(&mut self, input: In) -> Out {
+        let out = self.master.step(&In { i_slo: self.slo, ..input });
+        self.slo = self.chain.step(out.o_ma);
+        out
+    }
+}
+
+#[test]
+fn a_register_read_is_one_host_operation_the_master_runs_every_frame_itself() {
+    let mut cfg = BenchConfig::seed_example();
+    cfg.slaves[0].registers = vec![0, 0, 0, 0xA7];
+    cfg.slaves[0].timeout_us = 2.0;
+    let mut w = Wired::new(&cfg);
+    for _ in 0..10 {
+        w.step(In::default());
+    }
+    let mut out = w.step(In { i_reg_start: true, i_reg_addr: 3, ..In::default() });
+    assert!(out.o_reg_busy);
+    let (mut done, mut valid, mut cycles) = (0, 0, 0);
+    while !out.o_reg_done {
+        out = w.step(In::default()); // never i_start
+        done += out.o_done as u32;
+        valid += out.o_slave_valid as u32;
+        cycles += 1;
+        assert!(cycles < 2_000_000, "the access never ended");
+    }
+    assert!(!out.o_reg_err && !out.o_reg_crc_err, "{out:?}");
+    assert_eq!(out.o_reg_rdata, 0xA7);
+    // 14 sync frames and 33 control frames, each with its position result.
+    assert_eq!((done, valid), (47, 47));
+    assert!(!w.step(In::default()).o_reg_busy);
+}
+
+#[test]
+fn a_crc4_error_in_the_answer_is_reported_as_such() {
+    let mut cfg = BenchConfig::seed_example();
+    cfg.slaves[0].cds_crc_error = true;
+    cfg.host.registers = vec![RegOp { write: false, id: 0, addr: 0, data: 0 }];
+    let r = frames(&cfg).iter().find_map(|t| t.register.clone()).unwrap();
+    assert!(!r.ok && !r.crc4_ok, "{r:?}");
+    let mut good = BenchConfig::seed_example();
+    good.host.registers = cfg.host.registers.clone();
+    let r = frames(&good).iter().find_map(|t| t.register.clone()).unwrap();
+    assert!(r.ok && r.crc4_ok, "{r:?}");
+}
+
+#[test]
+fn a_line_stuck_low_during_the_sync_frames_ends_the_access_with_an_error() {
+    let mut cfg = BenchConfig::seed_example();
+    cfg.host.registers = vec![RegOp { write: false, id: 0, addr: 0, data: 0 }];
+    cfg.stuck = Some(StuckFault { level: false, from_frame: 5 });
+    let ts = frames(&cfg);
+    let r = ts.iter().find_map(|t| t.register.clone()).expect("the access ends");
+    assert!(!r.ok);
+    // The master starts frame 5 before the stuck level is through its
+    // synchroniser, so that frame fails on the line (no start bit) instead
+    // of being refused.
+    assert_eq!(ts.len(), 6, "five good sync frames, one failed frame");
+    assert!(ts[..5].iter().all(|t| t.errors.is_empty()));
+    assert_eq!(ts[5].errors, vec!["no_start_bit", "slo_not_released"]);
+    assert!(ts[5].register.is_some(), "the access ends with the failed frame");
+}
