@@ -388,7 +388,7 @@ pub struct RegResult {
     pub id: u8,
     /// Address.
     pub addr: u8,
-    /// Data written (writes).
+    /// Data written (writes; 0 on a read).
     pub wdata: u8,
     /// Data read, or the slave's echo of a write.
     pub rdata: u8,
@@ -396,7 +396,8 @@ pub struct RegResult {
     pub ok: bool,
     /// `false` when the slave's answer came with a wrong CRC-4 (`o_reg_crc_err`).
     pub crc4_ok: bool,
-    /// The CDM bits the master sent, `k = 0..=31`.
+    /// The CDM bits the master sent, `k = 0` up to the frame that ended the
+    /// access (`k = 32` when it ran to the end).
     pub cdm: String,
 }
 
@@ -636,16 +637,17 @@ impl Bench {
                 if out.o_reg_done {
                     if let Some(op) = self.open_op.take() {
                         let acc = control::Access { write: op.write, id: op.id, addr: op.addr, wdata: op.data };
-                        let cdm = control::cdm_sequence(&acc);
+                        let sent = t.control_index.map_or(0, |k| k as usize + 1);
+                        let cdm = &control::cdm_sequence(&acc)[..sent];
                         t.register = Some(RegResult {
                             write: op.write,
                             id: op.id,
                             addr: op.addr,
-                            wdata: op.data,
+                            wdata: if op.write { op.data } else { 0 },
                             rdata: out.o_reg_rdata,
                             ok: !out.o_reg_err,
                             crc4_ok: !out.o_reg_crc_err,
-                            cdm: bit_string(&cdm),
+                            cdm: bit_string(cdm),
                         });
                     }
                 }

@@ -79,8 +79,9 @@ pub fn data_bits(data: u8) -> Vec<bool> {
     (0..8).rev().map(|i| (data >> i) & 1 == 1).collect()
 }
 
-/// The whole CDM sequence of one access, `k = 0..=K_P`, as a string of 0 and 1
-/// (for transcripts and tests; the master builds it bit-serially).
+/// The whole CDM sequence of one access, `k = 0..=K_LAST` (the frame that
+/// brings the slave's stop bit carries a 0), for transcripts and tests; the
+/// master builds it bit-serially.
 pub fn cdm_sequence(a: &Access) -> Vec<bool> {
     let crc = &crate::crc::BISS_CTRL_CRC4;
     let addr = address_bits(a.id, a.addr);
@@ -98,5 +99,118 @@ pub fn cdm_sequence(a: &Access) -> Vec<bool> {
         v.extend([false; 12]);
     }
     v.push(false);
+    v.push(false);
     v
+}
+
+/// What one frame showed of the control frame, as a line observer sees it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct FrameView {
+    /// The frame completed (ack, start bit, every section, SLO released).
+    pub ok: bool,
+    /// Its CDM bit (the inverted MA level after the last clock).
+    pub cdm: bool,
+    /// CDS bit of each slave in chain order (`false` past the chain's end).
+    pub cds: [bool; super::MAX_SLAVES],
+    /// CRC error of each slave.
+    pub crc_bad: [bool; super::MAX_SLAVES],
+}
+
+/// A register access as the line shows it: what [`Access`] the CDM bits
+/// asked for and how the addressed slave answered.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Observed {
+    /// The access read off the CDM bits (`wdata` 0 on a read).
+    pub access: Access,
+    /// The data the slave sent back (read value or write echo), as far as it came.
+    pub rdata: u8,
+    /// The access succeeded by the master's rules.
+    pub ok: bool,
+    /// `false` when the answer's CRC-4 was wrong.
+    pub crc4_ok: bool,
+    /// The control index of the frame that ended it.
+    pub last_k: u32,
+}
+
+/// Follows control frames off decoded frames, by the master's rules (the
+/// sequencer of `Master` and `biss_master`): 14 completed frames with CDM = 0
+/// arm it, a CDM = 1 then is `k = 0`, and the access ends at `k = 32` or at
+/// the first missing echo, failed frame or CRC error of the addressed slave.
+/// Used by `tbgen decode biss`, where only the line is known.
+#[derive(Debug, Clone, Default)]
+pub struct Observer {
+    zeros: u32,
+    k: Option<u32>,
+    acc: Access,
+    rdata: u8,
+    crc_rx: Vec<bool>,
+    crc_bad: bool,
+}
+
+impl Observer {
+    /// The control index of a frame about to be read (`Some(k)` inside a
+    /// control frame), given its CDM bit.
+    pub fn index(&self, cdm: bool) -> Option<u32> {
+        match self.k {
+            Some(k) => Some(k),
+            None => (cdm && self.zeros >= SYNC_ZEROS).then_some(0),
+        }
+    }
+
+    /// Takes one frame; returns the access it ended, if any.
+    pub fn take(&mut self, f: &FrameView) -> Option<Observed> {
+        let started = self.index(f.cdm);
+        self.zeros = match (f.ok, f.cdm) {
+            (true, true) => 0,
+            (true, false) => (self.zeros + 1).min(SYNC_ZEROS),
+            (false, _) => self.zeros,
+        };
+        let k = started?;
+        if k == 0 {
+            *self = Observer { zeros: self.zeros, k: Some(0), ..Observer::default() };
+        }
+        let a = &mut self.acc;
+        match k {
+            2..=4 => a.id = (a.id << 1) | f.cdm as u8,
+            5..=11 => a.addr = (a.addr << 1) | f.cdm as u8,
+            K_W => a.write = f.cdm,
+            19..=26 => a.wdata = (a.wdata << 1) | f.cdm as u8,
+            _ => {}
+        }
+        let slave = a.id as usize;
+        let cds = slave < super::MAX_SLAVES && f.cds[slave];
+        let crc_bad = slave < super::MAX_SLAVES && f.crc_bad[slave];
+        let write = a.write;
+        let mut end = None;
+        if !f.ok || crc_bad {
+            end = Some(false);
+        } else {
+            match k {
+                K_W if cds == write => end = Some(false),
+                K_S2 if cds != write => end = Some(false),
+                K_DATA if !cds => end = Some(false),
+                20..=27 => {
+                    self.rdata = (self.rdata << 1) | cds as u8;
+                    self.crc_rx.push(cds);
+                }
+                28..=31 => self.crc_rx.push(cds),
+                K_LAST => {
+                    let crc = &crate::crc::BISS_CTRL_CRC4;
+                    self.crc_bad = crc.crc_from_wire_bits(&self.crc_rx[8..]) != Some(crc.checksum_bits(&self.crc_rx[..8]));
+                    end = Some(!(self.crc_bad || cds || (write && self.rdata != a.wdata)));
+                }
+                _ => {}
+            }
+        }
+        match end {
+            Some(ok) => {
+                self.k = None;
+                Some(Observed { access: self.acc, rdata: self.rdata, ok, crc4_ok: !self.crc_bad, last_k: k })
+            }
+            None => {
+                self.k = Some(k + 1);
+                None
+            }
+        }
+    }
 }

@@ -191,7 +191,7 @@ fn cdm_is_the_inverted_ma_level_during_the_timeout() {
     let mut cfg = BenchConfig::seed_example();
     cfg.host.registers = vec![RegOp { write: false, id: 0, addr: 0x01, data: 0 }];
     let ts = frames(&cfg);
-    let sent: String = ts[14..14 + 32].iter().map(|t| if t.cdm { '1' } else { '0' }).collect();
+    let sent: String = ts[14..14 + 33].iter().map(|t| if t.cdm { '1' } else { '0' }).collect();
     let expected = control::cdm_sequence(&control::Access { write: false, id: 0, addr: 0x01, wdata: 0 });
     assert_eq!(sent, expected.iter().map(|&b| if b { '1' } else { '0' }).collect::<String>());
 }
@@ -364,4 +364,45 @@ fn a_line_stuck_low_during_the_sync_frames_ends_the_access_with_an_error() {
     assert!(ts[..5].iter().all(|t| t.errors.is_empty()));
     assert_eq!(ts[5].errors, vec!["no_start_bit", "slo_not_released"]);
     assert!(ts[5].register.is_some(), "the access ends with the failed frame");
+}
+
+/// A frame of the bench as a line observer would see it.
+fn view(t: &Transaction) -> control::FrameView {
+    let mut v = control::FrameView { ok: t.errors.iter().all(|e| e.starts_with("crc_error")), cdm: t.cdm, ..Default::default() };
+    for s in &t.slaves {
+        v.cds[s.slave as usize] = s.cds;
+        v.crc_bad[s.slave as usize] = !s.crc_ok;
+    }
+    v
+}
+
+#[test]
+fn the_line_observer_follows_control_frames_as_the_master_runs_them() {
+    let mut cases = Vec::new();
+    let mut read = BenchConfig::seed_example();
+    read.slaves[0].registers = vec![9, 8, 7, 6];
+    read.host.registers = vec![RegOp { write: false, id: 0, addr: 2, data: 0 }, RegOp { write: true, id: 0, addr: 1, data: 0x5C }, RegOp { write: false, id: 4, addr: 1, data: 0 }];
+    cases.push(read.clone());
+    let mut crc = read.clone();
+    crc.slaves[0].cds_crc_error = true;
+    cases.push(crc);
+    let mut flip = read.clone();
+    flip.slaves[0].cdm_flip_at = Some(6);
+    cases.push(flip);
+    let (mut accesses, mut failed) = (0, 0);
+    for cfg in &cases {
+        let mut obs = control::Observer::default();
+        for t in frames(cfg) {
+            assert_eq!(obs.index(t.cdm), t.control_index, "frame {}", t.index);
+            let seen = obs.take(&view(&t));
+            assert_eq!(seen.is_some(), t.register.is_some(), "frame {}", t.index);
+            if let (Some(o), Some(r)) = (seen, &t.register) {
+                assert_eq!((o.access.write, o.access.id, o.access.addr, o.access.wdata), (r.write, r.id, r.addr, r.wdata));
+                assert_eq!((o.rdata, o.ok, o.crc4_ok), (r.rdata, r.ok, r.crc4_ok), "frame {}", t.index);
+                accesses += 1;
+                failed += !r.ok as u32;
+            }
+        }
+    }
+    assert_eq!((accesses, failed), (9, 5), "three accesses per case; ID 4 fails in each, the CRC-4 and CDM faults one more each");
 }
