@@ -26,6 +26,8 @@
 //   MAX_DELAY        longest edge-2-to-ack delay compensated, cycles, 1..65535
 //   TIMEOUT_CLOCKS   longest wait for the start bit, for SLO low/high after the
 //                    last clock and for a late ack, cycles (>= 2 * CLOCKS_PER_BIT)
+//   CAL_FRAMES       start-up frames whose mean delay is used afterwards: 1, 2, 4, 8, 16
+//   DELAY_TOL        largest departure from the mean still sampled by it, cycles (< CLOCKS_PER_BIT / 2)
 //
 // Timing (one slave, H = CLOCKS_PER_BIT/2); docs/timing/biss.md has the full story
 //
@@ -41,9 +43,13 @@
 //   o_done                                                                             /‾\
 //
 // Line-delay compensation: the delay from the second rising MA edge to the ack
-// (SLO low at the synchroniser output) is measured in every frame; bits are
-// then sampled H + k * CLOCKS_PER_BIT cycles after the ack, so any cable up to
-// MAX_DELAY is read in the middle of its bit cells. MA keeps running until the
+// (SLO low at the synchroniser output) is measured in every frame (o_delay).
+// The first CAL_FRAMES frames are sampled H + k * CLOCKS_PER_BIT cycles after
+// their own ack and their delays averaged (o_delay_mean); later frames are
+// sampled as if their ack had come at the mean, which takes the jitter of the
+// ack edge out, unless their delay departs from the mean by more than
+// DELAY_TOL: then they are sampled by their own ack and flagged (o_err_drift).
+// Any cable up to MAX_DELAY is read in the middle of its bit cells. MA keeps running until the
 // last CRC bit is in, then stops at the first half-period boundary where it
 // equals !CDM (the BiSS-C control bit is the inverted MA level in the timeout).
 // Errors: o_err_line (SLO low at start, refused), o_err_ack (no ack: slave
@@ -62,7 +68,9 @@ module biss_master #(
     parameter SLAVE_CRC_POLY = 3,
     parameter CLOCKS_PER_BIT = 8,
     parameter MAX_DELAY = 160,
-    parameter TIMEOUT_CLOCKS = 3200
+    parameter TIMEOUT_CLOCKS = 3200,
+    parameter CAL_FRAMES = 4,
+    parameter DELAY_TOL = 1
 ) (
     input  wire                  i_clk,
     input  wire                  i_rst,
@@ -77,6 +85,8 @@ module biss_master #(
     output wire                  o_err_start,
     output wire                  o_err_timeout,
     output wire [15:0]           o_delay,
+    output wire [15:0]           o_delay_mean,
+    output wire                  o_err_drift,
 
     /* Host interface: per-slave results, one slave at a time */
     output wire                  o_slave_valid,
@@ -129,7 +139,8 @@ endfunction
 
 localparam integer DATA_W = max_bits(SLAVE_BITS, SLAVES);
 localparam integer HALF = CLOCKS_PER_BIT / 2;
-localparam integer SMP_W = clog2(HALF + CLOCKS_PER_BIT + 1);
+localparam integer SMP_W = clog2(2 * CLOCKS_PER_BIT);
+localparam integer CAL_SHIFT = clog2(CAL_FRAMES);
 localparam integer CNT_W = clog2(TIMEOUT_CLOCKS + 3);
 
 localparam [31:0] HALF_LAST_32 = HALF - 1;
@@ -142,6 +153,11 @@ localparam [SMP_W-1:0] FIRST_SAMPLE = FIRST_SAMPLE_32[SMP_W-1:0];
 localparam [SMP_W-1:0] PERIOD_LAST = PERIOD_LAST_32[SMP_W-1:0];
 localparam [CNT_W-1:0] TIMEOUT_CNT = TIMEOUT_32[CNT_W-1:0];
 localparam [15:0] MAX_DELAY_16 = MAX_DELAY_32[15:0];
+localparam [15:0] FIRST_SAMPLE_16 = FIRST_SAMPLE_32[15:0];
+localparam [31:0] CAL_FRAMES_32 = CAL_FRAMES;
+localparam [4:0] CAL_FRAMES_5 = CAL_FRAMES_32[4:0];
+localparam [31:0] DELAY_TOL_32 = DELAY_TOL;
+localparam [15:0] DELAY_TOL_16 = DELAY_TOL_32[15:0];
 localparam [31:0] LAST_SLAVE_32 = SLAVES - 1;
 localparam [1:0] LAST_SLAVE = LAST_SLAVE_32[1:0];
 localparam [31:0] BITS0_32 = field8(SLAVE_BITS, 0);
@@ -176,6 +192,8 @@ initial begin
     if (CLOCKS_PER_BIT < 8 || CLOCKS_PER_BIT % 2 != 0) $error("biss_master: CLOCKS_PER_BIT must be even and >= 8");
     if (MAX_DELAY < 1 || MAX_DELAY > 65535) $error("biss_master: MAX_DELAY must be 1..65535");
     if (TIMEOUT_CLOCKS < 2 * CLOCKS_PER_BIT) $error("biss_master: TIMEOUT_CLOCKS must be >= 2 * CLOCKS_PER_BIT");
+    if (CAL_FRAMES != 1 && CAL_FRAMES != 2 && CAL_FRAMES != 4 && CAL_FRAMES != 8 && CAL_FRAMES != 16) $error("biss_master: CAL_FRAMES must be 1, 2, 4, 8 or 16");
+    if (DELAY_TOL >= HALF) $error("biss_master: DELAY_TOL must be < CLOCKS_PER_BIT / 2");
 end
 
 // Per-slave constants of the slave being decoded (a mux over parameters).
@@ -213,6 +231,11 @@ reg              nwarn_reg = 1'b1, nwarn_next;
 reg              cds_reg = 1'b0, cds_next;
 reg              e_delay_reg = 1'b0, e_delay_next;
 reg              e_start_reg = 1'b0, e_start_next;
+// Start-up calibration: frames measured, their delay sum, the mean.
+reg              e_drift_reg = 1'b0, e_drift_next;
+reg [4:0]        cal_cnt_reg = 5'd0, cal_cnt_next;
+reg [19:0]       cal_sum_reg = 20'd0, cal_sum_next;
+reg [15:0]       delay_mean_reg = 16'd0, delay_mean_next;
 
 // Control frame: the CDS bit and CRC status of the addressed slave in this
 // frame, the CDM bit this frame carries, the count of CDM zeros sent.
@@ -240,6 +263,7 @@ reg              err_ack_reg = 1'b0, err_ack_next;
 reg              err_delay_reg = 1'b0, err_delay_next;
 reg              err_start_reg = 1'b0, err_start_next;
 reg              err_timeout_reg = 1'b0, err_timeout_next;
+reg              err_drift_reg = 1'b0, err_drift_next;
 reg [15:0]       delay_reg = 16'd0, delay_next;
 reg              slave_valid_reg = 1'b0, slave_valid_next;
 reg [1:0]        slave_index_reg = 2'd0, slave_index_next;
@@ -263,6 +287,8 @@ assign o_err_delay = err_delay_reg;
 assign o_err_start = err_start_reg;
 assign o_err_timeout = err_timeout_reg;
 assign o_delay = delay_reg;
+assign o_delay_mean = delay_mean_reg;
+assign o_err_drift = err_drift_reg;
 assign o_slave_valid = slave_valid_reg;
 assign o_slave_index = slave_index_reg;
 assign o_data = out_data_reg;
@@ -281,6 +307,15 @@ assign o_reg_crc_err = reg_crc_err_reg;
 /* verilator lint_off UNUSEDSIGNAL */
 wire [DATA_W:0] data_shifted = {data_reg, slo_sync_reg};
 /* verilator lint_on UNUSEDSIGNAL */
+
+// Calibration arithmetic: the running sum and its mean, the departure of
+// this frame's delay from the mean, and the first sample of an ack at the mean.
+/* verilator lint_off UNUSEDSIGNAL */
+wire [19:0] cal_sum_plus = cal_sum_reg + {4'd0, delay_cnt_reg};
+wire [19:0] cal_mean_wide = cal_sum_plus >> CAL_SHIFT;
+wire [15:0] smp_mean_wide = FIRST_SAMPLE_16 + delay_mean_reg - delay_cnt_reg;
+/* verilator lint_on UNUSEDSIGNAL */
+wire [15:0] delay_dev = (delay_cnt_reg >= delay_mean_reg) ? (delay_cnt_reg - delay_mean_reg) : (delay_mean_reg - delay_cnt_reg);
 
 wire sampling = (state_reg == START) || (state_reg == CDS) || (state_reg == DATA) ||
                 (state_reg == ERR) || (state_reg == WARN) || (state_reg == CRC);
@@ -349,6 +384,10 @@ always @* begin
     cds_next = cds_reg;
     e_delay_next = e_delay_reg;
     e_start_next = e_start_reg;
+    e_drift_next = e_drift_reg;
+    cal_cnt_next = cal_cnt_reg;
+    cal_sum_next = cal_sum_reg;
+    delay_mean_next = delay_mean_reg;
     frame_cds_next = frame_cds_reg;
     frame_crc_bad_next = frame_crc_bad_reg;
     cdm_next = cdm_reg;
@@ -380,6 +419,7 @@ always @* begin
     err_delay_next = 1'b0;
     err_start_next = 1'b0;
     err_timeout_next = 1'b0;
+    err_drift_next = 1'b0;
     slave_valid_next = 1'b0;
     reg_done_next = 1'b0;
     reg_err_next = 1'b0;
@@ -427,6 +467,7 @@ always @* begin
                     delay_cnt_next = 16'd0;
                     e_delay_next = 1'b0;
                     e_start_next = 1'b0;
+                    e_drift_next = 1'b0;
                     slave_next = 2'd0;
                     frame_cds_next = 1'b0;
                     frame_crc_bad_next = 1'b0;
@@ -442,9 +483,18 @@ always @* begin
             if (ma_edges_reg == 2'd2) begin
                 if (!slo_sync_reg) begin
                     state_next = START;
-                    smp_cnt_next = FIRST_SAMPLE;
                     cnt_next = 0;
                     delay_next = delay_cnt_reg;
+                    smp_cnt_next = FIRST_SAMPLE;
+                    if (cal_cnt_reg != CAL_FRAMES_5) begin
+                        cal_sum_next = cal_sum_plus;
+                        cal_cnt_next = cal_cnt_reg + 5'd1;
+                        if (cal_cnt_reg + 5'd1 == CAL_FRAMES_5) delay_mean_next = cal_mean_wide[15:0];
+                    end else if (delay_dev <= DELAY_TOL_16) begin
+                        smp_cnt_next = smp_mean_wide[SMP_W-1:0];
+                    end else begin
+                        e_drift_next = 1'b1;
+                    end
                 end else if (delay_cnt_reg == MAX_DELAY_16) begin
                     state_next = NOACK;
                     ma_stop_next = 1'b1;
@@ -572,6 +622,7 @@ always @* begin
         err_delay_next = e_delay_reg;
         err_start_next = e_start_reg;
         err_timeout_next = fin_timeout;
+        err_drift_next = e_drift_reg;
         frame_ok = !(fin_ack || fin_timeout || e_delay_reg || e_start_reg);
     end
 
@@ -703,6 +754,10 @@ always @(posedge i_clk) begin
     cds_reg <= cds_next;
     e_delay_reg <= e_delay_next;
     e_start_reg <= e_start_next;
+    e_drift_reg <= e_drift_next;
+    cal_cnt_reg <= cal_cnt_next;
+    cal_sum_reg <= cal_sum_next;
+    delay_mean_reg <= delay_mean_next;
     frame_cds_reg <= frame_cds_next;
     frame_crc_bad_reg <= frame_crc_bad_next;
     cdm_reg <= cdm_next;
@@ -725,6 +780,7 @@ always @(posedge i_clk) begin
     err_delay_reg <= err_delay_next;
     err_start_reg <= err_start_next;
     err_timeout_reg <= err_timeout_next;
+    err_drift_reg <= err_drift_next;
     delay_reg <= delay_next;
     slave_valid_reg <= slave_valid_next;
     slave_index_reg <= slave_index_next;
@@ -762,6 +818,10 @@ always @(posedge i_clk) begin
         cds_reg <= 1'b0;
         e_delay_reg <= 1'b0;
         e_start_reg <= 1'b0;
+        e_drift_reg <= 1'b0;
+        cal_cnt_reg <= 5'd0;
+        cal_sum_reg <= 20'd0;
+        delay_mean_reg <= 16'd0;
         frame_cds_reg <= 1'b0;
         frame_crc_bad_reg <= 1'b0;
         cdm_reg <= 1'b0;
@@ -784,6 +844,7 @@ always @(posedge i_clk) begin
         err_delay_reg <= 1'b0;
         err_start_reg <= 1'b0;
         err_timeout_reg <= 1'b0;
+        err_drift_reg <= 1'b0;
         delay_reg <= 16'd0;
         slave_valid_reg <= 1'b0;
         slave_index_reg <= 2'd0;

@@ -279,7 +279,7 @@ mod tests {
     #[test]
     fn every_field_the_decoder_prints_equals_the_gen_transcript_of_every_biss_scenario() {
         let names: Vec<String> = builtin::all().unwrap().into_iter().filter(|s| matches!(s.setup, S::Biss(_))).map(|s| s.name).collect();
-        assert_eq!(names.len(), 19);
+        assert_eq!(names.len(), 20);
         let (mut frames, mut registers, mut failed_registers, mut flagged, mut unseen) = (0, 0, 0, 0, 0);
         for name in &names {
             let (decoded, model, period_ps) = decode_generated(name);
@@ -288,6 +288,12 @@ mod tests {
             let refused = |t: &&serde_json::Value| t["errors"].as_array().unwrap().iter().any(|e| e == "line_low_at_start");
             unseen += model.iter().filter(refused).count();
             let model: Vec<&serde_json::Value> = model.iter().filter(|t| !refused(t)).collect();
+            // `delay_departs_from_mean` compares with the master's start-up
+            // mean and tolerance, which the line does not carry.
+            let mut model: Vec<serde_json::Value> = model.into_iter().cloned().collect();
+            for t in &mut model {
+                t["errors"].as_array_mut().unwrap().retain(|e| e != "delay_departs_from_mean");
+            }
             assert_eq!(decoded.len(), model.len(), "{name}");
             for (d, m) in decoded.iter().zip(&model) {
                 let d = serde_json::to_value(d).unwrap();

@@ -13,6 +13,8 @@ parameter SLAVE_CRC_POLY = 3;
 parameter CLOCKS_PER_BIT = 8;
 parameter MAX_DELAY = 160;
 parameter TIMEOUT_CLOCKS = 3200;
+parameter CAL_FRAMES = 4;
+parameter DELAY_TOL = 1;
 
 /* Harness parameters */
 parameter HALF_PERIOD_FS = 6_250_000;
@@ -35,7 +37,7 @@ endfunction
 
 localparam integer DATA_W = max_bits(SLAVE_BITS, SLAVES);
 localparam N_IN = 7;
-localparam N_OUT = 21;
+localparam N_OUT = 23;
 
 `include "vector_player.vh"
 
@@ -67,6 +69,8 @@ wire o_reg_done;
 wire o_reg_err;
 wire [7:0] o_reg_rdata;
 wire o_reg_crc_err;
+wire [15:0] o_delay_mean;
+wire o_err_drift;
 
 // Port order = the model's biss::Master::input_ports() / output_ports().
 task apply_inputs;
@@ -104,6 +108,8 @@ task check_outputs;
         `CHECK(18, "o_reg_err", o_reg_err)
         `CHECK(19, "o_reg_rdata", o_reg_rdata)
         `CHECK(20, "o_reg_crc_err", o_reg_crc_err)
+        `CHECK(21, "o_delay_mean", o_delay_mean)
+        `CHECK(22, "o_err_drift", o_err_drift)
     end
 endtask
 
@@ -114,7 +120,9 @@ biss_master #(
     .SLAVE_CRC_POLY(SLAVE_CRC_POLY),
     .CLOCKS_PER_BIT(CLOCKS_PER_BIT),
     .MAX_DELAY(MAX_DELAY),
-    .TIMEOUT_CLOCKS(TIMEOUT_CLOCKS)
+    .TIMEOUT_CLOCKS(TIMEOUT_CLOCKS),
+    .CAL_FRAMES(CAL_FRAMES),
+    .DELAY_TOL(DELAY_TOL)
 ) dut (
     .i_clk(clk),
     .i_rst(rst),
@@ -127,6 +135,8 @@ biss_master #(
     .o_err_start(o_err_start),
     .o_err_timeout(o_err_timeout),
     .o_delay(o_delay),
+    .o_delay_mean(o_delay_mean),
+    .o_err_drift(o_err_drift),
     .o_slave_valid(o_slave_valid),
     .o_slave_index(o_slave_index),
     .o_data(o_data),

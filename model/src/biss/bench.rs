@@ -44,11 +44,25 @@ pub struct MasterSettings {
     pub crc_width: Option<Vec<u32>>,
     /// CRC polynomial per slave (default: the slaves').
     pub crc_poly: Option<Vec<u64>>,
+    /// Start-up frames whose mean delay the master samples by: 1, 2, 4, 8 or 16.
+    pub cal_frames: u64,
+    /// Largest departure from the mean delay still sampled by the mean, ns
+    /// (default: a quarter of an MA period, rounded down to whole cycles).
+    pub delay_tolerance_ns: Option<f64>,
 }
 
 impl Default for MasterSettings {
     fn default() -> Self {
-        MasterSettings { clock_khz: 10_000.0, max_delay_ns: 2_000.0, timeout_us: 40.0, bits: None, crc_width: None, crc_poly: None }
+        MasterSettings {
+            clock_khz: 10_000.0,
+            max_delay_ns: 2_000.0,
+            timeout_us: 40.0,
+            bits: None,
+            crc_width: None,
+            crc_poly: None,
+            cal_frames: 4,
+            delay_tolerance_ns: None,
+        }
     }
 }
 
@@ -173,6 +187,17 @@ pub struct FlipFault {
     pub bits: Vec<u32>,
 }
 
+/// Extra SLO delay from a given frame on: the line changed after the
+/// master calibrated (`[delay_step]`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DelayStep {
+    /// The first frame (0-based) that sees it.
+    pub from_frame: usize,
+    /// Extra delay on SLO at the master, ns.
+    pub extra_ns: f64,
+}
+
 /// Everything a scenario says about a BiSS-C set-up.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -191,6 +216,8 @@ pub struct BenchConfig {
     pub flips: Vec<FlipFault>,
     /// A stuck SLO line.
     pub stuck: Option<StuckFault>,
+    /// A change of the line delay after start-up.
+    pub delay_step: Option<DelayStep>,
 }
 
 impl Default for BenchConfig {
@@ -203,6 +230,7 @@ impl Default for BenchConfig {
             host: HostSettings::default(),
             flips: Vec::new(),
             stuck: None,
+            delay_step: None,
         }
     }
 }
@@ -238,15 +266,25 @@ impl BenchConfig {
         }
         check_time("master.max_delay_ns", m.max_delay_ns)?;
         check_time("master.timeout_us", m.timeout_us)?;
+        let clocks_per_bit = tb.even_divider(m.clock_khz * 1e3, "master.clock_khz")?;
+        let delay_tol = match m.delay_tolerance_ns {
+            Some(ns) => {
+                check_time("master.delay_tolerance_ns", ns)?;
+                tb.cycles_nearest_ns(ns)
+            }
+            None => clocks_per_bit / 4,
+        };
         let n = self.slaves.len();
         let cfg = MasterConfig {
             slaves: n as u32,
             slave_bits: m.bits.clone().unwrap_or_else(|| self.slaves.iter().map(|s| s.bits).collect()),
             slave_crc_width: m.crc_width.clone().unwrap_or_else(|| self.slaves.iter().map(|s| s.crc_width).collect()),
             slave_crc_poly: m.crc_poly.clone().unwrap_or_else(|| self.slaves.iter().map(|s| s.crc_poly).collect()),
-            clocks_per_bit: tb.even_divider(m.clock_khz * 1e3, "master.clock_khz")?,
+            clocks_per_bit,
             max_delay: tb.cycles_at_least_ns(m.max_delay_ns),
             timeout_clocks: tb.cycles_at_least_ns(m.timeout_us * 1e3),
+            cal_frames: m.cal_frames,
+            delay_tol,
         };
         cfg.validate()?;
         Ok(cfg)
@@ -300,6 +338,9 @@ impl BenchConfig {
                     format!("give positions from 0 to {limit}"),
                 ));
             }
+        }
+        if let Some(d) = &self.delay_step {
+            check_time("delay_step.extra_ns", d.extra_ns)?;
         }
         check_time("host.first_start_us", self.host.first_start_us)?;
         check_time("host.gap_us", self.host.gap_us)?;
@@ -413,6 +454,8 @@ pub struct Transaction {
     pub done_cycle: u64,
     /// Edge 2 to ack at the synchroniser, cycles, when there was an ack.
     pub delay_cycles: Option<u64>,
+    /// The start-up mean the master samples by, once calibrated.
+    pub delay_mean_cycles: Option<u64>,
     /// The CDM bit this frame carried.
     pub cdm: bool,
     /// Control-frame index of that bit, when a control frame was running.
@@ -422,7 +465,8 @@ pub struct Transaction {
     /// Each slave's result, in chain order.
     pub slaves: Vec<SlaveResult>,
     /// Frame errors: `line_low_at_start`, `no_ack`, `delay_beyond_compensation`,
-    /// `no_start_bit`, `slo_not_released`; per slave `crc_error_slave<i>`.
+    /// `no_start_bit`, `slo_not_released`, `delay_departs_from_mean`; per
+    /// slave `crc_error_slave<i>`.
     pub errors: Vec<String>,
     /// A register access that ended with this frame.
     pub register: Option<RegResult>,
@@ -458,6 +502,8 @@ pub struct Bench {
     next_frame: usize,
     next_op: usize,
     stuck: Option<bool>,
+    extra_slo: Option<DelayLine>,
+    delay_step: Option<(usize, u64)>,
     cycle: u64,
     last_out: Out,
     open: Option<Transaction>,
@@ -507,6 +553,8 @@ impl Bench {
             next_frame: 0,
             next_op: 0,
             stuck: None,
+            extra_slo: None,
+            delay_step: cfg.delay_step.as_ref().map(|d| (d.from_frame, tb.cycles_nearest_ns(d.extra_ns))),
             cycle: 0,
             last_out: Out { o_ma: true, ..Out::default() },
             open: None,
@@ -533,6 +581,11 @@ impl Bench {
         if let Some(f) = &self.cfg.stuck {
             if k >= f.from_frame {
                 self.stuck = Some(f.level);
+            }
+        }
+        if let (Some((from, cycles)), None) = (self.delay_step, &self.extra_slo) {
+            if k >= from {
+                self.extra_slo = Some(DelayLine::new(cycles, true));
             }
         }
     }
@@ -584,6 +637,7 @@ impl Bench {
             start_cycle: self.cycle,
             done_cycle: 0,
             delay_cycles: None,
+            delay_mean_cycles: None,
             cdm: self.master.cdm(),
             control_index: self.master.control_index(),
             received_bits: String::new(),
@@ -628,12 +682,14 @@ impl Bench {
                     (out.o_err_delay, "delay_beyond_compensation"),
                     (out.o_err_start, "no_start_bit"),
                     (out.o_err_timeout, "slo_not_released"),
+                    (out.o_err_drift, "delay_departs_from_mean"),
                 ] {
                     if flag {
                         t.errors.push(name.to_string());
                     }
                 }
                 t.received_bits = bit_string(self.master.sampled_bits());
+                t.delay_mean_cycles = self.master.calibrated().then_some(out.o_delay_mean);
                 if out.o_reg_done {
                     if let Some(op) = self.open_op.take() {
                         let acc = control::Access { write: op.write, id: op.id, addr: op.addr, wdata: op.data };
@@ -693,7 +749,11 @@ impl Testbench for Bench {
         self.frame_begins(&out);
         let ma_at_slave = self.ma_line.step(out.o_ma);
         let slo_from_slave = self.chain.step(ma_at_slave);
-        self.slo_at_master = self.slo_line.step(slo_from_slave);
+        let slo_back = self.slo_line.step(slo_from_slave);
+        self.slo_at_master = match self.extra_slo.as_mut() {
+            Some(extra) => extra.step(slo_back),
+            None => slo_back,
+        };
         self.host_observes(&out);
         self.last_out = out;
         self.cycle += 1;

@@ -35,6 +35,13 @@ pub struct MasterConfig {
     /// Longest wait for the start bit after the ack, for SLO to go low and
     /// high after the last clock, and for a late ack (`TIMEOUT_CLOCKS`).
     pub timeout_clocks: u64,
+    /// Frames with an ack measured at start-up whose mean delay the master
+    /// samples by afterwards: 1, 2, 4, 8 or 16 (`CAL_FRAMES`).
+    pub cal_frames: u64,
+    /// Largest departure of a frame's delay from the mean that is still
+    /// sampled by the mean, cycles, below `CLOCKS_PER_BIT / 2`; a larger one
+    /// is sampled by its own ack and flagged (`DELAY_TOL`).
+    pub delay_tol: u64,
 }
 
 /// Packs per-slave values 8 bits each, slave 0 lowest (the RTL's parameter form).
@@ -93,6 +100,16 @@ impl MasterConfig {
                 "give a compensation range of 1 to 65535 system clocks",
             ));
         }
+        if !matches!(self.cal_frames, 1 | 2 | 4 | 8 | 16) {
+            return Err(ConfigError::invalid("master.cal_frames", format!("{}", self.cal_frames), "give 1, 2, 4, 8 or 16 start-up frames (a power of two: the mean is a shift)"));
+        }
+        if self.delay_tol >= self.clocks_per_bit / 2 {
+            return Err(ConfigError::invalid(
+                "master.delay_tolerance_ns",
+                format!("{} cycles for half an MA period of {}", self.delay_tol, self.clocks_per_bit / 2),
+                "give a tolerance below half an MA period (the sample must stay inside its cell)",
+            ));
+        }
         if self.timeout_clocks < 2 * self.clocks_per_bit || self.timeout_clocks >= 1 << 24 {
             return Err(ConfigError::invalid(
                 "master.timeout_us",
@@ -125,6 +142,8 @@ impl MasterConfig {
             ("CLOCKS_PER_BIT", self.clocks_per_bit),
             ("MAX_DELAY", self.max_delay),
             ("TIMEOUT_CLOCKS", self.timeout_clocks),
+            ("CAL_FRAMES", self.cal_frames),
+            ("DELAY_TOL", self.delay_tol),
         ]
     }
 }
@@ -199,6 +218,11 @@ pub struct Out {
     pub o_err_timeout: bool,
     /// The last measured delay, edge 2 to the ack at the synchroniser, cycles.
     pub o_delay: u64,
+    /// The mean delay of the start-up frames, once `CAL_FRAMES` were measured (0 before).
+    pub o_delay_mean: u64,
+    /// With `o_done`: this frame's delay departed from the mean by more than
+    /// `DELAY_TOL`; it was sampled by its own ack.
+    pub o_err_drift: bool,
     /// One-cycle pulse: one slave's result is on the outputs below.
     pub o_slave_valid: bool,
     /// Which slave (chain position).
@@ -261,6 +285,8 @@ impl Ports for Out {
             self.o_reg_err as u64,
             self.o_reg_rdata as u64,
             self.o_reg_crc_err as u64,
+            self.o_delay_mean,
+            self.o_err_drift as u64,
         ];
         dst[..v.len()].copy_from_slice(&v);
     }
@@ -290,6 +316,10 @@ struct Regs {
     cds: bool,
     e_delay: bool,
     e_start: bool,
+    e_drift: bool,
+    cal_cnt: u64,
+    cal_sum: u64,
+    delay_mean: u64,
     frame_cds: bool,
     frame_crc_bad: bool,
     cdm: bool,
@@ -343,6 +373,10 @@ impl Master {
                 cds: false,
                 e_delay: false,
                 e_start: false,
+                e_drift: false,
+                cal_cnt: 0,
+                cal_sum: 0,
+                delay_mean: 0,
                 frame_cds: false,
                 frame_crc_bad: false,
                 cdm: false,
@@ -431,6 +465,8 @@ impl Master {
             Port::new("o_reg_err", 1),
             Port::new("o_reg_rdata", 8),
             Port::new("o_reg_crc_err", 1),
+            Port::new("o_delay_mean", DELAY_BITS),
+            Port::new("o_err_drift", 1),
         ]
     }
 
@@ -453,6 +489,7 @@ impl Master {
             o_reg_done: false,
             o_reg_err: false,
             o_reg_crc_err: false,
+            o_err_drift: false,
             ..self.out
         };
 
@@ -503,6 +540,7 @@ impl Master {
                         n.delay_cnt = 0;
                         n.e_delay = false;
                         n.e_start = false;
+                        n.e_drift = false;
                         n.slave = 0;
                         n.frame_cds = false;
                         n.frame_crc_bad = false;
@@ -519,9 +557,9 @@ impl Master {
                 if c.ma_edges == 2 {
                     if !c.slo_sync {
                         n.state = State::Start;
-                        n.smp_cnt = half + period - 1;
                         n.cnt = 0;
                         o.o_delay = c.delay_cnt;
+                        self.calibrate(&c, &mut n);
                     } else if c.delay_cnt == cfg.max_delay {
                         n.state = State::NoAck;
                         n.ma_stop = true;
@@ -657,6 +695,7 @@ impl Master {
             o.o_err_delay = c.e_delay;
             o.o_err_start = c.e_start;
             o.o_err_timeout = err_timeout;
+            o.o_err_drift = c.e_drift;
             let frame_ok = !(err_ack || err_timeout || c.e_delay || c.e_start);
             self.control(&c, &mut n, &mut o, frame_ok);
         }
@@ -671,9 +710,37 @@ impl Master {
         n.slo_sync = c.slo_meta;
         n.slo_meta = input.i_slo;
         o.o_ma = n.ma;
+        o.o_delay_mean = n.delay_mean;
         self.r = n;
         self.out = o;
         o
+    }
+
+    /// The first sample of a frame, from its ack: during start-up the
+    /// `CAL_FRAMES` delays are summed and each frame is sampled by its own
+    /// ack; then by the mean (`first + mean - delay`, the cell middles of an
+    /// ack at the mean), unless this ack departs from it by more than
+    /// `DELAY_TOL`: that frame is sampled by its own ack and flagged.
+    fn calibrate(&self, c: &Regs, n: &mut Regs) {
+        let first = self.cfg.clocks_per_bit / 2 + self.cfg.clocks_per_bit - 1;
+        let d = c.delay_cnt;
+        n.smp_cnt = first;
+        if c.cal_cnt < self.cfg.cal_frames {
+            n.cal_sum = c.cal_sum + d;
+            n.cal_cnt = c.cal_cnt + 1;
+            if n.cal_cnt == self.cfg.cal_frames {
+                n.delay_mean = n.cal_sum >> self.cfg.cal_frames.trailing_zeros();
+            }
+        } else if d.abs_diff(c.delay_mean) <= self.cfg.delay_tol {
+            n.smp_cnt = first + c.delay_mean - d;
+        } else {
+            n.e_drift = true;
+        }
+    }
+
+    /// Whether the start-up delay mean is in use.
+    pub fn calibrated(&self) -> bool {
+        self.r.cal_cnt == self.cfg.cal_frames
     }
 
     /// The control-frame sequencer, run once at the end of every frame (and

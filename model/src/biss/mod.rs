@@ -40,6 +40,10 @@
 //!   the middle of every bit cell as it arrives, whatever the cable. The
 //!   clock keeps running until the last CRC bit has been sampled, so a long
 //!   cable costs extra MA periods (which the slave answers with `0`).
+//! * **Start-up calibration**: the first `CAL_FRAMES` frames are sampled by
+//!   their own ack and their delays averaged (`o_delay_mean`); later frames
+//!   are sampled as if their ack had come at the mean, unless it departs by
+//!   more than `DELAY_TOL` (sampled by its own ack, `o_err_drift`).
 //! * An ack later than `MAX_DELAY` cycles is not compensated: the master stops
 //!   the clock (MA high) and watches SLO for `TIMEOUT_CLOCKS`: a late ack
 //!   flags `o_err_delay`, none at all `o_err_ack` (slave absent, SLO stuck high
@@ -83,7 +87,7 @@ pub mod control;
 mod master;
 mod slave;
 
-pub use bench::{Bench, BenchConfig, FlipFault, HostSettings, MasterSettings, RegOp, RegResult, SlaveResult, SlaveSettings, StuckFault, Transaction};
+pub use bench::{Bench, BenchConfig, DelayStep, FlipFault, HostSettings, MasterSettings, RegOp, RegResult, SlaveResult, SlaveSettings, StuckFault, Transaction};
 pub use master::{In, Master, MasterConfig, Out, State, MAX_SLAVES, SYNC_STAGES};
 pub use slave::{Chain, Slave, SlaveConfig};
 

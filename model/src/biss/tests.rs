@@ -358,11 +358,12 @@ fn a_line_stuck_low_during_the_sync_frames_ends_the_access_with_an_error() {
     let r = ts.iter().find_map(|t| t.register.clone()).expect("the access ends");
     assert!(!r.ok);
     // The master starts frame 5 before the stuck level is through its
-    // synchroniser, so that frame fails on the line (no start bit) instead
-    // of being refused.
+    // synchroniser, so that frame fails on the line (no start bit; the "ack"
+    // of a low line comes far earlier than the start-up mean) instead of
+    // being refused.
     assert_eq!(ts.len(), 6, "five good sync frames, one failed frame");
     assert!(ts[..5].iter().all(|t| t.errors.is_empty()));
-    assert_eq!(ts[5].errors, vec!["no_start_bit", "slo_not_released"]);
+    assert_eq!(ts[5].errors, vec!["no_start_bit", "slo_not_released", "delay_departs_from_mean"]);
     assert!(ts[5].register.is_some(), "the access ends with the failed frame");
 }
 
@@ -405,4 +406,41 @@ fn the_line_observer_follows_control_frames_as_the_master_runs_them() {
         }
     }
     assert_eq!((accesses, failed), (9, 5), "three accesses per case; ID 4 fails in each, the CRC-4 and CDM faults one more each");
+}
+
+#[test]
+fn the_start_up_mean_is_used_and_a_later_delay_step_is_flagged_but_read() {
+    // The set-up of scenarios/biss/calibration_drift.toml.
+    let mut cfg = BenchConfig::seed_example();
+    cfg.master.clock_khz = 2500.0;
+    cfg.slaves[0].step = 4099;
+    cfg.slaves[0].timeout_us = 4.0;
+    cfg.host = HostSettings { frames: 12, gap_us: 0.5, ..HostSettings::default() };
+    cfg.cable = CableConfig { length_m: 100.0, jitter_ns: 12.0, seed: 7, ..CableConfig::default() };
+    cfg.delay_step = Some(DelayStep { from_frame: 8, extra_ns: 150.0 });
+    let ts = frames(&cfg);
+    assert_eq!(ts.len(), 12);
+    let first4: u64 = ts[..4].iter().map(|t| t.delay_cycles.unwrap()).sum();
+    assert!(ts[..3].iter().all(|t| t.delay_mean_cycles.is_none()));
+    for t in &ts[3..] {
+        assert_eq!(t.delay_mean_cycles, Some(first4 / 4), "frame {}", t.index);
+    }
+    // The jitter moves single acks, never beyond a quarter MA period.
+    let spread: Vec<u64> = ts[..8].iter().map(|t| t.delay_cycles.unwrap()).collect();
+    assert!(spread.iter().max() != spread.iter().min(), "the cable jitters: {spread:?}");
+    for t in &ts {
+        assert!(t.slaves[0].crc_ok && t.slaves[0].position == t.slaves[0].sent_position, "frame {}: {t:?}", t.index);
+        let flagged = t.errors == vec!["delay_departs_from_mean"];
+        assert_eq!(flagged, t.index >= 8, "frame {}: {:?}", t.index, t.errors);
+    }
+}
+
+#[test]
+fn calibration_settings_out_of_range_are_refused_naming_the_field() {
+    let mut cfg = BenchConfig::seed_example();
+    cfg.master.cal_frames = 3;
+    assert!(cfg.master_config().unwrap_err().to_string().contains("master.cal_frames"));
+    let mut cfg = BenchConfig::seed_example();
+    cfg.master.delay_tolerance_ns = Some(50.0); // half of 100 ns
+    assert!(cfg.master_config().unwrap_err().to_string().contains("master.delay_tolerance_ns"));
 }
