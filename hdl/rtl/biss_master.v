@@ -15,6 +15,10 @@
 //   back (14 frames of CDM = 0, then the 33 frames of the control frame),
 //   each with its o_slave_valid results and o_done; o_reg_done pulses with
 //   o_done of the last one, with o_reg_rdata, o_reg_crc_err and o_reg_err.
+//   A BiSS-C command (CTS = 0) is the same kind of operation: pulse
+//   i_cmd_start with i_cmd_ids (slave-select bits, 0 = broadcast) and
+//   i_cmd_code; 14 sync frames and 19 control frames; o_reg_done/o_reg_err
+//   report it (i_reg_start wins a tie).
 //
 // Parameters (the Rust MasterConfig field of the same name in lower case;
 // per-slave values packed 8 bits each, slave 0 in bits 7..0)
@@ -108,6 +112,11 @@ module biss_master #(
     output wire                  o_reg_err,
     output wire [7:0]            o_reg_rdata,
     output wire                  o_reg_crc_err,
+
+    /* Host interface: BiSS-C commands over the control frame */
+    input  wire                  i_cmd_start,
+    input  wire [7:0]            i_cmd_ids,
+    input  wire [1:0]            i_cmd_code,
 
     /* BiSS line */
     output wire                  o_ma,
@@ -237,10 +246,15 @@ reg [4:0]        cal_cnt_reg = 5'd0, cal_cnt_next;
 reg [19:0]       cal_sum_reg = 20'd0, cal_sum_next;
 reg [15:0]       delay_mean_reg = 16'd0, delay_mean_next;
 
-// Control frame: the CDS bit and CRC status of the addressed slave in this
+// Control frame: the CDS bits (AND) and CRC status (OR) of the selected
+// slaves in this frame, whether any was selected,
 // frame, the CDM bit this frame carries, the count of CDM zeros sent.
 reg              frame_cds_reg = 1'b0, frame_cds_next;
 reg              frame_crc_bad_reg = 1'b0, frame_crc_bad_next;
+reg              frame_sel_reg = 1'b0, frame_sel_next;
+reg              acc_cmd_reg = 1'b0, acc_cmd_next;
+reg [7:0]        acc_ids_reg = 8'd0, acc_ids_next;
+reg [1:0]        acc_code_reg = 2'd0, acc_code_next;
 reg              cdm_reg = 1'b0, cdm_next;
 reg [3:0]        zeros_reg = 4'd0, zeros_next;
 reg              reg_pending_reg = 1'b0, reg_pending_next;
@@ -308,14 +322,22 @@ assign o_reg_crc_err = reg_crc_err_reg;
 wire [DATA_W:0] data_shifted = {data_reg, slo_sync_reg};
 /* verilator lint_on UNUSEDSIGNAL */
 
-// Calibration arithmetic: the running sum and its mean, the departure of
-// this frame's delay from the mean, and the first sample of an ack at the mean.
+// Calibration arithmetic: the running sum and its mean; after calibration
+// the departure of this frame's delay (delay_reg, latched at the ack) from the
+// mean, and the sample counter of an ack at the mean. For timing these take
+// the two cycles after the ack (check, then apply), where the model does it
+// all at the ack: the first sample is more than two cycles away, so the
+// sample times and every output are the same.
 /* verilator lint_off UNUSEDSIGNAL */
 wire [19:0] cal_sum_plus = cal_sum_reg + {4'd0, delay_cnt_reg};
 wire [19:0] cal_mean_wide = cal_sum_plus >> CAL_SHIFT;
-wire [15:0] smp_mean_wide = FIRST_SAMPLE_16 + delay_mean_reg - delay_cnt_reg;
+wire [15:0] smp_mean_wide = FIRST_SAMPLE_16 - 16'd2 + delay_mean_reg - delay_reg;
 /* verilator lint_on UNUSEDSIGNAL */
-wire [15:0] delay_dev = (delay_cnt_reg >= delay_mean_reg) ? (delay_cnt_reg - delay_mean_reg) : (delay_mean_reg - delay_cnt_reg);
+wire [15:0] delay_dev = (delay_reg >= delay_mean_reg) ? (delay_reg - delay_mean_reg) : (delay_mean_reg - delay_reg);
+reg              cal_chk_reg = 1'b0, cal_chk_next;
+reg              cal_apply_reg = 1'b0;
+reg              cal_ok_reg = 1'b0, cal_ok_next;
+reg [SMP_W-1:0]  cal_smp_reg = 0, cal_smp_next;
 
 wire sampling = (state_reg == START) || (state_reg == CDS) || (state_reg == DATA) ||
                 (state_reg == ERR) || (state_reg == WARN) || (state_reg == CRC);
@@ -344,7 +366,17 @@ wire [7:0] wdata_shifted = acc_wdata_reg >> (5'd26 - k_next[4:0]);
 wire id_bit = id_shifted[0];
 wire addr_bit = addr_shifted[0];
 wire wdata_bit = wdata_shifted[0];
-wire addressed = ctl_active_reg && (acc_id_reg == {1'b0, slave_reg});
+// A register access addresses one ID (= chain position); a command selects
+// by IDS bits, every slave on a broadcast.
+wire ids_bit_of_slave = acc_ids_reg[{1'b0, slave_reg}];
+wire addressed = ctl_active_reg && (acc_cmd_reg ? ((acc_ids_reg == 8'd0) || ids_bit_of_slave) : (acc_id_reg == {1'b0, slave_reg}));
+wire ctl_cds = frame_sel_reg && frame_cds_reg;
+// Command bits of index k_next: CTS = 0 at k = 1, IDS MSB first at 2, CMD at 10.
+/* verilator lint_off UNUSEDSIGNAL */
+wire [7:0] ids_shifted = acc_ids_reg >> (4'd9 - k_next[3:0]);
+wire [1:0] code_shifted = acc_code_reg >> (4'd11 - k_next[3:0]);
+/* verilator lint_on UNUSEDSIGNAL */
+wire cmd_bit = (k_next == 6'd1) ? 1'b0 : (k_next <= 6'd9) ? ids_shifted[0] : code_shifted[0];
 
 // The control CRC-4 x^4 + x + 1 advanced by one bit, with the shared LFSR
 // step every core uses: one instance per bit the frame may push now.
@@ -353,7 +385,9 @@ crc_serial #(.WIDTH(4), .POLY(4'h3)) crc4_one   (.i_crc(crc4_tx_reg), .i_bit(1'b
 crc_serial #(.WIDTH(4), .POLY(4'h3)) crc4_id    (.i_crc(crc4_tx_reg), .i_bit(id_bit),        .o_crc(crc4_tx_id));
 crc_serial #(.WIDTH(4), .POLY(4'h3)) crc4_addr  (.i_crc(crc4_tx_reg), .i_bit(addr_bit),      .o_crc(crc4_tx_addr));
 crc_serial #(.WIDTH(4), .POLY(4'h3)) crc4_wdata (.i_crc(crc4_tx_reg), .i_bit(wdata_bit),     .o_crc(crc4_tx_wdata));
-crc_serial #(.WIDTH(4), .POLY(4'h3)) crc4_cds   (.i_crc(crc4_rx_reg), .i_bit(frame_cds_reg), .o_crc(crc4_rx_cds));
+crc_serial #(.WIDTH(4), .POLY(4'h3)) crc4_cds   (.i_crc(crc4_rx_reg), .i_bit(ctl_cds),       .o_crc(crc4_rx_cds));
+wire [3:0] crc4_tx_cmd;
+crc_serial #(.WIDTH(4), .POLY(4'h3)) crc4_cmd   (.i_crc(crc4_tx_reg), .i_bit(cmd_bit),       .o_crc(crc4_tx_cmd));
 
 reg       finish;
 reg       refused;
@@ -390,6 +424,10 @@ always @* begin
     delay_mean_next = delay_mean_reg;
     frame_cds_next = frame_cds_reg;
     frame_crc_bad_next = frame_crc_bad_reg;
+    frame_sel_next = frame_sel_reg;
+    acc_cmd_next = acc_cmd_reg;
+    acc_ids_next = acc_ids_reg;
+    acc_code_next = acc_code_reg;
     cdm_next = cdm_reg;
     zeros_next = zeros_reg;
     reg_pending_next = reg_pending_reg;
@@ -453,6 +491,20 @@ always @* begin
     // Bit sampling: once per MA period, in the middle of each arriving cell.
     if (sampling) smp_cnt_next = (smp_cnt_reg == 0) ? PERIOD_LAST : smp_cnt_reg - 1'b1;
 
+    // Calibrated frames, two cycles after the ack: sample by the mean when
+    // the delay is within DELAY_TOL of it, else by the own ack and flag it.
+    cal_chk_next = 1'b0;
+    cal_ok_next = cal_ok_reg;
+    cal_smp_next = cal_smp_reg;
+    if (cal_chk_reg) begin
+        cal_ok_next = (delay_dev <= DELAY_TOL_16);
+        cal_smp_next = smp_mean_wide[SMP_W-1:0];
+    end
+    if (cal_apply_reg) begin
+        if (cal_ok_reg) smp_cnt_next = cal_smp_reg;
+        else e_drift_next = 1'b1;
+    end
+
     case (state_reg)
         IDLE: begin
             // A register access starts its own frames, back to back.
@@ -469,7 +521,8 @@ always @* begin
                     e_start_next = 1'b0;
                     e_drift_next = 1'b0;
                     slave_next = 2'd0;
-                    frame_cds_next = 1'b0;
+                    frame_cds_next = 1'b1;
+                    frame_sel_next = 1'b0;
                     frame_crc_bad_next = 1'b0;
                     busy_next = 1'b1;
                 end else begin
@@ -490,10 +543,8 @@ always @* begin
                         cal_sum_next = cal_sum_plus;
                         cal_cnt_next = cal_cnt_reg + 5'd1;
                         if (cal_cnt_reg + 5'd1 == CAL_FRAMES_5) delay_mean_next = cal_mean_wide[15:0];
-                    end else if (delay_dev <= DELAY_TOL_16) begin
-                        smp_cnt_next = smp_mean_wide[SMP_W-1:0];
                     end else begin
-                        e_drift_next = 1'b1;
+                        cal_chk_next = 1'b1;
                     end
                 end else if (delay_cnt_reg == MAX_DELAY_16) begin
                     state_next = NOACK;
@@ -520,7 +571,10 @@ always @* begin
         CDS: begin
             if (sample) begin
                 cds_next = b;
-                if (addressed) frame_cds_next = b;
+                if (addressed) begin
+                    frame_cds_next = frame_cds_reg && b;
+                    frame_sel_next = 1'b1;
+                end
                 state_next = DATA;
                 bit_cnt_next = cur_bits - 7'd1;
                 data_next = 0;
@@ -564,7 +618,7 @@ always @* begin
                     error_next = !nerr_reg;
                     warning_next = !nwarn_reg;
                     out_cds_next = cds_reg;
-                    if (addressed) frame_crc_bad_next = crc_bad_reg || (b == crc_msb);
+                    if (addressed) frame_crc_bad_next = frame_crc_bad_reg || crc_bad_reg || (b == crc_msb);
                     if (slave_reg != LAST_SLAVE) begin
                         slave_next = slave_reg + 2'd1;
                         state_next = CDS;
@@ -636,25 +690,29 @@ always @* begin
             if (!frame_ok || frame_crc_bad_reg) begin
                 ctl_end = 1'b1;
                 ctl_err = 1'b1;
+            end else if (acc_cmd_reg) begin
+                // IDA from every selected slave, then the echo of EX.
+                if (ctl_k_reg == 6'd16 && !ctl_cds) begin ctl_end = 1'b1; ctl_err = 1'b1; end
+                if (ctl_k_reg == 6'd18) begin ctl_end = 1'b1; ctl_err = !ctl_cds; end
             end else begin
                 case (ctl_k_reg)
-                    6'd17: if (frame_cds_reg != !acc_write_reg) begin ctl_end = 1'b1; ctl_err = 1'b1; end
-                    6'd18: if (frame_cds_reg != acc_write_reg) begin ctl_end = 1'b1; ctl_err = 1'b1; end
+                    6'd17: if (ctl_cds != !acc_write_reg) begin ctl_end = 1'b1; ctl_err = 1'b1; end
+                    6'd18: if (ctl_cds != acc_write_reg) begin ctl_end = 1'b1; ctl_err = 1'b1; end
                     6'd19: begin
-                        if (!frame_cds_reg) begin ctl_end = 1'b1; ctl_err = 1'b1; end
+                        if (!ctl_cds) begin ctl_end = 1'b1; ctl_err = 1'b1; end
                         crc4_rx_next = 4'd0;
                     end
                     6'd20, 6'd21, 6'd22, 6'd23, 6'd24, 6'd25, 6'd26, 6'd27: begin
-                        rdata_next = {rdata_reg[6:0], frame_cds_reg};
+                        rdata_next = {rdata_reg[6:0], ctl_cds};
                         crc4_rx_next = crc4_rx_cds;
                     end
                     6'd28, 6'd29, 6'd30, 6'd31: begin
-                        if (frame_cds_reg == crc4_rx_reg[3]) reg_bad_next = 1'b1;
+                        if (ctl_cds == crc4_rx_reg[3]) reg_bad_next = 1'b1;
                         crc4_rx_next = {crc4_rx_reg[2:0], 1'b0};
                     end
                     6'd32: begin
                         ctl_end = 1'b1;
-                        ctl_err = reg_bad_reg || frame_cds_reg || (acc_write_reg && (rdata_reg != acc_wdata_reg));
+                        ctl_err = reg_bad_reg || ctl_cds || (acc_write_reg && (rdata_reg != acc_wdata_reg));
                     end
                     default: begin end
                 endcase
@@ -669,7 +727,21 @@ always @* begin
             end else begin
                 // CDM bit k_next of the access; the CRC-4 covers CTS, ID, ADR and the write data.
                 ctl_k_next = k_next;
-                case (k_next)
+                if (k_next >= 6'd12 && k_next <= 6'd15) begin
+                    // The address (or command) CRC-4, both kinds.
+                    cdm_next = !crc4_tx_reg[3];
+                    crc4_tx_next = {crc4_tx_reg[2:0], 1'b0};
+                end else if (acc_cmd_reg) begin
+                    // A command: the CRC-4 covers CTS, IDS and CMD; EX at 17.
+                    case (k_next)
+                        6'd1, 6'd2, 6'd3, 6'd4, 6'd5, 6'd6, 6'd7, 6'd8, 6'd9, 6'd10, 6'd11: begin
+                            cdm_next = cmd_bit;
+                            crc4_tx_next = crc4_tx_cmd;
+                        end
+                        6'd17: cdm_next = 1'b1;
+                        default: cdm_next = 1'b0;
+                    endcase
+                end else case (k_next)
                     6'd1: begin cdm_next = 1'b1; crc4_tx_next = crc4_tx_one; end
                     6'd2, 6'd3, 6'd4: begin
                         cdm_next = id_bit;
@@ -678,10 +750,6 @@ always @* begin
                     6'd5, 6'd6, 6'd7, 6'd8, 6'd9, 6'd10, 6'd11: begin
                         cdm_next = addr_bit;
                         crc4_tx_next = crc4_tx_addr;
-                    end
-                    6'd12, 6'd13, 6'd14, 6'd15: begin
-                        cdm_next = !crc4_tx_reg[3];
-                        crc4_tx_next = {crc4_tx_reg[2:0], 1'b0};
                     end
                     6'd16: cdm_next = !acc_write_reg;
                     6'd17: cdm_next = acc_write_reg;
@@ -721,12 +789,15 @@ always @* begin
     end
 
     // Register requests are taken whenever no access is pending or running.
-    if (i_reg_start && !reg_pending_reg && !ctl_active_reg) begin
+    if ((i_reg_start || i_cmd_start) && !reg_pending_reg && !ctl_active_reg) begin
         reg_pending_next = 1'b1;
-        acc_write_next = i_reg_write;
-        acc_id_next = i_reg_id;
-        acc_addr_next = i_reg_addr;
-        acc_wdata_next = i_reg_wdata;
+        acc_cmd_next = !i_reg_start;
+        acc_write_next = i_reg_start && i_reg_write;
+        acc_id_next = i_reg_start ? i_reg_id : 3'd0;
+        acc_addr_next = i_reg_start ? i_reg_addr : 7'd0;
+        acc_wdata_next = i_reg_start ? i_reg_wdata : 8'd0;
+        acc_ids_next = i_reg_start ? 8'd0 : i_cmd_ids;
+        acc_code_next = i_reg_start ? 2'd0 : i_cmd_code;
         reg_busy_next = 1'b1;
     end
 end
@@ -758,8 +829,16 @@ always @(posedge i_clk) begin
     cal_cnt_reg <= cal_cnt_next;
     cal_sum_reg <= cal_sum_next;
     delay_mean_reg <= delay_mean_next;
+    cal_chk_reg <= cal_chk_next;
+    cal_apply_reg <= cal_chk_reg;
+    cal_ok_reg <= cal_ok_next;
+    cal_smp_reg <= cal_smp_next;
     frame_cds_reg <= frame_cds_next;
     frame_crc_bad_reg <= frame_crc_bad_next;
+    frame_sel_reg <= frame_sel_next;
+    acc_cmd_reg <= acc_cmd_next;
+    acc_ids_reg <= acc_ids_next;
+    acc_code_reg <= acc_code_next;
     cdm_reg <= cdm_next;
     zeros_reg <= zeros_next;
     reg_pending_reg <= reg_pending_next;
@@ -822,8 +901,16 @@ always @(posedge i_clk) begin
         cal_cnt_reg <= 5'd0;
         cal_sum_reg <= 20'd0;
         delay_mean_reg <= 16'd0;
+        cal_chk_reg <= 1'b0;
+        cal_apply_reg <= 1'b0;
+        cal_ok_reg <= 1'b0;
+        cal_smp_reg <= 0;
         frame_cds_reg <= 1'b0;
         frame_crc_bad_reg <= 1'b0;
+        frame_sel_reg <= 1'b0;
+        acc_cmd_reg <= 1'b0;
+        acc_ids_reg <= 8'd0;
+        acc_code_reg <= 2'd0;
         cdm_reg <= 1'b0;
         zeros_reg <= 4'd0;
         reg_pending_reg <= 1'b0;

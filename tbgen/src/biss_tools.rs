@@ -98,6 +98,22 @@ pub struct FrameSeen {
     pub errors: Vec<String>,
     /// A register access that ended with this frame.
     pub register: Option<RegisterSeen>,
+    /// A command (`CTS = 0`) that ended with this frame.
+    pub command: Option<CommandSeen>,
+}
+
+/// A command read off the CDM and CDS bits: the fields of the `gen`
+/// transcript's `command`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CommandSeen {
+    /// Slave-select bits IDS (0 = broadcast).
+    pub ids: u8,
+    /// The command.
+    pub code: u8,
+    /// Every selected slave acknowledged (IDA) and echoed EX.
+    pub ok: bool,
+    /// The CDM bits sent, `k = 0` to the frame that ended the command.
+    pub cdm: String,
 }
 
 /// A register access read off the CDM and CDS bits: the fields of the `gen`
@@ -167,17 +183,22 @@ pub fn decode(path: &Path, ma: &str, slo: &str, layout: &Layout) -> Result<Vec<F
         let next_start = edges[j..].iter().find(|e| !e.1).map_or(u64::MAX, |e| e.0);
         let mut f = read_frame(frames.len(), burst, next_start, slo_line, layout);
         f.control_index = observer.index(f.cdm);
-        let mut view = control::FrameView { ok: f.errors.iter().all(|e| e.starts_with("crc_error")), cdm: f.cdm, ..Default::default() };
+        let ok = f.errors.iter().all(|e| e.starts_with("crc_error"));
+        let mut view = control::FrameView { ok, cdm: f.cdm, slaves: f.slaves.len(), ..Default::default() };
         for s in f.slaves.iter().filter(|s| (s.slave as usize) < MAX_SLAVES) {
             view.cds[s.slave as usize] = s.cds;
             view.crc_bad[s.slave as usize] = !s.crc_ok;
         }
-        f.register = observer.take(&view).map(|o| {
+        if let Some(o) = observer.take(&view) {
             let a = o.access;
             let cdm: String = control::cdm_sequence(&a)[..=o.last_k as usize].iter().map(|&b| if b { '1' } else { '0' }).collect();
-            let wdata_seen = !a.write || o.last_k >= control::K_DATA_CRC - 1;
-            RegisterSeen { write: a.write, id: a.id, addr: a.addr, wdata: wdata_seen.then_some(a.wdata), rdata: o.rdata, ok: o.ok, crc4_ok: o.crc4_ok, cdm }
-        });
+            if a.command {
+                f.command = Some(CommandSeen { ids: a.ids, code: a.code, ok: o.ok, cdm });
+            } else {
+                let wdata_seen = !a.write || o.last_k >= control::K_DATA_CRC - 1;
+                f.register = Some(RegisterSeen { write: a.write, id: a.id, addr: a.addr, wdata: wdata_seen.then_some(a.wdata), rdata: o.rdata, ok: o.ok, crc4_ok: o.crc4_ok, cdm });
+            }
+        }
         frames.push(f);
         i = j;
     }
@@ -189,7 +210,18 @@ pub fn decode(path: &Path, ma: &str, slo: &str, layout: &Layout) -> Result<Vec<F
 fn read_frame(index: usize, burst: &[(u64, bool)], next_start: u64, slo: &capture::Signal, layout: &Layout) -> FrameSeen {
     let t0 = burst[0].0;
     let cdm = burst.last().is_some_and(|e| !e.1);
-    let mut f = FrameSeen { index, start_ps: t0, delay_ps: None, cdm, control_index: None, received_bits: String::new(), slaves: Vec::new(), errors: Vec::new(), register: None };
+    let mut f = FrameSeen {
+        index,
+        start_ps: t0,
+        delay_ps: None,
+        cdm,
+        control_index: None,
+        received_bits: String::new(),
+        slaves: Vec::new(),
+        errors: Vec::new(),
+        register: None,
+        command: None,
+    };
     let rises: Vec<u64> = burst.iter().filter(|e| e.1).map(|e| e.0).collect();
     if rises.len() < 2 || burst.len() < 2 {
         f.errors.push("short_frame".into());
@@ -279,8 +311,9 @@ mod tests {
     #[test]
     fn every_field_the_decoder_prints_equals_the_gen_transcript_of_every_biss_scenario() {
         let names: Vec<String> = builtin::all().unwrap().into_iter().filter(|s| matches!(s.setup, S::Biss(_))).map(|s| s.name).collect();
-        assert_eq!(names.len(), 20);
+        assert_eq!(names.len(), 21);
         let (mut frames, mut registers, mut failed_registers, mut flagged, mut unseen) = (0, 0, 0, 0, 0);
+        let (mut commands, mut failed_commands) = (0, 0);
         for name in &names {
             let (decoded, model, period_ps) = decode_generated(name);
             // A start refused because SLO is low at IDLE (`line_low_at_start`)
@@ -325,10 +358,13 @@ mod tests {
                 frames += 1;
                 registers += m["register"].is_object() as u32;
                 failed_registers += (m["register"]["ok"] == false) as u32;
+                commands += m["command"].is_object() as u32;
+                failed_commands += (m["command"]["ok"] == false) as u32;
                 flagged += !m["errors"].as_array().unwrap().is_empty() as u32;
             }
         }
         assert_eq!((registers, failed_registers, unseen), (4, 2, 2), "register read, write, two faulty accesses; two refused starts");
+        assert_eq!((commands, failed_commands), (2, 1), "biss_command_chain: addressed, unacknowledged");
         assert!(frames > 200 && flagged >= 10, "{frames} frames, {flagged} flagged");
     }
 

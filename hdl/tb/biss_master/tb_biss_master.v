@@ -36,7 +36,7 @@ function integer max_bits(input integer packed_values, input integer count);
 endfunction
 
 localparam integer DATA_W = max_bits(SLAVE_BITS, SLAVES);
-localparam N_IN = 7;
+localparam N_IN = 10;
 localparam N_OUT = 23;
 
 `include "vector_player.vh"
@@ -48,6 +48,9 @@ reg i_reg_write = 1'b0;
 reg [2:0] i_reg_id = 3'd0;
 reg [6:0] i_reg_addr = 7'd0;
 reg [7:0] i_reg_wdata = 8'd0;
+reg i_cmd_start = 1'b0;
+reg [7:0] i_cmd_ids = 8'd0;
+reg [1:0] i_cmd_code = 2'd0;
 wire o_ma;
 wire o_busy;
 wire o_done;
@@ -82,6 +85,9 @@ task apply_inputs;
         i_reg_id = `IN_WORD(4) & 3'h7;
         i_reg_addr = `IN_WORD(5) & 7'h7F;
         i_reg_wdata = `IN_WORD(6) & 8'hFF;
+        i_cmd_start = `IN_WORD(7) & 1'b1;
+        i_cmd_ids = `IN_WORD(8) & 8'hFF;
+        i_cmd_code = `IN_WORD(9) & 2'h3;
     end
 endtask
 
@@ -154,6 +160,9 @@ biss_master #(
     .o_reg_err(o_reg_err),
     .o_reg_rdata(o_reg_rdata),
     .o_reg_crc_err(o_reg_crc_err),
+    .i_cmd_start(i_cmd_start),
+    .i_cmd_ids(i_cmd_ids),
+    .i_cmd_code(i_cmd_code),
     .o_ma(o_ma),
     .i_slo(i_slo)
 );

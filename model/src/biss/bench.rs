@@ -144,6 +144,17 @@ pub struct RegOp {
     pub data: u8,
 }
 
+/// One BiSS-C command the host sends (`[[host.commands]]`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CmdOp {
+    /// Slave-select bits IDS: bit `i` selects ID `i`; 0 is a broadcast.
+    #[serde(default)]
+    pub ids: u8,
+    /// The 2-bit command.
+    pub code: u8,
+}
+
 /// When the host starts frames and register accesses (`[host]`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -156,11 +167,13 @@ pub struct HostSettings {
     pub frames: usize,
     /// Register accesses, one after the other, before the host's own frames.
     pub registers: Vec<RegOp>,
+    /// Commands, one after the other, after the register accesses.
+    pub commands: Vec<CmdOp>,
 }
 
 impl Default for HostSettings {
     fn default() -> Self {
-        HostSettings { first_start_us: 1.0, gap_us: 1.0, frames: 1, registers: Vec::new() }
+        HostSettings { first_start_us: 1.0, gap_us: 1.0, frames: 1, registers: Vec::new(), commands: Vec::new() }
     }
 }
 
@@ -344,7 +357,10 @@ impl BenchConfig {
         }
         check_time("host.first_start_us", self.host.first_start_us)?;
         check_time("host.gap_us", self.host.gap_us)?;
-        if self.host.frames == 0 && self.host.registers.is_empty() {
+        if let Some((j, _)) = self.host.commands.iter().enumerate().find(|(_, c)| c.code > 3) {
+            return Err(ConfigError::invalid(format!("host.commands[{j}].code"), "above 3", "give a 2-bit command, 0 to 3"));
+        }
+        if self.host.frames == 0 && self.host.registers.is_empty() && self.host.commands.is_empty() {
             return Err(ConfigError::invalid("host.frames", "no frames", "ask for at least one frame"));
         }
         if self.host.frames > 1_000_000 {
@@ -371,7 +387,9 @@ impl BenchConfig {
     /// The most frames a run may take: the frames asked for plus what the
     /// register accesses need (14 sync zeros and 33 control frames each).
     pub fn frame_limit(&self) -> usize {
-        self.host.frames + self.host.registers.len() * (control::SYNC_ZEROS as usize + control::K_LAST as usize + 2)
+        self.host.frames
+            + self.host.registers.len() * (control::SYNC_ZEROS as usize + control::K_LAST as usize + 2)
+            + self.host.commands.len() * (control::SYNC_ZEROS as usize + control::K_CMD_LAST as usize + 2)
     }
 }
 
@@ -442,6 +460,19 @@ pub struct RegResult {
     pub cdm: String,
 }
 
+/// A finished command.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CmdResult {
+    /// Slave-select bits IDS (0 = broadcast).
+    pub ids: u8,
+    /// The command.
+    pub code: u8,
+    /// Every selected slave acknowledged (IDA) and echoed EX.
+    pub ok: bool,
+    /// The CDM bits the master sent, `k = 0` up to the frame that ended it.
+    pub cdm: String,
+}
+
 /// One frame as the transcript reports it.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Transaction {
@@ -470,6 +501,8 @@ pub struct Transaction {
     pub errors: Vec<String>,
     /// A register access that ended with this frame.
     pub register: Option<RegResult>,
+    /// A command that ended with this frame.
+    pub command: Option<CmdResult>,
 }
 
 impl testbench::Transaction for Transaction {
@@ -508,6 +541,8 @@ pub struct Bench {
     last_out: Out,
     open: Option<Transaction>,
     open_op: Option<RegOp>,
+    open_cmd: Option<CmdOp>,
+    next_cmd: usize,
     transactions: Vec<Transaction>,
     layout: Layout,
 }
@@ -559,6 +594,8 @@ impl Bench {
             last_out: Out { o_ma: true, ..Out::default() },
             open: None,
             open_op: None,
+            open_cmd: None,
+            next_cmd: 0,
             transactions: Vec::new(),
             layout,
             cfg: cfg.clone(),
@@ -604,6 +641,14 @@ impl Bench {
                     input.i_reg_addr = op.addr;
                     input.i_reg_wdata = op.data;
                     self.host = Host::WaitRegDone;
+                } else if self.next_cmd < self.cfg.host.commands.len() {
+                    let cmd = self.cfg.host.commands[self.next_cmd];
+                    self.next_cmd += 1;
+                    self.open_cmd = Some(cmd);
+                    input.i_cmd_start = true;
+                    input.i_cmd_ids = cmd.ids;
+                    input.i_cmd_code = cmd.code;
+                    self.host = Host::WaitRegDone;
                 } else {
                     input.i_start = true;
                     self.host = Host::WaitDone;
@@ -644,6 +689,7 @@ impl Bench {
             slaves: Vec::new(),
             errors: Vec::new(),
             register: None,
+            command: None,
         });
         self.next_frame += 1;
     }
@@ -692,7 +738,7 @@ impl Bench {
                 t.delay_mean_cycles = self.master.calibrated().then_some(out.o_delay_mean);
                 if out.o_reg_done {
                     if let Some(op) = self.open_op.take() {
-                        let acc = control::Access { write: op.write, id: op.id, addr: op.addr, wdata: op.data };
+                        let acc = control::Access { write: op.write, id: op.id, addr: op.addr, wdata: op.data, ..control::Access::default() };
                         let sent = t.control_index.map_or(0, |k| k as usize + 1);
                         let cdm = &control::cdm_sequence(&acc)[..sent];
                         t.register = Some(RegResult {
@@ -706,6 +752,11 @@ impl Bench {
                             cdm: bit_string(cdm),
                         });
                     }
+                    if let Some(cmd) = self.open_cmd.take() {
+                        let acc = control::Access { command: true, ids: cmd.ids, code: cmd.code, ..control::Access::default() };
+                        let sent = t.control_index.map_or(0, |k| k as usize + 1);
+                        t.command = Some(CmdResult { ids: cmd.ids, code: cmd.code, ok: !out.o_reg_err, cdm: bit_string(&control::cdm_sequence(&acc)[..sent]) });
+                    }
                 }
                 self.transactions.push(t);
             }
@@ -716,7 +767,7 @@ impl Bench {
                 _ => false,
             };
             if host_done {
-                let more_ops = self.next_op < self.cfg.host.registers.len();
+                let more_ops = self.next_op < self.cfg.host.registers.len() || self.next_cmd < self.cfg.host.commands.len();
                 let more = (self.next_frame < self.cfg.host.frames || more_ops) && self.next_frame < self.cfg.frame_limit();
                 self.host = if more { Host::WaitUntil(self.cycle + self.gap_clocks) } else { Host::Finished(self.cycle + TAIL_CYCLES) };
             }

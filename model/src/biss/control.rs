@@ -33,6 +33,21 @@
 //! * The master fails the access (`o_reg_err`) when R, W or S is not echoed,
 //!   the returned CRC-4 is wrong, a write echo differs from the data sent, the
 //!   stop bit is not 0, or a frame of the access fails.
+//!
+//! # Commands (`CTS = 0`)
+//!
+//! ```text
+//!  k     0  1   2..9       10 11      12..15  16  17  18
+//!  CDM   S  0   IDS7..IDS0 CMD1 CMD0  C3..C0  0   EX  0
+//!  CDS   0  0   0          0          0       IDA 0   EX (echo)
+//! ```
+//! * `IDS` selects slaves by ID, one bit each (bit `i` = ID `i`); `IDS = 0`
+//!   is a broadcast to every slave. `CMD` is the 2-bit command. The CRC-4
+//!   covers CTS, IDS and CMD: 11 bits, as the address CRC of a register access.
+//! * Every selected slave whose CRC-4 matched answers `IDA = 1` (`k = 16`);
+//!   the master sends `EX = 1` only when every selected slave did (else the
+//!   command fails there), and each selected slave echoes EX (`k = 18`) and
+//!   carries the command out at the end of that frame's timeout.
 
 /// Consecutive `CDM = 0` frames that precede a start bit and cancel a frame.
 pub const SYNC_ZEROS: u32 = 14;
@@ -53,9 +68,23 @@ pub const K_P: u32 = 31;
 /// The last index of a control frame as the master sees it (the slave's stop bit arrives).
 pub const K_LAST: u32 = 32;
 
-/// One register access as the host asks for it.
+/// Index of a command's IDA answer.
+pub const K_IDA: u32 = 16;
+/// Index of a command's execute bit EX.
+pub const K_EX: u32 = 17;
+/// The last index of a command (the EX echo arrives).
+pub const K_CMD_LAST: u32 = 18;
+
+/// One control-frame operation as the host asks for it: a register access,
+/// or a command (`CTS = 0`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct Access {
+    /// A command (`CTS = 0`) instead of a register access.
+    pub command: bool,
+    /// Command: the slave-select bits IDS (0 = broadcast).
+    pub ids: u8,
+    /// Command: the 2-bit command CMD.
+    pub code: u8,
     /// Write (`true`) or read.
     pub write: bool,
     /// Slave ID, 0 to 7.
@@ -74,6 +103,19 @@ pub fn address_bits(id: u8, addr: u8) -> Vec<bool> {
     bits
 }
 
+/// The 11 CRC-covered bits of a command (CTS = 0, IDS, CMD), MSB first.
+pub fn command_bits(ids: u8, code: u8) -> Vec<bool> {
+    let mut bits = vec![false];
+    bits.extend((0..8).rev().map(|i| (ids >> i) & 1 == 1));
+    bits.extend((0..2).rev().map(|i| (code >> i) & 1 == 1));
+    bits
+}
+
+/// Whether a command's IDS selects the slave with ID `id`.
+pub fn selects(ids: u8, id: u8) -> bool {
+    ids == 0 || (id < 8 && (ids >> id) & 1 == 1)
+}
+
 /// The 8 data bits, MSB first.
 pub fn data_bits(data: u8) -> Vec<bool> {
     (0..8).rev().map(|i| (data >> i) & 1 == 1).collect()
@@ -84,6 +126,14 @@ pub fn data_bits(data: u8) -> Vec<bool> {
 /// master builds it bit-serially.
 pub fn cdm_sequence(a: &Access) -> Vec<bool> {
     let crc = &crate::crc::BISS_CTRL_CRC4;
+    if a.command {
+        let bits = command_bits(a.ids, a.code);
+        let mut v = vec![true];
+        v.extend(&bits);
+        v.extend(crc.wire_bits(crc.checksum_bits(&bits)));
+        v.extend([false, true, false]);
+        return v;
+    }
     let addr = address_bits(a.id, a.addr);
     let mut v = vec![true];
     v.extend(&addr);
@@ -114,6 +164,8 @@ pub struct FrameView {
     pub cds: [bool; super::MAX_SLAVES],
     /// CRC error of each slave.
     pub crc_bad: [bool; super::MAX_SLAVES],
+    /// Slaves in the frame (a command's broadcast selects them all).
+    pub slaves: usize,
 }
 
 /// A register access as the line shows it: what [`Access`] the CDM bits
@@ -171,11 +223,26 @@ impl Observer {
         }
         let a = &mut self.acc;
         match k {
+            1 => a.command = !f.cdm,
+            2..=9 if a.command => a.ids = (a.ids << 1) | f.cdm as u8,
+            10..=11 if a.command => a.code = (a.code << 1) | f.cdm as u8,
             2..=4 => a.id = (a.id << 1) | f.cdm as u8,
             5..=11 => a.addr = (a.addr << 1) | f.cdm as u8,
             K_W => a.write = f.cdm,
             19..=26 => a.wdata = (a.wdata << 1) | f.cdm as u8,
             _ => {}
+        }
+        if a.command {
+            let selected: Vec<usize> = (0..f.slaves.min(super::MAX_SLAVES)).filter(|&i| selects(a.ids, i as u8)).collect();
+            let all_cds = !selected.is_empty() && selected.iter().all(|&i| f.cds[i]);
+            let crc_bad = selected.iter().any(|&i| f.crc_bad[i]);
+            let end = match k {
+                _ if !f.ok || crc_bad => Some(false),
+                K_IDA if !all_cds => Some(false),
+                K_CMD_LAST => Some(all_cds),
+                _ => None,
+            };
+            return self.finish(k, end);
         }
         let slave = a.id as usize;
         let cds = slave < super::MAX_SLAVES && f.cds[slave];
@@ -202,6 +269,10 @@ impl Observer {
                 _ => {}
             }
         }
+        self.finish(k, end)
+    }
+
+    fn finish(&mut self, k: u32, end: Option<bool>) -> Option<Observed> {
         match end {
             Some(ok) => {
                 self.k = None;

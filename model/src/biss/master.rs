@@ -44,6 +44,17 @@ pub struct MasterConfig {
     pub delay_tol: u64,
 }
 
+/// Whether the control-frame operation `a` addresses the slave at chain
+/// position `slave` (its ID is its position): the register access's ID, or
+/// a command's IDS bit (every slave on a broadcast).
+fn selected(a: &Access, slave: u8) -> bool {
+    if a.command {
+        control::selects(a.ids, slave)
+    } else {
+        a.id == slave
+    }
+}
+
 /// Packs per-slave values 8 bits each, slave 0 lowest (the RTL's parameter form).
 pub fn pack8(values: &[u64]) -> u64 {
     values.iter().enumerate().fold(0, |acc, (i, v)| acc | ((v & 0xFF) << (8 * i)))
@@ -195,6 +206,14 @@ pub struct In {
     pub i_reg_addr: u8,
     /// Host: data to write.
     pub i_reg_wdata: u8,
+    /// Host: send a BiSS-C command (`CTS = 0`), one host operation like a
+    /// register access, reported on `o_reg_done`/`o_reg_err` (one-cycle
+    /// pulse; ignored while `o_reg_busy`; `i_reg_start` wins a tie).
+    pub i_cmd_start: bool,
+    /// Host: the slave-select bits IDS (bit `i` = ID `i`; 0 = broadcast).
+    pub i_cmd_ids: u8,
+    /// Host: the 2-bit command.
+    pub i_cmd_code: u8,
 }
 
 /// Registered outputs after one rising edge of the system clock.
@@ -258,6 +277,9 @@ impl Ports for In {
         dst[4] = self.i_reg_id as u64;
         dst[5] = self.i_reg_addr as u64;
         dst[6] = self.i_reg_wdata as u64;
+        dst[7] = self.i_cmd_start as u64;
+        dst[8] = self.i_cmd_ids as u64;
+        dst[9] = self.i_cmd_code as u64;
     }
 }
 
@@ -321,6 +343,7 @@ struct Regs {
     cal_sum: u64,
     delay_mean: u64,
     frame_cds: bool,
+    frame_sel: bool,
     frame_crc_bad: bool,
     cdm: bool,
     zeros: u32,
@@ -378,6 +401,7 @@ impl Master {
                 cal_sum: 0,
                 delay_mean: 0,
                 frame_cds: false,
+                frame_sel: false,
                 frame_crc_bad: false,
                 cdm: false,
                 zeros: 0,
@@ -438,6 +462,9 @@ impl Master {
             Port::new("i_reg_id", 3),
             Port::new("i_reg_addr", 7),
             Port::new("i_reg_wdata", 8),
+            Port::new("i_cmd_start", 1),
+            Port::new("i_cmd_ids", 8),
+            Port::new("i_cmd_code", 2),
         ]
     }
 
@@ -542,7 +569,8 @@ impl Master {
                         n.e_start = false;
                         n.e_drift = false;
                         n.slave = 0;
-                        n.frame_cds = false;
+                        n.frame_cds = true;
+                        n.frame_sel = false;
                         n.frame_crc_bad = false;
                         o.o_busy = true;
                         self.raw.clear();
@@ -586,8 +614,9 @@ impl Master {
                 if sample {
                     let i = c.slave as usize;
                     n.cds = b;
-                    if c.ctl_active && c.acc.id == c.slave {
-                        n.frame_cds = b;
+                    if c.ctl_active && selected(&c.acc, c.slave) {
+                        n.frame_cds = c.frame_cds && b;
+                        n.frame_sel = true;
                     }
                     n.state = State::Data;
                     n.bit_cnt = cfg.slave_bits[i] - 1;
@@ -641,8 +670,8 @@ impl Master {
                         o.o_error = !c.nerr;
                         o.o_warning = !c.nwarn;
                         o.o_cds = c.cds;
-                        if c.ctl_active && c.acc.id == c.slave {
-                            n.frame_crc_bad = bad;
+                        if c.ctl_active && selected(&c.acc, c.slave) {
+                            n.frame_crc_bad = c.frame_crc_bad || bad;
                         }
                         if (c.slave as u32) + 1 < cfg.slaves {
                             n.slave = c.slave + 1;
@@ -701,9 +730,13 @@ impl Master {
         }
 
         // Register requests are taken whenever no access is pending.
-        if input.i_reg_start && !c.reg_pending && !c.ctl_active {
+        if (input.i_reg_start || input.i_cmd_start) && !c.reg_pending && !c.ctl_active {
             n.reg_pending = true;
-            n.acc = Access { write: input.i_reg_write, id: input.i_reg_id & 7, addr: input.i_reg_addr & 0x7F, wdata: input.i_reg_wdata };
+            n.acc = if input.i_reg_start {
+                Access { write: input.i_reg_write, id: input.i_reg_id & 7, addr: input.i_reg_addr & 0x7F, wdata: input.i_reg_wdata, ..Access::default() }
+            } else {
+                Access { command: true, ids: input.i_cmd_ids, code: input.i_cmd_code & 3, ..Access::default() }
+            };
             o.o_reg_busy = true;
         }
 
@@ -721,6 +754,9 @@ impl Master {
     /// ack; then by the mean (`first + mean - delay`, the cell middles of an
     /// ack at the mean), unless this ack departs from it by more than
     /// `DELAY_TOL`: that frame is sampled by its own ack and flagged.
+    /// `biss_master` does the comparison in the two cycles after the ack
+    /// (timing at 80 MHz); the first sample is further away than that, so
+    /// the sample times and every output are the same.
     fn calibrate(&self, c: &Regs, n: &mut Regs) {
         let first = self.cfg.clocks_per_bit / 2 + self.cfg.clocks_per_bit - 1;
         let d = c.delay_cnt;
@@ -758,10 +794,17 @@ impl Master {
         if c.ctl_active {
             let k = c.ctl_k;
             let a = c.acc;
-            let cds = c.frame_cds;
+            let cds = c.frame_sel && c.frame_cds;
             let mut end: Option<bool> = None; // Some(error)
             if !frame_ok || c.frame_crc_bad {
                 end = Some(true);
+            } else if a.command {
+                // IDA from every selected slave, then the echo of EX.
+                match k {
+                    control::K_IDA if !cds => end = Some(true),
+                    control::K_CMD_LAST => end = Some(!cds),
+                    _ => {}
+                }
             } else {
                 match k {
                     control::K_W => {
@@ -844,6 +887,16 @@ impl Master {
             tx.push(msb);
             !msb
         };
+        if a.command {
+            return match k {
+                1 => covered(tx, false),
+                2..=9 => covered(tx, (a.ids >> (9 - k)) & 1 == 1),
+                10..=11 => covered(tx, (a.code >> (11 - k)) & 1 == 1),
+                12..=15 => crc_out(tx),
+                control::K_EX => true,
+                _ => false,
+            };
+        }
         match k {
             1 => covered(tx, true),
             2..=4 => covered(tx, (a.id >> (4 - k)) & 1 == 1),

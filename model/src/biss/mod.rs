@@ -64,7 +64,8 @@
 //!   one CDS bit per frame back; see [`control`] and `docs/timing/biss.md`.
 //!   It is one host operation: after `i_reg_start` the master runs the sync
 //!   and control frames itself, back to back (IDLE restarts in the cycle
-//!   after `o_done`), and ends with `o_reg_done`.
+//!   after `o_done`), and ends with `o_reg_done`. BiSS-C commands (`CTS = 0`,
+//!   `i_cmd_start`) run the same way.
 //!
 //! ```text
 //!  one slave, 2 data bits, CRC shown as c5..c0, H = CLOCKS_PER_BIT / 2, no cable
@@ -87,7 +88,7 @@ pub mod control;
 mod master;
 mod slave;
 
-pub use bench::{Bench, BenchConfig, DelayStep, FlipFault, HostSettings, MasterSettings, RegOp, RegResult, SlaveResult, SlaveSettings, StuckFault, Transaction};
+pub use bench::{Bench, BenchConfig, CmdOp, CmdResult, DelayStep, FlipFault, HostSettings, MasterSettings, RegOp, RegResult, SlaveResult, SlaveSettings, StuckFault, Transaction};
 pub use master::{In, Master, MasterConfig, Out, State, MAX_SLAVES, SYNC_STAGES};
 pub use slave::{Chain, Slave, SlaveConfig};
 

@@ -5,6 +5,7 @@ use proptest::prelude::*;
 use super::*;
 use crate::crc::BISS_CRC6;
 use crate::line::CableConfig;
+use crate::testbench::Testbench;
 use crate::Setup;
 
 fn frames(cfg: &BenchConfig) -> Vec<Transaction> {
@@ -192,7 +193,7 @@ fn cdm_is_the_inverted_ma_level_during_the_timeout() {
     cfg.host.registers = vec![RegOp { write: false, id: 0, addr: 0x01, data: 0 }];
     let ts = frames(&cfg);
     let sent: String = ts[14..14 + 33].iter().map(|t| if t.cdm { '1' } else { '0' }).collect();
-    let expected = control::cdm_sequence(&control::Access { write: false, id: 0, addr: 0x01, wdata: 0 });
+    let expected = control::cdm_sequence(&control::Access { write: false, id: 0, addr: 0x01, wdata: 0, ..control::Access::default() });
     assert_eq!(sent, expected.iter().map(|&b| if b { '1' } else { '0' }).collect::<String>());
 }
 
@@ -369,7 +370,7 @@ fn a_line_stuck_low_during_the_sync_frames_ends_the_access_with_an_error() {
 
 /// A frame of the bench as a line observer would see it.
 fn view(t: &Transaction) -> control::FrameView {
-    let mut v = control::FrameView { ok: t.errors.iter().all(|e| e.starts_with("crc_error")), cdm: t.cdm, ..Default::default() };
+    let mut v = control::FrameView { ok: t.errors.iter().all(|e| e.starts_with("crc_error")), cdm: t.cdm, slaves: t.slaves.len(), ..Default::default() };
     for s in &t.slaves {
         v.cds[s.slave as usize] = s.cds;
         v.crc_bad[s.slave as usize] = !s.crc_ok;
@@ -390,6 +391,20 @@ fn the_line_observer_follows_control_frames_as_the_master_runs_them() {
     let mut flip = read.clone();
     flip.slaves[0].cdm_flip_at = Some(6);
     cases.push(flip);
+    let mut commands = command_chain();
+    commands.host.commands = vec![CmdOp { ids: 0b010, code: 3 }, CmdOp { ids: 0b1000, code: 0 }, CmdOp { ids: 0, code: 1 }];
+    let mut observed_commands = Vec::new();
+    let mut obs = control::Observer::default();
+    for t in frames(&commands) {
+        assert_eq!(obs.index(t.cdm), t.control_index, "frame {}", t.index);
+        let seen = obs.take(&view(&t));
+        assert_eq!(seen.is_some(), t.command.is_some(), "frame {}", t.index);
+        if let (Some(o), Some(c)) = (seen, &t.command) {
+            assert_eq!((o.access.command, o.access.ids, o.access.code, o.ok, o.last_k as usize + 1), (true, c.ids, c.code, c.ok, c.cdm.len()));
+            observed_commands.push(o.ok);
+        }
+    }
+    assert_eq!(observed_commands, vec![true, false, true]);
     let (mut accesses, mut failed) = (0, 0);
     for cfg in &cases {
         let mut obs = control::Observer::default();
@@ -443,4 +458,52 @@ fn calibration_settings_out_of_range_are_refused_naming_the_field() {
     let mut cfg = BenchConfig::seed_example();
     cfg.master.delay_tolerance_ns = Some(50.0); // half of 100 ns
     assert!(cfg.master_config().unwrap_err().to_string().contains("master.delay_tolerance_ns"));
+}
+
+fn command_chain() -> BenchConfig {
+    let mut cfg = BenchConfig::seed_example();
+    cfg.slaves = (0..3).map(|_| SlaveSettings { bits: 12, timeout_us: 2.0, ..SlaveSettings::default() }).collect();
+    cfg.host.gap_us = 0.5;
+    cfg
+}
+
+fn commands_run(cfg: &BenchConfig) -> (Vec<CmdResult>, Vec<Vec<u8>>) {
+    let mut bench = Bench::new(cfg).unwrap();
+    while !bench.finished() {
+        bench.step(None);
+    }
+    let executed = bench.chain().slaves().iter().map(|s| s.executed_commands().to_vec()).collect();
+    let results = bench.into_transactions().into_iter().filter_map(|t| t.command).collect();
+    (results, executed)
+}
+
+#[test]
+fn an_addressed_command_is_carried_out_by_the_selected_slaves_only_and_a_broadcast_by_all() {
+    let mut cfg = command_chain();
+    cfg.host.commands = vec![CmdOp { ids: 0b010, code: 3 }, CmdOp { ids: 0b101, code: 2 }, CmdOp { ids: 0, code: 1 }];
+    let (results, executed) = commands_run(&cfg);
+    assert_eq!(results.iter().map(|r| r.ok).collect::<Vec<_>>(), vec![true, true, true]);
+    assert_eq!(executed, vec![vec![2, 1], vec![3, 1], vec![2, 1]]);
+    // S, CTS = 0, IDS 00000010, CMD 11, the CRC-4 of those 11 bits inverted, 0, EX, 0.
+    let crc = &crate::crc::BISS_CTRL_CRC4;
+    let covered = bits("00000001011");
+    let wire: String = crc.wire_bits(crc.checksum_bits(&covered)).iter().map(|&b| if b { '1' } else { '0' }).collect();
+    assert_eq!(results[0].cdm, format!("100000001011{wire}010"));
+}
+
+#[test]
+fn a_command_nobody_acknowledges_fails_and_nothing_is_carried_out() {
+    let mut cfg = command_chain();
+    cfg.host.commands = vec![CmdOp { ids: 0b1000_0000, code: 2 }];
+    let (results, executed) = commands_run(&cfg);
+    assert!(!results[0].ok);
+    assert_eq!(results[0].cdm.len() as u32, control::K_IDA + 1, "no EX after a missing IDA");
+    assert!(executed.iter().all(|e| e.is_empty()));
+    // One slave misreads a CRC bit: its IDA is missing, the master sends no EX to anybody.
+    let mut cfg = command_chain();
+    cfg.slaves[2].cdm_flip_at = Some(13);
+    cfg.host.commands = vec![CmdOp { ids: 0, code: 1 }];
+    let (results, executed) = commands_run(&cfg);
+    assert!(!results[0].ok);
+    assert!(executed.iter().all(|e| e.is_empty()), "{executed:?}");
 }
