@@ -4,7 +4,7 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use model::biss::{angle_deg, control, data_crc, BenchConfig, MAX_SLAVES};
+use model::biss::{angle_deg, control, data_crc, BenchConfig, CmdOp, HostSettings, RegOp, MAX_SLAVES};
 use model::testbench;
 use model::Setup;
 use serde::Serialize;
@@ -41,6 +41,7 @@ pub fn timing_report(cfg: &BenchConfig, name: &str) -> std::result::Result<Strin
     let mut one = cfg.clone();
     one.host.frames = 2;
     one.host.registers.clear();
+    one.host.commands.clear();
     let run = testbench::run_to_end(one.bench()?);
     if let [a, b, ..] = run.transactions.as_slice() {
         let frame = a.done_cycle - a.start_cycle + 1;
@@ -48,6 +49,28 @@ pub fn timing_report(cfg: &BenchConfig, name: &str) -> std::result::Result<Strin
         let delay = a.delay_cycles.map_or("not measured (no ack)".to_string(), |d| format!("{d} cycles"));
         let _ = writeln!(s, "model: start to o_done {frame} cycles ({:.3} us), start to start {period} cycles ({:.3} us) = {:.2} kHz, measured line delay {delay}",
             frame as f64 / f_sys * 1e6, period as f64 / f_sys * 1e6, f_sys / period as f64 / 1e3);
+    }
+    // One register read and one command, each one host operation: the frames
+    // the master runs for it back to back, first start to o_reg_done.
+    let mut ops = cfg.clone();
+    ops.host = HostSettings {
+        frames: 0,
+        registers: vec![RegOp { write: false, id: 0, addr: 0, data: 0 }],
+        commands: vec![CmdOp { ids: 1, code: 0 }],
+        ..cfg.host.clone()
+    };
+    let run = testbench::run_to_end(ops.bench()?);
+    let mut first = run.transactions.first().map_or(0, |t| t.start_cycle);
+    for t in &run.transactions {
+        let what = match (&t.register, &t.command) {
+            (Some(_), _) => "register read",
+            (_, Some(_)) => "command",
+            _ => continue,
+        };
+        let frames = run.transactions.iter().filter(|u| u.start_cycle >= first && u.start_cycle <= t.start_cycle).count();
+        let cycles = t.done_cycle - first + 1;
+        let _ = writeln!(s, "model: {what} (one host operation): {frames} frames, {cycles} cycles ({:.1} us)", cycles as f64 / f_sys * 1e6);
+        first = run.transactions.iter().find(|u| u.start_cycle > t.done_cycle).map_or(first, |u| u.start_cycle);
     }
     Ok(s)
 }
@@ -382,5 +405,11 @@ mod tests {
         // 100 ns x 28 bits + 120 ns (10 m both ways + 20 ns output delay) + 200 ns busy + 16 us timeout.
         assert!(r.contains("= 19.120 us"), "{r}");
         assert!(r.contains("52.30 kHz"), "{r}");
+        // 14 sync frames, then 33 control frames for a read; the read's last
+        // 14 frames already carried CDM = 0, so the command that follows needs
+        // one frame (a request starts a control frame at the end of a frame)
+        // and its 19.
+        assert!(r.contains("register read (one host operation): 47 frames"), "{r}");
+        assert!(r.contains("command (one host operation): 20 frames"), "{r}");
     }
 }
