@@ -71,8 +71,8 @@ fn cable_of_0_to_100_m_at_10_mhz_gives_zero_bit_errors() {
 
 #[test]
 fn jitter_of_one_cycle_each_way_on_100_m_at_2_5_mhz_still_reads_clean() {
-    // The delay is measured on one (jittered) ack edge, not averaged: the margin is
-    // half a bit cell less the jitter of the ack and of the bit edges.
+    // At 2.5 MHz half a bit cell (16 cycles) absorbs the jitter of the ack
+    // and of the bit edges even in the start-up frames sampled by their own ack.
     let mut cfg = BenchConfig::seed_example();
     cfg.master.clock_khz = 2500.0;
     cfg.cable = CableConfig { length_m: 100.0, jitter_ns: 12.0, seed: 7, ..CableConfig::default() };
@@ -506,4 +506,29 @@ fn a_command_nobody_acknowledges_fails_and_nothing_is_carried_out() {
     let (results, executed) = commands_run(&cfg);
     assert!(!results[0].ok);
     assert!(executed.iter().all(|e| e.is_empty()), "{executed:?}");
+}
+
+#[test]
+fn the_start_up_mean_reads_through_ack_jitter_that_own_edge_sampling_misreads() {
+    // 10 MHz MA at 80 MHz: half a bit cell is 4 cycles. A 100 m cable whose
+    // edges jitter by ±1 cycle each way moves every ack by up to ±2 cycles;
+    // sampled by its own ack (tolerance 0: every departure falls back to
+    // it) a frame then often misses its cells, sampled by the mean of 16
+    // start-up acks it reads clean once calibrated.
+    let run = |tol_ns: f64| {
+        let mut cfg = BenchConfig::seed_example();
+        cfg.master.cal_frames = 16;
+        cfg.master.delay_tolerance_ns = Some(tol_ns);
+        cfg.slaves[0].step = 4099;
+        cfg.slaves[0].timeout_us = 2.0;
+        cfg.host = HostSettings { frames: 400, gap_us: 0.5, ..HostSettings::default() };
+        cfg.cable = CableConfig { length_m: 100.0, jitter_ns: 12.0, seed: 3, ..CableConfig::default() };
+        let ts = frames(&cfg);
+        let bad: Vec<usize> = ts.iter().filter(|t| t.slaves.iter().any(|s| !s.crc_ok)).map(|t| t.index).collect();
+        bad
+    };
+    let own_edge = run(0.0);
+    let mean = run(37.5); // 3 cycles, below half a cell
+    assert!(own_edge.len() >= 20, "own-edge sampling: {} CRC errors in 400 frames", own_edge.len());
+    assert!(mean.iter().all(|&k| k < 16), "after calibration the mean reads every frame: errors in frames {mean:?}");
 }
