@@ -9,10 +9,16 @@
 //   receiver; i_slo is asynchronous and passes a 2-flop synchroniser first.
 //   Pulse i_start for one cycle while o_busy is low. Each slave's result
 //   appears with a one-cycle o_slave_valid pulse (slave 0 first); o_done
-//   pulses once per start with the frame's error pulses. Pulse i_reg_start
-//   (with i_reg_write/_id/_addr/_wdata) while o_reg_busy is low; keep
-//   starting frames: the access needs 14 frames of CDM = 0 and 33 control
-//   frames; o_reg_done pulses with o_done of the last one.
+//   pulses once per start with the frame's error pulses. A register access is
+//   one host operation: pulse i_reg_start (with i_reg_write/_id/_addr/_wdata)
+//   while o_reg_busy is low and the core runs the frames itself, back to
+//   back (14 frames of CDM = 0, then the 33 frames of the control frame),
+//   each with its o_slave_valid results and o_done; o_reg_done pulses with
+//   o_done of the last one, with o_reg_rdata, o_reg_crc_err and o_reg_err.
+//   A BiSS-C command (CTS = 0) is the same kind of operation: pulse
+//   i_cmd_start with i_cmd_ids (slave-select bits, 0 = broadcast) and
+//   i_cmd_code; 14 sync frames and 19 control frames; o_reg_done/o_reg_err
+//   report it (i_reg_start wins a tie).
 //
 // Parameters (the Rust MasterConfig field of the same name in lower case;
 // per-slave values packed 8 bits each, slave 0 in bits 7..0)
@@ -24,6 +30,8 @@
 //   MAX_DELAY        longest edge-2-to-ack delay compensated, cycles, 1..65535
 //   TIMEOUT_CLOCKS   longest wait for the start bit, for SLO low/high after the
 //                    last clock and for a late ack, cycles (>= 2 * CLOCKS_PER_BIT)
+//   CAL_FRAMES       start-up frames whose mean delay is used afterwards: 1, 2, 4, 8, 16
+//   DELAY_TOL        largest departure from the mean still sampled by it, cycles (< CLOCKS_PER_BIT / 2)
 //
 // Timing (one slave, H = CLOCKS_PER_BIT/2); docs/timing/biss.md has the full story
 //
@@ -39,9 +47,13 @@
 //   o_done                                                                             /‾\
 //
 // Line-delay compensation: the delay from the second rising MA edge to the ack
-// (SLO low at the synchroniser output) is measured in every frame; bits are
-// then sampled H + k * CLOCKS_PER_BIT cycles after the ack, so any cable up to
-// MAX_DELAY is read in the middle of its bit cells. MA keeps running until the
+// (SLO low at the synchroniser output) is measured in every frame (o_delay).
+// The first CAL_FRAMES frames are sampled H + k * CLOCKS_PER_BIT cycles after
+// their own ack and their delays averaged (o_delay_mean); later frames are
+// sampled as if their ack had come at the mean, which takes the jitter of the
+// ack edge out, unless their delay departs from the mean by more than
+// DELAY_TOL: then they are sampled by their own ack and flagged (o_err_drift).
+// Any cable up to MAX_DELAY is read in the middle of its bit cells. MA keeps running until the
 // last CRC bit is in, then stops at the first half-period boundary where it
 // equals !CDM (the BiSS-C control bit is the inverted MA level in the timeout).
 // Errors: o_err_line (SLO low at start, refused), o_err_ack (no ack: slave
@@ -60,7 +72,9 @@ module biss_master #(
     parameter SLAVE_CRC_POLY = 3,
     parameter CLOCKS_PER_BIT = 8,
     parameter MAX_DELAY = 160,
-    parameter TIMEOUT_CLOCKS = 3200
+    parameter TIMEOUT_CLOCKS = 3200,
+    parameter CAL_FRAMES = 4,
+    parameter DELAY_TOL = 1
 ) (
     input  wire                  i_clk,
     input  wire                  i_rst,
@@ -75,6 +89,8 @@ module biss_master #(
     output wire                  o_err_start,
     output wire                  o_err_timeout,
     output wire [15:0]           o_delay,
+    output wire [15:0]           o_delay_mean,
+    output wire                  o_err_drift,
 
     /* Host interface: per-slave results, one slave at a time */
     output wire                  o_slave_valid,
@@ -95,6 +111,12 @@ module biss_master #(
     output wire                  o_reg_done,
     output wire                  o_reg_err,
     output wire [7:0]            o_reg_rdata,
+    output wire                  o_reg_crc_err,
+
+    /* Host interface: BiSS-C commands over the control frame */
+    input  wire                  i_cmd_start,
+    input  wire [7:0]            i_cmd_ids,
+    input  wire [1:0]            i_cmd_code,
 
     /* BiSS line */
     output wire                  o_ma,
@@ -126,7 +148,8 @@ endfunction
 
 localparam integer DATA_W = max_bits(SLAVE_BITS, SLAVES);
 localparam integer HALF = CLOCKS_PER_BIT / 2;
-localparam integer SMP_W = clog2(HALF + CLOCKS_PER_BIT + 1);
+localparam integer SMP_W = clog2(2 * CLOCKS_PER_BIT);
+localparam integer CAL_SHIFT = clog2(CAL_FRAMES);
 localparam integer CNT_W = clog2(TIMEOUT_CLOCKS + 3);
 
 localparam [31:0] HALF_LAST_32 = HALF - 1;
@@ -139,6 +162,11 @@ localparam [SMP_W-1:0] FIRST_SAMPLE = FIRST_SAMPLE_32[SMP_W-1:0];
 localparam [SMP_W-1:0] PERIOD_LAST = PERIOD_LAST_32[SMP_W-1:0];
 localparam [CNT_W-1:0] TIMEOUT_CNT = TIMEOUT_32[CNT_W-1:0];
 localparam [15:0] MAX_DELAY_16 = MAX_DELAY_32[15:0];
+localparam [15:0] FIRST_SAMPLE_16 = FIRST_SAMPLE_32[15:0];
+localparam [31:0] CAL_FRAMES_32 = CAL_FRAMES;
+localparam [4:0] CAL_FRAMES_5 = CAL_FRAMES_32[4:0];
+localparam [31:0] DELAY_TOL_32 = DELAY_TOL;
+localparam [15:0] DELAY_TOL_16 = DELAY_TOL_32[15:0];
 localparam [31:0] LAST_SLAVE_32 = SLAVES - 1;
 localparam [1:0] LAST_SLAVE = LAST_SLAVE_32[1:0];
 localparam [31:0] BITS0_32 = field8(SLAVE_BITS, 0);
@@ -173,6 +201,8 @@ initial begin
     if (CLOCKS_PER_BIT < 8 || CLOCKS_PER_BIT % 2 != 0) $error("biss_master: CLOCKS_PER_BIT must be even and >= 8");
     if (MAX_DELAY < 1 || MAX_DELAY > 65535) $error("biss_master: MAX_DELAY must be 1..65535");
     if (TIMEOUT_CLOCKS < 2 * CLOCKS_PER_BIT) $error("biss_master: TIMEOUT_CLOCKS must be >= 2 * CLOCKS_PER_BIT");
+    if (CAL_FRAMES != 1 && CAL_FRAMES != 2 && CAL_FRAMES != 4 && CAL_FRAMES != 8 && CAL_FRAMES != 16) $error("biss_master: CAL_FRAMES must be 1, 2, 4, 8 or 16");
+    if (DELAY_TOL >= HALF) $error("biss_master: DELAY_TOL must be < CLOCKS_PER_BIT / 2");
 end
 
 // Per-slave constants of the slave being decoded (a mux over parameters).
@@ -210,11 +240,21 @@ reg              nwarn_reg = 1'b1, nwarn_next;
 reg              cds_reg = 1'b0, cds_next;
 reg              e_delay_reg = 1'b0, e_delay_next;
 reg              e_start_reg = 1'b0, e_start_next;
+// Start-up calibration: frames measured, their delay sum, the mean.
+reg              e_drift_reg = 1'b0, e_drift_next;
+reg [4:0]        cal_cnt_reg = 5'd0, cal_cnt_next;
+reg [19:0]       cal_sum_reg = 20'd0, cal_sum_next;
+reg [15:0]       delay_mean_reg = 16'd0, delay_mean_next;
 
-// Control frame: the CDS bit and CRC status of the addressed slave in this
+// Control frame: the CDS bits (AND) and CRC status (OR) of the selected
+// slaves in this frame, whether any was selected,
 // frame, the CDM bit this frame carries, the count of CDM zeros sent.
 reg              frame_cds_reg = 1'b0, frame_cds_next;
 reg              frame_crc_bad_reg = 1'b0, frame_crc_bad_next;
+reg              frame_sel_reg = 1'b0, frame_sel_next;
+reg              acc_cmd_reg = 1'b0, acc_cmd_next;
+reg [7:0]        acc_ids_reg = 8'd0, acc_ids_next;
+reg [1:0]        acc_code_reg = 2'd0, acc_code_next;
 reg              cdm_reg = 1'b0, cdm_next;
 reg [3:0]        zeros_reg = 4'd0, zeros_next;
 reg              reg_pending_reg = 1'b0, reg_pending_next;
@@ -237,6 +277,7 @@ reg              err_ack_reg = 1'b0, err_ack_next;
 reg              err_delay_reg = 1'b0, err_delay_next;
 reg              err_start_reg = 1'b0, err_start_next;
 reg              err_timeout_reg = 1'b0, err_timeout_next;
+reg              err_drift_reg = 1'b0, err_drift_next;
 reg [15:0]       delay_reg = 16'd0, delay_next;
 reg              slave_valid_reg = 1'b0, slave_valid_next;
 reg [1:0]        slave_index_reg = 2'd0, slave_index_next;
@@ -249,6 +290,7 @@ reg              reg_busy_reg = 1'b0, reg_busy_next;
 reg              reg_done_reg = 1'b0, reg_done_next;
 reg              reg_err_reg = 1'b0, reg_err_next;
 reg [7:0]        reg_rdata_reg = 8'd0, reg_rdata_next;
+reg              reg_crc_err_reg = 1'b0, reg_crc_err_next;
 
 assign o_ma = ma_reg;
 assign o_busy = busy_reg;
@@ -259,6 +301,8 @@ assign o_err_delay = err_delay_reg;
 assign o_err_start = err_start_reg;
 assign o_err_timeout = err_timeout_reg;
 assign o_delay = delay_reg;
+assign o_delay_mean = delay_mean_reg;
+assign o_err_drift = err_drift_reg;
 assign o_slave_valid = slave_valid_reg;
 assign o_slave_index = slave_index_reg;
 assign o_data = out_data_reg;
@@ -270,12 +314,30 @@ assign o_reg_busy = reg_busy_reg;
 assign o_reg_done = reg_done_reg;
 assign o_reg_err = reg_err_reg;
 assign o_reg_rdata = reg_rdata_reg;
+assign o_reg_crc_err = reg_crc_err_reg;
 
 // One wider than the data so that a 1-bit slave needs no special case; the
 // bit shifted out is dropped on purpose.
 /* verilator lint_off UNUSEDSIGNAL */
 wire [DATA_W:0] data_shifted = {data_reg, slo_sync_reg};
 /* verilator lint_on UNUSEDSIGNAL */
+
+// Calibration arithmetic: the running sum and its mean; after calibration
+// the departure of this frame's delay (delay_reg, latched at the ack) from the
+// mean, and the sample counter of an ack at the mean. For timing these take
+// the two cycles after the ack (check, then apply), where the model does it
+// all at the ack: the first sample is more than two cycles away, so the
+// sample times and every output are the same.
+/* verilator lint_off UNUSEDSIGNAL */
+wire [19:0] cal_sum_plus = cal_sum_reg + {4'd0, delay_cnt_reg};
+wire [19:0] cal_mean_wide = cal_sum_plus >> CAL_SHIFT;
+wire [15:0] smp_mean_wide = FIRST_SAMPLE_16 - 16'd2 + delay_mean_reg - delay_reg;
+/* verilator lint_on UNUSEDSIGNAL */
+wire [15:0] delay_dev = (delay_reg >= delay_mean_reg) ? (delay_reg - delay_mean_reg) : (delay_mean_reg - delay_reg);
+reg              cal_chk_reg = 1'b0, cal_chk_next;
+reg              cal_apply_reg = 1'b0;
+reg              cal_ok_reg = 1'b0, cal_ok_next;
+reg [SMP_W-1:0]  cal_smp_reg = 0, cal_smp_next;
 
 wire sampling = (state_reg == START) || (state_reg == CDS) || (state_reg == DATA) ||
                 (state_reg == ERR) || (state_reg == WARN) || (state_reg == CRC);
@@ -304,7 +366,17 @@ wire [7:0] wdata_shifted = acc_wdata_reg >> (5'd26 - k_next[4:0]);
 wire id_bit = id_shifted[0];
 wire addr_bit = addr_shifted[0];
 wire wdata_bit = wdata_shifted[0];
-wire addressed = ctl_active_reg && (acc_id_reg == {1'b0, slave_reg});
+// A register access addresses one ID (= chain position); a command selects
+// by IDS bits, every slave on a broadcast.
+wire ids_bit_of_slave = acc_ids_reg[{1'b0, slave_reg}];
+wire addressed = ctl_active_reg && (acc_cmd_reg ? ((acc_ids_reg == 8'd0) || ids_bit_of_slave) : (acc_id_reg == {1'b0, slave_reg}));
+wire ctl_cds = frame_sel_reg && frame_cds_reg;
+// Command bits of index k_next: CTS = 0 at k = 1, IDS MSB first at 2, CMD at 10.
+/* verilator lint_off UNUSEDSIGNAL */
+wire [7:0] ids_shifted = acc_ids_reg >> (4'd9 - k_next[3:0]);
+wire [1:0] code_shifted = acc_code_reg >> (4'd11 - k_next[3:0]);
+/* verilator lint_on UNUSEDSIGNAL */
+wire cmd_bit = (k_next == 6'd1) ? 1'b0 : (k_next <= 6'd9) ? ids_shifted[0] : code_shifted[0];
 
 // The control CRC-4 x^4 + x + 1 advanced by one bit, with the shared LFSR
 // step every core uses: one instance per bit the frame may push now.
@@ -313,9 +385,12 @@ crc_serial #(.WIDTH(4), .POLY(4'h3)) crc4_one   (.i_crc(crc4_tx_reg), .i_bit(1'b
 crc_serial #(.WIDTH(4), .POLY(4'h3)) crc4_id    (.i_crc(crc4_tx_reg), .i_bit(id_bit),        .o_crc(crc4_tx_id));
 crc_serial #(.WIDTH(4), .POLY(4'h3)) crc4_addr  (.i_crc(crc4_tx_reg), .i_bit(addr_bit),      .o_crc(crc4_tx_addr));
 crc_serial #(.WIDTH(4), .POLY(4'h3)) crc4_wdata (.i_crc(crc4_tx_reg), .i_bit(wdata_bit),     .o_crc(crc4_tx_wdata));
-crc_serial #(.WIDTH(4), .POLY(4'h3)) crc4_cds   (.i_crc(crc4_rx_reg), .i_bit(frame_cds_reg), .o_crc(crc4_rx_cds));
+crc_serial #(.WIDTH(4), .POLY(4'h3)) crc4_cds   (.i_crc(crc4_rx_reg), .i_bit(ctl_cds),       .o_crc(crc4_rx_cds));
+wire [3:0] crc4_tx_cmd;
+crc_serial #(.WIDTH(4), .POLY(4'h3)) crc4_cmd   (.i_crc(crc4_tx_reg), .i_bit(cmd_bit),       .o_crc(crc4_tx_cmd));
 
 reg       finish;
+reg       refused;
 reg       fin_ack;
 reg       fin_timeout;
 reg       frame_ok;
@@ -343,8 +418,16 @@ always @* begin
     cds_next = cds_reg;
     e_delay_next = e_delay_reg;
     e_start_next = e_start_reg;
+    e_drift_next = e_drift_reg;
+    cal_cnt_next = cal_cnt_reg;
+    cal_sum_next = cal_sum_reg;
+    delay_mean_next = delay_mean_reg;
     frame_cds_next = frame_cds_reg;
     frame_crc_bad_next = frame_crc_bad_reg;
+    frame_sel_next = frame_sel_reg;
+    acc_cmd_next = acc_cmd_reg;
+    acc_ids_next = acc_ids_reg;
+    acc_code_next = acc_code_reg;
     cdm_next = cdm_reg;
     zeros_next = zeros_reg;
     reg_pending_next = reg_pending_reg;
@@ -374,10 +457,13 @@ always @* begin
     err_delay_next = 1'b0;
     err_start_next = 1'b0;
     err_timeout_next = 1'b0;
+    err_drift_next = 1'b0;
     slave_valid_next = 1'b0;
     reg_done_next = 1'b0;
     reg_err_next = 1'b0;
+    reg_crc_err_next = 1'b0;
     finish = 1'b0;
+    refused = 1'b0;
     fin_ack = 1'b0;
     fin_timeout = 1'b0;
     frame_ok = 1'b0;
@@ -405,9 +491,24 @@ always @* begin
     // Bit sampling: once per MA period, in the middle of each arriving cell.
     if (sampling) smp_cnt_next = (smp_cnt_reg == 0) ? PERIOD_LAST : smp_cnt_reg - 1'b1;
 
+    // Calibrated frames, two cycles after the ack: sample by the mean when
+    // the delay is within DELAY_TOL of it, else by the own ack and flag it.
+    cal_chk_next = 1'b0;
+    cal_ok_next = cal_ok_reg;
+    cal_smp_next = cal_smp_reg;
+    if (cal_chk_reg) begin
+        cal_ok_next = (delay_dev <= DELAY_TOL_16);
+        cal_smp_next = smp_mean_wide[SMP_W-1:0];
+    end
+    if (cal_apply_reg) begin
+        if (cal_ok_reg) smp_cnt_next = cal_smp_reg;
+        else e_drift_next = 1'b1;
+    end
+
     case (state_reg)
         IDLE: begin
-            if (i_start) begin
+            // A register access starts its own frames, back to back.
+            if (i_start || reg_pending_reg || ctl_active_reg) begin
                 if (slo_sync_reg) begin
                     state_next = ACK;
                     ma_next = 1'b0;
@@ -418,13 +519,16 @@ always @* begin
                     delay_cnt_next = 16'd0;
                     e_delay_next = 1'b0;
                     e_start_next = 1'b0;
+                    e_drift_next = 1'b0;
                     slave_next = 2'd0;
-                    frame_cds_next = 1'b0;
+                    frame_cds_next = 1'b1;
+                    frame_sel_next = 1'b0;
                     frame_crc_bad_next = 1'b0;
                     busy_next = 1'b1;
                 end else begin
                     done_next = 1'b1;
                     err_line_next = 1'b1;
+                    refused = 1'b1;
                 end
             end
         end
@@ -432,9 +536,16 @@ always @* begin
             if (ma_edges_reg == 2'd2) begin
                 if (!slo_sync_reg) begin
                     state_next = START;
-                    smp_cnt_next = FIRST_SAMPLE;
                     cnt_next = 0;
                     delay_next = delay_cnt_reg;
+                    smp_cnt_next = FIRST_SAMPLE;
+                    if (cal_cnt_reg != CAL_FRAMES_5) begin
+                        cal_sum_next = cal_sum_plus;
+                        cal_cnt_next = cal_cnt_reg + 5'd1;
+                        if (cal_cnt_reg + 5'd1 == CAL_FRAMES_5) delay_mean_next = cal_mean_wide[15:0];
+                    end else begin
+                        cal_chk_next = 1'b1;
+                    end
                 end else if (delay_cnt_reg == MAX_DELAY_16) begin
                     state_next = NOACK;
                     ma_stop_next = 1'b1;
@@ -460,7 +571,10 @@ always @* begin
         CDS: begin
             if (sample) begin
                 cds_next = b;
-                if (addressed) frame_cds_next = b;
+                if (addressed) begin
+                    frame_cds_next = frame_cds_reg && b;
+                    frame_sel_next = 1'b1;
+                end
                 state_next = DATA;
                 bit_cnt_next = cur_bits - 7'd1;
                 data_next = 0;
@@ -504,7 +618,7 @@ always @* begin
                     error_next = !nerr_reg;
                     warning_next = !nwarn_reg;
                     out_cds_next = cds_reg;
-                    if (addressed) frame_crc_bad_next = crc_bad_reg || (b == crc_msb);
+                    if (addressed) frame_crc_bad_next = frame_crc_bad_reg || crc_bad_reg || (b == crc_msb);
                     if (slave_reg != LAST_SLAVE) begin
                         slave_next = slave_reg + 2'd1;
                         state_next = CDS;
@@ -562,34 +676,43 @@ always @* begin
         err_delay_next = e_delay_reg;
         err_start_next = e_start_reg;
         err_timeout_next = fin_timeout;
+        err_drift_next = e_drift_reg;
         frame_ok = !(fin_ack || fin_timeout || e_delay_reg || e_start_reg);
+    end
 
-        // Control-frame sequencer: take this frame's CDS, choose the next CDM.
-        zeros_next = (cdm_reg && frame_ok) ? 4'd0 : ((zeros_reg == SYNC_ZEROS) ? SYNC_ZEROS : zeros_reg + 4'd1);
+    // Control-frame sequencer, at the end of every frame and at a refused
+    // start: take this frame's CDS, choose the next CDM. Only frames that
+    // completed count as sent.
+    if (finish || refused) begin
+        if (frame_ok) zeros_next = cdm_reg ? 4'd0 : ((zeros_reg == SYNC_ZEROS) ? SYNC_ZEROS : zeros_reg + 4'd1);
         cdm_next = 1'b0;
         if (ctl_active_reg) begin
             if (!frame_ok || frame_crc_bad_reg) begin
                 ctl_end = 1'b1;
                 ctl_err = 1'b1;
+            end else if (acc_cmd_reg) begin
+                // IDA from every selected slave, then the echo of EX.
+                if (ctl_k_reg == 6'd16 && !ctl_cds) begin ctl_end = 1'b1; ctl_err = 1'b1; end
+                if (ctl_k_reg == 6'd18) begin ctl_end = 1'b1; ctl_err = !ctl_cds; end
             end else begin
                 case (ctl_k_reg)
-                    6'd17: if (frame_cds_reg != !acc_write_reg) begin ctl_end = 1'b1; ctl_err = 1'b1; end
-                    6'd18: if (frame_cds_reg != acc_write_reg) begin ctl_end = 1'b1; ctl_err = 1'b1; end
+                    6'd17: if (ctl_cds != !acc_write_reg) begin ctl_end = 1'b1; ctl_err = 1'b1; end
+                    6'd18: if (ctl_cds != acc_write_reg) begin ctl_end = 1'b1; ctl_err = 1'b1; end
                     6'd19: begin
-                        if (!frame_cds_reg) begin ctl_end = 1'b1; ctl_err = 1'b1; end
+                        if (!ctl_cds) begin ctl_end = 1'b1; ctl_err = 1'b1; end
                         crc4_rx_next = 4'd0;
                     end
                     6'd20, 6'd21, 6'd22, 6'd23, 6'd24, 6'd25, 6'd26, 6'd27: begin
-                        rdata_next = {rdata_reg[6:0], frame_cds_reg};
+                        rdata_next = {rdata_reg[6:0], ctl_cds};
                         crc4_rx_next = crc4_rx_cds;
                     end
                     6'd28, 6'd29, 6'd30, 6'd31: begin
-                        if (frame_cds_reg == crc4_rx_reg[3]) reg_bad_next = 1'b1;
+                        if (ctl_cds == crc4_rx_reg[3]) reg_bad_next = 1'b1;
                         crc4_rx_next = {crc4_rx_reg[2:0], 1'b0};
                     end
                     6'd32: begin
                         ctl_end = 1'b1;
-                        ctl_err = reg_bad_reg || frame_cds_reg || (acc_write_reg && (rdata_reg != acc_wdata_reg));
+                        ctl_err = reg_bad_reg || ctl_cds || (acc_write_reg && (rdata_reg != acc_wdata_reg));
                     end
                     default: begin end
                 endcase
@@ -598,12 +721,27 @@ always @* begin
                 ctl_active_next = 1'b0;
                 reg_done_next = 1'b1;
                 reg_err_next = ctl_err;
+                reg_crc_err_next = (ctl_k_reg == 6'd32) && reg_bad_reg;
                 reg_rdata_next = rdata_reg;
                 reg_busy_next = 1'b0;
             end else begin
                 // CDM bit k_next of the access; the CRC-4 covers CTS, ID, ADR and the write data.
                 ctl_k_next = k_next;
-                case (k_next)
+                if (k_next >= 6'd12 && k_next <= 6'd15) begin
+                    // The address (or command) CRC-4, both kinds.
+                    cdm_next = !crc4_tx_reg[3];
+                    crc4_tx_next = {crc4_tx_reg[2:0], 1'b0};
+                end else if (acc_cmd_reg) begin
+                    // A command: the CRC-4 covers CTS, IDS and CMD; EX at 17.
+                    case (k_next)
+                        6'd1, 6'd2, 6'd3, 6'd4, 6'd5, 6'd6, 6'd7, 6'd8, 6'd9, 6'd10, 6'd11: begin
+                            cdm_next = cmd_bit;
+                            crc4_tx_next = crc4_tx_cmd;
+                        end
+                        6'd17: cdm_next = 1'b1;
+                        default: cdm_next = 1'b0;
+                    endcase
+                end else case (k_next)
                     6'd1: begin cdm_next = 1'b1; crc4_tx_next = crc4_tx_one; end
                     6'd2, 6'd3, 6'd4: begin
                         cdm_next = id_bit;
@@ -612,10 +750,6 @@ always @* begin
                     6'd5, 6'd6, 6'd7, 6'd8, 6'd9, 6'd10, 6'd11: begin
                         cdm_next = addr_bit;
                         crc4_tx_next = crc4_tx_addr;
-                    end
-                    6'd12, 6'd13, 6'd14, 6'd15: begin
-                        cdm_next = !crc4_tx_reg[3];
-                        crc4_tx_next = {crc4_tx_reg[2:0], 1'b0};
                     end
                     6'd16: cdm_next = !acc_write_reg;
                     6'd17: cdm_next = acc_write_reg;
@@ -635,6 +769,13 @@ always @* begin
                     default: cdm_next = 1'b0;
                 endcase
             end
+        end else if (reg_pending_reg && !frame_ok) begin
+            // A sync frame failed: the line cannot carry the access.
+            reg_pending_next = 1'b0;
+            reg_done_next = 1'b1;
+            reg_err_next = 1'b1;
+            reg_rdata_next = rdata_reg;
+            reg_busy_next = 1'b0;
         end else if (reg_pending_reg && (zeros_next >= SYNC_ZEROS)) begin
             reg_pending_next = 1'b0;
             ctl_active_next = 1'b1;
@@ -648,12 +789,15 @@ always @* begin
     end
 
     // Register requests are taken whenever no access is pending or running.
-    if (i_reg_start && !reg_pending_reg && !ctl_active_reg) begin
+    if ((i_reg_start || i_cmd_start) && !reg_pending_reg && !ctl_active_reg) begin
         reg_pending_next = 1'b1;
-        acc_write_next = i_reg_write;
-        acc_id_next = i_reg_id;
-        acc_addr_next = i_reg_addr;
-        acc_wdata_next = i_reg_wdata;
+        acc_cmd_next = !i_reg_start;
+        acc_write_next = i_reg_start && i_reg_write;
+        acc_id_next = i_reg_start ? i_reg_id : 3'd0;
+        acc_addr_next = i_reg_start ? i_reg_addr : 7'd0;
+        acc_wdata_next = i_reg_start ? i_reg_wdata : 8'd0;
+        acc_ids_next = i_reg_start ? 8'd0 : i_cmd_ids;
+        acc_code_next = i_reg_start ? 2'd0 : i_cmd_code;
         reg_busy_next = 1'b1;
     end
 end
@@ -681,8 +825,20 @@ always @(posedge i_clk) begin
     cds_reg <= cds_next;
     e_delay_reg <= e_delay_next;
     e_start_reg <= e_start_next;
+    e_drift_reg <= e_drift_next;
+    cal_cnt_reg <= cal_cnt_next;
+    cal_sum_reg <= cal_sum_next;
+    delay_mean_reg <= delay_mean_next;
+    cal_chk_reg <= cal_chk_next;
+    cal_apply_reg <= cal_chk_reg;
+    cal_ok_reg <= cal_ok_next;
+    cal_smp_reg <= cal_smp_next;
     frame_cds_reg <= frame_cds_next;
     frame_crc_bad_reg <= frame_crc_bad_next;
+    frame_sel_reg <= frame_sel_next;
+    acc_cmd_reg <= acc_cmd_next;
+    acc_ids_reg <= acc_ids_next;
+    acc_code_reg <= acc_code_next;
     cdm_reg <= cdm_next;
     zeros_reg <= zeros_next;
     reg_pending_reg <= reg_pending_next;
@@ -703,6 +859,7 @@ always @(posedge i_clk) begin
     err_delay_reg <= err_delay_next;
     err_start_reg <= err_start_next;
     err_timeout_reg <= err_timeout_next;
+    err_drift_reg <= err_drift_next;
     delay_reg <= delay_next;
     slave_valid_reg <= slave_valid_next;
     slave_index_reg <= slave_index_next;
@@ -715,6 +872,7 @@ always @(posedge i_clk) begin
     reg_done_reg <= reg_done_next;
     reg_err_reg <= reg_err_next;
     reg_rdata_reg <= reg_rdata_next;
+    reg_crc_err_reg <= reg_crc_err_next;
 
     if (i_rst) begin
         state_reg <= IDLE;
@@ -739,8 +897,20 @@ always @(posedge i_clk) begin
         cds_reg <= 1'b0;
         e_delay_reg <= 1'b0;
         e_start_reg <= 1'b0;
+        e_drift_reg <= 1'b0;
+        cal_cnt_reg <= 5'd0;
+        cal_sum_reg <= 20'd0;
+        delay_mean_reg <= 16'd0;
+        cal_chk_reg <= 1'b0;
+        cal_apply_reg <= 1'b0;
+        cal_ok_reg <= 1'b0;
+        cal_smp_reg <= 0;
         frame_cds_reg <= 1'b0;
         frame_crc_bad_reg <= 1'b0;
+        frame_sel_reg <= 1'b0;
+        acc_cmd_reg <= 1'b0;
+        acc_ids_reg <= 8'd0;
+        acc_code_reg <= 2'd0;
         cdm_reg <= 1'b0;
         zeros_reg <= 4'd0;
         reg_pending_reg <= 1'b0;
@@ -761,6 +931,7 @@ always @(posedge i_clk) begin
         err_delay_reg <= 1'b0;
         err_start_reg <= 1'b0;
         err_timeout_reg <= 1'b0;
+        err_drift_reg <= 1'b0;
         delay_reg <= 16'd0;
         slave_valid_reg <= 1'b0;
         slave_index_reg <= 2'd0;
@@ -773,6 +944,7 @@ always @(posedge i_clk) begin
         reg_done_reg <= 1'b0;
         reg_err_reg <= 1'b0;
         reg_rdata_reg <= 8'd0;
+        reg_crc_err_reg <= 1'b0;
     end
 end
 

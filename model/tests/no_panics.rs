@@ -108,3 +108,51 @@ fn the_property_tests_above_run_many_accepted_setups() {
     let (ssi, uart) = (SSI_RAN.load(Ordering::Relaxed), UART_RAN.load(Ordering::Relaxed));
     assert!(ssi >= 20 && uart >= 20, "accepted and run: ssi {ssi}, uart {uart}");
 }
+
+static BISS_RAN: AtomicUsize = AtomicUsize::new(0);
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 300, failure_persistence: None, ..ProptestConfig::default() })]
+
+    #[test]
+    fn any_biss_setup_is_accepted_or_refused_by_field(
+        (f_sys, clock, max_delay, timeout) in (any_f64(&[80.0, 100.0]), any_f64(&[10_000.0, 2_500.0]), any_f64(&[2_000.0, 50.0]), any_f64(&[40.0, 1.0])),
+        (busy, slave_timeout, cable, jitter, step_ns) in (any_f64(&[250.0, 0.0]), any_f64(&[2.0, 16.0]), any_f64(&[0.0, 100.0]), any_f64(&[0.0, 12.0]), any_f64(&[150.0, 0.0])),
+        tol in proptest::option::of(any_f64(&[10.0, 30.0])),
+        (cal_frames, bits, crc_width, crc_poly) in (prop_oneof![4 => Just(4u64), 1 => any::<u64>()], prop_oneof![4 => Just(16u32), 1 => 0u32..70], prop_oneof![4 => Just(6u32), 1 => 0u32..10], prop_oneof![4 => Just(3u64), 1 => any::<u64>()]),
+        frames in prop_oneof![4 => 1usize..3, 1 => any::<usize>()],
+        reg in proptest::option::of((any::<bool>(), 0u8..10, prop_oneof![4 => 0u8..128, 1 => any::<u8>()], any::<u8>())),
+        cmd in proptest::option::of((any::<u8>(), prop_oneof![4 => 0u8..4, 1 => any::<u8>()])),
+        (position, flags) in (prop_oneof![4 => 0u64..65536, 1 => any::<u64>()], any::<[bool; 3]>()),
+    ) {
+        let cfg = model::biss::BenchConfig {
+            f_sys_mhz: f_sys,
+            master: model::biss::MasterSettings { clock_khz: clock, max_delay_ns: max_delay, timeout_us: timeout, cal_frames, delay_tolerance_ns: tol, ..Default::default() },
+            slaves: vec![model::biss::SlaveSettings { bits, crc_width, crc_poly, busy_ns: busy, timeout_us: slave_timeout, positions: vec![position], cds_crc_error: flags[0], ..Default::default() }],
+            cable: model::line::CableConfig { length_m: cable, jitter_ns: jitter, ..Default::default() },
+            host: model::biss::HostSettings {
+                frames,
+                registers: reg.map(|(write, id, addr, data)| model::biss::RegOp { write, id, addr, data }).into_iter().collect(),
+                commands: cmd.map(|(ids, code)| model::biss::CmdOp { ids, code }).into_iter().collect(),
+                ..Default::default()
+            },
+            stuck: flags[1].then_some(model::biss::StuckFault { level: flags[2], from_frame: 1 }),
+            delay_step: Some(model::biss::DelayStep { from_frame: 1, extra_ns: step_ns }),
+            ..Default::default()
+        };
+        match cfg.validate() {
+            Ok(()) => {
+                step_a_while(cfg.bench().expect("a validated setup builds"));
+                BISS_RAN.fetch_add(1, Ordering::Relaxed);
+            }
+            Err(e) => prop_assert!(!e.field().is_empty()),
+        }
+    }
+}
+
+#[test]
+fn the_biss_property_test_runs_many_accepted_setups() {
+    any_biss_setup_is_accepted_or_refused_by_field();
+    let biss = BISS_RAN.load(Ordering::Relaxed);
+    assert!(biss >= 20, "accepted and run: biss {biss}");
+}

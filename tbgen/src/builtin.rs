@@ -57,6 +57,8 @@ pub const FILES: &[(&str, &str)] = &[
     ("biss/fault_delay_beyond.toml", include_str!("../../scenarios/biss/fault_delay_beyond.toml")),
     ("biss/fault_crc4_read.toml", include_str!("../../scenarios/biss/fault_crc4_read.toml")),
     ("biss/fault_crc4_address.toml", include_str!("../../scenarios/biss/fault_crc4_address.toml")),
+    ("biss/calibration_drift.toml", include_str!("../../scenarios/biss/calibration_drift.toml")),
+    ("biss/command_chain.toml", include_str!("../../scenarios/biss/command_chain.toml")),
     ("endat/pos21_1mhz.toml", include_str!("../../scenarios/endat/pos21_1mhz.toml")),
     ("endat/pos22_ad_8mhz_100m.toml", include_str!("../../scenarios/endat/pos22_ad_8mhz_100m.toml")),
     ("endat/memory_21.toml", include_str!("../../scenarios/endat/memory_21.toml")),

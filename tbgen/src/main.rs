@@ -89,7 +89,7 @@ enum Command {
 #[derive(Subcommand)]
 enum Decode {
     /// BiSS-C: MA and SLO at the master.
-    #[command(after_help = "Example:\n  tbgen decode biss vectors/biss_master/biss_seed_16bit.vcd --bits 16")]
+    #[command(after_help = "Examples:\n  tbgen decode biss vectors/biss_master/biss_seed_16bit.vcd --bits 16\n  tbgen decode biss vectors/biss_master/biss_chain_3slaves.vcd --bits 12,26,32 --crc-width 6,6,8 --crc-poly 3,3,7")]
     Biss {
         /// The VCD file.
         file: PathBuf,
@@ -217,7 +217,8 @@ fn run(command: Command) -> Result<(), Error> {
                 return Err(Error::Decode("decode biss: give --bits (1..64 each) and, if any, one --crc-width (1..8) and --crc-poly per slave".into()));
             }
             let layout = biss_tools::Layout { bits, crc_width, crc_poly };
-            let decoded = biss_tools::decode(&file, &ma, &slo, &layout)?;
+            let frames = biss_tools::decode(&file, &ma, &slo, &layout)?;
+            let decoded = tbgen::transcript::Decoded::new("biss", &file, &[("ma", &ma), ("slo", &slo)], &frames);
             println!("{}", serde_json::to_string_pretty(&decoded).map_err(|e| Error::Decode(e.to_string()))?);
         }
         Command::Decode(Decode::Tformat { file, line, tx_en, baud, timeout_us }) => {

@@ -13,6 +13,8 @@ parameter SLAVE_CRC_POLY = 3;
 parameter CLOCKS_PER_BIT = 8;
 parameter MAX_DELAY = 160;
 parameter TIMEOUT_CLOCKS = 3200;
+parameter CAL_FRAMES = 4;
+parameter DELAY_TOL = 1;
 
 /* Harness parameters */
 parameter HALF_PERIOD_FS = 6_250_000;
@@ -34,8 +36,8 @@ function integer max_bits(input integer packed_values, input integer count);
 endfunction
 
 localparam integer DATA_W = max_bits(SLAVE_BITS, SLAVES);
-localparam N_IN = 7;
-localparam N_OUT = 20;
+localparam N_IN = 10;
+localparam N_OUT = 23;
 
 `include "vector_player.vh"
 
@@ -46,6 +48,9 @@ reg i_reg_write = 1'b0;
 reg [2:0] i_reg_id = 3'd0;
 reg [6:0] i_reg_addr = 7'd0;
 reg [7:0] i_reg_wdata = 8'd0;
+reg i_cmd_start = 1'b0;
+reg [7:0] i_cmd_ids = 8'd0;
+reg [1:0] i_cmd_code = 2'd0;
 wire o_ma;
 wire o_busy;
 wire o_done;
@@ -66,6 +71,9 @@ wire o_reg_busy;
 wire o_reg_done;
 wire o_reg_err;
 wire [7:0] o_reg_rdata;
+wire o_reg_crc_err;
+wire [15:0] o_delay_mean;
+wire o_err_drift;
 
 // Port order = the model's biss::Master::input_ports() / output_ports().
 task apply_inputs;
@@ -77,6 +85,9 @@ task apply_inputs;
         i_reg_id = `IN_WORD(4) & 3'h7;
         i_reg_addr = `IN_WORD(5) & 7'h7F;
         i_reg_wdata = `IN_WORD(6) & 8'hFF;
+        i_cmd_start = `IN_WORD(7) & 1'b1;
+        i_cmd_ids = `IN_WORD(8) & 8'hFF;
+        i_cmd_code = `IN_WORD(9) & 2'h3;
     end
 endtask
 
@@ -102,6 +113,9 @@ task check_outputs;
         `CHECK(17, "o_reg_done", o_reg_done)
         `CHECK(18, "o_reg_err", o_reg_err)
         `CHECK(19, "o_reg_rdata", o_reg_rdata)
+        `CHECK(20, "o_reg_crc_err", o_reg_crc_err)
+        `CHECK(21, "o_delay_mean", o_delay_mean)
+        `CHECK(22, "o_err_drift", o_err_drift)
     end
 endtask
 
@@ -112,7 +126,9 @@ biss_master #(
     .SLAVE_CRC_POLY(SLAVE_CRC_POLY),
     .CLOCKS_PER_BIT(CLOCKS_PER_BIT),
     .MAX_DELAY(MAX_DELAY),
-    .TIMEOUT_CLOCKS(TIMEOUT_CLOCKS)
+    .TIMEOUT_CLOCKS(TIMEOUT_CLOCKS),
+    .CAL_FRAMES(CAL_FRAMES),
+    .DELAY_TOL(DELAY_TOL)
 ) dut (
     .i_clk(clk),
     .i_rst(rst),
@@ -125,6 +141,8 @@ biss_master #(
     .o_err_start(o_err_start),
     .o_err_timeout(o_err_timeout),
     .o_delay(o_delay),
+    .o_delay_mean(o_delay_mean),
+    .o_err_drift(o_err_drift),
     .o_slave_valid(o_slave_valid),
     .o_slave_index(o_slave_index),
     .o_data(o_data),
@@ -141,6 +159,10 @@ biss_master #(
     .o_reg_done(o_reg_done),
     .o_reg_err(o_reg_err),
     .o_reg_rdata(o_reg_rdata),
+    .o_reg_crc_err(o_reg_crc_err),
+    .i_cmd_start(i_cmd_start),
+    .i_cmd_ids(i_cmd_ids),
+    .i_cmd_code(i_cmd_code),
     .o_ma(o_ma),
     .i_slo(i_slo)
 );

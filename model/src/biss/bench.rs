@@ -1,5 +1,10 @@
 //! A whole BiSS-C set-up: host, master, cable and a chain of slaves.
 //!
+//! The host runs its register accesses first, each as one operation (one
+//! `i_reg_start`, then it waits for `o_reg_done` while the master runs the
+//! frames), then starts frames until `frames` have run. Every frame, whoever
+//! started it, is a transaction.
+//!
 //! Each cycle `c`:
 //! 1. the host decides `i_start` and register requests; the master's SLO
 //!    input is the level that left the cable at the master's end in the
@@ -39,11 +44,25 @@ pub struct MasterSettings {
     pub crc_width: Option<Vec<u32>>,
     /// CRC polynomial per slave (default: the slaves').
     pub crc_poly: Option<Vec<u64>>,
+    /// Start-up frames whose mean delay the master samples by: 1, 2, 4, 8 or 16.
+    pub cal_frames: u64,
+    /// Largest departure from the mean delay still sampled by the mean, ns
+    /// (default: a quarter of an MA period, rounded down to whole cycles).
+    pub delay_tolerance_ns: Option<f64>,
 }
 
 impl Default for MasterSettings {
     fn default() -> Self {
-        MasterSettings { clock_khz: 10_000.0, max_delay_ns: 2_000.0, timeout_us: 40.0, bits: None, crc_width: None, crc_poly: None }
+        MasterSettings {
+            clock_khz: 10_000.0,
+            max_delay_ns: 2_000.0,
+            timeout_us: 40.0,
+            bits: None,
+            crc_width: None,
+            crc_poly: None,
+            cal_frames: 4,
+            delay_tolerance_ns: None,
+        }
     }
 }
 
@@ -125,6 +144,17 @@ pub struct RegOp {
     pub data: u8,
 }
 
+/// One BiSS-C command the host sends (`[[host.commands]]`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CmdOp {
+    /// Slave-select bits IDS: bit `i` selects ID `i`; 0 is a broadcast.
+    #[serde(default)]
+    pub ids: u8,
+    /// The 2-bit command.
+    pub code: u8,
+}
+
 /// When the host starts frames and register accesses (`[host]`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -133,15 +163,17 @@ pub struct HostSettings {
     pub first_start_us: f64,
     /// Idle time between the end of one frame and the next start, µs.
     pub gap_us: f64,
-    /// Frames to run at least (more if register accesses need them).
+    /// Frames to run at least (the frames of register accesses count).
     pub frames: usize,
-    /// Register accesses, one after the other.
+    /// Register accesses, one after the other, before the host's own frames.
     pub registers: Vec<RegOp>,
+    /// Commands, one after the other, after the register accesses.
+    pub commands: Vec<CmdOp>,
 }
 
 impl Default for HostSettings {
     fn default() -> Self {
-        HostSettings { first_start_us: 1.0, gap_us: 1.0, frames: 1, registers: Vec::new() }
+        HostSettings { first_start_us: 1.0, gap_us: 1.0, frames: 1, registers: Vec::new(), commands: Vec::new() }
     }
 }
 
@@ -168,6 +200,17 @@ pub struct FlipFault {
     pub bits: Vec<u32>,
 }
 
+/// Extra SLO delay from a given frame on: the line changed after the
+/// master calibrated (`[delay_step]`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DelayStep {
+    /// The first frame (0-based) that sees it.
+    pub from_frame: usize,
+    /// Extra delay on SLO at the master, ns.
+    pub extra_ns: f64,
+}
+
 /// Everything a scenario says about a BiSS-C set-up.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -186,6 +229,8 @@ pub struct BenchConfig {
     pub flips: Vec<FlipFault>,
     /// A stuck SLO line.
     pub stuck: Option<StuckFault>,
+    /// A change of the line delay after start-up.
+    pub delay_step: Option<DelayStep>,
 }
 
 impl Default for BenchConfig {
@@ -198,6 +243,7 @@ impl Default for BenchConfig {
             host: HostSettings::default(),
             flips: Vec::new(),
             stuck: None,
+            delay_step: None,
         }
     }
 }
@@ -233,15 +279,25 @@ impl BenchConfig {
         }
         check_time("master.max_delay_ns", m.max_delay_ns)?;
         check_time("master.timeout_us", m.timeout_us)?;
+        let clocks_per_bit = tb.even_divider(m.clock_khz * 1e3, "master.clock_khz")?;
+        let delay_tol = match m.delay_tolerance_ns {
+            Some(ns) => {
+                check_time("master.delay_tolerance_ns", ns)?;
+                tb.cycles_nearest_ns(ns)
+            }
+            None => clocks_per_bit / 4,
+        };
         let n = self.slaves.len();
         let cfg = MasterConfig {
             slaves: n as u32,
             slave_bits: m.bits.clone().unwrap_or_else(|| self.slaves.iter().map(|s| s.bits).collect()),
             slave_crc_width: m.crc_width.clone().unwrap_or_else(|| self.slaves.iter().map(|s| s.crc_width).collect()),
             slave_crc_poly: m.crc_poly.clone().unwrap_or_else(|| self.slaves.iter().map(|s| s.crc_poly).collect()),
-            clocks_per_bit: tb.even_divider(m.clock_khz * 1e3, "master.clock_khz")?,
+            clocks_per_bit,
             max_delay: tb.cycles_at_least_ns(m.max_delay_ns),
             timeout_clocks: tb.cycles_at_least_ns(m.timeout_us * 1e3),
+            cal_frames: m.cal_frames,
+            delay_tol,
         };
         cfg.validate()?;
         Ok(cfg)
@@ -296,9 +352,15 @@ impl BenchConfig {
                 ));
             }
         }
+        if let Some(d) = &self.delay_step {
+            check_time("delay_step.extra_ns", d.extra_ns)?;
+        }
         check_time("host.first_start_us", self.host.first_start_us)?;
         check_time("host.gap_us", self.host.gap_us)?;
-        if self.host.frames == 0 && self.host.registers.is_empty() {
+        if let Some((j, _)) = self.host.commands.iter().enumerate().find(|(_, c)| c.code > 3) {
+            return Err(ConfigError::invalid(format!("host.commands[{j}].code"), "above 3", "give a 2-bit command, 0 to 3"));
+        }
+        if self.host.frames == 0 && self.host.registers.is_empty() && self.host.commands.is_empty() {
             return Err(ConfigError::invalid("host.frames", "no frames", "ask for at least one frame"));
         }
         if self.host.frames > 1_000_000 {
@@ -325,7 +387,9 @@ impl BenchConfig {
     /// The most frames a run may take: the frames asked for plus what the
     /// register accesses need (14 sync zeros and 33 control frames each).
     pub fn frame_limit(&self) -> usize {
-        self.host.frames + self.host.registers.len() * (control::SYNC_ZEROS as usize + control::K_LAST as usize + 2)
+        self.host.frames
+            + self.host.registers.len() * (control::SYNC_ZEROS as usize + control::K_LAST as usize + 2)
+            + self.host.commands.len() * (control::SYNC_ZEROS as usize + control::K_CMD_LAST as usize + 2)
     }
 }
 
@@ -383,13 +447,29 @@ pub struct RegResult {
     pub id: u8,
     /// Address.
     pub addr: u8,
-    /// Data written (writes).
+    /// Data written (writes; 0 on a read).
     pub wdata: u8,
     /// Data read, or the slave's echo of a write.
     pub rdata: u8,
     /// The access succeeded.
     pub ok: bool,
-    /// The CDM bits the master sent, `k = 0..=31`.
+    /// `false` when the slave's answer came with a wrong CRC-4 (`o_reg_crc_err`).
+    pub crc4_ok: bool,
+    /// The CDM bits the master sent, `k = 0` up to the frame that ended the
+    /// access (`k = 32` when it ran to the end).
+    pub cdm: String,
+}
+
+/// A finished command.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CmdResult {
+    /// Slave-select bits IDS (0 = broadcast).
+    pub ids: u8,
+    /// The command.
+    pub code: u8,
+    /// Every selected slave acknowledged (IDA) and echoed EX.
+    pub ok: bool,
+    /// The CDM bits the master sent, `k = 0` up to the frame that ended it.
     pub cdm: String,
 }
 
@@ -398,12 +478,15 @@ pub struct RegResult {
 pub struct Transaction {
     /// 0-based frame number.
     pub index: usize,
-    /// Cycle of the host's start pulse.
+    /// The cycle the master left IDLE (the host's start pulse, or the
+    /// master's own start inside a register access).
     pub start_cycle: u64,
     /// Cycle of `o_done`.
     pub done_cycle: u64,
     /// Edge 2 to ack at the synchroniser, cycles, when there was an ack.
     pub delay_cycles: Option<u64>,
+    /// The start-up mean the master samples by, once calibrated.
+    pub delay_mean_cycles: Option<u64>,
     /// The CDM bit this frame carried.
     pub cdm: bool,
     /// Control-frame index of that bit, when a control frame was running.
@@ -413,10 +496,13 @@ pub struct Transaction {
     /// Each slave's result, in chain order.
     pub slaves: Vec<SlaveResult>,
     /// Frame errors: `line_low_at_start`, `no_ack`, `delay_beyond_compensation`,
-    /// `no_start_bit`, `slo_not_released`; per slave `crc_error_slave<i>`.
+    /// `no_start_bit`, `slo_not_released`, `delay_departs_from_mean`; per
+    /// slave `crc_error_slave<i>`.
     pub errors: Vec<String>,
     /// A register access that ended with this frame.
     pub register: Option<RegResult>,
+    /// A command that ended with this frame.
+    pub command: Option<CmdResult>,
 }
 
 impl testbench::Transaction for Transaction {
@@ -429,6 +515,7 @@ impl testbench::Transaction for Transaction {
 enum Host {
     WaitUntil(u64),
     WaitDone,
+    WaitRegDone,
     Finished(u64),
 }
 
@@ -448,10 +535,14 @@ pub struct Bench {
     next_frame: usize,
     next_op: usize,
     stuck: Option<bool>,
+    extra_slo: Option<DelayLine>,
+    delay_step: Option<(usize, u64)>,
     cycle: u64,
     last_out: Out,
     open: Option<Transaction>,
     open_op: Option<RegOp>,
+    open_cmd: Option<CmdOp>,
+    next_cmd: usize,
     transactions: Vec<Transaction>,
     layout: Layout,
 }
@@ -497,10 +588,14 @@ impl Bench {
             next_frame: 0,
             next_op: 0,
             stuck: None,
+            extra_slo: None,
+            delay_step: cfg.delay_step.as_ref().map(|d| (d.from_frame, tb.cycles_nearest_ns(d.extra_ns))),
             cycle: 0,
             last_out: Out { o_ma: true, ..Out::default() },
             open: None,
             open_op: None,
+            open_cmd: None,
+            next_cmd: 0,
             transactions: Vec::new(),
             layout,
             cfg: cfg.clone(),
@@ -525,26 +620,18 @@ impl Bench {
                 self.stuck = Some(f.level);
             }
         }
+        if let (Some((from, cycles)), None) = (self.delay_step, &self.extra_slo) {
+            if k >= from {
+                self.extra_slo = Some(DelayLine::new(cycles, true));
+            }
+        }
     }
 
     fn host_decides(&mut self) -> In {
         let mut input = In { i_slo: self.stuck.unwrap_or(self.slo_at_master), ..In::default() };
         if let Host::WaitUntil(at) = self.host {
-            if self.cycle >= at && !self.last_out.o_busy {
-                let k = self.next_frame;
-                for i in 0..self.cfg.slaves.len() {
-                    let p = self.cfg.position_at(i, k);
-                    let s = &self.cfg.slaves[i];
-                    let error = s.error || s.error_frames.contains(&k);
-                    let warning = s.warning || s.warning_frames.contains(&k);
-                    let flips: Vec<u32> = self.cfg.flips.iter().filter(|f| f.frame == k && f.slave == i).flat_map(|f| f.bits.clone()).collect();
-                    let slave = &mut self.chain.slaves_mut()[i];
-                    slave.set_position(p);
-                    slave.set_flags(error, warning);
-                    slave.set_flips(flips);
-                }
-                input.i_start = true;
-                if self.open_op.is_none() && self.next_op < self.cfg.host.registers.len() && !self.last_out.o_reg_busy {
+            if self.cycle >= at && !self.last_out.o_busy && !self.last_out.o_reg_busy {
+                if self.next_op < self.cfg.host.registers.len() {
                     let op = self.cfg.host.registers[self.next_op];
                     self.next_op += 1;
                     self.open_op = Some(op);
@@ -553,24 +640,58 @@ impl Bench {
                     input.i_reg_id = op.id;
                     input.i_reg_addr = op.addr;
                     input.i_reg_wdata = op.data;
+                    self.host = Host::WaitRegDone;
+                } else if self.next_cmd < self.cfg.host.commands.len() {
+                    let cmd = self.cfg.host.commands[self.next_cmd];
+                    self.next_cmd += 1;
+                    self.open_cmd = Some(cmd);
+                    input.i_cmd_start = true;
+                    input.i_cmd_ids = cmd.ids;
+                    input.i_cmd_code = cmd.code;
+                    self.host = Host::WaitRegDone;
+                } else {
+                    input.i_start = true;
+                    self.host = Host::WaitDone;
                 }
-                self.open = Some(Transaction {
-                    index: k,
-                    start_cycle: self.cycle,
-                    done_cycle: 0,
-                    delay_cycles: None,
-                    cdm: self.master.cdm(),
-                    control_index: self.master.control_index(),
-                    received_bits: String::new(),
-                    slaves: Vec::new(),
-                    errors: Vec::new(),
-                    register: None,
-                });
-                self.next_frame += 1;
-                self.host = Host::WaitDone;
             }
         }
         input
+    }
+
+    /// A frame begins when the master leaves IDLE (or refuses a start): the
+    /// slaves take this frame's position and flags before the first MA edge
+    /// reaches them.
+    fn frame_begins(&mut self, out: &Out) {
+        if self.last_out.o_busy || !(out.o_busy || out.o_done) {
+            return;
+        }
+        let k = self.next_frame;
+        for i in 0..self.cfg.slaves.len() {
+            let p = self.cfg.position_at(i, k);
+            let s = &self.cfg.slaves[i];
+            let error = s.error || s.error_frames.contains(&k);
+            let warning = s.warning || s.warning_frames.contains(&k);
+            let flips: Vec<u32> = self.cfg.flips.iter().filter(|f| f.frame == k && f.slave == i).flat_map(|f| f.bits.clone()).collect();
+            let slave = &mut self.chain.slaves_mut()[i];
+            slave.set_position(p);
+            slave.set_flags(error, warning);
+            slave.set_flips(flips);
+        }
+        self.open = Some(Transaction {
+            index: k,
+            start_cycle: self.cycle,
+            done_cycle: 0,
+            delay_cycles: None,
+            delay_mean_cycles: None,
+            cdm: self.master.cdm(),
+            control_index: self.master.control_index(),
+            received_bits: String::new(),
+            slaves: Vec::new(),
+            errors: Vec::new(),
+            register: None,
+            command: None,
+        });
+        self.next_frame += 1;
     }
 
     fn host_observes(&mut self, out: &Out) {
@@ -595,7 +716,7 @@ impl Bench {
                 }
             }
         }
-        if self.host == Host::WaitDone && out.o_done {
+        if out.o_done {
             if let Some(mut t) = self.open.take() {
                 t.done_cycle = self.cycle;
                 if !out.o_err_line && !out.o_err_ack && !out.o_err_delay {
@@ -607,33 +728,49 @@ impl Bench {
                     (out.o_err_delay, "delay_beyond_compensation"),
                     (out.o_err_start, "no_start_bit"),
                     (out.o_err_timeout, "slo_not_released"),
+                    (out.o_err_drift, "delay_departs_from_mean"),
                 ] {
                     if flag {
                         t.errors.push(name.to_string());
                     }
                 }
                 t.received_bits = bit_string(self.master.sampled_bits());
+                t.delay_mean_cycles = self.master.calibrated().then_some(out.o_delay_mean);
                 if out.o_reg_done {
                     if let Some(op) = self.open_op.take() {
-                        let acc = control::Access { write: op.write, id: op.id, addr: op.addr, wdata: op.data };
-                        let cdm = control::cdm_sequence(&acc);
+                        let acc = control::Access { write: op.write, id: op.id, addr: op.addr, wdata: op.data, ..control::Access::default() };
+                        let sent = t.control_index.map_or(0, |k| k as usize + 1);
+                        let cdm = &control::cdm_sequence(&acc)[..sent];
                         t.register = Some(RegResult {
                             write: op.write,
                             id: op.id,
                             addr: op.addr,
-                            wdata: op.data,
+                            wdata: if op.write { op.data } else { 0 },
                             rdata: out.o_reg_rdata,
                             ok: !out.o_reg_err,
-                            cdm: bit_string(&cdm),
+                            crc4_ok: !out.o_reg_crc_err,
+                            cdm: bit_string(cdm),
                         });
+                    }
+                    if let Some(cmd) = self.open_cmd.take() {
+                        let acc = control::Access { command: true, ids: cmd.ids, code: cmd.code, ..control::Access::default() };
+                        let sent = t.control_index.map_or(0, |k| k as usize + 1);
+                        t.command = Some(CmdResult { ids: cmd.ids, code: cmd.code, ok: !out.o_reg_err, cdm: bit_string(&control::cdm_sequence(&acc)[..sent]) });
                     }
                 }
                 self.transactions.push(t);
             }
             self.apply_stuck_before(self.next_frame);
-            let more_ops = self.open_op.is_some() || self.next_op < self.cfg.host.registers.len();
-            let more = (self.next_frame < self.cfg.host.frames || more_ops) && self.next_frame < self.cfg.frame_limit();
-            self.host = if more { Host::WaitUntil(self.cycle + self.gap_clocks) } else { Host::Finished(self.cycle + TAIL_CYCLES) };
+            let host_done = match self.host {
+                Host::WaitDone => true,
+                Host::WaitRegDone => out.o_reg_done,
+                _ => false,
+            };
+            if host_done {
+                let more_ops = self.next_op < self.cfg.host.registers.len() || self.next_cmd < self.cfg.host.commands.len();
+                let more = (self.next_frame < self.cfg.host.frames || more_ops) && self.next_frame < self.cfg.frame_limit();
+                self.host = if more { Host::WaitUntil(self.cycle + self.gap_clocks) } else { Host::Finished(self.cycle + TAIL_CYCLES) };
+            }
         }
     }
 }
@@ -660,9 +797,14 @@ impl Testbench for Bench {
     fn step(&mut self, sample: Option<&mut Sample>) {
         let input = self.host_decides();
         let out = self.master.step(&input);
+        self.frame_begins(&out);
         let ma_at_slave = self.ma_line.step(out.o_ma);
         let slo_from_slave = self.chain.step(ma_at_slave);
-        self.slo_at_master = self.slo_line.step(slo_from_slave);
+        let slo_back = self.slo_line.step(slo_from_slave);
+        self.slo_at_master = match self.extra_slo.as_mut() {
+            Some(extra) => extra.step(slo_back),
+            None => slo_back,
+        };
         self.host_observes(&out);
         self.last_out = out;
         self.cycle += 1;

@@ -84,6 +84,8 @@ fn pair(bits: u32) -> (Master, Chain) {
         clocks_per_bit: 8,
         max_delay: 64,
         timeout_clocks: 400,
+        cal_frames: 1,
+        delay_tol: 1,
     };
     let scfg = SlaveConfig { bits, crc_width: 6, crc_poly: 0x03, busy_clocks: 16, timeout_clocks: 80, id: 0, registers: vec![] };
     let master = Master::new(mcfg).expect("campaign master configuration is valid");

@@ -35,6 +35,24 @@ pub struct MasterConfig {
     /// Longest wait for the start bit after the ack, for SLO to go low and
     /// high after the last clock, and for a late ack (`TIMEOUT_CLOCKS`).
     pub timeout_clocks: u64,
+    /// Frames with an ack measured at start-up whose mean delay the master
+    /// samples by afterwards: 1, 2, 4, 8 or 16 (`CAL_FRAMES`).
+    pub cal_frames: u64,
+    /// Largest departure of a frame's delay from the mean that is still
+    /// sampled by the mean, cycles, below `CLOCKS_PER_BIT / 2`; a larger one
+    /// is sampled by its own ack and flagged (`DELAY_TOL`).
+    pub delay_tol: u64,
+}
+
+/// Whether the control-frame operation `a` addresses the slave at chain
+/// position `slave` (its ID is its position): the register access's ID, or
+/// a command's IDS bit (every slave on a broadcast).
+fn selected(a: &Access, slave: u8) -> bool {
+    if a.command {
+        control::selects(a.ids, slave)
+    } else {
+        a.id == slave
+    }
 }
 
 /// Packs per-slave values 8 bits each, slave 0 lowest (the RTL's parameter form).
@@ -93,6 +111,16 @@ impl MasterConfig {
                 "give a compensation range of 1 to 65535 system clocks",
             ));
         }
+        if !matches!(self.cal_frames, 1 | 2 | 4 | 8 | 16) {
+            return Err(ConfigError::invalid("master.cal_frames", format!("{}", self.cal_frames), "give 1, 2, 4, 8 or 16 start-up frames (a power of two: the mean is a shift)"));
+        }
+        if self.delay_tol >= self.clocks_per_bit / 2 {
+            return Err(ConfigError::invalid(
+                "master.delay_tolerance_ns",
+                format!("{} cycles for half an MA period of {}", self.delay_tol, self.clocks_per_bit / 2),
+                "give a tolerance below half an MA period (the sample must stay inside its cell)",
+            ));
+        }
         if self.timeout_clocks < 2 * self.clocks_per_bit || self.timeout_clocks >= 1 << 24 {
             return Err(ConfigError::invalid(
                 "master.timeout_us",
@@ -125,6 +153,8 @@ impl MasterConfig {
             ("CLOCKS_PER_BIT", self.clocks_per_bit),
             ("MAX_DELAY", self.max_delay),
             ("TIMEOUT_CLOCKS", self.timeout_clocks),
+            ("CAL_FRAMES", self.cal_frames),
+            ("DELAY_TOL", self.delay_tol),
         ]
     }
 }
@@ -159,11 +189,14 @@ pub enum State {
 /// Inputs sampled at one rising edge of the system clock.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct In {
-    /// Host: start one frame (one-cycle pulse; ignored while busy).
+    /// Host: start one frame (one-cycle pulse; ignored while busy). A
+    /// register access runs its frames without it.
     pub i_start: bool,
     /// Line: SLO as it arrives at the master's receiver.
     pub i_slo: bool,
-    /// Host: start a register access (one-cycle pulse; ignored while `o_reg_busy`).
+    /// Host: start a register access, one host operation: the master runs
+    /// the sync and control frames by itself (one-cycle pulse; ignored while
+    /// `o_reg_busy`).
     pub i_reg_start: bool,
     /// Host: the access is a write.
     pub i_reg_write: bool,
@@ -173,6 +206,14 @@ pub struct In {
     pub i_reg_addr: u8,
     /// Host: data to write.
     pub i_reg_wdata: u8,
+    /// Host: send a BiSS-C command (`CTS = 0`), one host operation like a
+    /// register access, reported on `o_reg_done`/`o_reg_err` (one-cycle
+    /// pulse; ignored while `o_reg_busy`; `i_reg_start` wins a tie).
+    pub i_cmd_start: bool,
+    /// Host: the slave-select bits IDS (bit `i` = ID `i`; 0 = broadcast).
+    pub i_cmd_ids: u8,
+    /// Host: the 2-bit command.
+    pub i_cmd_code: u8,
 }
 
 /// Registered outputs after one rising edge of the system clock.
@@ -196,6 +237,11 @@ pub struct Out {
     pub o_err_timeout: bool,
     /// The last measured delay, edge 2 to the ack at the synchroniser, cycles.
     pub o_delay: u64,
+    /// The mean delay of the start-up frames, once `CAL_FRAMES` were measured (0 before).
+    pub o_delay_mean: u64,
+    /// With `o_done`: this frame's delay departed from the mean by more than
+    /// `DELAY_TOL`; it was sampled by its own ack.
+    pub o_err_drift: bool,
     /// One-cycle pulse: one slave's result is on the outputs below.
     pub o_slave_valid: bool,
     /// Which slave (chain position).
@@ -218,6 +264,8 @@ pub struct Out {
     pub o_reg_err: bool,
     /// With `o_reg_done`: the register's value (read) or its echo (write).
     pub o_reg_rdata: u8,
+    /// With `o_reg_done`: the CRC-4 of the slave's answer did not match.
+    pub o_reg_crc_err: bool,
 }
 
 impl Ports for In {
@@ -229,6 +277,9 @@ impl Ports for In {
         dst[4] = self.i_reg_id as u64;
         dst[5] = self.i_reg_addr as u64;
         dst[6] = self.i_reg_wdata as u64;
+        dst[7] = self.i_cmd_start as u64;
+        dst[8] = self.i_cmd_ids as u64;
+        dst[9] = self.i_cmd_code as u64;
     }
 }
 
@@ -255,6 +306,9 @@ impl Ports for Out {
             self.o_reg_done as u64,
             self.o_reg_err as u64,
             self.o_reg_rdata as u64,
+            self.o_reg_crc_err as u64,
+            self.o_delay_mean,
+            self.o_err_drift as u64,
         ];
         dst[..v.len()].copy_from_slice(&v);
     }
@@ -284,7 +338,12 @@ struct Regs {
     cds: bool,
     e_delay: bool,
     e_start: bool,
+    e_drift: bool,
+    cal_cnt: u64,
+    cal_sum: u64,
+    delay_mean: u64,
     frame_cds: bool,
+    frame_sel: bool,
     frame_crc_bad: bool,
     cdm: bool,
     zeros: u32,
@@ -337,7 +396,12 @@ impl Master {
                 cds: false,
                 e_delay: false,
                 e_start: false,
+                e_drift: false,
+                cal_cnt: 0,
+                cal_sum: 0,
+                delay_mean: 0,
                 frame_cds: false,
+                frame_sel: false,
                 frame_crc_bad: false,
                 cdm: false,
                 zeros: 0,
@@ -398,6 +462,9 @@ impl Master {
             Port::new("i_reg_id", 3),
             Port::new("i_reg_addr", 7),
             Port::new("i_reg_wdata", 8),
+            Port::new("i_cmd_start", 1),
+            Port::new("i_cmd_ids", 8),
+            Port::new("i_cmd_code", 2),
         ]
     }
 
@@ -424,6 +491,9 @@ impl Master {
             Port::new("o_reg_done", 1),
             Port::new("o_reg_err", 1),
             Port::new("o_reg_rdata", 8),
+            Port::new("o_reg_crc_err", 1),
+            Port::new("o_delay_mean", DELAY_BITS),
+            Port::new("o_err_drift", 1),
         ]
     }
 
@@ -445,6 +515,8 @@ impl Master {
             o_slave_valid: false,
             o_reg_done: false,
             o_reg_err: false,
+            o_reg_crc_err: false,
+            o_err_drift: false,
             ..self.out
         };
 
@@ -483,7 +555,8 @@ impl Master {
 
         match c.state {
             State::Idle => {
-                if input.i_start {
+                // A register access starts its own frames, back to back.
+                if input.i_start || c.reg_pending || c.ctl_active {
                     if c.slo_sync {
                         n.state = State::Ack;
                         n.ma = false;
@@ -494,14 +567,17 @@ impl Master {
                         n.delay_cnt = 0;
                         n.e_delay = false;
                         n.e_start = false;
+                        n.e_drift = false;
                         n.slave = 0;
-                        n.frame_cds = false;
+                        n.frame_cds = true;
+                        n.frame_sel = false;
                         n.frame_crc_bad = false;
                         o.o_busy = true;
                         self.raw.clear();
                     } else {
                         o.o_done = true;
                         o.o_err_line = true;
+                        self.control(&c, &mut n, &mut o, false);
                     }
                 }
             }
@@ -509,9 +585,9 @@ impl Master {
                 if c.ma_edges == 2 {
                     if !c.slo_sync {
                         n.state = State::Start;
-                        n.smp_cnt = half + period - 1;
                         n.cnt = 0;
                         o.o_delay = c.delay_cnt;
+                        self.calibrate(&c, &mut n);
                     } else if c.delay_cnt == cfg.max_delay {
                         n.state = State::NoAck;
                         n.ma_stop = true;
@@ -538,8 +614,9 @@ impl Master {
                 if sample {
                     let i = c.slave as usize;
                     n.cds = b;
-                    if c.ctl_active && c.acc.id == c.slave {
-                        n.frame_cds = b;
+                    if c.ctl_active && selected(&c.acc, c.slave) {
+                        n.frame_cds = c.frame_cds && b;
+                        n.frame_sel = true;
                     }
                     n.state = State::Data;
                     n.bit_cnt = cfg.slave_bits[i] - 1;
@@ -593,8 +670,8 @@ impl Master {
                         o.o_error = !c.nerr;
                         o.o_warning = !c.nwarn;
                         o.o_cds = c.cds;
-                        if c.ctl_active && c.acc.id == c.slave {
-                            n.frame_crc_bad = bad;
+                        if c.ctl_active && selected(&c.acc, c.slave) {
+                            n.frame_crc_bad = c.frame_crc_bad || bad;
                         }
                         if (c.slave as u32) + 1 < cfg.slaves {
                             n.slave = c.slave + 1;
@@ -647,39 +724,87 @@ impl Master {
             o.o_err_delay = c.e_delay;
             o.o_err_start = c.e_start;
             o.o_err_timeout = err_timeout;
+            o.o_err_drift = c.e_drift;
             let frame_ok = !(err_ack || err_timeout || c.e_delay || c.e_start);
             self.control(&c, &mut n, &mut o, frame_ok);
         }
 
         // Register requests are taken whenever no access is pending.
-        if input.i_reg_start && !c.reg_pending && !c.ctl_active {
+        if (input.i_reg_start || input.i_cmd_start) && !c.reg_pending && !c.ctl_active {
             n.reg_pending = true;
-            n.acc = Access { write: input.i_reg_write, id: input.i_reg_id & 7, addr: input.i_reg_addr & 0x7F, wdata: input.i_reg_wdata };
+            n.acc = if input.i_reg_start {
+                Access { write: input.i_reg_write, id: input.i_reg_id & 7, addr: input.i_reg_addr & 0x7F, wdata: input.i_reg_wdata, ..Access::default() }
+            } else {
+                Access { command: true, ids: input.i_cmd_ids, code: input.i_cmd_code & 3, ..Access::default() }
+            };
             o.o_reg_busy = true;
         }
 
         n.slo_sync = c.slo_meta;
         n.slo_meta = input.i_slo;
         o.o_ma = n.ma;
+        o.o_delay_mean = n.delay_mean;
         self.r = n;
         self.out = o;
         o
     }
 
-    /// The control-frame sequencer, run once at the end of every frame: it
-    /// takes the CDS bit the frame brought back and chooses the next CDM.
+    /// The first sample of a frame, from its ack: during start-up the
+    /// `CAL_FRAMES` delays are summed and each frame is sampled by its own
+    /// ack; then by the mean (`first + mean - delay`, the cell middles of an
+    /// ack at the mean), unless this ack departs from it by more than
+    /// `DELAY_TOL`: that frame is sampled by its own ack and flagged.
+    /// `biss_master` does the comparison in the two cycles after the ack
+    /// (timing at 80 MHz); the first sample is further away than that, so
+    /// the sample times and every output are the same.
+    fn calibrate(&self, c: &Regs, n: &mut Regs) {
+        let first = self.cfg.clocks_per_bit / 2 + self.cfg.clocks_per_bit - 1;
+        let d = c.delay_cnt;
+        n.smp_cnt = first;
+        if c.cal_cnt < self.cfg.cal_frames {
+            n.cal_sum = c.cal_sum + d;
+            n.cal_cnt = c.cal_cnt + 1;
+            if n.cal_cnt == self.cfg.cal_frames {
+                n.delay_mean = n.cal_sum >> self.cfg.cal_frames.trailing_zeros();
+            }
+        } else if d.abs_diff(c.delay_mean) <= self.cfg.delay_tol {
+            n.smp_cnt = first + c.delay_mean - d;
+        } else {
+            n.e_drift = true;
+        }
+    }
+
+    /// Whether the start-up delay mean is in use.
+    pub fn calibrated(&self) -> bool {
+        self.r.cal_cnt == self.cfg.cal_frames
+    }
+
+    /// The control-frame sequencer, run once at the end of every frame (and
+    /// at a refused start): it takes the CDS bit the frame brought back and
+    /// chooses the next CDM. Only frames that completed count as sent: the
+    /// slave may not have seen the CDM of a failed one.
     fn control(&mut self, c: &Regs, n: &mut Regs, o: &mut Out, frame_ok: bool) {
-        let sent = c.cdm && frame_ok;
-        let zeros = if sent { 0 } else { (c.zeros + 1).min(control::SYNC_ZEROS) };
+        let zeros = match (frame_ok, c.cdm) {
+            (true, true) => 0,
+            (true, false) => (c.zeros + 1).min(control::SYNC_ZEROS),
+            (false, _) => c.zeros,
+        };
         n.zeros = zeros;
         n.cdm = false;
         if c.ctl_active {
             let k = c.ctl_k;
             let a = c.acc;
-            let cds = c.frame_cds;
+            let cds = c.frame_sel && c.frame_cds;
             let mut end: Option<bool> = None; // Some(error)
             if !frame_ok || c.frame_crc_bad {
                 end = Some(true);
+            } else if a.command {
+                // IDA from every selected slave, then the echo of EX.
+                match k {
+                    control::K_IDA if !cds => end = Some(true),
+                    control::K_CMD_LAST => end = Some(!cds),
+                    _ => {}
+                }
             } else {
                 match k {
                     control::K_W => {
@@ -721,6 +846,7 @@ impl Master {
                     n.ctl_active = false;
                     o.o_reg_done = true;
                     o.o_reg_err = err;
+                    o.o_reg_crc_err = k == control::K_LAST && c.reg_bad;
                     o.o_reg_rdata = c.rdata;
                     o.o_reg_busy = false;
                 }
@@ -730,6 +856,13 @@ impl Master {
                     n.cdm = self.cdm_bit(&a, k);
                 }
             }
+        } else if c.reg_pending && !frame_ok {
+            // A sync frame failed: the line cannot carry the access.
+            n.reg_pending = false;
+            o.o_reg_done = true;
+            o.o_reg_err = true;
+            o.o_reg_rdata = c.rdata;
+            o.o_reg_busy = false;
         } else if c.reg_pending && zeros >= control::SYNC_ZEROS {
             n.reg_pending = false;
             n.ctl_active = true;
@@ -754,6 +887,16 @@ impl Master {
             tx.push(msb);
             !msb
         };
+        if a.command {
+            return match k {
+                1 => covered(tx, false),
+                2..=9 => covered(tx, (a.ids >> (9 - k)) & 1 == 1),
+                10..=11 => covered(tx, (a.code >> (11 - k)) & 1 == 1),
+                12..=15 => crc_out(tx),
+                control::K_EX => true,
+                _ => false,
+            };
+        }
         match k {
             1 => covered(tx, true),
             2..=4 => covered(tx, (a.id >> (4 - k)) & 1 == 1),

@@ -40,6 +40,10 @@
 //!   the middle of every bit cell as it arrives, whatever the cable. The
 //!   clock keeps running until the last CRC bit has been sampled, so a long
 //!   cable costs extra MA periods (which the slave answers with `0`).
+//! * **Start-up calibration**: the first `CAL_FRAMES` frames are sampled by
+//!   their own ack and their delays averaged (`o_delay_mean`); later frames
+//!   are sampled as if their ack had come at the mean, unless it departs by
+//!   more than `DELAY_TOL` (sampled by its own ack, `o_err_drift`).
 //! * An ack later than `MAX_DELAY` cycles is not compensated: the master stops
 //!   the clock (MA high) and watches SLO for `TIMEOUT_CLOCKS`: a late ack
 //!   flags `o_err_delay`, none at all `o_err_ack` (slave absent, SLO stuck high
@@ -58,6 +62,10 @@
 //!   low) is refused: `o_done` with `o_err_line` in the next cycle.
 //! * **Register access** (BiSS-C control frame): one CDM bit per frame out,
 //!   one CDS bit per frame back; see [`control`] and `docs/timing/biss.md`.
+//!   It is one host operation: after `i_reg_start` the master runs the sync
+//!   and control frames itself, back to back (IDLE restarts in the cycle
+//!   after `o_done`), and ends with `o_reg_done`. BiSS-C commands (`CTS = 0`,
+//!   `i_cmd_start`) run the same way.
 //!
 //! ```text
 //!  one slave, 2 data bits, CRC shown as c5..c0, H = CLOCKS_PER_BIT / 2, no cable
@@ -80,7 +88,7 @@ pub mod control;
 mod master;
 mod slave;
 
-pub use bench::{Bench, BenchConfig, FlipFault, HostSettings, MasterSettings, RegOp, RegResult, SlaveResult, SlaveSettings, StuckFault, Transaction};
+pub use bench::{Bench, BenchConfig, CmdOp, CmdResult, DelayStep, FlipFault, HostSettings, MasterSettings, RegOp, RegResult, SlaveResult, SlaveSettings, StuckFault, Transaction};
 pub use master::{In, Master, MasterConfig, Out, State, MAX_SLAVES, SYNC_STAGES};
 pub use slave::{Chain, Slave, SlaveConfig};
 

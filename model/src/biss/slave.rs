@@ -76,6 +76,8 @@ pub struct Slave {
     cdm_flip_at: Option<u32>,
     cds_crc_error: bool,
     last_section: Vec<bool>,
+    command: bool,
+    executed: Vec<u8>,
 }
 
 impl Slave {
@@ -103,6 +105,8 @@ impl Slave {
             cdm_flip_at: None,
             cds_crc_error: false,
             last_section: Vec::new(),
+            command: false,
+            executed: Vec::new(),
         })
     }
 
@@ -139,6 +143,11 @@ impl Slave {
     pub fn set_control_faults(&mut self, cdm_flip_at: Option<u32>, cds_crc_error: bool) {
         self.cdm_flip_at = cdm_flip_at;
         self.cds_crc_error = cds_crc_error;
+    }
+
+    /// The commands (`CTS = 0`) this slave carried out, in order.
+    pub fn executed_commands(&self) -> &[u8] {
+        &self.executed
     }
 
     /// Register `addr` of the bank.
@@ -205,9 +214,27 @@ impl Slave {
                     12..=15 => {
                         self.crc_bits.push(bit);
                         if k == 15 {
-                            let id = self.addr_bits[1..4].iter().fold(0u8, |a, &b| (a << 1) | b as u8);
                             let crc_ok = crc4.crc_from_wire_bits(&self.crc_bits) == Some(crc4.checksum_bits(&self.addr_bits));
-                            self.accepted = self.addr_bits[0] && crc_ok && id == self.cfg.id;
+                            self.command = !self.addr_bits[0];
+                            if self.command {
+                                let ids = self.addr_bits[1..9].iter().fold(0u8, |a, &b| (a << 1) | b as u8);
+                                self.accepted = crc_ok && control::selects(ids, self.cfg.id);
+                                cds = self.accepted; // IDA
+                            } else {
+                                let id = self.addr_bits[1..4].iter().fold(0u8, |a, &b| (a << 1) | b as u8);
+                                self.accepted = crc_ok && id == self.cfg.id;
+                            }
+                        }
+                    }
+                    control::K_IDA..=control::K_CMD_LAST if self.command => {
+                        if k == control::K_EX {
+                            cds = self.accepted && bit; // the EX echo
+                            if self.accepted && bit {
+                                let code = self.addr_bits[9..11].iter().fold(0u8, |a, &b| (a << 1) | b as u8);
+                                self.executed.push(code);
+                            }
+                        } else if k == control::K_CMD_LAST {
+                            self.ctl_k = None;
                         }
                     }
                     control::K_R => {

@@ -5,6 +5,7 @@ use proptest::prelude::*;
 use super::*;
 use crate::crc::BISS_CRC6;
 use crate::line::CableConfig;
+use crate::testbench::Testbench;
 use crate::Setup;
 
 fn frames(cfg: &BenchConfig) -> Vec<Transaction> {
@@ -70,8 +71,8 @@ fn cable_of_0_to_100_m_at_10_mhz_gives_zero_bit_errors() {
 
 #[test]
 fn jitter_of_one_cycle_each_way_on_100_m_at_2_5_mhz_still_reads_clean() {
-    // The delay is measured on one (jittered) ack edge, not averaged: the margin is
-    // half a bit cell less the jitter of the ack and of the bit edges.
+    // At 2.5 MHz half a bit cell (16 cycles) absorbs the jitter of the ack
+    // and of the bit edges even in the start-up frames sampled by their own ack.
     let mut cfg = BenchConfig::seed_example();
     cfg.master.clock_khz = 2500.0;
     cfg.cable = CableConfig { length_m: 100.0, jitter_ns: 12.0, seed: 7, ..CableConfig::default() };
@@ -191,8 +192,8 @@ fn cdm_is_the_inverted_ma_level_during_the_timeout() {
     let mut cfg = BenchConfig::seed_example();
     cfg.host.registers = vec![RegOp { write: false, id: 0, addr: 0x01, data: 0 }];
     let ts = frames(&cfg);
-    let sent: String = ts[14..14 + 32].iter().map(|t| if t.cdm { '1' } else { '0' }).collect();
-    let expected = control::cdm_sequence(&control::Access { write: false, id: 0, addr: 0x01, wdata: 0 });
+    let sent: String = ts[14..14 + 33].iter().map(|t| if t.cdm { '1' } else { '0' }).collect();
+    let expected = control::cdm_sequence(&control::Access { write: false, id: 0, addr: 0x01, wdata: 0, ..control::Access::default() });
     assert_eq!(sent, expected.iter().map(|&b| if b { '1' } else { '0' }).collect::<String>());
 }
 
@@ -286,4 +287,248 @@ proptest! {
         prop_assert_eq!(ts[0].slaves[0].position, raw & mask);
         prop_assert_eq!(ts[1].slaves[0].position, !raw & mask);
     }
+}
+
+/// A master and one slave wired directly (no host model, no cable): what
+/// the host sees at the core's ports.
+struct Wired {
+    master: Master,
+    chain: Chain,
+    slo: bool,
+}
+
+impl Wired {
+    fn new(cfg: &BenchConfig) -> Self {
+        let master = Master::new(cfg.master_config().unwrap()).unwrap();
+        let chain = Chain::new(vec![Slave::new(cfg.slave_config(0).unwrap()).unwrap()], 1);
+        Wired { master, chain, slo: true }
+    }
+
+    fn step(&mut self, input: In) -> Out {
+        let out = self.master.step(&In { i_slo: self.slo, ..input });
+        self.slo = self.chain.step(out.o_ma);
+        out
+    }
+}
+
+#[test]
+fn a_register_read_is_one_host_operation_the_master_runs_every_frame_itself() {
+    let mut cfg = BenchConfig::seed_example();
+    cfg.slaves[0].registers = vec![0, 0, 0, 0xA7];
+    cfg.slaves[0].timeout_us = 2.0;
+    let mut w = Wired::new(&cfg);
+    for _ in 0..10 {
+        w.step(In::default());
+    }
+    let mut out = w.step(In { i_reg_start: true, i_reg_addr: 3, ..In::default() });
+    assert!(out.o_reg_busy);
+    let (mut done, mut valid, mut cycles) = (0, 0, 0);
+    while !out.o_reg_done {
+        out = w.step(In::default()); // never i_start
+        done += out.o_done as u32;
+        valid += out.o_slave_valid as u32;
+        cycles += 1;
+        assert!(cycles < 2_000_000, "the access never ended");
+    }
+    assert!(!out.o_reg_err && !out.o_reg_crc_err, "{out:?}");
+    assert_eq!(out.o_reg_rdata, 0xA7);
+    // 14 sync frames and 33 control frames, each with its position result.
+    assert_eq!((done, valid), (47, 47));
+    assert!(!w.step(In::default()).o_reg_busy);
+}
+
+#[test]
+fn a_crc4_error_in_the_answer_is_reported_as_such() {
+    let mut cfg = BenchConfig::seed_example();
+    cfg.slaves[0].cds_crc_error = true;
+    cfg.host.registers = vec![RegOp { write: false, id: 0, addr: 0, data: 0 }];
+    let r = frames(&cfg).iter().find_map(|t| t.register.clone()).unwrap();
+    assert!(!r.ok && !r.crc4_ok, "{r:?}");
+    let mut good = BenchConfig::seed_example();
+    good.host.registers = cfg.host.registers.clone();
+    let r = frames(&good).iter().find_map(|t| t.register.clone()).unwrap();
+    assert!(r.ok && r.crc4_ok, "{r:?}");
+}
+
+#[test]
+fn a_line_stuck_low_during_the_sync_frames_ends_the_access_with_an_error() {
+    let mut cfg = BenchConfig::seed_example();
+    cfg.host.registers = vec![RegOp { write: false, id: 0, addr: 0, data: 0 }];
+    cfg.stuck = Some(StuckFault { level: false, from_frame: 5 });
+    let ts = frames(&cfg);
+    let r = ts.iter().find_map(|t| t.register.clone()).expect("the access ends");
+    assert!(!r.ok);
+    // The master starts frame 5 before the stuck level is through its
+    // synchroniser, so that frame fails on the line (no start bit; the "ack"
+    // of a low line comes far earlier than the start-up mean) instead of
+    // being refused.
+    assert_eq!(ts.len(), 6, "five good sync frames, one failed frame");
+    assert!(ts[..5].iter().all(|t| t.errors.is_empty()));
+    assert_eq!(ts[5].errors, vec!["no_start_bit", "slo_not_released", "delay_departs_from_mean"]);
+    assert!(ts[5].register.is_some(), "the access ends with the failed frame");
+}
+
+/// A frame of the bench as a line observer would see it.
+fn view(t: &Transaction) -> control::FrameView {
+    let mut v = control::FrameView { ok: t.errors.iter().all(|e| e.starts_with("crc_error")), cdm: t.cdm, slaves: t.slaves.len(), ..Default::default() };
+    for s in &t.slaves {
+        v.cds[s.slave as usize] = s.cds;
+        v.crc_bad[s.slave as usize] = !s.crc_ok;
+    }
+    v
+}
+
+#[test]
+fn the_line_observer_follows_control_frames_as_the_master_runs_them() {
+    let mut cases = Vec::new();
+    let mut read = BenchConfig::seed_example();
+    read.slaves[0].registers = vec![9, 8, 7, 6];
+    read.host.registers = vec![RegOp { write: false, id: 0, addr: 2, data: 0 }, RegOp { write: true, id: 0, addr: 1, data: 0x5C }, RegOp { write: false, id: 4, addr: 1, data: 0 }];
+    cases.push(read.clone());
+    let mut crc = read.clone();
+    crc.slaves[0].cds_crc_error = true;
+    cases.push(crc);
+    let mut flip = read.clone();
+    flip.slaves[0].cdm_flip_at = Some(6);
+    cases.push(flip);
+    let mut commands = command_chain();
+    commands.host.commands = vec![CmdOp { ids: 0b010, code: 3 }, CmdOp { ids: 0b1000, code: 0 }, CmdOp { ids: 0, code: 1 }];
+    let mut observed_commands = Vec::new();
+    let mut obs = control::Observer::default();
+    for t in frames(&commands) {
+        assert_eq!(obs.index(t.cdm), t.control_index, "frame {}", t.index);
+        let seen = obs.take(&view(&t));
+        assert_eq!(seen.is_some(), t.command.is_some(), "frame {}", t.index);
+        if let (Some(o), Some(c)) = (seen, &t.command) {
+            assert_eq!((o.access.command, o.access.ids, o.access.code, o.ok, o.last_k as usize + 1), (true, c.ids, c.code, c.ok, c.cdm.len()));
+            observed_commands.push(o.ok);
+        }
+    }
+    assert_eq!(observed_commands, vec![true, false, true]);
+    let (mut accesses, mut failed) = (0, 0);
+    for cfg in &cases {
+        let mut obs = control::Observer::default();
+        for t in frames(cfg) {
+            assert_eq!(obs.index(t.cdm), t.control_index, "frame {}", t.index);
+            let seen = obs.take(&view(&t));
+            assert_eq!(seen.is_some(), t.register.is_some(), "frame {}", t.index);
+            if let (Some(o), Some(r)) = (seen, &t.register) {
+                assert_eq!((o.access.write, o.access.id, o.access.addr, o.access.wdata), (r.write, r.id, r.addr, r.wdata));
+                assert_eq!((o.rdata, o.ok, o.crc4_ok), (r.rdata, r.ok, r.crc4_ok), "frame {}", t.index);
+                accesses += 1;
+                failed += !r.ok as u32;
+            }
+        }
+    }
+    assert_eq!((accesses, failed), (9, 5), "three accesses per case; ID 4 fails in each, the CRC-4 and CDM faults one more each");
+}
+
+#[test]
+fn the_start_up_mean_is_used_and_a_later_delay_step_is_flagged_but_read() {
+    // The set-up of scenarios/biss/calibration_drift.toml.
+    let mut cfg = BenchConfig::seed_example();
+    cfg.master.clock_khz = 2500.0;
+    cfg.slaves[0].step = 4099;
+    cfg.slaves[0].timeout_us = 4.0;
+    cfg.host = HostSettings { frames: 12, gap_us: 0.5, ..HostSettings::default() };
+    cfg.cable = CableConfig { length_m: 100.0, jitter_ns: 12.0, seed: 7, ..CableConfig::default() };
+    cfg.delay_step = Some(DelayStep { from_frame: 8, extra_ns: 150.0 });
+    let ts = frames(&cfg);
+    assert_eq!(ts.len(), 12);
+    let first4: u64 = ts[..4].iter().map(|t| t.delay_cycles.unwrap()).sum();
+    assert!(ts[..3].iter().all(|t| t.delay_mean_cycles.is_none()));
+    for t in &ts[3..] {
+        assert_eq!(t.delay_mean_cycles, Some(first4 / 4), "frame {}", t.index);
+    }
+    // The jitter moves single acks, never beyond a quarter MA period.
+    let spread: Vec<u64> = ts[..8].iter().map(|t| t.delay_cycles.unwrap()).collect();
+    assert!(spread.iter().max() != spread.iter().min(), "the cable jitters: {spread:?}");
+    for t in &ts {
+        assert!(t.slaves[0].crc_ok && t.slaves[0].position == t.slaves[0].sent_position, "frame {}: {t:?}", t.index);
+        let flagged = t.errors == vec!["delay_departs_from_mean"];
+        assert_eq!(flagged, t.index >= 8, "frame {}: {:?}", t.index, t.errors);
+    }
+}
+
+#[test]
+fn calibration_settings_out_of_range_are_refused_naming_the_field() {
+    let mut cfg = BenchConfig::seed_example();
+    cfg.master.cal_frames = 3;
+    assert!(cfg.master_config().unwrap_err().to_string().contains("master.cal_frames"));
+    let mut cfg = BenchConfig::seed_example();
+    cfg.master.delay_tolerance_ns = Some(50.0); // half of 100 ns
+    assert!(cfg.master_config().unwrap_err().to_string().contains("master.delay_tolerance_ns"));
+}
+
+fn command_chain() -> BenchConfig {
+    let mut cfg = BenchConfig::seed_example();
+    cfg.slaves = (0..3).map(|_| SlaveSettings { bits: 12, timeout_us: 2.0, ..SlaveSettings::default() }).collect();
+    cfg.host.gap_us = 0.5;
+    cfg
+}
+
+fn commands_run(cfg: &BenchConfig) -> (Vec<CmdResult>, Vec<Vec<u8>>) {
+    let mut bench = Bench::new(cfg).unwrap();
+    while !bench.finished() {
+        bench.step(None);
+    }
+    let executed = bench.chain().slaves().iter().map(|s| s.executed_commands().to_vec()).collect();
+    let results = bench.into_transactions().into_iter().filter_map(|t| t.command).collect();
+    (results, executed)
+}
+
+#[test]
+fn an_addressed_command_is_carried_out_by_the_selected_slaves_only_and_a_broadcast_by_all() {
+    let mut cfg = command_chain();
+    cfg.host.commands = vec![CmdOp { ids: 0b010, code: 3 }, CmdOp { ids: 0b101, code: 2 }, CmdOp { ids: 0, code: 1 }];
+    let (results, executed) = commands_run(&cfg);
+    assert_eq!(results.iter().map(|r| r.ok).collect::<Vec<_>>(), vec![true, true, true]);
+    assert_eq!(executed, vec![vec![2, 1], vec![3, 1], vec![2, 1]]);
+    // S, CTS = 0, IDS 00000010, CMD 11, the CRC-4 of those 11 bits inverted, 0, EX, 0.
+    let crc = &crate::crc::BISS_CTRL_CRC4;
+    let covered = bits("00000001011");
+    let wire: String = crc.wire_bits(crc.checksum_bits(&covered)).iter().map(|&b| if b { '1' } else { '0' }).collect();
+    assert_eq!(results[0].cdm, format!("100000001011{wire}010"));
+}
+
+#[test]
+fn a_command_nobody_acknowledges_fails_and_nothing_is_carried_out() {
+    let mut cfg = command_chain();
+    cfg.host.commands = vec![CmdOp { ids: 0b1000_0000, code: 2 }];
+    let (results, executed) = commands_run(&cfg);
+    assert!(!results[0].ok);
+    assert_eq!(results[0].cdm.len() as u32, control::K_IDA + 1, "no EX after a missing IDA");
+    assert!(executed.iter().all(|e| e.is_empty()));
+    // One slave misreads a CRC bit: its IDA is missing, the master sends no EX to anybody.
+    let mut cfg = command_chain();
+    cfg.slaves[2].cdm_flip_at = Some(13);
+    cfg.host.commands = vec![CmdOp { ids: 0, code: 1 }];
+    let (results, executed) = commands_run(&cfg);
+    assert!(!results[0].ok);
+    assert!(executed.iter().all(|e| e.is_empty()), "{executed:?}");
+}
+
+#[test]
+fn the_start_up_mean_reads_through_ack_jitter_that_own_edge_sampling_misreads() {
+    // 10 MHz MA at 80 MHz: half a bit cell is 4 cycles. A 100 m cable whose
+    // edges jitter by ±1 cycle each way moves every ack by up to ±2 cycles;
+    // sampled by its own ack (tolerance 0: every departure falls back to
+    // it) a frame then often misses its cells, sampled by the mean of 16
+    // start-up acks it reads clean once calibrated.
+    let run = |tol_ns: f64| {
+        let mut cfg = BenchConfig::seed_example();
+        cfg.master.cal_frames = 16;
+        cfg.master.delay_tolerance_ns = Some(tol_ns);
+        cfg.slaves[0].step = 4099;
+        cfg.slaves[0].timeout_us = 2.0;
+        cfg.host = HostSettings { frames: 400, gap_us: 0.5, ..HostSettings::default() };
+        cfg.cable = CableConfig { length_m: 100.0, jitter_ns: 12.0, seed: 3, ..CableConfig::default() };
+        let ts = frames(&cfg);
+        let bad: Vec<usize> = ts.iter().filter(|t| t.slaves.iter().any(|s| !s.crc_ok)).map(|t| t.index).collect();
+        bad
+    };
+    let own_edge = run(0.0);
+    let mean = run(37.5); // 3 cycles, below half a cell
+    assert!(own_edge.len() >= 20, "own-edge sampling: {} CRC errors in 400 frames", own_edge.len());
+    assert!(mean.iter().all(|&k| k < 16), "after calibration the mean reads every frame: errors in frames {mean:?}");
 }
