@@ -67,6 +67,8 @@ pub const FILES: &[(&str, &str)] = &[
     ("endat/fault_meas_inconsistent.toml", include_str!("../../scenarios/endat/fault_meas_inconsistent.toml")),
     ("endat/fault_start_late.toml", include_str!("../../scenarios/endat/fault_start_late.toml")),
     ("endat/fault_stuck_high.toml", include_str!("../../scenarios/endat/fault_stuck_high.toml")),
+    ("endat/mrs_areas_22.toml", include_str!("../../scenarios/endat/mrs_areas_22.toml")),
+    ("endat/additional_data.toml", include_str!("../../scenarios/endat/additional_data.toml")),
 ];
 
 /// Every built-in scenario, parsed.
