@@ -69,6 +69,7 @@ pub const FILES: &[(&str, &str)] = &[
     ("endat/fault_stuck_high.toml", include_str!("../../scenarios/endat/fault_stuck_high.toml")),
     ("endat/mrs_areas_22.toml", include_str!("../../scenarios/endat/mrs_areas_22.toml")),
     ("endat/additional_data.toml", include_str!("../../scenarios/endat/additional_data.toml")),
+    ("endat/fault_type2_22.toml", include_str!("../../scenarios/endat/fault_type2_22.toml")),
 ];
 
 /// Every built-in scenario, parsed.

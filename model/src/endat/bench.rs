@@ -752,6 +752,15 @@ impl Bench {
             self.transactions.push(t);
         }
         if self.host == Host::WaitIdle && !out.o_busy {
+            // A type 2.2 block is taken after o_done: its answer (type II, ignored) is known only now.
+            if let Some((k, _)) = self.current {
+                let mode = self.requests.get(k).map(|r| r.mode()).unwrap_or(0);
+                if super::frame_kind(mode) == FrameKind::Block22 {
+                    for t in self.transactions.iter_mut().rev().take_while(|t| t.request == Some(k)) {
+                        t.encoder_answer = answer_name(self.encoder.answer).into();
+                    }
+                }
+            }
             self.host = if self.next < self.requests.len() {
                 // Faults appear while the line is idle before the request, as a real break would.
                 self.apply_faults(self.next);

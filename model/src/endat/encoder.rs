@@ -640,10 +640,18 @@ impl Encoder {
                     (true, data)
                 }
             }
-            Command::Receive21 => (!busy && self.write(addr, data), data),
+            Command::Receive21 => {
+                if busy {
+                    self.last_mem = (addr, data, true);
+                }
+                (!busy && self.write(addr, data), data)
+            }
             Command::Send21 => match (busy, self.read(addr)) {
                 (false, Some(v)) => (true, v),
-                _ => (false, 0),
+                _ => {
+                    self.last_mem = (addr, 0, true); // as for 100100: the failed access is what I = 5 / 6 acknowledge
+                    (false, 0)
+                }
             },
             Command::Reset21 => {
                 if busy {

@@ -157,6 +157,38 @@ fn an_invalid_mode_command_gets_no_start_bit_and_is_flagged_type_i() {
 }
 
 #[test]
+fn a_type_22_access_answered_with_type_ii_is_flagged_when_its_acknowledgement_arrives() {
+    // Seed A2 4.2.2: the acknowledgement of the MRS code (I = 7) or of the memory access (I = 5) comes back with
+    // the address inverted; with 2.2 commands it arrives in additional datum 1 of the next frame.
+    let mut cfg = fast(4000.0, 64.0, 10.0);
+    cfg.encoder.t_ac_us = 100.0;
+    cfg.commands = vec![
+        HostCommand::with(Command::Select22, 0x47, 0),      // I = 7: acknowledge MRS code
+        HostCommand::with(Command::Select22, 0xAD, 0),      // OEM area 3: not in this encoder (cause 7)
+        HostCommand::with(Command::Select22, 0xA1, 0),      // shows ~0xAD
+        HostCommand::with(Command::Select22, 0x45, 0),      // shows 0xA1; I = 5 from now on
+        HostCommand::with(Command::Receive22, 8, 0x1234),   // write-protected (cause 9)
+        HostCommand::with(Command::Select22, 0xA9, 0),      // shows ~8
+        HostCommand::with(Command::Receive22, 1, 0x00FF),   // accepted: busy for t_ac
+        HostCommand::with(Command::Receive22, 2, 0x0011),   // ignored while busy
+        HostCommand::new(Command::Pos22),                   // still acknowledges address 1
+    ];
+    let ts = run(&cfg);
+    let c = commands(&ts);
+    let errors: Vec<Vec<String>> = c.iter().map(|t| t.errors.clone()).collect();
+    let none: Vec<String> = Vec::new();
+    assert_eq!(c[2].ad1.as_deref(), Some("475200"), "{c:#?}");
+    assert_eq!(errors[2], vec!["type_ii"]);
+    assert_eq!(errors[3], none, "0xA1 echoed as sent");
+    assert_eq!(c[5].ad1.as_deref().map(|s| &s[2..4]), Some("f7"));
+    assert_eq!(errors[5], vec!["type_ii"]);
+    assert_eq!(errors[7], none, "address 1 acknowledged");
+    assert_eq!(c[7].encoder_answer, "ignored");
+    assert_eq!(errors[8], vec!["acknowledgement_mismatch"], "the ignored write is not acknowledged");
+    assert_eq!(c[1].encoder_answer, "type_ii");
+}
+
+#[test]
 fn an_impermissible_additional_datum_is_answered_with_i_31_type_iii() {
     // Seed A2 4.2.3 (cause 13): I = 26 is not assignable → I = 31 until a valid selection.
     let mut cfg = fast(4000.0, 64.0, 10.0);
