@@ -70,6 +70,7 @@ pub const FILES: &[(&str, &str)] = &[
     ("endat/mrs_areas_22.toml", include_str!("../../scenarios/endat/mrs_areas_22.toml")),
     ("endat/additional_data.toml", include_str!("../../scenarios/endat/additional_data.toml")),
     ("endat/fault_type2_22.toml", include_str!("../../scenarios/endat/fault_type2_22.toml")),
+    ("endat/recovery_time_switch.toml", include_str!("../../scenarios/endat/recovery_time_switch.toml")),
 ];
 
 /// Every built-in scenario, parsed.

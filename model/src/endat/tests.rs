@@ -189,6 +189,32 @@ fn a_type_22_access_answered_with_type_ii_is_flagged_when_its_acknowledgement_ar
 }
 
 #[test]
+fn word_3_selects_recovery_time_i_at_the_next_reset() {
+    // Seed 3.4.4: word 3 bit 0 / bit 1 select t_m of 1.25..3.75 µs or 10..30 µs for type 2.2 commands; like every
+    // function parameter it takes effect with a reset. A master timed for the short setting is then too fast.
+    let mut cfg = fast(2000.0, 64.0, 5.0);
+    cfg.master.delay_comp = false;
+    cfg.encoder.output_delay_ns = 120.0;
+    cfg.host.gap_us = 8.0;
+    let reads = HostCommand { repeat: 2, ..HostCommand::new(Command::Pos22) };
+    cfg.commands = vec![
+        reads.clone(),
+        HostCommand::with(Command::Select21, 0xB9, 0),
+        HostCommand::with(Command::Receive21, 3, 0x10AA),
+        reads.clone(),
+        HostCommand::new(Command::Reset21),
+        reads,
+    ];
+    let ts = run(&cfg);
+    let errors: Vec<Vec<String>> = commands(&ts).iter().map(|t| t.errors.clone()).collect();
+    let none: Vec<String> = Vec::new();
+    assert_eq!(errors[..6], vec![none.clone(); 6], "written but not yet active: still short");
+    assert_eq!(errors[6], none, "the reset itself");
+    assert_eq!(errors[7], none);
+    assert_eq!(errors[8], vec!["line_not_idle"], "8 µs after a 2.2 frame the encoder is still in its 15 µs t_m");
+}
+
+#[test]
 fn an_impermissible_additional_datum_is_answered_with_i_31_type_iii() {
     // Seed A2 4.2.3 (cause 13): I = 26 is not assignable → I = 31 until a valid selection.
     let mut cfg = fast(4000.0, 64.0, 10.0);
