@@ -71,6 +71,7 @@ pub const FILES: &[(&str, &str)] = &[
     ("endat/additional_data.toml", include_str!("../../scenarios/endat/additional_data.toml")),
     ("endat/fault_type2_22.toml", include_str!("../../scenarios/endat/fault_type2_22.toml")),
     ("endat/recovery_time_switch.toml", include_str!("../../scenarios/endat/recovery_time_switch.toml")),
+    ("endat/datum_shift_linear.toml", include_str!("../../scenarios/endat/datum_shift_linear.toml")),
 ];
 
 /// Every built-in scenario, parsed.
