@@ -72,6 +72,7 @@ pub const FILES: &[(&str, &str)] = &[
     ("endat/fault_type2_22.toml", include_str!("../../scenarios/endat/fault_type2_22.toml")),
     ("endat/recovery_time_switch.toml", include_str!("../../scenarios/endat/recovery_time_switch.toml")),
     ("endat/datum_shift_linear.toml", include_str!("../../scenarios/endat/datum_shift_linear.toml")),
+    ("endat/pos22_48bit_4mhz.toml", include_str!("../../scenarios/endat/pos22_48bit_4mhz.toml")),
 ];
 
 /// Every built-in scenario, parsed.

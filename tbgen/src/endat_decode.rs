@@ -75,8 +75,8 @@ pub struct Transaction {
     pub ad2: Option<String>,
     /// Acknowledged address and data (type 2.1 parameter frames).
     pub ack: Option<(u8, u16)>,
-    /// What the master flags (the `gen` names), and `block_crc` for a master block with a wrong CRC; absent for
-    /// a delay measurement.
+    /// What the master flags (the `gen` names), `block_crc` for a master block with a wrong CRC and `framing`
+    /// for a clock burst too short for the mode bits or the turnaround; absent for a delay measurement.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub errors: Option<Vec<String>>,
 }
