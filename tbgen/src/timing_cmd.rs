@@ -97,15 +97,23 @@ pub fn measured_requests(v: &VectorFile) -> std::result::Result<Vec<MeasuredRequ
     Ok(out)
 }
 
+/// What [`check_vectors_against_budget`] found.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct BudgetCheck {
+    /// The back-to-back requests checked: command and start-to-start span in cycles.
+    pub checked: Vec<(Command, u64)>,
+    /// One line per disagreement with the budget.
+    pub wrong: Vec<String>,
+}
+
 /// Checks every clean, back-to-back request of a scenario's vector file against the budget: the start-to-start
-/// span must equal `cycle_clocks` and start-to-`o_done` `latency_clocks`. Returns the requests checked (command,
-/// span) and one line per disagreement.
-pub fn check_vectors_against_budget(cfg: &model::endat::BenchConfig, v: &VectorFile) -> std::result::Result<(Vec<(Command, u64)>, Vec<String>), String> {
+/// span must equal `cycle_clocks` and start-to-`o_done` `latency_clocks`.
+pub fn check_vectors_against_budget(cfg: &model::endat::BenchConfig, v: &VectorFile) -> std::result::Result<BudgetCheck, String> {
     let requests = cfg.requests();
-    let mut checked = Vec::new();
-    let mut wrong = Vec::new();
+    let mut found = BudgetCheck::default();
+    let (checked, wrong) = (&mut found.checked, &mut found.wrong);
     if cfg.host.gap_us != 0.0 {
-        return Ok((checked, wrong)); // starts are not back to back
+        return Ok(found); // starts are not back to back
     }
     for m in measured_requests(v)? {
         let Some(req) = requests.get(m.request) else {
@@ -126,7 +134,7 @@ pub fn check_vectors_against_budget(cfg: &model::endat::BenchConfig, v: &VectorF
             checked.push((req.command, next - m.start));
         }
     }
-    Ok((checked, wrong))
+    Ok(found)
 }
 
 #[cfg(test)]
@@ -158,9 +166,9 @@ mod tests {
         let mut seen: Vec<(Command, u64)> = Vec::new();
         for (name, cfg) in endat_scenarios() {
             let v = VectorFile::parse(&committed(&name)).unwrap();
-            let (checked, wrong) = check_vectors_against_budget(&cfg, &v).unwrap();
-            assert!(wrong.is_empty(), "{name}:\n{}", wrong.join("\n"));
-            seen.extend(checked);
+            let found = check_vectors_against_budget(&cfg, &v).unwrap();
+            assert!(found.wrong.is_empty(), "{name}:\n{}", found.wrong.join("\n"));
+            seen.extend(found.checked);
         }
         for c in Command::ALL {
             let n = seen.iter().filter(|(s, _)| *s == c).count();
@@ -186,7 +194,7 @@ mod tests {
         for r in v.records.iter_mut().filter(|r| r[0] >= first_pos22.done) {
             r[0] += 1;
         }
-        let (_, wrong) = check_vectors_against_budget(&cfg, &v).unwrap();
+        let wrong = check_vectors_against_budget(&cfg, &v).unwrap().wrong;
         assert_eq!(wrong.len(), 2, "{wrong:#?}");
         assert!(wrong[0].contains(&format!("request {} (pos22): start to o_done", first_pos22.request)), "{wrong:#?}");
         assert!(wrong[1].contains("start to next start"), "{wrong:#?}");
