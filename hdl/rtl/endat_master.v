@@ -833,7 +833,7 @@ always @* begin
                     oe_next = 1'b0;
                     dout_next = 1'b0;
                     cnt_next = is21_reg ? T_B_LAST : (err_frame_reg ? T_ERR_LAST : T_M_LAST);
-                    if (mode_reg == 6'b001001 && mrs_reg[7:5] == 3'b010) begin
+                    if (!err_frame_reg && mode_reg == 6'b001001 && mrs_reg[7:5] == 3'b010) begin
                         if (!mrs_reg[4]) begin
                             ad1_on_next = mrs_reg != 8'h4F;
                             ad1_sel_next = {1'b0, mrs_reg[3:0]};

@@ -1045,8 +1045,9 @@ fn clear_strobes(out: &mut Out) {
 /// What the master remembers when a request ends, for judging the next answers: the additional data it has
 /// selected (they decide the frame length) and the addresses the acknowledgements in additional datum 1 echo.
 fn remember_request(c: &Regs, n: &mut Regs) {
-    // The master's view of the encoder's additional-data selection (seed 2.4.2.2).
-    if c.mode == super::Command::Select22.code() && (c.mrs & 0xE0) == 0x40 {
+    // The master's view of the encoder's additional-data selection (seed 2.4.2.2); a frame without a start bit
+    // ends before the block, so the encoder's selection stays.
+    if !c.err_frame && c.mode == super::Command::Select22.code() && (c.mrs & 0xE0) == 0x40 {
         if c.mrs & 0x10 == 0 {
             n.ad1_on = c.mrs != 0x4F;
             n.ad1_sel = c.mrs & 0x0F;

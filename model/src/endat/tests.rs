@@ -358,3 +358,27 @@ fn every_2_bit_error_in_a_frame_of_at_most_15_bits_is_detected() {
         }
     }
 }
+
+#[test]
+fn a_selection_whose_frame_had_no_start_bit_is_not_taken_as_made() {
+    // The type 2.2 block follows the frame: without a start bit the master stops before it, so the encoder keeps
+    // its selection and the master must not expect the additional datum.
+    let mut judge = LineJudge::new(25);
+    let good: Vec<bool> = {
+        let mut b = vec![false, true];
+        b.extend((0..25).map(|i| (7u64 >> i) & 1 == 1));
+        b.extend(crc_wire(crc_pos(false, Some(true), 7, 25)));
+        b
+    };
+    judge.begin(Command::Select22.code(), 0x41, 0);
+    assert!(judge.aborted(true).o_err_timeout);
+    judge.end();
+    judge.begin(Command::Pos22.code(), 0, 0);
+    assert_eq!(judge.frame_bits(), 32, "no additional datum after the aborted selection");
+    judge.begin(Command::Select22.code(), 0x41, 0);
+    let out = judge.frame(&good);
+    assert!(out.o_done && !out.o_err_crc && out.o_position == 7, "{out:?}");
+    judge.end();
+    judge.begin(Command::Pos22.code(), 0, 0);
+    assert_eq!(judge.frame_bits(), 32 + 29, "diagnosis selected");
+}
