@@ -288,6 +288,13 @@ reg             ad2_on_reg = 1'b0, ad2_on_next;
 reg [4:0]       ad1_sel_reg = 5'd0, ad1_sel_next;
 reg [4:0]       ad2_sel_reg = 5'd16, ad2_sel_next;
 
+// What the acknowledgements in additional datum 1 must echo (type 2.2, appendix A2 4.2.2):
+// I = 5 / 6 the last memory access (2.1 or 2.2), I = 7 the last 2.2 MRS code.
+reg [7:0]       mem_addr_reg = 8'd0, mem_addr_next;
+reg             mem_known_reg = 1'b0, mem_known_next;
+reg [7:0]       mrs_sent_reg = 8'd0, mrs_sent_next;
+reg             mrs_known_reg = 1'b0, mrs_known_next;
+
 /* Output registers */
 reg        clk_out_reg = 1'b1, clk_out_next;
 reg        dout_reg = 1'b0, dout_next;
@@ -407,6 +414,9 @@ reg [7:0]  ack_a;
 reg [15:0] ack_d;
 reg        ok1, ok2;
 reg [4:0]  i1, i2;
+reg [7:0]  echoed;      // byte 1 of an acknowledgement in additional datum 1
+reg [7:0]  echo_ref;    // what it must be
+reg        echo_check;  // whether this I code is an acknowledgement the master can check
 /* verilator lint_off UNUSEDSIGNAL */
 reg [23:0] m_mean_wide;  // the mean of 16-bit captures fits 16 bits; the top byte is always 0
 /* verilator lint_on UNUSEDSIGNAL */
@@ -468,6 +478,10 @@ always @* begin
     ad1_on_next = ad1_on_reg;
     ad2_on_next = ad2_on_reg;
     ad1_sel_next = ad1_sel_reg;
+    mem_addr_next = mem_addr_reg;
+    mem_known_next = mem_known_reg;
+    mrs_sent_next = mrs_sent_reg;
+    mrs_known_next = mrs_known_reg;
     ad2_sel_next = ad2_sel_reg;
     clk_out_next = clk_out_reg;
     dout_next = dout_reg;
@@ -508,6 +522,9 @@ always @* begin
     ok2 = 1'b0;
     i1 = 5'd0;
     i2 = 5'd0;
+    echoed = 8'd0;
+    echo_ref = 8'd0;
+    echo_check = 1'b0;
     m_mean_wide = 24'd0;
     m_mean = 16'd0;
     m_ok = 1'b0;
@@ -690,8 +707,15 @@ always @* begin
                 ok2 = is22 && ad2_on_reg && !bad_ad2_next;
                 err_type3_next = (ok1 && i1 == 5'd15) || (ok2 && i2 == 5'd31);
                 err_type4_next = (ok1 && i1 == 5'd0 && ad1_sel_reg != 5'd0) || (ok2 && i2 == 5'd16 && ad2_sel_reg != 5'd16);
+                // An acknowledgement (I = 5, 6, 7) echoes what the master sent; inverted it is type II,
+                // anything else an access the encoder did not take (e.g. ignored while busy).
+                echoed = ad1_val_next[15:8];
+                echo_check = ((i1 == 5'd5 || i1 == 5'd6) && mem_known_reg) || (i1 == 5'd7 && mrs_known_reg);
+                echo_ref = (i1 == 5'd7) ? mrs_sent_reg : mem_addr_reg;
+                err_type2_next = ok1 && echo_check && echoed == ~echo_ref;
                 err_ack_next = (ok1 && i1 != 5'd15 && i1 != 5'd0 && i1 != ad1_sel_reg)
-                            || (ok2 && i2 != 5'd31 && i2 != 5'd16 && i2 != ad2_sel_reg);
+                            || (ok2 && i2 != 5'd31 && i2 != 5'd16 && i2 != ad2_sel_reg)
+                            || (ok1 && echo_check && echoed != echo_ref && echoed != ~echo_ref);
             end
         end
     end
@@ -809,13 +833,23 @@ always @* begin
                     oe_next = 1'b0;
                     dout_next = 1'b0;
                     cnt_next = is21_reg ? T_B_LAST : (err_frame_reg ? T_ERR_LAST : T_M_LAST);
-                    if (mode_reg == 6'b001001 && mrs_reg[7:5] == 3'b010) begin
+                    if (!err_frame_reg && mode_reg == 6'b001001 && mrs_reg[7:5] == 3'b010) begin
                         if (!mrs_reg[4]) begin
                             ad1_on_next = mrs_reg != 8'h4F;
                             ad1_sel_next = {1'b0, mrs_reg[3:0]};
                         end else begin
                             ad2_on_next = mrs_reg != 8'h5F;
                             ad2_sel_next = {1'b1, mrs_reg[3:0]};
+                        end
+                    end
+                    if (!err_frame_reg) begin
+                        if (mode_reg == 6'b011100 || mode_reg == 6'b100011 || mode_reg == 6'b011011 || mode_reg == 6'b100100) begin
+                            mem_addr_next = mrs_reg;
+                            mem_known_next = 1'b1;
+                        end
+                        if (mode_reg == 6'b001001) begin
+                            mrs_sent_next = mrs_reg;
+                            mrs_known_next = 1'b1;
                         end
                     end
                 end else begin
@@ -923,6 +957,10 @@ always @(posedge i_clk) begin
     ad2_on_reg <= ad2_on_next;
     ad1_sel_reg <= ad1_sel_next;
     ad2_sel_reg <= ad2_sel_next;
+    mem_addr_reg <= mem_addr_next;
+    mem_known_reg <= mem_known_next;
+    mrs_sent_reg <= mrs_sent_next;
+    mrs_known_reg <= mrs_known_next;
     clk_out_reg <= clk_out_next;
     dout_reg <= dout_next;
     oe_reg <= oe_next;
@@ -1010,6 +1048,10 @@ always @(posedge i_clk) begin
         ad2_on_reg <= 1'b0;
         ad1_sel_reg <= 5'd0;
         ad2_sel_reg <= 5'd16;
+        mem_addr_reg <= 8'd0;
+        mem_known_reg <= 1'b0;
+        mrs_sent_reg <= 8'd0;
+        mrs_known_reg <= 1'b0;
         clk_out_reg <= 1'b1;
         dout_reg <= 1'b0;
         oe_reg <= 1'b0;

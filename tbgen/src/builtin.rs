@@ -77,6 +77,12 @@ pub const FILES: &[(&str, &str)] = &[
     ("endat/fault_meas_inconsistent.toml", include_str!("../../scenarios/endat/fault_meas_inconsistent.toml")),
     ("endat/fault_start_late.toml", include_str!("../../scenarios/endat/fault_start_late.toml")),
     ("endat/fault_stuck_high.toml", include_str!("../../scenarios/endat/fault_stuck_high.toml")),
+    ("endat/mrs_areas_22.toml", include_str!("../../scenarios/endat/mrs_areas_22.toml")),
+    ("endat/additional_data.toml", include_str!("../../scenarios/endat/additional_data.toml")),
+    ("endat/fault_type2_22.toml", include_str!("../../scenarios/endat/fault_type2_22.toml")),
+    ("endat/recovery_time_switch.toml", include_str!("../../scenarios/endat/recovery_time_switch.toml")),
+    ("endat/datum_shift_linear.toml", include_str!("../../scenarios/endat/datum_shift_linear.toml")),
+    ("endat/pos22_48bit_4mhz.toml", include_str!("../../scenarios/endat/pos22_48bit_4mhz.toml")),
 ];
 
 /// Every built-in scenario, parsed.

@@ -22,6 +22,7 @@ pub mod biss_tools;
 pub mod builtin;
 pub mod capture;
 pub mod crc_cmd;
+pub mod endat_decode;
 pub mod error;
 pub mod generate;
 pub mod gtkw;

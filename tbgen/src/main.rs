@@ -128,6 +128,24 @@ enum Decode {
         #[arg(long, default_value_t = 10.0)]
         timeout_us: f64,
     },
+    /// EnDat 2.1 / 2.2: clock and data at the master.
+    #[command(after_help = "Examples:\n  tbgen decode endat vectors/endat_master/endat_params_22_2mhz.vcd\n  tbgen decode endat vectors/endat_master/endat_pos22_ad_8mhz_100m.vcd --meas-khz 200\n  tbgen decode endat capture.vcd --clk tb.clk_pin --data tb.data_pin --pos-bits 13")]
+    Endat {
+        /// The VCD file.
+        file: PathBuf,
+        /// Dotted path of the clock scalar at the master.
+        #[arg(long, default_value = "top.line.endat_clk_master")]
+        clk: String,
+        /// Dotted path of the data scalar at the master's receiver (both directions).
+        #[arg(long, default_value = "top.line.endat_data_master")]
+        data: String,
+        /// Position bits of the encoder.
+        #[arg(long, default_value_t = 25)]
+        pos_bits: u32,
+        /// Clock of the master's delay measurement in kHz, if it measures (000111 bursts at it are measurement frames).
+        #[arg(long)]
+        meas_khz: Option<f64>,
+    },
 }
 
 /// A Data ID as written on the command line: decimal or 0x-prefixed hex.
@@ -228,6 +246,12 @@ fn run(command: Command) -> Result<(), Error> {
             let options = tformat_decode::Options { line, tx_en, baud, timeout_us };
             let transactions = tformat_decode::decode(&file, &options)?;
             println!("{}", tformat_decode::to_json(&file, &options, &transactions)?);
+        }
+        Command::Decode(Decode::Endat { file, clk, data, pos_bits, meas_khz }) => {
+            let opts = tbgen::endat_decode::Options { pos_bits, meas_khz };
+            let transactions = tbgen::endat_decode::decode(&file, &clk, &data, &opts)?;
+            let envelope = tbgen::transcript::Decoded::new("endat", &file, &[("clk", clk.as_str()), ("data", data.as_str())], &transactions);
+            println!("{}", serde_json::to_string_pretty(&envelope).map_err(|e| Error::Decode(e.to_string()))?);
         }
     }
     Ok(())

@@ -174,4 +174,31 @@ impl VectorFile {
     pub fn get(&self, key: &str) -> Option<&str> {
         self.header.iter().find(|(k, _)| k == key).map(|(_, v)| v.as_str())
     }
+
+    /// The word index of port `name` in a record (an output's value word; its mask follows), from the
+    /// `record:` header line.
+    pub fn column(&self, name: &str) -> Option<usize> {
+        let layout = self.get("record")?;
+        layout.split_whitespace().filter(|w| *w != "|").position(|w| w.split('[').next() == Some(name))
+    }
+
+    /// The value of the word at `column` in cycle `cycle` (records hold until the next one).
+    pub fn value_at(&self, column: usize, cycle: u64) -> Option<u64> {
+        let i = self.records.partition_point(|r| r.first().is_some_and(|c| *c <= cycle));
+        self.records.get(i.checked_sub(1)?)?.get(column).copied()
+    }
+
+    /// The cycles in which the word at `column` rises from 0 to non-zero (a strobe's pulses).
+    pub fn rises(&self, column: usize) -> Vec<u64> {
+        let mut last = 0;
+        let mut out = Vec::new();
+        for r in &self.records {
+            let v = r.get(column).copied().unwrap_or(0);
+            if v != 0 && last == 0 {
+                out.push(r[0]);
+            }
+            last = v;
+        }
+        out
+    }
 }

@@ -88,6 +88,9 @@ pub struct EncoderSettings {
     pub t_m_us: f64,
     /// Recovery time I after type 2.1 frames, µs (10 to 30).
     pub t_m21_us: f64,
+    /// Recovery time I of type 2.2 frames once word 3 selects the short setting (written, then a reset) on an
+    /// encoder that powered on with the long one, µs (1.25 to 3.75).
+    pub t_m_short_us: f64,
     /// Word 3 of the operating status selects the short recovery time (type 2.2 commands).
     pub recovery_short: bool,
     /// Clock edge to data output, both transceivers, ns.
@@ -121,6 +124,7 @@ impl Default for EncoderSettings {
             t_ac_us: 20.0,
             t_m_us: 15.0,
             t_m21_us: 15.0,
+            t_m_short_us: 2.0,
             recovery_short: false,
             output_delay_ns: 200.0,
             cont_low_bits: 3,
@@ -377,6 +381,9 @@ impl BenchConfig {
         if e.t_m21_us < 10.0 || e.t_m21_us > 30.0 {
             return Err(ConfigError::invalid("encoder.t_m21_us", format!("{} µs", e.t_m21_us), "give 10 to 30 µs (seed 2.3.2)"));
         }
+        if !(1.25..=3.75).contains(&e.t_m_short_us) {
+            return Err(ConfigError::invalid("encoder.t_m_short_us", format!("{} µs", e.t_m_short_us), "give 1.25 to 3.75 µs (seed 2.3.2)"));
+        }
         if e.t_cal_us > 1000.0 {
             return Err(ConfigError::invalid("encoder.t_cal_us", format!("{} µs", e.t_cal_us), "give at most 1000 µs (seed 2.3.2)"));
         }
@@ -389,6 +396,7 @@ impl BenchConfig {
             t_ac_clocks: ns("encoder.t_ac_us", e.t_ac_us)?,
             t_m_clocks: ns("encoder.t_m_us", e.t_m_us)?,
             t_m21_clocks: ns("encoder.t_m21_us", e.t_m21_us)?,
+            t_m_other_clocks: if e.recovery_short { ns("encoder.t_m21_us", e.t_m21_us)? } else { ns("encoder.t_m_short_us", e.t_m_short_us)? },
             recovery_short: e.recovery_short,
             output_delay_clocks: tb.cycles_nearest_ns(positive("encoder.output_delay_ns", e.output_delay_ns, "give ns")?),
             block_gap: self.block_gap_clocks,
@@ -752,6 +760,15 @@ impl Bench {
             self.transactions.push(t);
         }
         if self.host == Host::WaitIdle && !out.o_busy {
+            // A type 2.2 block is taken after o_done: its answer (type II, ignored) is known only now.
+            if let Some((k, _)) = self.current {
+                let mode = self.requests.get(k).map(|r| r.mode()).unwrap_or(0);
+                if super::frame_kind(mode) == FrameKind::Block22 {
+                    for t in self.transactions.iter_mut().rev().take_while(|t| t.request == Some(k)) {
+                        t.encoder_answer = answer_name(self.encoder.answer).into();
+                    }
+                }
+            }
             self.host = if self.next < self.requests.len() {
                 // Faults appear while the line is idle before the request, as a real break would.
                 self.apply_faults(self.next);

@@ -49,9 +49,11 @@ pub fn budget(cfg: &BenchConfig, command: Command) -> Result<Budget> {
     use super::FrameKind as K;
     let k_off = if kind == K::Param21 { 8 + super::BLOCK_BITS } else { 8 };
     let t_ready = if command == Command::Reset21 { e.reset_clocks } else { e.t_cal_clocks };
-    // R_j - F1 = t_ST + (j - 1) * CPB; the start bit goes out at the first R_j, j >= k_off + 3, at least t_cal after F1.
+    // R_j - F1 = t_ST + (j - 1) * CPB; the start bit goes out at the first R_j, j >= k_off + 3, at least t_ready
+    // after F1, or, for the type 2.1 parameter commands, after R36, where the encoder has taken the block's last bit.
+    let ready_from = if kind == K::Param21 { m.t_st_clocks + (k_off - 2) * cpb } else { 0 };
     let mut j = k_off + 3;
-    while m.t_st_clocks + (j - 1) * cpb < t_ready {
+    while m.t_st_clocks + (j - 1) * cpb < ready_from + t_ready {
         j += 1;
     }
     let (nf, len) = match kind {

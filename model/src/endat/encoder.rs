@@ -53,6 +53,9 @@ pub struct EncoderConfig {
     pub t_m_clocks: u64,
     /// Recovery time I after type 2.1 frames, always 10 to 30 µs (seed 2.3.2 note 3).
     pub t_m21_clocks: u64,
+    /// Recovery time I after type 2.2 frames with the other setting of word 3 than at power-on (it takes effect
+    /// with a reset after word 3 is written).
+    pub t_m_other_clocks: u64,
     /// Power-on value of word 3 bit 0: `t_m` of 1.25 to 3.75 µs for type 2.2 commands.
     pub recovery_short: bool,
     /// Clock edge to data output, including both transceivers (`0.2 µs` of the seed's `t_D`).
@@ -276,6 +279,8 @@ pub struct Encoder {
     test_value: u64,
     errors_f1: bool,
     pending_ack: Option<(u8, u16)>,
+    /// Word 3 selected the short recovery time I at the last reset (or power-on).
+    short_tm: bool,
     /// Position added after each latch (a moving shaft, for continuous-clock runs).
     pub advance_per_latch: u64,
     /// Every frame sent (latched position, bits after the start bit), oldest first; the bench takes them.
@@ -340,6 +345,7 @@ impl Encoder {
             test_value: 0,
             errors_f1: false,
             pending_ack: None,
+            short_tm: cfg.recovery_short,
             advance_per_latch: 0,
             frames: Default::default(),
             answer: Answer::Ok,
@@ -577,7 +583,13 @@ impl Encoder {
     /// Recovery time I of the current command: type 2.2 commands follow word 3, type 2.1 ones are always long.
     fn t_m(&self) -> u64 {
         match Command::from_code(self.mode) {
-            Some(c) if c.is_type22() && self.phase != Phase::Mode => self.cfg.t_m_clocks,
+            Some(c) if c.is_type22() && self.phase != Phase::Mode => {
+                if self.short_tm == self.cfg.recovery_short {
+                    self.cfg.t_m_clocks
+                } else {
+                    self.cfg.t_m_other_clocks
+                }
+            }
             _ => self.cfg.t_m21_clocks,
         }
     }
@@ -640,10 +652,18 @@ impl Encoder {
                     (true, data)
                 }
             }
-            Command::Receive21 => (!busy && self.write(addr, data), data),
+            Command::Receive21 => {
+                if busy {
+                    self.last_mem = (addr, data, true);
+                }
+                (!busy && self.write(addr, data), data)
+            }
             Command::Send21 => match (busy, self.read(addr)) {
                 (false, Some(v)) => (true, v),
-                _ => (false, 0),
+                _ => {
+                    self.last_mem = (addr, 0, true); // as for 100100: the failed access is what I = 5 / 6 acknowledge
+                    (false, 0)
+                }
             },
             Command::Reset21 => {
                 if busy {
@@ -675,9 +695,10 @@ impl Encoder {
         self.ad2 = None;
         let op = &self.mem.areas[&mrs::OPERATING];
         self.datum_shift = (op[0] as u64) | ((op[1] as u64) << 16) | ((op[2] as u64) << 32);
-        let st = self.mem.areas.get_mut(&mrs::STATUS).expect("status");
-        // Word 2 protection written since the last reset stays; word 3 becomes active (3.4.4).
-        let _ = st;
+        // Word 3 becomes active (3.4.4): bit 0 = 1 and bit 1 = 0 select the short recovery time I; any other
+        // combination the factory default, the long one.
+        let w3 = self.status()[3];
+        self.short_tm = w3 & 0b11 == 0b01;
     }
 
     fn area_writable(&self, area: u8) -> bool {

@@ -450,6 +450,11 @@ struct Regs {
     ad2_on: bool,
     ad1_sel: u8,
     ad2_sel: u8,
+    // what the acknowledgements in additional datum 1 must echo (type 2.2, appendix A2 4.2.2)
+    mem_addr: u8,
+    mem_known: bool,
+    mrs_sent: u8,
+    mrs_known: bool,
     out: Out,
 }
 
@@ -558,6 +563,10 @@ impl Master {
             ad2_on: false,
             ad1_sel: 0,
             ad2_sel: 16,
+            mem_addr: 0,
+            mem_known: false,
+            mrs_sent: 0,
+            mrs_known: false,
             out,
         };
         Ok(Master { cfg, r })
@@ -602,20 +611,7 @@ impl Master {
     pub fn step(&mut self, i: &In) -> Out {
         let c = self.r;
         let mut n = c;
-        n.out.o_done = false;
-        n.out.o_err_crc = false;
-        n.out.o_err_ad1_crc = false;
-        n.out.o_err_ad2_crc = false;
-        n.out.o_err_type2 = false;
-        n.out.o_err_type3 = false;
-        n.out.o_err_type4 = false;
-        n.out.o_err_ack = false;
-        n.out.o_err_timeout = false;
-        n.out.o_err_absent = false;
-        n.out.o_err_idle = false;
-        n.out.o_err_delay = false;
-        n.out.o_meas_done = false;
-        n.out.o_err_meas = false;
+        clear_strobes(&mut n.out);
 
         // ---- line timing: edges of the synchronised data line -------------------------
         let edge_any = c.data_sync != c.data_prev;
@@ -693,16 +689,7 @@ impl Master {
                             cfg.t_m_clocks
                         };
                         n.cnt = pause - 1;
-                        // The master's view of the encoder's additional-data selection (seed 2.4.2.2).
-                        if c.mode == super::Command::Select22.code() && (c.mrs & 0xE0) == 0x40 {
-                            if c.mrs & 0x10 == 0 {
-                                n.ad1_on = c.mrs != 0x4F;
-                                n.ad1_sel = c.mrs & 0x0F;
-                            } else {
-                                n.ad2_on = c.mrs != 0x5F;
-                                n.ad2_sel = 16 | (c.mrs & 0x0F);
-                            }
-                        }
+                        remember_request(&c, &mut n);
                     } else {
                         let k = c.fall_idx + 1;
                         n.state = State::Low;
@@ -968,9 +955,20 @@ impl Master {
         let t3 = (ok1 && i1 == 15) || (ok2 && i2 == 31);
         let t4 = (ok1 && i1 == 0 && c.ad1_sel != 0) || (ok2 && i2 == 16 && c.ad2_sel != 16);
         let other = (ok1 && i1 != 15 && i1 != 0 && i1 != c.ad1_sel) || (ok2 && i2 != 31 && i2 != 16 && i2 != c.ad2_sel);
+        // An acknowledgement (I = 5, 6, 7) echoes the address or MRS code the master sent; inverted it is error
+        // handling type II (A2 4.2.2), anything else an access the encoder did not take (e.g. ignored while busy).
+        let echoed = (n.ad1_val >> 8) as u8;
+        let expected = match i1 {
+            5 | 6 if c.mem_known => Some(c.mem_addr),
+            7 if c.mrs_known => Some(c.mrs_sent),
+            _ => None,
+        };
+        let t2 = ok1 && expected.is_some_and(|e| echoed == !e);
+        let wrong_echo = ok1 && expected.is_some_and(|e| echoed != e && echoed != !e);
+        n.out.o_err_type2 = t2;
         n.out.o_err_type3 = t3;
         n.out.o_err_type4 = t4;
-        n.out.o_err_ack = other;
+        n.out.o_err_ack = other || wrong_echo;
     }
 
     /// Bookkeeping of the measurement, in three registered stages so that no
@@ -1022,6 +1020,53 @@ impl Master {
                 n.out.o_meas_done = true;
                 n.out.o_err_meas = true;
             }
+        }
+    }
+}
+
+/// The one-cycle outputs, low again in every cycle that does not raise them (results and F bits hold).
+fn clear_strobes(out: &mut Out) {
+    out.o_done = false;
+    out.o_err_crc = false;
+    out.o_err_ad1_crc = false;
+    out.o_err_ad2_crc = false;
+    out.o_err_type2 = false;
+    out.o_err_type3 = false;
+    out.o_err_type4 = false;
+    out.o_err_ack = false;
+    out.o_err_timeout = false;
+    out.o_err_absent = false;
+    out.o_err_idle = false;
+    out.o_err_delay = false;
+    out.o_meas_done = false;
+    out.o_err_meas = false;
+}
+
+/// What the master remembers when a request ends, for judging the next answers: the additional data it has
+/// selected (they decide the frame length) and the addresses the acknowledgements in additional datum 1 echo.
+fn remember_request(c: &Regs, n: &mut Regs) {
+    // The master's view of the encoder's additional-data selection (seed 2.4.2.2); a frame without a start bit
+    // ends before the block, so the encoder's selection stays.
+    if !c.err_frame && c.mode == super::Command::Select22.code() && (c.mrs & 0xE0) == 0x40 {
+        if c.mrs & 0x10 == 0 {
+            n.ad1_on = c.mrs != 0x4F;
+            n.ad1_sel = c.mrs & 0x0F;
+        } else {
+            n.ad2_on = c.mrs != 0x5F;
+            n.ad2_sel = 16 | (c.mrs & 0x0F);
+        }
+    }
+    // The addresses the next acknowledgements in additional datum 1 refer to: I = 5 / 6 the
+    // last memory access (2.1 or 2.2), I = 7 the last 2.2 MRS code (seed 2.3.5.1, A2 4.2.2).
+    if !c.err_frame {
+        use super::Command as C;
+        if [C::Receive21, C::Send21, C::Receive22, C::Send22].iter().any(|x| x.code() == c.mode) {
+            n.mem_addr = c.mrs;
+            n.mem_known = true;
+        }
+        if c.mode == C::Select22.code() {
+            n.mrs_sent = c.mrs;
+            n.mrs_known = true;
         }
     }
 }
@@ -1132,6 +1177,74 @@ impl FrameChecker {
             ad2: c.ad2_val,
             bad_ad2: c.bad_ad2,
         }
+    }
+}
+
+/// The master's judgement of a whole line capture, request after request, without clocks: `tbgen decode endat`
+/// hands it the mode bits and block it read at the master's pins and the frame after each start bit, and gets
+/// back the outputs the master raises with `o_done`. Between requests it remembers what the master remembers
+/// (the additional-data selection, the addresses acknowledgements echo), so its flags are the master's.
+#[derive(Debug, Clone)]
+pub struct LineJudge {
+    checker: FrameChecker,
+}
+
+impl LineJudge {
+    /// A judge for an encoder with `pos_bits` position bits, in the master's power-on state.
+    pub fn new(pos_bits: u32) -> Self {
+        LineJudge { checker: FrameChecker::new(0b000111, pos_bits, false, false) }
+    }
+
+    /// A request begins: its mode bits, and the MRS code / address and parameter of its block (0 if none).
+    pub fn begin(&mut self, mode: u8, mrs: u8, param: u16) {
+        let r = &mut self.checker.master.r;
+        r.kind = frame_kind(mode);
+        r.mode = mode & 0x3F;
+        r.mrs = mrs;
+        r.param = param;
+        r.cont_left = 1;
+        r.meas_frame = false;
+        r.err_frame = false;
+    }
+
+    /// Bits after the start bit the current request's frame has.
+    pub fn frame_bits(&self) -> u64 {
+        self.checker.frame_bits()
+    }
+
+    /// The frame after its start bit (as many bits as [`LineJudge::frame_bits`]): the outputs at `o_done`.
+    pub fn frame(&mut self, bits: &[bool]) -> Out {
+        let m = &self.checker.master;
+        let mut c = m.r;
+        clear_strobes(&mut c.out);
+        c.phase = RxPhase::Poll;
+        c.poll_limit = 0;
+        c.rx_on = true;
+        c.smp_idx = 0;
+        for &b in std::iter::once(&true).chain(bits) {
+            let mut n = c;
+            m.rx_sample(&c, &mut n, b);
+            c = n;
+        }
+        self.checker.master.r = c;
+        c.out
+    }
+
+    /// The frame ended without one: no start bit (`timeout`) or the line high at the turnaround.
+    pub fn aborted(&mut self, timeout: bool) -> Out {
+        let m = &self.checker.master;
+        let mut c = m.r;
+        clear_strobes(&mut c.out);
+        let mut n = c;
+        m.abort(&c, &mut n, timeout);
+        self.checker.master.r = n;
+        n.out
+    }
+
+    /// The request is over (the clock stopped): remember what the next answers are judged by.
+    pub fn end(&mut self) {
+        let c = self.checker.master.r;
+        remember_request(&c, &mut self.checker.master.r);
     }
 }
 

@@ -92,11 +92,11 @@ mod encoder;
 mod master;
 
 pub use bench::{
-    Bench, BenchConfig, CableFaults, EncoderSettings, FaultSettings, Flip, HostCommand, HostSettings, MasterSettings,
-    Transaction,
+    error_names, Bench, BenchConfig, CableFaults, EncoderSettings, FaultSettings, Flip, HostCommand, HostSettings,
+    MasterSettings, Transaction,
 };
 pub use encoder::{AdSource, Encoder, EncoderConfig, EncoderKind, Memory};
-pub use master::{FrameChecker, FrameResult, In, Master, MasterConfig, Out, RxPhase, State, SYNC_STAGES};
+pub use master::{FrameChecker, FrameResult, In, LineJudge, Master, MasterConfig, Out, RxPhase, State, SYNC_STAGES};
 
 use crate::crc::{BitSerial, ENDAT_CRC5};
 

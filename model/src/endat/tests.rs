@@ -157,6 +157,64 @@ fn an_invalid_mode_command_gets_no_start_bit_and_is_flagged_type_i() {
 }
 
 #[test]
+fn a_type_22_access_answered_with_type_ii_is_flagged_when_its_acknowledgement_arrives() {
+    // Seed A2 4.2.2: the acknowledgement of the MRS code (I = 7) or of the memory access (I = 5) comes back with
+    // the address inverted; with 2.2 commands it arrives in additional datum 1 of the next frame.
+    let mut cfg = fast(4000.0, 64.0, 10.0);
+    cfg.encoder.t_ac_us = 100.0;
+    cfg.commands = vec![
+        HostCommand::with(Command::Select22, 0x47, 0),      // I = 7: acknowledge MRS code
+        HostCommand::with(Command::Select22, 0xAD, 0),      // OEM area 3: not in this encoder (cause 7)
+        HostCommand::with(Command::Select22, 0xA1, 0),      // shows ~0xAD
+        HostCommand::with(Command::Select22, 0x45, 0),      // shows 0xA1; I = 5 from now on
+        HostCommand::with(Command::Receive22, 8, 0x1234),   // write-protected (cause 9)
+        HostCommand::with(Command::Select22, 0xA9, 0),      // shows ~8
+        HostCommand::with(Command::Receive22, 1, 0x00FF),   // accepted: busy for t_ac
+        HostCommand::with(Command::Receive22, 2, 0x0011),   // ignored while busy
+        HostCommand::new(Command::Pos22),                   // still acknowledges address 1
+    ];
+    let ts = run(&cfg);
+    let c = commands(&ts);
+    let errors: Vec<Vec<String>> = c.iter().map(|t| t.errors.clone()).collect();
+    let none: Vec<String> = Vec::new();
+    assert_eq!(c[2].ad1.as_deref(), Some("475200"), "{c:#?}");
+    assert_eq!(errors[2], vec!["type_ii"]);
+    assert_eq!(errors[3], none, "0xA1 echoed as sent");
+    assert_eq!(c[5].ad1.as_deref().map(|s| &s[2..4]), Some("f7"));
+    assert_eq!(errors[5], vec!["type_ii"]);
+    assert_eq!(errors[7], none, "address 1 acknowledged");
+    assert_eq!(c[7].encoder_answer, "ignored");
+    assert_eq!(errors[8], vec!["acknowledgement_mismatch"], "the ignored write is not acknowledged");
+    assert_eq!(c[1].encoder_answer, "type_ii");
+}
+
+#[test]
+fn word_3_selects_recovery_time_i_at_the_next_reset() {
+    // Seed 3.4.4: word 3 bit 0 / bit 1 select t_m of 1.25..3.75 µs or 10..30 µs for type 2.2 commands; like every
+    // function parameter it takes effect with a reset. A master timed for the short setting is then too fast.
+    let mut cfg = fast(2000.0, 64.0, 5.0);
+    cfg.master.delay_comp = false;
+    cfg.encoder.output_delay_ns = 120.0;
+    cfg.host.gap_us = 8.0;
+    let reads = HostCommand { repeat: 2, ..HostCommand::new(Command::Pos22) };
+    cfg.commands = vec![
+        reads.clone(),
+        HostCommand::with(Command::Select21, 0xB9, 0),
+        HostCommand::with(Command::Receive21, 3, 0x10AA),
+        reads.clone(),
+        HostCommand::new(Command::Reset21),
+        reads,
+    ];
+    let ts = run(&cfg);
+    let errors: Vec<Vec<String>> = commands(&ts).iter().map(|t| t.errors.clone()).collect();
+    let none: Vec<String> = Vec::new();
+    assert_eq!(errors[..6], vec![none.clone(); 6], "written but not yet active: still short");
+    assert_eq!(errors[6], none, "the reset itself");
+    assert_eq!(errors[7], none);
+    assert_eq!(errors[8], vec!["line_not_idle"], "8 µs after a 2.2 frame the encoder is still in its 15 µs t_m");
+}
+
+#[test]
 fn an_impermissible_additional_datum_is_answered_with_i_31_type_iii() {
     // Seed A2 4.2.3 (cause 13): I = 26 is not assignable → I = 31 until a valid selection.
     let mut cfg = fast(4000.0, 64.0, 10.0);
@@ -299,4 +357,28 @@ fn every_2_bit_error_in_a_frame_of_at_most_15_bits_is_detected() {
             assert!(checker.check(&f).bad_head, "flips {i} {j}");
         }
     }
+}
+
+#[test]
+fn a_selection_whose_frame_had_no_start_bit_is_not_taken_as_made() {
+    // The type 2.2 block follows the frame: without a start bit the master stops before it, so the encoder keeps
+    // its selection and the master must not expect the additional datum.
+    let mut judge = LineJudge::new(25);
+    let good: Vec<bool> = {
+        let mut b = vec![false, true];
+        b.extend((0..25).map(|i| (7u64 >> i) & 1 == 1));
+        b.extend(crc_wire(crc_pos(false, Some(true), 7, 25)));
+        b
+    };
+    judge.begin(Command::Select22.code(), 0x41, 0);
+    assert!(judge.aborted(true).o_err_timeout);
+    judge.end();
+    judge.begin(Command::Pos22.code(), 0, 0);
+    assert_eq!(judge.frame_bits(), 32, "no additional datum after the aborted selection");
+    judge.begin(Command::Select22.code(), 0x41, 0);
+    let out = judge.frame(&good);
+    assert!(out.o_done && !out.o_err_crc && out.o_position == 7, "{out:?}");
+    judge.end();
+    judge.begin(Command::Pos22.code(), 0, 0);
+    assert_eq!(judge.frame_bits(), 32 + 29, "diagnosis selected");
 }
