@@ -242,3 +242,21 @@ fn every_subcommand_help_shows_an_example() {
         assert!(text.contains("Example"), "tbgen {sub} --help: {text}");
     }
 }
+
+#[test]
+fn output_into_a_closed_pipe_ends_quietly_without_a_panic() {
+    use std::process::Stdio;
+    // The reader closes its end before tbgen writes: every write fails with
+    // a broken pipe, as it does under `tbgen decode ... | head -1`.
+    let mut child = tbgen()
+        .args(["decode", "endat", concat!(env!("CARGO_MANIFEST_DIR"), "/../vectors/endat_master/endat_pos22_ad_8mhz_100m.vcd")])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take());
+    let out = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!stderr.contains("panicked"), "tbgen panicked on a closed pipe: {stderr}");
+    assert!(out.status.success(), "status {:?}, stderr {stderr}", out.status);
+}

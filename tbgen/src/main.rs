@@ -9,6 +9,23 @@ use tbgen::scenario::Visitor;
 use tbgen::scenario::Setup;
 use tbgen::{biss_tools, builtin, crc_cmd, generate, tformat_decode, tformat_tools, timing_cmd, Error};
 
+/// `println!` that hands a closed stdout back as an error instead of
+/// panicking: `tbgen decode ... | head` must end quietly, not with a panic.
+macro_rules! outln {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        writeln!(std::io::stdout(), $($arg)*).map_err(|e| Error::io("<stdout>", e))?;
+    }};
+}
+
+/// `print!` with the same care as [`outln!`].
+macro_rules! out {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        write!(std::io::stdout(), $($arg)*).map_err(|e| Error::io("<stdout>", e))?;
+    }};
+}
+
 #[derive(Parser)]
 #[command(
     name = "tbgen",
@@ -161,6 +178,9 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     match run(cli.command) {
         Ok(()) => ExitCode::SUCCESS,
+        // The reader of our output went away (`| head`): nothing is lost
+        // that anyone will read, so end the way Unix tools do, quietly.
+        Err(Error::Io { source, .. }) if source.kind() == std::io::ErrorKind::BrokenPipe => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("tbgen: error: {e}");
             ExitCode::from(e.exit_code() as u8)
@@ -172,7 +192,7 @@ fn run(command: Command) -> Result<(), Error> {
     match command {
         Command::List => {
             for s in builtin::all()? {
-                println!("{:<28} {:<12} {}", s.name, s.core(), s.description);
+                outln!("{:<28} {:<12} {}", s.name, s.core(), s.description);
             }
         }
         Command::Gen { scenarios, all, out } => {
@@ -186,7 +206,7 @@ fn run(command: Command) -> Result<(), Error> {
             for s in &chosen {
                 let dir = if all { out.join(s.core()) } else { out.clone() };
                 let summary = generate::generate(s, &dir)?;
-                println!(
+                outln!(
                     "{}: {} cycles, {} records, {} transactions -> {}",
                     s.name,
                     summary.cycles,
@@ -199,10 +219,10 @@ fn run(command: Command) -> Result<(), Error> {
         Command::Crc { algorithm, bits, list } => {
             if list {
                 for a in model::crc::CATALOGUE {
-                    println!("{:<16} {:>2}-bit  {}", a.name, a.width, a.source);
+                    outln!("{:<16} {:>2}-bit  {}", a.name, a.width, a.source);
                 }
             } else {
-                print!("{}", crc_cmd::report(algorithm.as_deref().unwrap_or(""), bits.as_deref().unwrap_or(""))?);
+                out!("{}", crc_cmd::report(algorithm.as_deref().unwrap_or(""), bits.as_deref().unwrap_or(""))?);
             }
         }
         Command::Bench { scenario } => bench(&scenario)?,
@@ -212,18 +232,18 @@ fn run(command: Command) -> Result<(), Error> {
                 let Setup::Tformat(cfg) = &s.setup else {
                     return Err(Error::Decode(format!("timing tformat: scenario `{}` is not a T-format scenario", s.name)));
                 };
-                print!("{}", tformat_tools::timing_report(cfg, &s.name, data_id).map_err(|e| s.value_error(e))?);
+                out!("{}", tformat_tools::timing_report(cfg, &s.name, data_id).map_err(|e| s.value_error(e))?);
             }
             "biss" => {
                 let s = builtin::resolve(scenario.as_deref().unwrap_or("biss_seed_16bit"))?;
                 let Setup::Biss(cfg) = &s.setup else {
                     return Err(Error::Decode(format!("timing biss: scenario `{}` is not a BiSS-C scenario", s.name)));
                 };
-                print!("{}", biss_tools::timing_report(cfg, &s.name).map_err(|e| s.value_error(e))?);
+                out!("{}", biss_tools::timing_report(cfg, &s.name).map_err(|e| s.value_error(e))?);
             }
             "endat" => {
                 let s = builtin::resolve(scenario.as_deref().unwrap_or("endat_pos22_ad_8mhz_100m"))?;
-                print!("{}", timing_cmd::report(&s, &command, ads, diagram)?);
+                out!("{}", timing_cmd::report(&s, &command, ads, diagram)?);
             }
             other => return Err(Error::Decode(format!("timing: protocol `{other}` has no cycle budget yet; use `biss`, `endat` or `tformat`"))),
         },
@@ -237,7 +257,7 @@ fn run(command: Command) -> Result<(), Error> {
             let layout = biss_tools::Layout { bits, crc_width, crc_poly };
             let frames = biss_tools::decode(&file, &ma, &slo, &layout)?;
             let decoded = tbgen::transcript::Decoded::new("biss", &file, &[("ma", &ma), ("slo", &slo)], &frames);
-            println!("{}", serde_json::to_string_pretty(&decoded).map_err(|e| Error::Decode(e.to_string()))?);
+            outln!("{}", serde_json::to_string_pretty(&decoded).map_err(|e| Error::Decode(e.to_string()))?);
         }
         Command::Decode(Decode::Tformat { file, line, tx_en, baud, timeout_us }) => {
             if !(1_000..=100_000_000).contains(&baud) || !(timeout_us > 0.0 && timeout_us < 1e7) {
@@ -245,13 +265,13 @@ fn run(command: Command) -> Result<(), Error> {
             }
             let options = tformat_decode::Options { line, tx_en, baud, timeout_us };
             let transactions = tformat_decode::decode(&file, &options)?;
-            println!("{}", tformat_decode::to_json(&file, &options, &transactions)?);
+            outln!("{}", tformat_decode::to_json(&file, &options, &transactions)?);
         }
         Command::Decode(Decode::Endat { file, clk, data, pos_bits, meas_khz }) => {
             let opts = tbgen::endat_decode::Options { pos_bits, meas_khz };
             let transactions = tbgen::endat_decode::decode(&file, &clk, &data, &opts)?;
             let envelope = tbgen::transcript::Decoded::new("endat", &file, &[("clk", clk.as_str()), ("data", data.as_str())], &transactions);
-            println!("{}", serde_json::to_string_pretty(&envelope).map_err(|e| Error::Decode(e.to_string()))?);
+            outln!("{}", serde_json::to_string_pretty(&envelope).map_err(|e| Error::Decode(e.to_string()))?);
         }
     }
     Ok(())
@@ -267,14 +287,14 @@ fn bench(arg: &str) -> Result<(), Error> {
     let gen_s = started.elapsed().as_secs_f64();
     let vcd_bytes = std::fs::metadata(&summary.files[1]).map(|m| m.len()).unwrap_or(0);
     let _ = std::fs::remove_dir_all(&dir);
-    println!("scenario: {}", s.name);
-    println!("cycles: {cycles}");
-    println!("model_seconds: {model_s:.6}");
-    println!("model_cycles_per_second: {:.0}", cycles as f64 / model_s);
-    println!("gen_seconds: {gen_s:.6}");
-    println!("gen_cycles_per_second: {:.0}", cycles as f64 / gen_s);
-    println!("vcd_bytes: {vcd_bytes}");
-    println!("vcd_bytes_per_second: {:.0}", vcd_bytes as f64 / gen_s);
+    outln!("scenario: {}", s.name);
+    outln!("cycles: {cycles}");
+    outln!("model_seconds: {model_s:.6}");
+    outln!("model_cycles_per_second: {:.0}", cycles as f64 / model_s);
+    outln!("gen_seconds: {gen_s:.6}");
+    outln!("gen_cycles_per_second: {:.0}", cycles as f64 / gen_s);
+    outln!("vcd_bytes: {vcd_bytes}");
+    outln!("vcd_bytes_per_second: {:.0}", vcd_bytes as f64 / gen_s);
     Ok(())
 }
 
