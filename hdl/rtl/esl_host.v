@@ -312,6 +312,7 @@ reg        pad_reg = 1'b0;    // a CRC-16 channel wants its 8 zero bits
 reg        ch1_done_reg = 1'b0, ch1_bad_reg = 1'b0;
 reg        ch2_done_reg = 1'b0, ch2_bad_reg = 1'b0, cf2_bad_reg = 1'b0;
 reg        crcc_bad_reg = 1'b0;
+reg        ch1_check_reg = 1'b0, ch2_check_reg = 1'b0;
 reg [7:0]  s_cf = 8'd0, s_sf = 8'd0, s_sf2 = 8'd0, s_alm1 = 8'd0, s_alm2 = 8'd0;
 reg [23:0] s_abs = 24'd0;
 reg [15:0] s_abm = 16'd0, s_rs = 16'd0;
@@ -360,24 +361,31 @@ wire       tx_bit = (nbit == 4'd0) ? 1'b0 : (nbit == 4'd9) ? 1'b1 : n_is_crc ? r
 wire [7:0] req_crc_step;
 crc_serial #(.WIDTH(8), .POLY(8'h2F)) req_crc_inst (.i_crc(req_crc_reg), .i_bit(tx_bit), .o_crc(req_crc_step));
 
-/* The answer's layout for the Data ID asked for. */
-wire [4:0] n1 = ch1_fields(id_reg);
-wire       c16 = ch1_crc16(id_reg);
-wire [4:0] l1 = n1 + (c16 ? 5'd2 : 5'd1);
-wire [4:0] n2 = ch2_fields(id_reg);
-wire       has2 = n2 != 5'd0;
-wire [4:0] l2 = has2 ? n2 + (c16 ? 5'd2 : 5'd1) : 5'd0;
-wire [4:0] total = l1 + l2;
+/* The answer's layout for the Data ID asked for, registered at i_start, and
+   where the next field falls in it: the channel, the index inside the
+   channel, and what that index means, all registered (a field arrives at
+   most every 10 bits, so one cycle of latency is free). */
+reg [4:0]  n1_reg = 5'd0, l1_reg = 5'd0, n2_reg = 5'd0, l2_reg = 5'd0, total_reg = 5'd0;
+reg        c16_reg = 1'b0, has2_reg = 1'b0, has_rs_reg = 1'b0, is_mem_reg = 1'b0, known_reg = 1'b0;
+reg        in_ch2_reg = 1'b0;
+reg [4:0]  cidx_reg = 5'd0;
+reg [4:0]  kind_q = K_NONE;
+reg        active_q = 1'b0, decode_q = 1'b0, last_data_q = 1'b0, last_crc_q = 1'b0, first_ch2_q = 1'b0;
 wire [4:0] idx = count_reg;
-wire       in_ch2 = idx >= l1;
-wire [4:0] cidx = in_ch2 ? idx - l1 : idx;
-wire [4:0] cn = in_ch2 ? n2 : n1;
-wire [4:0] cl = in_ch2 ? l2 : l1;
-wire [4:0] kind = field_kind(id_reg, in_ch2, cidx);
+wire [4:0] cn = in_ch2_reg ? n2_reg : n1_reg;
+wire [4:0] cl = in_ch2_reg ? l2_reg : l1_reg;
+always @(posedge i_clk) begin
+    kind_q <= field_kind(id_reg, in_ch2_reg, cidx_reg);
+    active_q <= !in_ch2_reg || (has2_reg && cidx_reg < l2_reg);
+    decode_q <= cidx_reg < cn && (!in_ch2_reg || has2_reg);
+    last_data_q <= cidx_reg == cn - 5'd1;
+    last_crc_q <= cidx_reg == cl - 5'd1;
+    first_ch2_q <= in_ch2_reg && cidx_reg == 5'd0;
+end
 
 /* Byte-wide CRC steps: the channel's register (its init at CH2's first
    field), fed the received byte, or 0x00 for the padding. */
-wire [15:0] crc_base = (in_ch2 && cidx == 5'd0 && !pad_reg) ? (c16 ? 16'hFFFF : 16'h0000) : crc_reg;
+wire [15:0] crc_base = (first_ch2_q && !pad_reg) ? (c16_reg ? 16'hFFFF : 16'h0000) : crc_reg;
 wire [7:0]  crc_byte = pad_reg ? 8'h00 : rx_data;
 wire [15:0] c16_chain [0:8];
 wire [7:0]  c8_chain [0:8];
@@ -393,20 +401,21 @@ generate
         crc_serial #(.WIDTH(8), .POLY(8'h2F)) cc_inst (.i_crc(cc_chain[g]), .i_bit(rx_data[g]), .o_crc(cc_chain[g+1]));
     end
 endgenerate
-wire [15:0] crc_after = c16 ? c16_chain[8] : {8'd0, c8_chain[8]};
+wire [15:0] crc_after = c16_reg ? c16_chain[8] : {8'd0, c8_chain[8]};
 
-/* The checks at the end of an answer (model::esl::frames::check). */
+/* The checks at the end of an answer (model::esl::frames::check). Their
+   inputs stop changing with the last field, at least CLOCKS_PER_BIT cycles
+   before the end of the answer is seen, so they are computed a cycle ahead
+   into registers (the k_*_q below) without changing any output cycle. */
 wire [4:0] nbytes = (count_reg > 5'd18) ? 5'd18 : count_reg;
 wire       frame_in = frame_err_reg || count_reg > 5'd18;
 wire       comm_path = nbytes == 5'd3;
-wire       k_crc1 = comm_path ? (crcc_bad_reg || 1'b0) : (!ch1_done_reg || ch1_bad_reg);
-wire       comm_ans = !crcc_bad_reg && (f1_reg[1:0] != 2'b00);
-wire       k_crc2 = comm_path ? 1'b0 : has2 && (!ch2_done_reg || ch2_bad_reg);
-wire       k_frame = comm_path ? (frame_in || !comm_ans) : (frame_in || nbytes != total);
-wire       is_mem = id_reg == ID_E || id_reg == ID_F;
+wire       comm_ans = !crcc_bad_reg && (f1_reg != 2'b00);
+wire       k_crc1 = comm_path ? crcc_bad_reg : (!ch1_done_reg || ch1_bad_reg);
+wire       k_crc2 = !comm_path && has2_reg && (!ch2_done_reg || ch2_bad_reg);
+wire       k_frame = comm_path ? (frame_in || !comm_ans) : (frame_in || nbytes != total_reg);
 wire       k_cf = comm_path ? (f0_reg[6:0] != req_cf[6:0]) : ((f0_reg != req_cf) || cf2_bad_reg);
-wire       k_comm = comm_path ? comm_ans : (!is_mem && (s_sf[1:0] != 2'b00 || (has2 && s_sf2[1:0] != 2'b00)));
-wire       has_rs = id_reg == 4'h1 || id_reg == 4'h2 || id_reg == 4'hB || id_reg == 4'h6 || id_reg == 4'hC;
+wire       k_comm = comm_path ? comm_ans : (!is_mem_reg && (s_sf[1:0] != 2'b00 || (has2_reg && s_sf2[1:0] != 2'b00)));
 wire [8:0]  rs9_diff = s_rs[8:0] - s_abs[23:15];
 wire [15:0] rs16_diff = s_rs - s_abs[23:8];
 wire [15:0] tol16 = TOL;
@@ -414,15 +423,24 @@ wire [8:0]  tol9 = TOL[8:0];
 wire       agree9 = rs9_diff <= tol9 || {7'd0, rs9_diff} >= 16'd512 - tol16;
 wire       agree16 = rs16_diff <= tol16 || ({1'b0, rs16_diff} >= 17'h10000 - {1'b0, tol16});
 wire       agree = (id_reg == ID_6) ? agree16 : agree9;
-wire       k_rs = !comm_path && has_rs && !k_crc1 && !k_crc2 && !k_frame && !agree;
+wire       k_rs = !comm_path && has_rs_reg && !k_crc1 && !k_crc2 && !k_frame && !agree;
 wire       k_any0 = k_crc1 || k_crc2 || k_frame || k_cf || k_comm || k_rs;
-wire       mem_cf = is_mem && !k_any0 && ((s_adf[7:1] != mem_address_reg) || (id_reg == ID_F && !s_adf[0] && s_edf != wdata_reg));
-wire       cf_final = k_cf || mem_cf;
-wire       clean = !(k_crc1 || k_crc2 || k_frame || cf_final || k_comm);
-wire       safety = ch1_crc16(id_reg);
+wire       mem_cf = is_mem_reg && !k_any0 && ((s_adf[7:1] != mem_address_reg) || (id_reg == ID_F && !s_adf[0] && s_edf != wdata_reg));
 wire [7:0] exp_sc1 = seq_sc1[address_reg] + 8'd1;
 wire [6:0] exp_sc2 = seq_sc2[address_reg] + 7'd1;
-wire       seq_bad = seq_known[address_reg] && (s_sc1 != exp_sc1 || s_sc2 != exp_sc2);
+reg        k_crc1_q = 1'b0, k_crc2_q = 1'b0, k_frame_q = 1'b0, k_cf_q = 1'b0, k_comm_q = 1'b0, k_rs_q = 1'b0;
+reg        seq_bad_q = 1'b0;
+always @(posedge i_clk) begin
+    k_crc1_q <= k_crc1;
+    k_crc2_q <= k_crc2;
+    k_frame_q <= k_frame;
+    k_cf_q <= k_cf || mem_cf;
+    k_comm_q <= k_comm;
+    k_rs_q <= k_rs;
+    seq_bad_q <= seq_known[address_reg] && (s_sc1 != exp_sc1 || s_sc2 != exp_sc2);
+end
+wire       clean = !(k_crc1_q || k_crc2_q || k_frame_q || k_cf_q || k_comm_q);
+wire       safety = c16_reg;
 wire       mem_busy = s_adf[0];
 
 task begin_send;
@@ -462,29 +480,29 @@ task finish(input timeout);
             err_timeout_reg <= 1'b1;
             flawed = 1'b1;
             seq_known[address_reg] <= 1'b0;
-        end else if (known_id(id_reg)) begin
+        end else if (known_reg) begin
             cf_reg <= s_cf; sf_reg <= s_sf; sf2_reg <= s_sf2; alm1_reg <= s_alm1; alm2_reg <= s_alm2;
             abs_reg <= s_abs; abm_reg <= s_abm; rs_reg <= s_rs; sc1_reg <= s_sc1; sc2_reg <= s_sc2;
             enid_reg <= s_enid; temp_reg <= s_temp; adf_reg <= s_adf; edf_reg <= s_edf;
-            err_crc1_reg <= err_crc1_reg | k_crc1;
-            err_crc2_reg <= err_crc2_reg | k_crc2;
-            err_frame_reg <= err_frame_reg | k_frame;
-            err_cf_reg <= err_cf_reg | cf_final;
-            err_comm_reg <= err_comm_reg | k_comm;
-            err_rs_reg <= err_rs_reg | k_rs;
+            err_crc1_reg <= err_crc1_reg | k_crc1_q;
+            err_crc2_reg <= err_crc2_reg | k_crc2_q;
+            err_frame_reg <= err_frame_reg | k_frame_q;
+            err_cf_reg <= err_cf_reg | k_cf_q;
+            err_comm_reg <= err_comm_reg | k_comm_q;
+            err_rs_reg <= err_rs_reg | k_rs_q;
             if (safety && clean) begin
                 // A counter that is not the previous one plus one: a lost,
                 // repeated or stale answer. After an answer that could not be
                 // trusted the next good one is the new reference.
-                err_seq_reg <= err_seq_reg | seq_bad;
+                err_seq_reg <= err_seq_reg | seq_bad_q;
                 seq_known[address_reg] <= 1'b1;
                 seq_sc1[address_reg] <= s_sc1;
                 seq_sc2[address_reg] <= s_sc2;
             end else if (safety) begin
                 seq_known[address_reg] <= 1'b0;
             end
-            flawed = !clean || k_rs;
-            if (is_mem && clean) begin
+            flawed = !clean || k_rs_q;
+            if (is_mem_reg && clean) begin
                 tries_left_reg <= tries_left_reg - 4'd1;
                 if (mem_busy && tries_left_reg == 4'd1) begin
                     err_busy_reg <= 1'b1;
@@ -531,7 +549,12 @@ endtask
 always @(posedge i_clk) begin
     done_reg <= 1'b0;
     pad_reg <= 1'b0;
-    if (pad_reg) crc_reg <= c16 ? c16_chain[8] : {8'd0, c8_chain[8]};
+    if (pad_reg) crc_reg <= crc_after;
+    // A channel's CRC fields are in: its register must be back at 0 (the wire residue).
+    ch1_check_reg <= 1'b0;
+    ch2_check_reg <= 1'b0;
+    if (ch1_check_reg) ch1_bad_reg <= crc_reg != 16'd0;
+    if (ch2_check_reg) ch2_bad_reg <= crc_reg != 16'd0;
     case (state_reg)
         IDLE: begin
             if (i_start) begin
@@ -542,6 +565,16 @@ always @(posedge i_clk) begin
                 wdata_reg <= i_wdata;
                 repeats_left_reg <= (i_data_id == 4'hB || i_data_id == 4'hC || i_data_id == 4'hD) ? 4'd8 : 4'd1;
                 tries_left_reg <= TRIES;
+                known_reg <= known_id(i_data_id);
+                c16_reg <= ch1_crc16(i_data_id);
+                n1_reg <= ch1_fields(i_data_id);
+                l1_reg <= ch1_fields(i_data_id) + (ch1_crc16(i_data_id) ? 5'd2 : 5'd1);
+                n2_reg <= ch2_fields(i_data_id);
+                has2_reg <= ch2_fields(i_data_id) != 5'd0;
+                l2_reg <= (ch2_fields(i_data_id) == 5'd0) ? 5'd0 : ch2_fields(i_data_id) + (ch1_crc16(i_data_id) ? 5'd2 : 5'd1);
+                total_reg <= ch1_fields(i_data_id) + ch2_fields(i_data_id) + ((ch2_fields(i_data_id) == 5'd0) ? 5'd1 : 5'd2) * (ch1_crc16(i_data_id) ? 5'd2 : 5'd1);
+                has_rs_reg <= i_data_id == 4'h1 || i_data_id == 4'h2 || i_data_id == 4'hB || i_data_id == 4'h6 || i_data_id == 4'hC;
+                is_mem_reg <= i_data_id == ID_E || i_data_id == ID_F;
                 busy_reg <= 1'b1;
                 err_crc1_reg <= 1'b0; err_crc2_reg <= 1'b0; err_timeout_reg <= 1'b0; err_frame_reg <= 1'b0;
                 err_cf_reg <= 1'b0; err_comm_reg <= 1'b0; err_seq_reg <= 1'b0; err_rs_reg <= 1'b0; err_busy_reg <= 1'b0;
@@ -562,6 +595,9 @@ always @(posedge i_clk) begin
                     ch1_done_reg <= 1'b0; ch1_bad_reg <= 1'b0;
                     ch2_done_reg <= 1'b0; ch2_bad_reg <= 1'b0; cf2_bad_reg <= 1'b0;
                     crcc_bad_reg <= 1'b0;
+                    ch1_check_reg <= 1'b0; ch2_check_reg <= 1'b0;
+                    in_ch2_reg <= 1'b0;
+                    cidx_reg <= 5'd0;
                     f0_reg <= 8'd0; f1_reg <= 2'd0;
                     s_cf <= 8'd0; s_sf <= 8'd0; s_sf2 <= 8'd0; s_alm1 <= 8'd0; s_alm2 <= 8'd0;
                     s_abs <= 24'd0; s_abm <= 16'd0; s_rs <= 16'd0; s_sc1 <= 8'd0; s_sc2 <= 7'd0;
@@ -597,32 +633,38 @@ always @(posedge i_clk) begin
                     if (idx == 5'd1) f1_reg <= rx_data[1:0];
                     if (idx <= 5'd2) crcc_reg <= cc_chain[8];
                     if (idx == 5'd2) crcc_bad_reg <= cc_chain[8] != 8'd0;
-                    if (!in_ch2 || idx < total) begin
+                    if (active_q) begin
                         crc_reg <= crc_after;
-                        if (cidx == cn - 5'd1 && c16 && cn[0]) pad_reg <= 1'b1;
-                        if (cidx == cl - 5'd1) begin
-                            if (in_ch2) begin
+                        if (last_data_q && c16_reg && cn[0]) pad_reg <= 1'b1;
+                        if (last_crc_q) begin
+                            if (in_ch2_reg) begin
                                 ch2_done_reg <= 1'b1;
-                                ch2_bad_reg <= crc_after != 16'd0;
+                                ch2_check_reg <= 1'b1;
                             end else begin
                                 ch1_done_reg <= 1'b1;
-                                ch1_bad_reg <= crc_after != 16'd0;
+                                ch1_check_reg <= 1'b1;
                             end
                         end
-                        if (in_ch2 && cidx == 5'd0) cf2_bad_reg <= rx_data != req_cf;
+                        if (first_ch2_q) cf2_bad_reg <= rx_data != req_cf;
                     end
-                    if (cidx < cn && (!in_ch2 || has2)) begin
-                        case (kind)
-                            K_CF: if (!in_ch2) s_cf <= rx_data;
-                            K_SF: if (in_ch2) s_sf2 <= rx_data; else s_sf <= rx_data;
-                            K_ALM: if (in_ch2) s_alm2 <= rx_data; else s_alm1 <= rx_data;
+                    if (last_crc_q && !in_ch2_reg) begin
+                        in_ch2_reg <= 1'b1;
+                        cidx_reg <= 5'd0;
+                    end else begin
+                        cidx_reg <= cidx_reg + 5'd1;
+                    end
+                    if (decode_q) begin
+                        case (kind_q)
+                            K_CF: if (!in_ch2_reg) s_cf <= rx_data;
+                            K_SF: if (in_ch2_reg) s_sf2 <= rx_data; else s_sf <= rx_data;
+                            K_ALM: if (in_ch2_reg) s_alm2 <= rx_data; else s_alm1 <= rx_data;
                             K_ABS0: s_abs[7:0] <= rx_data;
                             K_ABS1: s_abs[15:8] <= rx_data;
                             K_ABS2: s_abs[23:16] <= rx_data;
                             K_ABM0: s_abm[7:0] <= rx_data;
                             K_ABM1: s_abm[15:8] <= rx_data;
                             K_SC1: s_sc1 <= rx_data;
-                            K_ENID: if (!in_ch2) s_enid <= rx_data;
+                            K_ENID: if (!in_ch2_reg) s_enid <= rx_data;
                             K_TEMP: s_temp <= rx_data;
                             K_ADF: s_adf <= rx_data;
                             K_EDF: s_edf <= rx_data;
