@@ -124,8 +124,8 @@ localparam [CNT_W-1:0] GAP_LAST = GAP_LAST_32[CNT_W-1:0];
 localparam [CNT_W-1:0] READ_LAST = READ_LAST_32[CNT_W-1:0];
 localparam [CNT_W-1:0] WRITE_LAST = WRITE_LAST_32[CNT_W-1:0];
 localparam [CNT_W-1:0] PAGE_LAST = PAGE_LAST_32[CNT_W-1:0];
-localparam [CNT_W-1:0] END_IDLE = CPB_32[CNT_W-1:0];
-localparam [CNT_W-1:0] QUIET_IDLE = QUIET_32[CNT_W-1:0];
+localparam [31:0] END_LAST_32 = CPB_32 - 1;
+localparam [31:0] QUIET_LAST_32 = QUIET_32 - 1;
 localparam [3:0] TRIES = TRIES_32[3:0];
 localparam [15:0] TOL = TOL_32[15:0];
 localparam [2:0] BCAST = BCAST_32[2:0];
@@ -293,7 +293,13 @@ reg [7:0]       wdata_reg = 8'd0;
 reg [1:0]       field_index_reg = 2'd0;
 reg [3:0]       bit_index_reg = 4'd0;
 reg [CNT_W-1:0] cnt_reg = 0;
-reg [CNT_W-1:0] idle_reg = 0;
+localparam integer IDLE_W = $clog2(QUIET_CLOCKS + 1);
+reg [IDLE_W-1:0] idle_reg = 0;
+// The end tests compare the count before its increment with a constant.
+localparam [IDLE_W-1:0] END_LAST = END_LAST_32[IDLE_W-1:0];
+localparam [IDLE_W-1:0] QUIET_LAST = QUIET_LAST_32[IDLE_W-1:0];
+wire            end_next_reg = idle_reg == END_LAST;
+wire            quiet_next_reg = idle_reg == QUIET_LAST;
 reg [3:0]       repeats_left_reg = 4'd0;
 reg [3:0]       tries_left_reg = 4'd0;
 reg [4:0]       count_reg = 5'd0;
@@ -361,7 +367,8 @@ wire       tx_bit = (nbit == 4'd0) ? 1'b0 : (nbit == 4'd9) ? 1'b1 : n_is_crc ? r
 wire [7:0] req_crc_step;
 crc_serial #(.WIDTH(8), .POLY(8'h2F)) req_crc_inst (.i_crc(req_crc_reg), .i_bit(tx_bit), .o_crc(req_crc_step));
 
-/* The answer's layout for the Data ID asked for, registered at i_start, and
+/* The answer's layout for the Data ID asked for (registered from id_reg,
+   long before the first field), and
    where the next field falls in it: the channel, the index inside the
    channel, and what that index means, all registered (a field arrives at
    most every 10 bits, so one cycle of latency is free). */
@@ -375,6 +382,16 @@ wire [4:0] idx = count_reg;
 wire [4:0] cn = in_ch2_reg ? n2_reg : n1_reg;
 wire [4:0] cl = in_ch2_reg ? l2_reg : l1_reg;
 always @(posedge i_clk) begin
+    known_reg <= known_id(id_reg);
+    c16_reg <= ch1_crc16(id_reg);
+    n1_reg <= ch1_fields(id_reg);
+    l1_reg <= ch1_fields(id_reg) + (ch1_crc16(id_reg) ? 5'd2 : 5'd1);
+    n2_reg <= ch2_fields(id_reg);
+    has2_reg <= ch2_fields(id_reg) != 5'd0;
+    l2_reg <= (ch2_fields(id_reg) == 5'd0) ? 5'd0 : ch2_fields(id_reg) + (ch1_crc16(id_reg) ? 5'd2 : 5'd1);
+    total_reg <= ch1_fields(id_reg) + ch2_fields(id_reg) + ((ch2_fields(id_reg) == 5'd0) ? 5'd1 : 5'd2) * (ch1_crc16(id_reg) ? 5'd2 : 5'd1);
+    has_rs_reg <= id_reg == 4'h1 || id_reg == 4'h2 || id_reg == 4'hB || id_reg == 4'h6 || id_reg == 4'hC;
+    is_mem_reg <= id_reg == ID_E || id_reg == ID_F;
     kind_q <= field_kind(id_reg, in_ch2_reg, cidx_reg);
     active_q <= !in_ch2_reg || (has2_reg && cidx_reg < l2_reg);
     decode_q <= cidx_reg < cn && (!in_ch2_reg || has2_reg);
@@ -565,16 +582,6 @@ always @(posedge i_clk) begin
                 wdata_reg <= i_wdata;
                 repeats_left_reg <= (i_data_id == 4'hB || i_data_id == 4'hC || i_data_id == 4'hD) ? 4'd8 : 4'd1;
                 tries_left_reg <= TRIES;
-                known_reg <= known_id(i_data_id);
-                c16_reg <= ch1_crc16(i_data_id);
-                n1_reg <= ch1_fields(i_data_id);
-                l1_reg <= ch1_fields(i_data_id) + (ch1_crc16(i_data_id) ? 5'd2 : 5'd1);
-                n2_reg <= ch2_fields(i_data_id);
-                has2_reg <= ch2_fields(i_data_id) != 5'd0;
-                l2_reg <= (ch2_fields(i_data_id) == 5'd0) ? 5'd0 : ch2_fields(i_data_id) + (ch1_crc16(i_data_id) ? 5'd2 : 5'd1);
-                total_reg <= ch1_fields(i_data_id) + ch2_fields(i_data_id) + ((ch2_fields(i_data_id) == 5'd0) ? 5'd1 : 5'd2) * (ch1_crc16(i_data_id) ? 5'd2 : 5'd1);
-                has_rs_reg <= i_data_id == 4'h1 || i_data_id == 4'h2 || i_data_id == 4'hB || i_data_id == 4'h6 || i_data_id == 4'hC;
-                is_mem_reg <= i_data_id == ID_E || i_data_id == ID_F;
                 busy_reg <= 1'b1;
                 err_crc1_reg <= 1'b0; err_crc2_reg <= 1'b0; err_timeout_reg <= 1'b0; err_frame_reg <= 1'b0;
                 err_cf_reg <= 1'b0; err_comm_reg <= 1'b0; err_seq_reg <= 1'b0; err_rs_reg <= 1'b0; err_busy_reg <= 1'b0;
@@ -683,7 +690,7 @@ always @(posedge i_clk) begin
                 end
             end else if (!rx_busy) begin
                 idle_reg <= idle_reg + 1'b1;
-                if (idle_reg + 1'b1 == END_IDLE) finish(1'b0);
+                if (end_next_reg) finish(1'b0);
             end else begin
                 idle_reg <= 0;
             end
@@ -707,7 +714,7 @@ always @(posedge i_clk) begin
                 idle_reg <= 0;
             end else begin
                 idle_reg <= idle_reg + 1'b1;
-                if (idle_reg + 1'b1 == QUIET_IDLE) finish_done;
+                if (quiet_next_reg) finish_done;
             end
         end
         default: state_reg <= IDLE;
