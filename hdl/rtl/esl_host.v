@@ -400,6 +400,73 @@ always @(posedge i_clk) begin
     first_ch2_q <= in_ch2_reg && cidx_reg == 5'd0;
 end
 
+/* The result shadows: cleared when the request ends, each written by the
+   field Table 12 puts there (one-hot enables, registered a field ahead). */
+localparam integer D_CF = 0, D_SF1 = 1, D_SF2 = 2, D_ALM1 = 3, D_ALM2 = 4, D_ABS0 = 5, D_ABS1 = 6,
+    D_ABS2 = 7, D_ABM0 = 8, D_ABM1 = 9, D_SC1 = 10, D_ENID = 11, D_TEMP = 12, D_ADF = 13,
+    D_EDF = 14, D_RS0 = 15, D_RS1SC2 = 16, D_ZEROSC2 = 17, D_RS1 = 18, D_RSEXTHI = 19, D_RSEXTLO = 20;
+reg  [20:0] dec_q = 21'd0;
+reg         fld_q = 1'b0;   // the next field is one of the first 18 of an answer
+always @(posedge i_clk) begin
+    fld_q <= state_reg == RECV && count_reg < 5'd18;
+    dec_q <= 21'd0;
+    if (decode_q) begin
+        case (kind_q)
+            K_CF: dec_q[D_CF] <= !in_ch2_reg;
+            K_SF: dec_q[in_ch2_reg ? D_SF2 : D_SF1] <= 1'b1;
+            K_ALM: dec_q[in_ch2_reg ? D_ALM2 : D_ALM1] <= 1'b1;
+            K_ABS0: dec_q[D_ABS0] <= 1'b1;
+            K_ABS1: dec_q[D_ABS1] <= 1'b1;
+            K_ABS2: dec_q[D_ABS2] <= 1'b1;
+            K_ABM0: dec_q[D_ABM0] <= 1'b1;
+            K_ABM1: dec_q[D_ABM1] <= 1'b1;
+            K_SC1: dec_q[D_SC1] <= 1'b1;
+            K_ENID: dec_q[D_ENID] <= !in_ch2_reg;
+            K_TEMP: dec_q[D_TEMP] <= 1'b1;
+            K_ADF: dec_q[D_ADF] <= 1'b1;
+            K_EDF: dec_q[D_EDF] <= 1'b1;
+            K_RS0: dec_q[D_RS0] <= 1'b1;
+            K_RS1SC2: dec_q[D_RS1SC2] <= 1'b1;
+            K_ZEROSC2: dec_q[D_ZEROSC2] <= 1'b1;
+            K_RS1: dec_q[D_RS1] <= 1'b1;
+            K_RSEXTHI: dec_q[D_RSEXTHI] <= 1'b1;
+            K_RSEXTLO: dec_q[D_RSEXTLO] <= 1'b1;
+            default: ;
+        endcase
+    end
+end
+wire field_in = state_reg == RECV && (rx_valid || rx_frame_err) && fld_q;
+wire send_last = bit_index_reg == 4'd9 && field_index_reg == req_last;
+wire answer_clear = state_reg == SEND && cnt_reg == 0 && send_last;
+always @(posedge i_clk) begin
+    if (answer_clear) begin
+        s_cf <= 8'd0; s_sf <= 8'd0; s_sf2 <= 8'd0; s_alm1 <= 8'd0; s_alm2 <= 8'd0;
+        s_abs <= 24'd0; s_abm <= 16'd0; s_rs <= 16'd0; s_sc1 <= 8'd0; s_sc2 <= 7'd0;
+        s_enid <= 8'd0; s_temp <= 8'd0; s_adf <= 8'd0; s_edf <= 8'd0;
+    end else if (field_in) begin
+        if (dec_q[D_CF]) s_cf <= rx_data;
+        if (dec_q[D_SF1]) s_sf <= rx_data;
+        if (dec_q[D_SF2]) s_sf2 <= rx_data;
+        if (dec_q[D_ALM1]) s_alm1 <= rx_data;
+        if (dec_q[D_ALM2]) s_alm2 <= rx_data;
+        if (dec_q[D_ABS0]) s_abs[7:0] <= rx_data;
+        if (dec_q[D_ABS1]) s_abs[15:8] <= rx_data;
+        if (dec_q[D_ABS2]) s_abs[23:16] <= rx_data;
+        if (dec_q[D_ABM0]) s_abm[7:0] <= rx_data;
+        if (dec_q[D_ABM1]) s_abm[15:8] <= rx_data;
+        if (dec_q[D_SC1]) s_sc1 <= rx_data;
+        if (dec_q[D_ENID]) s_enid <= rx_data;
+        if (dec_q[D_TEMP]) s_temp <= rx_data;
+        if (dec_q[D_ADF]) s_adf <= rx_data;
+        if (dec_q[D_EDF]) s_edf <= rx_data;
+        if (dec_q[D_RS0]) s_rs <= s_rs | {7'd0, rx_data, 1'b0};
+        if (dec_q[D_RS1SC2] || dec_q[D_RS1]) s_rs <= s_rs | {15'd0, rx_data[0]};
+        if (dec_q[D_RS1SC2] || dec_q[D_ZEROSC2]) s_sc2 <= rx_data[7:1];
+        if (dec_q[D_RSEXTHI]) s_rs <= s_rs | {rx_data, 8'd0};
+        if (dec_q[D_RSEXTLO]) s_rs <= s_rs | {8'd0, rx_data};
+    end
+end
+
 /* Byte-wide CRC steps: the channel's register (its init at CH2's first
    field), fed the received byte, or 0x00 for the padding. */
 wire [15:0] crc_base = (first_ch2_q && !pad_reg) ? (c16_reg ? 16'hFFFF : 16'h0000) : crc_reg;
@@ -439,12 +506,15 @@ wire [15:0] tol16 = TOL;
 wire [8:0]  tol9 = TOL[8:0];
 wire       agree9 = rs9_diff <= tol9 || {7'd0, rs9_diff} >= 16'd512 - tol16;
 wire       agree16 = rs16_diff <= tol16 || ({1'b0, rs16_diff} >= 17'h10000 - {1'b0, tol16});
-wire       agree = (id_reg == ID_6) ? agree16 : agree9;
+reg        agree = 1'b1;   // registered: RS and ABS are stable from their fields on
+always @(posedge i_clk) agree <= (id_reg == ID_6) ? agree16 : agree9;
 wire       k_rs = !comm_path && has_rs_reg && !k_crc1 && !k_crc2 && !k_frame && !agree;
 wire       k_any0 = k_crc1 || k_crc2 || k_frame || k_cf || k_comm || k_rs;
 wire       mem_cf = is_mem_reg && !k_any0 && ((s_adf[7:1] != mem_address_reg) || (id_reg == ID_F && !s_adf[0] && s_edf != wdata_reg));
-wire [7:0] exp_sc1 = seq_sc1[address_reg] + 8'd1;
-wire [6:0] exp_sc2 = seq_sc2[address_reg] + 7'd1;
+// This encoder's expected counters, a stage ahead (address and table are stable while it answers).
+reg  [7:0] exp_sc1 = 8'd0;
+reg  [6:0] exp_sc2 = 7'd0;
+reg        exp_known = 1'b0;
 reg        k_crc1_q = 1'b0, k_crc2_q = 1'b0, k_frame_q = 1'b0, k_cf_q = 1'b0, k_comm_q = 1'b0, k_rs_q = 1'b0;
 reg        seq_bad_q = 1'b0;
 always @(posedge i_clk) begin
@@ -454,7 +524,10 @@ always @(posedge i_clk) begin
     k_cf_q <= k_cf || mem_cf;
     k_comm_q <= k_comm;
     k_rs_q <= k_rs;
-    seq_bad_q <= seq_known[address_reg] && (s_sc1 != exp_sc1 || s_sc2 != exp_sc2);
+    exp_sc1 <= seq_sc1[address_reg] + 8'd1;
+    exp_sc2 <= seq_sc2[address_reg] + 7'd1;
+    exp_known <= seq_known[address_reg];
+    seq_bad_q <= exp_known && (s_sc1 != exp_sc1 || s_sc2 != exp_sc2);
 end
 wire       clean = !(k_crc1_q || k_crc2_q || k_frame_q || k_cf_q || k_comm_q);
 wire       safety = c16_reg;
@@ -590,7 +663,7 @@ always @(posedge i_clk) begin
         end
         SEND: begin
             if (cnt_reg == 0) begin
-                if (bit_index_reg == 4'd9 && field_index_reg == req_last) begin
+                if (send_last) begin
                     tx_en_reg <= 1'b0;
                     tx_reg <= 1'b1;
                     state_reg <= WAIT;
@@ -606,9 +679,6 @@ always @(posedge i_clk) begin
                     in_ch2_reg <= 1'b0;
                     cidx_reg <= 5'd0;
                     f0_reg <= 8'd0; f1_reg <= 2'd0;
-                    s_cf <= 8'd0; s_sf <= 8'd0; s_sf2 <= 8'd0; s_alm1 <= 8'd0; s_alm2 <= 8'd0;
-                    s_abs <= 24'd0; s_abm <= 16'd0; s_rs <= 16'd0; s_sc1 <= 8'd0; s_sc2 <= 7'd0;
-                    s_enid <= 8'd0; s_temp <= 8'd0; s_adf <= 8'd0; s_edf <= 8'd0;
                 end else begin
                     bit_index_reg <= nbit;
                     field_index_reg <= nfield;
@@ -635,7 +705,7 @@ always @(posedge i_clk) begin
                 count_reg <= (count_reg > 5'd18) ? 5'd19 : count_reg + 5'd1;
                 frame_err_reg <= frame_err_reg | rx_frame_err;
                 idle_reg <= 0;
-                if (idx < 5'd18) begin
+                if (fld_q) begin
                     if (idx == 5'd0) f0_reg <= rx_data;
                     if (idx == 5'd1) f1_reg <= rx_data[1:0];
                     if (idx <= 5'd2) crcc_reg <= cc_chain[8];
@@ -659,33 +729,6 @@ always @(posedge i_clk) begin
                         cidx_reg <= 5'd0;
                     end else begin
                         cidx_reg <= cidx_reg + 5'd1;
-                    end
-                    if (decode_q) begin
-                        case (kind_q)
-                            K_CF: if (!in_ch2_reg) s_cf <= rx_data;
-                            K_SF: if (in_ch2_reg) s_sf2 <= rx_data; else s_sf <= rx_data;
-                            K_ALM: if (in_ch2_reg) s_alm2 <= rx_data; else s_alm1 <= rx_data;
-                            K_ABS0: s_abs[7:0] <= rx_data;
-                            K_ABS1: s_abs[15:8] <= rx_data;
-                            K_ABS2: s_abs[23:16] <= rx_data;
-                            K_ABM0: s_abm[7:0] <= rx_data;
-                            K_ABM1: s_abm[15:8] <= rx_data;
-                            K_SC1: s_sc1 <= rx_data;
-                            K_ENID: if (!in_ch2_reg) s_enid <= rx_data;
-                            K_TEMP: s_temp <= rx_data;
-                            K_ADF: s_adf <= rx_data;
-                            K_EDF: s_edf <= rx_data;
-                            K_RS0: s_rs <= s_rs | {7'd0, rx_data, 1'b0};
-                            K_RS1SC2: begin
-                                s_rs <= s_rs | {15'd0, rx_data[0]};
-                                s_sc2 <= rx_data[7:1];
-                            end
-                            K_ZEROSC2: s_sc2 <= rx_data[7:1];
-                            K_RS1: s_rs <= s_rs | {15'd0, rx_data[0]};
-                            K_RSEXTHI: s_rs <= s_rs | {rx_data, 8'd0};
-                            K_RSEXTLO: s_rs <= s_rs | {8'd0, rx_data};
-                            default: ;
-                        endcase
                     end
                 end
             end else if (!rx_busy) begin
