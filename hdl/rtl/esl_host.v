@@ -437,8 +437,11 @@ always @(posedge i_clk) begin
 end
 wire field_in = state_reg == RECV && (rx_valid || rx_frame_err) && fld_q;
 wire send_last = bit_index_reg == 4'd9 && field_index_reg == req_last;
-wire answer_clear = state_reg == SEND && cnt_reg == 0 && send_last;
+// Cleared a cycle after the request ends: the answer's first field is at
+// least a field time away, and the shadows are read only at its end.
+reg  answer_clear = 1'b0;
 always @(posedge i_clk) begin
+    answer_clear <= state_reg == SEND && cnt_reg == 0 && send_last;
     if (answer_clear) begin
         s_cf <= 8'd0; s_sf <= 8'd0; s_sf2 <= 8'd0; s_alm1 <= 8'd0; s_alm2 <= 8'd0;
         s_abs <= 24'd0; s_abm <= 16'd0; s_rs <= 16'd0; s_sc1 <= 8'd0; s_sc2 <= 7'd0;
@@ -500,8 +503,12 @@ wire       k_crc2 = !comm_path && has2_reg && (!ch2_done_reg || ch2_bad_reg);
 wire       k_frame = comm_path ? (frame_in || !comm_ans) : (frame_in || nbytes != total_reg);
 wire       k_cf = comm_path ? (f0_reg[6:0] != req_cf[6:0]) : ((f0_reg != req_cf) || cf2_bad_reg);
 wire       k_comm = comm_path ? comm_ans : (!is_mem_reg && (s_sf[1:0] != 2'b00 || (has2_reg && s_sf2[1:0] != 2'b00)));
-wire [8:0]  rs9_diff = s_rs[8:0] - s_abs[23:15];
-wire [15:0] rs16_diff = s_rs - s_abs[23:8];
+reg  [8:0]  rs9_diff = 9'd0;    // registered: RS and ABS are stable from their fields on
+reg  [15:0] rs16_diff = 16'd0;
+always @(posedge i_clk) begin
+    rs9_diff <= s_rs[8:0] - s_abs[23:15];
+    rs16_diff <= s_rs - s_abs[23:8];
+end
 wire [15:0] tol16 = TOL;
 wire [8:0]  tol9 = TOL[8:0];
 wire       agree9 = rs9_diff <= tol9 || {7'd0, rs9_diff} >= 16'd512 - tol16;
