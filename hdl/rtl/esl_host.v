@@ -293,6 +293,9 @@ reg [7:0]       wdata_reg = 8'd0;
 reg [1:0]       field_index_reg = 2'd0;
 reg [3:0]       bit_index_reg = 4'd0;
 reg [CNT_W-1:0] cnt_reg = 0;
+// cnt_reg is zero: kept beside the counter (every load is at least one), so
+// the state machine tests a flop instead of a 24-input AND.
+reg             cnt_zero_reg = 1'b1;
 localparam integer IDLE_W = $clog2(QUIET_CLOCKS + 1);
 reg [IDLE_W-1:0] idle_reg = 0;
 // The end tests compare the count before its increment with a constant.
@@ -441,7 +444,7 @@ wire send_last = bit_index_reg == 4'd9 && field_index_reg == req_last;
 // least a field time away, and the shadows are read only at its end.
 reg  answer_clear = 1'b0;
 always @(posedge i_clk) begin
-    answer_clear <= state_reg == SEND && cnt_reg == 0 && send_last;
+    answer_clear <= state_reg == SEND && cnt_zero_reg && send_last;
     if (answer_clear) begin
         s_cf <= 8'd0; s_sf <= 8'd0; s_sf2 <= 8'd0; s_alm1 <= 8'd0; s_alm2 <= 8'd0;
         s_abs <= 24'd0; s_abm <= 16'd0; s_rs <= 16'd0; s_sc1 <= 8'd0; s_sc2 <= 7'd0;
@@ -545,7 +548,7 @@ task begin_send;
         state_reg <= SEND;
         field_index_reg <= 2'd0;
         bit_index_reg <= 4'd0;
-        cnt_reg <= BIT_LAST;
+        cnt_reg <= BIT_LAST; cnt_zero_reg <= 1'b0;
         req_crc_reg <= 8'd0;
         tx_en_reg <= 1'b1;
         tx_reg <= 1'b0;
@@ -625,17 +628,18 @@ task finish(input timeout);
         if (retry) begin
             state_reg <= GAP;
             cnt_reg <= (id_reg == ID_F) ? WRITE_LAST : READ_LAST;
+            cnt_zero_reg <= 1'b0;
         end else begin
             repeats_left_reg <= repeats;
             if (repeats != 4'd0) begin
                 state_reg <= GAP;
-                cnt_reg <= GAP_LAST;
+                cnt_reg <= GAP_LAST; cnt_zero_reg <= 1'b0;
             end else if (flawed) begin
                 state_reg <= QUIET;
                 idle_reg <= 0;
             end else if (settle != 0) begin
                 state_reg <= SETTLE;
-                cnt_reg <= settle - 1'b1;
+                cnt_reg <= settle - 1'b1; cnt_zero_reg <= 1'b0;
             end else begin
                 finish_done;
             end
@@ -669,12 +673,12 @@ always @(posedge i_clk) begin
             end
         end
         SEND: begin
-            if (cnt_reg == 0) begin
+            if (cnt_zero_reg) begin
                 if (send_last) begin
                     tx_en_reg <= 1'b0;
                     tx_reg <= 1'b1;
                     state_reg <= WAIT;
-                    cnt_reg <= TIMEOUT_LAST;
+                    cnt_reg <= TIMEOUT_LAST; cnt_zero_reg <= 1'b0;
                     count_reg <= 5'd0;
                     frame_err_reg <= 1'b0;
                     crc_reg <= 16'd0;
@@ -691,20 +695,22 @@ always @(posedge i_clk) begin
                     field_index_reg <= nfield;
                     tx_reg <= tx_bit;
                     if (n_data && !n_is_crc) req_crc_reg <= req_crc_step;
-                    cnt_reg <= BIT_LAST;
+                    cnt_reg <= BIT_LAST; cnt_zero_reg <= 1'b0;
                 end
             end else begin
                 cnt_reg <= cnt_reg - 1'b1;
+                cnt_zero_reg <= cnt_reg == 1;
             end
         end
         WAIT: begin
             if (rx_busy) begin
                 state_reg <= RECV;
                 idle_reg <= 0;
-            end else if (cnt_reg == 0) begin
+            end else if (cnt_zero_reg) begin
                 finish(1'b1);
             end else begin
                 cnt_reg <= cnt_reg - 1'b1;
+                cnt_zero_reg <= cnt_reg == 1;
             end
         end
         RECV: begin
@@ -746,17 +752,19 @@ always @(posedge i_clk) begin
             end
         end
         GAP: begin
-            if (cnt_reg == 0) begin
+            if (cnt_zero_reg) begin
                 begin_send;
             end else begin
                 cnt_reg <= cnt_reg - 1'b1;
+                cnt_zero_reg <= cnt_reg == 1;
             end
         end
         SETTLE: begin
-            if (cnt_reg == 0) begin
+            if (cnt_zero_reg) begin
                 finish_done;
             end else begin
                 cnt_reg <= cnt_reg - 1'b1;
+                cnt_zero_reg <= cnt_reg == 1;
             end
         end
         QUIET: begin
