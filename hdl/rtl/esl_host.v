@@ -438,7 +438,8 @@ always @(posedge i_clk) begin
         endcase
     end
 end
-wire field_in = state_reg == RECV && (rx_valid || rx_frame_err) && fld_q;
+// fld_q already says RECV (a field never arrives in the cycle after an answer ends).
+wire field_in = (rx_valid || rx_frame_err) && fld_q;
 wire send_last = bit_index_reg == 4'd9 && field_index_reg == req_last;
 // Cleared a cycle after the request ends: the answer's first field is at
 // least a field time away, and the shadows are read only at its end.
@@ -539,9 +540,16 @@ always @(posedge i_clk) begin
     exp_known <= seq_known[address_reg];
     seq_bad_q <= exp_known && (s_sc1 != exp_sc1 || s_sc2 != exp_sc2);
 end
-wire       clean = !(k_crc1_q || k_crc2_q || k_frame_q || k_cf_q || k_comm_q);
 wire       safety = c16_reg;
-wire       mem_busy = s_adf[0];
+// The end-of-answer decisions, one more stage ahead (their inputs are stable too).
+reg        clean = 1'b0, flawed_q = 1'b0, mem_clean_q = 1'b0, mem_busy = 1'b0, busy_last_q = 1'b0;
+always @(posedge i_clk) begin
+    clean <= !(k_crc1_q || k_crc2_q || k_frame_q || k_cf_q || k_comm_q);
+    flawed_q <= k_crc1_q || k_crc2_q || k_frame_q || k_cf_q || k_comm_q || k_rs_q;
+    mem_clean_q <= is_mem_reg && !(k_crc1_q || k_crc2_q || k_frame_q || k_cf_q || k_comm_q);
+    mem_busy <= s_adf[0];
+    busy_last_q <= tries_left_reg == 4'd1;
+end
 
 task begin_send;
     begin
@@ -601,10 +609,10 @@ task finish(input timeout);
             end else if (safety) begin
                 seq_known[address_reg] <= 1'b0;
             end
-            flawed = !clean || k_rs_q;
-            if (is_mem_reg && clean) begin
+            flawed = flawed_q;
+            if (mem_clean_q) begin
                 tries_left_reg <= tries_left_reg - 4'd1;
-                if (mem_busy && tries_left_reg == 4'd1) begin
+                if (mem_busy && busy_last_q) begin
                     err_busy_reg <= 1'b1;
                 end else if (mem_busy) begin
                     retry = 1'b1;
