@@ -16,7 +16,7 @@
 //   and error output valid (they hold until the next operation).
 //
 // Parameters (the Rust HostConfig field of the same name in lower case)
-//   CLOCKS_PER_BIT     i_clk cycles per bit: f_sys / 10 Mbps (10 at 100 MHz)
+//   CLOCKS_PER_BIT     i_clk cycles per bit: f_sys / 10 Mbps (8 at 80 MHz)
 //   TIMEOUT_CLOCKS     cycles after the request before a missing answer is
 //                      flagged (the encoder answers after 2 us typ.); after a
 //                      broadcast, the silence waited for
@@ -49,12 +49,12 @@
 `default_nettype none
 
 module esl_host #(
-    parameter CLOCKS_PER_BIT = 10,
-    parameter TIMEOUT_CLOCKS = 500,
-    parameter REPEAT_GAP_CLOCKS = 4000,
-    parameter READ_WAIT_CLOCKS = 20000,
-    parameter WRITE_WAIT_CLOCKS = 600000,
-    parameter PAGE_WAIT_CLOCKS = 1800000,
+    parameter CLOCKS_PER_BIT = 8,
+    parameter TIMEOUT_CLOCKS = 400,
+    parameter REPEAT_GAP_CLOCKS = 3200,
+    parameter READ_WAIT_CLOCKS = 16000,
+    parameter WRITE_WAIT_CLOCKS = 480000,
+    parameter PAGE_WAIT_CLOCKS = 1440000,
     parameter BUSY_TRIES = 3,
     parameter RS_TOLERANCE = 1,
     parameter BROADCAST_ADDRESS = 7

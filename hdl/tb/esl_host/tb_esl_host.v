@@ -6,12 +6,12 @@
 module tb_esl_host;
 
 /* Core parameters: set per vector file from its `params:` header line */
-parameter CLOCKS_PER_BIT = 10;
-parameter TIMEOUT_CLOCKS = 500;
-parameter REPEAT_GAP_CLOCKS = 4000;
-parameter READ_WAIT_CLOCKS = 20000;
-parameter WRITE_WAIT_CLOCKS = 600000;
-parameter PAGE_WAIT_CLOCKS = 1800000;
+parameter CLOCKS_PER_BIT = 8;
+parameter TIMEOUT_CLOCKS = 400;
+parameter REPEAT_GAP_CLOCKS = 3200;
+parameter READ_WAIT_CLOCKS = 16000;
+parameter WRITE_WAIT_CLOCKS = 480000;
+parameter PAGE_WAIT_CLOCKS = 1440000;
 parameter BUSY_TRIES = 3;
 parameter RS_TOLERANCE = 1;
 parameter BROADCAST_ADDRESS = 7;

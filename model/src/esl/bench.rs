@@ -126,7 +126,7 @@ pub struct BenchConfig {
 impl Default for BenchConfig {
     fn default() -> Self {
         BenchConfig {
-            f_sys_mhz: 100.0,
+            f_sys_mhz: 80.0,
             baud: 10e6,
             host: HostSettings::default(),
             encoders: vec![EncoderSettings::default()],
@@ -156,7 +156,7 @@ impl BenchConfig {
             return Err(ConfigError::invalid(
                 "baud",
                 format!("f_sys / baud = {ratio}"),
-                "use a baud rate that divides f_sys (10 Mbps at 100 MHz)",
+                "use a baud rate that divides f_sys (10 Mbps at 80 MHz)",
             ));
         }
         Ok(ratio.round() as u64)

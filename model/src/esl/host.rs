@@ -109,7 +109,7 @@ impl HostConfig {
                 return Err(ConfigError::invalid(
                     field,
                     "longer than 2^24 cycles",
-                    "give at most 160 ms at 100 MHz",
+                    "give at most 200 ms at 80 MHz",
                 ));
             }
         }
