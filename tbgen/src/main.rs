@@ -7,7 +7,7 @@ use std::time::Instant;
 use clap::{Parser, Subcommand};
 use tbgen::scenario::Visitor;
 use tbgen::scenario::Setup;
-use tbgen::{biss_tools, builtin, crc_cmd, generate, tformat_tools, timing_cmd, Error};
+use tbgen::{biss_tools, builtin, crc_cmd, esl_tools, generate, tformat_tools, timing_cmd, Error};
 
 #[derive(Parser)]
 #[command(
@@ -53,9 +53,9 @@ enum Command {
         list: bool,
     },
     /// Print a protocol's cycle budget, phase by phase, and its position-read rate.
-    #[command(after_help = "Examples:\n  tbgen timing tformat tformat_readout_all_ids --data-id 3\n  tbgen timing biss                          # the seed scenario biss_seed_16bit\n  tbgen timing biss biss_clock_1mhz_100m\n  tbgen timing endat endat_pos22_ad_8mhz_100m --ads 2\n  tbgen timing endat my.toml --command pos21 --diagram")]
+    #[command(after_help = "Examples:\n  tbgen timing tformat tformat_readout_all_ids --data-id 3\n  tbgen timing esl                           # Data ID 1 of esl_readout_all_ids\n  tbgen timing esl esl_readout_all_ids --data-id 4\n  tbgen timing biss                          # the seed scenario biss_seed_16bit\n  tbgen timing biss biss_clock_1mhz_100m\n  tbgen timing endat endat_pos22_ad_8mhz_100m --ads 2\n  tbgen timing endat my.toml --command pos21 --diagram")]
     Timing {
-        /// Protocol: `biss`, `endat` or `tformat`.
+        /// Protocol: `biss`, `endat`, `esl` or `tformat`.
         protocol: String,
         /// Built-in scenario name or scenario .toml file of that protocol
         /// (default: biss_seed_16bit, endat_pos22_ad_8mhz_100m, tformat_readout_all_ids).
@@ -69,7 +69,7 @@ enum Command {
         /// EnDat: also print the model's waveform of the scenario's first request.
         #[arg(long)]
         diagram: bool,
-        /// T-format: the Data ID to budget (0, 1, 2, 3, 6, 7, 8, 0xC, 0xD).
+        /// T-format: the Data ID to budget (0, 1, 2, 3, 6, 7, 8, 0xC, 0xD); ESL: a Table 3 code (0 = Data ID 1).
         #[arg(long, default_value = "0", value_parser = parse_data_id)]
         data_id: u8,
     },
@@ -177,6 +177,14 @@ fn run(command: Command) -> Result<(), Error> {
                 };
                 print!("{}", tformat_tools::timing_report(cfg, &s.name, data_id).map_err(|e| s.value_error(e))?);
             }
+            "esl" => {
+                let s = builtin::resolve(scenario.as_deref().unwrap_or("esl_readout_all_ids"))?;
+                let Setup::Esl(cfg) = &s.setup else {
+                    return Err(Error::Decode(format!("timing esl: scenario `{}` is not an ESL scenario", s.name)));
+                };
+                let id = if data_id == 0 { 1 } else { data_id };
+                print!("{}", esl_tools::timing_report(cfg, &s.name, id).map_err(|e| s.value_error(e))?);
+            }
             "biss" => {
                 let s = builtin::resolve(scenario.as_deref().unwrap_or("biss_seed_16bit"))?;
                 let Setup::Biss(cfg) = &s.setup else {
@@ -188,7 +196,7 @@ fn run(command: Command) -> Result<(), Error> {
                 let s = builtin::resolve(scenario.as_deref().unwrap_or("endat_pos22_ad_8mhz_100m"))?;
                 print!("{}", timing_cmd::report(&s, &command, ads, diagram)?);
             }
-            other => return Err(Error::Decode(format!("timing: protocol `{other}` has no cycle budget yet; use `biss`, `endat` or `tformat`"))),
+            other => return Err(Error::Decode(format!("timing: protocol `{other}` has no cycle budget yet; use `biss`, `endat`, `esl` or `tformat`"))),
         },
         Command::Decode(Decode::Biss { file, ma, slo, bits, crc_width, crc_poly }) => {
             let n = bits.len();

@@ -121,6 +121,8 @@ pub struct BenchConfig {
     pub intruders: Vec<Intruder>,
     /// What the host does, in order.
     pub ops: Vec<Operation>,
+    /// The whole list of operations is run this many times (long benches).
+    pub repeat_ops: usize,
 }
 
 impl Default for BenchConfig {
@@ -144,6 +146,7 @@ impl Default for BenchConfig {
                 data: 0,
                 gap_us: 2.0,
             }],
+            repeat_ops: 1,
         }
     }
 }
@@ -279,6 +282,9 @@ impl BenchConfig {
 
     fn check(&self) -> Result<()> {
         self.cable.validate("cable")?;
+        if self.repeat_ops == 0 || self.ops.len().saturating_mul(self.repeat_ops) > 1_000_000 {
+            return Err(ConfigError::invalid("repeat_ops", format!("{}", self.repeat_ops), "give 1 or more, at most 1 000 000 operations in all"));
+        }
         self.host_config()?;
         if self.encoders.is_empty() || self.encoders.len() > 8 {
             return Err(ConfigError::invalid(
@@ -552,7 +558,7 @@ impl Bench {
             clocks_per_bit: cfg.clocks_per_bit()?,
             tb,
             layout,
-            cfg: cfg.clone(),
+            cfg: BenchConfig { ops: cfg.ops.iter().cycle().take(cfg.ops.len() * cfg.repeat_ops).cloned().collect(), ..cfg.clone() },
         })
     }
 
