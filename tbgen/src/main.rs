@@ -109,6 +109,30 @@ enum Decode {
         #[arg(long, value_delimiter = ',')]
         crc_poly: Vec<u64>,
     },
+    /// ESL: the host's driver enable and the line at the host.
+    #[command(after_help = "Example:\n  tbgen decode esl vectors/esl_host/esl_readout_all_ids.vcd")]
+    Esl {
+        /// The VCD file.
+        file: PathBuf,
+        /// Dotted path of the host's RS-485 driver enable.
+        #[arg(long, default_value = "top.line.tx_en_host")]
+        tx_en: String,
+        /// Dotted path of the line level at the host's receiver.
+        #[arg(long, default_value = "top.line.line_at_host")]
+        line: String,
+        /// Bit rate in bit/s.
+        #[arg(long, default_value_t = 10e6)]
+        baud: f64,
+        /// The broadcast address of the host that made the capture.
+        #[arg(long, default_value_t = 7)]
+        broadcast_address: u8,
+        /// Requests a memory access may take while busy.
+        #[arg(long, default_value_t = 3)]
+        busy_tries: u64,
+        /// Largest RS difference from channel 1, in RS LSBs.
+        #[arg(long, default_value_t = 1)]
+        rs_tolerance: u16,
+    },
 }
 
 /// A Data ID as written on the command line: decimal or 0x-prefixed hex.
@@ -207,6 +231,16 @@ fn run(command: Command) -> Result<(), Error> {
             }
             let layout = biss_tools::Layout { bits, crc_width, crc_poly };
             let decoded = biss_tools::decode(&file, &ma, &slo, &layout)?;
+            println!("{}", serde_json::to_string_pretty(&decoded).map_err(|e| Error::Decode(e.to_string()))?);
+        }
+        Command::Decode(Decode::Esl { file, tx_en, line, baud, broadcast_address, busy_tries, rs_tolerance }) => {
+            if broadcast_address > 7 || !(1..=15).contains(&busy_tries) {
+                return Err(Error::Decode("decode esl: give --broadcast-address 0..7 and --busy-tries 1..15".into()));
+            }
+            let opt = esl_tools::DecodeOptions { baud, broadcast_address, busy_tries, rs_tolerance };
+            let mut ops = esl_tools::decode(&file, &tx_en, &line, &opt)?;
+            esl_tools::sort_errors(&mut ops);
+            let decoded = tbgen::transcript::Decoded::new("esl", &file, &[("tx_en", &tx_en), ("line", &line)], &ops);
             println!("{}", serde_json::to_string_pretty(&decoded).map_err(|e| Error::Decode(e.to_string()))?);
         }
     }
