@@ -304,7 +304,7 @@ impl HostState {
         let mut busy_error = false;
         if id.is_memory() && clean {
             let busy = d.adf & 1 == 1;
-            tries -= 1;
+            tries = tries.saturating_sub(1);
             if busy && tries == 0 {
                 busy_error = true;
             } else if busy {

@@ -471,7 +471,7 @@ impl Encoder {
             self.sc1 = self.sc1.wrapping_add(1);
             self.sc2 = self.sc2.wrapping_add(1) & 0x7F;
         }
-        d.rs = (i32::from(frames::redundant(d.abs, id)) + self.cfg.settings.rs_offset)
+        d.rs = (i64::from(frames::redundant(d.abs, id)) + i64::from(self.cfg.settings.rs_offset))
             .rem_euclid(if id == DataId::Id6 { 1 << 16 } else { 1 << 9 }) as u16;
         if id.is_memory() {
             let address = fields[1] >> 1;
