@@ -136,34 +136,9 @@ pub struct DecodedOp {
     pub sent: Vec<u8>,
     /// The last answer frame set.
     pub received: Vec<u8>,
-    /// The host's result outputs after the operation, as the model names them.
-    pub cf: u8,
-    /// SF1.
-    pub sf: u8,
-    /// SF2.
-    pub sf2: u8,
-    /// ALM1.
-    pub alm1: u8,
-    /// ALM2.
-    pub alm2: u8,
-    /// Single-turn.
-    pub abs: u32,
-    /// Multi-turn.
-    pub abm: u16,
-    /// Redundant single-turn.
-    pub rs: u16,
-    /// SC1.
-    pub sc1: u8,
-    /// SC2.
-    pub sc2: u8,
-    /// ENID.
-    pub enid: u8,
-    /// Temperature.
-    pub temp: u8,
-    /// ADF.
-    pub adf: u8,
-    /// EDF.
-    pub edf: u8,
+    /// The host's result outputs after the operation, under the model's names.
+    #[serde(flatten)]
+    pub results: model::esl::frames::Decoded,
     /// The errors the host flags for these frame sets.
     pub errors: Vec<&'static str>,
 }
@@ -206,20 +181,7 @@ pub fn decode(path: &Path, tx_en: &str, line: &str, opt: &DecodeOptions) -> Resu
                     requests: 0,
                     sent: Vec::new(),
                     received: Vec::new(),
-                    cf: 0,
-                    sf: 0,
-                    sf2: 0,
-                    alm1: 0,
-                    alm2: 0,
-                    abs: 0,
-                    abm: 0,
-                    rs: 0,
-                    sc1: 0,
-                    sc2: 0,
-                    enid: 0,
-                    temp: 0,
-                    adf: 0,
-                    edf: 0,
+                    results: model::esl::frames::Decoded::default(),
                     errors: Vec::new(),
                 };
                 (op, if repeated { model::esl::REPEATS } else { 1 }, opt.busy_tries)
@@ -230,9 +192,7 @@ pub fn decode(path: &Path, tx_en: &str, line: &str, opt: &DecodeOptions) -> Resu
         op.received = answer.iter().map(|b| b.value).collect();
         let (retry, tries) = host.finish(&mut op, &answer, tries, opt);
         let repeats = if retry { repeats } else { repeats - 1 };
-        let d = &host.out;
-        (op.cf, op.sf, op.sf2, op.alm1, op.alm2, op.abs, op.abm, op.rs) = (d.cf, d.sf, d.sf2, d.alm1, d.alm2, d.abs, d.abm, d.rs);
-        (op.sc1, op.sc2, op.enid, op.temp, op.adf, op.edf) = (d.sc1, d.sc2, d.enid, d.temp, d.adf, d.edf);
+        op.results = host.out;
         if retry || repeats > 0 {
             open = Some((op, repeats, tries));
         } else {
