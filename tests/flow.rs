@@ -72,6 +72,7 @@ fn transaction_signals(core: &str) -> (&'static [&'static str], &'static str, &'
         "biss_master" => (&["o_done"], "o_delay", "delay_cycles"),
         "tformat_host" => (&["o_done"], "o_abs", "abs"),
         "endat_master" => (&["o_done", "o_meas_done"], "o_position", "position"),
+        "esl_host" => (&["o_done"], "o_abs", "abs"),
         other => panic!("no transaction signals listed for core {other}: add them to transaction_signals"),
     }
 }

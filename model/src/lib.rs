@@ -23,6 +23,7 @@ pub mod biss;
 pub mod crc;
 pub mod endat;
 pub mod error;
+pub mod esl;
 pub mod gray;
 pub mod line;
 pub mod ports;

@@ -4,13 +4,14 @@
 //! then a few thousand cycles of any setup that was accepted.
 
 use model::testbench::Testbench;
-use model::{ssi, uart, Setup};
+use model::{esl, ssi, uart, Setup};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use proptest::prelude::*;
 
 static SSI_RAN: AtomicUsize = AtomicUsize::new(0);
 static UART_RAN: AtomicUsize = AtomicUsize::new(0);
+static ESL_RAN: AtomicUsize = AtomicUsize::new(0);
 
 /// Realistic values most of the time (so that many setups are accepted and
 /// run), and the nasty ones often enough.
@@ -97,6 +98,40 @@ proptest! {
             Err(e) => prop_assert!(!e.field().is_empty()),
         }
     }
+
+    #[test]
+    fn any_esl_setup_is_accepted_or_refused_by_field(
+        f_sys in any_f64(&[80.0, 100.0]), baud in any_f64(&[10e6]), timeout in any_f64(&[5.0, 1.0]),
+        gap in any_f64(&[40.0, 1.0]), wait in any_f64(&[200.0, 6000.0, 1.0]), delay in any_f64(&[2.0, 0.0, 50.0]),
+        error in any_f64(&[0.0, 3.0, -6.0]), eeprom in any_f64(&[200.0, 1.0]), op_gap in any_f64(&[2.0, 0.0]),
+        data_id in prop_oneof![4 => 0u8..16, 1 => any::<u8>()], address in prop_oneof![4 => 0u8..8, 1 => any::<u8>()],
+        mem_address in any::<u8>(), tries in prop_oneof![4 => Just(3u64), 1 => any::<u64>()], rs_offset in any::<i32>(),
+        flip in (0usize..20, 0usize..20, 0u8..12), truncate in (0usize..3, any::<usize>()), flags in any::<[bool; 3]>(),
+    ) {
+        let encoder = esl::EncoderSettings {
+            address: address & 0x7, answer_delay_us: delay, baud_error_percent: error, eeprom_read_us: eeprom,
+            eeprom_write_us: eeprom, page_change_us: eeprom, rs_offset,
+            flips: vec![esl::AnswerFlip { answer: flip.0, field: flip.1, bit: flip.2 }],
+            truncations: vec![esl::Truncation { answer: truncate.0, fields: truncate.1 }],
+            ..Default::default()
+        };
+        let cfg = esl::BenchConfig {
+            f_sys_mhz: f_sys, baud,
+            host: esl::HostSettings { timeout_us: timeout, repeat_gap_us: gap, read_wait_us: wait, write_wait_us: wait, page_wait_us: wait, busy_tries: tries, ..Default::default() },
+            encoders: vec![encoder],
+            request_flips: if flags[0] { vec![esl::RequestFlip { request: 0, field: flip.1, bit: flip.2 }] } else { vec![] },
+            intruders: if flags[1] { vec![esl::Intruder { at_us: op_gap, length_us: delay }] } else { vec![] },
+            ops: vec![esl::Operation { data_id, address, broadcast: flags[2], mem_address, data: 0x5A, gap_us: op_gap }; 2],
+            ..Default::default()
+        };
+        match cfg.validate() {
+            Ok(()) => {
+                step_a_while(cfg.bench().expect("a validated setup builds"));
+                ESL_RAN.fetch_add(1, Ordering::Relaxed);
+            }
+            Err(e) => prop_assert!(!e.field().is_empty()),
+        }
+    }
 }
 
 #[test]
@@ -105,8 +140,11 @@ fn the_property_tests_above_run_many_accepted_setups() {
     // them itself: their counters must show real runs, not only refusals.
     any_ssi_setup_is_accepted_or_refused_by_field();
     any_uart_setup_is_accepted_or_refused_by_field();
+    any_esl_setup_is_accepted_or_refused_by_field();
     let (ssi, uart) = (SSI_RAN.load(Ordering::Relaxed), UART_RAN.load(Ordering::Relaxed));
     assert!(ssi >= 20 && uart >= 20, "accepted and run: ssi {ssi}, uart {uart}");
+    let esl = ESL_RAN.load(Ordering::Relaxed);
+    assert!(esl >= 20, "accepted and run: esl {esl}");
 }
 
 static BISS_RAN: AtomicUsize = AtomicUsize::new(0);

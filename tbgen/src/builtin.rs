@@ -83,6 +83,19 @@ pub const FILES: &[(&str, &str)] = &[
     ("endat/recovery_time_switch.toml", include_str!("../../scenarios/endat/recovery_time_switch.toml")),
     ("endat/datum_shift_linear.toml", include_str!("../../scenarios/endat/datum_shift_linear.toml")),
     ("endat/pos22_48bit_4mhz.toml", include_str!("../../scenarios/endat/pos22_48bit_4mhz.toml")),
+    ("esl/readout_all_ids.toml", include_str!("../../scenarios/esl/readout_all_ids.toml")),
+    ("esl/clear_commands_8x.toml", include_str!("../../scenarios/esl/clear_commands_8x.toml")),
+    ("esl/eeprom_page_write_read.toml", include_str!("../../scenarios/esl/eeprom_page_write_read.toml")),
+    ("esl/eeprom_busy.toml", include_str!("../../scenarios/esl/eeprom_busy.toml")),
+    ("esl/daisy_chain.toml", include_str!("../../scenarios/esl/daisy_chain.toml")),
+    ("esl/baud_minus_3.toml", include_str!("../../scenarios/esl/baud_minus_3.toml")),
+    ("esl/baud_plus_3.toml", include_str!("../../scenarios/esl/baud_plus_3.toml")),
+    ("esl/baud_minus_6.toml", include_str!("../../scenarios/esl/baud_minus_6.toml")),
+    ("esl/baud_plus_6.toml", include_str!("../../scenarios/esl/baud_plus_6.toml")),
+    ("esl/fault_answer_bit_flips.toml", include_str!("../../scenarios/esl/fault_answer_bit_flips.toml")),
+    ("esl/fault_abnormal_requests.toml", include_str!("../../scenarios/esl/fault_abnormal_requests.toml")),
+    ("esl/fault_sequence_and_channels.toml", include_str!("../../scenarios/esl/fault_sequence_and_channels.toml")),
+    ("esl/fault_truncated_no_answer_intruder.toml", include_str!("../../scenarios/esl/fault_truncated_no_answer_intruder.toml")),
 ];
 
 /// Every built-in scenario, parsed.

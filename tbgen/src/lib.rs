@@ -30,6 +30,7 @@ pub mod scenario;
 pub mod timing_cmd;
 pub mod tformat_decode;
 pub mod tformat_tools;
+pub mod esl_tools;
 pub mod transcript;
 pub mod vectors;
 pub mod wave;

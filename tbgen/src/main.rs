@@ -7,7 +7,7 @@ use std::time::Instant;
 use clap::{Parser, Subcommand};
 use tbgen::scenario::Visitor;
 use tbgen::scenario::Setup;
-use tbgen::{biss_tools, builtin, crc_cmd, generate, tformat_decode, tformat_tools, timing_cmd, Error};
+use tbgen::{biss_tools, builtin, crc_cmd, esl_tools, generate, tformat_decode, tformat_tools, timing_cmd, Error};
 
 /// `println!` that hands a closed stdout back as an error instead of
 /// panicking: `tbgen decode ... | head` must end quietly, not with a panic.
@@ -70,9 +70,9 @@ enum Command {
         list: bool,
     },
     /// Print a protocol's cycle budget, phase by phase, and its position-read rate.
-    #[command(after_help = "Examples:\n  tbgen timing tformat tformat_readout_all_ids --data-id 3\n  tbgen timing biss                          # the seed scenario biss_seed_16bit\n  tbgen timing biss biss_clock_1mhz_100m\n  tbgen timing endat endat_pos22_ad_8mhz_100m --ads 2\n  tbgen timing endat my.toml --command pos21 --diagram")]
+    #[command(after_help = "Examples:\n  tbgen timing tformat tformat_readout_all_ids --data-id 3\n  tbgen timing esl                           # Data ID 1 of esl_readout_all_ids\n  tbgen timing esl esl_readout_all_ids --data-id 4\n  tbgen timing biss                          # the seed scenario biss_seed_16bit\n  tbgen timing biss biss_clock_1mhz_100m\n  tbgen timing endat endat_pos22_ad_8mhz_100m --ads 2\n  tbgen timing endat my.toml --command pos21 --diagram")]
     Timing {
-        /// Protocol: `biss`, `endat` or `tformat`.
+        /// Protocol: `biss`, `endat`, `esl` or `tformat`.
         protocol: String,
         /// Built-in scenario name or scenario .toml file of that protocol
         /// (default: biss_seed_16bit, endat_pos22_ad_8mhz_100m, tformat_readout_all_ids).
@@ -86,7 +86,7 @@ enum Command {
         /// EnDat: also print the model's waveform of the scenario's first request.
         #[arg(long)]
         diagram: bool,
-        /// T-format: the Data ID to budget (0, 1, 2, 3, 6, 7, 8, 0xC, 0xD).
+        /// T-format: the Data ID to budget (0, 1, 2, 3, 6, 7, 8, 0xC, 0xD); ESL: a Table 3 code (0 = Data ID 1).
         #[arg(long, default_value = "0", value_parser = parse_data_id)]
         data_id: u8,
     },
@@ -163,6 +163,30 @@ enum Decode {
         #[arg(long)]
         meas_khz: Option<f64>,
     },
+    /// ESL: the host's driver enable and the line at the host.
+    #[command(after_help = "Example:\n  tbgen decode esl vectors/esl_host/esl_readout_all_ids.vcd")]
+    Esl {
+        /// The VCD file.
+        file: PathBuf,
+        /// Dotted path of the host's RS-485 driver enable.
+        #[arg(long, default_value = "top.line.tx_en_host")]
+        tx_en: String,
+        /// Dotted path of the line level at the host's receiver.
+        #[arg(long, default_value = "top.line.line_at_host")]
+        line: String,
+        /// Bit rate in bit/s.
+        #[arg(long, default_value_t = 10e6)]
+        baud: f64,
+        /// The broadcast address of the host that made the capture.
+        #[arg(long, default_value_t = 7)]
+        broadcast_address: u8,
+        /// Requests a memory access may take while busy.
+        #[arg(long, default_value_t = 3)]
+        busy_tries: u64,
+        /// Largest RS difference from channel 1, in RS LSBs.
+        #[arg(long, default_value_t = 1)]
+        rs_tolerance: u16,
+    },
 }
 
 /// A Data ID as written on the command line: decimal or 0x-prefixed hex.
@@ -234,6 +258,14 @@ fn run(command: Command) -> Result<(), Error> {
                 };
                 out!("{}", tformat_tools::timing_report(cfg, &s.name, data_id).map_err(|e| s.value_error(e))?);
             }
+            "esl" => {
+                let s = builtin::resolve(scenario.as_deref().unwrap_or("esl_readout_all_ids"))?;
+                let Setup::Esl(cfg) = &s.setup else {
+                    return Err(Error::Decode(format!("timing esl: scenario `{}` is not an ESL scenario", s.name)));
+                };
+                let id = if data_id == 0 { 1 } else { data_id };
+                out!("{}", esl_tools::timing_report(cfg, &s.name, id).map_err(|e| s.value_error(e))?);
+            }
             "biss" => {
                 let s = builtin::resolve(scenario.as_deref().unwrap_or("biss_seed_16bit"))?;
                 let Setup::Biss(cfg) = &s.setup else {
@@ -245,7 +277,7 @@ fn run(command: Command) -> Result<(), Error> {
                 let s = builtin::resolve(scenario.as_deref().unwrap_or("endat_pos22_ad_8mhz_100m"))?;
                 out!("{}", timing_cmd::report(&s, &command, ads, diagram)?);
             }
-            other => return Err(Error::Decode(format!("timing: protocol `{other}` has no cycle budget yet; use `biss`, `endat` or `tformat`"))),
+            other => return Err(Error::Decode(format!("timing: protocol `{other}` has no cycle budget yet; use `biss`, `endat`, `esl` or `tformat`"))),
         },
         Command::Decode(Decode::Biss { file, ma, slo, bits, crc_width, crc_poly }) => {
             let n = bits.len();
@@ -272,6 +304,16 @@ fn run(command: Command) -> Result<(), Error> {
             let transactions = tbgen::endat_decode::decode(&file, &clk, &data, &opts)?;
             let envelope = tbgen::transcript::Decoded::new("endat", &file, &[("clk", clk.as_str()), ("data", data.as_str())], &transactions);
             outln!("{}", serde_json::to_string_pretty(&envelope).map_err(|e| Error::Decode(e.to_string()))?);
+        }
+        Command::Decode(Decode::Esl { file, tx_en, line, baud, broadcast_address, busy_tries, rs_tolerance }) => {
+            if broadcast_address > 7 || !(1..=15).contains(&busy_tries) {
+                return Err(Error::Decode("decode esl: give --broadcast-address 0..7 and --busy-tries 1..15".into()));
+            }
+            let opt = esl_tools::DecodeOptions { baud, broadcast_address, busy_tries, rs_tolerance };
+            let mut ops = esl_tools::decode(&file, &tx_en, &line, &opt)?;
+            esl_tools::sort_errors(&mut ops);
+            let decoded = tbgen::transcript::Decoded::new("esl", &file, &[("tx_en", &tx_en), ("line", &line)], &ops);
+            outln!("{}", serde_json::to_string_pretty(&decoded).map_err(|e| Error::Decode(e.to_string()))?);
         }
     }
     Ok(())

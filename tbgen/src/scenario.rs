@@ -30,6 +30,7 @@ struct ScenarioFile {
     tformat: Option<model::tformat::BenchConfig>,
     biss: Option<model::biss::BenchConfig>,
     endat: Option<model::endat::BenchConfig>,
+    esl: Option<model::esl::BenchConfig>,
 }
 
 /// The set-up a scenario describes, one variant per protocol. To add a
@@ -47,6 +48,8 @@ pub enum Setup {
     Biss(model::biss::BenchConfig),
     /// An EnDat master, encoder emulator and cable.
     Endat(model::endat::BenchConfig),
+    /// An ESL host, QS35 emulators on a half-duplex bus and a cable.
+    Esl(model::esl::BenchConfig),
 }
 
 /// Something done with a scenario's set-up whatever its protocol: the
@@ -68,6 +71,7 @@ impl Setup {
             Setup::Tformat(cfg) => visitor.visit(cfg),
             Setup::Biss(cfg) => visitor.visit(cfg),
             Setup::Endat(cfg) => visitor.visit(cfg),
+            Setup::Esl(cfg) => visitor.visit(cfg),
         }
     }
 }
@@ -127,6 +131,7 @@ impl Scenario {
         setups.extend(file.tformat.map(Setup::Tformat));
         setups.extend(file.biss.map(Setup::Biss));
         setups.extend(file.endat.map(Setup::Endat));
+        setups.extend(file.esl.map(Setup::Esl));
         if setups.len() != 1 {
             return Err(Error::Scenario {
                 file: origin.into(),

@@ -1,0 +1,829 @@
+// esl_host: ESL safety protocol host (QS35, 10 Mbps half-duplex RS-485); the cycle-for-cycle twin of model::esl::Host.
+//
+// What it is for
+//   Sends one ESL request (seed 000, Table 3: CF with encoder address, Data
+//   ID and odd parity, then its CRC-8 frame; E adds ADF, F adds ADF and EDF)
+//   and receives and checks the encoder's answer frame set of Table 12: both
+//   channels of the safety answers (CRC-16, CH1 init 0x0000, CH2 0xFFFF),
+//   the CRC-8 answers, CA0/CA1, SC1/SC2 continuity per encoder address, RS
+//   against ABS, and the memory busy flag. B, C, D are sent 8 times as one
+//   operation; a memory access answered busy is repeated after the read or
+//   write time; an accepted EEPROM write holds the operation for the write
+//   time and a page change for the page delay. Connect o_tx and o_tx_en to
+//   an RS-485 driver (DI, DE) and i_rx to its receiver (RO); the receive
+//   path is deaf while o_tx_en is high. Pulse i_start with the request
+//   inputs while o_busy is low; o_done pulses at the end with every result
+//   and error output valid (they hold until the next operation).
+//
+// Parameters (the Rust HostConfig field of the same name in lower case)
+//   CLOCKS_PER_BIT     i_clk cycles per bit: f_sys / 10 Mbps (8 at 80 MHz)
+//   TIMEOUT_CLOCKS     cycles after the request before a missing answer is
+//                      flagged (the encoder answers after 2 us typ.); after a
+//                      broadcast, the silence waited for
+//   REPEAT_GAP_CLOCKS  cycles between the 8 requests of B, C, D (seed: 40 us typ.)
+//   READ_WAIT_CLOCKS   cycles before a read answered busy is repeated (200 us)
+//   WRITE_WAIT_CLOCKS  cycles after an accepted EEPROM write, or before a
+//                      write answered busy is repeated (6 ms)
+//   PAGE_WAIT_CLOCKS   cycles after a write to the page register 0x7F (18 ms)
+//   BUSY_TRIES         requests a memory access may take while busy (1..15)
+//   RS_TOLERANCE       largest |RS - ABS top bits| in RS LSBs (modulo a turn)
+//   BROADCAST_ADDRESS  the address every encoder obeys and none answers
+//
+// Timing (Data ID 1); docs/timing/esl.md and model/src/esl/mod.rs have the full story
+//
+//   o_tx_en     _/‾ CF CRC ‾\___________________________________________________
+//   line        ‾\_request_/‾‾‾‾‾‾‾‾‾‾‾‾\_CF1_/ .. \_CRC1.2_/\_CF2_/ .. \_CRC2.2_/‾‾‾
+//                           |<-- 2 us -->|<------ 18 fields back to back ----->|
+//   state       IDLE| SEND  |    WAIT    |                RECV                 |1 bit|IDLE
+//   (after a flawed answer: QUIET until the receiver has been idle 20 bits, then o_done)
+//   o_done      _______________________________________________________________________/‾\_
+//
+// CRCs are checked field by field as they arrive: each channel's covered
+// bytes go through a byte-wide chain of crc_serial steps, the CRC fields
+// follow, and a good channel leaves the register at 0 (the wire residue of
+// ESL's CRCs, docs/crc.md). A CRC-16 channel with an odd number of fields
+// gets its 8 zero bits of padding in the cycle after its last field.
+
+`resetall
+`timescale 1ns / 1ps
+`default_nettype none
+
+module esl_host #(
+    parameter CLOCKS_PER_BIT = 8,
+    parameter TIMEOUT_CLOCKS = 400,
+    parameter REPEAT_GAP_CLOCKS = 3200,
+    parameter READ_WAIT_CLOCKS = 16000,
+    parameter WRITE_WAIT_CLOCKS = 480000,
+    parameter PAGE_WAIT_CLOCKS = 1440000,
+    parameter BUSY_TRIES = 3,
+    parameter RS_TOLERANCE = 1,
+    parameter BROADCAST_ADDRESS = 7
+) (
+    input  wire        i_clk,
+    input  wire        i_rst,
+
+    /* Host interface */
+    input  wire        i_start,
+    input  wire [3:0]  i_data_id,
+    input  wire [2:0]  i_address,
+    input  wire        i_broadcast,
+    input  wire [6:0]  i_mem_address,
+    input  wire [7:0]  i_wdata,
+    output wire        o_busy,
+    output wire        o_done,
+
+    /* Results (valid with o_done) */
+    output wire [7:0]  o_cf,
+    output wire [7:0]  o_sf,
+    output wire [7:0]  o_sf2,
+    output wire [7:0]  o_alm1,
+    output wire [7:0]  o_alm2,
+    output wire [23:0] o_abs,
+    output wire [15:0] o_abm,
+    output wire [15:0] o_rs,
+    output wire [7:0]  o_sc1,
+    output wire [6:0]  o_sc2,
+    output wire [7:0]  o_enid,
+    output wire [7:0]  o_temp,
+    output wire [7:0]  o_adf,
+    output wire [7:0]  o_edf,
+
+    /* Status (valid with o_done) */
+    output wire        o_err_crc1,
+    output wire        o_err_crc2,
+    output wire        o_err_timeout,
+    output wire        o_err_frame,
+    output wire        o_err_cf,
+    output wire        o_err_comm,
+    output wire        o_err_seq,
+    output wire        o_err_rs,
+    output wire        o_err_busy,
+
+    /* RS-485 line */
+    output wire        o_tx,
+    output wire        o_tx_en,
+    input  wire        i_rx
+);
+
+localparam integer CNT_W = 24;
+localparam integer QUIET_CLOCKS = 20 * CLOCKS_PER_BIT; // model::esl::QUIET_BITS
+localparam [31:0] BIT_LAST_32 = CLOCKS_PER_BIT - 1;
+localparam [31:0] TIMEOUT_LAST_32 = TIMEOUT_CLOCKS - 1;
+localparam [31:0] GAP_LAST_32 = REPEAT_GAP_CLOCKS - 1;
+localparam [31:0] READ_LAST_32 = READ_WAIT_CLOCKS - 1;
+localparam [31:0] WRITE_LAST_32 = WRITE_WAIT_CLOCKS - 1;
+localparam [31:0] PAGE_LAST_32 = PAGE_WAIT_CLOCKS - 1;
+localparam [31:0] CPB_32 = CLOCKS_PER_BIT;
+localparam [31:0] QUIET_32 = QUIET_CLOCKS;
+localparam [31:0] TRIES_32 = BUSY_TRIES;
+localparam [31:0] TOL_32 = RS_TOLERANCE;
+localparam [31:0] BCAST_32 = BROADCAST_ADDRESS;
+localparam [CNT_W-1:0] BIT_LAST = BIT_LAST_32[CNT_W-1:0];
+localparam [CNT_W-1:0] TIMEOUT_LAST = TIMEOUT_LAST_32[CNT_W-1:0];
+localparam [CNT_W-1:0] GAP_LAST = GAP_LAST_32[CNT_W-1:0];
+localparam [CNT_W-1:0] READ_LAST = READ_LAST_32[CNT_W-1:0];
+localparam [CNT_W-1:0] WRITE_LAST = WRITE_LAST_32[CNT_W-1:0];
+localparam [CNT_W-1:0] PAGE_LAST = PAGE_LAST_32[CNT_W-1:0];
+localparam [31:0] END_LAST_32 = CPB_32 - 1;
+localparam [31:0] QUIET_LAST_32 = QUIET_32 - 1;
+localparam [3:0] TRIES = TRIES_32[3:0];
+localparam [15:0] TOL = TOL_32[15:0];
+localparam [2:0] BCAST = BCAST_32[2:0];
+
+// States: the same names and codes as model::esl::State.
+localparam [2:0]
+    IDLE   = 3'd0,
+    SEND   = 3'd1,
+    WAIT   = 3'd2,
+    RECV   = 3'd3,
+    GAP    = 3'd4,
+    SETTLE = 3'd5,
+    QUIET  = 3'd6;
+
+// What a field carries (model::esl::frames::Field).
+localparam [4:0]
+    K_NONE = 5'd0, K_CF = 5'd1, K_SF = 5'd2, K_ALM = 5'd3, K_ABS0 = 5'd4, K_ABS1 = 5'd5,
+    K_ABS2 = 5'd6, K_ABM0 = 5'd7, K_ABM1 = 5'd8, K_SC1 = 5'd9, K_ENID = 5'd10, K_TEMP = 5'd11,
+    K_ADF = 5'd12, K_EDF = 5'd13, K_RS0 = 5'd14, K_RS1SC2 = 5'd15, K_ZEROSC2 = 5'd16,
+    K_RS1 = 5'd17, K_RSEXTHI = 5'd18, K_RSEXTLO = 5'd19;
+
+localparam [7:0] PAGE_REGISTER = 8'h7F;
+localparam [3:0] REGISTER_PAGE = 4'd8;
+localparam [3:0] ID_E = 4'hE, ID_F = 4'hF, ID_6 = 4'h6;
+
+initial begin
+    if (CLOCKS_PER_BIT < 6) $error("esl_host: CLOCKS_PER_BIT must be at least 6");
+    if (TIMEOUT_CLOCKS < CLOCKS_PER_BIT) $error("esl_host: TIMEOUT_CLOCKS must be at least one bit");
+    if (BUSY_TRIES < 1 || BUSY_TRIES > 15) $error("esl_host: BUSY_TRIES must be 1..15");
+end
+
+/* Table 12 as functions of the Data ID code: channel 1's covered fields and
+   CRC width, channel 2's (0 fields: none), and each field's meaning. */
+function [4:0] ch1_fields(input [3:0] code);
+    case (code)
+        4'h1: ch1_fields = 5'd9;
+        4'h2, 4'hB: ch1_fields = 5'd7;
+        4'h4: ch1_fields = 5'd7;
+        4'h5, 4'h6: ch1_fields = 5'd5;
+        4'h8: ch1_fields = 5'd4;
+        4'h9, 4'hA: ch1_fields = 5'd3;
+        4'hC: ch1_fields = 5'd6;
+        4'hD: ch1_fields = 5'd5;
+        4'hE, 4'hF: ch1_fields = 5'd3;
+        default: ch1_fields = 5'd0;
+    endcase
+endfunction
+
+function ch1_crc16(input [3:0] code);
+    ch1_crc16 = (code == 4'h1) || (code == 4'h2) || (code == 4'h8) || (code == 4'hB);
+endfunction
+
+function [4:0] ch2_fields(input [3:0] code);
+    case (code)
+        4'h1, 4'h2, 4'hB, 4'hC: ch2_fields = 5'd5;
+        4'h6, 4'h8: ch2_fields = 5'd4;
+        4'hA: ch2_fields = 5'd3;
+        default: ch2_fields = 5'd0;
+    endcase
+endfunction
+
+// Channel 2 uses CRC-16 exactly when channel 1 does (the safety answers).
+function known_id(input [3:0] code);
+    known_id = ch1_fields(code) != 5'd0;
+endfunction
+
+function [4:0] field_kind(input [3:0] code, input ch2, input [4:0] idx);
+    begin
+        field_kind = K_NONE;
+        if (idx == 5'd0) field_kind = K_CF;
+        else if (!ch2) begin
+            case (code)
+                4'h1: case (idx)
+                    5'd1: field_kind = K_SF; 5'd2: field_kind = K_ALM; 5'd3: field_kind = K_ABS0;
+                    5'd4: field_kind = K_ABS1; 5'd5: field_kind = K_ABS2; 5'd6: field_kind = K_ABM0;
+                    5'd7: field_kind = K_ABM1; 5'd8: field_kind = K_SC1; default: field_kind = K_NONE;
+                endcase
+                4'h2, 4'hB: case (idx)
+                    5'd1: field_kind = K_SF; 5'd2: field_kind = K_ALM; 5'd3: field_kind = K_ABS0;
+                    5'd4: field_kind = K_ABS1; 5'd5: field_kind = K_ABS2; 5'd6: field_kind = K_SC1;
+                    default: field_kind = K_NONE;
+                endcase
+                4'h4: case (idx)
+                    5'd1: field_kind = K_SF; 5'd2: field_kind = K_ABS0; 5'd3: field_kind = K_ABS1;
+                    5'd4: field_kind = K_ABS2; 5'd5: field_kind = K_ABM0; 5'd6: field_kind = K_ABM1;
+                    default: field_kind = K_NONE;
+                endcase
+                4'h5, 4'h6: case (idx)
+                    5'd1: field_kind = K_SF; 5'd2: field_kind = K_ABS0; 5'd3: field_kind = K_ABS1;
+                    5'd4: field_kind = K_ABS2; default: field_kind = K_NONE;
+                endcase
+                4'h8: case (idx)
+                    5'd1: field_kind = K_SF; 5'd2: field_kind = K_ENID; 5'd3: field_kind = K_SC1;
+                    default: field_kind = K_NONE;
+                endcase
+                4'h9: field_kind = (idx == 5'd1) ? K_SF : (idx == 5'd2) ? K_TEMP : K_NONE;
+                4'hA: field_kind = (idx == 5'd1) ? K_SF : (idx == 5'd2) ? K_ALM : K_NONE;
+                4'hC: case (idx)
+                    5'd1: field_kind = K_SF; 5'd2: field_kind = K_ALM; 5'd3: field_kind = K_ABS0;
+                    5'd4: field_kind = K_ABS1; 5'd5: field_kind = K_ABS2; default: field_kind = K_NONE;
+                endcase
+                4'hD: case (idx)
+                    5'd1: field_kind = K_SF; 5'd2: field_kind = K_ALM; 5'd3: field_kind = K_ABM0;
+                    5'd4: field_kind = K_ABM1; default: field_kind = K_NONE;
+                endcase
+                4'hE, 4'hF: field_kind = (idx == 5'd1) ? K_ADF : (idx == 5'd2) ? K_EDF : K_NONE;
+                default: field_kind = K_NONE;
+            endcase
+        end else begin
+            case (code)
+                4'h1, 4'h2, 4'hB: case (idx)
+                    5'd1: field_kind = K_SF; 5'd2: field_kind = K_ALM; 5'd3: field_kind = K_RS0;
+                    5'd4: field_kind = K_RS1SC2; default: field_kind = K_NONE;
+                endcase
+                4'h6: case (idx)
+                    5'd1: field_kind = K_SF; 5'd2: field_kind = K_RSEXTHI; 5'd3: field_kind = K_RSEXTLO;
+                    default: field_kind = K_NONE;
+                endcase
+                4'h8: case (idx)
+                    5'd1: field_kind = K_SF; 5'd2: field_kind = K_ENID; 5'd3: field_kind = K_ZEROSC2;
+                    default: field_kind = K_NONE;
+                endcase
+                4'hA: field_kind = (idx == 5'd1) ? K_SF : (idx == 5'd2) ? K_ALM : K_NONE;
+                4'hC: case (idx)
+                    5'd1: field_kind = K_SF; 5'd2: field_kind = K_ALM; 5'd3: field_kind = K_RS0;
+                    5'd4: field_kind = K_RS1; default: field_kind = K_NONE;
+                endcase
+                default: field_kind = K_NONE;
+            endcase
+        end
+    end
+endfunction
+
+/* The shared frame receiver; its outputs are registers, read here as they
+   stand before each edge. Deaf while this host drives the line. */
+wire [7:0] rx_data;
+wire       rx_valid;
+wire       rx_frame_err;
+wire       rx_busy;
+// A glitch on the line is not an answer; the frame set simply goes on or ends.
+/* verilator lint_off UNUSEDSIGNAL */
+wire       rx_start_err;
+/* verilator lint_on UNUSEDSIGNAL */
+reg        tx_en_reg = 1'b0;
+
+uart_rx #(
+    .CLOCKS_PER_BIT(CLOCKS_PER_BIT)
+) rx_inst (
+    .i_clk(i_clk),
+    .i_rst(i_rst),
+    .i_rx(i_rx | tx_en_reg),
+    .o_data(rx_data),
+    .o_valid(rx_valid),
+    .o_frame_err(rx_frame_err),
+    .o_start_err(rx_start_err),
+    .o_busy(rx_busy)
+);
+
+reg [2:0]       state_reg = IDLE;
+reg [3:0]       id_reg = 4'd0;
+reg [2:0]       address_reg = 3'd0;
+reg             broadcast_reg = 1'b0;
+reg [6:0]       mem_address_reg = 7'd0;
+reg [7:0]       wdata_reg = 8'd0;
+reg [1:0]       field_index_reg = 2'd0;
+reg [3:0]       bit_index_reg = 4'd0;
+reg [CNT_W-1:0] cnt_reg = 0;
+// cnt_reg is zero: kept beside the counter (every load is at least one), so
+// the state machine tests a flop instead of a 24-input AND.
+reg             cnt_zero_reg = 1'b1;
+localparam integer IDLE_W = $clog2(QUIET_CLOCKS + 1);
+reg [IDLE_W-1:0] idle_reg = 0;
+// The end tests compare the count before its increment with a constant.
+localparam [IDLE_W-1:0] END_LAST = END_LAST_32[IDLE_W-1:0];
+localparam [IDLE_W-1:0] QUIET_LAST = QUIET_LAST_32[IDLE_W-1:0];
+wire            end_next_reg = idle_reg == END_LAST;
+wire            quiet_next_reg = idle_reg == QUIET_LAST;
+reg [3:0]       repeats_left_reg = 4'd0;
+reg [3:0]       tries_left_reg = 4'd0;
+reg [4:0]       count_reg = 5'd0;
+reg             frame_err_reg = 1'b0;
+reg [3:0]       page_reg = 4'd8;
+// The request's CRC-8, built bit by bit as the covered bits go out.
+reg [7:0]       req_crc_reg = 8'd0;
+
+/* The answer as it arrives: the first two fields, each channel's check,
+   and every result field in a shadow published at the end of the answer. */
+reg [7:0]  f0_reg = 8'd0;
+reg [1:0]  f1_reg = 2'd0;   // CA0, CA1 of the second field (a CA answer's SF)
+reg [15:0] crc_reg = 16'd0;   // the channel being received (CRC-8 in bits 7..0)
+reg [7:0]  crcc_reg = 8'd0;   // CRC-8 over the first three fields: the CA answer
+reg        pad_reg = 1'b0;    // a CRC-16 channel wants its 8 zero bits
+reg        ch1_done_reg = 1'b0, ch1_bad_reg = 1'b0;
+reg        ch2_done_reg = 1'b0, ch2_bad_reg = 1'b0, cf2_bad_reg = 1'b0;
+reg        crcc_bad_reg = 1'b0;
+reg        ch1_check_reg = 1'b0, ch2_check_reg = 1'b0;
+reg [7:0]  s_cf = 8'd0, s_sf = 8'd0, s_sf2 = 8'd0, s_alm1 = 8'd0, s_alm2 = 8'd0;
+reg [23:0] s_abs = 24'd0;
+reg [15:0] s_abm = 16'd0, s_rs = 16'd0;
+reg [7:0]  s_sc1 = 8'd0, s_enid = 8'd0, s_temp = 8'd0, s_adf = 8'd0, s_edf = 8'd0;
+reg [6:0]  s_sc2 = 7'd0;
+
+// Sequence counters per encoder address: known, SC1, SC2.
+reg [7:0]  seq_known = 8'd0;
+reg [7:0]  seq_sc1 [0:7];
+reg [6:0]  seq_sc2 [0:7];
+integer k;
+initial begin
+    for (k = 0; k < 8; k = k + 1) begin
+        seq_sc1[k] = 8'd0;
+        seq_sc2[k] = 7'd0;
+    end
+end
+
+reg        tx_reg = 1'b1, busy_reg = 1'b0, done_reg = 1'b0;
+reg [7:0]  cf_reg = 8'd0, sf_reg = 8'd0, sf2_reg = 8'd0, alm1_reg = 8'd0, alm2_reg = 8'd0;
+reg [23:0] abs_reg = 24'd0;
+reg [15:0] abm_reg = 16'd0, rs_reg = 16'd0;
+reg [7:0]  sc1_reg = 8'd0, enid_reg = 8'd0, temp_reg = 8'd0, adf_reg = 8'd0, edf_reg = 8'd0;
+reg [6:0]  sc2_reg = 7'd0;
+reg        err_crc1_reg = 1'b0, err_crc2_reg = 1'b0, err_timeout_reg = 1'b0, err_frame_reg = 1'b0;
+reg        err_cf_reg = 1'b0, err_comm_reg = 1'b0, err_seq_reg = 1'b0, err_rs_reg = 1'b0, err_busy_reg = 1'b0;
+
+/* The request: CF (address, code, odd parity), ADF, EDF, then its CRC-8. */
+wire [7:0] req_cf = {~^id_reg, id_reg, address_reg};
+wire [1:0] req_last = (id_reg == ID_E) ? 2'd2 : (id_reg == ID_F) ? 2'd3 : 2'd1;
+wire [3:0] nbit = (bit_index_reg == 4'd9) ? 4'd0 : bit_index_reg + 4'd1;
+wire [1:0] nfield = (bit_index_reg == 4'd9) ? field_index_reg + 2'd1 : field_index_reg;
+reg  [7:0] req_byte;
+always @* begin
+    case (nfield)
+        2'd0: req_byte = req_cf;
+        2'd1: req_byte = {mem_address_reg, 1'b0};
+        default: req_byte = wdata_reg;
+    endcase
+end
+wire       n_is_crc = nfield == req_last;
+wire [2:0] nbit_k = nbit[2:0] - 3'd1;
+wire [2:0] crc_k = 3'd7 - nbit_k;
+wire       n_data = nbit != 4'd0 && nbit != 4'd9;
+wire       tx_bit = (nbit == 4'd0) ? 1'b0 : (nbit == 4'd9) ? 1'b1 : n_is_crc ? req_crc_reg[crc_k] : req_byte[nbit_k];
+wire [7:0] req_crc_step;
+crc_serial #(.WIDTH(8), .POLY(8'h2F)) req_crc_inst (.i_crc(req_crc_reg), .i_bit(tx_bit), .o_crc(req_crc_step));
+
+/* The answer's layout for the Data ID asked for (registered from id_reg,
+   long before the first field), and
+   where the next field falls in it: the channel, the index inside the
+   channel, and what that index means, all registered (a field arrives at
+   most every 10 bits, so one cycle of latency is free). */
+reg [4:0]  n1_reg = 5'd0, l1_reg = 5'd0, n2_reg = 5'd0, l2_reg = 5'd0, total_reg = 5'd0;
+reg        c16_reg = 1'b0, has2_reg = 1'b0, has_rs_reg = 1'b0, is_mem_reg = 1'b0, known_reg = 1'b0;
+reg        in_ch2_reg = 1'b0;
+reg [4:0]  cidx_reg = 5'd0;
+reg [4:0]  kind_q = K_NONE;
+reg        active_q = 1'b0, decode_q = 1'b0, last_data_q = 1'b0, last_crc_q = 1'b0, first_ch2_q = 1'b0;
+wire [4:0] idx = count_reg;
+wire [4:0] cn = in_ch2_reg ? n2_reg : n1_reg;
+wire [4:0] cl = in_ch2_reg ? l2_reg : l1_reg;
+always @(posedge i_clk) begin
+    known_reg <= known_id(id_reg);
+    c16_reg <= ch1_crc16(id_reg);
+    n1_reg <= ch1_fields(id_reg);
+    l1_reg <= ch1_fields(id_reg) + (ch1_crc16(id_reg) ? 5'd2 : 5'd1);
+    n2_reg <= ch2_fields(id_reg);
+    has2_reg <= ch2_fields(id_reg) != 5'd0;
+    l2_reg <= (ch2_fields(id_reg) == 5'd0) ? 5'd0 : ch2_fields(id_reg) + (ch1_crc16(id_reg) ? 5'd2 : 5'd1);
+    total_reg <= ch1_fields(id_reg) + ch2_fields(id_reg) + ((ch2_fields(id_reg) == 5'd0) ? 5'd1 : 5'd2) * (ch1_crc16(id_reg) ? 5'd2 : 5'd1);
+    has_rs_reg <= id_reg == 4'h1 || id_reg == 4'h2 || id_reg == 4'hB || id_reg == 4'h6 || id_reg == 4'hC;
+    is_mem_reg <= id_reg == ID_E || id_reg == ID_F;
+    kind_q <= field_kind(id_reg, in_ch2_reg, cidx_reg);
+    active_q <= !in_ch2_reg || (has2_reg && cidx_reg < l2_reg);
+    decode_q <= cidx_reg < cn && (!in_ch2_reg || has2_reg);
+    last_data_q <= cidx_reg == cn - 5'd1;
+    last_crc_q <= cidx_reg == cl - 5'd1;
+    first_ch2_q <= in_ch2_reg && cidx_reg == 5'd0;
+end
+
+/* The result shadows: cleared when the request ends, each written by the
+   field Table 12 puts there (one-hot enables, registered a field ahead). */
+localparam integer D_CF = 0, D_SF1 = 1, D_SF2 = 2, D_ALM1 = 3, D_ALM2 = 4, D_ABS0 = 5, D_ABS1 = 6,
+    D_ABS2 = 7, D_ABM0 = 8, D_ABM1 = 9, D_SC1 = 10, D_ENID = 11, D_TEMP = 12, D_ADF = 13,
+    D_EDF = 14, D_RS0 = 15, D_RS1SC2 = 16, D_ZEROSC2 = 17, D_RS1 = 18, D_RSEXTHI = 19, D_RSEXTLO = 20;
+reg  [20:0] dec_q = 21'd0;
+reg         fld_q = 1'b0;   // the next field is one of the first 18 of an answer
+always @(posedge i_clk) begin
+    fld_q <= state_reg == RECV && count_reg < 5'd18;
+    dec_q <= 21'd0;
+    if (decode_q) begin
+        case (kind_q)
+            K_CF: dec_q[D_CF] <= !in_ch2_reg;
+            K_SF: dec_q[in_ch2_reg ? D_SF2 : D_SF1] <= 1'b1;
+            K_ALM: dec_q[in_ch2_reg ? D_ALM2 : D_ALM1] <= 1'b1;
+            K_ABS0: dec_q[D_ABS0] <= 1'b1;
+            K_ABS1: dec_q[D_ABS1] <= 1'b1;
+            K_ABS2: dec_q[D_ABS2] <= 1'b1;
+            K_ABM0: dec_q[D_ABM0] <= 1'b1;
+            K_ABM1: dec_q[D_ABM1] <= 1'b1;
+            K_SC1: dec_q[D_SC1] <= 1'b1;
+            K_ENID: dec_q[D_ENID] <= !in_ch2_reg;
+            K_TEMP: dec_q[D_TEMP] <= 1'b1;
+            K_ADF: dec_q[D_ADF] <= 1'b1;
+            K_EDF: dec_q[D_EDF] <= 1'b1;
+            K_RS0: dec_q[D_RS0] <= 1'b1;
+            K_RS1SC2: dec_q[D_RS1SC2] <= 1'b1;
+            K_ZEROSC2: dec_q[D_ZEROSC2] <= 1'b1;
+            K_RS1: dec_q[D_RS1] <= 1'b1;
+            K_RSEXTHI: dec_q[D_RSEXTHI] <= 1'b1;
+            K_RSEXTLO: dec_q[D_RSEXTLO] <= 1'b1;
+            default: ;
+        endcase
+    end
+end
+// fld_q already says RECV (a field never arrives in the cycle after an answer ends).
+wire field_in = (rx_valid || rx_frame_err) && fld_q;
+wire send_last = bit_index_reg == 4'd9 && field_index_reg == req_last;
+// Cleared a cycle after the request ends: the answer's first field is at
+// least a field time away, and the shadows are read only at its end.
+reg  answer_clear = 1'b0;
+always @(posedge i_clk) begin
+    answer_clear <= state_reg == SEND && cnt_zero_reg && send_last;
+    if (answer_clear) begin
+        s_cf <= 8'd0; s_sf <= 8'd0; s_sf2 <= 8'd0; s_alm1 <= 8'd0; s_alm2 <= 8'd0;
+        s_abs <= 24'd0; s_abm <= 16'd0; s_rs <= 16'd0; s_sc1 <= 8'd0; s_sc2 <= 7'd0;
+        s_enid <= 8'd0; s_temp <= 8'd0; s_adf <= 8'd0; s_edf <= 8'd0;
+    end else if (field_in) begin
+        if (dec_q[D_CF]) s_cf <= rx_data;
+        if (dec_q[D_SF1]) s_sf <= rx_data;
+        if (dec_q[D_SF2]) s_sf2 <= rx_data;
+        if (dec_q[D_ALM1]) s_alm1 <= rx_data;
+        if (dec_q[D_ALM2]) s_alm2 <= rx_data;
+        if (dec_q[D_ABS0]) s_abs[7:0] <= rx_data;
+        if (dec_q[D_ABS1]) s_abs[15:8] <= rx_data;
+        if (dec_q[D_ABS2]) s_abs[23:16] <= rx_data;
+        if (dec_q[D_ABM0]) s_abm[7:0] <= rx_data;
+        if (dec_q[D_ABM1]) s_abm[15:8] <= rx_data;
+        if (dec_q[D_SC1]) s_sc1 <= rx_data;
+        if (dec_q[D_ENID]) s_enid <= rx_data;
+        if (dec_q[D_TEMP]) s_temp <= rx_data;
+        if (dec_q[D_ADF]) s_adf <= rx_data;
+        if (dec_q[D_EDF]) s_edf <= rx_data;
+        if (dec_q[D_RS0]) s_rs <= s_rs | {7'd0, rx_data, 1'b0};
+        if (dec_q[D_RS1SC2] || dec_q[D_RS1]) s_rs <= s_rs | {15'd0, rx_data[0]};
+        if (dec_q[D_RS1SC2] || dec_q[D_ZEROSC2]) s_sc2 <= rx_data[7:1];
+        if (dec_q[D_RSEXTHI]) s_rs <= s_rs | {rx_data, 8'd0};
+        if (dec_q[D_RSEXTLO]) s_rs <= s_rs | {8'd0, rx_data};
+    end
+end
+
+/* Byte-wide CRC steps: the channel's register (its init at CH2's first
+   field), fed the received byte, or 0x00 for the padding. */
+wire [15:0] crc_base = (first_ch2_q && !pad_reg) ? (c16_reg ? 16'hFFFF : 16'h0000) : crc_reg;
+wire [7:0]  crc_byte = pad_reg ? 8'h00 : rx_data;
+wire [15:0] c16_chain [0:8];
+wire [7:0]  c8_chain [0:8];
+wire [7:0]  cc_chain [0:8];
+assign c16_chain[0] = crc_base;
+assign c8_chain[0] = crc_base[7:0];
+assign cc_chain[0] = crcc_reg;
+genvar g;
+generate
+    for (g = 0; g < 8; g = g + 1) begin : crc_chain
+        crc_serial #(.WIDTH(16), .POLY(16'h5935)) c16_inst (.i_crc(c16_chain[g]), .i_bit(crc_byte[g]), .o_crc(c16_chain[g+1]));
+        crc_serial #(.WIDTH(8), .POLY(8'h2F)) c8_inst (.i_crc(c8_chain[g]), .i_bit(crc_byte[g]), .o_crc(c8_chain[g+1]));
+        crc_serial #(.WIDTH(8), .POLY(8'h2F)) cc_inst (.i_crc(cc_chain[g]), .i_bit(rx_data[g]), .o_crc(cc_chain[g+1]));
+    end
+endgenerate
+wire [15:0] crc_after = c16_reg ? c16_chain[8] : {8'd0, c8_chain[8]};
+
+/* The checks at the end of an answer (model::esl::frames::check). Their
+   inputs stop changing with the last field, at least CLOCKS_PER_BIT cycles
+   before the end of the answer is seen, so they are computed a cycle ahead
+   into registers (the k_*_q below) without changing any output cycle. */
+wire [4:0] nbytes = (count_reg > 5'd18) ? 5'd18 : count_reg;
+wire       frame_in = frame_err_reg || count_reg > 5'd18;
+wire       comm_path = nbytes == 5'd3;
+wire       comm_ans = !crcc_bad_reg && (f1_reg != 2'b00);
+wire       k_crc1 = comm_path ? crcc_bad_reg : (!ch1_done_reg || ch1_bad_reg);
+wire       k_crc2 = !comm_path && has2_reg && (!ch2_done_reg || ch2_bad_reg);
+wire       k_frame = comm_path ? (frame_in || !comm_ans) : (frame_in || nbytes != total_reg);
+wire       k_cf = comm_path ? (f0_reg[6:0] != req_cf[6:0]) : ((f0_reg != req_cf) || cf2_bad_reg);
+wire       k_comm = comm_path ? comm_ans : (!is_mem_reg && (s_sf[1:0] != 2'b00 || (has2_reg && s_sf2[1:0] != 2'b00)));
+reg  [8:0]  rs9_diff = 9'd0;    // registered: RS and ABS are stable from their fields on
+reg  [15:0] rs16_diff = 16'd0;
+always @(posedge i_clk) begin
+    rs9_diff <= s_rs[8:0] - s_abs[23:15];
+    rs16_diff <= s_rs - s_abs[23:8];
+end
+wire [15:0] tol16 = TOL;
+wire [8:0]  tol9 = TOL[8:0];
+wire       agree9 = rs9_diff <= tol9 || {7'd0, rs9_diff} >= 16'd512 - tol16;
+wire       agree16 = rs16_diff <= tol16 || ({1'b0, rs16_diff} >= 17'h10000 - {1'b0, tol16});
+reg        agree = 1'b1;   // registered: RS and ABS are stable from their fields on
+always @(posedge i_clk) agree <= (id_reg == ID_6) ? agree16 : agree9;
+wire       k_rs = !comm_path && has_rs_reg && !k_crc1 && !k_crc2 && !k_frame && !agree;
+wire       k_any0 = k_crc1 || k_crc2 || k_frame || k_cf || k_comm || k_rs;
+wire       mem_cf = is_mem_reg && !k_any0 && ((s_adf[7:1] != mem_address_reg) || (id_reg == ID_F && !s_adf[0] && s_edf != wdata_reg));
+// This encoder's expected counters, a stage ahead (address and table are stable while it answers).
+reg  [7:0] exp_sc1 = 8'd0;
+reg  [6:0] exp_sc2 = 7'd0;
+reg        exp_known = 1'b0;
+reg        k_crc1_q = 1'b0, k_crc2_q = 1'b0, k_frame_q = 1'b0, k_cf_q = 1'b0, k_comm_q = 1'b0, k_rs_q = 1'b0;
+reg        seq_bad_q = 1'b0;
+always @(posedge i_clk) begin
+    k_crc1_q <= k_crc1;
+    k_crc2_q <= k_crc2;
+    k_frame_q <= k_frame;
+    k_cf_q <= k_cf || mem_cf;
+    k_comm_q <= k_comm;
+    k_rs_q <= k_rs;
+    exp_sc1 <= seq_sc1[address_reg] + 8'd1;
+    exp_sc2 <= seq_sc2[address_reg] + 7'd1;
+    exp_known <= seq_known[address_reg];
+    seq_bad_q <= exp_known && (s_sc1 != exp_sc1 || s_sc2 != exp_sc2);
+end
+wire       safety = c16_reg;
+// The end-of-answer decisions, one more stage ahead (their inputs are stable too).
+reg        clean = 1'b0, flawed_q = 1'b0, mem_clean_q = 1'b0, mem_busy = 1'b0, busy_last_q = 1'b0;
+always @(posedge i_clk) begin
+    clean <= !(k_crc1_q || k_crc2_q || k_frame_q || k_cf_q || k_comm_q);
+    flawed_q <= k_crc1_q || k_crc2_q || k_frame_q || k_cf_q || k_comm_q || k_rs_q;
+    mem_clean_q <= is_mem_reg && !(k_crc1_q || k_crc2_q || k_frame_q || k_cf_q || k_comm_q);
+    mem_busy <= s_adf[0];
+    busy_last_q <= tries_left_reg == 4'd1;
+end
+
+task begin_send;
+    begin
+        state_reg <= SEND;
+        field_index_reg <= 2'd0;
+        bit_index_reg <= 4'd0;
+        cnt_reg <= BIT_LAST; cnt_zero_reg <= 1'b0;
+        req_crc_reg <= 8'd0;
+        tx_en_reg <= 1'b1;
+        tx_reg <= 1'b0;
+    end
+endtask
+
+task finish_done;
+    begin
+        state_reg <= IDLE;
+        busy_reg <= 1'b0;
+        done_reg <= 1'b1;
+    end
+endtask
+
+/* End of one request's answer (or of its timeout): check, publish, then
+   repeat, retry, settle, wait for quiet or finish (model Host::finish). */
+task finish(input timeout);
+    reg flawed, retry;
+    reg [CNT_W-1:0] settle;
+    reg [3:0] repeats;
+    begin
+        flawed = 1'b0;
+        retry = 1'b0;
+        settle = 0;
+        if (broadcast_reg) begin
+            err_cf_reg <= err_cf_reg | !timeout;
+            flawed = !timeout;
+        end else if (timeout) begin
+            err_timeout_reg <= 1'b1;
+            flawed = 1'b1;
+            seq_known[address_reg] <= 1'b0;
+        end else if (known_reg) begin
+            cf_reg <= s_cf; sf_reg <= s_sf; sf2_reg <= s_sf2; alm1_reg <= s_alm1; alm2_reg <= s_alm2;
+            abs_reg <= s_abs; abm_reg <= s_abm; rs_reg <= s_rs; sc1_reg <= s_sc1; sc2_reg <= s_sc2;
+            enid_reg <= s_enid; temp_reg <= s_temp; adf_reg <= s_adf; edf_reg <= s_edf;
+            err_crc1_reg <= err_crc1_reg | k_crc1_q;
+            err_crc2_reg <= err_crc2_reg | k_crc2_q;
+            err_frame_reg <= err_frame_reg | k_frame_q;
+            err_cf_reg <= err_cf_reg | k_cf_q;
+            err_comm_reg <= err_comm_reg | k_comm_q;
+            err_rs_reg <= err_rs_reg | k_rs_q;
+            if (safety && clean) begin
+                // A counter that is not the previous one plus one: a lost,
+                // repeated or stale answer. After an answer that could not be
+                // trusted the next good one is the new reference.
+                err_seq_reg <= err_seq_reg | seq_bad_q;
+                seq_known[address_reg] <= 1'b1;
+                seq_sc1[address_reg] <= s_sc1;
+                seq_sc2[address_reg] <= s_sc2;
+            end else if (safety) begin
+                seq_known[address_reg] <= 1'b0;
+            end
+            flawed = flawed_q;
+            if (mem_clean_q) begin
+                tries_left_reg <= tries_left_reg - 4'd1;
+                if (mem_busy && busy_last_q) begin
+                    err_busy_reg <= 1'b1;
+                end else if (mem_busy) begin
+                    retry = 1'b1;
+                end else if (id_reg == ID_F) begin
+                    if ({1'b0, mem_address_reg} == PAGE_REGISTER) begin
+                        page_reg <= wdata_reg[3:0];
+                        settle = PAGE_LAST + 1'b1;
+                    end else if (page_reg == REGISTER_PAGE) begin
+                        settle = 0;
+                    end else begin
+                        settle = WRITE_LAST + 1'b1;
+                    end
+                end
+            end
+        end else begin
+            // A code Table 3 does not list: whatever comes back is not an answer to it.
+            err_cf_reg <= 1'b1;
+            flawed = 1'b1;
+        end
+        repeats = repeats_left_reg - 4'd1;
+        if (retry) begin
+            state_reg <= GAP;
+            cnt_reg <= (id_reg == ID_F) ? WRITE_LAST : READ_LAST;
+            cnt_zero_reg <= 1'b0;
+        end else begin
+            repeats_left_reg <= repeats;
+            if (repeats != 4'd0) begin
+                state_reg <= GAP;
+                cnt_reg <= GAP_LAST; cnt_zero_reg <= 1'b0;
+            end else if (flawed) begin
+                state_reg <= QUIET;
+                idle_reg <= 0;
+            end else if (settle != 0) begin
+                state_reg <= SETTLE;
+                cnt_reg <= settle - 1'b1; cnt_zero_reg <= 1'b0;
+            end else begin
+                finish_done;
+            end
+        end
+    end
+endtask
+
+always @(posedge i_clk) begin
+    done_reg <= 1'b0;
+    pad_reg <= 1'b0;
+    if (pad_reg) crc_reg <= crc_after;
+    // A channel's CRC fields are in: its register must be back at 0 (the wire residue).
+    ch1_check_reg <= 1'b0;
+    ch2_check_reg <= 1'b0;
+    if (ch1_check_reg) ch1_bad_reg <= crc_reg != 16'd0;
+    if (ch2_check_reg) ch2_bad_reg <= crc_reg != 16'd0;
+    case (state_reg)
+        IDLE: begin
+            if (i_start) begin
+                id_reg <= i_data_id;
+                broadcast_reg <= i_broadcast;
+                address_reg <= i_broadcast ? BCAST : i_address;
+                mem_address_reg <= i_mem_address;
+                wdata_reg <= i_wdata;
+                repeats_left_reg <= (i_data_id == 4'hB || i_data_id == 4'hC || i_data_id == 4'hD) ? 4'd8 : 4'd1;
+                tries_left_reg <= TRIES;
+                busy_reg <= 1'b1;
+                err_crc1_reg <= 1'b0; err_crc2_reg <= 1'b0; err_timeout_reg <= 1'b0; err_frame_reg <= 1'b0;
+                err_cf_reg <= 1'b0; err_comm_reg <= 1'b0; err_seq_reg <= 1'b0; err_rs_reg <= 1'b0; err_busy_reg <= 1'b0;
+                begin_send;
+            end
+        end
+        SEND: begin
+            if (cnt_zero_reg) begin
+                if (send_last) begin
+                    tx_en_reg <= 1'b0;
+                    tx_reg <= 1'b1;
+                    state_reg <= WAIT;
+                    cnt_reg <= TIMEOUT_LAST; cnt_zero_reg <= 1'b0;
+                    count_reg <= 5'd0;
+                    frame_err_reg <= 1'b0;
+                    crc_reg <= 16'd0;
+                    crcc_reg <= 8'd0;
+                    ch1_done_reg <= 1'b0; ch1_bad_reg <= 1'b0;
+                    ch2_done_reg <= 1'b0; ch2_bad_reg <= 1'b0; cf2_bad_reg <= 1'b0;
+                    crcc_bad_reg <= 1'b0;
+                    ch1_check_reg <= 1'b0; ch2_check_reg <= 1'b0;
+                    in_ch2_reg <= 1'b0;
+                    cidx_reg <= 5'd0;
+                    f0_reg <= 8'd0; f1_reg <= 2'd0;
+                end else begin
+                    bit_index_reg <= nbit;
+                    field_index_reg <= nfield;
+                    tx_reg <= tx_bit;
+                    if (n_data && !n_is_crc) req_crc_reg <= req_crc_step;
+                    cnt_reg <= BIT_LAST; cnt_zero_reg <= 1'b0;
+                end
+            end else begin
+                cnt_reg <= cnt_reg - 1'b1;
+                cnt_zero_reg <= cnt_reg == 1;
+            end
+        end
+        WAIT: begin
+            if (rx_busy) begin
+                state_reg <= RECV;
+                idle_reg <= 0;
+            end else if (cnt_zero_reg) begin
+                finish(1'b1);
+            end else begin
+                cnt_reg <= cnt_reg - 1'b1;
+                cnt_zero_reg <= cnt_reg == 1;
+            end
+        end
+        RECV: begin
+            if (rx_valid || rx_frame_err) begin
+                count_reg <= (count_reg > 5'd18) ? 5'd19 : count_reg + 5'd1;
+                frame_err_reg <= frame_err_reg | rx_frame_err;
+                idle_reg <= 0;
+                if (fld_q) begin
+                    if (idx == 5'd0) f0_reg <= rx_data;
+                    if (idx == 5'd1) f1_reg <= rx_data[1:0];
+                    if (idx <= 5'd2) crcc_reg <= cc_chain[8];
+                    if (idx == 5'd2) crcc_bad_reg <= cc_chain[8] != 8'd0;
+                    if (active_q) begin
+                        crc_reg <= crc_after;
+                        if (last_data_q && c16_reg && cn[0]) pad_reg <= 1'b1;
+                        if (last_crc_q) begin
+                            if (in_ch2_reg) begin
+                                ch2_done_reg <= 1'b1;
+                                ch2_check_reg <= 1'b1;
+                            end else begin
+                                ch1_done_reg <= 1'b1;
+                                ch1_check_reg <= 1'b1;
+                            end
+                        end
+                        if (first_ch2_q) cf2_bad_reg <= rx_data != req_cf;
+                    end
+                    if (last_crc_q && !in_ch2_reg) begin
+                        in_ch2_reg <= 1'b1;
+                        cidx_reg <= 5'd0;
+                    end else begin
+                        cidx_reg <= cidx_reg + 5'd1;
+                    end
+                end
+            end else if (!rx_busy) begin
+                idle_reg <= idle_reg + 1'b1;
+                if (end_next_reg) finish(1'b0);
+            end else begin
+                idle_reg <= 0;
+            end
+        end
+        GAP: begin
+            if (cnt_zero_reg) begin
+                begin_send;
+            end else begin
+                cnt_reg <= cnt_reg - 1'b1;
+                cnt_zero_reg <= cnt_reg == 1;
+            end
+        end
+        SETTLE: begin
+            if (cnt_zero_reg) begin
+                finish_done;
+            end else begin
+                cnt_reg <= cnt_reg - 1'b1;
+                cnt_zero_reg <= cnt_reg == 1;
+            end
+        end
+        QUIET: begin
+            if (rx_busy) begin
+                idle_reg <= 0;
+            end else begin
+                idle_reg <= idle_reg + 1'b1;
+                if (quiet_next_reg) finish_done;
+            end
+        end
+        default: state_reg <= IDLE;
+    endcase
+    if (i_rst) begin
+        state_reg <= IDLE;
+        tx_en_reg <= 1'b0;
+        tx_reg <= 1'b1;
+        busy_reg <= 1'b0;
+        done_reg <= 1'b0;
+        page_reg <= 4'd8;
+        seq_known <= 8'd0;
+    end
+end
+
+assign o_tx = tx_reg;
+assign o_tx_en = tx_en_reg;
+assign o_busy = busy_reg;
+assign o_done = done_reg;
+assign o_cf = cf_reg;
+assign o_sf = sf_reg;
+assign o_sf2 = sf2_reg;
+assign o_alm1 = alm1_reg;
+assign o_alm2 = alm2_reg;
+assign o_abs = abs_reg;
+assign o_abm = abm_reg;
+assign o_rs = rs_reg;
+assign o_sc1 = sc1_reg;
+assign o_sc2 = sc2_reg;
+assign o_enid = enid_reg;
+assign o_temp = temp_reg;
+assign o_adf = adf_reg;
+assign o_edf = edf_reg;
+assign o_err_crc1 = err_crc1_reg;
+assign o_err_crc2 = err_crc2_reg;
+assign o_err_timeout = err_timeout_reg;
+assign o_err_frame = err_frame_reg;
+assign o_err_cf = err_cf_reg;
+assign o_err_comm = err_comm_reg;
+assign o_err_seq = err_seq_reg;
+assign o_err_rs = err_rs_reg;
+assign o_err_busy = err_busy_reg;
+
+endmodule
+
+`resetall
