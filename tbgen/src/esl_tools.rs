@@ -136,6 +136,11 @@ pub struct DecodedOp {
     pub sent: Vec<u8>,
     /// The last answer frame set.
     pub received: Vec<u8>,
+    /// Every request's characters on the line (driver on), in order.
+    pub wire_requests: Vec<Vec<u8>>,
+    /// For each of `wire_requests`, every character after it up to the next
+    /// request (driver off).
+    pub wire_answers: Vec<Vec<u8>>,
     /// The host's result outputs after the operation, under the model's names.
     #[serde(flatten)]
     pub results: model::esl::frames::Decoded,
@@ -181,6 +186,8 @@ pub fn decode(path: &Path, tx_en: &str, line: &str, opt: &DecodeOptions) -> Resu
                     requests: 0,
                     sent: Vec::new(),
                     received: Vec::new(),
+                    wire_requests: Vec::new(),
+                    wire_answers: Vec::new(),
                     results: model::esl::frames::Decoded::default(),
                     errors: Vec::new(),
                 };
@@ -190,6 +197,8 @@ pub fn decode(path: &Path, tx_en: &str, line: &str, opt: &DecodeOptions) -> Resu
         op.requests += 1;
         op.sent = sent;
         op.received = answer.iter().map(|b| b.value).collect();
+        op.wire_requests.push(op.sent.clone());
+        op.wire_answers.push(op.received.clone());
         let (retry, tries) = host.finish(&mut op, &answer, tries, opt);
         let repeats = if retry { repeats } else { repeats - 1 };
         op.results = host.out;
@@ -333,7 +342,7 @@ mod tests {
             ("esl_fault_truncated_no_answer_intruder", "the intruder's low pulse is sampled differently by the 8-clock receiver and the ideal line decoder"),
         ];
         let dir = tempfile::tempdir().unwrap();
-        let mut compared = 0;
+        let (mut compared, mut wire_sets) = (0, 0);
         for s in builtin::all().unwrap().into_iter().filter(|s| s.core() == "esl_host") {
             let Setup::Esl(cfg) = &s.setup else { unreachable!() };
             let summary = crate::generate::generate(&s, dir.path()).unwrap();
@@ -352,6 +361,13 @@ mod tests {
             let exempt = line_differs.iter().any(|(n, _)| *n == s.name);
             if !exempt {
                 assert_eq!(got.len(), want.len(), "{}: operations", s.name);
+            }
+            // The wire bytes agree in every scenario, exempt ones included:
+            // both readers listen all the time and sample at the nominal rate.
+            let wire = |ops: &[serde_json::Value], f: &str| -> Vec<serde_json::Value> { ops.iter().flat_map(|o| o[f].as_array().unwrap().clone()).collect() };
+            for f in ["wire_requests", "wire_answers"] {
+                assert_eq!(wire(got, f), wire(want, f), "{}: {f}", s.name);
+                wire_sets += wire(got, f).len();
             }
             for (g, w) in got.iter().zip(want) {
                 if exempt {
@@ -374,5 +390,6 @@ mod tests {
             }
         }
         assert!(compared > 1000, "only {compared} fields compared");
+        assert!(wire_sets > 150, "only {wire_sets} wire frame sets compared");
     }
 }

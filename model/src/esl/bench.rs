@@ -11,6 +11,7 @@ use crate::line::{CableConfig, Drive, HalfDuplexLine};
 use crate::ports::{Port, Ports};
 use crate::testbench::{self, Setup, Testbench};
 use crate::trace::{Layout, Sample};
+use crate::uart::{self, Receiver, ReceiverConfig};
 use crate::{ConfigError, Result, Timebase};
 
 /// The host's settings in a scenario's units (`[esl.host]`).
@@ -421,6 +422,18 @@ pub struct Transaction {
     pub sent: Vec<u8>,
     /// The last answer frame set the host received.
     pub received: Vec<u8>,
+    /// Every request frame set the host drove (8 for B, C, D; more for a
+    /// busy memory access), as the characters on the line at the host's pins
+    /// while its driver was on, read by a receiver that is never deaf: the
+    /// request the host sent, with any bit a fault inverted. What an
+    /// independent decoder of the line must find.
+    pub wire_requests: Vec<Vec<u8>>,
+    /// For each of `wire_requests`, every character on the line at the
+    /// host's pins after it up to the next request (or the end of the run),
+    /// as received, a low stop bit included (the value is what the data
+    /// samples read): the answer, the rest of an answer whose framing the
+    /// host lost, anything another driver sent.
+    pub wire_answers: Vec<Vec<u8>>,
     /// CF1.
     pub cf: u8,
     /// SF1.
@@ -491,6 +504,12 @@ pub struct Bench {
     requests_sent: usize,
     last_tx_en: bool,
     request_bit: (usize, u64),
+    /// A receiver on the line at the host's pins that listens all the time
+    /// (the host's own is deaf while it drives): the wire bytes of the
+    /// transcript.
+    wire_rx: Receiver,
+    /// The character `wire_rx` is receiving began while the host drove.
+    wire_from_host: bool,
     next_op: usize,
     start_at: u64,
     waiting: bool,
@@ -544,6 +563,8 @@ impl Bench {
             requests_sent: 0,
             last_tx_en: false,
             request_bit: (0, 0),
+            wire_rx: Receiver::new(ReceiverConfig { clocks_per_bit: cfg.clocks_per_bit()? })?,
+            wire_from_host: false,
             next_op: 0,
             start_at: tb.cycles_at_least_ns(cfg.ops[0].gap_us * 1e3),
             waiting: false,
@@ -607,6 +628,32 @@ impl Bench {
             level,
         }
     }
+
+    /// Feeds the always-listening receiver the host's input and files each
+    /// character it completes: a request character if it began while the
+    /// host drove, else an answer character of the latest request.
+    fn record_wire(&mut self, line: bool, out: &Out) {
+        let was_busy = self.wire_rx.state() != uart::State::Idle;
+        let rx = self.wire_rx.step(&uart::In { i_rx: line });
+        if rx.o_busy && !was_busy {
+            self.wire_from_host = out.o_tx_en || self.last_out.o_tx_en;
+        }
+        let latest = match self.open.as_mut() {
+            Some(t) => Some(t),
+            None => self.transactions.last_mut(),
+        };
+        let Some(t) = latest else { return };
+        if out.o_tx_en && !self.last_out.o_tx_en {
+            t.wire_requests.push(Vec::new());
+            t.wire_answers.push(Vec::new());
+        }
+        if rx.o_valid || rx.o_frame_err {
+            let to = if self.wire_from_host { &mut t.wire_requests } else { &mut t.wire_answers };
+            if let Some(set) = to.last_mut() {
+                set.push(rx.o_data);
+            }
+        }
+    }
 }
 
 impl Testbench for Bench {
@@ -650,6 +697,8 @@ impl Testbench for Bench {
                 requests: self.requests_sent,
                 sent: Vec::new(),
                 received: Vec::new(),
+                wire_requests: Vec::new(),
+                wire_answers: Vec::new(),
                 cf: 0,
                 sf: 0,
                 sf2: 0,
@@ -670,6 +719,7 @@ impl Testbench for Bench {
         }
         let out = self.host.step(&input);
         let host_drive = self.host_drive(&out);
+        self.record_wire(input.i_rx, &out);
         let intruding = self
             .intruders
             .iter()
