@@ -11,7 +11,7 @@ use crate::line::{CableConfig, Drive, HalfDuplexLine};
 use crate::ports::{Port, Ports};
 use crate::testbench::{self, Setup, Testbench};
 use crate::trace::{Layout, Sample};
-use crate::uart::{self, Receiver, ReceiverConfig};
+use crate::uart;
 use crate::{ConfigError, Result, Timebase};
 
 /// The host's settings in a scenario's units (`[esl.host]`).
@@ -507,9 +507,8 @@ pub struct Bench {
     /// A receiver on the line at the host's pins that listens all the time
     /// (the host's own is deaf while it drives): the wire bytes of the
     /// transcript.
-    wire_rx: Receiver,
-    /// The character `wire_rx` is receiving began while the host drove.
-    wire_from_host: bool,
+    /// Every character on the wire at the host, for the transcript.
+    wire_tap: uart::WireTap,
     next_op: usize,
     start_at: u64,
     waiting: bool,
@@ -563,8 +562,7 @@ impl Bench {
             requests_sent: 0,
             last_tx_en: false,
             request_bit: (0, 0),
-            wire_rx: Receiver::new(ReceiverConfig { clocks_per_bit: cfg.clocks_per_bit()? })?,
-            wire_from_host: false,
+            wire_tap: uart::WireTap::new(cfg.clocks_per_bit()?)?,
             next_op: 0,
             start_at: tb.cycles_at_least_ns(cfg.ops[0].gap_us * 1e3),
             waiting: false,
@@ -633,26 +631,11 @@ impl Bench {
     /// character it completes: a request character if it began while the
     /// host drove, else an answer character of the latest request.
     fn record_wire(&mut self, line: bool, out: &Out) {
-        let was_busy = self.wire_rx.state() != uart::State::Idle;
-        let rx = self.wire_rx.step(&uart::In { i_rx: line });
-        if rx.o_busy && !was_busy {
-            self.wire_from_host = out.o_tx_en || self.last_out.o_tx_en;
-        }
         let latest = match self.open.as_mut() {
             Some(t) => Some(t),
             None => self.transactions.last_mut(),
         };
-        let Some(t) = latest else { return };
-        if out.o_tx_en && !self.last_out.o_tx_en {
-            t.wire_requests.push(Vec::new());
-            t.wire_answers.push(Vec::new());
-        }
-        if rx.o_valid || rx.o_frame_err {
-            let to = if self.wire_from_host { &mut t.wire_requests } else { &mut t.wire_answers };
-            if let Some(set) = to.last_mut() {
-                set.push(rx.o_data);
-            }
-        }
+        self.wire_tap.step(line, out.o_tx_en, latest.map(|t| (&mut t.wire_requests, &mut t.wire_answers)));
     }
 }
 

@@ -36,10 +36,12 @@
 mod bench;
 mod receiver;
 mod transmitter;
+mod wire_tap;
 
 pub use bench::{Bench, BenchConfig, LowPulse, Transaction};
 pub use receiver::{In, Out, Receiver, ReceiverConfig, State};
 pub use transmitter::Transmitter;
+pub use wire_tap::WireTap;
 
 /// The sender baud errors (in percent, positive = sender fast) between which
 /// a receiver with `clocks_per_bit` samples every bit of a frame inside the
