@@ -279,6 +279,11 @@ reg             meas_evt_bad_reg = 1'b0, meas_evt_bad_next;
 reg             meas_eval1_reg = 1'b0, meas_eval1_next;
 reg             meas_eval2_reg = 1'b0, meas_eval2_next;
 reg [15:0]      meas_mean_reg = 0, meas_mean_next;
+/* The tolerance window's edges, formed in the mean stage so that the check
+   stage only compares (no adder in front of the verdict: timing closure):
+   max - TOL (0 if max < TOL) and min + TOL, 17 bits. */
+reg [16:0]      meas_max_less_tol_reg = 0, meas_max_less_tol_next;
+reg [16:0]      meas_min_plus_tol_reg = 0, meas_min_plus_tol_next;
 reg [15:0]      delay_reg = FIXED_D, delay_next;
 reg             delay_valid_reg = 1'b0, delay_valid_next;
 
@@ -473,6 +478,8 @@ always @* begin
     meas_eval1_next = meas_eval1_reg;
     meas_eval2_next = meas_eval2_reg;
     meas_mean_next = meas_mean_reg;
+    meas_max_less_tol_next = meas_max_less_tol_reg;
+    meas_min_plus_tol_next = meas_min_plus_tol_reg;
     delay_next = delay_reg;
     delay_valid_next = delay_valid_reg;
     ad1_on_next = ad1_on_reg;
@@ -739,11 +746,14 @@ always @* begin
         meas_eval2_next = 1'b1;
         m_mean_wide = (meas_sum_reg + MEAS_ROUND) >> MEAS_LOG2;
         meas_mean_next = m_mean_wide[15:0];
+        meas_max_less_tol_next = (meas_max_reg >= TOL16) ? {1'b0, meas_max_reg - TOL16} : 17'd0;
+        meas_min_plus_tol_next = {1'b0, meas_min_reg} + {1'b0, TOL16};
     end
     if (meas_eval2_reg) begin
         m_mean = meas_mean_reg;
-        m_ok = !meas_bad_reg && ({1'b0, meas_max_reg} <= {1'b0, m_mean} + {1'b0, TOL16})
-               && ({1'b0, m_mean} <= {1'b0, meas_min_reg} + {1'b0, TOL16})
+        /* max <= mean + TOL and mean <= min + TOL */
+        m_ok = !meas_bad_reg && (meas_max_less_tol_reg <= {1'b0, m_mean})
+               && ({1'b0, m_mean} <= meas_min_plus_tol_reg)
                && (m_mean <= DMAX16) && (m_mean >= 16'd1);
         meas_eval2_next = 1'b0;
         meas_k_next = 8'd0;
@@ -756,7 +766,7 @@ always @* begin
             delay_valid_next = 1'b1;
             meas_on_next = 1'b0;
             meas_done_next = 1'b1;
-        end else if (meas_round_reg + 8'd1 < RETRIES) begin
+        end else if ((RETRIES != 8'd0) && (meas_round_reg < RETRIES - 8'd1)) begin  /* round + 1 < RETRIES, adder-free */
             meas_round_next = meas_round_reg + 8'd1;
         end else begin
             delay_next = FIXED_D;
@@ -951,6 +961,8 @@ always @(posedge i_clk) begin
     meas_eval1_reg <= meas_eval1_next;
     meas_eval2_reg <= meas_eval2_next;
     meas_mean_reg <= meas_mean_next;
+    meas_max_less_tol_reg <= meas_max_less_tol_next;
+    meas_min_plus_tol_reg <= meas_min_plus_tol_next;
     delay_reg <= delay_next;
     delay_valid_reg <= delay_valid_next;
     ad1_on_reg <= ad1_on_next;
@@ -1042,6 +1054,8 @@ always @(posedge i_clk) begin
         meas_eval1_reg <= 1'b0;
         meas_eval2_reg <= 1'b0;
         meas_mean_reg <= 16'd0;
+        meas_max_less_tol_reg <= 17'd0;
+        meas_min_plus_tol_reg <= 17'd0;
         delay_reg <= FIXED_D;
         delay_valid_reg <= 1'b0;
         ad1_on_reg <= 1'b0;
