@@ -101,3 +101,56 @@ fn a_vector_file_shorter_than_its_record_count_is_refused() {
         assert!(output.contains("fewer than"), "{sim}: {output}");
     }
 }
+
+/// The output columns of a vector file: (name, word index of its expected
+/// value), read from the `record:` header (each output is followed by `mask`).
+fn output_columns(v: &VectorFile) -> Vec<(String, usize)> {
+    let layout: Vec<&str> = v.get("record").unwrap().split_whitespace().filter(|w| *w != "|").collect();
+    layout
+        .windows(2)
+        .enumerate()
+        .filter(|(_, pair)| pair[1] == "mask" && pair[0] != "mask")
+        .map(|(i, pair)| (pair[0].split('[').next().unwrap().to_string(), i))
+        .collect()
+}
+
+#[test]
+fn every_testbench_checks_every_output_port_in_both_simulators() {
+    // A testbench that forgot to compare one port would pass whatever that
+    // port did. For each core, the smallest committed vector file is
+    // replayed once per output port with bit 0 of that port's expected
+    // value flipped in the middle record: both simulators must stop with a
+    // mismatch that names that port.
+    let dir = tempfile::tempdir().unwrap();
+    let (mut cores, mut flips) = (0, 0);
+    let mut core_dirs: Vec<PathBuf> = fs::read_dir(root().join("vectors")).unwrap().map(|e| e.unwrap().path()).filter(|p| p.is_dir()).collect();
+    core_dirs.sort();
+    for core_dir in core_dirs {
+        let core = core_dir.file_name().unwrap().to_str().unwrap().to_string();
+        let smallest = fs::read_dir(&core_dir)
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            .filter(|p| p.extension().is_some_and(|x| x == "hex"))
+            .min_by_key(|p| fs::metadata(p).unwrap().len())
+            .unwrap();
+        let text = fs::read_to_string(&smallest).unwrap();
+        let v = VectorFile::parse(&text).unwrap();
+        let record = v.records.len() / 2;
+        let outputs = output_columns(&v);
+        assert!(!outputs.is_empty(), "{core}: no outputs in {}", smallest.display());
+        for (name, word) in &outputs {
+            assert_eq!(v.records[record][word + 1] & 1, 1, "{core}: {name} is masked in record {record}");
+            let path = dir.path().join(format!("{core}_{name}.hex"));
+            fs::write(&path, edit(&text, record, *word, |x| x ^ 1)).unwrap();
+            for sim in ["icarus", "verilator"] {
+                let (passed, output) = simulate(&core, sim, &path);
+                assert!(!passed, "{core} in {sim} passed with {name} flipped:\n{output}");
+                assert!(output.contains(&format!("signal {name} ")), "{core} in {sim}: the mismatch does not name {name}:\n{output}");
+                flips += 1;
+            }
+        }
+        cores += 1;
+    }
+    println!("{cores} cores, {flips} flipped-bit replays, every one stopped by a mismatch naming its port");
+    assert!(cores >= 6 && flips >= 200, "{cores} cores, {flips} replays");
+}
