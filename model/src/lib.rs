@@ -20,6 +20,7 @@
 
 pub mod angle;
 pub mod biss;
+pub mod bits;
 pub mod crc;
 pub mod endat;
 pub mod error;

@@ -214,7 +214,7 @@ pub fn decode(path: &Path, ma: &str, slo: &str, layout: &Layout) -> Result<Vec<F
         }
         if let Some(o) = observer.take(&view) {
             let a = o.access;
-            let cdm: String = control::cdm_sequence(&a)[..=o.last_k as usize].iter().map(|&b| if b { '1' } else { '0' }).collect();
+            let cdm = model::bits::string(&control::cdm_sequence(&a)[..=o.last_k as usize]);
             if a.command {
                 f.command = Some(CommandSeen { ids: a.ids, code: a.code, ok: o.ok, cdm });
             } else {
@@ -300,7 +300,7 @@ fn read_sections(f: &mut FrameSeen, ack: u64, period: u64, rises: u64, slo: &cap
             crc_ok,
         });
     }
-    f.received_bits = received.iter().map(|&b| if b { '1' } else { '0' }).collect();
+    f.received_bits = model::bits::string(&received);
 }
 
 #[cfg(test)]

@@ -32,7 +32,7 @@ pub fn report(algorithm: &str, bits_text: &str) -> Result<String> {
     })?;
     let bits = parse_bits(bits_text)?;
     let value = alg.checksum_bits(&bits);
-    let wire: String = alg.wire_bits(value).iter().map(|&b| if b { '1' } else { '0' }).collect();
+    let wire = model::bits::string(&alg.wire_bits(value));
     let digits = (alg.width as usize).div_ceil(4);
     let mut out = String::new();
     let _ = writeln!(out, "algorithm: {} ({}-bit, poly 0x{:X}, init 0x{:X})", alg.name, alg.width, alg.poly, alg.init);

@@ -547,10 +547,6 @@ pub struct Bench {
     layout: Layout,
 }
 
-fn bit_string(bits: &[bool]) -> String {
-    bits.iter().map(|&b| if b { '1' } else { '0' }).collect()
-}
-
 impl Bench {
     /// A bench in its reset state.
     pub fn new(cfg: &BenchConfig) -> Result<Self> {
@@ -703,7 +699,7 @@ impl Bench {
                 t.slaves.push(SlaveResult {
                     slave: out.o_slave_index,
                     sent_position: slave.position(),
-                    sent_bits: bit_string(slave.last_section()),
+                    sent_bits: crate::bits::string(slave.last_section()),
                     position: out.o_data,
                     angle_deg: super::angle_deg(out.o_data, bits),
                     error: out.o_error,
@@ -734,7 +730,7 @@ impl Bench {
                         t.errors.push(name.to_string());
                     }
                 }
-                t.received_bits = bit_string(self.master.sampled_bits());
+                t.received_bits = crate::bits::string(self.master.sampled_bits());
                 t.delay_mean_cycles = self.master.calibrated().then_some(out.o_delay_mean);
                 if out.o_reg_done {
                     if let Some(op) = self.open_op.take() {
@@ -749,13 +745,13 @@ impl Bench {
                             rdata: out.o_reg_rdata,
                             ok: !out.o_reg_err,
                             crc4_ok: !out.o_reg_crc_err,
-                            cdm: bit_string(cdm),
+                            cdm: crate::bits::string(cdm),
                         });
                     }
                     if let Some(cmd) = self.open_cmd.take() {
                         let acc = control::Access { command: true, ids: cmd.ids, code: cmd.code, ..control::Access::default() };
                         let sent = t.control_index.map_or(0, |k| k as usize + 1);
-                        t.command = Some(CmdResult { ids: cmd.ids, code: cmd.code, ok: !out.o_reg_err, cdm: bit_string(&control::cdm_sequence(&acc)[..sent]) });
+                        t.command = Some(CmdResult { ids: cmd.ids, code: cmd.code, ok: !out.o_reg_err, cdm: crate::bits::string(&control::cdm_sequence(&acc)[..sent]) });
                     }
                 }
                 self.transactions.push(t);

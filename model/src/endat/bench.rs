@@ -738,7 +738,7 @@ impl Bench {
             if !refused && !aborted {
                 if let Some((pos, bits)) = self.encoder.frames.pop_front() {
                     t.encoder_position = Some(pos);
-                    t.sent_bits = bits.iter().map(|&b| if b { '1' } else { '0' }).collect();
+                    t.sent_bits = crate::bits::string(&bits);
                 }
                 if super::frame_kind(mode) == FrameKind::Param21 {
                     t.ack = Some((out.o_ack_addr, out.o_ack_data));

@@ -521,8 +521,8 @@ impl Bench {
             t.errors.push("line_not_idle".into());
         } else {
             let n = self.cfg.encoder.bits;
-            t.sent_bits = bit_string(self.encoder.stored() as u128, n);
-            t.received_bits = bit_string(self.master.raw_bits(), mc.sampled_bits());
+            t.sent_bits = crate::bits::string_of(self.encoder.stored() as u128, n);
+            t.received_bits = crate::bits::string_of(self.master.raw_bits(), mc.sampled_bits());
             t.position = Some(out.o_position);
             t.angle_deg = Some(angle_deg(out.o_position, mc.bits));
             if out.o_err_double {
@@ -536,6 +536,3 @@ impl Bench {
     }
 }
 
-fn bit_string(value: u128, bits: u32) -> String {
-    (0..bits).rev().map(|i| if (value >> i) & 1 == 1 { '1' } else { '0' }).collect()
-}
