@@ -28,7 +28,7 @@ pub trait Protocol: model::Setup + 'static {
     /// The output pulses that end a transaction, the output holding its
     /// result, and the transcript field that must equal it (the whole-flow
     /// test reads the VCD with them).
-    const TRANSACTION_SIGNALS: (&'static [&'static str], &'static str, &'static str);
+    const TRANSACTION_SIGNALS: TransactionSignals;
 
     /// The sigrok decoder that reads this protocol's line in the tests
     /// (`spi`, `uart`), if any; [`Protocol::sigrok`] gives the details.
@@ -68,6 +68,10 @@ pub trait Protocol: model::Setup + 'static {
     }
 }
 
+/// The output pulses that end a transaction, the output holding its result,
+/// and the transcript field that must equal it.
+pub type TransactionSignals = (&'static [&'static str], &'static str, &'static str);
+
 /// A sigrok-cli run on the scalars of a generated VCD, one sample per
 /// system clock, and what it must print.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -96,7 +100,7 @@ pub struct Entry {
     /// The Verilog core (`hdl/rtl/<core>.v`, `hdl/tb/<core>/`, `vectors/<core>/`).
     pub core: &'static str,
     /// See [`Protocol::TRANSACTION_SIGNALS`].
-    pub transaction_signals: (&'static [&'static str], &'static str, &'static str),
+    pub transaction_signals: TransactionSignals,
     /// See [`Protocol::SIGROK_DECODER`].
     pub sigrok_decoder: Option<&'static str>,
     /// See [`Protocol::SIGROK_MINIMUM`].
@@ -310,4 +314,18 @@ pub fn parse_data_id(text: &str) -> std::result::Result<u8, String> {
 /// The command line of a protocol's tool, parsed by its own parser.
 pub fn parse_args<A: clap::FromArgMatches>(args: &ArgMatches) -> Result<A> {
     A::from_arg_matches(args).map_err(|e| Error::Decode(e.to_string()))
+}
+
+/// The built-in scenario or scenario file `arg` for `tool` (`timing esl`),
+/// which must be one of protocol `P` (`kind`: "an ESL"): the scenario and
+/// its configuration.
+pub fn scenario_of<P: Protocol>(arg: &str, tool: &str, kind: &str) -> Result<(crate::scenario::Scenario, P)> {
+    let s = crate::builtin::resolve(arg)?;
+    match s.setup.get::<P>() {
+        Some(cfg) => {
+            let cfg = cfg.clone();
+            Ok((s, cfg))
+        }
+        None => Err(Error::Decode(format!("{tool}: scenario `{}` is not {kind} scenario", s.name))),
+    }
 }

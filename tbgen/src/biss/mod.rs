@@ -7,8 +7,8 @@ use std::path::PathBuf;
 use clap::{ArgMatches, CommandFactory, Parser};
 use model::biss::BenchConfig;
 
-use crate::registry::{self, Protocol};
-use crate::{builtin, Error, Result};
+use crate::registry::{self, Protocol, TransactionSignals};
+use crate::{Error, Result};
 
 /// BiSS-C: MA and SLO at the master.
 #[derive(Parser)]
@@ -43,7 +43,7 @@ pub struct TimingArgs {
 }
 
 impl Protocol for BenchConfig {
-    const TRANSACTION_SIGNALS: (&'static [&'static str], &'static str, &'static str) = (&["o_done"], "o_delay", "delay_cycles");
+    const TRANSACTION_SIGNALS: TransactionSignals = (&["o_done"], "o_delay", "delay_cycles");
 
     fn decode_command() -> Option<clap::Command> {
         Some(DecodeArgs::command())
@@ -69,10 +69,7 @@ impl Protocol for BenchConfig {
 
     fn timing(args: &ArgMatches) -> Result<String> {
         let TimingArgs { scenario } = registry::parse_args(args)?;
-        let s = builtin::resolve(&scenario)?;
-        let Some(cfg) = s.setup.get::<BenchConfig>() else {
-            return Err(Error::Decode(format!("timing biss: scenario `{}` is not a BiSS-C scenario", s.name)));
-        };
-        tools::timing_report(cfg, &s.name).map_err(|e| s.value_error(e))
+        let (s, cfg) = registry::scenario_of::<BenchConfig>(&scenario, "timing biss", "a BiSS-C")?;
+        tools::timing_report(&cfg, &s.name).map_err(|e| s.value_error(e))
     }
 }

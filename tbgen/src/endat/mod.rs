@@ -9,7 +9,7 @@ use std::path::PathBuf;
 use clap::{ArgMatches, CommandFactory, Parser};
 use model::endat::BenchConfig;
 
-use crate::registry::{self, Protocol};
+use crate::registry::{self, Protocol, TransactionSignals};
 use crate::{builtin, Error, Result};
 
 /// EnDat 2.1 / 2.2: clock and data at the master.
@@ -51,7 +51,7 @@ pub struct TimingArgs {
 }
 
 impl Protocol for BenchConfig {
-    const TRANSACTION_SIGNALS: (&'static [&'static str], &'static str, &'static str) = (&["o_done", "o_meas_done"], "o_position", "position");
+    const TRANSACTION_SIGNALS: TransactionSignals = (&["o_done", "o_meas_done"], "o_position", "position");
 
     fn decode_command() -> Option<clap::Command> {
         Some(DecodeArgs::command())

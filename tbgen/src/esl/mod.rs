@@ -8,8 +8,8 @@ use std::path::PathBuf;
 use clap::{ArgMatches, CommandFactory, Parser};
 use model::esl::BenchConfig;
 
-use crate::registry::{self, Protocol, SigrokCheck};
-use crate::{builtin, Error, Result};
+use crate::registry::{self, Protocol, SigrokCheck, TransactionSignals};
+use crate::{Error, Result};
 
 /// ESL: the host's driver enable and the line at the host.
 #[derive(Parser)]
@@ -50,7 +50,7 @@ pub struct TimingArgs {
 }
 
 impl Protocol for BenchConfig {
-    const TRANSACTION_SIGNALS: (&'static [&'static str], &'static str, &'static str) = (&["o_done"], "o_abs", "abs");
+    const TRANSACTION_SIGNALS: TransactionSignals = (&["o_done"], "o_abs", "abs");
     const SIGROK_DECODER: Option<&'static str> = Some("uart");
     const SIGROK_MINIMUM: (usize, usize) = (13, 1000);
 
@@ -76,12 +76,9 @@ impl Protocol for BenchConfig {
 
     fn timing(args: &ArgMatches) -> Result<String> {
         let TimingArgs { scenario, data_id } = registry::parse_args(args)?;
-        let s = builtin::resolve(&scenario)?;
-        let Some(cfg) = s.setup.get::<BenchConfig>() else {
-            return Err(Error::Decode(format!("timing esl: scenario `{}` is not an ESL scenario", s.name)));
-        };
+        let (s, cfg) = registry::scenario_of::<BenchConfig>(&scenario, "timing esl", "an ESL")?;
         let id = if data_id == 0 { 1 } else { data_id };
-        tools::timing_report(cfg, &s.name, id).map_err(|e| s.value_error(e))
+        tools::timing_report(&cfg, &s.name, id).map_err(|e| s.value_error(e))
     }
 
     /// sigrok's `uart` decoder at 10 Mbps on the line at the host must find,

@@ -3,10 +3,10 @@
 
 use model::ssi::BenchConfig;
 
-use crate::registry::{Protocol, SigrokCheck};
+use crate::registry::{Protocol, SigrokCheck, TransactionSignals};
 
 impl Protocol for BenchConfig {
-    const TRANSACTION_SIGNALS: (&'static [&'static str], &'static str, &'static str) = (&["o_done"], "o_position", "position");
+    const TRANSACTION_SIGNALS: TransactionSignals = (&["o_done"], "o_position", "position");
     const SIGROK_DECODER: Option<&'static str> = Some("spi");
     const SIGROK_MINIMUM: (usize, usize) = (10, 25);
 

@@ -10,8 +10,8 @@ use std::path::PathBuf;
 use clap::{ArgMatches, CommandFactory, Parser};
 use model::tformat::BenchConfig;
 
-use crate::registry::{self, Protocol, SigrokCheck};
-use crate::{builtin, Error, Result};
+use crate::registry::{self, Protocol, SigrokCheck, TransactionSignals};
+use crate::{Error, Result};
 
 /// T-format: the line and the driver enable at the host (the bytes alone
 /// cannot tell a request from its answer).
@@ -47,7 +47,7 @@ pub struct TimingArgs {
 }
 
 impl Protocol for BenchConfig {
-    const TRANSACTION_SIGNALS: (&'static [&'static str], &'static str, &'static str) = (&["o_done"], "o_abs", "abs");
+    const TRANSACTION_SIGNALS: TransactionSignals = (&["o_done"], "o_abs", "abs");
     const SIGROK_DECODER: Option<&'static str> = Some("uart");
     const SIGROK_MINIMUM: (usize, usize) = (15, 300);
 
@@ -71,11 +71,8 @@ impl Protocol for BenchConfig {
 
     fn timing(args: &ArgMatches) -> Result<String> {
         let TimingArgs { scenario, data_id } = registry::parse_args(args)?;
-        let s = builtin::resolve(&scenario)?;
-        let Some(cfg) = s.setup.get::<BenchConfig>() else {
-            return Err(Error::Decode(format!("timing tformat: scenario `{}` is not a T-format scenario", s.name)));
-        };
-        timing::timing_report(cfg, &s.name, data_id).map_err(|e| s.value_error(e))
+        let (s, cfg) = registry::scenario_of::<BenchConfig>(&scenario, "timing tformat", "a T-format")?;
+        timing::timing_report(&cfg, &s.name, data_id).map_err(|e| s.value_error(e))
     }
 
     /// sigrok's `uart` decoder at 2.5 Mbps on the line at the host must find,

@@ -3,10 +3,10 @@
 
 use model::uart::BenchConfig;
 
-use crate::registry::{Protocol, SigrokCheck};
+use crate::registry::{Protocol, SigrokCheck, TransactionSignals};
 
 impl Protocol for BenchConfig {
-    const TRANSACTION_SIGNALS: (&'static [&'static str], &'static str, &'static str) = (&["o_valid", "o_frame_err", "o_start_err"], "o_data", "received");
+    const TRANSACTION_SIGNALS: TransactionSignals = (&["o_valid", "o_frame_err", "o_start_err"], "o_data", "received");
     const SIGROK_DECODER: Option<&'static str> = Some("uart");
     const SIGROK_MINIMUM: (usize, usize) = (1, 300);
 
