@@ -69,10 +69,10 @@ enum Command {
         list: bool,
     },
     /// Print a protocol's cycle budget, phase by phase, and its position-read rate.
-    #[command(subcommand, after_help = "Examples:\n  tbgen timing tformat tformat_readout_all_ids --data-id 3\n  tbgen timing esl                           # Data ID 1 of esl_readout_all_ids\n  tbgen timing esl esl_readout_all_ids --data-id 4\n  tbgen timing biss                          # the seed scenario biss_seed_16bit\n  tbgen timing biss biss_clock_1mhz_100m\n  tbgen timing endat endat_pos22_ad_8mhz_100m --ads 2\n  tbgen timing endat my.toml --command pos21 --diagram")]
+    #[command(subcommand, after_help = "Each protocol has its own options and examples: tbgen timing <protocol> --help.\nThe protocols: tbgen protocols.")]
     Timing(registry::Timing),
     /// Decode a captured waveform (VCD) into a JSON transcript on stdout.
-    #[command(subcommand)]
+    #[command(subcommand, after_help = "Each protocol has its own options and examples: tbgen decode <protocol> --help.\nThe protocols: tbgen protocols.")]
     Decode(registry::Decode),
     /// Time the model alone on a scenario (used by `make bench`).
     #[command(after_help = "Example:\n  tbgen bench scenarios/bench/ssi_bench.toml")]

@@ -329,3 +329,51 @@ pub fn scenario_of<P: Protocol>(arg: &str, tool: &str, kind: &str) -> Result<(cr
         None => Err(Error::Decode(format!("{tool}: scenario `{}` is not {kind} scenario", s.name))),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn each_protocols_subcommands_are_named_after_its_table() {
+        // `Decode::run` finds the protocol by the subcommand's name: a
+        // decoder or budget named otherwise than its table could not be run.
+        for e in crate::PROTOCOLS {
+            for cmd in [(e.decode_command)(), (e.timing_command)()].into_iter().flatten() {
+                assert_eq!(cmd.get_name(), e.table, "{}: a subcommand named `{}`", e.table, cmd.get_name());
+            }
+        }
+    }
+
+    #[test]
+    fn the_command_line_reaches_each_protocols_own_parser_and_refuses_others() {
+        use clap::{FromArgMatches, Subcommand};
+        let cli = Decode::augment_subcommands(Command::new("decode").subcommand_required(true));
+        let m = cli.clone().try_get_matches_from(["decode", "biss", "x.vcd", "--bits", "12,26"]).unwrap();
+        let call = Decode::from_arg_matches(&m).unwrap();
+        assert_eq!(call.0.protocol, "biss");
+        assert_eq!(call.0.args.get_many::<u32>("bits").unwrap().copied().collect::<Vec<_>>(), vec![12, 26]);
+        // An option of another protocol's decoder is refused by this one's parser.
+        assert!(cli.clone().try_get_matches_from(["decode", "biss", "x.vcd", "--pos-bits", "13"]).is_err());
+        // A protocol without a decoder is not a subcommand.
+        assert!(!Decode::has_subcommand("ssi") && cli.try_get_matches_from(["decode", "ssi", "x.vcd"]).is_err());
+        assert!(Timing::has_subcommand("endat") && !Timing::has_subcommand("uart"));
+    }
+
+    #[test]
+    fn the_protocol_table_has_one_line_per_registered_protocol() {
+        let t = table();
+        assert_eq!(t.lines().count(), crate::PROTOCOLS.len());
+        for (line, e) in t.lines().zip(crate::PROTOCOLS) {
+            assert!(line.starts_with(e.table) && line.contains(e.core), "{line}");
+        }
+        assert!(t.lines().any(|l| l.starts_with("ssi ") && l.ends_with("sigrok=spi")), "{t}");
+    }
+
+    #[test]
+    fn a_data_id_is_decimal_or_hex_up_to_15() {
+        assert_eq!(parse_data_id("3"), Ok(3));
+        assert_eq!(parse_data_id("0xD"), Ok(13));
+        assert!(parse_data_id("16").unwrap_err().contains("0 to 15"));
+    }
+}

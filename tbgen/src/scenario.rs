@@ -203,7 +203,9 @@ mod tests {
     #[test]
     fn a_file_without_a_protocol_table_says_what_to_add() {
         let msg = Scenario::parse("name = \"x\"\n", "x.toml").unwrap_err().to_string();
-        assert!(msg.contains("[ssi]"), "{msg}");
+        for p in crate::PROTOCOLS {
+            assert!(msg.contains(&format!("`[{}]`", p.table)), "{msg}");
+        }
     }
 
     #[test]
