@@ -6,9 +6,14 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
+// Paths are relative to the package (`../scenarios`), in what cargo records
+// and in the generated `include_str!`s (through `CARGO_MANIFEST_DIR` when
+// tbgen compiles): a target folder copied from another checkout of the
+// workspace must neither watch nor compile in that checkout's scenarios.
 fn main() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenarios");
-    println!("cargo:rerun-if-changed={}", root.display());
+    let manifest = std::env::var("CARGO_MANIFEST_DIR").expect("cargo sets CARGO_MANIFEST_DIR");
+    let root = Path::new(&manifest).join("../scenarios");
+    println!("cargo:rerun-if-changed=../scenarios");
     let mut dirs: Vec<_> = std::fs::read_dir(&root)
         .expect("scenarios/ next to tbgen/")
         .map(|e| e.expect("a readable scenarios/ entry").path())
@@ -17,18 +22,18 @@ fn main() {
     dirs.sort();
     let mut out = String::from("&[\n");
     for dir in dirs {
-        println!("cargo:rerun-if-changed={}", dir.display());
+        let folder = dir.file_name().unwrap().to_str().expect("a UTF-8 folder name");
+        println!("cargo:rerun-if-changed=../scenarios/{folder}");
         let mut files: Vec<_> = std::fs::read_dir(&dir)
             .expect("a readable scenarios/<table>/")
             .map(|e| e.expect("a readable scenario file").path())
             .filter(|p| p.extension().is_some_and(|x| x == "toml"))
             .collect();
         files.sort();
-        let folder = dir.file_name().unwrap().to_str().expect("a UTF-8 folder name");
         for file in files {
             let name = file.file_name().unwrap().to_str().expect("a UTF-8 file name");
-            let path = file.canonicalize().expect("a scenario path");
-            writeln!(out, "    ({:?}, include_str!({:?})),", format!("{folder}/{name}"), path.display().to_string()).unwrap();
+            let rel = format!("{folder}/{name}");
+            writeln!(out, "    ({rel:?}, include_str!(concat!(env!(\"CARGO_MANIFEST_DIR\"), {:?}))),", format!("/../scenarios/{rel}")).unwrap();
         }
     }
     out.push(']');
