@@ -1,0 +1,84 @@
+#!/usr/bin/env bash
+# test.sh: what `make test` runs, stage by stage, with the wall time of each.
+#
+#   scripts/test.sh
+#
+# Stages, in two lanes that run side by side on a 2-core machine once the
+# builds are done:
+#
+#   deps, build (tbgen release), cargo-build (the test profile, compiled once)
+#   lane 1: cargo-test                 model, flow, HDL flip, sigrok tests
+#   lane 2: lint, hdl, vectors, gtkw   Verilator lint, every vector file in
+#                                      Icarus and Verilator, committed vectors
+#                                      == fresh ones, every .gtkw in GTKWave
+#
+# Each stage's output goes to build/test/<stage>.log and is printed whole
+# when the stage ends, so the two lanes never interleave lines. The last
+# lines are a table of stage times (also in build/test/times.txt) and the
+# verdict. Exit status 0 only if every stage passed.
+set -uo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+cd "$root"
+logs="$root/build/test"
+rm -rf "$logs"
+mkdir -p "$logs"
+: > "$logs/times.txt"
+started=$(date +%s.%N)
+
+# stage NAME COMMAND...: run COMMAND, log it, print its log and its time.
+stage() {
+    local name=$1; shift
+    local t0 t1 status
+    t0=$(date +%s.%N)
+    "$@" > "$logs/$name.log" 2>&1
+    status=$?
+    t1=$(date +%s.%N)
+    local secs
+    secs=$(awk "BEGIN { printf \"%.1f\", $t1 - $t0 }")
+    # One stage's output at a time, whole, whichever lane it comes from.
+    {
+        flock 9
+        echo "==== stage $name ($secs s, $([ $status = 0 ] && echo passed || echo FAILED, exit $status))"
+        cat "$logs/$name.log"
+        printf '%-12s %8s s  %s\n' "$name" "$secs" "$([ $status = 0 ] && echo passed || echo FAILED)" >> "$logs/times.txt"
+    } 9> "$logs/.print.lock"
+    return $status
+}
+
+fail=0
+stage deps scripts/deps.sh || fail=1
+if [ $fail = 0 ]; then
+    stage build cargo build --release --locked -p tbgen || fail=1
+fi
+if [ $fail = 0 ]; then
+    stage cargo-build cargo test --workspace --locked --no-run || fail=1
+fi
+if [ $fail = 0 ]; then
+    # The dev profile, so that arithmetic overflow panics in tests instead
+    # of wrapping silently as it would in release.
+    ( stage cargo-test cargo test --workspace --locked ) &
+    lane1=$!
+    (
+        lane_fail=0
+        stage lint scripts/lint.sh || lane_fail=1
+        stage hdl scripts/regress.sh || lane_fail=1
+        stage vectors scripts/check_vectors.sh || lane_fail=1
+        stage gtkw scripts/check_gtkw.sh || lane_fail=1
+        exit $lane_fail
+    ) &
+    lane2=$!
+    wait $lane1 || fail=1
+    wait $lane2 || fail=1
+fi
+
+total=$(awk "BEGIN { printf \"%.1f\", $(date +%s.%N) - $started }")
+echo
+echo "==== stage times (wall clock; lanes 1 and 2 overlap)"
+cat "$logs/times.txt"
+printf '%-12s %8s s\n' total "$total"
+if [ $fail = 0 ]; then
+    echo "make test: all checks passed"
+else
+    echo "make test: FAILED (see the stages marked FAILED above; logs in build/test/)" >&2
+    exit 1
+fi
