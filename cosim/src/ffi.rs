@@ -47,7 +47,8 @@ fn text(p: *const c_char, what: &str) -> Result<String, Error> {
     }
     // SAFETY: the caller passes a NUL-terminated string (DPI-C and VPI both do).
     let s = unsafe { CStr::from_ptr(p) };
-    s.to_str().map(str::to_string).map_err(|_| Error::Usage(format!("{what} is not UTF-8")))
+    // A wide Verilog reg carries leading spaces (or NULs) before its characters.
+    s.to_str().map(|t| t.trim_matches(|c: char| c == '\0' || c.is_whitespace()).to_string()).map_err(|_| Error::Usage(format!("{what} is not UTF-8")))
 }
 
 fn with<T>(handle: i32, f: impl FnOnce(&mut dyn Emulator) -> Result<T, Error>) -> Result<T, Error> {

@@ -1,0 +1,94 @@
+// biss_slave_emu: a chain of one to three BiSS-C slaves and its cable for any
+// testbench, emulated by the encoder-tb model (libcosim, cosim/src/biss.rs);
+// the same module name and ports in Verilator (DPI-C) and Icarus (VPI module
+// emu.vpi).
+//
+// Connect the master's MA to i_ma and o_slo to the master's SLO input; clock
+// the emulator with i_emu_clk at F_EMU_HZ (at least 4 x the fastest MA: 40 MHz
+// for the seed's 10 MHz, less with `emulator.max_line_clock_khz`). Each rising
+// edge of i_emu_clk samples i_ma, steps the cable and the chain once and
+// registers SLO as it arrives at the master's end of the cable:
+//
+//   master pin -> [1 emu cycle: this sample] -> cable (length_m x ns_per_m)
+//     -> slaves (output_delay_ns of the first) -> cable -> [register] -> o_slo
+//
+// The configuration is a TOML file with the scenario's [[slaves]], [cable],
+// [[flips]], [stuck] and [delay_step] tables (a whole scenario file will do):
+// the parameter CONFIG, or, when CONFIG is "", the plusarg +<PLUSARG>=<file>.
+// A missing or bad file stops the simulation at time 0 with file, field, fix.
+//
+// X or Z on i_ma before its first 0/1 (reset) is ignored (MA is taken as idle
+// high); after it, it is reported with time and pin and never read as data
+// (STOP_ON_X = 1 stops the run, 0 holds the last level).
+//
+// Controls for the testbench (hierarchical calls, see emu_api.vh):
+//   u_emu.set_position(slave, value); u_emu.set_status(slave, "error", 1);
+//   u_emu.set_status(slave, "warning", 0); u_emu.schedule_fault("flips = [{ frame = 7, bits = [0] }]");
+//   u_emu.count(0) (frames latched), u_emu.last_value(slave), u_emu.last_status(slave, "error")
+// TRANSCRIPT names a JSON file written at the end of the simulation.
+
+`default_nettype none
+
+module biss_slave_emu #(
+    parameter CONFIG = "",
+    parameter PLUSARG = "biss_emu_config",
+    parameter F_EMU_HZ = 80000000,
+    parameter TRANSCRIPT = "",
+    parameter STOP_ON_X = 1
+) (
+    /* Emulator clock */
+    input  wire i_emu_clk,
+
+    /* BiSS-C line at the master's end of the cable */
+    input  wire i_ma,
+    output wire o_slo
+);
+
+`include "emu_api.vh"
+
+`EMU_STR config_path;
+
+initial begin
+    config_path = CONFIG;
+    if (CONFIG == "") begin
+        if (!$value$plusargs({PLUSARG, "=%s"}, config_path))
+            config_path = "";
+    end
+    emu_start("biss", config_path, F_EMU_HZ, TRANSCRIPT);
+end
+
+`ifdef VERILATOR
+final if (TRANSCRIPT != "" && emu_handle > 0)
+    if (emu_write_transcript(emu_handle, TRANSCRIPT) < 0)
+        $display("ERROR: %m: %0s", emu_last_error());
+`endif
+
+// The MA level last seen as 0 or 1 (idle high before reset ends).
+reg ma_level = 1'b1;
+reg ma_known = 1'b0;
+reg x_reported = 1'b0;
+reg slo_reg = 1'b1;
+integer pins_out;
+
+always @(posedge i_emu_clk) begin
+    if (i_ma === 1'b0 || i_ma === 1'b1) begin
+        ma_level = i_ma;
+        ma_known = 1'b1;
+        x_reported = 1'b0;
+    end else if (ma_known && !x_reported) begin
+        $display("ERROR: %m: X or Z on emulator input i_ma at time %0t (held at %b, not read as data)", $time, ma_level);
+        x_reported = 1'b1;
+        if (STOP_ON_X)
+            $fatal(1, "emulator input i_ma is X or Z");
+    end
+    pins_out = emu_call_step({31'd0, ma_level});
+    if (pins_out < 0)
+        emu_fail("step");
+    slo_reg <= pins_out[0];
+end
+
+assign o_slo = slo_reg;
+
+endmodule
+
+`default_nettype wire

@@ -1,0 +1,94 @@
+// ssi_encoder_emu: an SSI encoder and its cable for any testbench, emulated by
+// the encoder-tb model (libcosim, cosim/src/ssi.rs); the same module name and
+// ports in Verilator (DPI-C) and Icarus (VPI module emu.vpi).
+//
+// Connect the master's SSI clock to i_ssi_clk and o_ssi_data to the master's
+// data input; clock the emulator with i_emu_clk at F_EMU_HZ (any clock of the
+// testbench, at least 4 x the fastest SSI clock: 1 MHz for the seed's
+// 250 kHz, more with `emulator.max_line_clock_khz`). Each rising edge of
+// i_emu_clk samples i_ssi_clk, steps the cable and the encoder once and
+// registers the data the encoder's answer has at the master's end of the
+// cable:
+//
+//   master pin -> [1 emu cycle: this sample] -> cable (length_m x ns_per_m)
+//     -> encoder (output_delay_ns) -> cable -> [register] -> o_ssi_data
+//
+// The configuration is a TOML file with the scenario's [encoder], [cable] and
+// [fault] tables (a whole scenario file will do): the parameter CONFIG, or,
+// when CONFIG is "", the plusarg +<PLUSARG>=<file>. A missing or bad file
+// stops the simulation at time 0 with the file, the field and the fix.
+//
+// X or Z on i_ssi_clk before its first 0/1 (reset) is ignored (the clock is
+// taken as idle high); after it, it is reported with time and pin and never
+// read as data (STOP_ON_X = 1 stops the run, 0 holds the last level).
+//
+// Controls for the testbench (hierarchical calls, see emu_api.vh):
+//   u_emu.set_position(0, value); u_emu.schedule_fault("fault = { level = false, from_read = 3 }");
+//   u_emu.count(0) (reads begun), u_emu.last_value(0) (position stored at the last read)
+// TRANSCRIPT names a JSON file written at the end of the simulation.
+
+`default_nettype none
+
+module ssi_encoder_emu #(
+    parameter CONFIG = "",
+    parameter PLUSARG = "ssi_emu_config",
+    parameter F_EMU_HZ = 50000000,
+    parameter TRANSCRIPT = "",
+    parameter STOP_ON_X = 1
+) (
+    /* Emulator clock */
+    input  wire i_emu_clk,
+
+    /* SSI line at the master's end of the cable */
+    input  wire i_ssi_clk,
+    output wire o_ssi_data
+);
+
+`include "emu_api.vh"
+
+`EMU_STR config_path;
+
+initial begin
+    config_path = CONFIG;
+    if (CONFIG == "") begin
+        if (!$value$plusargs({PLUSARG, "=%s"}, config_path))
+            config_path = "";
+    end
+    emu_start("ssi", config_path, F_EMU_HZ, TRANSCRIPT);
+end
+
+`ifdef VERILATOR
+final if (TRANSCRIPT != "" && emu_handle > 0)
+    if (emu_write_transcript(emu_handle, TRANSCRIPT) < 0)
+        $display("ERROR: %m: %0s", emu_last_error());
+`endif
+
+// The clock level last seen as 0 or 1 (idle high before reset ends).
+reg clk_level = 1'b1;
+reg clk_known = 1'b0;
+reg x_reported = 1'b0;
+reg data_reg = 1'b1;
+integer pins_out;
+
+always @(posedge i_emu_clk) begin
+    if (i_ssi_clk === 1'b0 || i_ssi_clk === 1'b1) begin
+        clk_level = i_ssi_clk;
+        clk_known = 1'b1;
+        x_reported = 1'b0;
+    end else if (clk_known && !x_reported) begin
+        $display("ERROR: %m: X or Z on emulator input i_ssi_clk at time %0t (held at %b, not read as data)", $time, clk_level);
+        x_reported = 1'b1;
+        if (STOP_ON_X)
+            $fatal(1, "emulator input i_ssi_clk is X or Z");
+    end
+    pins_out = emu_call_step({31'd0, clk_level});
+    if (pins_out < 0)
+        emu_fail("step");
+    data_reg <= pins_out[0];
+end
+
+assign o_ssi_data = data_reg;
+
+endmodule
+
+`default_nettype wire

@@ -1,0 +1,115 @@
+#!/usr/bin/env bash
+# cosim.sh: run one of our cores closed-loop against its encoder emulator
+# (libcosim through hdl/emu/), no vectors.
+#
+#   scripts/cosim.sh <core> <icarus|verilator> [--transactions N] [--config FILE]
+#                    [--seed S] [--flip-bit K] [--transcript FILE]
+#
+# Every configuration in hdl/tb_cosim/<core>/configs/*.toml (or the one given)
+# is a scenario file: cosim-params derives the core's parameters from its
+# [master] table, the emulator reads its device, cable and fault tables. N
+# transactions (default 1000) are split evenly over the configurations. The
+# testbench is built once per parameter set (cached under
+# build/cosim/<core>/<sim>/<hash>/, like scripts/sim.sh). --flip-bit plants a
+# misread (the testbench flips bit K of the core's output before comparing):
+# the run must then fail. Exit status 0 only when every configuration passed.
+set -euo pipefail
+
+usage() { echo "usage: $0 <ssi_master|biss_master> <icarus|verilator> [--transactions N] [--config FILE] [--seed S] [--flip-bit K] [--transcript FILE]" >&2; exit 2; }
+[ $# -ge 2 ] || usage
+core=$1 sim=$2
+shift 2
+transactions=1000 config="" seed=1 flip="" transcript=""
+while [ $# -gt 0 ]; do
+    case "$1" in
+    --transactions) transactions=$2; shift 2 ;;
+    --config) config=$2; shift 2 ;;
+    --seed) seed=$2; shift 2 ;;
+    --flip-bit) flip=$2; shift 2 ;;
+    --transcript) transcript=$2; shift 2 ;;
+    *) usage ;;
+    esac
+done
+root=$(cd "$(dirname "$0")/.." && pwd)
+case "$core" in
+ssi_master) proto=ssi emu=ssi_encoder_emu ;;
+biss_master) proto=biss emu=biss_slave_emu ;;
+*) echo "cosim.sh: no closed-loop testbench for core '$core' (ssi_master, biss_master)" >&2; exit 2 ;;
+esac
+case "$sim" in icarus|verilator) ;; *) usage ;; esac
+tb="$root/hdl/tb_cosim/$core/tb_cosim_$core.v"
+if [ -n "$config" ]; then configs=("$config"); else configs=("$root"/hdl/tb_cosim/"$core"/configs/*.toml); fi
+
+# The library and the parameter tool (cargo decides whether anything changed).
+target=${CARGO_TARGET_DIR:-$root/target}
+(cd "$root" && cargo build -q --release -p cosim -j 2)
+lib="$target/release/libcosim.so"
+params_tool="$target/release/cosim-params"
+
+mkdir -p "$root/build/emu"
+if [ "$sim" = icarus ]; then
+    vpi="$root/build/emu/emu.vpi"
+    exec 8> "$root/build/emu/.lock"
+    flock 8
+    if [ ! -f "$vpi" ] || [ "$lib" -nt "$vpi" ] || [ "$root/hdl/emu/vpi/emu_vpi.c" -nt "$vpi" ]; then
+        # shellcheck disable=SC2046
+        gcc -shared -fPIC $(iverilog-vpi --cflags) -o "$vpi.tmp" "$root/hdl/emu/vpi/emu_vpi.c" \
+            -L"$target/release" -lcosim -Wl,-rpath,"$target/release" $(iverilog-vpi --ldflags) $(iverilog-vpi --ldlibs)
+        mv "$vpi.tmp" "$vpi"
+    fi
+    flock -u 8
+fi
+
+per=$(( (transactions + ${#configs[@]} - 1) / ${#configs[@]} ))
+rtl=("$root"/hdl/rtl/*.v)
+status=0 total=0
+for cfg in "${configs[@]}"; do
+    params=$("$params_tool" "$proto" "$cfg")
+    f_sys_hz=$(sed -n 's/^F_SYS_HZ=//p' <<< "$params")
+    half_fs=$(( 500000000000000 / f_sys_hz ))
+    key=$(printf '%s\n' "$params" | cat - "$tb" "$root/hdl/emu/$emu.v" "$root/hdl/emu/emu_api.vh" "${rtl[@]}" | sha1sum | cut -c1-12)
+    build="$root/build/cosim/$core/$sim/$key"
+    mkdir -p "$build"
+    exec 9> "$build/.lock"
+    flock 9
+    plusargs=("+${proto}_emu_config=$cfg" "+transactions=$per" "+seed=$seed")
+    [ -n "$flip" ] && plusargs+=("+flip_bit=$flip")
+    [ -n "$transcript" ] && plusargs+=("+transcript=$transcript")
+    case "$sim" in
+    icarus)
+        if [ ! -f "$build/tb.vvp" ]; then
+            pargs=()
+            for p in $params; do pargs+=("-Ptb_cosim_$core.$p"); done
+            iverilog -g2005 -Wall -Wno-timescale -s "tb_cosim_$core" -I "$root/hdl/emu" \
+                "${pargs[@]}" "-Ptb_cosim_$core.HALF_PERIOD_FS=$half_fs" \
+                -o "$build/tb.vvp.tmp" "$tb" "$root/hdl/emu/$emu.v" "${rtl[@]}" > "$build/build.log" 2>&1 \
+                || { cat "$build/build.log" >&2; exit 1; }
+            mv "$build/tb.vvp.tmp" "$build/tb.vvp"
+        fi
+        flock -u 9
+        start=$(date +%s.%N)
+        vvp -n -M "$root/build/emu" -m emu "$build/tb.vvp" "${plusargs[@]}" || status=1
+        ;;
+    verilator)
+        if [ ! -x "$build/Vtb" ]; then
+            gargs=()
+            for p in $params; do gargs+=("-G$p"); done
+            verilator --binary --timing -j 2 -Wno-fatal -Wno-lint -Wno-style \
+                --top-module "tb_cosim_$core" -I"$root/hdl/emu" \
+                "${gargs[@]}" "-GHALF_PERIOD_FS=$half_fs" \
+                -LDFLAGS "-L$target/release -lcosim -Wl,-rpath,$target/release" \
+                --Mdir "$build/obj" -o Vtb "$tb" "$root/hdl/emu/$emu.v" "${rtl[@]}" > "$build/build.log" 2>&1 \
+                || { cat "$build/build.log" >&2; exit 1; }
+            mv "$build/obj/Vtb" "$build/Vtb"
+        fi
+        flock -u 9
+        start=$(date +%s.%N)
+        "$build/Vtb" "${plusargs[@]}" || status=1
+        ;;
+    esac
+    end=$(date +%s.%N)
+    total=$(( total + per ))
+    echo "cosim: $core $sim $(basename "$cfg"): $per transactions run in $(printf '%.2f' "$(echo "$end - $start" | bc)") s"
+done
+echo "cosim: $core $sim: $total transactions over ${#configs[@]} configuration(s), $([ $status = 0 ] && echo pass || echo FAIL)"
+exit $status
