@@ -101,7 +101,7 @@ function [63:0] count(input integer unused);
 `ifdef VERILATOR
         count = emu_count(emu_handle);
 `else
-        count = $emu_count(emu_handle);
+        count = {$emu_count(emu_handle, 1), $emu_count(emu_handle, 0)};
 `endif
     end
 endfunction
@@ -112,7 +112,7 @@ function [63:0] last_value(input integer device);
 `ifdef VERILATOR
         last_value = emu_last_value(emu_handle, device);
 `else
-        last_value = $emu_last_value(emu_handle, device);
+        last_value = {$emu_last_value(emu_handle, device, 1), $emu_last_value(emu_handle, device, 0)};
 `endif
     end
 endfunction

@@ -8,12 +8,14 @@
  *   $emu_set_position(handle, device, position)  -> 0 / -1
  *   $emu_set_status(handle, device, name, value) -> 0 / -1
  *   $emu_schedule_fault(handle, toml)            -> 0 / -1
- *   $emu_count(handle)                           -> 64 bits
- *   $emu_last_value(handle, device)              -> 64 bits
+ *   $emu_count(handle, half)                     -> 32 bits: half 0 low, 1 high
+ *   $emu_last_value(handle, device, half)        -> 32 bits: half 0 low, 1 high
  *   $emu_last_status(handle, device, name)       -> 0 / 1 / -1
  *   $emu_write_transcript(handle, path)          -> 0 / -1
  *
- * Every failure prints the library's message (file, field and fix) with the
+ * Every function returns 32 bits (iverilog types an unknown system function
+ * as a 32-bit int at compile time; 64-bit values come as two halves, so no
+ * .sft file is needed). Every failure prints the library's message (file, field and fix) with the
  * simulation time; the wrapper then stops the run. Transcripts named at
  * $emu_open are written at the end of the simulation.
  *
@@ -91,17 +93,10 @@ static void put_int(int32_t value) {
     vpi_put_value(call, &v, NULL, vpiNoDelay);
 }
 
-static void put_64(int64_t value) {
-    vpiHandle call = vpi_handle(vpiSysTfCall, NULL);
-    s_vpi_vecval vec[2];
-    s_vpi_value v;
-    vec[0].aval = (PLI_INT32)(uint32_t)((uint64_t)value & 0xffffffffu);
-    vec[0].bval = 0;
-    vec[1].aval = (PLI_INT32)(uint32_t)((uint64_t)value >> 32);
-    vec[1].bval = 0;
-    v.format = vpiVectorVal;
-    v.value.vector = vec;
-    vpi_put_value(call, &v, NULL, vpiNoDelay);
+/* One half of a 64-bit value (half 0: bits 31..0, half 1: bits 63..32). */
+static void put_half(int64_t value, int64_t half) {
+    uint64_t u = (uint64_t)value;
+    put_int((int32_t)(uint32_t)(half ? u >> 32 : u & 0xffffffffu));
 }
 
 static void report(const char *what) {
@@ -193,21 +188,21 @@ static PLI_INT32 schedule_fault_calltf(PLI_BYTE8 *user) {
 static PLI_INT32 count_calltf(PLI_BYTE8 *user) {
     (void)user;
     vpiHandle a[MAX_ARGS];
-    if (wrong_count(args(a), 1, "$emu_count"))
+    if (wrong_count(args(a), 2, "$emu_count"))
         return 0;
     int64_t n = emu_count((int32_t)arg_int(a[0]));
     if (n < 0)
         report("$emu_count");
-    put_64(n);
+    put_half(n, arg_int(a[1]));
     return 0;
 }
 
 static PLI_INT32 last_value_calltf(PLI_BYTE8 *user) {
     (void)user;
     vpiHandle a[MAX_ARGS];
-    if (wrong_count(args(a), 2, "$emu_last_value"))
+    if (wrong_count(args(a), 3, "$emu_last_value"))
         return 0;
-    put_64(emu_last_value((int32_t)arg_int(a[0]), (int32_t)arg_int(a[1])));
+    put_half(emu_last_value((int32_t)arg_int(a[0]), (int32_t)arg_int(a[1])), arg_int(a[2]));
     return 0;
 }
 
@@ -233,11 +228,6 @@ static PLI_INT32 write_transcript_calltf(PLI_BYTE8 *user) {
     return 0;
 }
 
-static PLI_INT32 size64(PLI_BYTE8 *user) {
-    (void)user;
-    return 64;
-}
-
 static PLI_INT32 end_of_simulation(p_cb_data data) {
     (void)data;
     for (int i = 0; i < n_transcripts; i++)
@@ -246,27 +236,26 @@ static PLI_INT32 end_of_simulation(p_cb_data data) {
     return 0;
 }
 
-static void define(const char *name, PLI_INT32 (*calltf)(PLI_BYTE8 *), int wide) {
+static void define(const char *name, PLI_INT32 (*calltf)(PLI_BYTE8 *)) {
     s_vpi_systf_data tf;
     memset(&tf, 0, sizeof tf);
     tf.type = vpiSysFunc;
-    tf.sysfunctype = wide ? vpiSizedFunc : vpiIntFunc;
+    tf.sysfunctype = vpiIntFunc;
     tf.tfname = (PLI_BYTE8 *)name;
     tf.calltf = calltf;
-    tf.sizetf = wide ? size64 : NULL;
     vpi_register_systf(&tf);
 }
 
 static void register_all(void) {
-    define("$emu_open", open_calltf, 0);
-    define("$emu_step", step_calltf, 0);
-    define("$emu_set_position", set_position_calltf, 0);
-    define("$emu_set_status", set_status_calltf, 0);
-    define("$emu_schedule_fault", schedule_fault_calltf, 0);
-    define("$emu_count", count_calltf, 1);
-    define("$emu_last_value", last_value_calltf, 1);
-    define("$emu_last_status", last_status_calltf, 0);
-    define("$emu_write_transcript", write_transcript_calltf, 0);
+    define("$emu_open", open_calltf);
+    define("$emu_step", step_calltf);
+    define("$emu_set_position", set_position_calltf);
+    define("$emu_set_status", set_status_calltf);
+    define("$emu_schedule_fault", schedule_fault_calltf);
+    define("$emu_count", count_calltf);
+    define("$emu_last_value", last_value_calltf);
+    define("$emu_last_status", last_status_calltf);
+    define("$emu_write_transcript", write_transcript_calltf);
 
     s_cb_data cb;
     memset(&cb, 0, sizeof cb);
