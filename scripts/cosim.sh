@@ -40,25 +40,9 @@ case "$sim" in icarus|verilator) ;; *) usage ;; esac
 tb="$root/hdl/tb_cosim/$core/tb_cosim_$core.v"
 if [ -n "$config" ]; then configs=("$config"); else configs=("$root"/hdl/tb_cosim/"$core"/configs/*.toml); fi
 
-# The library and the parameter tool (cargo decides whether anything changed).
-target=${CARGO_TARGET_DIR:-$root/target}
-(cd "$root" && cargo build -q --release -p cosim -j 2)
-lib="$target/release/libcosim.so"
-params_tool="$target/release/cosim-params"
-
-mkdir -p "$root/build/emu"
-if [ "$sim" = icarus ]; then
-    vpi="$root/build/emu/emu.vpi"
-    exec 8> "$root/build/emu/.lock"
-    flock 8
-    if [ ! -f "$vpi" ] || [ "$lib" -nt "$vpi" ] || [ "$root/hdl/emu/vpi/emu_vpi.c" -nt "$vpi" ]; then
-        # shellcheck disable=SC2046
-        gcc -shared -fPIC $(iverilog-vpi --cflags) -o "$vpi.tmp" "$root/hdl/emu/vpi/emu_vpi.c" \
-            -L"$target/release" -lcosim -Wl,-rpath,"$target/release" $(iverilog-vpi --ldflags) $(iverilog-vpi --ldlibs)
-        mv "$vpi.tmp" "$vpi"
-    fi
-    flock -u 8
-fi
+# The library, its VPI module and the parameter tool.
+eval "$("$root/scripts/emu_lib.sh")"
+params_tool="$EMU_LIB_DIR/cosim-params"
 
 per=$(( (transactions + ${#configs[@]} - 1) / ${#configs[@]} ))
 rtl=("$root"/hdl/rtl/*.v)
@@ -88,7 +72,7 @@ for cfg in "${configs[@]}"; do
         fi
         flock -u 9
         start=$(date +%s.%N)
-        vvp -n -M "$root/build/emu" -m emu "$build/tb.vvp" "${plusargs[@]}" || status=1
+        vvp -n -M "$EMU_VPI_DIR" -m emu "$build/tb.vvp" "${plusargs[@]}" || status=1
         ;;
     verilator)
         if [ ! -x "$build/Vtb" ]; then
@@ -97,7 +81,7 @@ for cfg in "${configs[@]}"; do
             verilator --binary --timing -j 2 -Wno-fatal -Wno-lint -Wno-style \
                 --top-module "tb_cosim_$core" -I"$root/hdl/emu" \
                 "${gargs[@]}" "-GHALF_PERIOD_FS=$half_fs" \
-                -LDFLAGS "-L$target/release -lcosim -Wl,-rpath,$target/release" \
+                -LDFLAGS "-L$EMU_LIB_DIR -lcosim -Wl,-rpath,$EMU_LIB_DIR" \
                 --Mdir "$build/obj" -o Vtb "$tb" "$root/hdl/emu/$emu.v" "${rtl[@]}" > "$build/build.log" 2>&1 \
                 || { cat "$build/build.log" >&2; exit 1; }
             mv "$build/obj/Vtb" "$build/Vtb"
