@@ -15,8 +15,10 @@
 
 use serde::{Deserialize, Serialize};
 
+use model::biss::{
+    BenchConfig, Chain, DelayStep, FlipFault, Slave, SlaveSettings, StuckFault, MAX_SLAVES,
+};
 use model::bits;
-use model::biss::{BenchConfig, Chain, DelayStep, FlipFault, Slave, SlaveSettings, StuckFault, MAX_SLAVES};
 use model::line::{CableConfig, DelayLine};
 use model::Timebase;
 
@@ -44,7 +46,13 @@ pub struct BissConfig {
 
 impl Default for BissConfig {
     fn default() -> Self {
-        BissConfig { slaves: vec![SlaveSettings::default()], cable: CableConfig::default(), flips: Vec::new(), stuck: None, delay_step: None }
+        BissConfig {
+            slaves: vec![SlaveSettings::default()],
+            cable: CableConfig::default(),
+            flips: Vec::new(),
+            stuck: None,
+            delay_step: None,
+        }
     }
 }
 
@@ -107,29 +115,68 @@ impl BissEmulator {
     /// An emulator from TOML text (`origin` names it in errors) at `f_emu_hz`.
     pub fn from_toml(text: &str, origin: &str, f_emu_hz: u64) -> Result<Self> {
         let tables = config::tables(text, origin, "biss")?;
-        let tb = config::emulator_clock(f_emu_hz, &tables.emulator, MAX_CLOCK_KHZ, "BiSS-C", origin)?;
+        let tb =
+            config::emulator_clock(f_emu_hz, &tables.emulator, MAX_CLOCK_KHZ, "BiSS-C", origin)?;
         let cfg: BissConfig = config::decode(tables.device, origin)?;
         if cfg.slaves.is_empty() || cfg.slaves.len() > MAX_SLAVES {
-            return Err(Error::field(origin, "slaves", format!("{} slaves", cfg.slaves.len()), "give 1 to 3 [[slaves]] tables"));
+            return Err(Error::field(
+                origin,
+                "slaves",
+                format!("{} slaves", cfg.slaves.len()),
+                "give 1 to 3 [[slaves]] tables",
+            ));
         }
-        cfg.cable.validate("cable").map_err(|e| Error::config(origin, e))?;
+        cfg.cable
+            .validate("cable")
+            .map_err(|e| Error::config(origin, e))?;
         // The model converts the slaves' times to cycles of its clock: here the emulator's.
-        let bench = BenchConfig { f_sys_mhz: tb.f_sys_hz() as f64 / 1e6, slaves: cfg.slaves.clone(), ..BenchConfig::default() };
+        let bench = BenchConfig {
+            f_sys_mhz: tb.f_sys_hz() as f64 / 1e6,
+            slaves: cfg.slaves.clone(),
+            ..BenchConfig::default()
+        };
         let mut slaves = Vec::new();
         for (i, s) in cfg.slaves.iter().enumerate() {
-            let limit = if s.bits == 64 { u64::MAX } else { (1u64 << s.bits.min(63)) - 1 };
-            let sc = bench.slave_config(i).map_err(|e| Error::config(origin, e))?;
+            let limit = if s.bits == 64 {
+                u64::MAX
+            } else {
+                (1u64 << s.bits.min(63)) - 1
+            };
+            let sc = bench
+                .slave_config(i)
+                .map_err(|e| Error::config(origin, e))?;
             if let Some((j, p)) = s.positions.iter().enumerate().find(|(_, p)| **p > limit) {
-                return Err(Error::field(origin, format!("slaves[{i}].positions[{j}]"), format!("{p} does not fit {} bits", s.bits), format!("give positions from 0 to {limit}")));
+                return Err(Error::field(
+                    origin,
+                    format!("slaves[{i}].positions[{j}]"),
+                    format!("{p} does not fit {} bits", s.bits),
+                    format!("give positions from 0 to {limit}"),
+                ));
             }
             slaves.push(Slave::new(sc).map_err(|e| Error::config(origin, e))?);
         }
-        let faults = FaultTables { flips: cfg.flips.clone(), stuck: cfg.stuck.clone(), delay_step: cfg.delay_step.clone() };
+        let faults = FaultTables {
+            flips: cfg.flips.clone(),
+            stuck: cfg.stuck.clone(),
+            delay_step: cfg.delay_step.clone(),
+        };
         check_faults(&faults, &cfg.slaves, origin)?;
         let chain = Chain::new(slaves, tb.cycles_nearest_ns(cfg.slaves[0].output_delay_ns));
         let (to_slaves, to_master) = cfg.cable.lines(&tb, true);
         let owned = vec![Owned::default(); cfg.slaves.len()];
-        let mut emu = BissEmulator { f_emu_hz, tb, cfg, chain, owned, to_slaves, to_master, extra: None, stuck: None, cycle: 0, entries: Vec::new() };
+        let mut emu = BissEmulator {
+            f_emu_hz,
+            tb,
+            cfg,
+            chain,
+            owned,
+            to_slaves,
+            to_master,
+            extra: None,
+            stuck: None,
+            cycle: 0,
+            entries: Vec::new(),
+        };
         emu.prepare(0);
         emu.apply_line_faults();
         Ok(emu)
@@ -137,15 +184,26 @@ impl BissEmulator {
 
     /// Positions, flags and flips of frame `k`, before its latch.
     fn prepare(&mut self, k: u64) {
-        let bench = BenchConfig { slaves: self.cfg.slaves.clone(), ..BenchConfig::default() };
+        let bench = BenchConfig {
+            slaves: self.cfg.slaves.clone(),
+            ..BenchConfig::default()
+        };
         for i in 0..self.cfg.slaves.len() {
             let s = &self.cfg.slaves[i];
             let o = self.owned[i];
             let kk = k as usize;
             let position = o.position.unwrap_or_else(|| bench.position_at(i, kk));
             let error = o.error.unwrap_or(s.error || s.error_frames.contains(&kk));
-            let warning = o.warning.unwrap_or(s.warning || s.warning_frames.contains(&kk));
-            let flips: Vec<u32> = self.cfg.flips.iter().filter(|f| f.frame == kk && f.slave == i).flat_map(|f| f.bits.clone()).collect();
+            let warning = o
+                .warning
+                .unwrap_or(s.warning || s.warning_frames.contains(&kk));
+            let flips: Vec<u32> = self
+                .cfg
+                .flips
+                .iter()
+                .filter(|f| f.frame == kk && f.slave == i)
+                .flat_map(|f| f.bits.clone())
+                .collect();
             let slave = &mut self.chain.slaves_mut()[i];
             slave.set_position(position);
             slave.set_flags(error, warning);
@@ -176,7 +234,11 @@ impl BissEmulator {
         if device < self.owned.len() {
             Ok(device)
         } else {
-            Err(Error::Usage(format!("the chain has {} slave(s), 0 to {}; there is no slave {device}", self.owned.len(), self.owned.len() - 1)))
+            Err(Error::Usage(format!(
+                "the chain has {} slave(s), 0 to {}; there is no slave {device}",
+                self.owned.len(),
+                self.owned.len() - 1
+            )))
         }
     }
 }
@@ -184,16 +246,31 @@ impl BissEmulator {
 fn check_faults(f: &FaultTables, slaves: &[SlaveSettings], origin: &str) -> Result<()> {
     for (j, flip) in f.flips.iter().enumerate() {
         let Some(s) = slaves.get(flip.slave) else {
-            return Err(Error::field(origin, format!("flips[{j}].slave"), format!("slave {}", flip.slave), "name a slave of the chain (0-based)"));
+            return Err(Error::field(
+                origin,
+                format!("flips[{j}].slave"),
+                format!("slave {}", flip.slave),
+                "name a slave of the chain (0-based)",
+            ));
         };
         let len = s.bits + 2 + s.crc_width;
         if let Some(b) = flip.bits.iter().find(|&&b| b >= len) {
-            return Err(Error::field(origin, format!("flips[{j}].bits"), format!("bit {b}"), format!("give bits 0 to {}", len - 1)));
+            return Err(Error::field(
+                origin,
+                format!("flips[{j}].bits"),
+                format!("bit {b}"),
+                format!("give bits 0 to {}", len - 1),
+            ));
         }
     }
     if let Some(d) = &f.delay_step {
         if !(d.extra_ns >= 0.0 && d.extra_ns < 1e7) {
-            return Err(Error::field(origin, "delay_step.extra_ns", format!("{}", d.extra_ns), "give a non-negative time"));
+            return Err(Error::field(
+                origin,
+                "delay_step.extra_ns",
+                format!("{}", d.extra_ns),
+                "give a non-negative time",
+            ));
         }
     }
     Ok(())
@@ -219,10 +296,19 @@ impl Emulator for BissEmulator {
                     let sec = s.last_section();
                     let n = set.bits as usize;
                     let value = sec[1..1 + n].iter().fold(0u64, |a, &b| (a << 1) | b as u64);
-                    SlaveEntry { position: value, error: !sec[1 + n], warning: !sec[2 + n], sent_bits: bits::string(sec) }
+                    SlaveEntry {
+                        position: value,
+                        error: !sec[1 + n],
+                        warning: !sec[2 + n],
+                        sent_bits: bits::string(sec),
+                    }
                 })
                 .collect();
-            self.entries.push(Entry { index: latches, cycle: self.cycle, slaves });
+            self.entries.push(Entry {
+                index: latches,
+                cycle: self.cycle,
+                slaves,
+            });
             self.prepare(latches + 1);
         }
         if self.chain.frames() != frames {
@@ -248,7 +334,11 @@ impl Emulator for BissEmulator {
         match name {
             "error" => self.owned[i].error = Some(value),
             "warning" => self.owned[i].warning = Some(value),
-            other => return Err(Error::Usage(format!("a BiSS-C slave reports `error` and `warning`, not `{other}`"))),
+            other => {
+                return Err(Error::Usage(format!(
+                    "a BiSS-C slave reports `error` and `warning`, not `{other}`"
+                )))
+            }
         }
         let k = self.chain.latches();
         // Re-arm the next frame with the new flags (flips of that frame stay scheduled).
@@ -280,7 +370,10 @@ impl Emulator for BissEmulator {
     }
 
     fn last_value(&self, device: usize) -> Option<u64> {
-        self.entries.last().and_then(|e| e.slaves.get(device)).map(|s| s.position)
+        self.entries
+            .last()
+            .and_then(|e| e.slaves.get(device))
+            .map(|s| s.position)
     }
 
     fn last_status(&self, device: usize, name: &str) -> Result<bool> {
@@ -291,7 +384,9 @@ impl Emulator for BissEmulator {
         match name {
             "error" => Ok(e.slaves[i].error),
             "warning" => Ok(e.slaves[i].warning),
-            other => Err(Error::Usage(format!("a BiSS-C slave reports `error` and `warning`, not `{other}`"))),
+            other => Err(Error::Usage(format!(
+                "a BiSS-C slave reports `error` and `warning`, not `{other}`"
+            ))),
         }
     }
 
@@ -310,21 +405,35 @@ mod tests {
 
     #[test]
     fn an_emulator_clock_below_four_times_10_mhz_is_refused_with_the_minimum() {
-        let err = BissEmulator::from_toml("", "s.toml", 20_000_000).err().unwrap().to_string();
+        let err = BissEmulator::from_toml("", "s.toml", 20_000_000)
+            .err()
+            .unwrap()
+            .to_string();
         assert!(err.contains("at least 40000000 Hz"), "{err}");
-        let ok = BissEmulator::from_toml("[emulator]\nmax_line_clock_khz = 5000\n", "s.toml", 20_000_000);
+        let ok = BissEmulator::from_toml(
+            "[emulator]\nmax_line_clock_khz = 5000\n",
+            "s.toml",
+            20_000_000,
+        );
         assert!(ok.is_ok());
     }
 
     #[test]
     fn a_bad_slave_field_names_the_file_and_the_field() {
-        let err = BissEmulator::from_toml("[[slaves]]\nbits = 70\n", "s.toml", 80_000_000).err().unwrap().to_string();
+        let err = BissEmulator::from_toml("[[slaves]]\nbits = 70\n", "s.toml", 80_000_000)
+            .err()
+            .unwrap()
+            .to_string();
         assert!(err.starts_with("s.toml: field `slaves[0].bits`"), "{err}");
     }
 
     #[test]
     fn the_seed_scenario_file_is_accepted_whole() {
-        let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../scenarios/biss/seed_16bit.toml")).unwrap();
+        let text = std::fs::read_to_string(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../scenarios/biss/seed_16bit.toml"
+        ))
+        .unwrap();
         let emu = BissEmulator::from_toml(&text, "seed_16bit.toml", 80_000_000).unwrap();
         assert_eq!(emu.cfg.slaves[0].positions[0], 35555);
     }

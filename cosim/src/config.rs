@@ -31,18 +31,33 @@ pub enum Error {
 impl Error {
     /// A configuration error of `origin`.
     pub fn config(origin: &str, error: ConfigError) -> Self {
-        Error::Config { origin: origin.to_string(), error }
+        Error::Config {
+            origin: origin.to_string(),
+            error,
+        }
     }
 
     /// A field error of `origin`.
-    pub fn field(origin: &str, field: impl Into<String>, problem: impl Into<String>, fix: impl Into<String>) -> Self {
+    pub fn field(
+        origin: &str,
+        field: impl Into<String>,
+        problem: impl Into<String>,
+        fix: impl Into<String>,
+    ) -> Self {
         Error::config(origin, ConfigError::invalid(field, problem, fix))
     }
 }
 
 /// Keys of a scenario's protocol table that describe the master or the host
 /// side: an emulator reads a whole scenario file and leaves them alone.
-pub const SCENARIO_ONLY: &[&str] = &["master", "host", "f_sys_mhz", "reads", "name", "description"];
+pub const SCENARIO_ONLY: &[&str] = &[
+    "master",
+    "host",
+    "f_sys_mhz",
+    "reads",
+    "name",
+    "description",
+];
 
 /// The emulator's own table, `[emulator]` (or `[<proto>.emulator]`).
 #[derive(Debug, Clone, PartialEq, serde::Deserialize)]
@@ -64,10 +79,20 @@ pub struct Tables {
 /// Parses `text` and returns the protocol's tables: those under `[proto]`
 /// when the text is a scenario file, else the top level.
 pub fn tables(text: &str, origin: &str, proto: &str) -> Result<Tables, Error> {
-    let root: toml::Table = text.parse().map_err(|e: toml::de::Error| Error::Toml { origin: origin.to_string(), message: one_line(&e.to_string()) })?;
+    let root: toml::Table = text.parse().map_err(|e: toml::de::Error| Error::Toml {
+        origin: origin.to_string(),
+        message: one_line(&e.to_string()),
+    })?;
     let mut device = match root.get(proto) {
         Some(toml::Value::Table(t)) => t.clone(),
-        Some(_) => return Err(Error::field(origin, proto, "is not a table", format!("write [{proto}] as a table header"))),
+        Some(_) => {
+            return Err(Error::field(
+                origin,
+                proto,
+                "is not a table",
+                format!("write [{proto}] as a table header"),
+            ))
+        }
         None => {
             let mut t = root.clone();
             t.remove("name");
@@ -79,15 +104,28 @@ pub fn tables(text: &str, origin: &str, proto: &str) -> Result<Tables, Error> {
         device.remove(*key);
     }
     let emulator = match device.remove("emulator") {
-        Some(v) => v.try_into().map_err(|e: toml::de::Error| Error::Toml { origin: origin.to_string(), message: format!("table `emulator`: {}", one_line(&e.to_string())) })?,
-        None => EmulatorSettings { max_line_clock_khz: None },
+        Some(v) => v.try_into().map_err(|e: toml::de::Error| Error::Toml {
+            origin: origin.to_string(),
+            message: format!("table `emulator`: {}", one_line(&e.to_string())),
+        })?,
+        None => EmulatorSettings {
+            max_line_clock_khz: None,
+        },
     };
     Ok(Tables { device, emulator })
 }
 
 /// Deserialises a table into `T`, naming `origin` in the error.
-pub fn decode<T: serde::de::DeserializeOwned>(table: toml::Table, origin: &str) -> Result<T, Error> {
-    toml::Value::Table(table).try_into().map_err(|e: toml::de::Error| Error::Toml { origin: origin.to_string(), message: one_line(&e.to_string()) })
+pub fn decode<T: serde::de::DeserializeOwned>(
+    table: toml::Table,
+    origin: &str,
+) -> Result<T, Error> {
+    toml::Value::Table(table)
+        .try_into()
+        .map_err(|e: toml::de::Error| Error::Toml {
+            origin: origin.to_string(),
+            message: one_line(&e.to_string()),
+        })
 }
 
 fn one_line(s: &str) -> String {
@@ -97,10 +135,21 @@ fn one_line(s: &str) -> String {
 /// Checks the emulator clock and returns its timebase: it must be a usable
 /// clock (whole picoseconds) and at least 4 times the fastest line clock
 /// (two samples per half period, as the cores need with `CLOCKS_PER_BIT >= 4`).
-pub fn emulator_clock(f_emu_hz: u64, settings: &EmulatorSettings, default_max_khz: f64, proto: &str, origin: &str) -> Result<Timebase, Error> {
+pub fn emulator_clock(
+    f_emu_hz: u64,
+    settings: &EmulatorSettings,
+    default_max_khz: f64,
+    proto: &str,
+    origin: &str,
+) -> Result<Timebase, Error> {
     let max_khz = settings.max_line_clock_khz.unwrap_or(default_max_khz);
     if !(max_khz > 0.0 && max_khz <= 1e6) {
-        return Err(Error::field(origin, "emulator.max_line_clock_khz", format!("{max_khz} kHz"), "give the fastest line clock in kHz"));
+        return Err(Error::field(
+            origin,
+            "emulator.max_line_clock_khz",
+            format!("{max_khz} kHz"),
+            "give the fastest line clock in kHz",
+        ));
     }
     let minimum = (4.0 * max_khz * 1e3).ceil() as u64;
     if f_emu_hz < minimum {
@@ -114,5 +163,9 @@ pub fn emulator_clock(f_emu_hz: u64, settings: &EmulatorSettings, default_max_kh
             "{origin}: emulator clock f_emu = {f_emu_hz} Hz has no whole-picosecond period (or is above 1 GHz); give a clock such as 50, 64, 80 or 100 MHz"
         )));
     }
-    Timebase::new(f_emu_hz).map_err(|e| Error::Usage(format!("{origin}: emulator clock f_emu = {f_emu_hz} Hz: {e}")))
+    Timebase::new(f_emu_hz).map_err(|e| {
+        Error::Usage(format!(
+            "{origin}: emulator clock f_emu = {f_emu_hz} Hz: {e}"
+        ))
+    })
 }

@@ -34,8 +34,14 @@ fn guard<T>(fail: T, f: impl FnOnce() -> Result<T, Error>) -> T {
             fail
         }
         Err(p) => {
-            let what = p.downcast_ref::<&str>().map(|s| s.to_string()).or_else(|| p.downcast_ref::<String>().cloned()).unwrap_or_default();
-            set_error(format!("internal error in the emulator library (please report): {what}"));
+            let what = p
+                .downcast_ref::<&str>()
+                .map(|s| s.to_string())
+                .or_else(|| p.downcast_ref::<String>().cloned())
+                .unwrap_or_default();
+            set_error(format!(
+                "internal error in the emulator library (please report): {what}"
+            ));
             fail
         }
     }
@@ -48,14 +54,26 @@ fn text(p: *const c_char, what: &str) -> Result<String, Error> {
     // SAFETY: the caller passes a NUL-terminated string (DPI-C and VPI both do).
     let s = unsafe { CStr::from_ptr(p) };
     // A wide Verilog reg carries leading spaces (or NULs) before its characters.
-    s.to_str().map(|t| t.trim_matches(|c: char| c == '\0' || c.is_whitespace()).to_string()).map_err(|_| Error::Usage(format!("{what} is not UTF-8")))
+    s.to_str()
+        .map(|t| {
+            t.trim_matches(|c: char| c == '\0' || c.is_whitespace())
+                .to_string()
+        })
+        .map_err(|_| Error::Usage(format!("{what} is not UTF-8")))
 }
 
 fn with<T>(handle: i32, f: impl FnOnce(&mut dyn Emulator) -> Result<T, Error>) -> Result<T, Error> {
     let mut table = TABLE.lock().unwrap_or_else(|e| e.into_inner());
-    match usize::try_from(handle).ok().and_then(|h| h.checked_sub(1)).and_then(|i| table.get_mut(i)).and_then(|e| e.as_mut()) {
+    match usize::try_from(handle)
+        .ok()
+        .and_then(|h| h.checked_sub(1))
+        .and_then(|i| table.get_mut(i))
+        .and_then(|e| e.as_mut())
+    {
         Some(emu) => f(emu.as_mut()),
-        None => Err(Error::Usage(format!("emulator handle {handle} is not open"))),
+        None => Err(Error::Usage(format!(
+            "emulator handle {handle} is not open"
+        ))),
     }
 }
 
@@ -66,7 +84,14 @@ fn register(emu: Box<dyn Emulator>) -> i32 {
 }
 
 fn frequency(f_emu_hz: i64) -> Result<u64, Error> {
-    u64::try_from(f_emu_hz).ok().filter(|&f| f > 0).ok_or_else(|| Error::Usage(format!("emulator clock {f_emu_hz} Hz: give a positive frequency in Hz")))
+    u64::try_from(f_emu_hz)
+        .ok()
+        .filter(|&f| f > 0)
+        .ok_or_else(|| {
+            Error::Usage(format!(
+                "emulator clock {f_emu_hz} Hz: give a positive frequency in Hz"
+            ))
+        })
 }
 
 /// Opens an emulator of `kind` (`"ssi"`, `"biss"`) from the TOML file at
@@ -79,7 +104,11 @@ pub extern "C" fn emu_open(kind: *const c_char, path: *const c_char, f_emu_hz: i
         if path.is_empty() {
             return Err(Error::Usage(format!("no configuration file for the {kind} emulator: set the wrapper's CONFIG parameter or its plusarg to a TOML file")));
         }
-        let toml = std::fs::read_to_string(&path).map_err(|e| Error::Usage(format!("{path}: cannot read the emulator configuration: {e}; check the path")))?;
+        let toml = std::fs::read_to_string(&path).map_err(|e| {
+            Error::Usage(format!(
+                "{path}: cannot read the emulator configuration: {e}; check the path"
+            ))
+        })?;
         Ok(register(open(&kind, &toml, &path, frequency(f_emu_hz)?)?))
     })
 }
@@ -88,14 +117,29 @@ pub extern "C" fn emu_open(kind: *const c_char, path: *const c_char, f_emu_hz: i
 /// `err_buf` is not null, writes the message there (NUL-terminated,
 /// truncated to `err_len` bytes).
 #[no_mangle]
-pub extern "C" fn emu_create(kind: *const c_char, toml: *const c_char, f_emu_hz: i64, err_buf: *mut c_char, err_len: usize) -> i32 {
+pub extern "C" fn emu_create(
+    kind: *const c_char,
+    toml: *const c_char,
+    f_emu_hz: i64,
+    err_buf: *mut c_char,
+    err_len: usize,
+) -> i32 {
     let h = guard(-1, || {
         let kind = text(kind, "kind")?;
         let toml = text(toml, "toml")?;
-        Ok(register(open(&kind, &toml, "<toml>", frequency(f_emu_hz)?)?))
+        Ok(register(open(
+            &kind,
+            &toml,
+            "<toml>",
+            frequency(f_emu_hz)?,
+        )?))
     });
     if h < 0 && !err_buf.is_null() && err_len > 0 {
-        let msg = LAST_ERROR.lock().unwrap_or_else(|e| e.into_inner()).clone().unwrap_or_default();
+        let msg = LAST_ERROR
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .clone()
+            .unwrap_or_default();
         let bytes = msg.as_bytes();
         let n = bytes.len().min(err_len - 1);
         // SAFETY: the caller gives a buffer of at least err_len bytes.
@@ -112,13 +156,20 @@ pub extern "C" fn emu_create(kind: *const c_char, toml: *const c_char, f_emu_hz:
 /// 0 data, bit 1 driver enable), or -1 for a bad handle.
 #[no_mangle]
 pub extern "C" fn emu_step(handle: i32, pins: i32) -> i32 {
-    guard(-1, || with(handle, |e| Ok(e.step(Pins(pins as u32)).0 as i32)))
+    guard(-1, || {
+        with(handle, |e| Ok(e.step(Pins(pins as u32)).0 as i32))
+    })
 }
 
 /// Device `device`'s position from its next latch on (the testbench owns it from now).
 #[no_mangle]
 pub extern "C" fn emu_set_position(handle: i32, device: i32, position: i64) -> i32 {
-    guard(-1, || with(handle, |e| e.set_position(device.max(0) as usize, position as u64).map(|_| 0)))
+    guard(-1, || {
+        with(handle, |e| {
+            e.set_position(device.max(0) as usize, position as u64)
+                .map(|_| 0)
+        })
+    })
 }
 
 /// Sets one status (`"error"`, `"warning"`, ...) of device `device` to `value` (0 or 1).
@@ -126,7 +177,10 @@ pub extern "C" fn emu_set_position(handle: i32, device: i32, position: i64) -> i
 pub extern "C" fn emu_set_status(handle: i32, device: i32, name: *const c_char, value: i32) -> i32 {
     guard(-1, || {
         let name = text(name, "status name")?;
-        with(handle, |e| e.set_status(device.max(0) as usize, &name, value != 0).map(|_| 0))
+        with(handle, |e| {
+            e.set_status(device.max(0) as usize, &name, value != 0)
+                .map(|_| 0)
+        })
     })
 }
 
@@ -150,7 +204,12 @@ pub extern "C" fn emu_count(handle: i32) -> i64 {
 /// check [`emu_count`]).
 #[no_mangle]
 pub extern "C" fn emu_last_value(handle: i32, device: i32) -> i64 {
-    guard(-1, || with(handle, |e| Ok(e.last_value(device.max(0) as usize).map_or(-1, |v| v as i64))))
+    guard(-1, || {
+        with(handle, |e| {
+            Ok(e.last_value(device.max(0) as usize)
+                .map_or(-1, |v| v as i64))
+        })
+    })
 }
 
 /// A status (0 or 1) device `device` reported in the last transaction, or -1.
@@ -158,7 +217,10 @@ pub extern "C" fn emu_last_value(handle: i32, device: i32) -> i64 {
 pub extern "C" fn emu_last_status(handle: i32, device: i32, name: *const c_char) -> i32 {
     guard(-1, || {
         let name = text(name, "status name")?;
-        with(handle, |e| e.last_status(device.max(0) as usize, &name).map(|b| b as i32))
+        with(handle, |e| {
+            e.last_status(device.max(0) as usize, &name)
+                .map(|b| b as i32)
+        })
     })
 }
 
@@ -169,7 +231,8 @@ pub extern "C" fn emu_write_transcript(handle: i32, path: *const c_char) -> i32 
         let path = text(path, "path")?;
         let json = with(handle, |e| Ok(e.transcript()))?;
         let body = serde_json::to_string_pretty(&json).map_err(|e| Error::Usage(e.to_string()))?;
-        std::fs::write(&path, body + "\n").map_err(|e| Error::Usage(format!("{path}: cannot write the transcript: {e}")))?;
+        std::fs::write(&path, body + "\n")
+            .map_err(|e| Error::Usage(format!("{path}: cannot write the transcript: {e}")))?;
         Ok(0)
     })
 }
@@ -192,12 +255,18 @@ pub extern "C" fn emu_transcript(handle: i32) -> *const c_char {
 pub extern "C" fn emu_close(handle: i32) -> i32 {
     guard(-1, || {
         let mut table = TABLE.lock().unwrap_or_else(|e| e.into_inner());
-        match usize::try_from(handle).ok().and_then(|h| h.checked_sub(1)).and_then(|i| table.get_mut(i)) {
+        match usize::try_from(handle)
+            .ok()
+            .and_then(|h| h.checked_sub(1))
+            .and_then(|i| table.get_mut(i))
+        {
             Some(slot @ Some(_)) => {
                 *slot = None;
                 Ok(0)
             }
-            _ => Err(Error::Usage(format!("emulator handle {handle} is not open"))),
+            _ => Err(Error::Usage(format!(
+                "emulator handle {handle} is not open"
+            ))),
         }
     })
 }
@@ -218,29 +287,49 @@ mod tests {
 
     fn last_error() -> String {
         // SAFETY: emu_last_error returns a valid NUL-terminated string.
-        unsafe { CStr::from_ptr(emu_last_error()) }.to_string_lossy().into_owned()
+        unsafe { CStr::from_ptr(emu_last_error()) }
+            .to_string_lossy()
+            .into_owned()
     }
 
     #[test]
     fn a_missing_file_is_an_error_value_naming_the_path() {
         let h = emu_open(c"ssi".as_ptr(), c"/no/such/emu.toml".as_ptr(), 50_000_000);
         assert_eq!(h, -1);
-        assert!(last_error().contains("/no/such/emu.toml"), "{}", last_error());
+        assert!(
+            last_error().contains("/no/such/emu.toml"),
+            "{}",
+            last_error()
+        );
     }
 
     #[test]
     fn create_writes_its_error_into_the_callers_buffer() {
         let mut buf = [0 as c_char; 256];
-        let h = emu_create(c"biss".as_ptr(), c"[[slaves]]\nbits = 0\n".as_ptr(), 80_000_000, buf.as_mut_ptr(), buf.len());
+        let h = emu_create(
+            c"biss".as_ptr(),
+            c"[[slaves]]\nbits = 0\n".as_ptr(),
+            80_000_000,
+            buf.as_mut_ptr(),
+            buf.len(),
+        );
         assert_eq!(h, -1);
         // SAFETY: emu_create NUL-terminates within the buffer.
-        let msg = unsafe { CStr::from_ptr(buf.as_ptr()) }.to_string_lossy().into_owned();
+        let msg = unsafe { CStr::from_ptr(buf.as_ptr()) }
+            .to_string_lossy()
+            .into_owned();
         assert!(msg.contains("slaves[0].bits"), "{msg}");
     }
 
     #[test]
     fn a_closed_or_unknown_handle_is_refused() {
-        let h = emu_create(c"ssi".as_ptr(), c"".as_ptr(), 50_000_000, std::ptr::null_mut(), 0);
+        let h = emu_create(
+            c"ssi".as_ptr(),
+            c"".as_ptr(),
+            50_000_000,
+            std::ptr::null_mut(),
+            0,
+        );
         assert!(h > 0);
         assert_eq!(emu_close(h), 0);
         assert_eq!(emu_step(h, 1), -1);

@@ -104,8 +104,14 @@ pub trait Emulator: Send {
 /// text in errors, normally its file), clocked at `f_emu_hz`.
 pub fn open(kind: &str, toml: &str, origin: &str, f_emu_hz: u64) -> Result<Box<dyn Emulator>> {
     match kind {
-        "ssi" => Ok(Box::new(ssi::SsiEmulator::from_toml(toml, origin, f_emu_hz)?)),
-        "biss" => Ok(Box::new(biss::BissEmulator::from_toml(toml, origin, f_emu_hz)?)),
-        other => Err(Error::Usage(format!("no emulator `{other}`; give one of: ssi, biss"))),
+        "ssi" => Ok(Box::new(ssi::SsiEmulator::from_toml(
+            toml, origin, f_emu_hz,
+        )?)),
+        "biss" => Ok(Box::new(biss::BissEmulator::from_toml(
+            toml, origin, f_emu_hz,
+        )?)),
+        other => Err(Error::Usage(format!(
+            "no emulator `{other}`; give one of: ssi, biss"
+        ))),
     }
 }

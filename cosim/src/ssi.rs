@@ -42,7 +42,13 @@ pub struct SsiConfig {
 
 impl Default for SsiConfig {
     fn default() -> Self {
-        SsiConfig { encoder: EncoderSettings::default(), cable: CableConfig::default(), fault: None, positions: vec![0], step: 0 }
+        SsiConfig {
+            encoder: EncoderSettings::default(),
+            cable: CableConfig::default(),
+            fault: None,
+            positions: vec![0],
+            step: 0,
+        }
     }
 }
 
@@ -90,18 +96,47 @@ impl SsiEmulator {
         let tables = config::tables(text, origin, "ssi")?;
         let tb = config::emulator_clock(f_emu_hz, &tables.emulator, MAX_CLOCK_KHZ, "SSI", origin)?;
         let cfg: SsiConfig = config::decode(tables.device, origin)?;
-        cfg.cable.validate("cable").map_err(|e| Error::config(origin, e))?;
+        cfg.cable
+            .validate("cable")
+            .map_err(|e| Error::config(origin, e))?;
         // The model converts the encoder's times to cycles of its clock: here the emulator's.
-        let bench = BenchConfig { f_sys_mhz: tb.f_sys_hz() as f64 / 1e6, encoder: cfg.encoder.clone(), ..BenchConfig::default() };
-        let enc_cfg = bench.encoder_config().map_err(|e| Error::config(origin, e))?;
-        let limit = if enc_cfg.bits == 64 { u64::MAX } else { (1u64 << enc_cfg.bits) - 1 };
+        let bench = BenchConfig {
+            f_sys_mhz: tb.f_sys_hz() as f64 / 1e6,
+            encoder: cfg.encoder.clone(),
+            ..BenchConfig::default()
+        };
+        let enc_cfg = bench
+            .encoder_config()
+            .map_err(|e| Error::config(origin, e))?;
+        let limit = if enc_cfg.bits == 64 {
+            u64::MAX
+        } else {
+            (1u64 << enc_cfg.bits) - 1
+        };
         if let Some((i, p)) = cfg.positions.iter().enumerate().find(|(_, p)| **p > limit) {
-            return Err(Error::field(origin, format!("positions[{i}]"), format!("{p} does not fit a {}-bit encoder", enc_cfg.bits), format!("give positions from 0 to {limit}")));
+            return Err(Error::field(
+                origin,
+                format!("positions[{i}]"),
+                format!("{p} does not fit a {}-bit encoder", enc_cfg.bits),
+                format!("give positions from 0 to {limit}"),
+            ));
         }
         let (to_encoder, to_master) = cfg.cable.lines(&tb, true);
         let (gray, bits) = (enc_cfg.gray, enc_cfg.bits);
         let encoder = Encoder::new(enc_cfg).map_err(|e| Error::config(origin, e))?;
-        let mut emu = SsiEmulator { f_emu_hz, cfg, encoder, gray, bits, to_encoder, to_master, owned: None, stuck: None, cycle: 0, entries: Vec::new() };
+        let mut emu = SsiEmulator {
+            f_emu_hz,
+            cfg,
+            encoder,
+            gray,
+            bits,
+            to_encoder,
+            to_master,
+            owned: None,
+            stuck: None,
+            cycle: 0,
+            entries: Vec::new(),
+        };
         emu.prepare(0);
         Ok(emu)
     }
@@ -112,7 +147,11 @@ impl SsiEmulator {
             Some(p) => p,
             None => {
                 let list = &self.cfg.positions;
-                let listed = if list.is_empty() { 0 } else { list[(k % list.len() as u64) as usize] };
+                let listed = if list.is_empty() {
+                    0
+                } else {
+                    list[(k % list.len() as u64) as usize]
+                };
                 listed.wrapping_add(k.wrapping_mul(self.cfg.step))
             }
         };
@@ -165,7 +204,9 @@ impl Emulator for SsiEmulator {
 
     fn set_position(&mut self, device: usize, position: u64) -> Result<()> {
         if device != 0 {
-            return Err(Error::Usage(format!("SSI has one encoder (device 0), not device {device}")));
+            return Err(Error::Usage(format!(
+                "SSI has one encoder (device 0), not device {device}"
+            )));
         }
         self.owned = Some(position);
         self.encoder.set_position(position);
@@ -173,7 +214,9 @@ impl Emulator for SsiEmulator {
     }
 
     fn set_status(&mut self, _device: usize, name: &str, _value: bool) -> Result<()> {
-        Err(Error::Usage(format!("an SSI encoder reports no status (`{name}`): its frame is the position alone")))
+        Err(Error::Usage(format!(
+            "an SSI encoder reports no status (`{name}`): its frame is the position alone"
+        )))
     }
 
     fn schedule_fault(&mut self, toml: &str) -> Result<()> {
@@ -189,11 +232,15 @@ impl Emulator for SsiEmulator {
     }
 
     fn last_value(&self, device: usize) -> Option<u64> {
-        (device == 0).then(|| self.entries.last().map(|e| e.position)).flatten()
+        (device == 0)
+            .then(|| self.entries.last().map(|e| e.position))
+            .flatten()
     }
 
     fn last_status(&self, _device: usize, name: &str) -> Result<bool> {
-        Err(Error::Usage(format!("an SSI encoder reports no status (`{name}`)")))
+        Err(Error::Usage(format!(
+            "an SSI encoder reports no status (`{name}`)"
+        )))
     }
 
     fn transcript(&self) -> serde_json::Value {
@@ -211,22 +258,35 @@ mod tests {
 
     #[test]
     fn a_missing_field_value_names_the_file_and_field() {
-        let err = SsiEmulator::from_toml("[encoder]\nbits = 0\n", "enc.toml", 50_000_000).err().unwrap().to_string();
+        let err = SsiEmulator::from_toml("[encoder]\nbits = 0\n", "enc.toml", 50_000_000)
+            .err()
+            .unwrap()
+            .to_string();
         assert!(err.starts_with("enc.toml: field `encoder.bits`"), "{err}");
-        let err = SsiEmulator::from_toml("[encoder]\nbitz = 12\n", "enc.toml", 50_000_000).err().unwrap().to_string();
+        let err = SsiEmulator::from_toml("[encoder]\nbitz = 12\n", "enc.toml", 50_000_000)
+            .err()
+            .unwrap()
+            .to_string();
         assert!(err.contains("enc.toml") && err.contains("bitz"), "{err}");
     }
 
     #[test]
     fn an_emulator_clock_below_four_times_250_khz_is_refused_with_the_minimum() {
-        let err = SsiEmulator::from_toml("", "e.toml", 500_000).err().unwrap().to_string();
+        let err = SsiEmulator::from_toml("", "e.toml", 500_000)
+            .err()
+            .unwrap()
+            .to_string();
         assert!(err.contains("at least 1000000 Hz"), "{err}");
         assert!(SsiEmulator::from_toml("", "e.toml", 1_000_000).is_ok());
     }
 
     #[test]
     fn a_whole_scenario_file_is_accepted_and_its_master_ignored() {
-        let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../scenarios/ssi/seed_12bit.toml")).unwrap();
+        let text = std::fs::read_to_string(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../scenarios/ssi/seed_12bit.toml"
+        ))
+        .unwrap();
         let emu = SsiEmulator::from_toml(&text, "seed_12bit.toml", 50_000_000).unwrap();
         assert_eq!(emu.cfg.positions, vec![495, 0, 4095, 2730]);
     }

@@ -69,6 +69,7 @@ reg ma_known = 1'b0;
 reg x_reported = 1'b0;
 reg slo_reg = 1'b1;
 integer pins_out;
+reg [63:0] emu_cycle = 0;
 
 always @(posedge i_emu_clk) begin
     if (i_ma === 1'b0 || i_ma === 1'b1) begin
@@ -76,7 +77,7 @@ always @(posedge i_emu_clk) begin
         ma_known = 1'b1;
         x_reported = 1'b0;
     end else if (ma_known && !x_reported) begin
-        $display("ERROR: %m: X or Z on emulator input i_ma at time %0t (held at %b, not read as data)", $time, ma_level);
+        $display("ERROR: %m: X or Z on emulator input i_ma at time %0t, emulator cycle %0d (held at %b, not read as data)", $time, emu_cycle, ma_level);
         x_reported = 1'b1;
         if (STOP_ON_X)
             $fatal(1, "emulator input i_ma is X or Z");
@@ -84,6 +85,7 @@ always @(posedge i_emu_clk) begin
     pins_out = emu_call_step({31'd0, ma_level});
     if (pins_out < 0)
         emu_fail("step");
+    emu_cycle = emu_cycle + 1;
     slo_reg <= pins_out[0];
 end
 

@@ -8,13 +8,23 @@ use std::process::ExitCode;
 
 use model::Setup;
 
-fn params<S: Setup + serde::de::DeserializeOwned>(table: toml::Table, origin: &str) -> Result<Vec<(String, u64)>, String> {
-    let cfg: S = toml::Value::Table(table).try_into().map_err(|e: toml::de::Error| format!("{origin}: {}", e.to_string().trim()))?;
+fn params<S: Setup + serde::de::DeserializeOwned>(
+    table: toml::Table,
+    origin: &str,
+) -> Result<Vec<(String, u64)>, String> {
+    let cfg: S = toml::Value::Table(table)
+        .try_into()
+        .map_err(|e: toml::de::Error| format!("{origin}: {}", e.to_string().trim()))?;
     let err = |e: model::ConfigError| format!("{origin}: {e}");
     cfg.validate().map_err(err)?;
     let tb = cfg.timebase().map_err(err)?;
     let mut out = vec![("F_SYS_HZ".to_string(), tb.f_sys_hz())];
-    out.extend(cfg.verilog_parameters().map_err(err)?.into_iter().map(|(k, v)| (k.to_string(), v)));
+    out.extend(
+        cfg.verilog_parameters()
+            .map_err(err)?
+            .into_iter()
+            .map(|(k, v)| (k.to_string(), v)),
+    );
     Ok(out)
 }
 
@@ -23,9 +33,13 @@ fn run(args: &[String]) -> Result<Vec<(String, u64)>, String> {
         return Err("usage: cosim-params <ssi|biss> <scenario.toml>".into());
     };
     let text = std::fs::read_to_string(path).map_err(|e| format!("{path}: {e}"))?;
-    let root: toml::Table = text.parse().map_err(|e: toml::de::Error| format!("{path}: {}", e.to_string().trim()))?;
+    let root: toml::Table = text
+        .parse()
+        .map_err(|e: toml::de::Error| format!("{path}: {}", e.to_string().trim()))?;
     let Some(toml::Value::Table(table)) = root.get(proto.as_str()) else {
-        return Err(format!("{path}: no [{proto}] table; a closed-loop configuration is a scenario file"));
+        return Err(format!(
+            "{path}: no [{proto}] table; a closed-loop configuration is a scenario file"
+        ));
     };
     let mut table = table.clone();
     table.remove("emulator");

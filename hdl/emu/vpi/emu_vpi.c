@@ -104,7 +104,7 @@ static void report(const char *what) {
     t.type = vpiSimTime;
     vpi_get_time(NULL, &t);
     uint64_t now = ((uint64_t)(uint32_t)t.high << 32) | (uint32_t)t.low;
-    vpi_printf("ERROR: %s at time %llu: %s\n", what, (unsigned long long)now, emu_last_error());
+    vpi_printf("ERROR: %s at simulation time %llu: %s\n", what, (unsigned long long)now, emu_last_error());
 }
 
 static int32_t check(int32_t r, const char *what) {
