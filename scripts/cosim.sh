@@ -72,7 +72,7 @@ for cfg in "${configs[@]}"; do
         fi
         flock -u 9
         start=$(date +%s.%N)
-        vvp -n -M "$EMU_VPI_DIR" -m emu "$build/tb.vvp" "${plusargs[@]}" || status=1
+        vvp -n -M "$EMU_VPI_DIR" -m emu "$build/tb.vvp" "${plusargs[@]}" > "$build/run.log" 2>&1 || status=1
         ;;
     verilator)
         if [ ! -x "$build/Vtb" ]; then
@@ -88,12 +88,16 @@ for cfg in "${configs[@]}"; do
         fi
         flock -u 9
         start=$(date +%s.%N)
-        "$build/Vtb" "${plusargs[@]}" || status=1
+        "$build/Vtb" "${plusargs[@]}" > "$build/run.log" 2>&1 || status=1
         ;;
     esac
     end=$(date +%s.%N)
+    grep -v '^cycles ' "$build/run.log" || true
     total=$(( total + per ))
-    echo "cosim: $core $sim $(basename "$cfg"): $per transactions run in $(printf '%.2f' "$(echo "$end - $start" | bc)") s"
+    cycles=$(sed -n 's/^cycles //p' "$build/run.log")
+    seconds=$(awk "BEGIN { printf \"%.3f\", $end - $start }")
+    rate=$(awk "BEGIN { if (\"$cycles\" != \"\") printf \"%.0f\", ${cycles:-0} / $seconds; else printf \"-\" }")
+    echo "cosim: $core $sim $(basename "$cfg"): $per transactions, ${cycles:-?} cycles in $seconds s ($rate cycles/s)"
 done
 echo "cosim: $core $sim: $total transactions over ${#configs[@]} configuration(s), $([ $status = 0 ] && echo pass || echo FAIL)"
 exit $status

@@ -34,6 +34,10 @@ reg clk = 1'b0;
 reg rst = 1'b1;
 always #(HALF_PERIOD_FS) clk = ~clk;
 
+// System-clock cycles simulated (for the speed figures of scripts/cosim.sh).
+reg [63:0] cycles = 0;
+always @(posedge clk) cycles <= cycles + 1;
+
 reg i_start = 1'b0;
 wire o_ma, slo;
 wire o_busy, o_done, o_err_line, o_err_ack, o_err_delay, o_err_start, o_err_timeout, o_err_drift;
@@ -165,6 +169,7 @@ initial begin
             $fatal(1, "frame %0d at %0t: the emulator counted %0d frames", n, $time, u_emu.count(0));
         while (o_busy) @(posedge clk);
     end
+    $display("cycles %0d", cycles);
     $display("PASS tb_cosim_biss_master: %0d frames x %0d slave(s), every o_data, o_error, o_warning equal to the emulator's", transactions, SLAVES);
     $finish;
 end

@@ -32,6 +32,10 @@ reg clk = 1'b0;
 reg rst = 1'b1;
 always #(HALF_PERIOD_FS) clk = ~clk;
 
+// System-clock cycles simulated (for the speed figures of scripts/cosim.sh).
+reg [63:0] cycles = 0;
+always @(posedge clk) cycles <= cycles + 1;
+
 reg i_start = 1'b0;
 wire o_ssi_clk, ssi_data;
 wire o_busy, o_done, o_err_idle, o_err_double, o_err_wire;
@@ -107,6 +111,7 @@ initial begin
                    n, $time, got, o_err_idle, o_err_double, o_err_wire, sent);
         while (o_busy) @(posedge clk);
     end
+    $display("cycles %0d", cycles);
     $display("PASS tb_cosim_ssi_master: %0d reads, every o_position equal to the emulator's", transactions);
     $finish;
 end
