@@ -22,6 +22,7 @@ use model::bits;
 use model::line::{CableConfig, DelayLine};
 use model::Timebase;
 
+use crate::check::{Checks, Violation, VIOLATION_PENDING};
 use crate::config::{self, Error};
 use crate::{Emulator, Pins, Result};
 
@@ -42,6 +43,34 @@ pub struct BissConfig {
     pub stuck: Option<StuckFault>,
     /// A change of the line delay.
     pub delay_step: Option<DelayStep>,
+    /// The timing limits the master is held to.
+    pub checks: BissChecks,
+}
+
+/// The master's timing limits (`[checks]`), by default the seed's (seed 001,
+/// BiSS-C: `TMAS > 100 ns`; the master starts a frame only when the slave
+/// has ended its timeout, SLO high again).
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct BissChecks {
+    /// Least MA period within a frame, ns.
+    pub min_tmas_ns: f64,
+}
+
+impl Default for BissChecks {
+    fn default() -> Self {
+        BissChecks { min_tmas_ns: 100.0 }
+    }
+}
+
+/// The checker's state: MA as it leaves the master.
+#[derive(Debug, Clone, Default)]
+struct Watch {
+    last_ma: bool,
+    last_edge: u64,
+    last_rise: Option<u64>,
+    in_frame: bool,
+    last_low: u64,
 }
 
 impl Default for BissConfig {
@@ -52,6 +81,7 @@ impl Default for BissConfig {
             flips: Vec::new(),
             stuck: None,
             delay_step: None,
+            checks: BissChecks::default(),
         }
     }
 }
@@ -109,6 +139,11 @@ pub struct BissEmulator {
     stuck: Option<bool>,
     cycle: u64,
     entries: Vec<Entry>,
+    timeout: u64,
+    min_tmas: f64,
+    slo_at_slaves: bool,
+    watch: Watch,
+    checks: Checks,
 }
 
 impl BissEmulator {
@@ -164,6 +199,25 @@ impl BissEmulator {
         let chain = Chain::new(slaves, tb.cycles_nearest_ns(cfg.slaves[0].output_delay_ns));
         let (to_slaves, to_master) = cfg.cable.lines(&tb, true);
         let owned = vec![Owned::default(); cfg.slaves.len()];
+        if !(cfg.checks.min_tmas_ns >= 0.0 && cfg.checks.min_tmas_ns < 1e9) {
+            return Err(Error::field(
+                origin,
+                "checks.min_tmas_ns",
+                format!("{}", cfg.checks.min_tmas_ns),
+                "give the least MA period in ns (seed: 100)",
+            ));
+        }
+        let mut timeout = 1;
+        for i in 0..cfg.slaves.len() {
+            timeout = timeout.max(
+                bench
+                    .slave_config(i)
+                    .map_err(|e| Error::config(origin, e))?
+                    .timeout_clocks,
+            );
+        }
+        let checks = Checks::new(tb.period_ps());
+        let min_tmas = checks.cycles_of_ns(cfg.checks.min_tmas_ns) - 1.0;
         let mut emu = BissEmulator {
             f_emu_hz,
             tb,
@@ -176,6 +230,14 @@ impl BissEmulator {
             stuck: None,
             cycle: 0,
             entries: Vec::new(),
+            timeout,
+            min_tmas,
+            slo_at_slaves: true,
+            watch: Watch {
+                last_ma: true,
+                ..Watch::default()
+            },
+            checks,
         };
         emu.prepare(0);
         emu.apply_line_faults();
@@ -230,6 +292,50 @@ impl BissEmulator {
         &self.entries
     }
 
+    /// Holds the master's MA (at its own pin) to the seed's limits.
+    fn check(&mut self, ma: bool) {
+        let now = self.cycle;
+        let w = &mut self.watch;
+        if ma != w.last_ma {
+            // MA high for more than 4 of the frame's half periods has stopped:
+            // the next falling edge is the master's new start.
+            let stopped = w.in_frame && now - w.last_edge > 4 * w.last_low.max(1);
+            if ma {
+                w.last_low = now - w.last_edge;
+            }
+            if !ma && (!w.in_frame || stopped) {
+                w.in_frame = true;
+                w.last_rise = None;
+                if !self.slo_at_slaves {
+                    self.checks.push(
+                        now,
+                        "frame start (seed 001, BiSS-C: start a frame only after the slave's timeout, SLO high)",
+                        "MA fell while the slave still held SLO low".to_string(),
+                    );
+                }
+            }
+            if ma {
+                if let Some(r) = w.last_rise {
+                    if ((now - r) as f64) < self.min_tmas {
+                        self.checks.push(
+                            now,
+                            "TMAS (seed 001, BiSS-C: TMAS > 100 ns)",
+                            format!(
+                                "MA period {:.1} ns within a frame",
+                                self.checks.us(now - r) * 1e3
+                            ),
+                        );
+                    }
+                }
+                w.last_rise = Some(now);
+            }
+            w.last_ma = ma;
+            w.last_edge = now;
+        } else if w.in_frame && now - w.last_edge >= self.timeout {
+            w.in_frame = false;
+        }
+    }
+
     fn slave_index(&self, device: usize) -> Result<usize> {
         if device < self.owned.len() {
             Ok(device)
@@ -282,10 +388,12 @@ impl Emulator for BissEmulator {
     }
 
     fn step(&mut self, pins: Pins) -> Pins {
+        self.check(pins.data());
         let ma = self.to_slaves.step(pins.data());
         let latches = self.chain.latches();
         let frames = self.chain.frames();
         let slo = self.chain.step(ma);
+        self.slo_at_slaves = slo;
         if self.chain.latches() != latches {
             let slaves = self
                 .chain
@@ -319,7 +427,12 @@ impl Emulator for BissEmulator {
             at_master = extra.step(at_master);
         }
         self.cycle += 1;
-        Pins::line(self.stuck.unwrap_or(at_master))
+        let flag = if self.checks.pending() {
+            VIOLATION_PENDING
+        } else {
+            0
+        };
+        Pins(self.stuck.unwrap_or(at_master) as u32 | flag)
     }
 
     fn set_position(&mut self, device: usize, position: u64) -> Result<()> {
@@ -395,7 +508,16 @@ impl Emulator for BissEmulator {
             "protocol": "biss",
             "f_emu_hz": self.f_emu_hz,
             "frames": self.entries,
+            "violations": self.checks.all(),
         })
+    }
+
+    fn violations(&self) -> &[Violation] {
+        self.checks.all()
+    }
+
+    fn take_violation(&mut self) -> Option<String> {
+        self.checks.take()
     }
 }
 
@@ -425,6 +547,43 @@ mod tests {
             .unwrap()
             .to_string();
         assert!(err.starts_with("s.toml: field `slaves[0].bits`"), "{err}");
+    }
+
+    /// One frame of `periods` MA periods of `half` cycles per half, then MA high for `rest` cycles.
+    fn frame(emu: &mut BissEmulator, periods: u32, half: u64, rest: u64) {
+        for _ in 0..periods {
+            for _ in 0..half {
+                emu.step(Pins::line(false));
+            }
+            for _ in 0..half {
+                emu.step(Pins::line(true));
+            }
+        }
+        for _ in 0..rest {
+            emu.step(Pins::line(true));
+        }
+    }
+
+    #[test]
+    fn tmas_below_100_ns_and_a_start_in_the_slaves_timeout_are_reported() {
+        // 80 MHz: 10 MHz MA = 4 cycles per half; the 16 us timeout is 1280 cycles.
+        let mut emu = BissEmulator::from_toml("", "s.toml", 80_000_000).unwrap();
+        frame(&mut emu, 40, 4, 1400);
+        assert!(emu.violations().is_empty(), "{:?}", emu.violations());
+        // 13.3 MHz (3 cycles per half), then a new frame 200 cycles after it: inside the timeout.
+        frame(&mut emu, 40, 3, 200);
+        frame(&mut emu, 40, 4, 1400);
+        let rules: Vec<&str> = emu
+            .violations()
+            .iter()
+            .map(|v| v.rule.split(' ').next().unwrap())
+            .collect();
+        assert_eq!(rules.first(), Some(&"TMAS"));
+        assert!(rules.contains(&"frame"), "{rules:?}");
+        assert!(emu
+            .take_violation()
+            .unwrap()
+            .contains("MA period 75.0 ns within a frame"));
     }
 
     #[test]

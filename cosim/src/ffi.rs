@@ -224,6 +224,26 @@ pub extern "C" fn emu_last_status(handle: i32, device: i32, name: *const c_char)
     })
 }
 
+/// Protocol violations of the master seen so far, or -1.
+#[no_mangle]
+pub extern "C" fn emu_violations(handle: i32) -> i64 {
+    guard(-1, || with(handle, |e| Ok(e.violations().len() as i64)))
+}
+
+/// The next violation not yet shown, as one line ("" when none); the
+/// pointer stays valid until the next call of this function. `emu_step`
+/// sets bit 7 of its result while one waits.
+#[no_mangle]
+pub extern "C" fn emu_take_violation(handle: i32) -> *const c_char {
+    guard(std::ptr::null(), || {
+        let line = with(handle, |e| Ok(e.take_violation().unwrap_or_default()))?;
+        let c = CString::new(line).map_err(|e| Error::Usage(e.to_string()))?;
+        let mut slot = TEXT.lock().unwrap_or_else(|e| e.into_inner());
+        *slot = Some(c);
+        Ok(slot.as_ref().map_or(std::ptr::null(), |c| c.as_ptr()))
+    })
+}
+
 /// Writes the transcript (JSON) to `path`. Returns 0 or -1.
 #[no_mangle]
 pub extern "C" fn emu_write_transcript(handle: i32, path: *const c_char) -> i32 {

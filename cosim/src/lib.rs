@@ -30,6 +30,7 @@
 //! ```
 
 pub mod biss;
+pub mod check;
 pub mod config;
 pub mod ffi;
 pub mod ssi;
@@ -45,7 +46,9 @@ pub type Result<T, E = Error> = std::result::Result<T, E>;
 /// In: bit 0 is the line clock the master drives (SSI clock, BiSS MA,
 /// EnDat clock); bit 1 the master's data line and bit 2 its driver enable
 /// (half-duplex protocols). Out: bit 0 the data the emulator drives towards
-/// the master (after the cable), bit 1 its driver enable.
+/// the master (after the cable), bit 1 its driver enable, bit 7 set when a
+/// protocol violation of the master waits to be shown
+/// ([`Emulator::take_violation`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct Pins(pub u32);
 
@@ -96,8 +99,15 @@ pub trait Emulator: Send {
     /// A status device `device` reported in the last transaction.
     fn last_status(&self, device: usize, name: &str) -> Result<bool>;
 
-    /// Everything the emulator sent, one entry per transaction.
+    /// Everything the emulator sent, one entry per transaction, and every
+    /// protocol violation of the master it saw.
     fn transcript(&self) -> serde_json::Value;
+
+    /// The master's protocol violations seen so far.
+    fn violations(&self) -> &[check::Violation];
+
+    /// The next violation the testbench has not been shown, as one line.
+    fn take_violation(&mut self) -> Option<String>;
 }
 
 /// Makes an emulator of protocol `kind` from TOML text (`origin` names the

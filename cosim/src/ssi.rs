@@ -18,6 +18,7 @@ use model::gray::from_gray;
 use model::line::{CableConfig, DelayLine};
 use model::ssi::{BenchConfig, Encoder, EncoderSettings, StuckFault};
 
+use crate::check::{Checks, Violation, VIOLATION_PENDING};
 use crate::config::{self, Error};
 use crate::{Emulator, Pins, Result};
 
@@ -38,6 +39,8 @@ pub struct SsiConfig {
     pub positions: Vec<u64>,
     /// Counts added per read.
     pub step: u64,
+    /// The timing limits the master is held to.
+    pub checks: SsiChecks,
 }
 
 impl Default for SsiConfig {
@@ -48,8 +51,43 @@ impl Default for SsiConfig {
             fault: None,
             positions: vec![0],
             step: 0,
+            checks: SsiChecks::default(),
         }
     }
+}
+
+/// The master's timing limits (`[checks]`), by default the seed's
+/// (SAR58K24 manual, SSI: `100 kHz < f_clk < 250 kHz`, `T_cs > 4 µs`,
+/// `T_m > 500 µs`; the monoflop is the encoder's own `monoflop_us`).
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct SsiChecks {
+    /// Slowest clock: no half period of a read may exceed half its period.
+    pub min_clock_khz: f64,
+    /// Fastest clock: no half period of a read may be shorter than half its period.
+    pub max_clock_khz: f64,
+    /// Least first low phase (the storing edge to the first rising edge), µs.
+    pub t_cs_min_us: f64,
+}
+
+impl Default for SsiChecks {
+    fn default() -> Self {
+        SsiChecks {
+            min_clock_khz: 100.0,
+            max_clock_khz: 250.0,
+            t_cs_min_us: 4.0,
+        }
+    }
+}
+
+/// The checker's state: the master's clock as it leaves the master.
+#[derive(Debug, Clone, Default)]
+struct Watch {
+    last_clk: bool,
+    last_edge: u64,
+    in_read: bool,
+    first_low: bool,
+    read_end: Option<u64>,
 }
 
 /// Faults a testbench schedules at run time (the scenario's `[fault]` table).
@@ -88,6 +126,10 @@ pub struct SsiEmulator {
     stuck: Option<bool>,
     cycle: u64,
     entries: Vec<Entry>,
+    monoflop: u64,
+    limits: (f64, f64, f64),
+    watch: Watch,
+    checks: Checks,
 }
 
 impl SsiEmulator {
@@ -122,8 +164,36 @@ impl SsiEmulator {
             ));
         }
         let (to_encoder, to_master) = cfg.cable.lines(&tb, true);
-        let (gray, bits) = (enc_cfg.gray, enc_cfg.bits);
+        let (gray, bits, monoflop) = (enc_cfg.gray, enc_cfg.bits, enc_cfg.monoflop_clocks);
+        let c = &cfg.checks;
+        if !(c.min_clock_khz > 0.0 && c.min_clock_khz <= c.max_clock_khz && c.max_clock_khz < 1e6) {
+            return Err(Error::field(
+                origin,
+                "checks.min_clock_khz",
+                format!("{} to {} kHz", c.min_clock_khz, c.max_clock_khz),
+                "give 0 < min_clock_khz <= max_clock_khz (seed: 100 and 250)",
+            ));
+        }
+        if !(c.t_cs_min_us >= 0.0 && c.t_cs_min_us < 1e6) {
+            return Err(Error::field(
+                origin,
+                "checks.t_cs_min_us",
+                format!("{}", c.t_cs_min_us),
+                "give the least T_cs in µs (seed: 4)",
+            ));
+        }
+        let checks = Checks::new(tb.period_ps());
+        // Half periods and T_cs in emulator cycles, one cycle of tolerance.
+        let limits = (
+            checks.cycles_of_ns(1e6 / (2.0 * c.max_clock_khz)) - 1.0,
+            checks.cycles_of_ns(1e6 / (2.0 * c.min_clock_khz)) + 1.0,
+            checks.cycles_of_ns(c.t_cs_min_us * 1e3) - 1.0,
+        );
         let encoder = Encoder::new(enc_cfg).map_err(|e| Error::config(origin, e))?;
+        let watch = Watch {
+            last_clk: true,
+            ..Watch::default()
+        };
         let mut emu = SsiEmulator {
             f_emu_hz,
             cfg,
@@ -136,6 +206,10 @@ impl SsiEmulator {
             stuck: None,
             cycle: 0,
             entries: Vec::new(),
+            monoflop,
+            limits,
+            watch,
+            checks,
         };
         emu.prepare(0);
         Ok(emu)
@@ -170,6 +244,59 @@ impl SsiEmulator {
     pub fn entries(&self) -> &[Entry] {
         &self.entries
     }
+
+    /// Holds the master's clock (at its own pin) to the seed's limits.
+    fn check(&mut self, clk: bool) {
+        let (half_min, half_max, t_cs_min) = self.limits;
+        let now = self.cycle;
+        let w = &mut self.watch;
+        if clk != w.last_clk {
+            let len = now - w.last_edge;
+            let lasted = self.checks.us(len);
+            if !clk {
+                if !w.in_read {
+                    if let Some(end) = w.read_end {
+                        if now - end < self.monoflop {
+                            self.checks.push(
+                                now,
+                                "T_m (seed 001, SSI: a new read only after the monoflop time T_m)",
+                                format!("read started {:.3} us after the last clock edge of the previous read; the encoder's T_m is {:.3} us", self.checks.us(now - end), self.checks.us(self.monoflop)),
+                            );
+                        }
+                    }
+                    w.in_read = true;
+                    w.first_low = true;
+                } else if (len as f64) < half_min || (len as f64) > half_max {
+                    self.checks.push(
+                        now,
+                        "clock range (seed 001, SSI: 100 kHz < f_clk < 250 kHz)",
+                        format!("clock high for {lasted:.3} us within a read"),
+                    );
+                }
+            } else if w.first_low {
+                w.first_low = false;
+                if (len as f64) < t_cs_min {
+                    self.checks.push(
+                        now,
+                        "T_cs (seed 001, SSI: T_cs > 4 us)",
+                        format!("first low phase {lasted:.3} us"),
+                    );
+                }
+            } else if (len as f64) < half_min || (len as f64) > half_max {
+                self.checks.push(
+                    now,
+                    "clock range (seed 001, SSI: 100 kHz < f_clk < 250 kHz)",
+                    format!("clock low for {lasted:.3} us within a read"),
+                );
+            }
+            w.last_clk = clk;
+            w.last_edge = now;
+        } else if clk && w.in_read && (now - w.last_edge) as f64 > half_max {
+            // A high phase longer than any half period: the read is over.
+            w.in_read = false;
+            w.read_end = Some(w.last_edge);
+        }
+    }
 }
 
 impl Emulator for SsiEmulator {
@@ -178,6 +305,7 @@ impl Emulator for SsiEmulator {
     }
 
     fn step(&mut self, pins: Pins) -> Pins {
+        self.check(pins.data());
         let clk = self.to_encoder.step(pins.data());
         let reads = self.encoder.reads();
         let data = self.encoder.step(clk);
@@ -199,7 +327,12 @@ impl Emulator for SsiEmulator {
         }
         let at_master = self.to_master.step(data);
         self.cycle += 1;
-        Pins::line(self.stuck.unwrap_or(at_master))
+        let flag = if self.checks.pending() {
+            VIOLATION_PENDING
+        } else {
+            0
+        };
+        Pins(self.stuck.unwrap_or(at_master) as u32 | flag)
     }
 
     fn set_position(&mut self, device: usize, position: u64) -> Result<()> {
@@ -248,7 +381,16 @@ impl Emulator for SsiEmulator {
             "protocol": "ssi",
             "f_emu_hz": self.f_emu_hz,
             "reads": self.entries,
+            "violations": self.checks.all(),
         })
+    }
+
+    fn violations(&self) -> &[Violation] {
+        self.checks.all()
+    }
+
+    fn take_violation(&mut self) -> Option<String> {
+        self.checks.take()
     }
 }
 
@@ -278,6 +420,71 @@ mod tests {
             .to_string();
         assert!(err.contains("at least 1000000 Hz"), "{err}");
         assert!(SsiEmulator::from_toml("", "e.toml", 1_000_000).is_ok());
+    }
+
+    /// Clocks `bits` bits with a first low phase of `t_cs` cycles and half
+    /// periods of `half` cycles, then holds the clock high for `rest` cycles.
+    fn read(emu: &mut SsiEmulator, bits: u32, t_cs: u64, half: u64, rest: u64) {
+        for _ in 0..t_cs {
+            emu.step(Pins::line(false));
+        }
+        for k in 0..bits {
+            for _ in 0..half {
+                emu.step(Pins::line(true));
+            }
+            if k + 1 < bits {
+                for _ in 0..half {
+                    emu.step(Pins::line(false));
+                }
+            } else {
+                for _ in 0..half {
+                    emu.step(Pins::line(false));
+                }
+            }
+        }
+        for _ in 0..rest {
+            emu.step(Pins::line(true));
+        }
+    }
+
+    #[test]
+    fn a_master_within_the_seeds_limits_breaks_no_rule() {
+        // 4 MHz: 250 kHz = 8 cycles per half period, T_cs 4 us = 16 cycles, T_m 500 us = 2000 cycles.
+        let mut emu = SsiEmulator::from_toml("", "e.toml", 4_000_000).unwrap();
+        read(&mut emu, 12, 16, 8, 2010);
+        read(&mut emu, 12, 16, 8, 2010);
+        assert_eq!(emu.count(), 2);
+        assert!(emu.violations().is_empty(), "{:?}", emu.violations());
+    }
+
+    #[test]
+    fn short_t_cs_fast_clock_and_early_reread_are_each_reported_with_the_seed_rule() {
+        let mut emu = SsiEmulator::from_toml("", "e.toml", 4_000_000).unwrap();
+        // T_cs 2.5 us (10 cycles), then 500 kHz (4 cycles per half), then a new read 100 us later.
+        read(&mut emu, 12, 10, 4, 400);
+        read(&mut emu, 12, 16, 8, 10);
+        let rules: Vec<&str> = emu
+            .violations()
+            .iter()
+            .map(|v| v.rule.split(' ').next().unwrap())
+            .collect();
+        assert_eq!(rules[0], "T_cs");
+        assert!(rules.contains(&"clock"));
+        assert!(rules.contains(&"T_m"), "{rules:?}");
+        let first = emu.take_violation().unwrap();
+        assert!(first.starts_with("at 2500 ns (emulator cycle 10): T_cs (seed 001, SSI: T_cs > 4 us): first low phase 2.500 us"), "{first}");
+    }
+
+    #[test]
+    fn a_faster_master_says_so_in_its_checks_table() {
+        let mut emu = SsiEmulator::from_toml(
+            "[checks]\nmax_clock_khz = 500\nt_cs_min_us = 2\n",
+            "e.toml",
+            4_000_000,
+        )
+        .unwrap();
+        read(&mut emu, 12, 10, 4, 2010);
+        assert!(emu.violations().is_empty(), "{:?}", emu.violations());
     }
 
     #[test]

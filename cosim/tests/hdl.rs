@@ -188,6 +188,13 @@ fn bad_configuration_stops_at_time_zero(sim: &str) {
     let mut tb = errors_bench(sim, 50_000_000);
     let (ok, out) = run(tb.arg(format!("+ssi_emu_config={}", good.display())));
     assert!(ok && out.contains("no error"), "{out}");
+    // The bench's clock goes low for 100 ns and high again: a read with a
+    // first low phase far below the seed's T_cs, reported by the checker.
+    assert!(out.contains("PROTOCOL VIOLATION by the master on"), "{out}");
+    assert!(
+        out.contains("T_cs (seed 001, SSI: T_cs > 4 us): first low phase 0.100 us"),
+        "{out}"
+    );
 }
 
 fn tempdir(tag: &str) -> PathBuf {

@@ -46,6 +46,8 @@ initial begin
         if (value !== u_emu.last_value(0) || value !== position[11:0])
             $fatal(1, "read %0d at %0t ns: reader %0d, emulator sent %0d (set %0d)", n, $time, value, u_emu.last_value(0), position);
     end
+    if (u_emu.violations(0) != 0)
+        $fatal(1, "the reader broke %0d timing rule(s) of SSI (PROTOCOL VIOLATION lines above)", u_emu.violations(0));
     $display("PASS ssi_reader: %0d reads equal to what the emulator sent", reads);
     $finish;
 end

@@ -26,6 +26,11 @@
 //   u_emu.set_status(slave, "warning", 0); u_emu.schedule_fault("flips = [{ frame = 7, bits = [0] }]");
 //   u_emu.count(0) (frames latched), u_emu.last_value(slave), u_emu.last_status(slave, "error")
 // TRANSCRIPT names a JSON file written at the end of the simulation.
+//
+// The emulator also checks the master: every timing rule of the seed it
+// breaks (limits in the TOML's [checks] table) is printed as
+// "PROTOCOL VIOLATION by the master on ... at <ns> (emulator cycle N): <rule>: <measured>"
+// and counted (u_emu.violations(0)); STOP_ON_VIOLATION = 1 stops the run.
 
 `default_nettype none
 
@@ -34,7 +39,8 @@ module biss_slave_emu #(
     parameter PLUSARG = "biss_emu_config",
     parameter F_EMU_HZ = 80000000,
     parameter TRANSCRIPT = "",
-    parameter STOP_ON_X = 1
+    parameter STOP_ON_X = 1,
+    parameter STOP_ON_VIOLATION = 0
 ) (
     /* Emulator clock */
     input  wire i_emu_clk,
@@ -86,6 +92,8 @@ always @(posedge i_emu_clk) begin
     if (pins_out < 0)
         emu_fail("step");
     emu_cycle = emu_cycle + 1;
+    if (pins_out[7])
+        emu_show_violations(STOP_ON_VIOLATION);
     slo_reg <= pins_out[0];
 end
 

@@ -17,6 +17,8 @@ import "DPI-C" function longint emu_last_value(input int handle, input int devic
 import "DPI-C" function int emu_last_status(input int handle, input int device, input string name);
 import "DPI-C" function int emu_write_transcript(input int handle, input string path);
 import "DPI-C" function string emu_last_error();
+import "DPI-C" function longint emu_violations(input int handle);
+import "DPI-C" function string emu_take_violation(input int handle);
 `endif
 
 // String arguments: SystemVerilog strings in Verilator, wide regs in Icarus.
@@ -127,6 +129,41 @@ function integer last_status(input integer device, input `EMU_STR name);
 `endif
     end
 endfunction
+
+// Protocol violations of the master the emulator has seen so far.
+function integer violations(input integer unused);
+    begin
+`ifdef VERILATOR
+        violations = emu_violations(emu_handle);
+`else
+        violations = $emu_violations(emu_handle);
+`endif
+    end
+endfunction
+
+// Prints the violations not yet shown (each with its time and the seed's
+// rule); stops the run when `stop` is set.
+task emu_show_violations(input integer stop);
+    integer n;
+`ifdef VERILATOR
+    string line;
+`endif
+    begin
+`ifdef VERILATOR
+        n = 0;
+        line = emu_take_violation(emu_handle);
+        while (line != "") begin
+            $display("PROTOCOL VIOLATION by the master on %m %0s", line);
+            n = n + 1;
+            line = emu_take_violation(emu_handle);
+        end
+`else
+        n = $emu_print_violations(emu_handle, "");
+`endif
+        if (stop && n > 0)
+            $fatal(1, "the master broke a timing rule of the protocol (STOP_ON_VIOLATION = 1)");
+    end
+endtask
 
 // Opens the emulator at time 0; a bad configuration stops the run here.
 task emu_start(input `EMU_STR kind, input `EMU_STR path, input [63:0] f_emu_hz, input `EMU_STR transcript);

@@ -26,6 +26,11 @@
 //   u_emu.set_position(0, value); u_emu.schedule_fault("fault = { level = false, from_read = 3 }");
 //   u_emu.count(0) (reads begun), u_emu.last_value(0) (position stored at the last read)
 // TRANSCRIPT names a JSON file written at the end of the simulation.
+//
+// The emulator also checks the master: every timing rule of the seed it
+// breaks (limits in the TOML's [checks] table) is printed as
+// "PROTOCOL VIOLATION by the master on ... at <ns> (emulator cycle N): <rule>: <measured>"
+// and counted (u_emu.violations(0)); STOP_ON_VIOLATION = 1 stops the run.
 
 `default_nettype none
 
@@ -34,7 +39,8 @@ module ssi_encoder_emu #(
     parameter PLUSARG = "ssi_emu_config",
     parameter F_EMU_HZ = 50000000,
     parameter TRANSCRIPT = "",
-    parameter STOP_ON_X = 1
+    parameter STOP_ON_X = 1,
+    parameter STOP_ON_VIOLATION = 0
 ) (
     /* Emulator clock */
     input  wire i_emu_clk,
@@ -86,6 +92,8 @@ always @(posedge i_emu_clk) begin
     if (pins_out < 0)
         emu_fail("step");
     emu_cycle = emu_cycle + 1;
+    if (pins_out[7])
+        emu_show_violations(STOP_ON_VIOLATION);
     data_reg <= pins_out[0];
 end
 

@@ -43,6 +43,7 @@ fn run(args: &[String]) -> Result<Vec<(String, u64)>, String> {
     };
     let mut table = table.clone();
     table.remove("emulator");
+    table.remove("checks");
     match proto.as_str() {
         "ssi" => params::<model::ssi::BenchConfig>(table, path),
         "biss" => params::<model::biss::BenchConfig>(table, path),

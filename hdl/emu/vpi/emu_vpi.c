@@ -12,6 +12,8 @@
  *   $emu_last_value(handle, device, half)        -> 32 bits: half 0 low, 1 high
  *   $emu_last_status(handle, device, name)       -> 0 / 1 / -1
  *   $emu_write_transcript(handle, path)          -> 0 / -1
+ *   $emu_violations(handle)                      -> protocol violations so far
+ *   $emu_print_violations(handle, instance)      -> prints those not yet shown, returns how many
  *
  * Every function returns 32 bits (iverilog types an unknown system function
  * as a 32-bit int at compile time; 64-bit values come as two halves, so no
@@ -40,6 +42,8 @@ extern int64_t emu_last_value(int32_t handle, int32_t device);
 extern int32_t emu_last_status(int32_t handle, int32_t device, const char *name);
 extern int32_t emu_write_transcript(int32_t handle, const char *path);
 extern const char *emu_last_error(void);
+extern int64_t emu_violations(int32_t handle);
+extern const char *emu_take_violation(int32_t handle);
 
 #define MAX_ARGS 5
 #define MAX_TRANSCRIPTS 64
@@ -228,6 +232,42 @@ static PLI_INT32 write_transcript_calltf(PLI_BYTE8 *user) {
     return 0;
 }
 
+static PLI_INT32 violations_calltf(PLI_BYTE8 *user) {
+    (void)user;
+    vpiHandle a[MAX_ARGS];
+    if (wrong_count(args(a), 1, "$emu_violations"))
+        return 0;
+    put_int((int32_t)emu_violations((int32_t)arg_int(a[0])));
+    return 0;
+}
+
+static PLI_INT32 print_violations_calltf(PLI_BYTE8 *user) {
+    (void)user;
+    vpiHandle a[MAX_ARGS];
+    if (wrong_count(args(a), 2, "$emu_print_violations"))
+        return 0;
+    int32_t h = (int32_t)arg_int(a[0]);
+    /* The instance: the scope of the task that called us (the second
+     * argument is an optional label printed after it). */
+    vpiHandle scope = vpi_handle(vpiScope, vpi_handle(vpiSysTfCall, NULL));
+    const char *inst = scope ? vpi_get_str(vpiFullName, scope) : "";
+    char *who = arg_str(a[1]);
+    char *p = who;
+    while (*p == ' ')
+        p++;
+    int n = 0;
+    for (;;) {
+        const char *line = emu_take_violation(h);
+        if (!line || !*line)
+            break;
+        vpi_printf("PROTOCOL VIOLATION by the master on %s%s%s %s\n", inst ? inst : "", *p ? " " : "", p, line);
+        n++;
+    }
+    free(who);
+    put_int(n);
+    return 0;
+}
+
 static PLI_INT32 end_of_simulation(p_cb_data data) {
     (void)data;
     for (int i = 0; i < n_transcripts; i++)
@@ -256,6 +296,8 @@ static void register_all(void) {
     define("$emu_last_value", last_value_calltf);
     define("$emu_last_status", last_status_calltf);
     define("$emu_write_transcript", write_transcript_calltf);
+    define("$emu_violations", violations_calltf);
+    define("$emu_print_violations", print_violations_calltf);
 
     s_cb_data cb;
     memset(&cb, 0, sizeof cb);

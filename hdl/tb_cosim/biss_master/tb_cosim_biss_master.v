@@ -169,6 +169,8 @@ initial begin
             $fatal(1, "frame %0d at %0t: the emulator counted %0d frames", n, $time, u_emu.count(0));
         while (o_busy) @(posedge clk);
     end
+    if (u_emu.violations(0) != 0)
+        $fatal(1, "the core broke %0d timing rule(s) of the seed (PROTOCOL VIOLATION lines above)", u_emu.violations(0));
     $display("cycles %0d", cycles);
     $display("PASS tb_cosim_biss_master: %0d frames x %0d slave(s), every o_data, o_error, o_warning equal to the emulator's", transactions, SLAVES);
     $finish;

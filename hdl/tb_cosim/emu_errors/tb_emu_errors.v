@@ -2,7 +2,8 @@
 // +ssi_emu_config=<file> (missing, bad or good) and +x_at=<ns> (drive X on
 // the emulator's clock input at that time, after it has been 0 and 1); the
 // run must stop at time 0 for a bad configuration, and at the X with its
-// time and pin, and otherwise print "no error" at 2 us.
+// time and pin, and otherwise print "no error" at 2 us (the 100 ns low
+// phase is a T_cs violation the checker reports without stopping).
 
 `timescale 1ns / 1ps
 `default_nettype none

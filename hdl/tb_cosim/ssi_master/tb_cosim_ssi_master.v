@@ -111,6 +111,8 @@ initial begin
                    n, $time, got, o_err_idle, o_err_double, o_err_wire, sent);
         while (o_busy) @(posedge clk);
     end
+    if (u_emu.violations(0) != 0)
+        $fatal(1, "the core broke %0d timing rule(s) of the seed (PROTOCOL VIOLATION lines above)", u_emu.violations(0));
     $display("cycles %0d", cycles);
     $display("PASS tb_cosim_ssi_master: %0d reads, every o_position equal to the emulator's", transactions);
     $finish;
