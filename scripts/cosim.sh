@@ -51,7 +51,7 @@ for cfg in "${configs[@]}"; do
     params=$("$params_tool" "$proto" "$cfg") || { status=1; continue; }
     f_sys_hz=$(sed -n 's/^F_SYS_HZ=//p' <<< "$params")
     half_fs=$(( 500000000000000 / f_sys_hz ))
-    key=$(printf '%s\n' "$params" | cat - "$tb" "$root/hdl/emu/$emu.v" "$root/hdl/emu/emu_api.vh" "${rtl[@]}" | sha1sum | cut -c1-12)
+    key=$(printf '%s\n' "$params" | cat - "$tb" "$root/hdl/emu/$emu.v" "$root/hdl/emu/emu_api.vh" "$root/hdl/emu/emu_clocked.vh" "${rtl[@]}" | sha1sum | cut -c1-12)
     build="$root/build/cosim/$core/$sim/$key"
     mkdir -p "$build"
     exec 9> "$build/.lock"

@@ -22,7 +22,7 @@ use model::bits;
 use model::line::{CableConfig, DelayLine};
 use model::Timebase;
 
-use crate::check::{Checks, Violation, VIOLATION_PENDING};
+use crate::check::{Checks, VIOLATION_PENDING};
 use crate::config::{self, Error};
 use crate::{Emulator, Pins, Result};
 
@@ -512,12 +512,8 @@ impl Emulator for BissEmulator {
         })
     }
 
-    fn violations(&self) -> &[Violation] {
-        self.checks.all()
-    }
-
-    fn take_violation(&mut self) -> Option<String> {
-        self.checks.take()
+    fn checks(&mut self) -> &mut Checks {
+        &mut self.checks
     }
 }
 

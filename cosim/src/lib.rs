@@ -103,11 +103,18 @@ pub trait Emulator: Send {
     /// protocol violation of the master it saw.
     fn transcript(&self) -> serde_json::Value;
 
+    /// The protocol checks of the master (see [`check`]).
+    fn checks(&mut self) -> &mut check::Checks;
+
     /// The master's protocol violations seen so far.
-    fn violations(&self) -> &[check::Violation];
+    fn violations(&mut self) -> &[check::Violation] {
+        self.checks().all()
+    }
 
     /// The next violation the testbench has not been shown, as one line.
-    fn take_violation(&mut self) -> Option<String>;
+    fn take_violation(&mut self) -> Option<String> {
+        self.checks().take()
+    }
 }
 
 /// Makes an emulator of protocol `kind` from TOML text (`origin` names the

@@ -18,7 +18,7 @@ use model::gray::from_gray;
 use model::line::{CableConfig, DelayLine};
 use model::ssi::{BenchConfig, Encoder, EncoderSettings, StuckFault};
 
-use crate::check::{Checks, Violation, VIOLATION_PENDING};
+use crate::check::{Checks, VIOLATION_PENDING};
 use crate::config::{self, Error};
 use crate::{Emulator, Pins, Result};
 
@@ -385,12 +385,8 @@ impl Emulator for SsiEmulator {
         })
     }
 
-    fn violations(&self) -> &[Violation] {
-        self.checks.all()
-    }
-
-    fn take_violation(&mut self) -> Option<String> {
-        self.checks.take()
+    fn checks(&mut self) -> &mut Checks {
+        &mut self.checks
     }
 }
 

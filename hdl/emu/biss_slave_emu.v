@@ -52,52 +52,13 @@ module biss_slave_emu #(
 
 `include "emu_api.vh"
 
-`EMU_STR config_path;
+localparam EMU_KIND = "biss";
+localparam EMU_PIN = "i_ma";
+wire emu_line_in = i_ma;
 
-initial begin
-    config_path = CONFIG;
-    if (CONFIG == "") begin
-        if (!$value$plusargs({PLUSARG, "=%s"}, config_path))
-            config_path = "";
-    end
-    emu_start("biss", config_path, F_EMU_HZ, TRANSCRIPT);
-end
+`include "emu_clocked.vh"
 
-`ifdef VERILATOR
-final if (TRANSCRIPT != "" && emu_handle > 0)
-    if (emu_write_transcript(emu_handle, TRANSCRIPT) < 0)
-        $display("ERROR: %m: %0s", emu_last_error());
-`endif
-
-// The MA level last seen as 0 or 1 (idle high before reset ends).
-reg ma_level = 1'b1;
-reg ma_known = 1'b0;
-reg x_reported = 1'b0;
-reg slo_reg = 1'b1;
-integer pins_out;
-reg [63:0] emu_cycle = 0;
-
-always @(posedge i_emu_clk) begin
-    if (i_ma === 1'b0 || i_ma === 1'b1) begin
-        ma_level = i_ma;
-        ma_known = 1'b1;
-        x_reported = 1'b0;
-    end else if (ma_known && !x_reported) begin
-        $display("ERROR: %m: X or Z on emulator input i_ma at time %0t, emulator cycle %0d (held at %b, not read as data)", $time, emu_cycle, ma_level);
-        x_reported = 1'b1;
-        if (STOP_ON_X)
-            $fatal(1, "emulator input i_ma is X or Z");
-    end
-    pins_out = emu_call_step({31'd0, ma_level});
-    if (pins_out < 0)
-        emu_fail("step");
-    emu_cycle = emu_cycle + 1;
-    if (pins_out[7])
-        emu_show_violations(STOP_ON_VIOLATION);
-    slo_reg <= pins_out[0];
-end
-
-assign o_slo = slo_reg;
+assign o_slo = emu_line_out;
 
 endmodule
 

@@ -52,52 +52,13 @@ module ssi_encoder_emu #(
 
 `include "emu_api.vh"
 
-`EMU_STR config_path;
+localparam EMU_KIND = "ssi";
+localparam EMU_PIN = "i_ssi_clk";
+wire emu_line_in = i_ssi_clk;
 
-initial begin
-    config_path = CONFIG;
-    if (CONFIG == "") begin
-        if (!$value$plusargs({PLUSARG, "=%s"}, config_path))
-            config_path = "";
-    end
-    emu_start("ssi", config_path, F_EMU_HZ, TRANSCRIPT);
-end
+`include "emu_clocked.vh"
 
-`ifdef VERILATOR
-final if (TRANSCRIPT != "" && emu_handle > 0)
-    if (emu_write_transcript(emu_handle, TRANSCRIPT) < 0)
-        $display("ERROR: %m: %0s", emu_last_error());
-`endif
-
-// The clock level last seen as 0 or 1 (idle high before reset ends).
-reg clk_level = 1'b1;
-reg clk_known = 1'b0;
-reg x_reported = 1'b0;
-reg data_reg = 1'b1;
-integer pins_out;
-reg [63:0] emu_cycle = 0;
-
-always @(posedge i_emu_clk) begin
-    if (i_ssi_clk === 1'b0 || i_ssi_clk === 1'b1) begin
-        clk_level = i_ssi_clk;
-        clk_known = 1'b1;
-        x_reported = 1'b0;
-    end else if (clk_known && !x_reported) begin
-        $display("ERROR: %m: X or Z on emulator input i_ssi_clk at time %0t, emulator cycle %0d (held at %b, not read as data)", $time, emu_cycle, clk_level);
-        x_reported = 1'b1;
-        if (STOP_ON_X)
-            $fatal(1, "emulator input i_ssi_clk is X or Z");
-    end
-    pins_out = emu_call_step({31'd0, clk_level});
-    if (pins_out < 0)
-        emu_fail("step");
-    emu_cycle = emu_cycle + 1;
-    if (pins_out[7])
-        emu_show_violations(STOP_ON_VIOLATION);
-    data_reg <= pins_out[0];
-end
-
-assign o_ssi_data = data_reg;
+assign o_ssi_data = emu_line_out;
 
 endmodule
 
