@@ -230,3 +230,23 @@ fn x_on_an_emulator_input_is_reported_with_time_and_pin_in_icarus() {
         "{out}"
     );
 }
+
+/// The masters we did not write, each with its copyable Makefile, pass in both simulators.
+#[test]
+fn the_independent_examples_pass_in_icarus_and_verilator() {
+    for example in ["ssi_reader_other", "biss_reader_other"] {
+        for sim in ["icarus", "verilator"] {
+            let _one = SERIAL.lock().unwrap_or_else(|e| e.into_inner());
+            let dir = root().join("examples").join(example);
+            let (ok, out) = run(Command::new("make")
+                .arg("-C")
+                .arg(&dir)
+                .args([&format!("SIM={sim}"), "READS=100"]));
+            assert!(ok, "{example} in {sim}:\n{out}");
+            assert!(
+                out.contains("PASS") && out.contains("100 "),
+                "{example} in {sim}:\n{out}"
+            );
+        }
+    }
+}
