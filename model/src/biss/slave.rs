@@ -317,6 +317,7 @@ pub struct Chain {
     level: bool,
     output: DelayLine,
     frames: u64,
+    latches: u64,
 }
 
 impl Chain {
@@ -337,6 +338,7 @@ impl Chain {
             level: true,
             output: DelayLine::new(output_delay_clocks, true),
             frames: 0,
+            latches: 0,
         }
     }
 
@@ -353,6 +355,12 @@ impl Chain {
     /// Frames that reached their timeout with a latch.
     pub fn frames(&self) -> u64 {
         self.frames
+    }
+
+    /// Frames latched so far (first rising MA edges): a co-simulation numbers
+    /// its transcript by it and sets up the next frame after each latch.
+    pub fn latches(&self) -> u64 {
+        self.latches
     }
 
     /// One cycle with MA at the slaves' pins; returns SLO as it leaves the first slave.
@@ -373,6 +381,7 @@ impl Chain {
                     // First rising edge: every slave latches its position.
                     self.frame = self.slaves.iter_mut().flat_map(|s| s.section()).collect();
                     self.phase = Phase::Latched;
+                    self.latches += 1;
                 }
             }
             Phase::Latched => {

@@ -68,6 +68,7 @@ pub struct Encoder {
     quiet: u64,
     level: bool,
     output: DelayLine,
+    reads: u64,
 }
 
 impl Encoder {
@@ -75,7 +76,7 @@ impl Encoder {
     pub fn new(cfg: EncoderConfig) -> Result<Self> {
         cfg.validate()?;
         let output = DelayLine::new(cfg.output_delay_clocks, true);
-        Ok(Encoder { cfg, position: 0, phase: Phase::Idle, last_clk: true, stored: 0, sent: 0, quiet: 0, level: true, output })
+        Ok(Encoder { cfg, position: 0, phase: Phase::Idle, last_clk: true, stored: 0, sent: 0, quiet: 0, level: true, output, reads: 0 })
     }
 
     /// The shaft moves: the position the next falling edge will store.
@@ -91,6 +92,23 @@ impl Encoder {
     /// The code word stored at the last read (Gray or binary as configured).
     pub fn stored(&self) -> u64 {
         self.stored
+    }
+
+    /// Reads begun so far (falling edges that stored a value): the hook a
+    /// co-simulation uses to number its transcript entries.
+    pub fn reads(&self) -> u64 {
+        self.reads
+    }
+
+    /// Rising clock edges seen since the last store (bits put on the line).
+    pub fn bits_sent(&self) -> u32 {
+        self.sent
+    }
+
+    /// The monoflop has expired: the line is released and the next falling
+    /// edge stores a new value.
+    pub fn is_idle(&self) -> bool {
+        self.phase == Phase::Idle
     }
 
     fn mask(&self) -> u64 {
@@ -126,6 +144,7 @@ impl Encoder {
                     self.phase = Phase::Shifting;
                     self.sent = 0;
                     self.quiet = 0;
+                    self.reads += 1;
                 }
             }
             Phase::Shifting => {

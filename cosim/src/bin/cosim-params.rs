@@ -1,0 +1,68 @@
+//! `cosim-params <ssi|biss> <scenario.toml>`: the Verilog parameters of our
+//! own master core for a closed-loop scenario, one `NAME=value` per line,
+//! first `F_SYS_HZ`. `scripts/cosim.sh` builds the closed-loop testbench with
+//! them, so the core and the emulator read one file (the emulator its
+//! device, cable and fault tables, this tool the master's).
+
+use std::process::ExitCode;
+
+use model::Setup;
+
+fn params<S: Setup + serde::de::DeserializeOwned>(
+    table: toml::Table,
+    origin: &str,
+) -> Result<Vec<(String, u64)>, String> {
+    let cfg: S = toml::Value::Table(table)
+        .try_into()
+        .map_err(|e: toml::de::Error| format!("{origin}: {}", e.to_string().trim()))?;
+    let err = |e: model::ConfigError| format!("{origin}: {e}");
+    cfg.validate().map_err(err)?;
+    let tb = cfg.timebase().map_err(err)?;
+    let mut out = vec![("F_SYS_HZ".to_string(), tb.f_sys_hz())];
+    out.extend(
+        cfg.verilog_parameters()
+            .map_err(err)?
+            .into_iter()
+            .map(|(k, v)| (k.to_string(), v)),
+    );
+    Ok(out)
+}
+
+fn run(args: &[String]) -> Result<Vec<(String, u64)>, String> {
+    let [proto, path] = args else {
+        return Err("usage: cosim-params <ssi|biss> <scenario.toml>".into());
+    };
+    let text = std::fs::read_to_string(path).map_err(|e| format!("{path}: {e}"))?;
+    let root: toml::Table = text
+        .parse()
+        .map_err(|e: toml::de::Error| format!("{path}: {}", e.to_string().trim()))?;
+    let Some(toml::Value::Table(table)) = root.get(proto.as_str()) else {
+        return Err(format!(
+            "{path}: no [{proto}] table; a closed-loop configuration is a scenario file"
+        ));
+    };
+    let mut table = table.clone();
+    table.remove("emulator");
+    table.remove("checks");
+    match proto.as_str() {
+        "ssi" => params::<model::ssi::BenchConfig>(table, path),
+        "biss" => params::<model::biss::BenchConfig>(table, path),
+        other => Err(format!("no protocol `{other}`; give ssi or biss")),
+    }
+}
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    match run(&args) {
+        Ok(list) => {
+            for (k, v) in list {
+                println!("{k}={v}");
+            }
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            eprintln!("cosim-params: {e}");
+            ExitCode::from(2)
+        }
+    }
+}

@@ -1,0 +1,595 @@
+//! The BiSS-C slave-chain emulator: [`model::biss::Chain`] behind its cable.
+//!
+//! Configuration: the scenario's `[[slaves]]`, `[cable]`, `[[flips]]`,
+//! `[stuck]` and `[delay_step]` tables, as in a scenario's `[biss]` table
+//! (`[master]`, `[host]` and `f_sys_mhz` are ignored). Frame `k` of the
+//! tables is the emulator's `k`-th latch (first rising MA edge); the
+//! position of slave `i` in frame `k` is the scenario's
+//! `positions[k % len] + k × step` until the testbench sets one, and its
+//! error and warning bits are the scenario's until the testbench sets them.
+//!
+//! Each emulator cycle: MA crosses the cable to the chain, the chain steps
+//! (SLO changes after the first slave's `output_delay_ns`), SLO crosses the
+//! cable back (plus a `delay_step`'s extra delay from its frame on). A stuck
+//! fault holds SLO at the master's end from the end of frame `from_frame - 1`.
+
+use serde::{Deserialize, Serialize};
+
+use model::biss::{
+    BenchConfig, Chain, DelayStep, FlipFault, Slave, SlaveSettings, StuckFault, MAX_SLAVES,
+};
+use model::bits;
+use model::line::{CableConfig, DelayLine};
+use model::Timebase;
+
+use crate::check::{Checks, VIOLATION_PENDING};
+use crate::config::{self, Error};
+use crate::{Emulator, Pins, Result};
+
+/// The fastest MA the seed allows (`TMAS > 100 ns`).
+pub const MAX_CLOCK_KHZ: f64 = 10_000.0;
+
+/// The emulator's configuration (the scenario's BiSS-C tables).
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct BissConfig {
+    /// The slaves in chain order (1 to 3).
+    pub slaves: Vec<SlaveSettings>,
+    /// The cable.
+    pub cable: CableConfig,
+    /// Wire corruptions.
+    pub flips: Vec<FlipFault>,
+    /// A stuck SLO line.
+    pub stuck: Option<StuckFault>,
+    /// A change of the line delay.
+    pub delay_step: Option<DelayStep>,
+    /// The timing limits the master is held to.
+    pub checks: BissChecks,
+}
+
+/// The master's timing limits (`[checks]`), by default the seed's (seed 001,
+/// BiSS-C: `TMAS > 100 ns`; the master starts a frame only when the slave
+/// has ended its timeout, SLO high again).
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct BissChecks {
+    /// Least MA period within a frame, ns.
+    pub min_tmas_ns: f64,
+}
+
+impl Default for BissChecks {
+    fn default() -> Self {
+        BissChecks { min_tmas_ns: 100.0 }
+    }
+}
+
+/// The checker's state: MA as it leaves the master.
+#[derive(Debug, Clone, Default)]
+struct Watch {
+    last_ma: bool,
+    last_edge: u64,
+    last_rise: Option<u64>,
+    in_frame: bool,
+    last_low: u64,
+}
+
+impl Default for BissConfig {
+    fn default() -> Self {
+        BissConfig {
+            slaves: vec![SlaveSettings::default()],
+            cable: CableConfig::default(),
+            flips: Vec::new(),
+            stuck: None,
+            delay_step: None,
+            checks: BissChecks::default(),
+        }
+    }
+}
+
+/// Faults a testbench schedules at run time (the scenario's fault tables).
+#[derive(Debug, Clone, PartialEq, Deserialize, Default)]
+#[serde(deny_unknown_fields, default)]
+struct FaultTables {
+    flips: Vec<FlipFault>,
+    stuck: Option<StuckFault>,
+    delay_step: Option<DelayStep>,
+}
+
+/// One slave's part of a frame as the emulator sent it.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SlaveEntry {
+    /// The position latched.
+    pub position: u64,
+    /// The error condition (sent as nE = 0).
+    pub error: bool,
+    /// The warning condition (sent as nW = 0).
+    pub warning: bool,
+    /// The section as it left the slave: CDS, data, nE, nW, CRC (after any flips).
+    pub sent_bits: String,
+}
+
+/// One frame as the emulator saw and answered it.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Entry {
+    /// 0-based frame (latch) number.
+    pub index: u64,
+    /// Emulator cycle of the latching MA edge (at the slaves' pins).
+    pub cycle: u64,
+    /// The slaves in chain order.
+    pub slaves: Vec<SlaveEntry>,
+}
+
+#[derive(Debug, Clone, Copy, Default)]
+struct Owned {
+    position: Option<u64>,
+    error: Option<bool>,
+    warning: Option<bool>,
+}
+
+/// A chain of BiSS-C slaves and its cable, on the emulator clock.
+pub struct BissEmulator {
+    f_emu_hz: u64,
+    tb: Timebase,
+    cfg: BissConfig,
+    chain: Chain,
+    owned: Vec<Owned>,
+    to_slaves: DelayLine,
+    to_master: DelayLine,
+    extra: Option<DelayLine>,
+    stuck: Option<bool>,
+    cycle: u64,
+    entries: Vec<Entry>,
+    timeout: u64,
+    min_tmas: f64,
+    slo_at_slaves: bool,
+    watch: Watch,
+    checks: Checks,
+}
+
+impl BissEmulator {
+    /// An emulator from TOML text (`origin` names it in errors) at `f_emu_hz`.
+    pub fn from_toml(text: &str, origin: &str, f_emu_hz: u64) -> Result<Self> {
+        let tables = config::tables(text, origin, "biss")?;
+        let tb =
+            config::emulator_clock(f_emu_hz, &tables.emulator, MAX_CLOCK_KHZ, "BiSS-C", origin)?;
+        let cfg: BissConfig = config::decode(tables.device, origin)?;
+        if cfg.slaves.is_empty() || cfg.slaves.len() > MAX_SLAVES {
+            return Err(Error::field(
+                origin,
+                "slaves",
+                format!("{} slaves", cfg.slaves.len()),
+                "give 1 to 3 [[slaves]] tables",
+            ));
+        }
+        cfg.cable
+            .validate("cable")
+            .map_err(|e| Error::config(origin, e))?;
+        // The model converts the slaves' times to cycles of its clock: here the emulator's.
+        let bench = BenchConfig {
+            f_sys_mhz: tb.f_sys_hz() as f64 / 1e6,
+            slaves: cfg.slaves.clone(),
+            ..BenchConfig::default()
+        };
+        let mut slaves = Vec::new();
+        for (i, s) in cfg.slaves.iter().enumerate() {
+            let limit = if s.bits == 64 {
+                u64::MAX
+            } else {
+                (1u64 << s.bits.min(63)) - 1
+            };
+            let sc = bench
+                .slave_config(i)
+                .map_err(|e| Error::config(origin, e))?;
+            if let Some((j, p)) = s.positions.iter().enumerate().find(|(_, p)| **p > limit) {
+                return Err(Error::field(
+                    origin,
+                    format!("slaves[{i}].positions[{j}]"),
+                    format!("{p} does not fit {} bits", s.bits),
+                    format!("give positions from 0 to {limit}"),
+                ));
+            }
+            slaves.push(Slave::new(sc).map_err(|e| Error::config(origin, e))?);
+        }
+        let faults = FaultTables {
+            flips: cfg.flips.clone(),
+            stuck: cfg.stuck.clone(),
+            delay_step: cfg.delay_step.clone(),
+        };
+        check_faults(&faults, &cfg.slaves, origin)?;
+        let chain = Chain::new(slaves, tb.cycles_nearest_ns(cfg.slaves[0].output_delay_ns));
+        let (to_slaves, to_master) = cfg.cable.lines(&tb, true);
+        let owned = vec![Owned::default(); cfg.slaves.len()];
+        if !(cfg.checks.min_tmas_ns >= 0.0 && cfg.checks.min_tmas_ns < 1e9) {
+            return Err(Error::field(
+                origin,
+                "checks.min_tmas_ns",
+                format!("{}", cfg.checks.min_tmas_ns),
+                "give the least MA period in ns (seed: 100)",
+            ));
+        }
+        let mut timeout = 1;
+        for i in 0..cfg.slaves.len() {
+            timeout = timeout.max(
+                bench
+                    .slave_config(i)
+                    .map_err(|e| Error::config(origin, e))?
+                    .timeout_clocks,
+            );
+        }
+        let checks = Checks::new(tb.period_ps());
+        let min_tmas = checks.cycles_of_ns(cfg.checks.min_tmas_ns) - 1.0;
+        let mut emu = BissEmulator {
+            f_emu_hz,
+            tb,
+            cfg,
+            chain,
+            owned,
+            to_slaves,
+            to_master,
+            extra: None,
+            stuck: None,
+            cycle: 0,
+            entries: Vec::new(),
+            timeout,
+            min_tmas,
+            slo_at_slaves: true,
+            watch: Watch {
+                last_ma: true,
+                ..Watch::default()
+            },
+            checks,
+        };
+        emu.prepare(0);
+        emu.apply_line_faults();
+        Ok(emu)
+    }
+
+    /// Positions, flags and flips of frame `k`, before its latch.
+    fn prepare(&mut self, k: u64) {
+        let bench = BenchConfig {
+            slaves: self.cfg.slaves.clone(),
+            ..BenchConfig::default()
+        };
+        for i in 0..self.cfg.slaves.len() {
+            let s = &self.cfg.slaves[i];
+            let o = self.owned[i];
+            let kk = k as usize;
+            let position = o.position.unwrap_or_else(|| bench.position_at(i, kk));
+            let error = o.error.unwrap_or(s.error || s.error_frames.contains(&kk));
+            let warning = o
+                .warning
+                .unwrap_or(s.warning || s.warning_frames.contains(&kk));
+            let flips: Vec<u32> = self
+                .cfg
+                .flips
+                .iter()
+                .filter(|f| f.frame == kk && f.slave == i)
+                .flat_map(|f| f.bits.clone())
+                .collect();
+            let slave = &mut self.chain.slaves_mut()[i];
+            slave.set_position(position);
+            slave.set_flags(error, warning);
+            slave.set_flips(flips);
+        }
+    }
+
+    fn apply_line_faults(&mut self) {
+        let done = self.chain.frames() as usize;
+        if let Some(f) = &self.cfg.stuck {
+            if done >= f.from_frame {
+                self.stuck = Some(f.level);
+            }
+        }
+        if let (Some(d), None) = (&self.cfg.delay_step, &self.extra) {
+            if done >= d.from_frame {
+                self.extra = Some(DelayLine::new(self.tb.cycles_nearest_ns(d.extra_ns), true));
+            }
+        }
+    }
+
+    /// The entries so far.
+    pub fn entries(&self) -> &[Entry] {
+        &self.entries
+    }
+
+    /// Holds the master's MA (at its own pin) to the seed's limits.
+    fn check(&mut self, ma: bool) {
+        let now = self.cycle;
+        let w = &mut self.watch;
+        if ma != w.last_ma {
+            // MA high for more than 4 of the frame's half periods has stopped:
+            // the next falling edge is the master's new start.
+            let stopped = w.in_frame && now - w.last_edge > 4 * w.last_low.max(1);
+            if ma {
+                w.last_low = now - w.last_edge;
+            }
+            if !ma && (!w.in_frame || stopped) {
+                w.in_frame = true;
+                w.last_rise = None;
+                if !self.slo_at_slaves {
+                    self.checks.push(
+                        now,
+                        "frame start (seed 001, BiSS-C: start a frame only after the slave's timeout, SLO high)",
+                        "MA fell while the slave still held SLO low".to_string(),
+                    );
+                }
+            }
+            if ma {
+                if let Some(r) = w.last_rise {
+                    if ((now - r) as f64) < self.min_tmas {
+                        self.checks.push(
+                            now,
+                            "TMAS (seed 001, BiSS-C: TMAS > 100 ns)",
+                            format!(
+                                "MA period {:.1} ns within a frame",
+                                self.checks.us(now - r) * 1e3
+                            ),
+                        );
+                    }
+                }
+                w.last_rise = Some(now);
+            }
+            w.last_ma = ma;
+            w.last_edge = now;
+        } else if w.in_frame && now - w.last_edge >= self.timeout {
+            w.in_frame = false;
+        }
+    }
+
+    fn slave_index(&self, device: usize) -> Result<usize> {
+        if device < self.owned.len() {
+            Ok(device)
+        } else {
+            Err(Error::Usage(format!(
+                "the chain has {} slave(s), 0 to {}; there is no slave {device}",
+                self.owned.len(),
+                self.owned.len() - 1
+            )))
+        }
+    }
+}
+
+fn check_faults(f: &FaultTables, slaves: &[SlaveSettings], origin: &str) -> Result<()> {
+    for (j, flip) in f.flips.iter().enumerate() {
+        let Some(s) = slaves.get(flip.slave) else {
+            return Err(Error::field(
+                origin,
+                format!("flips[{j}].slave"),
+                format!("slave {}", flip.slave),
+                "name a slave of the chain (0-based)",
+            ));
+        };
+        let len = s.bits + 2 + s.crc_width;
+        if let Some(b) = flip.bits.iter().find(|&&b| b >= len) {
+            return Err(Error::field(
+                origin,
+                format!("flips[{j}].bits"),
+                format!("bit {b}"),
+                format!("give bits 0 to {}", len - 1),
+            ));
+        }
+    }
+    if let Some(d) = &f.delay_step {
+        if !(d.extra_ns >= 0.0 && d.extra_ns < 1e7) {
+            return Err(Error::field(
+                origin,
+                "delay_step.extra_ns",
+                format!("{}", d.extra_ns),
+                "give a non-negative time",
+            ));
+        }
+    }
+    Ok(())
+}
+
+impl Emulator for BissEmulator {
+    fn kind(&self) -> &'static str {
+        "biss"
+    }
+
+    fn step(&mut self, pins: Pins) -> Pins {
+        self.check(pins.data());
+        let ma = self.to_slaves.step(pins.data());
+        let latches = self.chain.latches();
+        let frames = self.chain.frames();
+        let slo = self.chain.step(ma);
+        self.slo_at_slaves = slo;
+        if self.chain.latches() != latches {
+            let slaves = self
+                .chain
+                .slaves()
+                .iter()
+                .zip(&self.cfg.slaves)
+                .map(|(s, set)| {
+                    let sec = s.last_section();
+                    let n = set.bits as usize;
+                    let value = sec[1..1 + n].iter().fold(0u64, |a, &b| (a << 1) | b as u64);
+                    SlaveEntry {
+                        position: value,
+                        error: !sec[1 + n],
+                        warning: !sec[2 + n],
+                        sent_bits: bits::string(sec),
+                    }
+                })
+                .collect();
+            self.entries.push(Entry {
+                index: latches,
+                cycle: self.cycle,
+                slaves,
+            });
+            self.prepare(latches + 1);
+        }
+        if self.chain.frames() != frames {
+            self.apply_line_faults();
+        }
+        let mut at_master = self.to_master.step(slo);
+        if let Some(extra) = self.extra.as_mut() {
+            at_master = extra.step(at_master);
+        }
+        self.cycle += 1;
+        let flag = if self.checks.pending() {
+            VIOLATION_PENDING
+        } else {
+            0
+        };
+        Pins(self.stuck.unwrap_or(at_master) as u32 | flag)
+    }
+
+    fn set_position(&mut self, device: usize, position: u64) -> Result<()> {
+        let i = self.slave_index(device)?;
+        self.owned[i].position = Some(position);
+        self.chain.slaves_mut()[i].set_position(position);
+        Ok(())
+    }
+
+    fn set_status(&mut self, device: usize, name: &str, value: bool) -> Result<()> {
+        let i = self.slave_index(device)?;
+        match name {
+            "error" => self.owned[i].error = Some(value),
+            "warning" => self.owned[i].warning = Some(value),
+            other => {
+                return Err(Error::Usage(format!(
+                    "a BiSS-C slave reports `error` and `warning`, not `{other}`"
+                )))
+            }
+        }
+        let k = self.chain.latches();
+        // Re-arm the next frame with the new flags (flips of that frame stay scheduled).
+        self.prepare(k);
+        Ok(())
+    }
+
+    fn schedule_fault(&mut self, toml: &str) -> Result<()> {
+        let tables = config::tables(toml, "fault", "biss")?;
+        let f: FaultTables = config::decode(tables.device, "fault")?;
+        check_faults(&f, &self.cfg.slaves, "fault")?;
+        self.cfg.flips.extend(f.flips);
+        if f.stuck.is_some() {
+            self.cfg.stuck = f.stuck;
+            self.stuck = None;
+        }
+        if f.delay_step.is_some() {
+            self.cfg.delay_step = f.delay_step;
+            self.extra = None;
+        }
+        let k = self.chain.latches();
+        self.prepare(k);
+        self.apply_line_faults();
+        Ok(())
+    }
+
+    fn count(&self) -> u64 {
+        self.entries.len() as u64
+    }
+
+    fn last_value(&self, device: usize) -> Option<u64> {
+        self.entries
+            .last()
+            .and_then(|e| e.slaves.get(device))
+            .map(|s| s.position)
+    }
+
+    fn last_status(&self, device: usize, name: &str) -> Result<bool> {
+        let i = self.slave_index(device)?;
+        let Some(e) = self.entries.last() else {
+            return Err(Error::Usage("no frame has been latched yet".into()));
+        };
+        match name {
+            "error" => Ok(e.slaves[i].error),
+            "warning" => Ok(e.slaves[i].warning),
+            other => Err(Error::Usage(format!(
+                "a BiSS-C slave reports `error` and `warning`, not `{other}`"
+            ))),
+        }
+    }
+
+    fn transcript(&self) -> serde_json::Value {
+        serde_json::json!({
+            "protocol": "biss",
+            "f_emu_hz": self.f_emu_hz,
+            "frames": self.entries,
+            "violations": self.checks.all(),
+        })
+    }
+
+    fn checks(&mut self) -> &mut Checks {
+        &mut self.checks
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_emulator_clock_below_four_times_10_mhz_is_refused_with_the_minimum() {
+        let err = BissEmulator::from_toml("", "s.toml", 20_000_000)
+            .err()
+            .unwrap()
+            .to_string();
+        assert!(err.contains("at least 40000000 Hz"), "{err}");
+        let ok = BissEmulator::from_toml(
+            "[emulator]\nmax_line_clock_khz = 5000\n",
+            "s.toml",
+            20_000_000,
+        );
+        assert!(ok.is_ok());
+    }
+
+    #[test]
+    fn a_bad_slave_field_names_the_file_and_the_field() {
+        let err = BissEmulator::from_toml("[[slaves]]\nbits = 70\n", "s.toml", 80_000_000)
+            .err()
+            .unwrap()
+            .to_string();
+        assert!(err.starts_with("s.toml: field `slaves[0].bits`"), "{err}");
+    }
+
+    /// One frame of `periods` MA periods of `half` cycles per half, then MA high for `rest` cycles.
+    fn frame(emu: &mut BissEmulator, periods: u32, half: u64, rest: u64) {
+        for _ in 0..periods {
+            for _ in 0..half {
+                emu.step(Pins::line(false));
+            }
+            for _ in 0..half {
+                emu.step(Pins::line(true));
+            }
+        }
+        for _ in 0..rest {
+            emu.step(Pins::line(true));
+        }
+    }
+
+    #[test]
+    fn tmas_below_100_ns_and_a_start_in_the_slaves_timeout_are_reported() {
+        // 80 MHz: 10 MHz MA = 4 cycles per half; the 16 us timeout is 1280 cycles.
+        let mut emu = BissEmulator::from_toml("", "s.toml", 80_000_000).unwrap();
+        frame(&mut emu, 40, 4, 1400);
+        assert!(emu.violations().is_empty(), "{:?}", emu.violations());
+        // 13.3 MHz (3 cycles per half), then a new frame 200 cycles after it: inside the timeout.
+        frame(&mut emu, 40, 3, 200);
+        frame(&mut emu, 40, 4, 1400);
+        let rules: Vec<&str> = emu
+            .violations()
+            .iter()
+            .map(|v| v.rule.split(' ').next().unwrap())
+            .collect();
+        assert_eq!(rules.first(), Some(&"TMAS"));
+        assert!(rules.contains(&"frame"), "{rules:?}");
+        assert!(emu
+            .take_violation()
+            .unwrap()
+            .contains("MA period 75.0 ns within a frame"));
+    }
+
+    #[test]
+    fn the_seed_scenario_file_is_accepted_whole() {
+        let text = std::fs::read_to_string(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../scenarios/biss/seed_16bit.toml"
+        ))
+        .unwrap();
+        let emu = BissEmulator::from_toml(&text, "seed_16bit.toml", 80_000_000).unwrap();
+        assert_eq!(emu.cfg.slaves[0].positions[0], 35555);
+    }
+}

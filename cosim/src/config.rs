@@ -1,0 +1,171 @@
+//! Reading an emulator's TOML: the scenario's own tables, errors that name
+//! the file, the field and the fix, and the emulator-clock check.
+
+use model::{ConfigError, Timebase};
+
+/// What can go wrong making or driving an emulator. Every message names
+/// where the problem is and what to do.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum Error {
+    /// A field of the configuration is out of range or inconsistent.
+    #[error("{origin}: {error}")]
+    Config {
+        /// The file (or text) the configuration came from.
+        origin: String,
+        /// The model's verdict, naming the field and the fix.
+        error: ConfigError,
+    },
+    /// The TOML itself is malformed or has a field of the wrong type.
+    #[error("{origin}: {message}")]
+    Toml {
+        /// The file (or text) the configuration came from.
+        origin: String,
+        /// The parser's message (with line and column).
+        message: String,
+    },
+    /// A call the emulator cannot honour (bad handle, unknown status name...).
+    #[error("{0}")]
+    Usage(String),
+}
+
+impl Error {
+    /// A configuration error of `origin`.
+    pub fn config(origin: &str, error: ConfigError) -> Self {
+        Error::Config {
+            origin: origin.to_string(),
+            error,
+        }
+    }
+
+    /// A field error of `origin`.
+    pub fn field(
+        origin: &str,
+        field: impl Into<String>,
+        problem: impl Into<String>,
+        fix: impl Into<String>,
+    ) -> Self {
+        Error::config(origin, ConfigError::invalid(field, problem, fix))
+    }
+}
+
+/// Keys of a scenario's protocol table that describe the master or the host
+/// side: an emulator reads a whole scenario file and leaves them alone.
+pub const SCENARIO_ONLY: &[&str] = &[
+    "master",
+    "host",
+    "f_sys_mhz",
+    "reads",
+    "name",
+    "description",
+];
+
+/// The emulator's own table, `[emulator]` (or `[<proto>.emulator]`).
+#[derive(Debug, Clone, PartialEq, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EmulatorSettings {
+    /// The fastest line clock the emulator must follow, kHz (default: the
+    /// protocol's maximum); the emulator clock must be at least 4 times it.
+    pub max_line_clock_khz: Option<f64>,
+}
+
+/// A configuration split into the device's tables and the emulator's own.
+pub struct Tables {
+    /// The protocol table with the scenario-only keys removed.
+    pub device: toml::Table,
+    /// `[emulator]`.
+    pub emulator: EmulatorSettings,
+}
+
+/// Parses `text` and returns the protocol's tables: those under `[proto]`
+/// when the text is a scenario file, else the top level.
+pub fn tables(text: &str, origin: &str, proto: &str) -> Result<Tables, Error> {
+    let root: toml::Table = text.parse().map_err(|e: toml::de::Error| Error::Toml {
+        origin: origin.to_string(),
+        message: one_line(&e.to_string()),
+    })?;
+    let mut device = match root.get(proto) {
+        Some(toml::Value::Table(t)) => t.clone(),
+        Some(_) => {
+            return Err(Error::field(
+                origin,
+                proto,
+                "is not a table",
+                format!("write [{proto}] as a table header"),
+            ))
+        }
+        None => {
+            let mut t = root.clone();
+            t.remove("name");
+            t.remove("description");
+            t
+        }
+    };
+    for key in SCENARIO_ONLY {
+        device.remove(*key);
+    }
+    let emulator = match device.remove("emulator") {
+        Some(v) => v.try_into().map_err(|e: toml::de::Error| Error::Toml {
+            origin: origin.to_string(),
+            message: format!("table `emulator`: {}", one_line(&e.to_string())),
+        })?,
+        None => EmulatorSettings {
+            max_line_clock_khz: None,
+        },
+    };
+    Ok(Tables { device, emulator })
+}
+
+/// Deserialises a table into `T`, naming `origin` in the error.
+pub fn decode<T: serde::de::DeserializeOwned>(
+    table: toml::Table,
+    origin: &str,
+) -> Result<T, Error> {
+    toml::Value::Table(table)
+        .try_into()
+        .map_err(|e: toml::de::Error| Error::Toml {
+            origin: origin.to_string(),
+            message: one_line(&e.to_string()),
+        })
+}
+
+fn one_line(s: &str) -> String {
+    s.split_whitespace().collect::<Vec<_>>().join(" ")
+}
+
+/// Checks the emulator clock and returns its timebase: it must be a usable
+/// clock (whole picoseconds) and at least 4 times the fastest line clock
+/// (two samples per half period, as the cores need with `CLOCKS_PER_BIT >= 4`).
+pub fn emulator_clock(
+    f_emu_hz: u64,
+    settings: &EmulatorSettings,
+    default_max_khz: f64,
+    proto: &str,
+    origin: &str,
+) -> Result<Timebase, Error> {
+    let max_khz = settings.max_line_clock_khz.unwrap_or(default_max_khz);
+    if !(max_khz > 0.0 && max_khz <= 1e6) {
+        return Err(Error::field(
+            origin,
+            "emulator.max_line_clock_khz",
+            format!("{max_khz} kHz"),
+            "give the fastest line clock in kHz",
+        ));
+    }
+    let minimum = (4.0 * max_khz * 1e3).ceil() as u64;
+    if f_emu_hz < minimum {
+        return Err(Error::Usage(format!(
+            "{origin}: emulator clock f_emu = {f_emu_hz} Hz is too slow for {proto}: it must be at least 4 x the fastest line clock ({max_khz} kHz), i.e. at least {minimum} Hz; \
+             give a faster emulator clock, or set emulator.max_line_clock_khz to the fastest clock your master uses"
+        )));
+    }
+    if f_emu_hz > 1_000_000_000 || model::time::PS_PER_S % f_emu_hz != 0 {
+        return Err(Error::Usage(format!(
+            "{origin}: emulator clock f_emu = {f_emu_hz} Hz has no whole-picosecond period (or is above 1 GHz); give a clock such as 50, 64, 80 or 100 MHz"
+        )));
+    }
+    Timebase::new(f_emu_hz).map_err(|e| {
+        Error::Usage(format!(
+            "{origin}: emulator clock f_emu = {f_emu_hz} Hz: {e}"
+        ))
+    })
+}

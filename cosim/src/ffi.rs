@@ -1,0 +1,360 @@
+//! The C ABI: one handle table, plain integers and C strings, errors as
+//! values. The signatures are DPI-C compatible (`int` = `int32_t`,
+//! `longint` = `int64_t`, `string` = `const char *`), so Verilator's
+//! `import "DPI-C"` calls them directly; Icarus reaches them through the
+//! VPI module `hdl/emu/vpi/emu_vpi.c`.
+//!
+//! Every function returns a negative value (or a null pointer) on failure
+//! and leaves the message in [`emu_last_error`]; none unwinds a panic into C
+//! (each body runs under `catch_unwind`, and a caught panic becomes an
+//! error message). Simulators call from one thread; the table is behind a
+//! mutex all the same.
+
+use std::ffi::{c_char, CStr, CString};
+use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::sync::Mutex;
+
+use crate::{open, Emulator, Error, Pins};
+
+static TABLE: Mutex<Vec<Option<Box<dyn Emulator>>>> = Mutex::new(Vec::new());
+static LAST_ERROR: Mutex<Option<CString>> = Mutex::new(None);
+static TEXT: Mutex<Option<CString>> = Mutex::new(None);
+
+fn set_error(message: String) {
+    let c = CString::new(message.replace('\0', " ")).unwrap_or_default();
+    *LAST_ERROR.lock().unwrap_or_else(|e| e.into_inner()) = Some(c);
+}
+
+/// Runs `f`, turning an error or a panic into `fail` and a message.
+fn guard<T>(fail: T, f: impl FnOnce() -> Result<T, Error>) -> T {
+    match catch_unwind(AssertUnwindSafe(f)) {
+        Ok(Ok(v)) => v,
+        Ok(Err(e)) => {
+            set_error(e.to_string());
+            fail
+        }
+        Err(p) => {
+            let what = p
+                .downcast_ref::<&str>()
+                .map(|s| s.to_string())
+                .or_else(|| p.downcast_ref::<String>().cloned())
+                .unwrap_or_default();
+            set_error(format!(
+                "internal error in the emulator library (please report): {what}"
+            ));
+            fail
+        }
+    }
+}
+
+fn text(p: *const c_char, what: &str) -> Result<String, Error> {
+    if p.is_null() {
+        return Err(Error::Usage(format!("{what} is a null pointer")));
+    }
+    // SAFETY: the caller passes a NUL-terminated string (DPI-C and VPI both do).
+    let s = unsafe { CStr::from_ptr(p) };
+    // A wide Verilog reg carries leading spaces (or NULs) before its characters.
+    s.to_str()
+        .map(|t| {
+            t.trim_matches(|c: char| c == '\0' || c.is_whitespace())
+                .to_string()
+        })
+        .map_err(|_| Error::Usage(format!("{what} is not UTF-8")))
+}
+
+fn with<T>(handle: i32, f: impl FnOnce(&mut dyn Emulator) -> Result<T, Error>) -> Result<T, Error> {
+    let mut table = TABLE.lock().unwrap_or_else(|e| e.into_inner());
+    match usize::try_from(handle)
+        .ok()
+        .and_then(|h| h.checked_sub(1))
+        .and_then(|i| table.get_mut(i))
+        .and_then(|e| e.as_mut())
+    {
+        Some(emu) => f(emu.as_mut()),
+        None => Err(Error::Usage(format!(
+            "emulator handle {handle} is not open"
+        ))),
+    }
+}
+
+fn register(emu: Box<dyn Emulator>) -> i32 {
+    let mut table = TABLE.lock().unwrap_or_else(|e| e.into_inner());
+    table.push(Some(emu));
+    table.len() as i32
+}
+
+fn frequency(f_emu_hz: i64) -> Result<u64, Error> {
+    u64::try_from(f_emu_hz)
+        .ok()
+        .filter(|&f| f > 0)
+        .ok_or_else(|| {
+            Error::Usage(format!(
+                "emulator clock {f_emu_hz} Hz: give a positive frequency in Hz"
+            ))
+        })
+}
+
+/// Opens an emulator of `kind` (`"ssi"`, `"biss"`) from the TOML file at
+/// `path`, clocked at `f_emu_hz`. Returns a handle (1, 2, ...) or -1.
+#[no_mangle]
+pub extern "C" fn emu_open(kind: *const c_char, path: *const c_char, f_emu_hz: i64) -> i32 {
+    guard(-1, || {
+        let kind = text(kind, "kind")?;
+        let path = text(path, "path")?;
+        if path.is_empty() {
+            return Err(Error::Usage(format!("no configuration file for the {kind} emulator: set the wrapper's CONFIG parameter or its plusarg to a TOML file")));
+        }
+        let toml = std::fs::read_to_string(&path).map_err(|e| {
+            Error::Usage(format!(
+                "{path}: cannot read the emulator configuration: {e}; check the path"
+            ))
+        })?;
+        Ok(register(open(&kind, &toml, &path, frequency(f_emu_hz)?)?))
+    })
+}
+
+/// Creates an emulator from TOML text. On failure returns -1 and, when
+/// `err_buf` is not null, writes the message there (NUL-terminated,
+/// truncated to `err_len` bytes).
+#[no_mangle]
+pub extern "C" fn emu_create(
+    kind: *const c_char,
+    toml: *const c_char,
+    f_emu_hz: i64,
+    err_buf: *mut c_char,
+    err_len: usize,
+) -> i32 {
+    let h = guard(-1, || {
+        let kind = text(kind, "kind")?;
+        let toml = text(toml, "toml")?;
+        Ok(register(open(
+            &kind,
+            &toml,
+            "<toml>",
+            frequency(f_emu_hz)?,
+        )?))
+    });
+    if h < 0 && !err_buf.is_null() && err_len > 0 {
+        let msg = LAST_ERROR
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .clone()
+            .unwrap_or_default();
+        let bytes = msg.as_bytes();
+        let n = bytes.len().min(err_len - 1);
+        // SAFETY: the caller gives a buffer of at least err_len bytes.
+        unsafe {
+            std::ptr::copy_nonoverlapping(bytes.as_ptr() as *const c_char, err_buf, n);
+            *err_buf.add(n) = 0;
+        }
+    }
+    h
+}
+
+/// One rising edge of the emulator clock: `pins` in (bit 0 line clock, bit
+/// 1 master data, bit 2 master driver enable), the emulator's pins out (bit
+/// 0 data, bit 1 driver enable), or -1 for a bad handle.
+#[no_mangle]
+pub extern "C" fn emu_step(handle: i32, pins: i32) -> i32 {
+    guard(-1, || {
+        with(handle, |e| Ok(e.step(Pins(pins as u32)).0 as i32))
+    })
+}
+
+/// Device `device`'s position from its next latch on (the testbench owns it from now).
+#[no_mangle]
+pub extern "C" fn emu_set_position(handle: i32, device: i32, position: i64) -> i32 {
+    guard(-1, || {
+        with(handle, |e| {
+            e.set_position(device.max(0) as usize, position as u64)
+                .map(|_| 0)
+        })
+    })
+}
+
+/// Sets one status (`"error"`, `"warning"`, ...) of device `device` to `value` (0 or 1).
+#[no_mangle]
+pub extern "C" fn emu_set_status(handle: i32, device: i32, name: *const c_char, value: i32) -> i32 {
+    guard(-1, || {
+        let name = text(name, "status name")?;
+        with(handle, |e| {
+            e.set_status(device.max(0) as usize, &name, value != 0)
+                .map(|_| 0)
+        })
+    })
+}
+
+/// Schedules faults given as the scenario's fault tables in TOML text.
+#[no_mangle]
+pub extern "C" fn emu_schedule_fault(handle: i32, toml: *const c_char) -> i32 {
+    guard(-1, || {
+        let toml = text(toml, "fault")?;
+        with(handle, |e| e.schedule_fault(&toml).map(|_| 0))
+    })
+}
+
+/// Transactions (latches) so far, or -1.
+#[no_mangle]
+pub extern "C" fn emu_count(handle: i32) -> i64 {
+    guard(-1, || with(handle, |e| Ok(e.count() as i64)))
+}
+
+/// The position device `device` latched in the last transaction, or -1
+/// when there is none (a 64-bit position of all ones reads as -1 too:
+/// check [`emu_count`]).
+#[no_mangle]
+pub extern "C" fn emu_last_value(handle: i32, device: i32) -> i64 {
+    guard(-1, || {
+        with(handle, |e| {
+            Ok(e.last_value(device.max(0) as usize)
+                .map_or(-1, |v| v as i64))
+        })
+    })
+}
+
+/// A status (0 or 1) device `device` reported in the last transaction, or -1.
+#[no_mangle]
+pub extern "C" fn emu_last_status(handle: i32, device: i32, name: *const c_char) -> i32 {
+    guard(-1, || {
+        let name = text(name, "status name")?;
+        with(handle, |e| {
+            e.last_status(device.max(0) as usize, &name)
+                .map(|b| b as i32)
+        })
+    })
+}
+
+/// Protocol violations of the master seen so far, or -1.
+#[no_mangle]
+pub extern "C" fn emu_violations(handle: i32) -> i64 {
+    guard(-1, || with(handle, |e| Ok(e.violations().len() as i64)))
+}
+
+/// The next violation not yet shown, as one line ("" when none); the
+/// pointer stays valid until the next call of this function. `emu_step`
+/// sets bit 7 of its result while one waits.
+#[no_mangle]
+pub extern "C" fn emu_take_violation(handle: i32) -> *const c_char {
+    guard(std::ptr::null(), || {
+        let line = with(handle, |e| Ok(e.take_violation().unwrap_or_default()))?;
+        let c = CString::new(line).map_err(|e| Error::Usage(e.to_string()))?;
+        let mut slot = TEXT.lock().unwrap_or_else(|e| e.into_inner());
+        *slot = Some(c);
+        Ok(slot.as_ref().map_or(std::ptr::null(), |c| c.as_ptr()))
+    })
+}
+
+/// Writes the transcript (JSON) to `path`. Returns 0 or -1.
+#[no_mangle]
+pub extern "C" fn emu_write_transcript(handle: i32, path: *const c_char) -> i32 {
+    guard(-1, || {
+        let path = text(path, "path")?;
+        let json = with(handle, |e| Ok(e.transcript()))?;
+        let body = serde_json::to_string_pretty(&json).map_err(|e| Error::Usage(e.to_string()))?;
+        std::fs::write(&path, body + "\n")
+            .map_err(|e| Error::Usage(format!("{path}: cannot write the transcript: {e}")))?;
+        Ok(0)
+    })
+}
+
+/// The transcript as JSON text; the pointer stays valid until the next call
+/// of this function. Null on failure.
+#[no_mangle]
+pub extern "C" fn emu_transcript(handle: i32) -> *const c_char {
+    guard(std::ptr::null(), || {
+        let json = with(handle, |e| Ok(e.transcript()))?;
+        let c = CString::new(json.to_string()).map_err(|e| Error::Usage(e.to_string()))?;
+        let mut slot = TEXT.lock().unwrap_or_else(|e| e.into_inner());
+        *slot = Some(c);
+        Ok(slot.as_ref().map_or(std::ptr::null(), |c| c.as_ptr()))
+    })
+}
+
+/// Closes an emulator. Returns 0 or -1.
+#[no_mangle]
+pub extern "C" fn emu_close(handle: i32) -> i32 {
+    guard(-1, || {
+        let mut table = TABLE.lock().unwrap_or_else(|e| e.into_inner());
+        match usize::try_from(handle)
+            .ok()
+            .and_then(|h| h.checked_sub(1))
+            .and_then(|i| table.get_mut(i))
+        {
+            Some(slot @ Some(_)) => {
+                *slot = None;
+                Ok(0)
+            }
+            _ => Err(Error::Usage(format!(
+                "emulator handle {handle} is not open"
+            ))),
+        }
+    })
+}
+
+/// The message of the last failure ("" when none). Valid until the next failure.
+#[no_mangle]
+pub extern "C" fn emu_last_error() -> *const c_char {
+    let slot = LAST_ERROR.lock().unwrap_or_else(|e| e.into_inner());
+    match slot.as_ref() {
+        Some(c) => c.as_ptr(),
+        None => c"".as_ptr(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn last_error() -> String {
+        // SAFETY: emu_last_error returns a valid NUL-terminated string.
+        unsafe { CStr::from_ptr(emu_last_error()) }
+            .to_string_lossy()
+            .into_owned()
+    }
+
+    #[test]
+    fn a_missing_file_is_an_error_value_naming_the_path() {
+        let h = emu_open(c"ssi".as_ptr(), c"/no/such/emu.toml".as_ptr(), 50_000_000);
+        assert_eq!(h, -1);
+        assert!(
+            last_error().contains("/no/such/emu.toml"),
+            "{}",
+            last_error()
+        );
+    }
+
+    #[test]
+    fn create_writes_its_error_into_the_callers_buffer() {
+        let mut buf = [0 as c_char; 256];
+        let h = emu_create(
+            c"biss".as_ptr(),
+            c"[[slaves]]\nbits = 0\n".as_ptr(),
+            80_000_000,
+            buf.as_mut_ptr(),
+            buf.len(),
+        );
+        assert_eq!(h, -1);
+        // SAFETY: emu_create NUL-terminates within the buffer.
+        let msg = unsafe { CStr::from_ptr(buf.as_ptr()) }
+            .to_string_lossy()
+            .into_owned();
+        assert!(msg.contains("slaves[0].bits"), "{msg}");
+    }
+
+    #[test]
+    fn a_closed_or_unknown_handle_is_refused() {
+        let h = emu_create(
+            c"ssi".as_ptr(),
+            c"".as_ptr(),
+            50_000_000,
+            std::ptr::null_mut(),
+            0,
+        );
+        assert!(h > 0);
+        assert_eq!(emu_close(h), 0);
+        assert_eq!(emu_step(h, 1), -1);
+        assert!(last_error().contains("not open"));
+        assert_eq!(emu_step(0, 1), -1);
+        assert_eq!(emu_count(-5), -1);
+    }
+}

@@ -1,0 +1,252 @@
+//! The emulators in the simulators: our cores pass closed-loop in Icarus and
+//! Verilator, a planted misread fails, a bad configuration stops the run at
+//! time 0 naming file, field and fix, an emulator clock too slow is refused
+//! with the minimum, and X on an emulator input is reported with time and
+//! pin. Needs the simulators that `make deps` installs.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::sync::Mutex;
+
+/// One Verilator build at a time (the machine is shared; builds are cached).
+static SERIAL: Mutex<()> = Mutex::new(());
+
+/// The error benches this test process has built already (sim, f_emu).
+static BUILT: Mutex<Vec<(String, u64)>> = Mutex::new(Vec::new());
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .unwrap()
+        .to_path_buf()
+}
+
+fn run(cmd: &mut Command) -> (bool, String) {
+    let out = cmd
+        .output()
+        .expect("the command runs (make deps installs the simulators)");
+    (
+        out.status.success(),
+        format!(
+            "{}{}",
+            String::from_utf8_lossy(&out.stdout),
+            String::from_utf8_lossy(&out.stderr)
+        ),
+    )
+}
+
+fn cosim(core: &str, sim: &str, extra: &[&str]) -> (bool, String) {
+    let _one = SERIAL.lock().unwrap_or_else(|e| e.into_inner());
+    run(Command::new(root().join("scripts/cosim.sh"))
+        .args([core, sim, "--transactions", "90"])
+        .args(extra))
+}
+
+fn closed_loop_passes_and_a_misread_fails(core: &str, sim: &str) {
+    let (ok, out) = cosim(core, sim, &[]);
+    assert!(ok, "{core} in {sim}:\n{out}");
+    assert_eq!(out.matches("PASS").count(), 3, "{out}");
+    assert!(
+        out.contains("90 transactions over 3 configuration(s), pass"),
+        "{out}"
+    );
+    // The testbench flips bit 2 of the core's position before comparing.
+    let (ok, out) = cosim(core, sim, &["--flip-bit", "2"]);
+    assert!(!ok, "a planted misread passed in {sim}:\n{out}");
+    assert!(out.contains("core read"), "{out}");
+}
+
+#[test]
+fn ssi_master_closed_loop_in_icarus() {
+    closed_loop_passes_and_a_misread_fails("ssi_master", "icarus");
+}
+
+#[test]
+fn ssi_master_closed_loop_in_verilator() {
+    closed_loop_passes_and_a_misread_fails("ssi_master", "verilator");
+}
+
+#[test]
+fn biss_master_closed_loop_in_icarus() {
+    closed_loop_passes_and_a_misread_fails("biss_master", "icarus");
+}
+
+#[test]
+fn biss_master_closed_loop_in_verilator() {
+    closed_loop_passes_and_a_misread_fails("biss_master", "verilator");
+}
+
+/// Builds tb_emu_errors in `sim` with F_EMU_HZ = `f_emu`; returns a command that runs it.
+fn errors_bench(sim: &str, f_emu: u64) -> Command {
+    let _one = SERIAL.lock().unwrap_or_else(|e| e.into_inner());
+    let vars = run(&mut Command::new(root().join("scripts/emu_lib.sh")));
+    assert!(vars.0, "{}", vars.1);
+    let var = |name: &str| {
+        vars.1
+            .lines()
+            .find_map(|l| l.strip_prefix(&format!("{name}=")))
+            .unwrap()
+            .to_string()
+    };
+    let (lib, vpi, hdl) = (var("EMU_LIB_DIR"), var("EMU_VPI_DIR"), var("EMU_HDL_DIR"));
+    let build = root().join(format!("build/cosim/emu_errors/{sim}_{f_emu}"));
+    std::fs::create_dir_all(&build).unwrap();
+    let tb = root().join("hdl/tb_cosim/emu_errors/tb_emu_errors.v");
+    let emu = format!("{hdl}/ssi_encoder_emu.v");
+    let key = (sim.to_string(), f_emu);
+    let built = BUILT.lock().unwrap().contains(&key);
+    BUILT.lock().unwrap().push(key);
+    match sim {
+        "icarus" => {
+            let vvp = build.join("tb.vvp");
+            let (ok, out) = if built {
+                (true, String::new())
+            } else {
+                run(Command::new("iverilog")
+                    .args([
+                        "-g2005",
+                        "-Wno-timescale",
+                        "-I",
+                        &hdl,
+                        &format!("-Ptb_emu_errors.F_EMU_HZ={f_emu}"),
+                        "-o",
+                    ])
+                    .arg(&vvp)
+                    .arg(&tb)
+                    .arg(&emu))
+            };
+            assert!(ok, "{out}");
+            let mut cmd = Command::new("vvp");
+            cmd.args(["-n", "-M", &vpi, "-m", "emu"]).arg(vvp);
+            cmd
+        }
+        _ => {
+            let (ok, out) = if built {
+                (true, String::new())
+            } else {
+                run(Command::new("verilator")
+                    .args([
+                        "--binary",
+                        "--timing",
+                        "-j",
+                        "2",
+                        "-Wno-fatal",
+                        "-Wno-lint",
+                        "-Wno-style",
+                        "--top-module",
+                        "tb_emu_errors",
+                    ])
+                    .arg(format!("-I{hdl}"))
+                    .arg(format!("-GF_EMU_HZ={f_emu}"))
+                    .args([
+                        "-LDFLAGS",
+                        &format!("-L{lib} -lcosim -Wl,-rpath,{lib}"),
+                        "--Mdir",
+                    ])
+                    .arg(build.join("obj"))
+                    .args(["-o", "Vtb"])
+                    .arg(&tb)
+                    .arg(&emu))
+            };
+            assert!(ok, "{out}");
+            Command::new(build.join("obj/Vtb"))
+        }
+    }
+}
+
+fn bad_configuration_stops_at_time_zero(sim: &str) {
+    let dir = tempdir(sim);
+    let bad = dir.join("bad.toml");
+    std::fs::write(&bad, "[encoder]\nbits = 65\n").unwrap();
+    let good = dir.join("good.toml");
+    std::fs::write(&good, "[encoder]\nbits = 12\n").unwrap();
+    let mut tb = errors_bench(sim, 50_000_000);
+    let (ok, out) = run(tb.arg(format!("+ssi_emu_config={}", bad.display())));
+    assert!(!ok, "{out}");
+    assert!(
+        out.contains(&format!(
+            "{}: field `encoder.bits`: 65 bits; give 1 to 64 bits",
+            bad.display()
+        )),
+        "{out}"
+    );
+    assert!(out.contains("time 0"), "{out}");
+    assert!(!out.contains("no error"), "{out}");
+    let mut tb = errors_bench(sim, 50_000_000);
+    let (ok, out) = run(tb.arg("+ssi_emu_config=/no/such/file.toml"));
+    assert!(
+        !ok && out.contains("/no/such/file.toml: cannot read"),
+        "{out}"
+    );
+    let mut tb = errors_bench(sim, 50_000_000);
+    let (ok, out) = run(&mut tb);
+    assert!(!ok && out.contains("no configuration file"), "{out}");
+    // An emulator clock of 800 kHz cannot follow a 250 kHz SSI clock.
+    let mut tb = errors_bench(sim, 800_000);
+    let (ok, out) = run(tb.arg(format!("+ssi_emu_config={}", good.display())));
+    assert!(!ok && out.contains("at least 1000000 Hz"), "{out}");
+    let mut tb = errors_bench(sim, 50_000_000);
+    let (ok, out) = run(tb.arg(format!("+ssi_emu_config={}", good.display())));
+    assert!(ok && out.contains("no error"), "{out}");
+    // The bench's clock goes low for 100 ns and high again: a read with a
+    // first low phase far below the seed's T_cs, reported by the checker.
+    assert!(out.contains("PROTOCOL VIOLATION by the master on"), "{out}");
+    assert!(
+        out.contains("T_cs (seed 001, SSI: T_cs > 4 us): first low phase 0.100 us"),
+        "{out}"
+    );
+}
+
+fn tempdir(tag: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("cosim_hdl_{tag}_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+#[test]
+fn a_bad_configuration_stops_icarus_at_time_zero_with_file_field_and_fix() {
+    bad_configuration_stops_at_time_zero("icarus");
+}
+
+#[test]
+fn a_bad_configuration_stops_verilator_at_time_zero_with_file_field_and_fix() {
+    bad_configuration_stops_at_time_zero("verilator");
+}
+
+#[test]
+fn x_on_an_emulator_input_is_reported_with_time_and_pin_in_icarus() {
+    // Verilator is two-state: an X cannot reach the emulator there.
+    let dir = tempdir("x");
+    let good = dir.join("good.toml");
+    std::fs::write(&good, "[encoder]\nbits = 12\n").unwrap();
+    let mut tb = errors_bench("icarus", 50_000_000);
+    let (ok, out) = run(tb
+        .arg(format!("+ssi_emu_config={}", good.display()))
+        .arg("+x_at=500"));
+    assert!(!ok, "{out}");
+    // The X arrives at 500 ns and is seen at the next emulator clock edge, 510 ns (in ps).
+    assert!(
+        out.contains("X or Z on emulator input i_ssi_clk at time 510000, emulator cycle 25"),
+        "{out}"
+    );
+}
+
+/// The masters we did not write, each with its copyable Makefile, pass in both simulators.
+#[test]
+fn the_independent_examples_pass_in_icarus_and_verilator() {
+    for example in ["ssi_reader_other", "biss_reader_other"] {
+        for sim in ["icarus", "verilator"] {
+            let _one = SERIAL.lock().unwrap_or_else(|e| e.into_inner());
+            let dir = root().join("examples").join(example);
+            let (ok, out) = run(Command::new("make")
+                .arg("-C")
+                .arg(&dir)
+                .args([&format!("SIM={sim}"), "READS=100"]));
+            assert!(ok, "{example} in {sim}:\n{out}");
+            assert!(
+                out.contains("PASS") && out.contains("100 "),
+                "{example} in {sim}:\n{out}"
+            );
+        }
+    }
+}
