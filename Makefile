@@ -9,6 +9,8 @@
 #   make waves CORE=ssi_master [SCENARIO=ssi_seed_12bit]   open GTKWave on the saved layout
 #   make synth       yosys + nextpnr-ice40 (hx8k) for every core: logic cells and Fmax
 #   make bench       model vs Verilator vs Icarus cycles per second
+#   make cosim       every core closed-loop against its encoder emulator (both simulators)
+#   make soak        long runs: 100000 closed-loop transactions per core, the campaigns
 #   make deps        install Icarus, Verilator, yosys, nextpnr, GTKWave, sigrok-cli if missing
 
 CORE ?= ssi_master
@@ -18,7 +20,7 @@ SCENARIO ?=
 CARGO ?= cargo
 TBGEN := target/release/tbgen
 
-.PHONY: all demo vectors test deps build cargo-test hdl-test check-vectors check-gtkw lint sim waves synth bench clean
+.PHONY: all demo vectors test deps build cargo-test hdl-test check-vectors check-gtkw lint sim waves synth bench cosim soak clean
 
 all: vectors
 
@@ -64,6 +66,17 @@ waves:
 	@scenario="$(SCENARIO)"; \
 	 if [ -z "$$scenario" ]; then scenario=$$(ls vectors/$(CORE)/*.gtkw | head -n 1 | xargs basename | sed 's/\.gtkw$$//'); fi; \
 	 cd vectors/$(CORE) && gtkwave "$$scenario.gtkw"
+
+# Every core closed-loop against its encoder emulator (hdl/emu/, the cosim
+# library), 1000 transactions per core in each simulator.
+cosim:
+	@scripts/cosim_regress.sh --transactions 1000
+
+# Long runs kept out of make test: 100000 closed-loop transactions per core
+# (Verilator) and the model's corruption campaigns, with their counts.
+soak:
+	@scripts/cosim_regress.sh --sim verilator --transactions 100000
+	$(CARGO) test --release --locked -p model campaign -- --nocapture
 
 synth:
 	@scripts/synth.sh

@@ -6,8 +6,12 @@
 # Stages, in two lanes that run side by side on a 2-core machine once the
 # builds are done:
 #
-#   deps, build (tbgen release), cargo-build (the test profile, compiled once)
-#   lane 1: cargo-test                 model, flow, HDL flip, sigrok tests
+#   deps, build (tbgen and the emulator library, release), cargo-build (the
+#   test profile, compiled once)
+#   lane 1: cargo-test                 model, flow, HDL flip, sigrok, cosim tests
+#           cosim                      every core closed-loop against its
+#                                      emulator, 1000 transactions per core
+#                                      and simulator
 #   lane 2: lint, hdl, vectors, gtkw   Verilator lint, every vector file in
 #                                      Icarus and Verilator, committed vectors
 #                                      == fresh ones, every .gtkw in GTKWave
@@ -48,7 +52,7 @@ stage() {
 fail=0
 stage deps scripts/deps.sh || fail=1
 if [ $fail = 0 ]; then
-    stage build cargo build --release --locked -p tbgen || fail=1
+    stage build cargo build --release --locked -p tbgen -p cosim || fail=1
 fi
 if [ $fail = 0 ]; then
     stage cargo-build cargo test --workspace --locked --no-run || fail=1
@@ -56,7 +60,12 @@ fi
 if [ $fail = 0 ]; then
     # The dev profile, so that arithmetic overflow panics in tests instead
     # of wrapping silently as it would in release.
-    ( stage cargo-test cargo test --workspace --locked ) &
+    (
+        lane_fail=0
+        stage cargo-test cargo test --workspace --locked || lane_fail=1
+        stage cosim scripts/cosim_regress.sh --transactions 1000 || lane_fail=1
+        exit $lane_fail
+    ) &
     lane1=$!
     (
         lane_fail=0
