@@ -18,6 +18,7 @@
 //! generate::generate(&scenario, std::path::Path::new("out")).unwrap();
 //! ```
 
+pub mod bench;
 pub mod biss_tools;
 pub mod builtin;
 pub mod capture;
