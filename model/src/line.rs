@@ -257,13 +257,19 @@ impl HalfDuplexLine {
         for line in [&mut self.b_to_a_enable, &mut self.b_to_a_level, &mut self.a_to_b_enable, &mut self.a_to_b_level] {
             line.skip(n);
         }
-        let far_a = Drive { enable: self.b_to_a_enable.output, level: self.b_to_a_level.output };
-        let far_b = Drive { enable: self.a_to_b_enable.output, level: self.a_to_b_level.output };
-        let (at_a, at_b) = (resolve(a, far_a, self.idle), resolve(b, far_b, self.idle));
+        let (at_a, at_b) = self.sensed(a, b);
         if at_a.contention || at_b.contention {
             self.contention_cycles += n;
         }
         (at_a, at_b)
+    }
+
+    /// What the receivers at A and B see now with drives `a` and `b`, the
+    /// far ends' levels as they left the lines in the last step.
+    pub fn sensed(&self, a: Drive, b: Drive) -> (Sensed, Sensed) {
+        let far_a = Drive { enable: self.b_to_a_enable.output, level: self.b_to_a_level.output };
+        let far_b = Drive { enable: self.a_to_b_enable.output, level: self.a_to_b_level.output };
+        (resolve(a, far_a, self.idle), resolve(b, far_b, self.idle))
     }
 
     /// Cycles in which two drivers were on at either end.
