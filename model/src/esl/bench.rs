@@ -730,19 +730,19 @@ impl Testbench for Bench {
             };
         }
         let (at_host, at_encoder) = self.line.step(host_drive, bus);
-        let mut drives = Vec::with_capacity(self.encoders.len());
+        // Two drivers on a bus: a low wins (the stronger pull in a fight is not modelled).
+        let (mut enabled, mut level) = (0, true);
         for e in &mut self.encoders {
-            drives.push(e.step(at_encoder.level));
+            let d = e.step(at_encoder.level);
+            if d.enable {
+                enabled += 1;
+                level &= d.level;
+            }
         }
-        let enabled: Vec<&Drive> = drives.iter().filter(|d| d.enable).collect();
-        if enabled.len() > 1 {
+        if enabled > 1 {
             self.bus_contention += 1;
         }
-        // Two drivers on a bus: a low wins (the stronger pull in a fight is not modelled).
-        self.encoder_drive = Drive {
-            enable: !enabled.is_empty(),
-            level: enabled.iter().all(|d| d.level),
-        };
+        self.encoder_drive = Drive { enable: enabled > 0, level };
         self.at_host = at_host.level;
         if out.o_done {
             if let Some(mut t) = self.open.take() {
