@@ -514,7 +514,7 @@ impl Master {
             State::Idle if c.reg_pending || c.ctl_active => 0,
             State::Idle => u64::MAX,
             State::Stop | State::NoAck if c.slo_sync => timeout.saturating_sub(c.cnt),
-            State::Timeout if !(c.slo_sync && !c.ma_run) => timeout.saturating_sub(c.cnt),
+            State::Timeout if !c.slo_sync || c.ma_run => timeout.saturating_sub(c.cnt),
             _ => 0,
         };
         state.min(ma)
