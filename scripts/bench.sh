@@ -44,6 +44,7 @@ for toml in "$root"/scenarios/bench/*.toml; do
     name=$(echo "$report" | field scenario)
     cycles=$(echo "$report" | field cycles)
     quiet=$(echo "$report" | field quiet_share)
+    [ -n "$quiet" ] || { echo "bench: '$tbgen bench' gave no quiet_share: its Bench command must call tbgen::bench::report" >&2; exit 1; }
     model=$(echo "$report" | field model_cycles_per_second)
     stepped=$(echo "$report" | field model_stepped_cycles_per_second)
     vcd=$(echo "$report" | field vcd_writer_bytes_per_second)
