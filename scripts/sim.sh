@@ -9,6 +9,7 @@
 # configuration share one build), runs it, and exits with the simulator's
 # status: 0 when every output matched every cycle, non-zero at the first
 # mismatch. With a fourth argument the RTL waveform is dumped there.
+# SIM_BUILD_ONLY=1: build (or find in the cache) and stop before the replay.
 set -euo pipefail
 
 usage() { echo "usage: $0 <core> <icarus|verilator> <vectors.hex> [waves.vcd]" >&2; exit 2; }
@@ -60,6 +61,7 @@ icarus)
         mv "$build/tb.vvp.tmp" "$build/tb.vvp"
     fi
     flock -u 9
+    [ "${SIM_BUILD_ONLY:-0}" = 1 ] && exit 0
     exec vvp -n "$build/tb.vvp" "${plusargs[@]}"
     ;;
 verilator)
@@ -76,6 +78,7 @@ verilator)
         mv "$build/obj/Vtb" "$build/Vtb"
     fi
     flock -u 9
+    [ "${SIM_BUILD_ONLY:-0}" = 1 ] && exit 0
     exec "$build/Vtb" "${plusargs[@]}"
     ;;
 *)

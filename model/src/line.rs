@@ -155,6 +155,30 @@ impl DelayLine {
         self.now += 1;
         self.output
     }
+
+    /// How many of the next steps with `input` leave the output as it is
+    /// (fast-forward, [`crate::testbench::Testbench::quiet_cycles`]): up to
+    /// the next edge in flight, unbounded when none is; 0 when `input` is a
+    /// new edge.
+    pub fn quiet(&self, input: bool) -> u64 {
+        if input != self.last_input {
+            return 0;
+        }
+        match self.pending.front() {
+            Some(&(due, _)) => due.saturating_sub(self.now),
+            None => u64::MAX,
+        }
+    }
+
+    /// The level at the receiving end after the last step.
+    pub fn output(&self) -> bool {
+        self.output
+    }
+
+    /// The same as `n` steps with the last input, for `n` up to [`DelayLine::quiet`].
+    pub fn skip(&mut self, n: u64) {
+        self.now += n;
+    }
 }
 
 /// What one end of a half-duplex pair drives: its driver enable and the level
@@ -215,6 +239,37 @@ impl HalfDuplexLine {
             self.contention_cycles += 1;
         }
         (at_a, at_b)
+    }
+
+    /// How many of the next steps with drives `a` and `b` leave both
+    /// receivers' levels as they are (see [`DelayLine::quiet`]).
+    pub fn quiet(&self, a: Drive, b: Drive) -> u64 {
+        self.b_to_a_enable
+            .quiet(b.enable)
+            .min(self.b_to_a_level.quiet(b.level))
+            .min(self.a_to_b_enable.quiet(a.enable))
+            .min(self.a_to_b_level.quiet(a.level))
+    }
+
+    /// The same as `n` steps with drives `a` and `b`, for `n` up to
+    /// [`HalfDuplexLine::quiet`]; returns what the receivers see.
+    pub fn skip(&mut self, n: u64, a: Drive, b: Drive) -> (Sensed, Sensed) {
+        for line in [&mut self.b_to_a_enable, &mut self.b_to_a_level, &mut self.a_to_b_enable, &mut self.a_to_b_level] {
+            line.skip(n);
+        }
+        let (at_a, at_b) = self.sensed(a, b);
+        if at_a.contention || at_b.contention {
+            self.contention_cycles += n;
+        }
+        (at_a, at_b)
+    }
+
+    /// What the receivers at A and B see now with drives `a` and `b`, the
+    /// far ends' levels as they left the lines in the last step.
+    pub fn sensed(&self, a: Drive, b: Drive) -> (Sensed, Sensed) {
+        let far_a = Drive { enable: self.b_to_a_enable.output, level: self.b_to_a_level.output };
+        let far_b = Drive { enable: self.a_to_b_enable.output, level: self.a_to_b_level.output };
+        (resolve(a, far_a, self.idle), resolve(b, far_b, self.idle))
     }
 
     /// Cycles in which two drivers were on at either end.

@@ -36,6 +36,27 @@ pub trait Testbench {
     fn cycle(&self) -> u64;
     /// The transactions so far, consuming the bench.
     fn into_transactions(self) -> Vec<Self::Transaction>;
+
+    /// How many of the next cycles are known to change nothing a sample or
+    /// the transcript shows: no input, output, line or decoded value, no
+    /// transaction, and not [`Testbench::finished`] before their end. Only
+    /// counters run (a monoflop, a recovery time, a host's gap), so
+    /// [`Testbench::skip`] can advance through them in one go.
+    ///
+    /// The default, 0, is always correct: a bench that does not know its
+    /// quiet stretches is stepped cycle by cycle.
+    fn quiet_cycles(&self) -> u64 {
+        0
+    }
+
+    /// Advances `n` cycles, each with the same sample as the last stepped
+    /// one, leaving the bench exactly as `n` calls of `step(None)` would.
+    /// Callers pass at most [`Testbench::quiet_cycles`]; the default steps.
+    fn skip(&mut self, n: u64) {
+        for _ in 0..n {
+            self.step(None);
+        }
+    }
 }
 
 /// A scenario's configuration of one protocol: what `tbgen` needs to run it
@@ -77,8 +98,24 @@ pub fn run<B: Testbench, S: Sink>(mut bench: B, sink: &mut S) -> std::result::Re
     Ok(Run { cycles, transactions: bench.into_transactions() })
 }
 
-/// Runs `bench` to the end recording nothing (for tests and benchmarks).
+/// Runs `bench` to the end recording nothing (campaigns, benchmarks),
+/// advancing through quiet stretches in one step each
+/// ([`Testbench::quiet_cycles`]). Same cycles and transactions as
+/// [`run_every_cycle`].
 pub fn run_to_end<B: Testbench>(mut bench: B) -> Run<B::Transaction> {
+    while !bench.finished() {
+        match bench.quiet_cycles() {
+            0 => bench.step(None),
+            n => bench.skip(n),
+        }
+    }
+    Run { cycles: bench.cycle(), transactions: bench.into_transactions() }
+}
+
+/// Runs `bench` to the end recording nothing, one [`Testbench::step`] per
+/// cycle: the reference [`run_to_end`] is checked against, and the
+/// "before" of the fast-forward speed figures.
+pub fn run_every_cycle<B: Testbench>(mut bench: B) -> Run<B::Transaction> {
     while !bench.finished() {
         bench.step(None);
     }

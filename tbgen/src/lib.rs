@@ -26,6 +26,7 @@
 //! <table>`) and cycle budget (`tbgen timing <table>`). The protocols are
 //! listed once, below, one line each (see [`registry`]).
 
+pub mod bench;
 pub mod builtin;
 pub mod capture;
 pub mod crc_cmd;

@@ -2,10 +2,9 @@
 
 use std::path::PathBuf;
 use std::process::ExitCode;
-use std::time::Instant;
 
 use clap::{Parser, Subcommand};
-use tbgen::registry::{self, Protocol, Visitor};
+use tbgen::registry;
 use tbgen::{builtin, crc_cmd, generate, Error};
 
 /// `println!` that hands a closed stdout back as an error instead of
@@ -144,35 +143,8 @@ fn run(command: Command) -> Result<(), Error> {
     Ok(())
 }
 
-/// Model-only speed, and the speed of writing the waveform as well.
+/// `tbgen bench`: the model's and the VCD writer's speed (tbgen::bench).
 fn bench(arg: &str) -> Result<(), Error> {
-    let s = builtin::resolve(arg)?;
-    let (cycles, model_s) = s.setup.accept(TimeModel).map_err(|e| s.value_error(e))?;
-    let dir = std::env::temp_dir().join(format!("tbgen-bench-{}", std::process::id()));
-    let started = Instant::now();
-    let summary = generate::generate(&s, &dir)?;
-    let gen_s = started.elapsed().as_secs_f64();
-    let vcd_bytes = std::fs::metadata(&summary.files[1]).map(|m| m.len()).unwrap_or(0);
-    let _ = std::fs::remove_dir_all(&dir);
-    outln!("scenario: {}", s.name);
-    outln!("cycles: {cycles}");
-    outln!("model_seconds: {model_s:.6}");
-    outln!("model_cycles_per_second: {:.0}", cycles as f64 / model_s);
-    outln!("gen_seconds: {gen_s:.6}");
-    outln!("gen_cycles_per_second: {:.0}", cycles as f64 / gen_s);
-    outln!("vcd_bytes: {vcd_bytes}");
-    outln!("vcd_bytes_per_second: {:.0}", vcd_bytes as f64 / gen_s);
+    out!("{}", tbgen::bench::report(arg)?);
     Ok(())
-}
-
-/// Runs a scenario's model alone, recording nothing: (cycles, seconds).
-struct TimeModel;
-impl Visitor for TimeModel {
-    type Output = model::Result<(u64, f64)>;
-    fn visit<S: Protocol>(self, cfg: &S) -> Self::Output {
-        let bench = cfg.bench()?;
-        let started = Instant::now();
-        let run = model::testbench::run_to_end(bench);
-        Ok((run.cycles, started.elapsed().as_secs_f64()))
-    }
 }

@@ -538,6 +538,7 @@ pub struct Bench {
     extra_slo: Option<DelayLine>,
     delay_step: Option<(usize, u64)>,
     cycle: u64,
+    last_in: In,
     last_out: Out,
     open: Option<Transaction>,
     open_op: Option<RegOp>,
@@ -587,6 +588,7 @@ impl Bench {
             extra_slo: None,
             delay_step: cfg.delay_step.as_ref().map(|d| (d.from_frame, tb.cycles_nearest_ns(d.extra_ns))),
             cycle: 0,
+            last_in: In { i_slo: true, ..In::default() },
             last_out: Out { o_ma: true, ..Out::default() },
             open: None,
             open_op: None,
@@ -802,6 +804,7 @@ impl Testbench for Bench {
             None => slo_back,
         };
         self.host_observes(&out);
+        self.last_in = input;
         self.last_out = out;
         self.cycle += 1;
         let Some(sample) = sample else { return };
@@ -817,5 +820,38 @@ impl Testbench for Bench {
         sample.decoded[2] = self.master.cdm() as u64;
         sample.decoded[3] = self.master.control_index().unwrap_or(0) as u64;
         sample.decoded[4] = self.chain.slaves()[0].position();
+    }
+
+    fn quiet_cycles(&self) -> u64 {
+        let busy = self.last_out.o_busy || self.last_out.o_reg_busy;
+        let host = match self.host {
+            Host::WaitUntil(at) if self.cycle < at => at - self.cycle,
+            Host::WaitUntil(_) if !busy => 0,
+            Host::WaitUntil(_) | Host::WaitDone | Host::WaitRegDone => u64::MAX,
+            Host::Finished(end) => end.saturating_sub(self.cycle),
+        };
+        let input = In { i_slo: self.stuck.unwrap_or(self.slo_at_master), ..In::default() };
+        // The cycle after a request shows its pulse falling.
+        if host == 0 || input != self.last_in {
+            return 0;
+        }
+        let slo_back = self.slo_line.quiet(self.chain.slo());
+        let extra = self.extra_slo.as_ref().map_or(u64::MAX, |l| l.quiet(self.slo_line.output()));
+        host.min(self.master.quiet(&input))
+            .min(self.ma_line.quiet(self.last_out.o_ma))
+            .min(self.chain.quiet(self.ma_line.output()))
+            .min(slo_back)
+            .min(extra)
+    }
+
+    fn skip(&mut self, n: u64) {
+        self.master.skip(n);
+        self.ma_line.skip(n);
+        self.chain.skip(n);
+        self.slo_line.skip(n);
+        if let Some(extra) = self.extra_slo.as_mut() {
+            extra.skip(n);
+        }
+        self.cycle += n;
     }
 }

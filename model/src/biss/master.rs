@@ -497,6 +497,40 @@ impl Master {
         ]
     }
 
+    /// How many of the next steps with `input` only count (fast-forward):
+    /// idle without a request, or waiting out the slave's timeout with SLO
+    /// steady, MA stopped or between two of its edges. 0 while a pulse is
+    /// up, a request or start is in, or the SLO synchroniser has not settled.
+    pub fn quiet(&self, input: &In) -> u64 {
+        let (c, o) = (&self.r, &self.out);
+        let pulse = o.o_done || o.o_err_line || o.o_err_ack || o.o_err_delay || o.o_err_start || o.o_err_timeout || o.o_slave_valid || o.o_reg_done || o.o_reg_err || o.o_reg_crc_err || o.o_err_drift;
+        let request = input.i_start || input.i_reg_start || input.i_cmd_start;
+        if pulse || request || c.slo_meta != input.i_slo || c.slo_sync != input.i_slo {
+            return 0;
+        }
+        let ma = if c.ma_run { c.ma_cnt } else { u64::MAX };
+        let timeout = self.cfg.timeout_clocks;
+        let state = match c.state {
+            State::Idle if c.reg_pending || c.ctl_active => 0,
+            State::Idle => u64::MAX,
+            State::Stop | State::NoAck if c.slo_sync => timeout.saturating_sub(c.cnt),
+            State::Timeout if !c.slo_sync || c.ma_run => timeout.saturating_sub(c.cnt),
+            _ => 0,
+        };
+        state.min(ma)
+    }
+
+    /// The same as `n` steps with the last input, for `n` up to [`Master::quiet`].
+    pub fn skip(&mut self, n: u64) {
+        let r = &mut self.r;
+        if r.ma_run {
+            r.ma_cnt -= n;
+        }
+        if matches!(r.state, State::Stop | State::NoAck | State::Timeout) {
+            r.cnt += n;
+        }
+    }
+
     /// One rising edge of the system clock: every register takes its next
     /// value, computed from the registers' present values and `input`.
     pub fn step(&mut self, input: &In) -> Out {

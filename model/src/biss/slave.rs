@@ -363,6 +363,35 @@ impl Chain {
         self.latches
     }
 
+    /// How many of the next steps with `ma` leave SLO and the phase as they
+    /// are (fast-forward): none on an MA edge, up to the timeout otherwise,
+    /// and up to the next edge in flight on the output delay.
+    pub fn quiet(&self, ma: bool) -> u64 {
+        if ma != self.last_ma {
+            return 0;
+        }
+        let phase = match self.phase {
+            Phase::Idle if self.level => u64::MAX,
+            Phase::Idle => 0,
+            _ => (self.timeout_clocks - 1).saturating_sub(self.quiet),
+        };
+        phase.min(self.output.quiet(self.level))
+    }
+
+    /// The same as `n` steps with the last MA level, for `n` up to [`Chain::quiet`].
+    pub fn skip(&mut self, n: u64) {
+        self.quiet += n;
+        if self.phase == Phase::Busy {
+            self.busy += n;
+        }
+        self.output.skip(n);
+    }
+
+    /// The SLO level the chain drives after the last step.
+    pub fn slo(&self) -> bool {
+        self.output.output()
+    }
+
     /// One cycle with MA at the slaves' pins; returns SLO as it leaves the first slave.
     pub fn step(&mut self, ma: bool) -> bool {
         let fell = self.last_ma && !ma;

@@ -583,6 +583,7 @@ pub struct Bench {
     current: Option<(usize, u64)>,
     stuck: Option<bool>,
     cycle: u64,
+    last_in: In,
     last_out: Out,
     transactions: Vec<Transaction>,
     layout: Layout,
@@ -630,6 +631,7 @@ impl Bench {
             current: None,
             stuck: None,
             cycle: 0,
+            last_in: In::default(),
             last_out: Out { o_endat_clk: true, o_busy: cfg.master.delay_comp, ..Out::default() },
             transactions: Vec::new(),
             layout,
@@ -861,6 +863,7 @@ impl Testbench for Bench {
         self.enc_drive = self.encoder.step(clk_at_encoder, at_encoder.level);
         self.data_at_master = at_master.level;
         self.host_observes(&out);
+        self.last_in = input;
         self.last_out = out;
         self.cycle += 1;
         let Some(sample) = sample else { return };
@@ -877,5 +880,33 @@ impl Testbench for Bench {
         sample.decoded[1] = self.master.rx_phase() as u64;
         sample.decoded[2] = self.master.fall_idx();
         sample.decoded[3] = self.encoder.latched_position;
+    }
+
+    fn quiet_cycles(&self) -> u64 {
+        let host = match self.host {
+            Host::WaitUntil(at) if self.cycle < at => at - self.cycle,
+            Host::WaitUntil(_) | Host::WaitIdle if !self.last_out.o_busy => 0,
+            Host::WaitUntil(_) | Host::WaitIdle => u64::MAX,
+            Host::Finished(end) => end.saturating_sub(self.cycle),
+        };
+        let input = In { i_endat_data_in: self.stuck.unwrap_or(self.data_at_master), ..In::default() };
+        // The cycle after a request shows its pulse falling.
+        if host == 0 || input != self.last_in {
+            return 0;
+        }
+        let master_drive = Drive { enable: self.last_out.o_endat_data_oe, level: self.last_out.o_endat_data_out };
+        host.min(self.master.quiet(&input))
+            .min(self.clk_line.quiet(self.last_out.o_endat_clk))
+            .min(self.pair.quiet(master_drive, self.enc_drive))
+            .min(self.encoder.quiet(self.clk_line.output()))
+    }
+
+    fn skip(&mut self, n: u64) {
+        let master_drive = Drive { enable: self.last_out.o_endat_data_oe, level: self.last_out.o_endat_data_out };
+        self.master.skip(n);
+        self.clk_line.skip(n);
+        self.pair.skip(n, master_drive, self.enc_drive);
+        self.encoder.skip(n);
+        self.cycle += n;
     }
 }

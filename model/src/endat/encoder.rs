@@ -429,6 +429,40 @@ impl Encoder {
         &self.mem.areas[&mrs::STATUS]
     }
 
+    /// How many of the next steps with the clock at `clk` leave the drive
+    /// and the phase as they are (fast-forward): none on a clock edge; with
+    /// the clock high, up to the end of `t_m` in a transfer or of the
+    /// recovery time; and up to the next edge in flight on the output delay.
+    pub fn quiet(&self, clk: bool) -> u64 {
+        if clk != self.last_clk {
+            return 0;
+        }
+        let phase = match self.phase {
+            Phase::Ready if self.drive == (Drive { enable: true, level: true }) => u64::MAX,
+            Phase::Ready => 0,
+            Phase::Recovery => self.recovery_until.saturating_sub(self.now),
+            _ if !clk => u64::MAX,
+            _ => (self.last_edge + self.t_m() + 1).saturating_sub(self.now),
+        };
+        let d = Drive { enable: self.drive.enable && !self.absent, level: self.drive.level };
+        phase.min(self.en_line.quiet(d.enable)).min(self.lvl_line.quiet(d.level))
+    }
+
+    /// The same as `n` steps with the last clock level, for `n` up to [`Encoder::quiet`].
+    pub fn skip(&mut self, n: u64) {
+        if !self.last_clk {
+            self.last_edge = self.now + n - 1;
+        }
+        self.now += n;
+        self.en_line.skip(n);
+        self.lvl_line.skip(n);
+    }
+
+    /// What the encoder drives onto the cable after the last step.
+    pub fn drive(&self) -> Drive {
+        Drive { enable: self.en_line.output(), level: self.lvl_line.output() }
+    }
+
     /// One cycle with the clock and the data line (as driven by the master) at the encoder's pins;
     /// returns what the encoder drives onto the cable.
     pub fn step(&mut self, clk: bool, din: bool) -> Drive {

@@ -607,6 +607,35 @@ impl Master {
         self.r.meas_cap
     }
 
+    /// How many of the next steps with input `i` only run counters
+    /// (fast-forward): idle without a request, or a clock phase or pause
+    /// (`t_m`, `t_b`) counting down with the receiver off and the data line
+    /// steady. 0 while a strobe is up or a measurement step is pending.
+    pub fn quiet(&self, i: &In) -> u64 {
+        let c = &self.r;
+        let mut cleared = c.out;
+        clear_strobes(&mut cleared);
+        let d = i.i_endat_data_in;
+        if cleared != c.out || i.i_start || i.i_meas || c.rx_on || c.meas_evt || c.meas_eval1 || c.meas_eval2 || c.data_meta != d || c.data_sync != d || c.data_prev != d {
+            return 0;
+        }
+        match c.state {
+            State::Idle if c.meas_on => 0,
+            State::Idle => u64::MAX,
+            State::First | State::High | State::Low | State::Pause => c.cnt,
+        }
+    }
+
+    /// The same as `n` steps with the last input, for `n` up to [`Master::quiet`].
+    pub fn skip(&mut self, n: u64) {
+        let r = &mut self.r;
+        if r.state != State::Idle {
+            r.cnt -= n;
+        }
+        r.since_edge = (r.since_edge + n).min(SAT16);
+        r.meas_cnt = (r.meas_cnt + n).min(SAT16);
+    }
+
     /// One rising edge of the system clock.
     pub fn step(&mut self, i: &In) -> Out {
         let c = self.r;

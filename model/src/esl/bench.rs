@@ -512,6 +512,7 @@ pub struct Bench {
     next_op: usize,
     start_at: u64,
     waiting: bool,
+    last_in: In,
     last_out: Out,
     cycle: u64,
     end: Option<u64>,
@@ -566,6 +567,7 @@ impl Bench {
             next_op: 0,
             start_at: tb.cycles_at_least_ns(cfg.ops[0].gap_us * 1e3),
             waiting: false,
+            last_in: In { i_rx: true, ..In::default() },
             last_out: Out {
                 o_tx: true,
                 ..Out::default()
@@ -599,6 +601,16 @@ impl Bench {
     /// The host (for tests that look inside it).
     pub fn host(&self) -> &Host {
         &self.host
+    }
+
+    /// What the encoders' side drives onto the line this cycle (an
+    /// intruder pulls it low).
+    fn bus_drive(&self) -> Drive {
+        if self.intruders.iter().any(|&(a, b)| (a..b).contains(&self.cycle)) {
+            Drive { enable: true, level: false }
+        } else {
+            self.encoder_drive
+        }
     }
 
     /// The level the host drives after the request-flip faults.
@@ -718,19 +730,19 @@ impl Testbench for Bench {
             };
         }
         let (at_host, at_encoder) = self.line.step(host_drive, bus);
-        let mut drives = Vec::with_capacity(self.encoders.len());
+        // Two drivers on a bus: a low wins (the stronger pull in a fight is not modelled).
+        let (mut enabled, mut level) = (0, true);
         for e in &mut self.encoders {
-            drives.push(e.step(at_encoder.level));
+            let d = e.step(at_encoder.level);
+            if d.enable {
+                enabled += 1;
+                level &= d.level;
+            }
         }
-        let enabled: Vec<&Drive> = drives.iter().filter(|d| d.enable).collect();
-        if enabled.len() > 1 {
+        if enabled > 1 {
             self.bus_contention += 1;
         }
-        // Two drivers on a bus: a low wins (the stronger pull in a fight is not modelled).
-        self.encoder_drive = Drive {
-            enable: !enabled.is_empty(),
-            level: enabled.iter().all(|d| d.level),
-        };
+        self.encoder_drive = Drive { enable: enabled > 0, level };
         self.at_host = at_host.level;
         if out.o_done {
             if let Some(mut t) = self.open.take() {
@@ -766,6 +778,7 @@ impl Testbench for Bench {
                         .cycles_at_least_ns(self.cfg.ops[self.next_op].gap_us * 1e3);
             }
         }
+        self.last_in = input;
         self.last_out = out;
         self.cycle += 1;
         let Some(sample) = sample else { return };
@@ -782,6 +795,58 @@ impl Testbench for Bench {
 
     fn finished(&self) -> bool {
         self.end.is_some_and(|e| self.cycle >= e)
+    }
+
+    fn quiet_cycles(&self) -> u64 {
+        let host = match self.end {
+            Some(end) => end.saturating_sub(self.cycle),
+            None if self.waiting => u64::MAX,
+            None if self.cycle < self.start_at => self.start_at - self.cycle,
+            None if self.last_out.o_busy => u64::MAX,
+            None => 0,
+        };
+        let input = In { i_rx: self.at_host, ..In::default() };
+        // The cycle after a start shows its pulse falling; a flipped
+        // request bit depends on the cycle.
+        let out = &self.last_out;
+        if host == 0 || input != self.last_in || (out.o_tx_en && !self.cfg.request_flips.is_empty()) {
+            return 0;
+        }
+        // Not across the start or end of an intruder.
+        let intruders = self
+            .intruders
+            .iter()
+            .map(|&(a, b)| if self.cycle < a { a - self.cycle } else { b.saturating_sub(self.cycle) })
+            .filter(|&q| q > 0)
+            .min()
+            .unwrap_or(u64::MAX);
+        let host_drive = Drive { enable: out.o_tx_en, level: out.o_tx };
+        let at_encoder = self.line.sensed(host_drive, self.bus_drive()).1.level;
+        let encoders = self.encoders.iter().map(|e| e.quiet(at_encoder)).min().unwrap_or(u64::MAX);
+        host.min(intruders)
+            .min(self.host.quiet(&input))
+            .min(self.wire_tap.quiet(input.i_rx, out.o_tx_en))
+            .min(self.line.quiet(host_drive, self.bus_drive()))
+            .min(encoders)
+    }
+
+    fn skip(&mut self, n: u64) {
+        let out = self.last_out;
+        let host_drive = Drive { enable: out.o_tx_en, level: out.o_tx };
+        let bus = self.bus_drive();
+        if self.intruders.iter().any(|&(a, b)| (a..b).contains(&self.cycle)) && self.encoder_drive.enable {
+            self.bus_contention += n;
+        }
+        if self.encoders.iter().filter(|e| e.drive().enable).count() > 1 {
+            self.bus_contention += n;
+        }
+        self.host.skip(n);
+        self.wire_tap.skip(n);
+        self.line.skip(n, host_drive, bus);
+        for e in &mut self.encoders {
+            e.skip(n);
+        }
+        self.cycle += n;
     }
 
     fn cycle(&self) -> u64 {

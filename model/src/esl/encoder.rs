@@ -279,6 +279,44 @@ impl Encoder {
         &self.executed
     }
 
+    /// How many of the next steps with the line at `line` change nothing
+    /// but the time (fast-forward): none on an edge; otherwise up to the
+    /// next bit sample, the end of an inter-field gap, the answer's start or
+    /// next bit, or a pending EEPROM write.
+    pub fn quiet(&self, line: bool) -> u64 {
+        if line != self.last_level {
+            return 0;
+        }
+        let until = |t: u64| t.saturating_sub(self.now);
+        let write = self.pending_write.map_or(u64::MAX, |_| until(self.busy_until));
+        let receive = match self.rx {
+            _ if self.driving => u64::MAX,
+            Rx::Hunt => u64::MAX,
+            Rx::Gap { .. } if !line => u64::MAX,
+            Rx::Gap { high } => ((1.5 * self.cfg.bit_cycles).ceil() as u64).saturating_sub(high + 1),
+            Rx::Bit { at, .. } => until(at),
+        };
+        let transmit = if self.driving {
+            until(self.tx_start + (self.tx_index as f64 * self.cfg.bit_cycles).round() as u64)
+        } else {
+            self.answer_at.as_ref().map_or(u64::MAX, |(at, _)| until(*at))
+        };
+        write.min(receive).min(transmit)
+    }
+
+    /// The same as `n` steps with the last line level, for `n` up to [`Encoder::quiet`].
+    pub fn skip(&mut self, n: u64) {
+        if let (false, true, Rx::Gap { high }) = (self.driving, self.last_level, self.rx) {
+            self.rx = Rx::Gap { high: high + n };
+        }
+        self.now += n;
+    }
+
+    /// What the encoder drives after the last step.
+    pub fn drive(&self) -> Drive {
+        Drive { enable: self.driving, level: self.level }
+    }
+
     /// One cycle with the line level at the encoder's pins; returns what the
     /// encoder drives (it listens only while it does not drive).
     pub fn step(&mut self, line: bool) -> Drive {

@@ -434,6 +434,41 @@ impl Host {
         self.page
     }
 
+    /// How many of the next steps with `input` only run counters
+    /// (fast-forward): idle, a bit of the request, the answer timeout, the
+    /// gap, the settle time or the quiet wait counting, with the receiver
+    /// between samples or idle. 0 on `o_done` or a start.
+    pub fn quiet(&self, input: &In) -> u64 {
+        if self.out.o_done || input.i_start {
+            return 0;
+        }
+        let rx_in = uart::In { i_rx: input.i_rx || self.out.o_tx_en };
+        let rx = self.rx_out;
+        let c = self.cfg.clocks_per_bit;
+        let state = match self.state {
+            State::Idle => u64::MAX,
+            State::Send | State::Gap | State::Settle => self.cnt,
+            State::Wait if rx.o_busy => 0,
+            State::Wait => self.cnt,
+            State::Recv if rx.o_busy => u64::MAX,
+            State::Recv => (c - 1).saturating_sub(self.idle),
+            State::Quiet if rx.o_busy => u64::MAX,
+            State::Quiet => (QUIET_BITS * c - 1).saturating_sub(self.idle),
+        };
+        state.min(self.rx.quiet(&rx_in))
+    }
+
+    /// The same as `n` steps with the last input, for `n` up to [`Host::quiet`].
+    pub fn skip(&mut self, n: u64) {
+        match self.state {
+            State::Send | State::Gap | State::Settle | State::Wait => self.cnt -= n,
+            State::Recv | State::Quiet if self.rx_out.o_busy => self.idle = 0,
+            State::Recv | State::Quiet => self.idle += n,
+            State::Idle => {}
+        }
+        self.rx.skip(n);
+    }
+
     /// One rising edge of the system clock.
     pub fn step(&mut self, input: &In) -> Out {
         let c = self.cfg.clocks_per_bit;

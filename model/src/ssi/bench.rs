@@ -457,6 +457,33 @@ impl Testbench for Bench {
         sample.decoded[2] = self.encoder.position();
         sample.decoded[3] = out.o_position;
     }
+
+    fn quiet_cycles(&self) -> u64 {
+        let host = match self.host {
+            Host::WaitUntil(at) if self.cycle < at => at - self.cycle,
+            Host::WaitUntil(_) | Host::WaitIdle if !self.last_out.o_busy => 0,
+            Host::WaitUntil(_) | Host::WaitIdle | Host::WaitDone => u64::MAX,
+            Host::Finished(end) => end.saturating_sub(self.cycle),
+        };
+        // The cycle after a start pulse shows `i_start` falling.
+        let just_started = matches!(&self.open, Some(t) if t.start_cycle + 1 == self.cycle);
+        if host == 0 || just_started {
+            return 0;
+        }
+        let pin = self.stuck.unwrap_or(self.data_at_master);
+        host.min(self.master.quiet(&In { i_start: false, i_ssi_data: pin }))
+            .min(self.clk_line.quiet(self.last_out.o_ssi_clk))
+            .min(self.encoder.quiet(self.clk_line.output()))
+            .min(self.data_line.quiet(self.encoder.data()))
+    }
+
+    fn skip(&mut self, n: u64) {
+        self.master.skip(n);
+        self.clk_line.skip(n);
+        self.encoder.skip(n);
+        self.data_line.skip(n);
+        self.cycle += n;
+    }
 }
 
 impl Bench {

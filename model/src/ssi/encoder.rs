@@ -130,6 +130,35 @@ impl Encoder {
         (self.stored >> (n - 1 - index)) & 1 == 1
     }
 
+    /// How many of the next steps with `clk` leave the data output and the
+    /// phase as they are (fast-forward): none on a clock edge, up to the
+    /// monoflop's expiry while shifting, and up to the next edge in flight
+    /// on the output delay.
+    pub fn quiet(&self, clk: bool) -> u64 {
+        if clk != self.last_clk {
+            return 0;
+        }
+        let phase = match self.phase {
+            Phase::Idle if self.level => u64::MAX,
+            Phase::Idle => 0,
+            Phase::Shifting => (self.cfg.monoflop_clocks - 1).saturating_sub(self.quiet),
+        };
+        phase.min(self.output.quiet(self.level))
+    }
+
+    /// The data level at the encoder's pin after the last step.
+    pub fn data(&self) -> bool {
+        self.output.output()
+    }
+
+    /// The same as `n` steps with the last clock level, for `n` up to [`Encoder::quiet`].
+    pub fn skip(&mut self, n: u64) {
+        if self.phase == Phase::Shifting {
+            self.quiet += n;
+        }
+        self.output.skip(n);
+    }
+
     /// One cycle with the clock level at the encoder's pin; returns the data
     /// level the encoder drives onto the cable.
     pub fn step(&mut self, clk: bool) -> bool {

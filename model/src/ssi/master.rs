@@ -327,6 +327,30 @@ impl Master {
         next
     }
 
+    /// How many of the next steps with `input` only run a counter down:
+    /// no output, state or bit count changes (fast-forward). 0 while a
+    /// pulse is up, the synchroniser has not settled, or an edge is due.
+    pub fn quiet(&self, input: &In) -> u64 {
+        let o = &self.out;
+        if o.o_done || o.o_err_idle || o.o_err_double || o.o_err_wire || self.data_meta != input.i_ssi_data || self.data_sync != input.i_ssi_data {
+            return 0;
+        }
+        match self.state {
+            State::Idle if input.i_start => 0,
+            State::Idle => u64::MAX,
+            State::Low if self.cnt > self.capture_at => self.cnt - self.capture_at,
+            State::Low if self.cnt == self.capture_at => 0,
+            State::Latch | State::High | State::Low | State::Pause => self.cnt,
+        }
+    }
+
+    /// The same as `n` steps with the last input, for `n` up to [`Master::quiet`].
+    pub fn skip(&mut self, n: u64) {
+        if self.state != State::Idle {
+            self.cnt -= n;
+        }
+    }
+
     /// Shifts one sampled bit into the value, its copy or the wire check.
     fn capture(&mut self, bit: bool) {
         let mask = self.mask;

@@ -307,6 +307,7 @@ pub struct Bench {
     next_op: usize,
     start_at: u64,
     waiting: bool,
+    last_in: In,
     last_out: Out,
     cycle: u64,
     end: Option<u64>,
@@ -339,6 +340,7 @@ impl Bench {
             next_op: 0,
             start_at: tb.cycles_at_least_ns(cfg.ops[0].gap_us * 1e3),
             waiting: false,
+            last_in: In { i_rx: true, ..In::default() },
             last_out: Out { o_tx: true, ..Out::default() },
             cycle: 0,
             end: None,
@@ -472,6 +474,7 @@ impl Testbench for Bench {
                 self.start_at = self.cycle + self.tb.cycles_at_least_ns(self.cfg.ops[self.next_op].gap_us * 1e3);
             }
         }
+        self.last_in = input;
         self.last_out = out;
         self.cycle += 1;
         let Some(sample) = sample else { return };
@@ -483,6 +486,50 @@ impl Testbench for Bench {
 
     fn finished(&self) -> bool {
         self.end.is_some_and(|e| self.cycle >= e)
+    }
+
+    fn quiet_cycles(&self) -> u64 {
+        let host = match self.end {
+            Some(end) => end.saturating_sub(self.cycle),
+            None if self.waiting => u64::MAX,
+            None if self.cycle < self.start_at => self.start_at - self.cycle,
+            None if self.last_out.o_busy => u64::MAX,
+            None => 0,
+        };
+        let input = In { i_rx: self.at_host, ..In::default() };
+        // The cycle after a start shows its pulse falling.
+        if host == 0 || input != self.last_in {
+            return 0;
+        }
+        // Not across the start or end of a line fault, nor within a second
+        // driver's (its level changes by the cycle), nor on the cycle after
+        // one of them.
+        let mut faults = u64::MAX;
+        for &(from, to, kind, _) in &self.faults {
+            if self.cycle < from {
+                faults = faults.min(from - self.cycle);
+            } else if self.cycle == from || self.cycle == to {
+                faults = 0; // the forcing starts or ends: the line changes
+            } else if self.cycle < to {
+                faults = faults.min(if kind == LineFaultKind::SecondDriver { 0 } else { to - self.cycle });
+            }
+        }
+        let out = &self.last_out;
+        let host_drive = Drive { enable: out.o_tx_en, level: out.o_tx };
+        host.min(faults)
+            .min(self.host.quiet(&input))
+            .min(self.wire_tap.quiet(input.i_rx, out.o_tx_en))
+            .min(self.line.quiet(host_drive, self.encoder_drive))
+            .min(self.encoder.quiet())
+    }
+
+    fn skip(&mut self, n: u64) {
+        let out = self.last_out;
+        self.host.skip(n);
+        self.wire_tap.skip(n);
+        self.line.skip(n, Drive { enable: out.o_tx_en, level: out.o_tx }, self.encoder_drive);
+        self.encoder.skip(n);
+        self.cycle += n;
     }
 
     fn cycle(&self) -> u64 {

@@ -212,6 +212,32 @@ impl Encoder {
         &self.answered
     }
 
+    /// How many of the next steps with the line held at the level of the
+    /// last step change nothing but the time (fast-forward): up to the next
+    /// bit sample, the answer's start, next bit or end, or a pending EEPROM
+    /// write or reset.
+    pub fn quiet(&self) -> u64 {
+        let until = |t: u64| t.saturating_sub(self.now);
+        let write = self.pending_write.map_or(u64::MAX, |_| until(self.busy_until));
+        let reset = self.pending_reset.map_or(u64::MAX, |(_, at)| until(at));
+        let receive = match self.rx {
+            _ if self.driving => u64::MAX,
+            Rx::Hunt => u64::MAX,
+            Rx::Bit { at, .. } => until(at),
+        };
+        let transmit = match (self.driving, &self.answer_at) {
+            (true, _) => until(self.tx_times[self.tx_index]),
+            (false, Some((at, _))) => until(*at),
+            (false, None) => u64::MAX,
+        };
+        write.min(reset).min(receive).min(transmit)
+    }
+
+    /// The same as `n` steps with the last line level, for `n` up to [`Encoder::quiet`].
+    pub fn skip(&mut self, n: u64) {
+        self.now += n;
+    }
+
     /// One cycle with the line level at the encoder's pins; returns what the
     /// encoder drives (it listens only while it does not drive).
     pub fn step(&mut self, line: bool) -> Drive {

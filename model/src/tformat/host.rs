@@ -287,6 +287,40 @@ impl Host {
         &self.fields[..self.count as usize]
     }
 
+    /// How many of the next steps with `input` only run counters
+    /// (fast-forward): idle, a bit of the request, the answer timeout, the
+    /// answer limit, the gap or the quiet wait counting, with the receiver
+    /// between samples or idle. 0 on `o_done` or a start.
+    pub fn quiet(&self, input: &In) -> u64 {
+        if self.out.o_done || input.i_start {
+            return 0;
+        }
+        let rx_in = uart::In { i_rx: input.i_rx || self.out.o_tx_en };
+        let busy = self.rx_out.o_busy;
+        let c = self.cfg.clocks_per_bit;
+        let state = match self.state {
+            State::Idle => u64::MAX,
+            State::Send | State::Gap => self.cnt,
+            State::Wait if busy => 0,
+            State::Wait => self.cnt,
+            State::Recv | State::Quiet if busy => self.cnt,
+            State::Recv => self.cnt.min((c - 1).saturating_sub(self.idle)),
+            State::Quiet => self.cnt.min((QUIET_BITS * c - 1).saturating_sub(self.idle)),
+        };
+        state.min(self.rx.quiet(&rx_in))
+    }
+
+    /// The same as `n` steps with the last input, for `n` up to [`Host::quiet`].
+    pub fn skip(&mut self, n: u64) {
+        if self.state != State::Idle {
+            self.cnt -= n;
+        }
+        if matches!(self.state, State::Recv | State::Quiet) {
+            self.idle = if self.rx_out.o_busy { 0 } else { self.idle + n };
+        }
+        self.rx.skip(n);
+    }
+
     /// One rising edge of the system clock.
     pub fn step(&mut self, input: &In) -> Out {
         let c = self.cfg.clocks_per_bit;

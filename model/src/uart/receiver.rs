@@ -123,6 +123,29 @@ impl Receiver {
         ]
     }
 
+    /// How many of the next steps with `input` only run the bit counter
+    /// (fast-forward): idle on a high line, between two samples of a
+    /// character, or waiting in recovery on a low one. 0 while a pulse is up
+    /// or the synchroniser has not settled.
+    pub fn quiet(&self, input: &In) -> u64 {
+        let o = &self.out;
+        if o.o_valid || o.o_frame_err || o.o_start_err || self.rx_meta != input.i_rx || self.rx_sync != input.i_rx {
+            return 0;
+        }
+        match self.state {
+            State::Idle | State::Recover if input.i_rx == (self.state == State::Idle) => u64::MAX,
+            State::Idle | State::Recover => 0,
+            State::Start | State::Data | State::Stop => self.cnt,
+        }
+    }
+
+    /// The same as `n` steps with the last input, for `n` up to [`Receiver::quiet`].
+    pub fn skip(&mut self, n: u64) {
+        if matches!(self.state, State::Start | State::Data | State::Stop) {
+            self.cnt -= n;
+        }
+    }
+
     /// One rising edge of the system clock.
     pub fn step(&mut self, input: &In) -> Out {
         let bit = self.cfg.clocks_per_bit;

@@ -25,6 +25,20 @@ impl WireTap {
         Ok(WireTap { rx: Receiver::new(ReceiverConfig { clocks_per_bit })?, from_host: false, tx_en_before: false })
     }
 
+    /// How many of the next steps with `line` and `tx_en` record nothing
+    /// and leave the receiver's state as it is (fast-forward).
+    pub fn quiet(&self, line: bool, tx_en: bool) -> u64 {
+        if tx_en != self.tx_en_before {
+            return 0;
+        }
+        self.rx.quiet(&In { i_rx: line })
+    }
+
+    /// The same as `n` steps with the last inputs, for `n` up to [`WireTap::quiet`].
+    pub fn skip(&mut self, n: u64) {
+        self.rx.skip(n);
+    }
+
     /// One system clock: `line` is the level at the host's receiver pin,
     /// `tx_en` the host's driver enable this cycle, `log` the current host
     /// operation's `(wire_requests, wire_answers)`: one list per request of
