@@ -36,6 +36,7 @@
 mod bench;
 mod receiver;
 mod transmitter;
+mod tx;
 mod wire_tap;
 
 use serde::{Deserialize, Serialize};
@@ -43,6 +44,7 @@ use serde::{Deserialize, Serialize};
 pub use bench::{Bench, BenchConfig, LowPulse, Transaction};
 pub use receiver::{In, Out, Receiver, ReceiverConfig, State};
 pub use transmitter::Transmitter;
+pub use tx::{Tx, TxConfig, TxIn, TxOut, TxState};
 pub use wire_tap::WireTap;
 
 /// The sender baud errors (in percent, positive = sender fast) between which

@@ -134,3 +134,30 @@ fn an_eleven_bit_frame_narrows_the_tolerance_and_ten_bits_keep_the_old_figure() 
     assert!(lo11 > lo10 && hi11 < hi10, "{lo10} {hi10} {lo11} {hi11}");
     assert!(lo11 < -4.0 && hi11 > 4.0, "{lo11} {hi11}");
 }
+
+#[test]
+fn the_cycle_sender_feeds_the_receiver_every_byte_with_and_without_parity() {
+    for parity in [Parity::None, Parity::Odd, Parity::Even] {
+        let mut tx = Tx::new(TxConfig { clocks_per_bit: 16, parity }).unwrap();
+        let mut rx = Receiver::with_parity(ReceiverConfig { clocks_per_bit: 16 }, parity).unwrap();
+        let mut next = 0u16;
+        let mut got = Vec::new();
+        let mut first_busy = None;
+        for cycle in 0..300_000u64 {
+            let offer = next < 256 && !tx.out().o_busy;
+            let out = tx.step(&TxIn { i_valid: offer, i_data: next as u8 });
+            if offer {
+                next += 1;
+            }
+            if out.o_busy && first_busy.is_none() {
+                first_busy = Some(cycle);
+            }
+            let r = rx.step(&In { i_rx: out.o_tx });
+            assert!(!r.o_frame_err && !r.o_parity_err && !r.o_start_err, "{parity:?} cycle {cycle}");
+            if r.o_valid {
+                got.push(r.o_data);
+            }
+        }
+        assert_eq!(got, (0..=255).collect::<Vec<u8>>(), "{parity:?}");
+    }
+}
