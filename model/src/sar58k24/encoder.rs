@@ -13,7 +13,7 @@ use serde::{Deserialize, Serialize};
 use super::frames::{self, AnswerTag, Command};
 use crate::gray::to_gray;
 use crate::line::Drive;
-use crate::uart::{self, Parity, Receiver, ReceiverConfig, Transmitter};
+use crate::uart::{self, FaultKind, FrameFault, Parity, Receiver, ReceiverConfig, Transmitter};
 use crate::{ConfigError, Result};
 
 /// The six asynchronous modes of 2.4 ("timed send, timed + clear, pulse
@@ -80,48 +80,6 @@ pub const REFRESH_RATES_HZ: [f64; 8] = [2000.0, 1000.0, 500.0, 400.0, 200.0, 100
 
 /// The baud rates of 2.4.
 pub const BAUD_RATES: [f64; 7] = [115_200.0, 57_600.0, 38_400.0, 19_200.0, 9_600.0, 4_800.0, 2_400.0];
-
-/// Something the emulator does wrong to one of its frames (`[[sar.encoder.faults]]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct FrameFault {
-    /// 0-based number of the frame the encoder sends.
-    pub frame: usize,
-    /// What goes wrong.
-    pub kind: FaultKind,
-    /// The character concerned (0 = `FF`).
-    #[serde(default)]
-    pub byte: usize,
-    /// `flip`: the level inverted in that character (0 start, 1..8 data
-    /// LSB first, 9 parity or stop, 10 stop with parity).
-    #[serde(default)]
-    pub bit: usize,
-    /// `gap`: idle bit times inserted before the character.
-    #[serde(default)]
-    pub gap_bits: f64,
-    /// `noise`: bytes sent just before the frame; `retag`: the second byte.
-    #[serde(default)]
-    pub bytes: Vec<u8>,
-}
-
-/// The kinds of [`FrameFault`].
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum FaultKind {
-    /// One level inverted: a data bit (checksum), the parity bit, the stop bit (framing).
-    Flip,
-    /// Only the first `byte` characters are sent.
-    Truncate,
-    /// An idle gap before character `byte`.
-    Gap,
-    /// `bytes` sent just before the frame, back to back with it.
-    Noise,
-    /// The frame is not sent at all (no answer).
-    Silent,
-    /// The second byte is `bytes[0]`, checksum recomputed (an answer
-    /// claiming another address).
-    Retag,
-}
 
 /// The emulator's settings in a scenario's units (`[sar.encoder]`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -273,23 +231,9 @@ impl EncoderSettings {
                 ));
             }
         }
+        let len = frames::frame_len(self.bits);
         for (i, f) in self.faults.iter().enumerate() {
-            let len = frames::frame_len(self.bits);
-            let ok = match f.kind {
-                FaultKind::Flip => f.byte < len && f.bit < parity.frame_bits(),
-                FaultKind::Truncate => f.byte < len,
-                FaultKind::Gap => f.byte > 0 && f.byte < len && (0.0..=1e5).contains(&f.gap_bits),
-                FaultKind::Noise => !f.bytes.is_empty() && f.bytes.len() <= 64,
-                FaultKind::Silent => true,
-                FaultKind::Retag => f.bytes.len() == 1,
-            };
-            if !ok {
-                return Err(ConfigError::invalid(
-                    format!("encoder.faults[{i}]"),
-                    format!("{:?} with byte {}, bit {}, {} bytes", f.kind, f.byte, f.bit, f.bytes.len()),
-                    format!("a frame has {len} characters of {} bits: flip needs byte < {len} and bit < {}; truncate byte < {len}; gap 0 < byte < {len}; noise 1 to 64 bytes; retag one byte", parity.frame_bits(), parity.frame_bits()),
-                ));
-            }
+            f.validate(len, parity).map_err(|e| ConfigError::invalid(format!("encoder.faults[{i}]"), e.0, e.1))?;
         }
         Ok(())
     }
@@ -439,21 +383,7 @@ impl Encoder {
             return;
         }
         let now_ps = (self.cycle * self.cfg.period_ps) as f64;
-        let parity = self.cfg.parity;
-        for f in faults.iter().filter(|f| f.kind == FaultKind::Noise) {
-            for &b in &f.bytes {
-                self.tx.send(b, now_ps, 0.0);
-            }
-        }
-        let keep = faults.iter().find(|f| f.kind == FaultKind::Truncate).map_or(bytes.len(), |f| f.byte);
-        for (i, &b) in bytes.iter().enumerate().take(keep) {
-            let gap = faults.iter().filter(|f| f.kind == FaultKind::Gap && f.byte == i).map(|f| f.gap_bits).sum::<f64>();
-            let mut levels = parity.levels(b);
-            for f in faults.iter().filter(|f| f.kind == FaultKind::Flip && f.byte == i) {
-                levels[f.bit] = !levels[f.bit];
-            }
-            self.tx.send_levels(&levels, now_ps, gap);
-        }
+        uart::send_with_faults(&mut self.tx, &bytes, &faults, self.cfg.parity, now_ps);
         self.driving_until_ps = self.tx.idle_from_ps();
     }
 

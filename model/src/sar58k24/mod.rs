@@ -29,9 +29,10 @@ pub mod frames;
 mod host;
 
 pub use bench::{divider, Bench, BenchConfig, HostSettings, OpKind, Operation, SecondDriver, Transaction};
-pub use encoder::{frame_seconds, max_refresh_hz, Encoder, EncoderConfig, EncoderIn, EncoderSettings, FaultKind, FrameFault, Mode, OutputCode, SentFrame, BAUD_RATES, REFRESH_RATES_HZ};
+pub use encoder::{frame_seconds, max_refresh_hz, Encoder, EncoderConfig, EncoderIn, EncoderSettings, Mode, OutputCode, SentFrame, BAUD_RATES, REFRESH_RATES_HZ};
 pub use frames::{checksum, data_bytes, decode, encode, AnswerTag, FrameError, HEADER};
 pub use host::{Host, HostConfig, In, Out, State};
+pub use crate::uart::{FaultKind, FrameFault};
 
 #[cfg(test)]
 mod tests;

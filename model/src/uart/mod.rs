@@ -34,6 +34,7 @@
 //! (`CLOCKS_PER_BIT` = 10) that is −5.26 % to +4.17 % without jitter.
 
 mod bench;
+mod fault;
 mod receiver;
 mod transmitter;
 mod tx;
@@ -42,6 +43,7 @@ mod wire_tap;
 use serde::{Deserialize, Serialize};
 
 pub use bench::{Bench, BenchConfig, LowPulse, Transaction};
+pub use fault::{send_with_faults, FaultKind, FrameFault};
 pub use receiver::{In, Out, Receiver, ReceiverConfig, State};
 pub use transmitter::Transmitter;
 pub use tx::{Tx, TxConfig, TxIn, TxOut, TxState};

@@ -1,0 +1,1 @@
+//! The Modbus corruption campaign.
