@@ -38,8 +38,8 @@ pub enum State {
     Stop = 3,
     /// After a framing error: waiting for the line to go high.
     Recover = 4,
-    /// The parity bit (only with a [`Parity`] other than `None`).
-    Parity = 5,
+    /// The parity bit (only with a [`Parity`] other than `None`); `PARITY_BIT` in the RTL.
+    ParityBit = 5,
 }
 
 /// Inputs at one rising edge of the system clock.
@@ -188,7 +188,7 @@ impl Receiver {
                     self.shift = (self.shift >> 1) | ((sample as u8) << 7);
                     cnt = bit - 1;
                     if self.bit_index == 7 {
-                        state = if self.parity == Parity::None { State::Stop } else { State::Parity };
+                        state = if self.parity == Parity::None { State::Stop } else { State::ParityBit };
                     } else {
                         self.bit_index += 1;
                     }
@@ -196,7 +196,7 @@ impl Receiver {
                     cnt -= 1;
                 }
             }
-            State::Parity => {
+            State::ParityBit => {
                 if self.cnt == 0 {
                     self.parity_ok = self.parity.bit(self.shift) == sample;
                     state = State::Stop;

@@ -1,0 +1,68 @@
+//! Writes golden vectors for a `[sar]` or `[modbus]` table of a TOML file,
+//! until the protocol registry lets `tbgen gen` do it:
+//!
+//! ```sh
+//! cargo run -p tbgen --example sar_modbus_vectors -- scenarios/sar/seed_timed_14bit.toml out/
+//! scripts/sim.sh sar_async_host icarus out/seed_timed_14bit.hex
+//! ```
+
+use std::fs::File;
+use std::io::{BufWriter, Write};
+use std::path::Path;
+
+use model::testbench::{self, Testbench};
+use model::Setup;
+use tbgen::vectors::{Header, VectorWriter};
+
+#[derive(serde::Deserialize)]
+struct File_ {
+    #[serde(default)]
+    sar: Option<model::sar58k24::BenchConfig>,
+    #[serde(default)]
+    modbus: Option<model::modbus::BenchConfig>,
+}
+
+fn write<S: Setup>(cfg: &S, name: &str, out: &Path) -> Result<(), String> {
+    cfg.validate().map_err(|e| e.to_string())?;
+    let tb = cfg.timebase().map_err(|e| e.to_string())?;
+    let params = cfg.verilog_parameters().map_err(|e| e.to_string())?;
+    let bench = cfg.bench().map_err(|e| e.to_string())?;
+    let layout = bench.layout().clone();
+    let mut vectors = VectorWriter::new(&layout.inputs, &layout.outputs);
+    let run = testbench::run(bench, &mut vectors).map_err(|e| e.to_string())?;
+    let header = Header { core: S::CORE.to_string(), scenario: name.to_string(), f_sys_hz: tb.f_sys_hz(), params: params.iter().map(|(k, v)| (k.to_string(), *v)).collect() };
+    std::fs::create_dir_all(out).map_err(|e| e.to_string())?;
+    let path = out.join(format!("{name}.hex"));
+    let mut f = BufWriter::new(File::create(&path).map_err(|e| e.to_string())?);
+    vectors.finish(&header, &mut f).and_then(|_| f.flush()).map_err(|e| e.to_string())?;
+    let json = out.join(format!("{name}.json"));
+    std::fs::write(&json, serde_json::to_string_pretty(&run.transactions).map_err(|e| e.to_string())?).map_err(|e| e.to_string())?;
+    println!("{}: {} cycles, {} transactions", path.display(), run.cycles, run.transactions.len());
+    Ok(())
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    let [_, file, out] = args.as_slice() else {
+        eprintln!("usage: sar_modbus_vectors <scenario.toml> <out-dir>");
+        std::process::exit(2);
+    };
+    let text = std::fs::read_to_string(file).unwrap_or_else(|e| {
+        eprintln!("{file}: {e}");
+        std::process::exit(2)
+    });
+    let name = Path::new(file).file_stem().and_then(|s| s.to_str()).unwrap_or("scenario").to_string();
+    let parsed: File_ = toml::from_str(&text).unwrap_or_else(|e| {
+        eprintln!("{file}: {e}");
+        std::process::exit(2)
+    });
+    let result = match (parsed.sar, parsed.modbus) {
+        (Some(cfg), None) => write(&cfg, &name, Path::new(out)),
+        (None, Some(cfg)) => write(&cfg, &name, Path::new(out)),
+        _ => Err("give exactly one [sar] or [modbus] table".into()),
+    };
+    if let Err(e) = result {
+        eprintln!("{file}: {e}");
+        std::process::exit(2);
+    }
+}
