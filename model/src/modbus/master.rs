@@ -440,7 +440,9 @@ impl Master {
         } else if b[2] != 2 * self.count || n != 5 + 2 * self.count as usize {
             next.o_err_count = true;
         } else {
-            next.o_value = b[3..3 + 2 * self.count as usize].iter().fold(0u32, |v, &x| (v << 8) | x as u32);
+            // One register: two bytes; otherwise four (the RTL's two cases).
+            let len = if self.count == 1 { 2 } else { 4 };
+            next.o_value = b[3..3 + len].iter().fold(0u32, |v, &x| (v << 8) | x as u32);
             next.o_valid = true;
         }
     }
