@@ -3,7 +3,7 @@
 //!
 //! ```sh
 //! cargo run -p tbgen --example sar_modbus_vectors -- scenarios/sar/seed_timed_14bit.toml out/
-//! scripts/sim.sh sar_async_host icarus out/seed_timed_14bit.hex
+//! scripts/sim.sh sar_async_host icarus out/sar_seed_timed_14bit.hex
 //! ```
 
 use std::fs::File;
@@ -16,6 +16,11 @@ use tbgen::vectors::{Header, VectorWriter};
 
 #[derive(serde::Deserialize)]
 struct File_ {
+    #[serde(default)]
+    name: Option<String>,
+    #[serde(default)]
+    #[allow(dead_code)]
+    description: Option<String>,
     #[serde(default)]
     sar: Option<model::sar58k24::BenchConfig>,
     #[serde(default)]
@@ -51,11 +56,11 @@ fn main() {
         eprintln!("{file}: {e}");
         std::process::exit(2)
     });
-    let name = Path::new(file).file_stem().and_then(|s| s.to_str()).unwrap_or("scenario").to_string();
     let parsed: File_ = toml::from_str(&text).unwrap_or_else(|e| {
         eprintln!("{file}: {e}");
         std::process::exit(2)
     });
+    let name = parsed.name.clone().unwrap_or_else(|| Path::new(file).file_stem().and_then(|s| s.to_str()).unwrap_or("scenario").to_string());
     let result = match (parsed.sar, parsed.modbus) {
         (Some(cfg), None) => write(&cfg, &name, Path::new(out)),
         (None, Some(cfg)) => write(&cfg, &name, Path::new(out)),
