@@ -30,6 +30,7 @@ pub mod campaign;
 mod device;
 pub mod frames;
 mod master;
+pub mod timing;
 
 pub use bench::{Bench, BenchConfig, MasterSettings, OpKind, Operation, SecondDriver, Transaction};
 pub use device::{Device, DeviceConfig, DeviceSettings, Seen, Verdict};

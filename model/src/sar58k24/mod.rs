@@ -27,6 +27,7 @@ pub mod campaign;
 mod encoder;
 pub mod frames;
 mod host;
+pub mod timing;
 
 pub use bench::{divider, Bench, BenchConfig, HostSettings, OpKind, Operation, SecondDriver, Transaction};
 pub use encoder::{frame_seconds, max_refresh_hz, Encoder, EncoderConfig, EncoderIn, EncoderSettings, Mode, OutputCode, SentFrame, BAUD_RATES, REFRESH_RATES_HZ};
