@@ -11,8 +11,24 @@ use std::io::{BufWriter, Write};
 use std::path::Path;
 
 use model::testbench::{self, Testbench};
+use model::trace::{Sample, Sink};
 use model::Setup;
 use tbgen::vectors::{Header, VectorWriter};
+use tbgen::wave::Waves;
+
+/// Vectors and waves from one run.
+struct Both<'a, W: Write> {
+    vectors: &'a mut VectorWriter,
+    waves: &'a mut Waves<W>,
+}
+
+impl<W: Write> Sink for Both<'_, W> {
+    type Error = std::io::Error;
+    fn sample(&mut self, cycle: u64, s: &Sample) -> std::io::Result<()> {
+        self.vectors.sample(cycle, s)?;
+        self.waves.sample(cycle, s)
+    }
+}
 
 #[derive(serde::Deserialize)]
 struct File_ {
@@ -34,7 +50,11 @@ fn write<S: Setup>(cfg: &S, name: &str, out: &Path) -> Result<(), String> {
     let bench = cfg.bench().map_err(|e| e.to_string())?;
     let layout = bench.layout().clone();
     let mut vectors = VectorWriter::new(&layout.inputs, &layout.outputs);
-    let run = testbench::run(bench, &mut vectors).map_err(|e| e.to_string())?;
+    std::fs::create_dir_all(out).map_err(|e| e.to_string())?;
+    let vcd = BufWriter::new(File::create(out.join(format!("{name}.vcd"))).map_err(|e| e.to_string())?);
+    let mut waves = Waves::new(vcd, S::CORE, &layout, tb.period_ps(), name).map_err(|e| e.to_string())?;
+    let run = testbench::run(bench, &mut Both { vectors: &mut vectors, waves: &mut waves }).map_err(|e| e.to_string())?;
+    waves.finish(run.cycles).map_err(|e| e.to_string())?;
     let header = Header { core: S::CORE.to_string(), scenario: name.to_string(), f_sys_hz: tb.f_sys_hz(), params: params.iter().map(|(k, v)| (k.to_string(), *v)).collect() };
     std::fs::create_dir_all(out).map_err(|e| e.to_string())?;
     let path = out.join(format!("{name}.hex"));

@@ -295,7 +295,13 @@ impl Bench {
         let layout = Layout {
             inputs: Master::input_ports(),
             outputs: Master::output_ports(),
-            line: vec![Port::new("tx_en_master", 1), Port::new("tx_en_device", 1), Port::new("line_at_master", 1), Port::new("line_at_device", 1)],
+            line: vec![
+                Port::new("tx_en_master", 1),
+                Port::new("tx_en_device", 1),
+                Port::new("line_at_master", 1),
+                Port::new("line_at_device", 1),
+                Port::new("tx_device", 1),
+            ],
             decoded: vec![Port::new("state", 3)],
         };
         let devices = (0..cfg.devices.len()).map(|i| Device::new(cfg.device_config(i)?)).collect::<Result<Vec<_>>>()?;
@@ -448,7 +454,16 @@ impl Testbench for Bench {
         let Some(sample) = sample else { return };
         input.write_values(&mut sample.inputs);
         out.write_values(&mut sample.outputs);
-        sample.line.copy_from_slice(&[master_drive.enable as u64, self.device_drive.enable as u64, at_master.level as u64, at_device.level as u64]);
+        // What the devices drive, high while none does: the server-to-client
+        // channel of a decoder that wants the two directions apart (sigrok's `modbus`).
+        let tx_device = !self.device_drive.enable || self.device_drive.level;
+        sample.line.copy_from_slice(&[
+            master_drive.enable as u64,
+            self.device_drive.enable as u64,
+            at_master.level as u64,
+            at_device.level as u64,
+            tx_device as u64,
+        ]);
         sample.decoded[0] = self.master.state() as u64;
     }
 
