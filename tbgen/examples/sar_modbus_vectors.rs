@@ -66,28 +66,27 @@ fn write<S: Setup>(cfg: &S, name: &str, out: &Path) -> Result<(), String> {
     Ok(())
 }
 
+/// Writes `<name>.hex`, `.vcd` and `.json` of the scenario `file` into `out`.
+pub fn generate_file(file: &str, out: &Path) -> Result<(), String> {
+    let text = std::fs::read_to_string(file).map_err(|e| format!("{file}: {e}"))?;
+    let parsed: File_ = toml::from_str(&text).map_err(|e| format!("{file}: {e}"))?;
+    let name = parsed.name.clone().unwrap_or_else(|| Path::new(file).file_stem().and_then(|s| s.to_str()).unwrap_or("scenario").to_string());
+    match (parsed.sar, parsed.modbus) {
+        (Some(cfg), None) => write(&cfg, &name, out),
+        (None, Some(cfg)) => write(&cfg, &name, out),
+        _ => Err("give exactly one [sar] or [modbus] table".into()),
+    }
+    .map_err(|e| format!("{file}: {e}"))
+}
+
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     let [_, file, out] = args.as_slice() else {
         eprintln!("usage: sar_modbus_vectors <scenario.toml> <out-dir>");
         std::process::exit(2);
     };
-    let text = std::fs::read_to_string(file).unwrap_or_else(|e| {
-        eprintln!("{file}: {e}");
-        std::process::exit(2)
-    });
-    let parsed: File_ = toml::from_str(&text).unwrap_or_else(|e| {
-        eprintln!("{file}: {e}");
-        std::process::exit(2)
-    });
-    let name = parsed.name.clone().unwrap_or_else(|| Path::new(file).file_stem().and_then(|s| s.to_str()).unwrap_or("scenario").to_string());
-    let result = match (parsed.sar, parsed.modbus) {
-        (Some(cfg), None) => write(&cfg, &name, Path::new(out)),
-        (None, Some(cfg)) => write(&cfg, &name, Path::new(out)),
-        _ => Err("give exactly one [sar] or [modbus] table".into()),
-    };
-    if let Err(e) = result {
-        eprintln!("{file}: {e}");
+    if let Err(e) = generate_file(file, Path::new(out)) {
+        eprintln!("{e}");
         std::process::exit(2);
     }
 }
