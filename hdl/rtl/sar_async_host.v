@@ -8,7 +8,8 @@
 //   (read) and BC AA Cx (zero) on a shared half-duplex line. Connect i_rx to
 //   the RS-485/RS-422 receiver output, o_tx/o_tx_en to the driver (bus
 //   modes), o_trigger to CLK and o_clr to CLR (both idle high). Pulse i_start
-//   (read) or i_zero (zero) with i_address while o_busy is low; o_done ends
+//   (read: the next frame when timed, a trigger pulse, BC AA Bx) or i_zero
+//   (zero) with i_address while o_busy is low; o_done ends
 //   the operation. In every mode each accepted frame pulses o_valid with
 //   o_position (binary, Gray decoded if GRAY); each fault pulses its own
 //   o_err_* output.
@@ -95,6 +96,7 @@ module sar_async_host #(
 
 localparam integer L = (BITS <= 16) ? 5 : (BITS <= 24) ? 6 : 7;
 localparam integer WIN_W = 8 * L;
+localparam IS_TIMED = (MODE == 0 || MODE == 1);
 localparam IS_HANDSHAKE = (MODE == 2 || MODE == 3);
 localparam IS_BUS = (MODE == 4 || MODE == 5);
 localparam HAS_CLR = (MODE == 1 || MODE == 3);
@@ -348,7 +350,12 @@ always @* begin
         // Operation FSM.
         case (state_reg)
             IDLE: begin
-                if (i_start && IS_HANDSHAKE) begin
+                if (i_start && IS_TIMED) begin
+                    // Timed modes: a read is "the next frame event".
+                    state_next = WAIT;
+                    cnt_next = TIMEOUT_LAST;
+                    busy_next = 1'b1;
+                end else if (i_start && IS_HANDSHAKE) begin
                     state_next = TRIGGER;
                     cnt_next = TRIGGER_LAST;
                     trigger_next = 1'b0;

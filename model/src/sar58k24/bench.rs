@@ -40,9 +40,7 @@ impl Default for HostSettings {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum OpKind {
-    /// Listen for `listen_us` (timed modes; any mode).
-    Listen,
-    /// Trigger pulse (handshake) or `BC AA Bx` (bus).
+    /// The next frame (timed), a trigger pulse (handshake) or `BC AA Bx` (bus).
     Read,
     /// CLR pulse (clear modes) or `BC AA Cx` (bus + clear).
     Zero,
@@ -60,13 +58,18 @@ pub struct Operation {
     /// Idle time before the operation, µs.
     #[serde(default = "default_gap")]
     pub gap_us: f64,
-    /// `listen`: how long, µs.
-    #[serde(default)]
-    pub listen_us: f64,
+    /// How many times the operation is done, each after its gap (a run of
+    /// timed reads is "listen to the next N frames").
+    #[serde(default = "default_repeat")]
+    pub repeat: u32,
 }
 
 fn default_gap() -> f64 {
     100.0
+}
+
+fn default_repeat() -> u32 {
+    1
 }
 
 /// Another device driving the line (`[[sar.second_drivers]]`).
@@ -113,7 +116,7 @@ impl Default for BenchConfig {
             host: HostSettings::default(),
             encoders: vec![EncoderSettings::default()],
             cable: CableConfig { length_m: 10.0, ..CableConfig::default() },
-            ops: vec![Operation { op: OpKind::Listen, address: 1, gap_us: 0.0, listen_us: 25_000.0 }],
+            ops: vec![Operation { op: OpKind::Read, address: 1, gap_us: 0.0, repeat: 2 }],
             second_drivers: Vec::new(),
         }
     }
@@ -203,6 +206,11 @@ impl BenchConfig {
         })
     }
 
+    /// The operations with their repeats written out.
+    pub fn expanded_ops(&self) -> Vec<Operation> {
+        self.ops.iter().flat_map(|op| std::iter::repeat_n(Operation { repeat: 1, ..op.clone() }, op.repeat as usize)).collect()
+    }
+
     fn check(&self) -> Result<()> {
         self.cable.validate("cable")?;
         let max = if self.mode.is_bus() { 3 } else { 1 };
@@ -230,15 +238,14 @@ impl BenchConfig {
         }
         for (i, op) in self.ops.iter().enumerate() {
             let usable = match op.op {
-                OpKind::Listen => op.listen_us > 0.0 && op.listen_us < 1e8,
-                OpKind::Read => self.mode.is_handshake() || self.mode.is_bus(),
+                OpKind::Read => true,
                 OpKind::Zero => self.mode.has_clr() || self.mode == Mode::BusClear,
             };
-            if !usable || op.address > 15 || !(0.0..1e8).contains(&op.gap_us) {
+            if !usable || op.address > 15 || !(0.0..1e8).contains(&op.gap_us) || !(1..=100_000).contains(&op.repeat) {
                 return Err(ConfigError::invalid(
                     format!("ops[{i}]"),
-                    format!("{:?} in mode {:?} (address {}, gap {} µs, listen {} µs)", op.op, self.mode, op.address, op.gap_us, op.listen_us),
-                    "read needs a handshake or bus mode, zero a clear mode or bus_clear, listen a positive listen_us; address 0..15, gap_us ≥ 0",
+                    format!("{:?} in mode {:?} (address {}, gap {} µs, repeat {})", op.op, self.mode, op.address, op.gap_us, op.repeat),
+                    "zero needs a clear mode or bus_clear; address 0..15, gap_us ≥ 0, repeat 1 to 100 000",
                 ));
             }
         }
@@ -298,7 +305,7 @@ impl Setup for BenchConfig {
 pub struct Transaction {
     /// 0-based operation number.
     pub index: usize,
-    /// `listen`, `read` or `zero`.
+    /// `read` or `zero`.
     pub op: OpKind,
     /// Bus address.
     pub address: u8,
@@ -306,17 +313,21 @@ pub struct Transaction {
     pub start_cycle: u64,
     /// Cycle it ended (`o_done`, or the end of the listening window).
     pub done_cycle: u64,
-    /// Every position the host accepted in the window.
+    /// The position the operation ended with (`o_valid` with `o_done`).
+    pub position: Option<u32>,
+    /// Every position the host accepted from the operation's start to the
+    /// next operation's (frames between operations included).
     pub positions: Vec<u32>,
     /// Their angles, `360° × a / 2^n` cut to four decimals.
     pub angles_deg: Vec<f64>,
     /// Every error pulse in the window, in order: `checksum`, `parity`,
     /// `frame`, `address`, `timeout`, `stale`.
     pub errors: Vec<&'static str>,
-    /// The host's commands as on the wire at its pins (one list per command).
+    /// The host's commands as on the wire at its pins (one list per
+    /// command; one empty list for an operation that sends none).
     pub wire_requests: Vec<Vec<u8>>,
-    /// Every character on the wire at the host after each command (or in
-    /// the listening window), as received.
+    /// Every character on the wire at the host after each command (or from
+    /// the operation's start), up to the next operation, as received.
     pub wire_answers: Vec<Vec<u8>>,
     /// The frames the encoders meant to send in the window (before faults).
     pub encoder_frames: Vec<Vec<u8>>,
@@ -331,6 +342,7 @@ impl testbench::Transaction for Transaction {
 /// Host, cable and encoders.
 pub struct Bench {
     cfg: BenchConfig,
+    ops: Vec<Operation>,
     host: Host,
     encoders: Vec<Encoder>,
     line: HalfDuplexLine,
@@ -344,7 +356,6 @@ pub struct Bench {
     fault_contention: u64,
     next_op: usize,
     start_at: u64,
-    listen_until: Option<u64>,
     last_out: Out,
     cycle: u64,
     end: Option<u64>,
@@ -390,7 +401,7 @@ impl Bench {
             fault_contention: 0,
             next_op: 0,
             start_at: tb.cycles_at_least_ns(cfg.ops[0].gap_us * 1e3),
-            listen_until: None,
+            ops: cfg.expanded_ops(),
             last_out: Out::default(),
             cycle: 0,
             end: None,
@@ -418,39 +429,39 @@ impl Bench {
     }
 
     fn open_transaction(&mut self) {
-        let op = self.cfg.ops[self.next_op].clone();
-        let pre_listed = op.op == OpKind::Listen || !self.cfg.mode.is_bus();
+        let op = self.ops[self.next_op].clone();
+        let sends = self.cfg.mode.is_bus() && (op.op == OpKind::Read || self.cfg.mode == Mode::BusClear);
         self.open = Some(Transaction {
             index: self.next_op,
             op: op.op,
             address: op.address,
             start_cycle: self.cycle,
             done_cycle: 0,
+            position: None,
             positions: Vec::new(),
             angles_deg: Vec::new(),
             errors: Vec::new(),
-            wire_requests: if pre_listed { vec![Vec::new()] } else { Vec::new() },
-            wire_answers: if pre_listed { vec![Vec::new()] } else { Vec::new() },
+            wire_requests: if sends { Vec::new() } else { vec![Vec::new()] },
+            wire_answers: if sends { Vec::new() } else { vec![Vec::new()] },
             encoder_frames: Vec::new(),
         });
-        if op.op == OpKind::Listen {
-            self.listen_until = Some(self.cycle + self.tb.cycles_at_least_ns(op.listen_us * 1e3));
-        }
     }
 
-    fn close_transaction(&mut self) {
+    fn close_transaction(&mut self, out: &Out) {
         if let Some(mut t) = self.open.take() {
             t.done_cycle = self.cycle;
+            if out.o_valid {
+                t.position = Some(out.o_position);
+            }
             let sent: Vec<&SentFrame> = self.encoders.iter().flat_map(|e| e.sent().iter()).filter(|f| f.cycle >= t.start_cycle && f.cycle <= t.done_cycle).collect();
             t.encoder_frames = sent.iter().map(|f| f.bytes.clone()).collect();
             self.transactions.push(t);
         }
-        self.listen_until = None;
         self.next_op += 1;
-        if self.next_op == self.cfg.ops.len() {
+        if self.next_op == self.ops.len() {
             self.end = Some(self.cycle + 16);
         } else {
-            self.start_at = self.cycle + self.tb.cycles_at_least_ns(self.cfg.ops[self.next_op].gap_us * 1e3);
+            self.start_at = self.cycle + self.tb.cycles_at_least_ns(self.ops[self.next_op].gap_us * 1e3);
         }
     }
 }
@@ -465,7 +476,7 @@ impl Testbench for Bench {
     fn step(&mut self, sample: Option<&mut Sample>) {
         let mut input = In { i_rx: self.at_host, ..In::default() };
         if self.open.is_none() && self.end.is_none() && self.cycle >= self.start_at && !self.last_out.o_busy {
-            let op = self.cfg.ops[self.next_op].clone();
+            let op = self.ops[self.next_op].clone();
             input.i_start = op.op == OpKind::Read;
             input.i_zero = op.op == OpKind::Zero;
             input.i_address = op.address;
@@ -499,7 +510,7 @@ impl Testbench for Bench {
         }
         self.encoder_drive = on.first().map_or(Drive { enable: false, level: true }, |d| **d);
         self.at_host = at_host.level;
-        if let Some(t) = self.open.as_mut() {
+        if let Some(t) = self.open.as_mut().or(self.transactions.last_mut()) {
             if out.o_valid {
                 t.positions.push(out.o_position);
                 t.angles_deg.push(angle_deg(out.o_position as u64, self.cfg.encoders[0].bits));
@@ -517,10 +528,8 @@ impl Testbench for Bench {
                 }
             }
         }
-        let listen_over = self.listen_until.is_some_and(|u| self.cycle + 1 >= u);
-        let op_over = self.open.as_ref().is_some_and(|t| t.op != OpKind::Listen) && out.o_done;
-        if listen_over || op_over {
-            self.close_transaction();
+        if out.o_done && self.open.is_some() {
+            self.close_transaction(&out);
         }
         self.last_out = out;
         self.cycle += 1;

@@ -21,7 +21,9 @@
 //! * the **operation FSM** drives the trigger pulse (handshake), the CLR
 //!   pulse (clear modes), or a bus command (`BC AA Bx`, `BC AA Cx`), then
 //!   waits for the first frame event (a frame, or an error the finder
-//!   flags) or `TIMEOUT_CLOCKS`.
+//!   flags) or `TIMEOUT_CLOCKS`. In the timed modes a read (`i_start`) only
+//!   waits: "the next frame event", so a user (and the transcript) gets one
+//!   `o_done` per position asked for.
 //!
 //! ```text
 //!  handshake:  o_trigger ‾‾‾\__ TRIGGER_LOW __/‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾
@@ -111,7 +113,8 @@ pub enum State {
 /// Inputs at one rising edge.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct In {
-    /// Start a read: trigger pulse (handshake) or `BC AA Bx` (bus). One-cycle pulse.
+    /// Start a read: wait for the next frame (timed), trigger pulse
+    /// (handshake) or `BC AA Bx` (bus). One-cycle pulse.
     pub i_start: bool,
     /// Start a zeroing: CLR pulse or `BC AA Cx`. One-cycle pulse.
     pub i_zero: bool,
@@ -383,7 +386,12 @@ impl Host {
         match self.state {
             State::Idle => {
                 let bus_zero = input.i_zero && cfg.mode == Mode::BusClear;
-                if input.i_start && cfg.mode.is_handshake() {
+                if input.i_start && cfg.mode.is_timed() {
+                    // Timed modes: a read is "the next frame event".
+                    self.state = State::Wait;
+                    self.cnt = cfg.timeout_clocks - 1;
+                    next.o_busy = true;
+                } else if input.i_start && cfg.mode.is_handshake() {
                     self.state = State::Trigger;
                     self.cnt = cfg.trigger_low_clocks - 1;
                     next.o_trigger = false;

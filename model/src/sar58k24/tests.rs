@@ -12,28 +12,54 @@ fn run(cfg: &BenchConfig) -> (Vec<Transaction>, u64) {
     (r.transactions, r.cycles)
 }
 
-fn listen(mode: Mode, ms: f64) -> Vec<Operation> {
-    let _ = mode;
-    vec![Operation { op: OpKind::Listen, address: 0, gap_us: 0.0, listen_us: ms * 1000.0 }]
+/// `n` timed reads back to back: "the next n frame events".
+fn listen(n: u32) -> Vec<Operation> {
+    vec![Operation { op: OpKind::Read, address: 0, gap_us: 0.0, repeat: n }]
+}
+
+/// A run of timed reads seen as one listening window: every position and
+/// every error of every transaction, in order.
+struct Window {
+    positions: Vec<u32>,
+    angles_deg: Vec<f64>,
+    errors: Vec<&'static str>,
+    encoder_frames: Vec<Vec<u8>>,
+    wire_answers: Vec<Vec<u8>>,
+}
+
+fn window(t: Vec<Transaction>) -> Vec<Window> {
+    vec![Window {
+        positions: t.iter().flat_map(|t| t.positions.clone()).collect(),
+        angles_deg: t.iter().flat_map(|t| t.angles_deg.clone()).collect(),
+        errors: t.iter().flat_map(|t| t.errors.clone()).collect(),
+        encoder_frames: t.iter().flat_map(|t| t.encoder_frames.clone()).collect(),
+        wire_answers: vec![t.iter().flat_map(|t| t.wire_answers.concat()).collect()],
+    }]
+}
+
+fn run_window(cfg: &BenchConfig) -> Vec<Window> {
+    window(run(cfg).0)
 }
 
 fn timed(refresh_hz: f64, positions: Vec<u64>, bits: u32) -> BenchConfig {
     BenchConfig {
         encoders: vec![EncoderSettings { bits, positions, refresh_hz, ..EncoderSettings::default() }],
-        ops: listen(Mode::TimedSend, 5.9),
+        ops: listen(5),
         ..BenchConfig::default()
     }
 }
 
 fn op(op: OpKind, address: u8) -> Operation {
-    Operation { op, address, gap_us: 200.0, listen_us: 0.0 }
+    Operation { op, address, gap_us: 200.0, repeat: 1 }
 }
 
 #[test]
 fn seed_001_timed_send_ff_81_01_7f_00_is_383_and_8_4155_degrees() {
     // Seed 001, 3.1.1 (4): a 14-bit encoder returns FF 81 01 7F 00: a = 383, θ = 8.4155°.
     let (t, _) = run(&timed(1000.0, vec![383], 14));
-    let t = &t[0];
+    // One read per frame: o_done with o_valid, the position on o_position.
+    assert_eq!(t.iter().map(|t| t.position).collect::<Vec<_>>(), vec![Some(383); 5]);
+    let t = &window(t)[0];
     assert_eq!(t.positions, vec![383; 5]);
     assert_eq!(t.angles_deg[0], 8.4155);
     assert!(t.errors.is_empty(), "{:?}", t.errors);
@@ -47,8 +73,9 @@ fn every_baud_rate_of_the_manual_carries_a_16_bit_frame() {
     for baud in BAUD_RATES {
         let mut cfg = timed(20.0, vec![0xBEEF], 16);
         cfg.baud = baud;
-        cfg.ops = listen(Mode::TimedSend, 125.0);
-        let (t, _) = run(&cfg);
+        cfg.ops = listen(2);
+        cfg.host.timeout_us = 100_000.0;
+        let t = run_window(&cfg);
         assert_eq!(t[0].positions, vec![0xBEEF; 2], "{baud}");
         assert!(t[0].errors.is_empty(), "{baud}: {:?}", t[0].errors);
     }
@@ -60,7 +87,7 @@ fn sixteen_twenty_four_and_thirty_two_bit_frames_binary_and_gray() {
         for code in [OutputCode::Binary, OutputCode::Gray] {
             let mut cfg = timed(1000.0, vec![value], bits);
             cfg.encoders[0].code = code;
-            let (t, _) = run(&cfg);
+            let t = run_window(&cfg);
             assert_eq!(t[0].positions, vec![value as u32; 5], "{bits} {code:?}");
             assert_eq!(t[0].encoder_frames[0].len(), len);
             assert!(t[0].errors.is_empty());
@@ -84,13 +111,15 @@ fn timed_clear_zeroes_on_a_clr_pulse() {
     let mut cfg = timed(1000.0, vec![5000, 5000, 5000, 5010, 5020, 5030, 5040, 5050], 14);
     cfg.mode = Mode::TimedClear;
     cfg.ops = vec![
-        Operation { op: OpKind::Listen, address: 0, gap_us: 0.0, listen_us: 2500.0 },
-        Operation { op: OpKind::Zero, address: 0, gap_us: 0.0, listen_us: 0.0 },
-        Operation { op: OpKind::Listen, address: 0, gap_us: 0.0, listen_us: 3000.0 },
+        Operation { op: OpKind::Read, address: 0, gap_us: 0.0, repeat: 2 },
+        Operation { op: OpKind::Zero, address: 0, gap_us: 500.0, repeat: 1 },
+        Operation { op: OpKind::Read, address: 0, gap_us: 0.0, repeat: 3 },
     ];
     let (t, _) = run(&cfg);
-    assert_eq!(t[0].positions, vec![5000, 5000]);
+    assert_eq!(t[0].positions, vec![5000]);
+    assert_eq!(t[1].positions, vec![5000]);
     assert!(t.iter().all(|t| t.errors.is_empty()), "{t:?}");
+    let t = vec![window(t[..2].to_vec()).remove(0), window(vec![t[2].clone()]).remove(0), window(t[3..].to_vec()).remove(0)];
     // Zeroed on the raw position 5000 (the third acquisition's): the next
     // frames read 0, then the movement from there.
     assert_eq!(t[2].positions, vec![0, 10, 20]);
@@ -190,7 +219,7 @@ fn faulty(kind: FaultKind, byte: usize, bit: usize) -> BenchConfig {
 
 #[test]
 fn a_flipped_data_bit_is_a_checksum_error_and_the_next_frame_is_read() {
-    let (t, _) = run(&faulty(FaultKind::Flip, 3, 4));
+    let t = run_window(&faulty(FaultKind::Flip, 3, 4));
     assert_eq!(t[0].errors, vec!["checksum"]);
     assert_eq!(t[0].positions, vec![383; 4]);
 }
@@ -199,29 +228,30 @@ fn a_flipped_data_bit_is_a_checksum_error_and_the_next_frame_is_read() {
 fn a_wrong_parity_bit_and_a_low_stop_bit_are_flagged() {
     let mut cfg = faulty(FaultKind::Flip, 2, 9);
     cfg.parity = Parity::Even;
-    let (t, _) = run(&cfg);
+    let t = run_window(&cfg);
     assert_eq!(t[0].errors, vec!["parity"]);
     assert_eq!(t[0].positions, vec![383; 4]);
-    let (t, _) = run(&faulty(FaultKind::Flip, 2, 9));
+    let t = run_window(&faulty(FaultKind::Flip, 2, 9));
     // The low stop bit runs into the next start bit: the receiver finds its
     // next frame inside the following character, one or more framing errors.
     assert!(!t[0].errors.is_empty() && t[0].errors.iter().all(|&e| e == "frame"), "{:?}", t[0].errors);
-    assert_eq!(t[0].positions, vec![383; 4]);
+    // Five reads, each ended by one event: the good frames and the errors.
+    assert!(t[0].positions.iter().all(|&p| p == 383) && t[0].positions.len() + t[0].errors.len() == 5, "{:?}", t[0].positions);
 }
 
 #[test]
 fn a_truncated_frame_and_a_gap_longer_than_t1_5_are_frame_errors() {
-    let (t, _) = run(&faulty(FaultKind::Truncate, 3, 0));
+    let t = run_window(&faulty(FaultKind::Truncate, 3, 0));
     assert_eq!(t[0].errors, vec!["frame"]);
     assert_eq!(t[0].positions, vec![383; 4]);
     let mut cfg = faulty(FaultKind::Gap, 2, 0);
     cfg.encoders[0].faults[0].gap_bits = 20.0;
-    let (t, _) = run(&cfg);
+    let t = run_window(&cfg);
     assert_eq!(t[0].errors, vec!["frame", "frame"]);
-    assert_eq!(t[0].positions, vec![383; 4]);
+    assert_eq!(t[0].positions, vec![383; 3]);
     // A gap shorter than 1.5 characters is no fault.
     cfg.encoders[0].faults[0].gap_bits = 10.0;
-    let (t, _) = run(&cfg);
+    let t = run_window(&cfg);
     assert!(t[0].errors.is_empty());
     assert_eq!(t[0].positions, vec![383; 5]);
 }
@@ -230,14 +260,14 @@ fn a_truncated_frame_and_a_gap_longer_than_t1_5_are_frame_errors() {
 fn noise_bytes_and_a_false_ff_81_in_the_data_cannot_fool_the_host() {
     // The position holds FF 81 in its data bytes: 0xFF81 at 16 bits.
     let mut cfg = timed(2000.0, vec![0xFF81], 16);
-    cfg.ops = listen(Mode::TimedSend, 6.0);
-    let (t, _) = run(&cfg);
+    cfg.ops = listen(11);
+    let t = run_window(&cfg);
     assert_eq!(t[0].positions, vec![0xFF81; 11]);
     assert!(t[0].errors.is_empty());
     // Noise just before frame 1, back to back with it: the host loses sync,
     // flags it once, and hunts on the checksum and length to the next frame.
     cfg.encoders[0].faults = vec![FrameFault { frame: 1, kind: FaultKind::Noise, byte: 0, bit: 0, gap_bits: 0.0, bytes: vec![0xFF, 0x81, 0xFF] }];
-    let (t, _) = run(&cfg);
+    let t = run_window(&cfg);
     assert_eq!(t[0].errors.len(), 1, "{:?}", t[0].errors);
     assert!(t[0].positions.iter().all(|&p| p == 0xFF81), "{:?}", t[0].positions);
     assert!(t[0].positions.len() >= 10, "{:?}", t[0].positions);
@@ -261,8 +291,9 @@ fn an_answer_from_the_wrong_address_and_no_answer_are_flagged() {
 fn stale_data_is_flagged_when_frames_stop() {
     let mut cfg = timed(1000.0, vec![9], 14);
     cfg.encoders[0].faults = (1..5).map(|frame| FrameFault { frame, kind: FaultKind::Silent, byte: 0, bit: 0, gap_bits: 0.0, bytes: Vec::new() }).collect();
-    cfg.ops = listen(Mode::TimedSend, 7.5);
-    let (t, _) = run(&cfg);
+    cfg.ops = listen(3);
+    cfg.host.timeout_us = 10_000.0;
+    let t = run_window(&cfg);
     // Frames at 1, 6, 7 ms get through; 3 refresh periods after the one at 1 ms: stale at 4 ms.
     assert_eq!(t[0].positions, vec![9; 3]);
     assert_eq!(t[0].errors, vec!["stale"]);
@@ -290,14 +321,14 @@ fn baud_mismatch_inside_plus_minus_3_percent_costs_nothing_and_beyond_the_tolera
     for err in [-3.0, -2.0, -1.0, 0.0, 1.0, 2.0, 3.0] {
         let mut cfg = timed(1000.0, vec![0x2AAA], 14);
         cfg.encoders[0].baud_error_percent = err;
-        let (t, _) = run(&cfg);
+        let t = run_window(&cfg);
         assert_eq!(t[0].positions, vec![0x2AAA; 5], "{err} %");
         assert!(t[0].errors.is_empty(), "{err} %");
     }
     for err in [-8.0, 8.0] {
         let mut cfg = timed(1000.0, vec![0x2AAA], 14);
         cfg.encoders[0].baud_error_percent = err;
-        let (t, _) = run(&cfg);
+        let t = run_window(&cfg);
         assert!(t[0].positions.is_empty(), "{err} %: {:?}", t[0].positions);
         assert!(t[0].errors.len() >= 5, "{err} %: {:?}", t[0].errors);
     }
