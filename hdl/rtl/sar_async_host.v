@@ -256,7 +256,7 @@ end
 wire [3:0] count_plus = (count_reg == L_PLUS_1) ? L_PLUS_1 : count_reg + 1'b1;
 wire       header_ok = (win_b0 == 8'hFF) && (win_b1 == tag_reg);
 wire       is_frame = (count_plus >= L4) && header_ok && (win_sum == win_cs);
-wire       other_address = IS_BUS && TAG_ADDRESS && (win_b0 == 8'hFF) && (win_b1[7:4] == 4'hB) && (win_b1 != tag_reg);
+wire       other_address = IS_BUS && (TAG_ADDRESS != 0) && (win_b0 == 8'hFF) && (win_b1[7:4] == 4'hB) && (win_b1 != tag_reg);
 
 always @* begin
     state_next = state_reg;
