@@ -92,8 +92,7 @@ fn gray_positions_are_decoded() {
 
 #[test]
 fn exceptions_for_count_and_address_and_unknown_function() {
-    let mut cfg = BenchConfig::default();
-    cfg.ops = vec![read(1, 3), read(1, 0), read(1, 1)];
+    let mut cfg = BenchConfig { ops: vec![read(1, 3), read(1, 0), read(1, 1)], ..BenchConfig::default() };
     let t = run(&cfg);
     assert_eq!((t[0].exception, t[0].errors.clone()), (Some(2), vec!["exception"]));
     assert_eq!(t[0].received[..3], [0x01, 0x83, 0x02]);
@@ -214,9 +213,8 @@ fn an_answer_from_the_wrong_address_no_answer_and_noise_are_flagged() {
 
 #[test]
 fn a_second_driver_on_the_line_is_flagged() {
-    let mut cfg = BenchConfig::default();
     // The answer starts about 4.2 + 1.8 + 0.1 ms after reset at 19200 baud.
-    cfg.second_drivers = vec![SecondDriver { at_us: 6300.0, bytes: vec![0x00] }];
+    let cfg = BenchConfig { second_drivers: vec![SecondDriver { at_us: 6300.0, bytes: vec![0x00] }], ..BenchConfig::default() };
     let mut bench = cfg.bench().unwrap();
     while !crate::Testbench::finished(&bench) {
         crate::Testbench::step(&mut bench, None);

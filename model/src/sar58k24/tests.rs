@@ -119,7 +119,7 @@ fn timed_clear_zeroes_on_a_clr_pulse() {
     assert_eq!(t[0].positions, vec![5000]);
     assert_eq!(t[1].positions, vec![5000]);
     assert!(t.iter().all(|t| t.errors.is_empty()), "{t:?}");
-    let t = vec![window(t[..2].to_vec()).remove(0), window(vec![t[2].clone()]).remove(0), window(t[3..].to_vec()).remove(0)];
+    let t = [window(t[..2].to_vec()).remove(0), window(vec![t[2].clone()]).remove(0), window(t[3..].to_vec()).remove(0)];
     // Zeroed on the raw position 5000 (the third acquisition's): the next
     // frames read 0, then the movement from there.
     assert_eq!(t[2].positions, vec![0, 10, 20]);
