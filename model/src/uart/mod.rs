@@ -3,7 +3,12 @@
 //! 8 data bits LSB first, stop bit 1, line idle high. [`Receiver`] is the
 //! model of `hdl/rtl/uart_rx.v`; [`Transmitter`] is an ideal-or-not sender
 //! (baud error, jitter) for benches; [`Bench`] wires them for the `uart_rx`
-//! core's own vectors.
+//! core's own vectors. [`Tx`] is the model of `hdl/rtl/uart_tx.v`. The
+//! SAR58K24 and Modbus add an optional parity bit ([`Parity`], `PARITY` in
+//! the RTL: 11-bit frames, state `PARITY_BIT`, `o_parity_err`); with the
+//! default `Parity::None` every machine is the 10-bit one, cycle for cycle.
+//! [`FrameFault`] and [`send_with_faults`] are the faults device emulators
+//! inject into what they send.
 //!
 //! # Cycle-level behaviour
 //! `i_rx` passes two synchroniser flops. In `IDLE` the first synchronised 0
