@@ -7,7 +7,7 @@
 //!
 //! [`frames`] is the frame layer, [`Encoder`] the emulator, [`Host`] the
 //! model of `hdl/rtl/sar_async_host.v`, [`Bench`] all of them on a cable.
-//! The timing diagrams are in [`host`]'s docs and `docs/timing/sar58k24.md`.
+//! The timing diagrams are in [`Host`]'s module (`host.rs`) and `docs/timing/sar58k24.md`.
 //!
 //! # Readings where the manual is silent or contradicts itself
 //! * One protocol, three electrical forms: 3.1.x (RS-485 TXD±), 3.2.x
