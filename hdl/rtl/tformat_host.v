@@ -130,6 +130,7 @@ wire       rx_busy;
 // A glitch on the line is not an answer; the frame set simply goes on or ends.
 /* verilator lint_off UNUSEDSIGNAL */
 wire       rx_start_err;
+wire       rx_parity_err; // always 0: 10-bit frames (PARITY = 0)
 /* verilator lint_on UNUSEDSIGNAL */
 reg        tx_en_reg = 1'b0, tx_en_next;
 
@@ -143,7 +144,8 @@ uart_rx #(
     .o_valid(rx_valid),
     .o_frame_err(rx_frame_err),
     .o_start_err(rx_start_err),
-    .o_busy(rx_busy)
+    .o_busy(rx_busy),
+    .o_parity_err(rx_parity_err)
 );
 
 reg [2:0]        state_reg = IDLE, state_next;

@@ -1,4 +1,4 @@
-// uart_rx: 10-bit frame receiver (start 0, 8 bits LSB first, stop 1) for ESL and T-format; twin of model::uart::Receiver.
+// uart_rx: 10-bit frame receiver (start 0, 8 bits LSB first, stop 1) for ESL and T-format, with an optional parity bit (SAR58K24, Modbus); twin of model::uart::Receiver.
 //
 // What it is for
 //   The receive half of the RS-485 frame protocols: ESL at 10 Mbps (seed 000)
@@ -11,6 +11,11 @@
 // Parameters
 //   CLOCKS_PER_BIT  i_clk cycles per bit = f_sys / baud, 6..65535
 //                   (100 MHz / 10 Mbps = 10; 100 MHz / 2.5 Mbps = 40)
+//   PARITY          0 none (10-bit frames, the default), 1 odd, 2 even: a
+//                   parity bit follows d7 (state PARITY) and the stop bit is
+//                   bit 10; a wrong parity bit with a good stop bit gives
+//                   o_parity_err instead of o_valid. With PARITY = 0 the
+//                   machine is exactly the 10-bit one and o_parity_err stays 0.
 //
 // Timing (HALF = CLOCKS_PER_BIT / 2); docs/timing/uart_rx.md has the tolerance derivation
 //
@@ -31,7 +36,8 @@
 `default_nettype none
 
 module uart_rx #(
-    parameter CLOCKS_PER_BIT = 10
+    parameter CLOCKS_PER_BIT = 10,
+    parameter PARITY = 0
 ) (
     input  wire       i_clk,
     input  wire       i_rst,
@@ -46,7 +52,8 @@ module uart_rx #(
     /* Status (one-cycle pulses) */
     output wire       o_frame_err,
     output wire       o_start_err,
-    output wire       o_busy
+    output wire       o_busy,
+    output wire       o_parity_err
 );
 
 localparam integer CNT_W = $clog2(CLOCKS_PER_BIT);
@@ -61,10 +68,12 @@ localparam [2:0]
     START   = 3'd1,
     DATA    = 3'd2,
     STOP    = 3'd3,
-    RECOVER = 3'd4;
+    RECOVER = 3'd4,
+    PARITY_BIT = 3'd5;
 
 initial begin
     if (CLOCKS_PER_BIT < 6 || CLOCKS_PER_BIT > 65535) $error("uart_rx: CLOCKS_PER_BIT must be 6..65535");
+    if (PARITY < 0 || PARITY > 2) $error("uart_rx: PARITY must be 0 (none), 1 (odd) or 2 (even)");
 end
 
 reg [2:0]       state_reg = IDLE, state_next;
@@ -81,12 +90,19 @@ reg       valid_reg = 1'b0, valid_next;
 reg       frame_err_reg = 1'b0, frame_err_next;
 reg       start_err_reg = 1'b0, start_err_next;
 reg       busy_reg = 1'b0, busy_next;
+reg       parity_ok_reg = 1'b1, parity_ok_next;
+reg       parity_err_reg = 1'b0, parity_err_next;
+
+// The parity bit expected after shift: odd parity makes the count of ones odd.
+localparam PARITY_ODD = (PARITY == 1);
+wire parity_expected = (^shift_reg) ^ PARITY_ODD;
 
 assign o_data = data_reg;
 assign o_valid = valid_reg;
 assign o_frame_err = frame_err_reg;
 assign o_start_err = start_err_reg;
 assign o_busy = busy_reg;
+assign o_parity_err = parity_err_reg;
 
 always @* begin
     state_next = state_reg;
@@ -98,6 +114,8 @@ always @* begin
     valid_next = 1'b0;
     frame_err_next = 1'b0;
     start_err_next = 1'b0;
+    parity_ok_next = parity_ok_reg;
+    parity_err_next = 1'b0;
 
     case (state_reg)
         IDLE: begin
@@ -118,6 +136,7 @@ always @* begin
                     state_next = DATA;
                     cnt_next = BIT_LAST;
                     bit_index_next = 3'd0;
+                    parity_ok_next = 1'b1;
                 end
             end else begin
                 cnt_next = cnt_reg - 1'b1;
@@ -128,10 +147,19 @@ always @* begin
                 shift_next = {rx_sync_reg, shift_reg[7:1]};
                 cnt_next = BIT_LAST;
                 if (bit_index_reg == 3'd7) begin
-                    state_next = STOP;
+                    state_next = (PARITY == 0) ? STOP : PARITY_BIT;
                 end else begin
                     bit_index_next = bit_index_reg + 1'b1;
                 end
+            end else begin
+                cnt_next = cnt_reg - 1'b1;
+            end
+        end
+        PARITY_BIT: begin
+            if (cnt_reg == 0) begin
+                parity_ok_next = (rx_sync_reg == parity_expected);
+                state_next = STOP;
+                cnt_next = BIT_LAST;
             end else begin
                 cnt_next = cnt_reg - 1'b1;
             end
@@ -142,7 +170,8 @@ always @* begin
                 if (rx_sync_reg) begin
                     state_next = IDLE;
                     busy_next = 1'b0;
-                    valid_next = 1'b1;
+                    valid_next = parity_ok_reg;
+                    parity_err_next = !parity_ok_reg;
                 end else begin
                     state_next = RECOVER;
                     frame_err_next = 1'b1;
@@ -173,6 +202,8 @@ always @(posedge i_clk) begin
     frame_err_reg <= frame_err_next;
     start_err_reg <= start_err_next;
     busy_reg <= busy_next;
+    parity_ok_reg <= parity_ok_next;
+    parity_err_reg <= parity_err_next;
     rx_meta_reg <= i_rx;
     rx_sync_reg <= rx_meta_reg;
 
@@ -186,6 +217,8 @@ always @(posedge i_clk) begin
         frame_err_reg <= 1'b0;
         start_err_reg <= 1'b0;
         busy_reg <= 1'b0;
+        parity_ok_reg <= 1'b1;
+        parity_err_reg <= 1'b0;
         rx_meta_reg <= 1'b1;
         rx_sync_reg <= 1'b1;
     end

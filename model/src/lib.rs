@@ -27,6 +27,7 @@ pub mod error;
 pub mod esl;
 pub mod gray;
 pub mod line;
+pub mod modbus;
 pub mod ports;
 pub mod sar58k24;
 pub mod ssi;

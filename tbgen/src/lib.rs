@@ -50,4 +50,6 @@ registry::protocols! {
     biss    => Biss(model::biss::BenchConfig),
     endat   => Endat(model::endat::BenchConfig),
     esl     => Esl(model::esl::BenchConfig),
+    sar     => Sar(model::sar58k24::BenchConfig),
+    modbus  => Modbus(model::modbus::BenchConfig),
 }

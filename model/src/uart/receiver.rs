@@ -1,5 +1,6 @@
 //! The frame receiver, cycle for cycle the same machine as `hdl/rtl/uart_rx.v`.
 
+use super::Parity;
 use crate::ports::{Port, Ports};
 use crate::{ConfigError, Result};
 
@@ -37,6 +38,8 @@ pub enum State {
     Stop = 3,
     /// After a framing error: waiting for the line to go high.
     Recover = 4,
+    /// The parity bit (only with a [`Parity`] other than `None`); `PARITY_BIT` in the RTL.
+    ParityBit = 5,
 }
 
 /// Inputs at one rising edge of the system clock.
@@ -59,6 +62,11 @@ pub struct Out {
     pub o_start_err: bool,
     /// A frame is being received.
     pub o_busy: bool,
+    /// One-cycle pulse at the stop-bit sample: the stop bit was 1 but the
+    /// parity bit was wrong (never set with [`Parity::None`]). Not one of the
+    /// `uart_rx` core's ports unless its `PARITY` parameter is not 0; the
+    /// 10-bit cores' vectors leave it out.
+    pub o_parity_err: bool,
 }
 
 impl Ports for In {
@@ -87,6 +95,8 @@ pub struct Receiver {
     shift: u8,
     rx_meta: bool,
     rx_sync: bool,
+    parity: Parity,
+    parity_ok: bool,
     out: Out,
 }
 
@@ -94,7 +104,25 @@ impl Receiver {
     /// A receiver in its reset state.
     pub fn new(cfg: ReceiverConfig) -> Result<Self> {
         cfg.validate()?;
-        Ok(Receiver { cfg, state: State::Idle, cnt: 0, bit_index: 0, shift: 0, rx_meta: true, rx_sync: true, out: Out::default() })
+        Receiver::with_parity(cfg, Parity::None)
+    }
+
+    /// A receiver of frames with a parity bit after the data (11 bits:
+    /// start, 8 data LSB first, parity, stop); `Parity::None` is [`Receiver::new`].
+    pub fn with_parity(cfg: ReceiverConfig, parity: Parity) -> Result<Self> {
+        cfg.validate()?;
+        Ok(Receiver {
+            cfg,
+            state: State::Idle,
+            cnt: 0,
+            bit_index: 0,
+            shift: 0,
+            rx_meta: true,
+            rx_sync: true,
+            parity,
+            parity_ok: true,
+            out: Out::default(),
+        })
     }
 
     /// The state after the last step.
@@ -150,7 +178,7 @@ impl Receiver {
     pub fn step(&mut self, input: &In) -> Out {
         let bit = self.cfg.clocks_per_bit;
         let half = bit / 2;
-        let mut next = Out { o_valid: false, o_frame_err: false, o_start_err: false, ..self.out };
+        let mut next = Out { o_valid: false, o_frame_err: false, o_start_err: false, o_parity_err: false, ..self.out };
         let mut state = self.state;
         let mut cnt = self.cnt;
         let sample = self.rx_sync;
@@ -172,6 +200,7 @@ impl Receiver {
                         state = State::Data;
                         cnt = bit - 1;
                         self.bit_index = 0;
+                        self.parity_ok = true;
                     }
                 } else {
                     cnt -= 1;
@@ -182,10 +211,19 @@ impl Receiver {
                     self.shift = (self.shift >> 1) | ((sample as u8) << 7);
                     cnt = bit - 1;
                     if self.bit_index == 7 {
-                        state = State::Stop;
+                        state = if self.parity == Parity::None { State::Stop } else { State::ParityBit };
                     } else {
                         self.bit_index += 1;
                     }
+                } else {
+                    cnt -= 1;
+                }
+            }
+            State::ParityBit => {
+                if self.cnt == 0 {
+                    self.parity_ok = self.parity.bit(self.shift) == sample;
+                    state = State::Stop;
+                    cnt = bit - 1;
                 } else {
                     cnt -= 1;
                 }
@@ -196,7 +234,8 @@ impl Receiver {
                     if sample {
                         state = State::Idle;
                         next.o_busy = false;
-                        next.o_valid = true;
+                        next.o_valid = self.parity_ok;
+                        next.o_parity_err = !self.parity_ok;
                     } else {
                         state = State::Recover;
                         next.o_frame_err = true;

@@ -7,6 +7,8 @@ use std::collections::VecDeque;
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
 
+use super::Parity;
+
 /// One frame the transmitter has started: its first cycle and its byte.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Sent {
@@ -30,6 +32,7 @@ pub struct Transmitter {
     cycle: u64,
     sent: Vec<Sent>,
     pending_frames: VecDeque<(f64, u8)>,
+    parity: Parity,
 }
 
 impl Transmitter {
@@ -47,7 +50,40 @@ impl Transmitter {
             cycle: 0,
             sent: Vec::new(),
             pending_frames: VecDeque::new(),
+            parity: Parity::None,
         }
+    }
+
+    /// The same sender with a parity bit after the data bits (11-bit frames).
+    pub fn with_parity(mut self, parity: Parity) -> Self {
+        self.parity = parity;
+        self
+    }
+
+    /// Bits per character on the line: 10, or 11 with parity.
+    pub fn frame_bits(&self) -> usize {
+        self.parity.frame_bits()
+    }
+
+    /// Queues raw levels (first level first, one per bit time) to start no
+    /// earlier than `at_ps`, after `gap_bits` idle bits following the
+    /// previous frame: a character with a wrong parity or stop bit, a
+    /// truncated one, a break. Returns the start time in ps.
+    pub fn send_levels(&mut self, levels: &[bool], at_ps: f64, gap_bits: f64) -> f64 {
+        let start = at_ps.max(self.queued_until_ps + gap_bits * self.bit_ps);
+        let mut previous = self.edges.back().map_or(self.level, |e| e.1);
+        for (i, &b) in levels.iter().enumerate() {
+            if b != previous {
+                let j = if self.jitter_ps > 0.0 { self.rng.random_range(-self.jitter_ps..=self.jitter_ps) } else { 0.0 };
+                self.edges.push_back((start + i as f64 * self.bit_ps + j, b));
+                previous = b;
+            }
+        }
+        if !previous {
+            self.edges.push_back((start + levels.len() as f64 * self.bit_ps, true));
+        }
+        self.queued_until_ps = start + levels.len() as f64 * self.bit_ps;
+        start
     }
 
     /// The length of one bit in ps.
@@ -58,22 +94,28 @@ impl Transmitter {
     /// Queues `byte` to start no earlier than `at_ps`, after `gap_bits` idle
     /// bits following the previous frame.
     pub fn send(&mut self, byte: u8, at_ps: f64, gap_bits: f64) {
-        let start = at_ps.max(self.queued_until_ps + gap_bits * self.bit_ps);
-        let mut bits = [true; 10];
-        bits[0] = false;
-        for (i, b) in bits.iter_mut().enumerate().take(9).skip(1) {
-            *b = (byte >> (i - 1)) & 1 == 1;
-        }
-        let mut previous = true;
-        for (i, &b) in bits.iter().enumerate() {
-            if b != previous {
-                let j = if self.jitter_ps > 0.0 { self.rng.random_range(-self.jitter_ps..=self.jitter_ps) } else { 0.0 };
-                self.edges.push_back((start + i as f64 * self.bit_ps + j, b));
-                previous = b;
+        if self.parity == Parity::None {
+            let start = at_ps.max(self.queued_until_ps + gap_bits * self.bit_ps);
+            let mut bits = [true; 10];
+            bits[0] = false;
+            for (i, b) in bits.iter_mut().enumerate().take(9).skip(1) {
+                *b = (byte >> (i - 1)) & 1 == 1;
             }
+            let mut previous = true;
+            for (i, &b) in bits.iter().enumerate() {
+                if b != previous {
+                    let j = if self.jitter_ps > 0.0 { self.rng.random_range(-self.jitter_ps..=self.jitter_ps) } else { 0.0 };
+                    self.edges.push_back((start + i as f64 * self.bit_ps + j, b));
+                    previous = b;
+                }
+            }
+            self.pending_frames.push_back((start, byte));
+            self.queued_until_ps = start + 10.0 * self.bit_ps;
+        } else {
+            let levels = self.parity.levels(byte);
+            let start = self.send_levels(&levels, at_ps, gap_bits);
+            self.pending_frames.push_back((start, byte));
         }
-        self.pending_frames.push_back((start, byte));
-        self.queued_until_ps = start + 10.0 * self.bit_ps;
     }
 
     /// The time in ps at which everything queued has been sent.

@@ -6,7 +6,7 @@
 //! analyser (or sigrok's `uart` decoder) sees at the host's pins. ESL and
 //! T-format both keep the two views side by side.
 
-use super::{In, Receiver, ReceiverConfig, State};
+use super::{In, Parity, Receiver, ReceiverConfig, State};
 use crate::Result;
 
 /// The tap: a model receiver plus who drove when each character began.
@@ -22,7 +22,13 @@ pub struct WireTap {
 impl WireTap {
     /// A tap sampling at `clocks_per_bit`, the host's own rate.
     pub fn new(clocks_per_bit: u64) -> Result<Self> {
-        Ok(WireTap { rx: Receiver::new(ReceiverConfig { clocks_per_bit })?, from_host: false, tx_en_before: false })
+        WireTap::with_parity(clocks_per_bit, Parity::None)
+    }
+
+    /// A tap for characters with a parity bit (a character with a wrong
+    /// parity bit is filed as received, like one with a low stop bit).
+    pub fn with_parity(clocks_per_bit: u64, parity: Parity) -> Result<Self> {
+        Ok(WireTap { rx: Receiver::with_parity(ReceiverConfig { clocks_per_bit }, parity)?, from_host: false, tx_en_before: false })
     }
 
     /// How many of the next steps with `line` and `tx_en` record nothing
@@ -63,7 +69,7 @@ impl WireTap {
             requests.push(Vec::new());
             answers.push(Vec::new());
         }
-        if rx.o_valid || rx.o_frame_err {
+        if rx.o_valid || rx.o_frame_err || rx.o_parity_err {
             let to = if self.from_host { requests } else { answers };
             if let Some(set) = to.last_mut() {
                 set.push(rx.o_data);

@@ -1,0 +1,474 @@
+// modbus_master: Modbus RTU master polling a SAR58K24 (function 03, address query); the cycle-for-cycle twin of model::modbus::Master.
+//
+// What it is for
+//   Reads the encoder position with function 03 (one register up to 16
+//   bits, two for 17 to 32 bits, from register 0x0000) or asks the station
+//   address with the manual's query FF A0 40 38 (seed 001, 3.1.7), keeping
+//   the serial-line timing: t3.5 of silence before each request, t1.5 as the
+//   longest silence inside an answer, t3.5 of silence ending it. Connect
+//   o_tx/o_tx_en to the RS-485 driver and i_rx to its receiver. Pulse
+//   i_start (read i_count registers from station i_address) or i_query while
+//   o_busy is low; o_done ends the poll with exactly one of o_valid or an
+//   o_err_* pulse.
+//
+// Parameters (the Rust MasterConfig field of the same name in lower case)
+//   CLOCKS_PER_BIT  i_clk cycles per bit
+//   PARITY          0 none (factory default), 1 odd, 2 even
+//   T15_CLOCKS      t1.5: 1.5 characters, 750 us above 19200 baud
+//   T35_CLOCKS      t3.5: 3.5 characters, 1750 us above 19200 baud
+//   TIMEOUT_CLOCKS  from the request's end to the answer's first start bit
+//
+// Timing; docs/timing/modbus.md and model/src/modbus/master.rs have the full story
+//
+//   i_start   _/‾\_____________________________________________________________________
+//   o_tx_en   ______/‾‾ 01 03 00 00 00 01 84 0A ‾‾\_____________________________________
+//   i_rx      ‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾\_01_03_02_hi_lo_crc_crc_/‾‾‾‾‾‾‾‾‾‾
+//                                      |<- device ->|                 |<- t3.5 ->|
+//   state     IDLE|SILENCE|   SEND     |   WAIT     |      RECV                  |IDLE
+//   o_done    _____________________________________________________________________/‾\_
+//
+// Verdict, in this order: o_err_frame (parity, framing, a silence over t1.5,
+// fewer than 4 or more than 9 characters, or no end within RECV_LIMIT),
+// o_err_crc, o_err_address, o_err_exception (function | 0x80, code on
+// o_exception), o_err_function, o_err_count, else o_valid. The CRC-16
+// (poly 0x8005 reflected, preset FFFF) runs through crc_serial, one byte
+// per cycle: over the request as it is sent, and over the answer as it
+// arrives, where a good frame leaves the register at 0.
+
+`resetall
+`timescale 1ns / 1ps
+`default_nettype none
+
+module modbus_master #(
+    parameter CLOCKS_PER_BIT = 521,
+    parameter PARITY = 0,
+    parameter T15_CLOCKS = 7813,
+    parameter T35_CLOCKS = 18229,
+    parameter TIMEOUT_CLOCKS = 50000
+) (
+    input  wire        i_clk,
+    input  wire        i_rst,
+
+    /* Host interface */
+    input  wire        i_start,
+    input  wire        i_query,
+    input  wire [7:0]  i_address,
+    input  wire [1:0]  i_count,
+    output wire        o_busy,
+    output wire        o_done,
+
+    /* Results */
+    output wire        o_valid,
+    output wire [31:0] o_value,
+    output wire [7:0]  o_station,
+    output wire [7:0]  o_exception,
+
+    /* Status (one-cycle pulses with o_done) */
+    output wire        o_err_frame,
+    output wire        o_err_crc,
+    output wire        o_err_address,
+    output wire        o_err_exception,
+    output wire        o_err_function,
+    output wire        o_err_count,
+    output wire        o_err_timeout,
+
+    /* RS-485 line */
+    output wire        o_tx,
+    output wire        o_tx_en,
+    input  wire        i_rx
+);
+
+localparam integer MAX_CHARS = 9;   // model::modbus::MAX_CHARS (the 4'd9 compares below)
+localparam integer RECV_LIMIT_CHARS = 2 * MAX_CHARS;
+localparam integer CHAR_CLOCKS = ((PARITY == 0) ? 10 : 11) * CLOCKS_PER_BIT;
+localparam integer RECV_CLOCKS = RECV_LIMIT_CHARS * CHAR_CLOCKS + T35_CLOCKS;
+localparam integer CNT_MAX = (RECV_CLOCKS > TIMEOUT_CLOCKS) ? RECV_CLOCKS : TIMEOUT_CLOCKS;
+localparam integer CNT_W = $clog2(CNT_MAX + 1);
+localparam [31:0] TIMEOUT_LAST_32 = TIMEOUT_CLOCKS - 1;
+localparam [31:0] RECV_LAST_32 = RECV_CLOCKS - 1;
+localparam [CNT_W-1:0] TIMEOUT_LAST = TIMEOUT_LAST_32[CNT_W-1:0];
+localparam [CNT_W-1:0] RECV_LAST = RECV_LAST_32[CNT_W-1:0];
+localparam integer GAP_W = $clog2(T35_CLOCKS + 1);
+localparam [31:0] T35_32 = T35_CLOCKS;
+localparam [31:0] T15_32 = T15_CLOCKS;
+localparam [GAP_W-1:0] T35 = T35_32[GAP_W-1:0];
+localparam [GAP_W-1:0] T15 = T15_32[GAP_W-1:0];
+
+// States: the same names and codes as model::modbus::State.
+localparam [2:0]
+    IDLE    = 3'd0,
+    SILENCE = 3'd1,
+    SEND    = 3'd2,
+    WAIT    = 3'd3,
+    RECV    = 3'd4;
+
+initial begin
+    if (T15_CLOCKS < CLOCKS_PER_BIT || T35_CLOCKS <= T15_CLOCKS) $error("modbus_master: need CLOCKS_PER_BIT <= T15_CLOCKS < T35_CLOCKS");
+    if (TIMEOUT_CLOCKS < 1) $error("modbus_master: TIMEOUT_CLOCKS must be positive");
+end
+
+/* Receiver and sender */
+wire [7:0] rx_data;
+wire       rx_valid, rx_frame_err, rx_parity_err, rx_busy;
+// A glitch on the line is not a character.
+/* verilator lint_off UNUSEDSIGNAL */
+wire       rx_start_err;
+/* verilator lint_on UNUSEDSIGNAL */
+reg        tx_en_reg = 1'b0, tx_en_next;
+reg        tx_valid_reg = 1'b0, tx_valid_next;
+reg [7:0]  tx_data_reg = 8'd0, tx_data_next;
+wire       tx_busy;
+
+uart_rx #(
+    .CLOCKS_PER_BIT(CLOCKS_PER_BIT),
+    .PARITY(PARITY)
+) rx_inst (
+    .i_clk(i_clk),
+    .i_rst(i_rst),
+    .i_rx(i_rx | tx_en_reg),
+    .o_data(rx_data),
+    .o_valid(rx_valid),
+    .o_frame_err(rx_frame_err),
+    .o_start_err(rx_start_err),
+    .o_busy(rx_busy),
+    .o_parity_err(rx_parity_err)
+);
+
+uart_tx #(
+    .CLOCKS_PER_BIT(CLOCKS_PER_BIT),
+    .PARITY(PARITY)
+) tx_inst (
+    .i_clk(i_clk),
+    .i_rst(i_rst),
+    .i_valid(tx_valid_reg),
+    .i_data(tx_data_reg),
+    .o_tx(o_tx),
+    .o_busy(tx_busy)
+);
+
+reg [2:0]       state_reg = IDLE, state_next;
+reg [CNT_W-1:0] cnt_reg = 0, cnt_next;
+reg             tx_pending_reg = 1'b0, tx_pending_next;
+reg             query_reg = 1'b0, query_next;
+reg [7:0]       address_reg = 8'd0, address_next;
+reg [1:0]       count_reg = 2'd1, count_next;
+reg [3:0]       req_index_reg = 4'd0, req_index_next;
+reg [15:0]      crc_reg = 16'hFFFF, crc_next;
+reg [71:0]      buf_reg = 72'd0, buf_next;
+reg [3:0]       nbytes_reg = 4'd0, nbytes_next;
+reg             spoiled_reg = 1'b0, spoiled_next;
+reg [GAP_W-1:0] gap_reg = 0, gap_next;
+// The line counts as quiet for t3.5 at reset.
+reg [GAP_W-1:0] line_idle_reg = T35, line_idle_next;
+
+reg        busy_reg = 1'b0, busy_next;
+reg        done_reg = 1'b0, done_next;
+reg        valid_reg = 1'b0, valid_next;
+reg [31:0] value_reg = 32'd0, value_next;
+reg [7:0]  station_reg = 8'd0, station_next;
+reg [7:0]  exception_reg = 8'd0, exception_next;
+reg        err_frame_reg = 1'b0, err_frame_next;
+reg        err_crc_reg = 1'b0, err_crc_next;
+reg        err_address_reg = 1'b0, err_address_next;
+reg        err_exception_reg = 1'b0, err_exception_next;
+reg        err_function_reg = 1'b0, err_function_next;
+reg        err_count_reg = 1'b0, err_count_next;
+reg        err_timeout_reg = 1'b0, err_timeout_next;
+
+assign o_tx_en = tx_en_reg;
+assign o_busy = busy_reg;
+assign o_done = done_reg;
+assign o_valid = valid_reg;
+assign o_value = value_reg;
+assign o_station = station_reg;
+assign o_exception = exception_reg;
+assign o_err_frame = err_frame_reg;
+assign o_err_crc = err_crc_reg;
+assign o_err_address = err_address_reg;
+assign o_err_exception = err_exception_reg;
+assign o_err_function = err_function_reg;
+assign o_err_count = err_count_reg;
+assign o_err_timeout = err_timeout_reg;
+
+// The byte the CRC takes this cycle (request byte being offered, or answer
+// character), and the register after it: eight chained LFSR steps, LSB first.
+reg  [7:0]  crc_byte;
+wire [15:0] crc_chain [0:8];
+assign crc_chain[0] = crc_reg;
+genvar g;
+generate
+    for (g = 0; g < 8; g = g + 1) begin : crc_bits
+        crc_serial #(
+            .WIDTH(16),
+            .POLY(16'h8005)
+        ) crc_inst (
+            .i_crc(crc_chain[g]),
+            .i_bit(crc_byte[g]),
+            .o_crc(crc_chain[g + 1])
+        );
+    end
+endgenerate
+
+// The request's CRC as sent: the register reflected, low byte first.
+wire [15:0] crc_reflected;
+generate
+    for (g = 0; g < 16; g = g + 1) begin : crc_reflect
+        assign crc_reflected[g] = crc_reg[15 - g];
+    end
+endgenerate
+
+// The request's data bytes: 6 for a read, 2 (FF A0) for the query.
+wire [3:0] data_len = query_reg ? 4'd2 : 4'd6;
+reg  [7:0] req_byte;
+always @* begin
+    case (req_index_reg)
+        4'd0: req_byte = query_reg ? 8'hFF : address_reg;
+        4'd1: req_byte = query_reg ? 8'hA0 : 8'h03;
+        4'd2: req_byte = 8'h00;
+        4'd3: req_byte = 8'h00;
+        4'd4: req_byte = 8'h00;
+        default: req_byte = {6'd0, count_reg};
+    endcase
+end
+
+wire char_end = rx_valid || rx_parity_err || rx_frame_err;
+wire [7:0] b0 = buf_reg[7:0];
+wire [7:0] b1 = buf_reg[15:8];
+wire [7:0] b2 = buf_reg[23:16];
+wire [3:0] two_count = {1'b0, count_reg, 1'b0};
+wire [3:0] expected_len = 4'd5 + two_count;
+
+always @* begin
+    state_next = state_reg;
+    cnt_next = cnt_reg;
+    tx_en_next = tx_en_reg;
+    tx_valid_next = 1'b0;
+    tx_data_next = tx_data_reg;
+    tx_pending_next = tx_pending_reg;
+    query_next = query_reg;
+    address_next = address_reg;
+    count_next = count_reg;
+    req_index_next = req_index_reg;
+    crc_next = crc_reg;
+    crc_byte = rx_data;
+    buf_next = buf_reg;
+    nbytes_next = nbytes_reg;
+    spoiled_next = spoiled_reg;
+    gap_next = gap_reg;
+    busy_next = busy_reg;
+    done_next = 1'b0;
+    valid_next = 1'b0;
+    value_next = value_reg;
+    station_next = station_reg;
+    exception_next = exception_reg;
+    err_frame_next = 1'b0;
+    err_crc_next = 1'b0;
+    err_address_next = 1'b0;
+    err_exception_next = 1'b0;
+    err_function_next = 1'b0;
+    err_count_next = 1'b0;
+    err_timeout_next = 1'b0;
+
+    case (state_reg)
+        IDLE: begin
+            if (i_start || i_query) begin
+                query_next = !i_start;
+                address_next = i_address;
+                count_next = i_count;
+                req_index_next = 4'd0;
+                crc_next = 16'hFFFF;
+                state_next = SILENCE;
+                busy_next = 1'b1;
+            end
+        end
+        SILENCE: begin
+            if (line_idle_reg >= T35) begin
+                state_next = SEND;
+                tx_en_next = 1'b1;
+            end
+        end
+        SEND: begin
+            if (tx_pending_reg) begin
+                if (tx_busy) begin
+                    tx_pending_next = 1'b0;
+                end
+            end else if (!tx_busy) begin
+                if (req_index_reg == data_len + 4'd2) begin
+                    tx_en_next = 1'b0;
+                    state_next = WAIT;
+                    cnt_next = TIMEOUT_LAST;
+                end else begin
+                    tx_valid_next = 1'b1;
+                    if (req_index_reg < data_len) begin
+                        tx_data_next = req_byte;
+                        crc_byte = req_byte;
+                        crc_next = crc_chain[8];
+                    end else if (req_index_reg == data_len) begin
+                        tx_data_next = crc_reflected[7:0];
+                    end else begin
+                        tx_data_next = crc_reflected[15:8];
+                    end
+                    req_index_next = req_index_reg + 1'b1;
+                    tx_pending_next = 1'b1;
+                end
+            end
+        end
+        WAIT: begin
+            if (rx_busy) begin
+                state_next = RECV;
+                nbytes_next = 4'd0;
+                spoiled_next = 1'b0;
+                gap_next = 0;
+                crc_next = 16'hFFFF;
+                cnt_next = RECV_LAST;
+            end else if (cnt_reg == 0) begin
+                err_timeout_next = 1'b1;
+                state_next = IDLE;
+                busy_next = 1'b0;
+                done_next = 1'b1;
+            end else begin
+                cnt_next = cnt_reg - 1'b1;
+            end
+        end
+        RECV: begin
+            if (char_end) begin
+                if (nbytes_reg < 4'd9) begin
+                    buf_next[8 * nbytes_reg +: 8] = rx_data;
+                end
+                nbytes_next = (nbytes_reg == 4'd15) ? 4'd15 : nbytes_reg + 1'b1;
+                spoiled_next = spoiled_reg | !rx_valid;
+                crc_next = crc_chain[8];
+                gap_next = 0;
+            end else if (rx_busy) begin
+                // A start bit: the silence before it is complete.
+                if (nbytes_reg != 0 && gap_reg > T15) begin
+                    spoiled_next = 1'b1;
+                end
+                gap_next = 0;
+            end else begin
+                gap_next = gap_reg + 1'b1;
+            end
+            if (cnt_reg == 0) begin
+                err_frame_next = 1'b1;
+                state_next = IDLE;
+                busy_next = 1'b0;
+                done_next = 1'b1;
+            end else if (gap_next == T35) begin
+                state_next = IDLE;
+                busy_next = 1'b0;
+                done_next = 1'b1;
+                if (spoiled_reg || nbytes_reg < 4'd4 || nbytes_reg > 4'd9) begin
+                    err_frame_next = 1'b1;
+                end else if (crc_reg != 16'd0) begin
+                    err_crc_next = 1'b1;
+                end else if (query_reg) begin
+                    if (b0 != 8'hFF) begin
+                        err_address_next = 1'b1;
+                    end else if (b1 != 8'hA0) begin
+                        err_function_next = 1'b1;
+                    end else if (nbytes_reg != 4'd5) begin
+                        err_count_next = 1'b1;
+                    end else begin
+                        station_next = b2;
+                        valid_next = 1'b1;
+                    end
+                end else if (b0 != address_reg) begin
+                    err_address_next = 1'b1;
+                end else if (b1 == 8'h83 && nbytes_reg == 4'd5) begin
+                    exception_next = b2;
+                    err_exception_next = 1'b1;
+                end else if (b1 != 8'h03) begin
+                    err_function_next = 1'b1;
+                end else if (b2 != {4'd0, two_count} || nbytes_reg != expected_len) begin
+                    err_count_next = 1'b1;
+                end else begin
+                    value_next = (count_reg == 2'd1) ? {16'd0, buf_reg[31:24], buf_reg[39:32]}
+                                                     : {buf_reg[31:24], buf_reg[39:32], buf_reg[47:40], buf_reg[55:48]};
+                    valid_next = 1'b1;
+                end
+            end else begin
+                cnt_next = cnt_reg - 1'b1;
+            end
+        end
+        default: begin
+            state_next = IDLE;
+        end
+    endcase
+
+    // Silence on the line since the last character in either direction.
+    if (tx_en_reg || rx_busy || char_end) begin
+        line_idle_next = 0;
+    end else if (line_idle_reg < T35) begin
+        line_idle_next = line_idle_reg + 1'b1;
+    end else begin
+        line_idle_next = line_idle_reg;
+    end
+end
+
+always @(posedge i_clk) begin
+    state_reg <= state_next;
+    cnt_reg <= cnt_next;
+    tx_en_reg <= tx_en_next;
+    tx_valid_reg <= tx_valid_next;
+    tx_data_reg <= tx_data_next;
+    tx_pending_reg <= tx_pending_next;
+    query_reg <= query_next;
+    address_reg <= address_next;
+    count_reg <= count_next;
+    req_index_reg <= req_index_next;
+    crc_reg <= crc_next;
+    buf_reg <= buf_next;
+    nbytes_reg <= nbytes_next;
+    spoiled_reg <= spoiled_next;
+    gap_reg <= gap_next;
+    line_idle_reg <= line_idle_next;
+    busy_reg <= busy_next;
+    done_reg <= done_next;
+    valid_reg <= valid_next;
+    value_reg <= value_next;
+    station_reg <= station_next;
+    exception_reg <= exception_next;
+    err_frame_reg <= err_frame_next;
+    err_crc_reg <= err_crc_next;
+    err_address_reg <= err_address_next;
+    err_exception_reg <= err_exception_next;
+    err_function_reg <= err_function_next;
+    err_count_reg <= err_count_next;
+    err_timeout_reg <= err_timeout_next;
+
+    if (i_rst) begin
+        state_reg <= IDLE;
+        cnt_reg <= 0;
+        tx_en_reg <= 1'b0;
+        tx_valid_reg <= 1'b0;
+        tx_data_reg <= 8'd0;
+        tx_pending_reg <= 1'b0;
+        query_reg <= 1'b0;
+        address_reg <= 8'd0;
+        count_reg <= 2'd1;
+        req_index_reg <= 4'd0;
+        crc_reg <= 16'hFFFF;
+        buf_reg <= 72'd0;
+        nbytes_reg <= 4'd0;
+        spoiled_reg <= 1'b0;
+        gap_reg <= 0;
+        line_idle_reg <= T35;
+        busy_reg <= 1'b0;
+        done_reg <= 1'b0;
+        valid_reg <= 1'b0;
+        value_reg <= 32'd0;
+        station_reg <= 8'd0;
+        exception_reg <= 8'd0;
+        err_frame_reg <= 1'b0;
+        err_crc_reg <= 1'b0;
+        err_address_reg <= 1'b0;
+        err_exception_reg <= 1'b0;
+        err_function_reg <= 1'b0;
+        err_count_reg <= 1'b0;
+        err_timeout_reg <= 1'b0;
+    end
+end
+
+endmodule
+
+`resetall

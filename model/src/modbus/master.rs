@@ -1,0 +1,449 @@
+//! The Modbus RTU master, cycle by cycle: the machine `hdl/rtl/modbus_master.v`
+//! mirrors, on the shared `uart_rx` and `uart_tx`.
+//!
+//! ```text
+//!  i_start   _/‾\_____________________________________________________________________
+//!  o_tx_en   ______/‾‾ 01 03 00 00 00 01 84 0A ‾‾\_____________________________________
+//!  i_rx      ‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾\_01_03_02_hi_lo_crc_crc_/‾‾‾‾‾‾‾‾‾‾
+//!                                     |<- device ->|                  |<- t3.5 ->|
+//!  state     IDLE|SILENCE|   SEND     |   WAIT     |      RECV                  |IDLE
+//!  o_done    _____________________________________________________________________/‾\_
+//! ```
+//! * `SILENCE` holds the request until the line has been quiet for t3.5
+//!   (`T35_CLOCKS`) since the last character, in either direction.
+//! * `WAIT` ends at the answer's first start bit, or after `TIMEOUT_CLOCKS`
+//!   with `o_err_timeout`.
+//! * `RECV` stores up to 9 characters; a silence longer than t1.5
+//!   (`T15_CLOCKS`) between two characters, a parity or a framing error
+//!   spoils the frame; t3.5 of silence ends it (measured from the receiver's
+//!   stop-bit sample, half a bit before the stop bit ends). A frame that
+//!   never ends (a line held low, a driver that keeps sending) is cut after
+//!   `RECV_LIMIT_CHARS` character times and t3.5 (`o_err_frame`).
+//! * The check gives exactly one verdict, in this order: `o_err_frame`
+//!   (spoiled, or fewer than 4 or more than 9 characters), `o_err_crc`,
+//!   `o_err_address` (not the polled station; `FF` for the query),
+//!   `o_err_exception` (function | 0x80, five characters; the code on
+//!   `o_exception`), `o_err_function` (not 03 / A0), `o_err_count` (byte
+//!   count not 2 × registers or the length not matching it), else `o_valid`.
+
+use super::frames;
+use crate::ports::{Port, Ports};
+use crate::uart::{self, Parity, Receiver, ReceiverConfig, Tx, TxConfig, TxIn, TxOut};
+use crate::{ConfigError, Result};
+
+/// Characters kept of an answer (the longest: 01 03 04 d d d d crc crc).
+pub const MAX_CHARS: usize = 9;
+
+/// Character times after the answer's first start bit after which `RECV` gives up.
+pub const RECV_LIMIT_CHARS: u64 = 2 * MAX_CHARS as u64;
+
+/// The master's configuration; every field is the Verilog parameter of the
+/// same name in upper case.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct MasterConfig {
+    /// System clocks per bit.
+    pub clocks_per_bit: u64,
+    /// The character format.
+    pub parity: Parity,
+    /// t1.5 in cycles.
+    pub t15_clocks: u64,
+    /// t3.5 in cycles.
+    pub t35_clocks: u64,
+    /// Cycles from the request's end to the answer's first start bit before `o_err_timeout`.
+    pub timeout_clocks: u64,
+}
+
+impl MasterConfig {
+    /// Checks the configuration (fields of `[modbus.master]`).
+    pub fn validate(&self) -> Result<()> {
+        ReceiverConfig { clocks_per_bit: self.clocks_per_bit }.validate()?;
+        if self.t15_clocks < self.clocks_per_bit || self.t35_clocks <= self.t15_clocks {
+            return Err(ConfigError::invalid("master", format!("t1.5 = {} and t3.5 = {} cycles", self.t15_clocks, self.t35_clocks), "give t1.5 of at least a bit and t3.5 longer than t1.5"));
+        }
+        if self.timeout_clocks == 0 {
+            return Err(ConfigError::invalid("master.timeout_us", "0", "give a positive timeout"));
+        }
+        Ok(())
+    }
+
+    /// Cycles of one character.
+    pub fn char_clocks(&self) -> u64 {
+        self.parity.frame_bits() as u64 * self.clocks_per_bit
+    }
+}
+
+/// The master's states; the RTL's `localparam`s carry the same names and codes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum State {
+    /// Waiting for `i_start` or `i_query`.
+    Idle = 0,
+    /// Waiting for t3.5 of silence.
+    Silence = 1,
+    /// Sending the request.
+    Send = 2,
+    /// Waiting for the answer's first start bit.
+    Wait = 3,
+    /// Receiving the answer until t3.5 of silence.
+    Recv = 4,
+}
+
+/// Inputs at one rising edge.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct In {
+    /// Read `i_count` registers from station `i_address` (one-cycle pulse).
+    pub i_start: bool,
+    /// Send the address query `FF A0 40 38` (one-cycle pulse).
+    pub i_query: bool,
+    /// Station address.
+    pub i_address: u8,
+    /// Registers: 1 (up to 16 bits) or 2 (17 to 32 bits).
+    pub i_count: u8,
+    /// The receive line.
+    pub i_rx: bool,
+}
+
+impl Default for In {
+    fn default() -> Self {
+        In { i_start: false, i_query: false, i_address: 1, i_count: 1, i_rx: true }
+    }
+}
+
+/// Registered outputs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Out {
+    /// Line: level driven.
+    pub o_tx: bool,
+    /// Line: driver enable.
+    pub o_tx_en: bool,
+    /// An operation is under way.
+    pub o_busy: bool,
+    /// One-cycle pulse at the end of an operation.
+    pub o_done: bool,
+    /// One-cycle pulse: a good answer; `o_value` or `o_station` holds it.
+    pub o_valid: bool,
+    /// The registers read, high first (16 or 32 bits).
+    pub o_value: u32,
+    /// The station address the query returned.
+    pub o_station: u8,
+    /// The exception code of the last exception answer.
+    pub o_exception: u8,
+    /// Pulse: framing, parity, a gap over t1.5, or a bad length.
+    pub o_err_frame: bool,
+    /// Pulse: CRC.
+    pub o_err_crc: bool,
+    /// Pulse: the answer is from another station.
+    pub o_err_address: bool,
+    /// Pulse: an exception answer.
+    pub o_err_exception: bool,
+    /// Pulse: another function code.
+    pub o_err_function: bool,
+    /// Pulse: the byte count or length does not match the registers asked for.
+    pub o_err_count: bool,
+    /// Pulse: no answer.
+    pub o_err_timeout: bool,
+}
+
+impl Default for Out {
+    fn default() -> Self {
+        Out {
+            o_tx: true,
+            o_tx_en: false,
+            o_busy: false,
+            o_done: false,
+            o_valid: false,
+            o_value: 0,
+            o_station: 0,
+            o_exception: 0,
+            o_err_frame: false,
+            o_err_crc: false,
+            o_err_address: false,
+            o_err_exception: false,
+            o_err_function: false,
+            o_err_count: false,
+            o_err_timeout: false,
+        }
+    }
+}
+
+impl Ports for In {
+    fn write_values(&self, dst: &mut [u64]) {
+        dst.copy_from_slice(&[self.i_start as u64, self.i_query as u64, self.i_address as u64, (self.i_count & 3) as u64, self.i_rx as u64]);
+    }
+}
+
+impl Ports for Out {
+    fn write_values(&self, dst: &mut [u64]) {
+        dst.copy_from_slice(&[
+            self.o_tx as u64,
+            self.o_tx_en as u64,
+            self.o_busy as u64,
+            self.o_done as u64,
+            self.o_valid as u64,
+            self.o_value as u64,
+            self.o_station as u64,
+            self.o_exception as u64,
+            self.o_err_frame as u64,
+            self.o_err_crc as u64,
+            self.o_err_address as u64,
+            self.o_err_exception as u64,
+            self.o_err_function as u64,
+            self.o_err_count as u64,
+            self.o_err_timeout as u64,
+        ]);
+    }
+}
+
+/// The master. One [`Master::step`] is one rising edge.
+#[derive(Debug, Clone)]
+pub struct Master {
+    cfg: MasterConfig,
+    state: State,
+    rx: Receiver,
+    rx_out: uart::Out,
+    tx: Tx,
+    tx_out: TxOut,
+    tx_in: TxIn,
+    tx_pending: bool,
+    req: [u8; 8],
+    req_len: u8,
+    req_index: u8,
+    query: bool,
+    address: u8,
+    count: u8,
+    buf: [u8; MAX_CHARS],
+    nbytes: u8,
+    spoiled: bool,
+    gap: u64,
+    line_idle: u64,
+    cnt: u64,
+    out: Out,
+}
+
+impl Master {
+    /// A master in its reset state.
+    pub fn new(cfg: MasterConfig) -> Result<Self> {
+        cfg.validate()?;
+        Ok(Master {
+            rx: Receiver::with_parity(ReceiverConfig { clocks_per_bit: cfg.clocks_per_bit }, cfg.parity)?,
+            rx_out: uart::Out::default(),
+            tx: Tx::new(TxConfig { clocks_per_bit: cfg.clocks_per_bit, parity: cfg.parity })?,
+            tx_out: TxOut::default(),
+            tx_in: TxIn::default(),
+            tx_pending: false,
+            req: [0; 8],
+            req_len: 0,
+            req_index: 0,
+            query: false,
+            address: 0,
+            count: 1,
+            buf: [0; MAX_CHARS],
+            nbytes: 0,
+            spoiled: false,
+            gap: 0,
+            line_idle: cfg.t35_clocks,
+            cnt: 0,
+            state: State::Idle,
+            out: Out::default(),
+            cfg,
+        })
+    }
+
+    /// The input ports, in vector order.
+    pub fn input_ports() -> Vec<Port> {
+        vec![Port::new("i_start", 1), Port::new("i_query", 1), Port::new("i_address", 8), Port::new("i_count", 2), Port::new("i_rx", 1)]
+    }
+
+    /// The output ports, in vector order.
+    pub fn output_ports() -> Vec<Port> {
+        vec![
+            Port::new("o_tx", 1),
+            Port::new("o_tx_en", 1),
+            Port::new("o_busy", 1),
+            Port::new("o_done", 1),
+            Port::new("o_valid", 1),
+            Port::new("o_value", 32),
+            Port::new("o_station", 8),
+            Port::new("o_exception", 8),
+            Port::new("o_err_frame", 1),
+            Port::new("o_err_crc", 1),
+            Port::new("o_err_address", 1),
+            Port::new("o_err_exception", 1),
+            Port::new("o_err_function", 1),
+            Port::new("o_err_count", 1),
+            Port::new("o_err_timeout", 1),
+        ]
+    }
+
+    /// The state after the last step.
+    pub fn state(&self) -> State {
+        self.state
+    }
+
+    /// The characters of the last answer (at most [`MAX_CHARS`]).
+    pub fn received(&self) -> &[u8] {
+        &self.buf[..(self.nbytes as usize).min(MAX_CHARS)]
+    }
+
+    /// The request being or last sent.
+    pub fn request(&self) -> &[u8] {
+        &self.req[..self.req_len as usize]
+    }
+
+    /// One rising edge.
+    pub fn step(&mut self, input: &In) -> Out {
+        let cfg = self.cfg;
+        let mut next = Out {
+            o_done: false,
+            o_valid: false,
+            o_err_frame: false,
+            o_err_crc: false,
+            o_err_address: false,
+            o_err_exception: false,
+            o_err_function: false,
+            o_err_count: false,
+            o_err_timeout: false,
+            ..self.out
+        };
+        let rx = self.rx_out;
+        let tx = self.tx_out;
+        let mut tx_in = TxIn { i_valid: false, i_data: self.tx_in.i_data };
+        let char_end = rx.o_valid || rx.o_parity_err || rx.o_frame_err;
+        match self.state {
+            State::Idle => {
+                if input.i_start || input.i_query {
+                    self.query = !input.i_start;
+                    self.address = input.i_address;
+                    self.count = input.i_count & 3;
+                    let bytes = if self.query { frames::address_query() } else { frames::read_request(self.address, self.count as u16) };
+                    self.req = [0; 8];
+                    self.req[..bytes.len()].copy_from_slice(&bytes);
+                    self.req_len = bytes.len() as u8;
+                    self.req_index = 0;
+                    self.state = State::Silence;
+                    next.o_busy = true;
+                }
+            }
+            State::Silence => {
+                if self.line_idle >= cfg.t35_clocks {
+                    self.state = State::Send;
+                    next.o_tx_en = true;
+                }
+            }
+            State::Send => {
+                if self.tx_pending {
+                    if tx.o_busy {
+                        self.tx_pending = false;
+                    }
+                } else if !tx.o_busy {
+                    if self.req_index == self.req_len {
+                        next.o_tx_en = false;
+                        self.state = State::Wait;
+                        self.cnt = cfg.timeout_clocks - 1;
+                    } else {
+                        tx_in = TxIn { i_valid: true, i_data: self.req[self.req_index as usize] };
+                        self.req_index += 1;
+                        self.tx_pending = true;
+                    }
+                }
+            }
+            State::Wait => {
+                if rx.o_busy {
+                    self.state = State::Recv;
+                    self.nbytes = 0;
+                    self.spoiled = false;
+                    self.gap = 0;
+                    self.cnt = RECV_LIMIT_CHARS * cfg.char_clocks() + cfg.t35_clocks - 1;
+                } else if self.cnt == 0 {
+                    next.o_err_timeout = true;
+                    self.finish(&mut next);
+                } else {
+                    self.cnt -= 1;
+                }
+            }
+            State::Recv => {
+                if char_end {
+                    if (self.nbytes as usize) < MAX_CHARS {
+                        self.buf[self.nbytes as usize] = rx.o_data;
+                    }
+                    self.nbytes = self.nbytes.saturating_add(1).min(15);
+                    self.spoiled |= !rx.o_valid;
+                    self.gap = 0;
+                } else if rx.o_busy {
+                    // A start bit: the silence before it is complete.
+                    if self.nbytes > 0 && self.gap > cfg.t15_clocks {
+                        self.spoiled = true;
+                    }
+                    self.gap = 0;
+                } else {
+                    self.gap += 1;
+                }
+                if self.cnt == 0 {
+                    next.o_err_frame = true;
+                    self.finish(&mut next);
+                } else if self.gap == cfg.t35_clocks {
+                    self.check(&mut next);
+                    self.finish(&mut next);
+                } else {
+                    self.cnt -= 1;
+                }
+            }
+        }
+        if rx.o_busy || char_end {
+            self.line_idle = 0;
+        } else if self.line_idle < cfg.t35_clocks {
+            self.line_idle += 1;
+        }
+        self.tx_out = self.tx.step(&self.tx_in);
+        self.tx_in = tx_in;
+        next.o_tx = self.tx_out.o_tx;
+        self.rx_out = self.rx.step(&uart::In { i_rx: input.i_rx || self.out.o_tx_en });
+        if self.out.o_tx_en {
+            // The master's own request counts as line activity for t3.5.
+            self.line_idle = 0;
+        }
+        self.out = next;
+        next
+    }
+
+    fn finish(&mut self, next: &mut Out) {
+        self.state = State::Idle;
+        next.o_busy = false;
+        next.o_done = true;
+    }
+
+    /// The one verdict on a complete answer.
+    fn check(&mut self, next: &mut Out) {
+        let n = self.nbytes as usize;
+        let b = self.buf;
+        if self.spoiled || !(4..=MAX_CHARS).contains(&n) {
+            next.o_err_frame = true;
+        } else if !frames::crc_ok(&b[..n]) {
+            next.o_err_crc = true;
+        } else if self.query {
+            if b[0] != frames::QUERY_ADDRESS {
+                next.o_err_address = true;
+            } else if b[1] != frames::QUERY_FUNCTION {
+                next.o_err_function = true;
+            } else if n != 5 {
+                next.o_err_count = true;
+            } else {
+                next.o_station = b[2];
+                next.o_valid = true;
+            }
+        } else if b[0] != self.address {
+            next.o_err_address = true;
+        } else if b[1] == frames::READ_HOLDING | 0x80 && n == 5 {
+            next.o_exception = b[2];
+            next.o_err_exception = true;
+        } else if b[1] != frames::READ_HOLDING {
+            next.o_err_function = true;
+        } else if b[2] != 2 * self.count || n != 5 + 2 * self.count as usize {
+            next.o_err_count = true;
+        } else {
+            // One register: two bytes; otherwise four (the RTL's two cases).
+            let len = if self.count == 1 { 2 } else { 4 };
+            next.o_value = b[3..3 + len].iter().fold(0u32, |v, &x| (v << 8) | x as u32);
+            next.o_valid = true;
+        }
+    }
+}

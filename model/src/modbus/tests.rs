@@ -1,0 +1,275 @@
+//! Modbus RTU end to end: the seed's requests, polling at 19200 and
+//! 115200, the address query and change, exceptions, and the faults.
+
+use super::*;
+use crate::testbench::run_to_end;
+use crate::uart::{FaultKind, FrameFault, Parity};
+use crate::Setup;
+
+fn run(cfg: &BenchConfig) -> Vec<Transaction> {
+    run_to_end(cfg.bench().unwrap()).transactions
+}
+
+fn read(address: u8, count: u8) -> Operation {
+    Operation { op: OpKind::Read, address, count, gap_us: 100.0 }
+}
+
+fn fault(kind: FaultKind, byte: usize, bit: usize) -> FrameFault {
+    FrameFault { frame: 0, kind, byte, bit, gap_bits: 0.0, bytes: Vec::new() }
+}
+
+#[test]
+fn seed_001_read_one_register_at_factory_defaults() {
+    // Seed 001, 3.1.7 (3) and (5) ①: address 1, 19200 baud, no parity;
+    // 01 03 00 00 00 01 84 0A answered 01 03 02 <hi> <lo> <CRC lo> <CRC hi>.
+    let cfg = BenchConfig::default();
+    let t = &run(&cfg)[0];
+    assert_eq!(t.request, [0x01, 0x03, 0x00, 0x00, 0x00, 0x01, 0x84, 0x0A]);
+    assert_eq!(t.wire_requests, vec![t.request.clone()]);
+    assert_eq!(t.received, frames::read_answer(1, 1, 383));
+    assert_eq!(t.wire_answers, vec![t.received.clone()]);
+    assert_eq!(t.value, Some(383));
+    assert!(t.errors.is_empty());
+}
+
+#[test]
+fn seed_001_read_two_registers_for_a_24_bit_encoder() {
+    // Seed 001, 3.1.7 (5) ②: 01 03 00 00 00 02 C4 0B, answer 01 03 04 <4 bytes high first> CRC.
+    let mut cfg = BenchConfig::default();
+    cfg.devices[0].bits = 24;
+    cfg.devices[0].positions = vec![0x12_3456];
+    cfg.ops = vec![read(1, 2)];
+    let t = &run(&cfg)[0];
+    assert_eq!(t.request, [0x01, 0x03, 0x00, 0x00, 0x00, 0x02, 0xC4, 0x0B]);
+    assert_eq!(t.received[..7], [0x01, 0x03, 0x04, 0x00, 0x12, 0x34, 0x56]);
+    assert_eq!(t.value, Some(0x12_3456));
+    assert_eq!(t.angle_deg, Some(crate::angle::angle_deg(0x12_3456, 24)));
+}
+
+#[test]
+fn seed_001_address_query_ff_a0_40_38() {
+    // Seed 001, 3.1.7 (5) ③: FF A0 40 38 answered FF A0 <address> CRC.
+    let mut cfg = BenchConfig::default();
+    cfg.devices[0].address = 0x2A;
+    cfg.ops = vec![Operation { op: OpKind::Query, address: 0, count: 0, gap_us: 0.0 }];
+    let t = &run(&cfg)[0];
+    assert_eq!(t.wire_requests, vec![vec![0xFF, 0xA0, 0x40, 0x38]]);
+    assert_eq!(t.received, frames::address_answer(0x2A));
+    assert_eq!(t.station, Some(0x2A));
+}
+
+#[test]
+fn polling_at_19200_and_115200_keeps_t35_between_frames() {
+    for (baud, t35_us) in [(19_200.0, 3.5 * 10.0 / 19_200.0 * 1e6), (115_200.0, 1750.0)] {
+        let mut cfg = BenchConfig { baud, ..BenchConfig::default() };
+        cfg.devices[0].positions = vec![10, 20, 30, 40];
+        cfg.ops = (0..4).map(|_| Operation { gap_us: 0.0, ..read(1, 1) }).collect();
+        let bench = cfg.bench().unwrap();
+        let m = cfg.master_config().unwrap();
+        assert!((m.t35_clocks as f64 / 10.0 - t35_us).abs() < 0.1, "{baud}: {}", m.t35_clocks);
+        let r = run_to_end(bench);
+        let t = &r.transactions;
+        assert_eq!(t.iter().map(|t| t.value).collect::<Vec<_>>(), vec![Some(10), Some(20), Some(30), Some(40)], "{baud}");
+        // A poll is the request (8 characters), the device's t3.5 and
+        // 100 µs turnaround, the answer (7), and the master's t3.5; both
+        // silences are timed from a stop-bit sample, half a bit early.
+        let char_us = 10.0 / baud * 1e6;
+        let min_us = 8.0 * char_us + t35_us + 100.0 + 7.0 * char_us + t35_us - char_us / 10.0;
+        for w in t.windows(2) {
+            let us = (w[1].start_cycle - w[0].start_cycle) as f64 / 10.0;
+            assert!(us >= min_us, "{baud}: {us} µs < {min_us} µs");
+        }
+    }
+}
+
+#[test]
+fn gray_positions_are_decoded() {
+    let mut cfg = BenchConfig::default();
+    cfg.devices[0].gray = true;
+    cfg.devices[0].positions = vec![0xABCD];
+    assert_eq!(run(&cfg)[0].value, Some(0xABCD));
+}
+
+#[test]
+fn exceptions_for_count_and_address_and_unknown_function() {
+    let mut cfg = BenchConfig { ops: vec![read(1, 3), read(1, 0), read(1, 1)], ..BenchConfig::default() };
+    let t = run(&cfg);
+    assert_eq!((t[0].exception, t[0].errors.clone()), (Some(2), vec!["exception"]));
+    assert_eq!(t[0].received[..3], [0x01, 0x83, 0x02]);
+    assert_eq!((t[1].exception, t[1].errors.clone()), (Some(3), vec!["exception"]));
+    assert_eq!(t[2].value, Some(383));
+    // One register cannot hold a 24-bit position: exception 03.
+    cfg.devices[0].bits = 24;
+    cfg.ops = vec![read(1, 1)];
+    assert_eq!(run(&cfg)[0].exception, Some(3));
+    // Function 04 is not supported: 01.
+    let mut d = Device::new(cfg.device_config(0).unwrap()).unwrap();
+    let (v, a) = d.respond(&frames::with_crc(&[0x01, 0x04, 0x00, 0x00, 0x00, 0x01]));
+    assert_eq!((v, a[..3].to_vec()), (Verdict::Answered, vec![0x01, 0x84, 0x01]));
+}
+
+#[test]
+fn the_address_change_by_function_06_takes_effect_from_the_next_request() {
+    let cfg = BenchConfig::default();
+    let mut d = Device::new(cfg.device_config(0).unwrap()).unwrap();
+    let write = frames::write_request(1, frames::ADDRESS_REGISTER, 7);
+    assert_eq!(d.respond(&write), (Verdict::Answered, write.clone()));
+    assert_eq!(d.address(), 7);
+    assert_eq!(d.respond(&frames::read_request(1, 1)).0, Verdict::NotAddressed);
+    assert_eq!(d.respond(&frames::read_request(7, 1)).1, frames::read_answer(7, 1, 383));
+    assert_eq!(d.respond(&frames::address_query()).1, frames::address_answer(7));
+    // Out of range, or another register: exceptions 03 and 02, address kept.
+    assert_eq!(d.respond(&frames::write_request(7, frames::ADDRESS_REGISTER, 248)).1[..3], [7, 0x86, 3]);
+    assert_eq!(d.respond(&frames::write_request(7, 0x0011, 5)).1[..3], [7, 0x86, 2]);
+    assert_eq!(d.address(), 7);
+}
+
+#[test]
+fn no_answer_to_a_broadcast_another_address_or_a_bad_crc() {
+    let mut cfg = BenchConfig::default();
+    cfg.master.timeout_us = 3000.0;
+    cfg.ops = vec![read(0, 1), read(5, 1), read(1, 1)];
+    let bench = cfg.bench().unwrap();
+    let mut bench = bench;
+    while !crate::Testbench::finished(&bench) {
+        crate::Testbench::step(&mut bench, None);
+    }
+    let seen: Vec<Verdict> = bench.devices()[0].seen().iter().map(|s| s.verdict.clone()).collect();
+    assert_eq!(seen, vec![Verdict::NotAddressed, Verdict::NotAddressed, Verdict::Answered]);
+    let t = crate::Testbench::into_transactions(bench);
+    assert_eq!(t[0].errors, vec!["timeout"]);
+    assert_eq!(t[1].errors, vec!["timeout"]);
+    assert_eq!(t[2].value, Some(383));
+    let mut d = Device::new(cfg.device_config(0).unwrap()).unwrap();
+    let mut bad = frames::read_request(1, 1);
+    bad[7] ^= 1;
+    assert_eq!(d.respond(&bad).0, Verdict::Discarded);
+}
+
+#[test]
+fn a_crc_error_a_parity_error_and_a_framing_error_are_flagged_separately() {
+    let mut cfg = BenchConfig::default();
+    cfg.devices[0].faults = vec![fault(FaultKind::Flip, 3, 2)];
+    assert_eq!(run(&cfg)[0].errors, vec!["crc"]);
+    cfg.parity = Parity::Odd;
+    cfg.devices[0].faults = vec![fault(FaultKind::Flip, 3, 9)];
+    assert_eq!(run(&cfg)[0].errors, vec!["frame"]);
+    cfg.parity = Parity::None;
+    cfg.devices[0].faults = vec![fault(FaultKind::Flip, 6, 9)];
+    assert_eq!(run(&cfg)[0].errors, vec!["frame"]);
+    // Even parity, good answer.
+    cfg.parity = Parity::Even;
+    cfg.devices[0].faults = Vec::new();
+    assert_eq!(run(&cfg)[0].value, Some(383));
+}
+
+#[test]
+fn a_gap_longer_than_t15_inside_the_answer_and_a_truncated_answer_are_frame_errors() {
+    let mut cfg = BenchConfig::default();
+    let mut f = fault(FaultKind::Gap, 4, 0);
+    f.gap_bits = 20.0; // 2 characters > t1.5
+    cfg.devices[0].faults = vec![f.clone()];
+    assert_eq!(run(&cfg)[0].errors, vec!["frame"]);
+    f.gap_bits = 10.0; // 1 character < t1.5
+    cfg.devices[0].faults = vec![f];
+    assert!(run(&cfg)[0].errors.is_empty());
+    cfg.devices[0].faults = vec![fault(FaultKind::Truncate, 5, 0)];
+    assert_eq!(run(&cfg)[0].errors, vec!["crc"]);
+    cfg.devices[0].faults = vec![fault(FaultKind::Truncate, 3, 0)];
+    assert_eq!(run(&cfg)[0].errors, vec!["frame"]);
+}
+
+#[test]
+fn a_request_with_a_gap_longer_than_t15_is_discarded_by_the_device() {
+    let cfg = BenchConfig::default();
+    let dc = cfg.device_config(0).unwrap();
+    let mut d = Device::new(dc.clone()).unwrap();
+    let mut tx = crate::uart::Transmitter::new(dc.period_ps, 19_200.0, 0.0, 0.0, 1);
+    let req = frames::read_request(1, 1);
+    for (i, &b) in req.iter().enumerate() {
+        tx.send(b, 0.0, if i == 4 { 20.0 } else { 0.0 });
+    }
+    for _ in 0..200_000 {
+        d.step(tx.step());
+    }
+    assert_eq!(d.seen().len(), 1);
+    assert_eq!(d.seen()[0].verdict, Verdict::Discarded);
+}
+
+#[test]
+fn an_answer_from_the_wrong_address_no_answer_and_noise_are_flagged() {
+    let mut cfg = BenchConfig::default();
+    let mut f = fault(FaultKind::Retag, 0, 0);
+    f.bytes = vec![0x02];
+    cfg.devices[0].faults = vec![f];
+    assert_eq!(run(&cfg)[0].errors, vec!["address"]);
+    cfg.devices[0].faults = vec![fault(FaultKind::Silent, 0, 0)];
+    assert_eq!(run(&cfg)[0].errors, vec!["timeout"]);
+    let mut n = fault(FaultKind::Noise, 0, 0);
+    n.bytes = vec![0x55];
+    cfg.devices[0].faults = vec![n];
+    assert_eq!(run(&cfg)[0].errors, vec!["crc"]);
+}
+
+#[test]
+fn a_second_driver_on_the_line_is_flagged() {
+    // The answer starts about 4.2 + 1.8 + 0.1 ms after reset at 19200 baud.
+    let cfg = BenchConfig { second_drivers: vec![SecondDriver { at_us: 6300.0, bytes: vec![0x00] }], ..BenchConfig::default() };
+    let mut bench = cfg.bench().unwrap();
+    while !crate::Testbench::finished(&bench) {
+        crate::Testbench::step(&mut bench, None);
+    }
+    assert!(bench.fault_contention_cycles() > 0);
+    let t = crate::Testbench::into_transactions(bench);
+    assert!(!t[0].errors.is_empty() && t[0].value.is_none(), "{:?}", t[0]);
+}
+
+#[test]
+fn baud_mismatch_inside_plus_minus_3_percent_costs_nothing_and_well_outside_every_answer_is_flagged() {
+    for err in [-3.0, -1.5, 0.0, 1.5, 3.0] {
+        let mut cfg = BenchConfig { baud: 115_200.0, ..BenchConfig::default() };
+        cfg.devices[0].baud_error_percent = err;
+        cfg.devices[0].positions = vec![0x5AA5];
+        let t = &run(&cfg)[0];
+        assert_eq!((t.value, t.errors.clone()), (Some(0x5AA5), vec![]), "{err} %");
+    }
+    for err in [-8.0, 8.0] {
+        let mut cfg = BenchConfig { baud: 115_200.0, ..BenchConfig::default() };
+        cfg.devices[0].baud_error_percent = err;
+        cfg.devices[0].positions = vec![0x5AA5];
+        let t = &run(&cfg)[0];
+        assert!(t.value.is_none() && !t.errors.is_empty(), "{err} %: {t:?}");
+    }
+}
+
+#[test]
+fn three_devices_on_one_bus_each_answer_their_own_address() {
+    let dev = |address: u8, p: u64| DeviceSettings { address, positions: vec![p], ..DeviceSettings::default() };
+    let cfg = BenchConfig { devices: vec![dev(1, 11), dev(2, 22), dev(3, 33)], ops: vec![read(1, 1), read(2, 1), read(3, 1), read(2, 2)], ..BenchConfig::default() };
+    let bench = cfg.bench().unwrap();
+    let r = run_to_end(bench);
+    assert_eq!(r.transactions.iter().map(|t| t.value).collect::<Vec<_>>(), vec![Some(11), Some(22), Some(33), Some(22)]);
+}
+
+#[test]
+fn a_campaign_of_100_000_random_corruptions_flags_every_one_the_frame_checks_can_see() {
+    let report = campaign::run(100_000, 8, 2026);
+    println!("Modbus RTU answers, corruption campaign:\n{report}");
+    assert_eq!(report.total(), 100_000);
+    assert_eq!(report.disagreements, 0, "the master flags exactly what the checks can see");
+    // CRC-16 sees every 1, 2 and 3 inverted data bits; only a re-framed character could escape.
+    for k in 1..=3 {
+        assert!(report.by_flips[&k].undetected * 10_000 < report.by_flips[&k].total(), "{k}: {:?}", report.by_flips[&k]);
+    }
+}
+
+#[test]
+fn the_campaign_master_accepts_a_clean_answer_and_flags_one_inverted_bit() {
+    let clean = campaign::levels(&frames::read_answer(7, 2, 0xDEAD_BEEF));
+    assert!(!campaign::detected(7, 2, &clean));
+    assert!(campaign::blind(&clean, 7, 2));
+    let mut c = clean.clone();
+    c[35] = !c[35];
+    assert!(campaign::detected(7, 2, &c));
+    assert!(!campaign::blind(&c, 7, 2));
+}

@@ -1,0 +1,95 @@
+//! Faults a device emulator injects into the byte strings it sends: an
+//! inverted level, a truncation, a gap inside the frame, noise before it,
+//! silence, a wrong address. Shared by the SAR58K24 and Modbus emulators.
+
+use serde::{Deserialize, Serialize};
+
+use super::{Parity, Transmitter};
+
+/// Something a device emulator does wrong to one of its frames (the
+/// scenario's `[[<table>.encoder.faults]]`): shared by the SAR58K24 modes
+/// and Modbus, whose emulators send byte strings through a [`Transmitter`].
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FrameFault {
+    /// 0-based number of the frame the encoder sends.
+    pub frame: usize,
+    /// What goes wrong.
+    pub kind: FaultKind,
+    /// The character concerned (0 = `FF`).
+    #[serde(default)]
+    pub byte: usize,
+    /// `flip`: the level inverted in that character (0 start, 1..8 data
+    /// LSB first, 9 parity or stop, 10 stop with parity).
+    #[serde(default)]
+    pub bit: usize,
+    /// `gap`: idle bit times inserted before the character.
+    #[serde(default)]
+    pub gap_bits: f64,
+    /// `noise`: bytes sent just before the frame; `retag`: the second byte.
+    #[serde(default)]
+    pub bytes: Vec<u8>,
+}
+
+/// The kinds of [`FrameFault`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FaultKind {
+    /// One level inverted: a data bit (checksum), the parity bit, the stop bit (framing).
+    Flip,
+    /// Only the first `byte` characters are sent.
+    Truncate,
+    /// An idle gap before character `byte`.
+    Gap,
+    /// `bytes` sent just before the frame, back to back with it.
+    Noise,
+    /// The frame is not sent at all (no answer).
+    Silent,
+    /// The protocol's address byte is `bytes[0]`, its check recomputed (an
+    /// answer claiming another address): the SAR58K24's second byte, the
+    /// Modbus address. The emulator applies it; [`send_with_faults`] ignores it.
+    Retag,
+}
+
+impl FrameFault {
+    /// Checks the fault against a frame of `len` characters; the error is
+    /// (problem, fix).
+    pub fn validate(&self, len: usize, parity: Parity) -> Result<(), (String, String)> {
+        let bits = parity.frame_bits();
+        let ok = match self.kind {
+            FaultKind::Flip => self.byte < len && self.bit < bits,
+            FaultKind::Truncate => self.byte < len,
+            FaultKind::Gap => self.byte > 0 && self.byte < len && (0.0..=1e5).contains(&self.gap_bits),
+            FaultKind::Noise => !self.bytes.is_empty() && self.bytes.len() <= 64,
+            FaultKind::Silent => true,
+            FaultKind::Retag => self.bytes.len() == 1,
+        };
+        if ok {
+            return Ok(());
+        }
+        Err((
+            format!("{:?} with byte {}, bit {}, {} bytes", self.kind, self.byte, self.bit, self.bytes.len()),
+            format!("a frame has {len} characters of {bits} bits: flip needs byte < {len} and bit < {bits}; truncate byte < {len}; gap 0 < byte < {len}; noise 1 to 64 bytes; retag one byte"),
+        ))
+    }
+}
+
+/// Queues `bytes` on `tx` from `now_ps` with `faults` applied (noise first,
+/// then the characters, each possibly flipped or preceded by a gap, up to a
+/// truncation). `Silent` and `Retag` are the caller's.
+pub fn send_with_faults(tx: &mut Transmitter, bytes: &[u8], faults: &[FrameFault], parity: Parity, now_ps: f64) {
+    for f in faults.iter().filter(|f| f.kind == FaultKind::Noise) {
+        for &b in &f.bytes {
+            tx.send(b, now_ps, 0.0);
+        }
+    }
+    let keep = faults.iter().find(|f| f.kind == FaultKind::Truncate).map_or(bytes.len(), |f| f.byte);
+    for (i, &b) in bytes.iter().enumerate().take(keep) {
+        let gap = faults.iter().filter(|f| f.kind == FaultKind::Gap && f.byte == i).map(|f| f.gap_bits).sum::<f64>();
+        let mut levels = parity.levels(b);
+        for f in faults.iter().filter(|f| f.kind == FaultKind::Flip && f.byte == i) {
+            levels[f.bit] = !levels[f.bit];
+        }
+        tx.send_levels(&levels, now_ps, gap);
+    }
+}

@@ -1,0 +1,92 @@
+//! Modbus RTU (SAR58K24) in `tbgen`: `tbgen timing modbus` (the poll
+//! budget beside the cycle model's measurement) and the sigrok check of the
+//! line at the master. The `modbus` decoder stacked on `uart` is checked in
+//! `tbgen/tests/sar_modbus.rs`.
+
+pub mod sigrok_fields;
+
+use std::fmt::Write as _;
+
+use clap::{ArgMatches, CommandFactory, Parser};
+use model::modbus::{timing, BenchConfig, OpKind, Operation};
+use model::testbench;
+use model::uart::Parity;
+use model::Setup;
+
+use crate::registry::{self, Protocol, SigrokCheck, TransactionSignals};
+use crate::Result;
+
+/// Modbus: the poll budget of a scenario's set-up.
+#[derive(Parser)]
+#[command(name = "modbus", after_help = "Example:\n  tbgen timing modbus modbus_seed_19200 --registers 2")]
+pub struct TimingArgs {
+    /// Built-in scenario name or scenario .toml file with a [modbus] table.
+    #[arg(default_value = "modbus_seed_19200")]
+    scenario: String,
+    /// Registers per read (1: up to 16 bits, 2: 17 to 32 bits).
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u8).range(1..=2))]
+    registers: u8,
+}
+
+/// The budget table for every listed baud rate, then the scenario's own
+/// poll: budget and what the cycle model measures for two back-to-back polls.
+pub fn timing_report(cfg: &BenchConfig, name: &str, registers: u8) -> std::result::Result<String, model::ConfigError> {
+    let tb = cfg.timebase()?;
+    let delay = cfg.devices[0].answer_delay_us;
+    let mut s = timing::table(cfg.parity, delay);
+    let row = timing::poll(cfg.baud, cfg.parity, registers, delay);
+    let _ = writeln!(s, "\nscenario: {name}, {} baud, parity {:?}, {registers} register(s)", cfg.baud, cfg.parity);
+    let _ = writeln!(s, "budget: poll {:.1} µs = {:.0} polls/s", row.poll_us, row.poll_hz());
+    let mut two = cfg.clone();
+    two.ops = vec![Operation { op: OpKind::Read, address: cfg.devices[0].address, count: registers, gap_us: 0.0 }; 2];
+    two.devices.truncate(1);
+    two.devices[0].faults.clear();
+    if registers == 1 && two.devices[0].bits > 16 {
+        two.devices[0].bits = 16;
+        two.devices[0].positions = vec![0];
+    }
+    let run = testbench::run_to_end(two.bench()?);
+    if let [a, b, ..] = run.transactions.as_slice() {
+        let us = |c: u64| c as f64 * tb.period_ps() as f64 / 1e6;
+        let _ = writeln!(
+            s,
+            "model: start to o_done {:.1} µs, start to start {:.1} µs = {:.0} polls/s (the master's silences are timed from stop-bit samples, half a bit early){}",
+            us(a.done_cycle - a.start_cycle),
+            us(b.start_cycle - a.start_cycle),
+            1e6 / us(b.start_cycle - a.start_cycle),
+            if a.errors.is_empty() { String::new() } else { format!(", errors {:?}", a.errors) }
+        );
+    }
+    Ok(s)
+}
+
+impl Protocol for BenchConfig {
+    const TRANSACTION_SIGNALS: TransactionSignals = (&["o_done"], "o_value", "value");
+    const SIGROK_DECODER: Option<&'static str> = Some("uart");
+    const SIGROK_MINIMUM: (usize, usize) = (2, 100);
+
+    fn timing_command() -> Option<clap::Command> {
+        Some(TimingArgs::command())
+    }
+
+    fn timing(args: &ArgMatches) -> Result<String> {
+        let TimingArgs { scenario, registers } = registry::parse_args(args)?;
+        let (s, cfg) = registry::scenario_of::<BenchConfig>(&scenario, "timing modbus", "a Modbus")?;
+        timing_report(&cfg, &s.name, registers).map_err(|e| s.value_error(e))
+    }
+
+    /// sigrok's `uart` decoder on the line at the master must find, in
+    /// order, every character the transcript says was on the wire.
+    fn sigrok(&self, transcript: &serde_json::Value) -> Option<SigrokCheck> {
+        let parity = match self.parity {
+            Parity::None => "none",
+            Parity::Odd => "odd",
+            Parity::Even => "even",
+        };
+        Some(SigrokCheck {
+            decoder: format!("uart:rx=line_at_master:baudrate={}:parity={parity}", self.baud as u64),
+            annotation: "uart=rx-data",
+            expected: crate::transcript::wire_bytes(transcript)?.into_iter().map(|b| Some(b as u128)).collect(),
+        })
+    }
+}

@@ -1,0 +1,87 @@
+//! SAR58K24 asynchronous serial in `tbgen`: `tbgen timing sar` (frame time
+//! per baud rate, the highest refresh rate that fits, trigger-to-position
+//! latency, beside the cycle model's measurement) and the sigrok check of
+//! the line at the host.
+
+use std::fmt::Write as _;
+
+use clap::{ArgMatches, CommandFactory, Parser};
+use model::sar58k24::{timing, BenchConfig, Mode, OpKind, Operation};
+use model::testbench;
+use model::uart::Parity;
+use model::Setup;
+
+use crate::registry::{self, Protocol, SigrokCheck, TransactionSignals};
+use crate::Result;
+
+/// SAR58K24: the frame and latency budget of a scenario's set-up.
+#[derive(Parser)]
+#[command(name = "sar", after_help = "Example:\n  tbgen timing sar sar_seed_timed_14bit --t3-us 20")]
+pub struct TimingArgs {
+    /// Built-in scenario name or scenario .toml file with a [sar] table.
+    #[arg(default_value = "sar_seed_timed_14bit")]
+    scenario: String,
+    /// T3, the acquisition time of the handshake modes, µs.
+    #[arg(long, default_value_t = 20.0)]
+    t3_us: f64,
+}
+
+/// The budget table, then what the model measures: frame to frame in the
+/// timed modes, trigger (or command) to `o_done` in the others.
+pub fn timing_report(cfg: &BenchConfig, name: &str, t3_us: f64) -> std::result::Result<String, model::ConfigError> {
+    let tb = cfg.timebase()?;
+    let e = &cfg.encoders[0];
+    let mut s = timing::table(e.bits, cfg.parity, t3_us);
+    let _ = writeln!(s, "\nscenario: {name}, mode {:?}, {} baud, {} bits", cfg.mode, cfg.baud, e.bits);
+    let mut two = cfg.clone();
+    two.ops = vec![Operation { op: OpKind::Read, address: e.address, gap_us: 0.0, repeat: 2 }];
+    two.encoders.truncate(1);
+    two.encoders[0].faults.clear();
+    two.encoders[0].acquisition_us = t3_us.max(two.encoders[0].trigger_min_low_us);
+    two.second_drivers.clear();
+    let run = testbench::run_to_end(two.bench()?);
+    let us = |c: u64| c as f64 * tb.period_ps() as f64 / 1e6;
+    if let [a, b, ..] = run.transactions.as_slice() {
+        let what = if cfg.mode.is_timed() { "read start (waiting) to o_done" } else if cfg.mode == Mode::Handshake || cfg.mode == Mode::HandshakeClear { "trigger to o_done" } else { "command to o_done" };
+        let _ = writeln!(
+            s,
+            "model: {what} {:.1} µs, start to start {:.1} µs = {:.0} positions/s{}",
+            us(a.done_cycle - a.start_cycle),
+            us(b.start_cycle - a.start_cycle),
+            1e6 / us(b.start_cycle - a.start_cycle),
+            if a.errors.is_empty() { String::new() } else { format!(", errors {:?}", a.errors) }
+        );
+    }
+    Ok(s)
+}
+
+impl Protocol for BenchConfig {
+    const TRANSACTION_SIGNALS: TransactionSignals = (&["o_done"], "o_position", "position");
+    const SIGROK_DECODER: Option<&'static str> = Some("uart");
+    const SIGROK_MINIMUM: (usize, usize) = (4, 100);
+
+    fn timing_command() -> Option<clap::Command> {
+        Some(TimingArgs::command())
+    }
+
+    fn timing(args: &ArgMatches) -> Result<String> {
+        let TimingArgs { scenario, t3_us } = registry::parse_args(args)?;
+        let (s, cfg) = registry::scenario_of::<BenchConfig>(&scenario, "timing sar", "a SAR58K24")?;
+        timing_report(&cfg, &s.name, t3_us).map_err(|e| s.value_error(e))
+    }
+
+    /// sigrok's `uart` decoder on the line at the host must find, in order,
+    /// every character the transcript says was on the wire.
+    fn sigrok(&self, transcript: &serde_json::Value) -> Option<SigrokCheck> {
+        let parity = match self.parity {
+            Parity::None => "none",
+            Parity::Odd => "odd",
+            Parity::Even => "even",
+        };
+        Some(SigrokCheck {
+            decoder: format!("uart:rx=line_at_host:baudrate={}:parity={parity}", self.baud as u64),
+            annotation: "uart=rx-data",
+            expected: crate::transcript::wire_bytes(transcript)?.into_iter().map(|b| Some(b as u128)).collect(),
+        })
+    }
+}
