@@ -157,19 +157,19 @@ impl Receiver {
     /// or the synchroniser has not settled.
     pub fn quiet(&self, input: &In) -> u64 {
         let o = &self.out;
-        if o.o_valid || o.o_frame_err || o.o_start_err || self.rx_meta != input.i_rx || self.rx_sync != input.i_rx {
+        if o.o_valid || o.o_frame_err || o.o_start_err || o.o_parity_err || self.rx_meta != input.i_rx || self.rx_sync != input.i_rx {
             return 0;
         }
         match self.state {
             State::Idle | State::Recover if input.i_rx == (self.state == State::Idle) => u64::MAX,
             State::Idle | State::Recover => 0,
-            State::Start | State::Data | State::Stop => self.cnt,
+            State::Start | State::Data | State::ParityBit | State::Stop => self.cnt,
         }
     }
 
     /// The same as `n` steps with the last input, for `n` up to [`Receiver::quiet`].
     pub fn skip(&mut self, n: u64) {
-        if matches!(self.state, State::Start | State::Data | State::Stop) {
+        if matches!(self.state, State::Start | State::Data | State::ParityBit | State::Stop) {
             self.cnt -= n;
         }
     }
