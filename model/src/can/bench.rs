@@ -360,9 +360,11 @@ impl Bench {
             line: vec![Port::new("can_rx", 1), Port::new("can_tx", 1), Port::new("bus_tx_nodes", 1)],
             decoded: vec![Port::new("state", 4), Port::new("pos", 7), Port::new("tq_cnt", 5), Port::new("monitor_state", 4)],
         };
+        let mut monitor = Controller::new(cc)?;
+        monitor.set_listen_only();
         Ok(Bench {
             dut: Controller::new(cc)?,
-            monitor: Controller::new(cc)?,
+            monitor,
             nodes,
             bus: Bus::new(&places, cfg.ns_per_m, &tb),
             disturbers,

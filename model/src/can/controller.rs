@@ -291,6 +291,10 @@ pub struct Controller {
     out: Out,
     /// Model-only: the frame that last reached the end of its CRC sequence.
     seen: Seen,
+    /// Model-only: a listener that drives nothing (a bus monitor).
+    listen_only: bool,
+    /// Model-only: never acknowledges (a faulty node of the emulator).
+    no_ack: bool,
 }
 
 impl Controller {
@@ -331,6 +335,8 @@ impl Controller {
             rec: 0,
             out: Out::default(),
             seen: Seen::default(),
+            listen_only: false,
+            no_ack: false,
         })
     }
 
@@ -413,6 +419,20 @@ impl Controller {
         self.tx_pending = true;
         self.out.o_tx_busy = true;
         true
+    }
+
+    /// Makes this controller a listener (model-only: the bench's bus
+    /// monitor): it reads every bit as if it had sent it, and after an
+    /// error waits for 11 recessive bits (bus integration), so it follows
+    /// the bus through any error frame without errors of its own making.
+    pub fn set_listen_only(&mut self) {
+        self.listen_only = true;
+    }
+
+    /// Makes this controller leave every ACK slot recessive (model-only:
+    /// the emulator's `ack = false` fault).
+    pub fn set_no_ack(&mut self) {
+        self.no_ack = true;
     }
 
     /// The outputs as they stand.
@@ -542,6 +562,13 @@ impl Controller {
 
     /// Starts an error flag in the next bit (bus-off instead when TEC > 255).
     fn start_flag(&mut self) {
+        if self.listen_only {
+            // A listener sends no flag: it waits for 11 recessive bits, the
+            // end of any error frame and intermission, and then for SOF.
+            self.state = State::Integrate;
+            self.bit_cnt = 0;
+            return;
+        }
         if self.tec > 255 {
             self.enter_bus_off();
             return;
@@ -598,7 +625,7 @@ impl Controller {
 
     /// The protocol engine at one sample point: `b` is the bus level read.
     pub fn on_sample(&mut self, b: bool, i: &In) {
-        let sent = self.out.o_can_tx;
+        let sent = if self.listen_only { b } else { self.out.o_can_tx };
         match self.state {
             State::Integrate => {
                 if !b {
@@ -668,7 +695,7 @@ impl Controller {
                     self.error(ErrorKind::Form, false);
                 } else {
                     self.state = State::AckSlot;
-                    self.tx_bit = self.tx_active || self.crc_bad;
+                    self.tx_bit = self.tx_active || self.crc_bad || self.no_ack;
                 }
             }
             State::AckSlot => {

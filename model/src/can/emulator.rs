@@ -10,7 +10,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::bus::Place;
-use super::controller::{Controller, ControllerConfig, In, State, TxBuffer};
+use super::controller::{Controller, ControllerConfig, In, TxBuffer};
 use super::frame::{unpack, Frame};
 use crate::{ConfigError, Result, Timebase};
 
@@ -75,7 +75,6 @@ pub struct Emulator {
     rate: f64,
     phase: f64,
     own_cycle: u64,
-    ack: bool,
     tx: bool,
     sent: Vec<Frame>,
     received: Vec<Frame>,
@@ -87,14 +86,17 @@ impl Emulator {
     /// A node in its reset state; `cfg` is its nominal controller configuration.
     pub fn new(s: &NodeSettings, cfg: ControllerConfig, tb: &Timebase) -> Result<Self> {
         let script = s.frames.iter().map(|f| (tb.cycles_nearest_ns(f.at_us * 1e3), f.frame.clone())).collect();
+        let mut ctrl = Controller::new(cfg)?;
+        if !s.ack {
+            ctrl.set_no_ack();
+        }
         Ok(Emulator {
-            ctrl: Controller::new(cfg)?,
+            ctrl,
             script,
             next: 0,
             rate: 1.0 + s.ppm * 1e-6,
             phase: 0.0,
             own_cycle: 0,
-            ack: s.ack,
             tx: true,
             sent: Vec::new(),
             received: Vec::new(),
@@ -130,8 +132,7 @@ impl Emulator {
             }
             self.arb_lost += out.o_arb_lost as u64;
             self.errors += (out.o_err_bit || out.o_err_stuff || out.o_err_crc || out.o_err_form || out.o_err_ack) as u64;
-            let acking = !self.ctrl.transmitting() && matches!(self.ctrl.state(), State::AckSlot | State::AckDelim);
-            self.tx = out.o_can_tx || (!self.ack && acking);
+            self.tx = out.o_can_tx;
         }
         self.tx
     }

@@ -1,11 +1,12 @@
 use super::bench::{DutSettings, Fault, FaultKind, TimingSettings};
+
 use super::bus::Place;
-use super::controller::{crc_step, ERROR_ACTIVE, ERROR_PASSIVE};
+use super::controller::{crc_step, BUS_OFF, ERROR_ACTIVE, ERROR_PASSIVE};
 use super::emulator::{NodeSettings, Scripted};
 use super::frame::{self, stuff, Frame, FrameError};
 use super::*;
 use crate::testbench::run_to_end;
-use crate::Setup;
+use crate::{Setup, Testbench};
 
 fn node(name: &str, pos: f64, frames: Vec<(f64, Frame)>) -> NodeSettings {
     NodeSettings { name: name.into(), place: Place { position_m: pos, loop_delay_ns: 150.0 }, ppm: 0.0, ack: true, frames: frames.into_iter().map(|(at_us, frame)| Scripted { at_us, frame }).collect() }
@@ -73,4 +74,144 @@ fn the_core_sends_a_frame_a_node_acknowledges() {
     let t = &run.transactions[0];
     assert_eq!((t.id, t.rtr, t.dlc, t.ack), (0x7FF, true, 2, true));
     assert_eq!(t.dut_events, vec!["tx_done"]);
+}
+
+/// A frame without stuff bits: alternating identifier and data bits.
+fn plain() -> Frame {
+    Frame::data(0x555, &[0x55, 0x55])
+}
+
+fn flip(targets: &[&str], frame: u32, count: u32, bit: u32) -> Fault {
+    Fault { kind: FaultKind::Flip, targets: targets.iter().map(|s| s.to_string()).collect(), frame, count, bit, at_us: 0.0, width_us: 0.0 }
+}
+
+fn show(ts: &[Transaction]) {
+    for t in ts {
+        eprintln!("{:>3} sof {:>8} id {:#x} ok {} ack {} err {:?} dut {:?} tec {} rec {} st {}", t.index, t.sof_cycle, t.id, t.complete, t.ack, t.errors, t.dut_events, t.dut_tec, t.dut_rec, t.dut_err_state);
+    }
+}
+
+#[test]
+fn arbitration_between_three_nodes_lowest_identifier_first_loser_retransmits() {
+    let c = cfg(vec![(10.0, Frame::data(0x100, &[1]))], vec![node("a", 20.0, vec![(10.0, Frame::data(0x0F0, &[2]))]), node("b", 40.0, vec![(10.0, Frame::data(0x200, &[3]))])]);
+    let run = run_to_end(c.bench().unwrap());
+    show(&run.transactions);
+    let ids: Vec<u32> = run.transactions.iter().map(|t| t.id).collect();
+    assert_eq!(ids, vec![0x0F0, 0x100, 0x200]);
+    assert_eq!(run.transactions[0].dut_events, vec!["arb_lost", "rx_valid"]);
+    assert_eq!(run.transactions[1].dut_events, vec!["tx_done"]);
+    assert_eq!(run.transactions[2].dut_events, vec!["rx_valid"]);
+}
+
+#[test]
+fn a_bit_error_of_the_transmitter_costs_8_and_the_retransmission_gives_1_back() {
+    let mut c = cfg(vec![(10.0, plain())], vec![node("a", 10.0, vec![])]);
+    c.faults = vec![flip(&["dut"], 0, 1, 22)];
+    let run = run_to_end(c.bench().unwrap());
+    show(&run.transactions);
+    let t = &run.transactions;
+    assert_eq!(t.len(), 2);
+    assert_eq!(t[0].dut_events[0], "err_bit");
+    assert_eq!((t[0].dut_tec, t[1].dut_tec), (8, 7));
+    assert_eq!(t[1].dut_events, vec!["tx_done"]);
+}
+
+#[test]
+fn a_flipped_stuff_bit_is_a_stuff_error_of_the_receiver() {
+    let mut c = cfg(vec![], vec![node("a", 10.0, vec![(10.0, Frame::data(0x000, &[0, 0]))])]);
+    c.faults = vec![flip(&["dut"], 0, 1, 5)];
+    let run = run_to_end(c.bench().unwrap());
+    show(&run.transactions);
+    let t = &run.transactions;
+    assert_eq!(t.len(), 2);
+    assert_eq!(t[0].dut_events, vec!["err_stuff"]);
+    // Rule 1 (+1), then rule 2: the transmitter's flag follows the core's (+8).
+    assert_eq!(t[0].dut_rec, 9);
+    assert_eq!((t[1].dut_events.clone(), t[1].dut_rec), (vec!["rx_valid"], 8));
+}
+
+#[test]
+fn a_flipped_data_bit_at_the_receiver_is_a_crc_error_after_the_ack_delimiter() {
+    let mut c = cfg(vec![], vec![node("a", 10.0, vec![(10.0, plain())]), node("b", 30.0, vec![])]);
+    // Wire bit 24: data bit 4 (a stuff bit follows DLC2 at wire bit 17); 0 -> 1 makes no run of five.
+    c.faults = vec![flip(&["dut"], 0, 1, 24)];
+    let run = run_to_end(c.bench().unwrap());
+    show(&run.transactions);
+    let t = &run.transactions;
+    assert_eq!(t.len(), 2);
+    assert_eq!(t[0].dut_events, vec!["err_crc"]);
+    assert!(t[0].complete && t[0].ack, "the transmitter saw the ACK of the other receiver");
+    assert_eq!(t[0].errors, vec!["crc"], "the listener at the pin sees the CRC error too");
+    assert_eq!(t[1].dut_events, vec!["rx_valid"]);
+}
+
+#[test]
+fn a_dominant_crc_delimiter_is_a_form_error() {
+    let f = plain();
+    let delim = frame::stuff(&f.destuffed_bits()).len() as u32;
+    let mut c = cfg(vec![], vec![node("a", 10.0, vec![(10.0, f)])]);
+    c.faults = vec![flip(&["dut"], 0, 1, delim)];
+    let run = run_to_end(c.bench().unwrap());
+    show(&run.transactions);
+    assert_eq!(run.transactions[0].dut_events, vec!["err_form"]);
+    assert_eq!(run.transactions[1].dut_events, vec!["rx_valid"]);
+}
+
+#[test]
+fn no_acknowledgement_is_an_ack_error_up_to_error_passive_and_no_further() {
+    let mut a = node("a", 10.0, vec![]);
+    a.ack = false;
+    let mut c = cfg(vec![(10.0, plain())], vec![a]);
+    c.max_us = 20_000.0;
+    let run = run_to_end(c.bench().unwrap());
+    show(&run.transactions[..20.min(run.transactions.len())]);
+    let t = &run.transactions;
+    assert!(t.len() > 20);
+    for (k, x) in t.iter().enumerate().take(16) {
+        assert_eq!(x.dut_events, vec!["err_ack"]);
+        assert_eq!(x.dut_tec, 8 * (k as u16 + 1));
+    }
+    assert_eq!(t[15].dut_err_state, ERROR_PASSIVE);
+    assert_eq!(t[14].dut_err_state, ERROR_ACTIVE);
+    // Error-passive: an ACK error without a dominant bit in the passive flag costs nothing.
+    assert!(t[16..t.len() - 1].iter().all(|x| x.dut_tec == 128 && x.dut_events == vec!["err_ack"]));
+}
+
+#[test]
+fn repeated_bit_errors_walk_the_transmitter_to_bus_off_and_128_x_11_recessive_bits_bring_it_back() {
+    let mut c = cfg(vec![(10.0, plain())], vec![node("a", 10.0, vec![])]);
+    c.faults = vec![flip(&["dut"], 0, 32, 22)];
+    let run = run_to_end(c.bench().unwrap());
+    show(&run.transactions);
+    let t = &run.transactions;
+    assert_eq!(t.len(), 33);
+    for (k, x) in t.iter().enumerate().take(32) {
+        assert_eq!(x.dut_events, vec!["err_bit"], "frame {k}");
+    }
+    assert_eq!((t[30].dut_tec, t[30].dut_err_state), (248, ERROR_PASSIVE));
+    // The transaction of the 32nd error ends at the next SOF, after recovery.
+    assert_eq!((t[31].dut_tec, t[31].dut_err_state), (0, ERROR_ACTIVE));
+    assert_eq!((t[32].dut_events.clone(), t[32].dut_tec, t[32].dut_err_state), (vec!["tx_done"], 0, ERROR_ACTIVE));
+    // Step again and time bus-off at the core's outputs: 128 × 11 recessive
+    // bits, counted from the first sample point after the last error flag.
+    let mut b = c.bench().unwrap();
+    let mut s = crate::trace::Sample::for_layout(b.layout());
+    let (mut on, mut off) = (None, None);
+    while !b.finished() {
+        b.step(Some(&mut s));
+        let st = s.outputs[12];
+        if st == BUS_OFF as u64 && on.is_none() {
+            on = Some(b.cycle());
+            assert_eq!(s.outputs[10], 256, "TEC 248 + 8 = 256 > 255");
+        }
+        if on.is_some() && off.is_none() && st == ERROR_ACTIVE as u64 {
+            off = Some(b.cycle());
+            assert_eq!((s.outputs[10], s.outputs[11]), (0, 0));
+        }
+    }
+    let bits = (off.unwrap() - on.unwrap()) as f64 / 160.0;
+    // Bus-off silences the core mid-frame: the other node reads six
+    // recessive bits (a stuff error) and sends its 6-bit flag; the core's
+    // count of 11 recessive bits starts after that flag: 1408 + 12 bits.
+    assert_eq!(bits.round(), 128.0 * 11.0 + 12.0, "{bits}");
 }
