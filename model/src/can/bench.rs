@@ -43,9 +43,10 @@ impl Default for TimingSettings {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct DutSettings {
-    /// Position and transceiver.
-    #[serde(flatten)]
-    pub place: Place,
+    /// Position along the cable, metres.
+    pub position_m: f64,
+    /// Transceiver loop delay, ns.
+    pub loop_delay_ns: f64,
     /// Acceptance filter identifier.
     pub filter_id: u32,
     /// Acceptance filter mask (0: accept every frame).
@@ -56,7 +57,14 @@ pub struct DutSettings {
 
 impl Default for DutSettings {
     fn default() -> Self {
-        DutSettings { place: Place { position_m: 0.0, loop_delay_ns: 150.0 }, filter_id: 0, filter_mask: 0, frames: Vec::new() }
+        DutSettings { position_m: 0.0, loop_delay_ns: 150.0, filter_id: 0, filter_mask: 0, frames: Vec::new() }
+    }
+}
+
+impl DutSettings {
+    /// Where the core sits.
+    pub fn place(&self) -> Place {
+        Place { position_m: self.position_m, loop_delay_ns: self.loop_delay_ns }
     }
 }
 
@@ -163,10 +171,10 @@ impl BenchConfig {
         if !(0.0..=50.0).contains(&self.ns_per_m) {
             return Err(ConfigError::invalid("ns_per_m", format!("{}", self.ns_per_m), "give the cable delay in ns/m (5 for twisted pair)"));
         }
-        self.dut.place.validate("dut")?;
+        self.dut.place().validate("dut")?;
         for (k, s) in self.dut.frames.iter().enumerate() {
-            s.frame.validate(&format!("dut.frames[{k}]"))?;
-            if s.frame.ide {
+            s.frame().validate(&format!("dut.frames[{k}]"))?;
+            if s.ide {
                 return Err(ConfigError::invalid(format!("dut.frames[{k}].ide"), "the core sends standard frames only", "send extended frames from an emulated node"));
             }
         }
@@ -331,8 +339,8 @@ impl Bench {
         cfg.check()?;
         let tb = cfg.timebase()?;
         let cc = cfg.controller_config()?;
-        let mut places = vec![cfg.dut.place];
-        places.extend(cfg.nodes.iter().map(|n| n.place));
+        let mut places = vec![cfg.dut.place()];
+        places.extend(cfg.nodes.iter().map(NodeSettings::place));
         let nodes = cfg.nodes.iter().map(|n| Emulator::new(n, cc, &tb)).collect::<Result<Vec<_>>>()?;
         let names: Vec<&str> = std::iter::once("dut").chain(cfg.nodes.iter().map(|n| n.name.as_str())).collect();
         let disturbers = names
@@ -369,7 +377,7 @@ impl Bench {
             bus: Bus::new(&places, cfg.ns_per_m, &tb),
             disturbers,
             stuck,
-            script: cfg.dut.frames.iter().map(|s| (tb.cycles_nearest_ns(s.at_us * 1e3), s.frame.clone())).collect(),
+            script: cfg.dut.frames.iter().map(|s| (tb.cycles_nearest_ns(s.at_us * 1e3), s.frame())).collect(),
             next: 0,
             last_out: Out::default(),
             rx_dut: true,

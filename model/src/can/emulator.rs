@@ -14,15 +14,38 @@ use super::controller::{Controller, ControllerConfig, In, TxBuffer};
 use super::frame::{unpack, Frame};
 use crate::{ConfigError, Result, Timebase};
 
-/// A frame the node sends at a time (`[[can.nodes.frames]]`).
+/// A frame a node sends at a time (`frames = [{ at_us, id, ... }]`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Scripted {
     /// Earliest time, µs after reset (sent when the buffer is free).
     pub at_us: f64,
+    /// Identifier: 11 bits, or 29 with `ide`.
+    pub id: u32,
+    /// Extended frame.
+    #[serde(default)]
+    pub ide: bool,
+    /// Remote frame.
+    #[serde(default)]
+    pub rtr: bool,
+    /// DLC.
+    #[serde(default)]
+    pub dlc: u8,
+    /// Data bytes (min(dlc, 8), none for a remote frame).
+    #[serde(default)]
+    pub data: Vec<u8>,
+}
+
+impl Scripted {
+    /// `frame` at `at_us`.
+    pub fn new(at_us: f64, frame: Frame) -> Scripted {
+        Scripted { at_us, id: frame.id, ide: frame.ide, rtr: frame.rtr, dlc: frame.dlc, data: frame.data }
+    }
+
     /// The frame.
-    #[serde(flatten)]
-    pub frame: Frame,
+    pub fn frame(&self) -> Frame {
+        Frame { id: self.id, ide: self.ide, rtr: self.rtr, dlc: self.dlc, data: self.data.clone() }
+    }
 }
 
 /// An emulated node (`[[can.nodes]]`).
@@ -31,9 +54,12 @@ pub struct Scripted {
 pub struct NodeSettings {
     /// Name in transcripts.
     pub name: String,
-    /// Position and transceiver.
-    #[serde(flatten)]
-    pub place: Place,
+    /// Position along the cable, metres.
+    #[serde(default)]
+    pub position_m: f64,
+    /// Transceiver loop delay, ns.
+    #[serde(default = "default_loop")]
+    pub loop_delay_ns: f64,
     /// Oscillator offset, ppm (positive: fast).
     #[serde(default)]
     pub ppm: f64,
@@ -49,15 +75,24 @@ fn yes() -> bool {
     true
 }
 
+fn default_loop() -> f64 {
+    150.0
+}
+
 impl NodeSettings {
+    /// Where the node sits.
+    pub fn place(&self) -> Place {
+        Place { position_m: self.position_m, loop_delay_ns: self.loop_delay_ns }
+    }
+
     /// Checks the fields; `field` names the table.
     pub fn validate(&self, field: &str) -> Result<()> {
-        self.place.validate(field)?;
+        self.place().validate(field)?;
         if !(-50_000.0..=50_000.0).contains(&self.ppm) {
             return Err(ConfigError::invalid(format!("{field}.ppm"), format!("{}", self.ppm), "give an oscillator offset within ±50 000 ppm (±5 %)"));
         }
         for (k, s) in self.frames.iter().enumerate() {
-            s.frame.validate(&format!("{field}.frames[{k}]"))?;
+            s.frame().validate(&format!("{field}.frames[{k}]"))?;
             if !(0.0..1e8).contains(&s.at_us) {
                 return Err(ConfigError::invalid(format!("{field}.frames[{k}].at_us"), format!("{}", s.at_us), "give a time ≥ 0 µs"));
             }
@@ -85,7 +120,7 @@ pub struct Emulator {
 impl Emulator {
     /// A node in its reset state; `cfg` is its nominal controller configuration.
     pub fn new(s: &NodeSettings, cfg: ControllerConfig, tb: &Timebase) -> Result<Self> {
-        let script = s.frames.iter().map(|f| (tb.cycles_nearest_ns(f.at_us * 1e3), f.frame.clone())).collect();
+        let script = s.frames.iter().map(|f| (tb.cycles_nearest_ns(f.at_us * 1e3), f.frame())).collect();
         let mut ctrl = Controller::new(cfg)?;
         if !s.ack {
             ctrl.set_no_ack();

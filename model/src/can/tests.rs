@@ -1,6 +1,5 @@
 use super::bench::{DutSettings, Fault, FaultKind, TimingSettings};
 
-use super::bus::Place;
 use super::controller::{crc_step, BUS_OFF, ERROR_ACTIVE, ERROR_PASSIVE};
 use super::emulator::{NodeSettings, Scripted};
 use super::frame::{self, stuff, Frame, FrameError};
@@ -9,12 +8,12 @@ use crate::testbench::run_to_end;
 use crate::{Setup, Testbench};
 
 fn node(name: &str, pos: f64, frames: Vec<(f64, Frame)>) -> NodeSettings {
-    NodeSettings { name: name.into(), place: Place { position_m: pos, loop_delay_ns: 150.0 }, ppm: 0.0, ack: true, frames: frames.into_iter().map(|(at_us, frame)| Scripted { at_us, frame }).collect() }
+    NodeSettings { name: name.into(), position_m: pos, loop_delay_ns: 150.0, ppm: 0.0, ack: true, frames: frames.into_iter().map(|(at_us, frame)| Scripted::new(at_us, frame)).collect() }
 }
 
 fn cfg(dut_frames: Vec<(f64, Frame)>, nodes: Vec<NodeSettings>) -> BenchConfig {
     BenchConfig {
-        dut: DutSettings { frames: dut_frames.into_iter().map(|(at_us, frame)| Scripted { at_us, frame }).collect(), ..DutSettings::default() },
+        dut: DutSettings { frames: dut_frames.into_iter().map(|(at_us, frame)| Scripted::new(at_us, frame)).collect(), ..DutSettings::default() },
         nodes,
         ..BenchConfig::default()
     }
