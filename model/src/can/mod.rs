@@ -22,6 +22,7 @@
 
 pub mod bench;
 pub mod bus;
+pub mod campaign;
 
 pub mod controller;
 pub mod emulator;

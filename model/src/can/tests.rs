@@ -214,3 +214,19 @@ fn repeated_bit_errors_walk_the_transmitter_to_bus_off_and_128_x_11_recessive_bi
     // count of 11 recessive bits starts after that flag: 1408 + 12 bits.
     assert_eq!(bits.round(), 128.0 * 11.0 + 12.0, "{bits}");
 }
+
+#[test]
+fn campaign_counts_by_inverted_bits() {
+    let r = campaign::run(100_000, 1);
+    for (n, c) in &r {
+        eprintln!("{n} flips: detected {} undetected {} harmless {}", c.detected, c.undetected, c.harmless);
+    }
+    let (tried, missed) = campaign::shift_pairs(20, 2);
+    eprintln!("shift pairs: {tried} tried, {missed} undetected");
+    assert_eq!(r.values().map(|c| c.detected + c.undetected + c.harmless).sum::<u64>(), 100_000);
+}
+
+#[test]
+fn the_controller_and_the_parser_agree_on_every_corruption() {
+    assert_eq!(campaign::cross_check(300, 3), 0);
+}
