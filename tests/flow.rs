@@ -63,20 +63,6 @@ fn check_with_vcd_crate(path: &Path) -> HashMap<String, u32> {
     names
 }
 
-/// Per core: the output pulses that end a transaction, the output holding its
-/// result, and the transcript field that must equal it.
-fn transaction_signals(core: &str) -> (&'static [&'static str], &'static str, &'static str) {
-    match core {
-        "ssi_master" => (&["o_done"], "o_position", "position"),
-        "uart_rx" => (&["o_valid", "o_frame_err", "o_start_err"], "o_data", "received"),
-        "biss_master" => (&["o_done"], "o_delay", "delay_cycles"),
-        "tformat_host" => (&["o_done"], "o_abs", "abs"),
-        "endat_master" => (&["o_done", "o_meas_done"], "o_position", "position"),
-        "esl_host" => (&["o_done"], "o_abs", "abs"),
-        other => panic!("no transaction signals listed for core {other}: add them to transaction_signals"),
-    }
-}
-
 #[test]
 fn every_builtin_scenario_writes_four_files_that_independent_readers_accept() {
     let dir = tempfile::tempdir().unwrap();
@@ -105,7 +91,7 @@ fn every_builtin_scenario_writes_four_files_that_independent_readers_accept() {
         let mut wave = wellen::simple::read(&summary.files[1]).expect("wellen reads the VCD");
         let h = wave.hierarchy();
         let mut seen = 0;
-        let (pulse_names, value_name, value_field) = transaction_signals(scenario.core());
+        let (pulse_names, value_name, value_field) = tbgen::registry::by_core(scenario.core()).expect("a registered core").transaction_signals;
         let mut pulse_refs = Vec::new();
         let mut value_ref = None;
         for var_ref in h.all_vars() {

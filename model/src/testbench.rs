@@ -4,7 +4,10 @@
 //! clock per [`Testbench::step`]).
 //!
 //! Adding a protocol means writing its `BenchConfig: Setup` and its
-//! `Bench: Testbench`, then adding one variant to `tbgen`'s scenario enum.
+//! `Bench: Testbench` in `model/src/<proto>/`, then one line in `tbgen`'s
+//! protocol registry (`tbgen/src/lib.rs`, see the README's "Adding a
+//! protocol"). A protocol module uses the shared modules (`time`, `line`,
+//! `crc`, `uart`, `angle`, `gray`, `bits`...), never another protocol's.
 
 use serde::Serialize;
 

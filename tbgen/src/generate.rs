@@ -98,7 +98,7 @@ struct Generate<'a> {
 
 impl Visitor for Generate<'_> {
     type Output = Result<Summary>;
-    fn visit<S: model::Setup>(self, cfg: &S) -> Result<Summary> {
+    fn visit<S: crate::registry::Protocol>(self, cfg: &S) -> Result<Summary> {
         write_outputs(self.scenario, cfg, self.out_dir)
     }
 }

@@ -17,22 +17,36 @@
 //! let scenario = builtin::find("ssi_seed_12bit").unwrap();
 //! generate::generate(&scenario, std::path::Path::new("out")).unwrap();
 //! ```
+//!
+//! The generic modules (`scenario`, `builtin`, `generate`, `vectors`,
+//! `wave`, `gtkw`, `transcript`, `capture`, `crc_cmd`, `error`) know no
+//! protocol. Each protocol has its own folder, `tbgen/src/<table>/`, holding
+//! what is only its own: the [`registry::Protocol`] implementation of its
+//! model's `BenchConfig` and, if it has them, its decoder (`tbgen decode
+//! <table>`) and cycle budget (`tbgen timing <table>`). The protocols are
+//! listed once, below, one line each (see [`registry`]).
 
-pub mod biss_tools;
 pub mod builtin;
 pub mod capture;
 pub mod crc_cmd;
-pub mod endat_decode;
 pub mod error;
 pub mod generate;
 pub mod gtkw;
+pub mod registry;
 pub mod scenario;
-pub mod timing_cmd;
-pub mod tformat_decode;
-pub mod tformat_tools;
-pub mod esl_tools;
 pub mod transcript;
 pub mod vectors;
 pub mod wave;
 
 pub use error::{Error, Result};
+
+// The protocol registry: `table => SetupVariant(model configuration)`, in
+// listing order. Adding a protocol is one line here.
+registry::protocols! {
+    ssi     => Ssi(model::ssi::BenchConfig),
+    uart    => Uart(model::uart::BenchConfig),
+    tformat => Tformat(model::tformat::BenchConfig),
+    biss    => Biss(model::biss::BenchConfig),
+    endat   => Endat(model::endat::BenchConfig),
+    esl     => Esl(model::esl::BenchConfig),
+}

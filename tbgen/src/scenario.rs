@@ -14,72 +14,17 @@
 
 use std::path::Path;
 
-use serde::Deserialize;
-
 use crate::{Error, Result};
 
-/// A scenario file as written.
-#[derive(Debug, Clone, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct ScenarioFile {
-    name: String,
-    #[serde(default)]
-    description: String,
-    ssi: Option<model::ssi::BenchConfig>,
-    uart: Option<model::uart::BenchConfig>,
-    tformat: Option<model::tformat::BenchConfig>,
-    biss: Option<model::biss::BenchConfig>,
-    endat: Option<model::endat::BenchConfig>,
-    esl: Option<model::esl::BenchConfig>,
-}
-
-/// The set-up a scenario describes, one variant per protocol. To add a
-/// protocol: a variant here, a field in `ScenarioFile`, and one arm in
-/// `Scenario::parse` and in [`Setup::accept`].
-#[derive(Debug, Clone, PartialEq)]
-pub enum Setup {
-    /// An SSI reader, encoder and cable.
-    Ssi(model::ssi::BenchConfig),
-    /// The 10-bit frame receiver fed by a sender with baud error and jitter.
-    Uart(model::uart::BenchConfig),
-    /// A T-format host, a Smart Abs emulator and a half-duplex cable.
-    Tformat(model::tformat::BenchConfig),
-    /// A BiSS-C master, a chain of slaves and a cable.
-    Biss(model::biss::BenchConfig),
-    /// An EnDat master, encoder emulator and cable.
-    Endat(model::endat::BenchConfig),
-    /// An ESL host, QS35 emulators on a half-duplex bus and a cable.
-    Esl(model::esl::BenchConfig),
-}
-
-/// Something done with a scenario's set-up whatever its protocol: the
-/// generic code in `generate` and `main` is written once against
-/// [`model::Setup`] and reached through [`Setup::accept`].
-pub trait Visitor {
-    /// What the visit returns.
-    type Output;
-    /// Does the work for one protocol's configuration.
-    fn visit<S: model::Setup>(self, setup: &S) -> Self::Output;
-}
-
-impl Setup {
-    /// Hands the protocol's configuration to `visitor`.
-    pub fn accept<V: Visitor>(&self, visitor: V) -> V::Output {
-        match self {
-            Setup::Ssi(cfg) => visitor.visit(cfg),
-            Setup::Uart(cfg) => visitor.visit(cfg),
-            Setup::Tformat(cfg) => visitor.visit(cfg),
-            Setup::Biss(cfg) => visitor.visit(cfg),
-            Setup::Endat(cfg) => visitor.visit(cfg),
-            Setup::Esl(cfg) => visitor.visit(cfg),
-        }
-    }
-}
+pub use crate::registry::Visitor;
+pub use crate::Setup;
+use crate::registry::Protocol;
+use crate::ScenarioFile;
 
 struct CoreAndTable;
 impl Visitor for CoreAndTable {
     type Output = (&'static str, &'static str);
-    fn visit<S: model::Setup>(self, _: &S) -> Self::Output {
+    fn visit<S: Protocol>(self, _: &S) -> Self::Output {
         (S::CORE, S::TABLE)
     }
 }
@@ -87,7 +32,7 @@ impl Visitor for CoreAndTable {
 struct Validate;
 impl Visitor for Validate {
     type Output = model::Result<()>;
-    fn visit<S: model::Setup>(self, setup: &S) -> Self::Output {
+    fn visit<S: Protocol>(self, setup: &S) -> Self::Output {
         setup.validate()
     }
 }
@@ -125,19 +70,16 @@ impl Scenario {
                 message: format!("name `{}`: use lower-case letters, digits and `_` (it names the output files)", file.name),
             });
         }
-        let mut setups = Vec::new();
-        setups.extend(file.ssi.map(Setup::Ssi));
-        setups.extend(file.uart.map(Setup::Uart));
-        setups.extend(file.tformat.map(Setup::Tformat));
-        setups.extend(file.biss.map(Setup::Biss));
-        setups.extend(file.endat.map(Setup::Endat));
-        setups.extend(file.esl.map(Setup::Esl));
+        let mut setups = file.setups();
         if setups.len() != 1 {
+            let tables: Vec<String> = crate::PROTOCOLS.iter().map(|p| format!("`[{}]`", p.table)).collect();
+            let (last, rest) = tables.split_last().expect("at least one protocol is registered");
             return Err(Error::Scenario {
                 file: origin.into(),
                 message: format!(
-                    "{} protocol tables: give exactly one, e.g. `[ssi]`, `[endat]`, `[biss]`, `[tformat]` or `[uart]` with its fields (see scenarios/)",
-                    setups.len()
+                    "{} protocol tables: give exactly one, e.g. {} or {last} with its fields (see scenarios/)",
+                    setups.len(),
+                    rest.join(", ")
                 ),
             });
         }
@@ -159,7 +101,7 @@ impl Scenario {
     }
 
     /// The protocol table's name in the file.
-    fn table(&self) -> &'static str {
+    pub fn table(&self) -> &'static str {
         self.setup.accept(CoreAndTable).1
     }
 
@@ -261,7 +203,9 @@ mod tests {
     #[test]
     fn a_file_without_a_protocol_table_says_what_to_add() {
         let msg = Scenario::parse("name = \"x\"\n", "x.toml").unwrap_err().to_string();
-        assert!(msg.contains("[ssi]"), "{msg}");
+        for p in crate::PROTOCOLS {
+            assert!(msg.contains(&format!("`[{}]`", p.table)), "{msg}");
+        }
     }
 
     #[test]

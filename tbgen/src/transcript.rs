@@ -67,3 +67,34 @@ impl<'a, T: Serialize> Decoded<'a, T> {
         }
     }
 }
+
+/// The bytes a transcript of a half-duplex host (T-format, ESL) says were on
+/// the wire at the host, in order: each request's `wire_requests`, then its
+/// `wire_answers`. `None` if the transcript is not of that shape (one answer
+/// list per request, one wire request per request sent).
+pub fn wire_bytes(transcript: &serde_json::Value) -> Option<Vec<u64>> {
+    let bytes = |set: &serde_json::Value| -> Option<Vec<u64>> { set.as_array()?.iter().map(|b| b.as_u64()).collect() };
+    let mut expected = Vec::new();
+    for t in transcript["transactions"].as_array()? {
+        let (requests, answers) = (t["wire_requests"].as_array()?, t["wire_answers"].as_array()?);
+        if requests.len() != answers.len() || t["requests"].as_u64().is_some_and(|sent| requests.len() as u64 != sent) {
+            return None;
+        }
+        for (request, answer) in requests.iter().zip(answers) {
+            expected.extend(bytes(request)?);
+            expected.extend(bytes(answer)?);
+        }
+    }
+    Some(expected)
+}
+
+/// sigrok's `uart` decoder on the line at a half-duplex host at `baud`: it
+/// must find, in order, every character the transcript says was on the wire
+/// ([`wire_bytes`]), faults included.
+pub fn sigrok_wire_bytes(transcript: &serde_json::Value, baud: f64) -> Option<crate::registry::SigrokCheck> {
+    Some(crate::registry::SigrokCheck {
+        decoder: format!("uart:rx=line_at_host:baudrate={}", baud as u64),
+        annotation: "uart=rx-data",
+        expected: wire_bytes(transcript)?.into_iter().map(|b| Some(b as u128)).collect(),
+    })
+}

@@ -701,7 +701,7 @@ impl Bench {
                     sent_position: slave.position(),
                     sent_bits: crate::bits::string(slave.last_section()),
                     position: out.o_data,
-                    angle_deg: super::angle_deg(out.o_data, bits),
+                    angle_deg: crate::angle::angle_deg(out.o_data, bits),
                     error: out.o_error,
                     warning: out.o_warning,
                     cds: out.o_cds,

@@ -92,10 +92,6 @@ pub use bench::{Bench, BenchConfig, CmdOp, CmdResult, DelayStep, FlipFault, Host
 pub use master::{In, Master, MasterConfig, Out, State, MAX_SLAVES, SYNC_STAGES};
 pub use slave::{Chain, Slave, SlaveConfig};
 
-/// `θ = 360° × a / 2^n`, cut to four decimals as the seed prints it (shared
-/// with SSI: [`crate::ssi::angle_deg`]).
-pub use crate::ssi::angle_deg;
-
 /// A CRC of the BiSS-C family with another width or polynomial: initial value
 /// 0, sent inverted, MSB first, like [`crate::crc::BISS_CRC6`].
 pub fn data_crc(width: u32, poly: u64) -> crate::crc::Algorithm {

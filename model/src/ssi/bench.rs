@@ -16,7 +16,7 @@ use serde::{Deserialize, Serialize};
 use super::encoder::{AfterLsb, Encoder, EncoderConfig};
 use super::master::{In, Master, MasterConfig, Out};
 use super::Code;
-pub use crate::angle::angle_deg;
+use crate::angle::angle_deg;
 use crate::line::{CableConfig, DelayLine};
 use crate::ports::{Port, Ports};
 use crate::testbench::{self, Setup, Testbench};

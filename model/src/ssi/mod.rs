@@ -56,7 +56,7 @@ mod bench;
 mod encoder;
 mod master;
 
-pub use bench::{angle_deg, Bench, BenchConfig, EncoderSettings, HostSettings, MasterSettings, StuckFault, Transaction};
+pub use bench::{Bench, BenchConfig, EncoderSettings, HostSettings, MasterSettings, StuckFault, Transaction};
 pub use encoder::{AfterLsb, Encoder, EncoderConfig};
 pub use master::{In, Master, MasterConfig, Out, State};
 

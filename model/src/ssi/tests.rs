@@ -3,6 +3,7 @@
 use proptest::prelude::*;
 
 use super::*;
+use crate::angle::angle_deg;
 use crate::line::CableConfig;
 
 fn read(cfg: &BenchConfig) -> Vec<Transaction> {

@@ -4,7 +4,8 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use model::biss::{angle_deg, control, data_crc, BenchConfig, CmdOp, HostSettings, RegOp, MAX_SLAVES};
+use model::angle::angle_deg;
+use model::biss::{control, data_crc, BenchConfig, CmdOp, HostSettings, RegOp, MAX_SLAVES};
 use model::testbench;
 use model::Setup;
 use serde::Serialize;

@@ -1,0 +1,77 @@
+//! EnDat 2.1 / 2.2 in `tbgen`: `tbgen decode endat` ([`decode`]) and
+//! `tbgen timing endat` ([`timing`]).
+
+pub mod decode;
+pub mod timing;
+
+use std::path::PathBuf;
+
+use clap::{ArgMatches, CommandFactory, Parser};
+use model::endat::BenchConfig;
+
+use crate::registry::{self, Protocol, TransactionSignals};
+use crate::{builtin, Error, Result};
+
+/// EnDat 2.1 / 2.2: clock and data at the master.
+#[derive(Parser)]
+#[command(name = "endat", after_help = "Examples:\n  tbgen decode endat vectors/endat_master/endat_params_22_2mhz.vcd\n  tbgen decode endat vectors/endat_master/endat_pos22_ad_8mhz_100m.vcd --meas-khz 200\n  tbgen decode endat capture.vcd --clk tb.clk_pin --data tb.data_pin --pos-bits 13")]
+pub struct DecodeArgs {
+    /// The VCD file.
+    file: PathBuf,
+    /// Dotted path of the clock scalar at the master.
+    #[arg(long, default_value = "top.line.endat_clk_master")]
+    clk: String,
+    /// Dotted path of the data scalar at the master's receiver (both directions).
+    #[arg(long, default_value = "top.line.endat_data_master")]
+    data: String,
+    /// Position bits of the encoder.
+    #[arg(long, default_value_t = 25)]
+    pos_bits: u32,
+    /// Clock of the master's delay measurement in kHz, if it measures (000111 bursts at it are measurement frames).
+    #[arg(long)]
+    meas_khz: Option<f64>,
+}
+
+/// EnDat: the cycle budget of one mode command, phase by phase.
+#[derive(Parser)]
+#[command(name = "endat", after_help = "Examples:\n  tbgen timing endat endat_pos22_ad_8mhz_100m --ads 2\n  tbgen timing endat my.toml --command pos21 --diagram")]
+pub struct TimingArgs {
+    /// Built-in scenario name or scenario .toml file with an [endat] table.
+    #[arg(default_value = "endat_pos22_ad_8mhz_100m")]
+    scenario: String,
+    /// Mode command to budget (`pos22`, `pos21`, `send21`, ...).
+    #[arg(long, default_value = "pos22")]
+    command: String,
+    /// Additional data selected (0, 1 or 2; type 2.2 commands).
+    #[arg(long, default_value_t = 0)]
+    ads: u64,
+    /// Also print the model's waveform of the scenario's first request.
+    #[arg(long)]
+    diagram: bool,
+}
+
+impl Protocol for BenchConfig {
+    const TRANSACTION_SIGNALS: TransactionSignals = (&["o_done", "o_meas_done"], "o_position", "position");
+
+    fn decode_command() -> Option<clap::Command> {
+        Some(DecodeArgs::command())
+    }
+
+    fn decode(args: &ArgMatches) -> Result<String> {
+        let DecodeArgs { file, clk, data, pos_bits, meas_khz } = registry::parse_args(args)?;
+        let opts = decode::Options { pos_bits, meas_khz };
+        let transactions = decode::decode(&file, &clk, &data, &opts)?;
+        let envelope = crate::transcript::Decoded::new("endat", &file, &[("clk", clk.as_str()), ("data", data.as_str())], &transactions);
+        serde_json::to_string_pretty(&envelope).map_err(|e| Error::Decode(e.to_string()))
+    }
+
+    fn timing_command() -> Option<clap::Command> {
+        Some(TimingArgs::command())
+    }
+
+    fn timing(args: &ArgMatches) -> Result<String> {
+        let TimingArgs { scenario, command, ads, diagram } = registry::parse_args(args)?;
+        let s = builtin::resolve(&scenario)?;
+        timing::report(&s, &command, ads, diagram)
+    }
+}

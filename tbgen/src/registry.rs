@@ -1,0 +1,379 @@
+//! The protocol registry: the one place a protocol is made known to `tbgen`.
+//!
+//! The list itself is the [`protocols!`] invocation in `lib.rs`, one line per
+//! protocol:
+//!
+//! ```text
+//! ssi => Ssi(model::ssi::BenchConfig),
+//! ```
+//!
+//! `ssi` is the scenario file's table (and the folder `tbgen/src/ssi/`,
+//! `scenarios/ssi/`), `Ssi` the variant of [`crate::Setup`], and the type
+//! the model's configuration, which implements [`model::Setup`] (in
+//! `model/src/ssi/`) and [`Protocol`] (in `tbgen/src/ssi/`). From that line
+//! the macro makes the module `tbgen::ssi`, the scenario file's optional
+//! table, the `Setup` variant and its dispatch, and the entry in
+//! [`PROTOCOLS`](crate::PROTOCOLS) that `tbgen decode`, `tbgen timing`,
+//! `tbgen protocols` and the tests read.
+
+use clap::{ArgMatches, Command};
+
+use crate::{Error, Result};
+
+/// What `tbgen` knows of a protocol beyond its model: implemented in the
+/// protocol's folder `tbgen/src/<table>/` on the model's `BenchConfig`.
+/// Everything has a default, so a new protocol starts with
+/// `impl Protocol for BenchConfig { const TRANSACTION_SIGNALS: ... }`.
+pub trait Protocol: model::Setup + 'static {
+    /// The output pulses that end a transaction, the output holding its
+    /// result, and the transcript field that must equal it (the whole-flow
+    /// test reads the VCD with them).
+    const TRANSACTION_SIGNALS: TransactionSignals;
+
+    /// The sigrok decoder that reads this protocol's line in the tests
+    /// (`spi`, `uart`), if any; [`Protocol::sigrok`] gives the details.
+    const SIGROK_DECODER: Option<&'static str> = None;
+
+    /// The least (scenarios, values) the sigrok test must have compared
+    /// for this protocol, so that a check that silently compares nothing fails.
+    const SIGROK_MINIMUM: (usize, usize) = (0, 0);
+
+    /// `tbgen decode <table>`: the decoder's command line, if it has one.
+    fn decode_command() -> Option<Command> {
+        None
+    }
+
+    /// Runs `tbgen decode <table>` on its parsed command line; returns the
+    /// JSON to print.
+    fn decode(_args: &ArgMatches) -> Result<String> {
+        Err(Error::Decode(format!("decode {}: this protocol has no decoder yet", Self::TABLE)))
+    }
+
+    /// `tbgen timing <table>`: the budget's command line, if it has one.
+    fn timing_command() -> Option<Command> {
+        None
+    }
+
+    /// Runs `tbgen timing <table>` on its parsed command line; returns the
+    /// report to print.
+    fn timing(_args: &ArgMatches) -> Result<String> {
+        Err(Error::Decode(format!("timing {}: this protocol has no cycle budget yet", Self::TABLE)))
+    }
+
+    /// What an independent decoder (sigrok-cli) must read in the waveform of
+    /// a run of this configuration whose transcript is `transcript`; `None`
+    /// where there is nothing to check.
+    fn sigrok(&self, _transcript: &serde_json::Value) -> Option<SigrokCheck> {
+        None
+    }
+}
+
+/// The output pulses that end a transaction, the output holding its result,
+/// and the transcript field that must equal it.
+pub type TransactionSignals = (&'static [&'static str], &'static str, &'static str);
+
+/// A sigrok-cli run on the scalars of a generated VCD, one sample per
+/// system clock, and what it must print.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct SigrokCheck {
+    /// The `-P` option: decoder, channels and options
+    /// (`uart:rx=line_at_host:baudrate=2500000`).
+    pub decoder: String,
+    /// The `-A` option: the annotation row printed (`uart=rx-data`).
+    pub annotation: &'static str,
+    /// The values the decoder must print, in order; `None` where the model
+    /// flagged the value as faulty (it must be there, its value is not compared).
+    pub expected: Vec<Option<u128>>,
+}
+
+impl SigrokCheck {
+    /// The prefix of the decoder's annotation lines (`uart-1: `).
+    pub fn prefix(&self) -> String {
+        format!("{}-1: ", self.decoder.split(':').next().unwrap_or(""))
+    }
+}
+
+/// One registered protocol, as the generic code sees it.
+pub struct Entry {
+    /// The scenario file's table, the folder names and the `decode`/`timing` subcommand.
+    pub table: &'static str,
+    /// The Verilog core (`hdl/rtl/<core>.v`, `hdl/tb/<core>/`, `vectors/<core>/`).
+    pub core: &'static str,
+    /// See [`Protocol::TRANSACTION_SIGNALS`].
+    pub transaction_signals: TransactionSignals,
+    /// See [`Protocol::SIGROK_DECODER`].
+    pub sigrok_decoder: Option<&'static str>,
+    /// See [`Protocol::SIGROK_MINIMUM`].
+    pub sigrok_minimum: (usize, usize),
+    /// See [`Protocol::decode_command`].
+    pub decode_command: fn() -> Option<Command>,
+    /// See [`Protocol::decode`].
+    pub decode: fn(&ArgMatches) -> Result<String>,
+    /// See [`Protocol::timing_command`].
+    pub timing_command: fn() -> Option<Command>,
+    /// See [`Protocol::timing`].
+    pub timing: fn(&ArgMatches) -> Result<String>,
+}
+
+impl Entry {
+    /// The entry of protocol `P`.
+    pub const fn of<P: Protocol>() -> Entry {
+        Entry {
+            table: P::TABLE,
+            core: P::CORE,
+            transaction_signals: P::TRANSACTION_SIGNALS,
+            sigrok_decoder: P::SIGROK_DECODER,
+            sigrok_minimum: P::SIGROK_MINIMUM,
+            decode_command: P::decode_command,
+            decode: P::decode,
+            timing_command: P::timing_command,
+            timing: P::timing,
+        }
+    }
+}
+
+/// The registered protocol whose table is `table`.
+pub fn by_table(table: &str) -> Option<&'static Entry> {
+    crate::PROTOCOLS.iter().find(|e| e.table == table)
+}
+
+/// The registered protocol whose core is `core`.
+pub fn by_core(core: &str) -> Option<&'static Entry> {
+    crate::PROTOCOLS.iter().find(|e| e.core == core)
+}
+
+/// Something done with a scenario's set-up whatever its protocol: the
+/// generic code in `generate` and `main` is written once against
+/// [`model::Setup`] and reached through [`crate::Setup::accept`].
+pub trait Visitor {
+    /// What the visit returns.
+    type Output;
+    /// Does the work for one protocol's configuration.
+    fn visit<S: Protocol>(self, setup: &S) -> Self::Output;
+}
+
+/// `tbgen decode <protocol> ...` or `tbgen timing <protocol> ...`: which
+/// protocol, and its own command line, parsed by its own `clap` parser.
+#[derive(Debug, Clone)]
+pub struct ToolCall {
+    /// The protocol's table.
+    pub protocol: String,
+    /// Its arguments.
+    pub args: ArgMatches,
+}
+
+impl ToolCall {
+    fn from_matches(m: &ArgMatches) -> std::result::Result<ToolCall, clap::Error> {
+        let (name, sub) = m.subcommand().ok_or_else(|| clap::Error::new(clap::error::ErrorKind::MissingSubcommand))?;
+        Ok(ToolCall { protocol: name.to_string(), args: sub.clone() })
+    }
+}
+
+/// Generates the `clap` glue of a per-protocol subcommand family from the registry.
+macro_rules! tool_family {
+    ($name:ident, $command:ident, $run:ident, $doc:literal) => {
+        #[doc = $doc]
+        #[derive(Debug, Clone)]
+        pub struct $name(pub ToolCall);
+
+        impl $name {
+            /// Runs the protocol's tool and returns what it prints.
+            pub fn run(&self) -> Result<String> {
+                let entry = by_table(&self.0.protocol).expect("clap only accepts registered protocols");
+                (entry.$run)(&self.0.args)
+            }
+        }
+
+        impl clap::FromArgMatches for $name {
+            fn from_arg_matches(m: &ArgMatches) -> std::result::Result<Self, clap::Error> {
+                ToolCall::from_matches(m).map($name)
+            }
+            fn update_from_arg_matches(&mut self, m: &ArgMatches) -> std::result::Result<(), clap::Error> {
+                *self = Self::from_arg_matches(m)?;
+                Ok(())
+            }
+        }
+
+        impl clap::Subcommand for $name {
+            fn augment_subcommands(cmd: Command) -> Command {
+                cmd.subcommands(crate::PROTOCOLS.iter().filter_map(|e| (e.$command)()))
+            }
+            fn augment_subcommands_for_update(cmd: Command) -> Command {
+                Self::augment_subcommands(cmd)
+            }
+            fn has_subcommand(name: &str) -> bool {
+                crate::PROTOCOLS.iter().any(|e| e.table == name && (e.$command)().is_some())
+            }
+        }
+    };
+}
+
+tool_family!(Decode, decode_command, decode, "`tbgen decode <protocol>`: one decoder per protocol that has one.");
+tool_family!(Timing, timing_command, timing, "`tbgen timing <protocol>`: one cycle budget per protocol that has one.");
+
+/// One line per registered protocol, for `tbgen protocols` (and scripts):
+/// table, core, whether it has a decoder and a budget, its sigrok decoder.
+pub fn table() -> String {
+    let mut out = String::new();
+    for e in crate::PROTOCOLS {
+        let yes = |b: bool| if b { "yes" } else { "no" };
+        out += &format!(
+            "{:<10} {:<14} decode={:<3} timing={:<3} sigrok={}\n",
+            e.table,
+            e.core,
+            yes((e.decode_command)().is_some()),
+            yes((e.timing_command)().is_some()),
+            e.sigrok_decoder.unwrap_or("none")
+        );
+    }
+    out
+}
+
+/// Makes the protocol list: modules, `Setup`, the scenario file's tables and
+/// [`PROTOCOLS`](crate::PROTOCOLS). Invoked once, in `lib.rs`.
+macro_rules! protocols {
+    ($($table:ident => $variant:ident($config:ty)),+ $(,)?) => {
+        $(pub mod $table;)+
+
+        /// The set-up a scenario describes, one variant per registered protocol.
+        #[derive(Debug, Clone, PartialEq)]
+        pub enum Setup {
+            $(
+                #[doc = concat!("A `[", stringify!($table), "]` scenario.")]
+                $variant($config),
+            )+
+        }
+
+        impl Setup {
+            /// Hands the protocol's configuration to `visitor`.
+            pub fn accept<V: $crate::registry::Visitor>(&self, visitor: V) -> V::Output {
+                match self {
+                    $(Setup::$variant(cfg) => visitor.visit(cfg),)+
+                }
+            }
+
+            /// The configuration, if it is one of protocol `P`.
+            pub fn get<P: $crate::registry::Protocol>(&self) -> Option<&P> {
+                match self {
+                    $(Setup::$variant(cfg) => (cfg as &dyn std::any::Any).downcast_ref::<P>(),)+
+                }
+            }
+
+            /// What sigrok must read in the waveform of this set-up's run.
+            pub fn sigrok(&self, transcript: &serde_json::Value) -> Option<$crate::registry::SigrokCheck> {
+                match self {
+                    $(Setup::$variant(cfg) => $crate::registry::Protocol::sigrok(cfg, transcript),)+
+                }
+            }
+        }
+
+        /// A scenario file as written: its name, description and protocol tables.
+        #[derive(Debug, Clone, serde::Deserialize)]
+        #[serde(deny_unknown_fields)]
+        pub(crate) struct ScenarioFile {
+            pub(crate) name: String,
+            #[serde(default)]
+            pub(crate) description: String,
+            $(pub(crate) $table: Option<$config>,)+
+        }
+
+        impl ScenarioFile {
+            /// The set-ups of every protocol table present.
+            pub(crate) fn setups(&self) -> Vec<Setup> {
+                let mut setups = Vec::new();
+                $(setups.extend(self.$table.clone().map(Setup::$variant));)+
+                setups
+            }
+        }
+
+        /// Every registered protocol, in registry order (the order of
+        /// `tbgen list` and `tbgen protocols`).
+        pub static PROTOCOLS: &[$crate::registry::Entry] = &[$($crate::registry::Entry::of::<$config>()),+];
+
+        #[cfg(test)]
+        mod registry_tests {
+            #[test]
+            fn each_registry_name_is_the_models_table() {
+                $(assert_eq!(stringify!($table), <$config as model::Setup>::TABLE);)+
+            }
+        }
+    };
+}
+pub(crate) use protocols;
+
+/// A Data ID as written on the command line of `tbgen timing`: decimal or
+/// 0x-prefixed hex (T-format and ESL).
+pub fn parse_data_id(text: &str) -> std::result::Result<u8, String> {
+    let value = match text.strip_prefix("0x").or_else(|| text.strip_prefix("0X")) {
+        Some(hex) => u8::from_str_radix(hex, 16),
+        None => text.parse::<u8>(),
+    };
+    value.ok().filter(|v| *v <= 0xF).ok_or_else(|| format!("`{text}`: give a Data ID from 0 to 15 (e.g. 3 or 0xD)"))
+}
+
+/// The command line of a protocol's tool, parsed by its own parser.
+pub fn parse_args<A: clap::FromArgMatches>(args: &ArgMatches) -> Result<A> {
+    A::from_arg_matches(args).map_err(|e| Error::Decode(e.to_string()))
+}
+
+/// The built-in scenario or scenario file `arg` for `tool` (`timing esl`),
+/// which must be one of protocol `P` (`kind`: "an ESL"): the scenario and
+/// its configuration.
+pub fn scenario_of<P: Protocol>(arg: &str, tool: &str, kind: &str) -> Result<(crate::scenario::Scenario, P)> {
+    let s = crate::builtin::resolve(arg)?;
+    match s.setup.get::<P>() {
+        Some(cfg) => {
+            let cfg = cfg.clone();
+            Ok((s, cfg))
+        }
+        None => Err(Error::Decode(format!("{tool}: scenario `{}` is not {kind} scenario", s.name))),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn each_protocols_subcommands_are_named_after_its_table() {
+        // `Decode::run` finds the protocol by the subcommand's name: a
+        // decoder or budget named otherwise than its table could not be run.
+        for e in crate::PROTOCOLS {
+            for cmd in [(e.decode_command)(), (e.timing_command)()].into_iter().flatten() {
+                assert_eq!(cmd.get_name(), e.table, "{}: a subcommand named `{}`", e.table, cmd.get_name());
+            }
+        }
+    }
+
+    #[test]
+    fn the_command_line_reaches_each_protocols_own_parser_and_refuses_others() {
+        use clap::{FromArgMatches, Subcommand};
+        let cli = Decode::augment_subcommands(Command::new("decode").subcommand_required(true));
+        let m = cli.clone().try_get_matches_from(["decode", "biss", "x.vcd", "--bits", "12,26"]).unwrap();
+        let call = Decode::from_arg_matches(&m).unwrap();
+        assert_eq!(call.0.protocol, "biss");
+        assert_eq!(call.0.args.get_many::<u32>("bits").unwrap().copied().collect::<Vec<_>>(), vec![12, 26]);
+        // An option of another protocol's decoder is refused by this one's parser.
+        assert!(cli.clone().try_get_matches_from(["decode", "biss", "x.vcd", "--pos-bits", "13"]).is_err());
+        // A protocol without a decoder is not a subcommand.
+        assert!(!Decode::has_subcommand("ssi") && cli.try_get_matches_from(["decode", "ssi", "x.vcd"]).is_err());
+        assert!(Timing::has_subcommand("endat") && !Timing::has_subcommand("uart"));
+    }
+
+    #[test]
+    fn the_protocol_table_has_one_line_per_registered_protocol() {
+        let t = table();
+        assert_eq!(t.lines().count(), crate::PROTOCOLS.len());
+        for (line, e) in t.lines().zip(crate::PROTOCOLS) {
+            assert!(line.starts_with(e.table) && line.contains(e.core), "{line}");
+        }
+        assert!(t.lines().any(|l| l.starts_with("ssi ") && l.ends_with("sigrok=spi")), "{t}");
+    }
+
+    #[test]
+    fn a_data_id_is_decimal_or_hex_up_to_15() {
+        assert_eq!(parse_data_id("3"), Ok(3));
+        assert_eq!(parse_data_id("0xD"), Ok(13));
+        assert!(parse_data_id("16").unwrap_err().contains("0 to 15"));
+    }
+}

@@ -1,0 +1,26 @@
+//! The shared 10-bit frame receiver in `tbgen`: sigrok's `uart` decoder
+//! reads the receiver's line in the tests.
+
+use model::uart::BenchConfig;
+
+use crate::registry::{Protocol, SigrokCheck, TransactionSignals};
+
+impl Protocol for BenchConfig {
+    const TRANSACTION_SIGNALS: TransactionSignals = (&["o_valid", "o_frame_err", "o_start_err"], "o_data", "received");
+    const SIGROK_DECODER: Option<&'static str> = Some("uart");
+    const SIGROK_MINIMUM: (usize, usize) = (1, 300);
+
+    /// In a scenario where the receiver got every byte right, sigrok's
+    /// `uart` decoder at the nominal rate must find the bytes it received.
+    fn sigrok(&self, transcript: &serde_json::Value) -> Option<SigrokCheck> {
+        let events = transcript["transactions"].as_array()?;
+        if !events.iter().all(|e| e["kind"] == "byte" && e["received"] == e["sent"]) {
+            return None;
+        }
+        Some(SigrokCheck {
+            decoder: format!("uart:rx=rx_line:baudrate={}", self.baud as u64),
+            annotation: "uart=rx-data",
+            expected: events.iter().map(|e| e["received"].as_u64().map(u128::from)).collect(),
+        })
+    }
+}
