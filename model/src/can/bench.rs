@@ -238,16 +238,27 @@ impl Setup for BenchConfig {
     }
 }
 
-/// One frame on the bus at the core's pin.
+/// One outcome at the core: a frame sent (`o_tx_done`), a frame received
+/// (`o_rx_valid`) or an error detected (`o_err_*`), with the frame on the
+/// bus as a listen-only receiver at the core's `i_can_rx` pin decoded it
+/// (the view sigrok's `can` decoder has of the `can_rx` line).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Transaction {
     /// 0-based.
     pub index: usize,
-    /// Cycle the listen-only receiver read SOF.
+    /// `tx_done`, `rx_valid`, `err_bit`, `err_stuff`, `err_crc`, `err_form` or `err_ack`.
+    pub outcome: &'static str,
+    /// Cycle the listen-only receiver read the frame's SOF.
     pub sof_cycle: u64,
-    /// Last cycle before the next SOF (or the end of the run).
-    pub end_cycle: u64,
-    /// The frame reached the end of its CRC sequence.
+    /// Cycle of the core's pulse.
+    pub cycle: u64,
+    /// Arbitration lost during the frame (`o_arb_lost`).
+    pub arb_lost: bool,
+    /// Overload frames the core saw since the previous outcome.
+    pub overloads: u32,
+    /// `o_rx_id` of a received frame (only with `rx_valid`).
+    pub rx_id: Option<u32>,
+    /// The frame reached the end of its CRC sequence at the pin.
     pub complete: bool,
     /// Identifier (as far as received).
     pub id: u32,
@@ -261,23 +272,32 @@ pub struct Transaction {
     pub data: Vec<u8>,
     /// CRC sequence as received (when complete).
     pub crc: Option<u16>,
-    /// ACK slot dominant (when complete).
+    /// ACK slot dominant (when it passed).
     pub ack: bool,
     /// Errors the listen-only receiver detected during the frame.
     pub errors: Vec<&'static str>,
-    /// The core's pulses during the frame (`tx_done`, `arb_lost`, `rx_valid`, `err_bit`, ...).
-    pub dut_events: Vec<&'static str>,
-    /// The core's TEC, REC and error state at the end.
-    pub dut_tec: u16,
+    /// The core's TEC, REC and error state after the outcome.
+    pub tec: u16,
     /// REC.
-    pub dut_rec: u16,
+    pub rec: u16,
     /// 0 active, 1 passive, 2 bus-off.
-    pub dut_err_state: u8,
+    pub err_state: u8,
+}
+
+/// The frame at the pin as the listen-only receiver sees it.
+#[derive(Debug, Clone, Default)]
+struct OnBus {
+    sof_cycle: u64,
+    complete: bool,
+    seen: super::controller::Seen,
+    ack_passed: bool,
+    errors: Vec<&'static str>,
+    arb_lost: bool,
 }
 
 impl testbench::Transaction for Transaction {
     fn span(&self) -> (u64, u64) {
-        (self.sof_cycle, self.end_cycle)
+        (self.sof_cycle, self.cycle)
     }
 }
 
@@ -328,7 +348,8 @@ pub struct Bench {
     max_cycles: u64,
     idle_cycles: u64,
     cpb: u64,
-    open: Option<Transaction>,
+    frame: OnBus,
+    overloads: u32,
     transactions: Vec<Transaction>,
     layout: Layout,
 }
@@ -386,7 +407,8 @@ impl Bench {
             max_cycles: tb.cycles_nearest_ns(cfg.max_us * 1e3),
             idle_cycles: 0,
             cpb: cc.timing.clocks_per_bit(),
-            open: None,
+            frame: OnBus::default(),
+            overloads: 0,
             transactions: Vec::new(),
             layout,
             cfg: cfg.clone(),
@@ -408,14 +430,31 @@ impl Bench {
         self.disturbers[j].step(level, self.cycle, self.cpb)
     }
 
-    fn close(&mut self) {
-        if let Some(mut t) = self.open.take() {
-            t.end_cycle = self.cycle.saturating_sub(1);
-            t.dut_tec = self.last_out.o_tec;
-            t.dut_rec = self.last_out.o_rec;
-            t.dut_err_state = self.last_out.o_err_state;
-            self.transactions.push(t);
-        }
+    fn outcome(&mut self, outcome: &'static str, out: &Out) {
+        let f = &self.frame;
+        let n = super::frame::data_len(f.seen.dlc, f.seen.rtr);
+        self.transactions.push(Transaction {
+            index: self.transactions.len(),
+            outcome,
+            sof_cycle: f.sof_cycle,
+            cycle: self.cycle,
+            arb_lost: f.arb_lost,
+            overloads: self.overloads,
+            rx_id: out.o_rx_valid.then_some(out.o_rx_id),
+            complete: f.complete,
+            id: f.seen.id,
+            ide: f.seen.ide,
+            rtr: f.seen.rtr,
+            dlc: f.seen.dlc,
+            data: if f.complete { unpack(f.seen.data, n) } else { Vec::new() },
+            crc: f.complete.then_some(f.seen.crc),
+            ack: f.ack_passed && f.seen.ack,
+            errors: f.errors.clone(),
+            tec: out.o_tec,
+            rec: out.o_rec,
+            err_state: out.o_err_state,
+        });
+        self.overloads = 0;
     }
 }
 
@@ -449,60 +488,36 @@ impl Testbench for Bench {
         // The listen-only receiver at the core's pin.
         let before = self.monitor.state();
         let m = self.monitor.step(&In { i_can_rx: rx[0], ..In::default() });
-        if self.monitor.state() == State::Frame && before != State::Frame && self.monitor.pos() <= 1 {
-            self.close();
-            self.open = Some(Transaction {
-                index: self.transactions.len(),
-                sof_cycle: self.cycle,
-                end_cycle: 0,
-                complete: false,
-                id: 0,
-                ide: false,
-                rtr: false,
-                dlc: 0,
-                data: Vec::new(),
-                crc: None,
-                ack: false,
-                errors: Vec::new(),
-                dut_events: Vec::new(),
-                dut_tec: 0,
-                dut_rec: 0,
-                dut_err_state: 0,
-            });
+        let now = self.monitor.state();
+        if now == State::Frame && before != State::Frame && self.monitor.pos() <= 1 {
+            self.frame = OnBus { sof_cycle: self.cycle, ..OnBus::default() };
         }
-        if let Some(t) = self.open.as_mut() {
-            if self.monitor.state() == State::CrcDelim && !t.complete {
-                let s = self.monitor.seen();
-                t.complete = true;
-                t.id = s.id;
-                t.ide = s.ide;
-                t.rtr = s.rtr;
-                t.dlc = s.dlc;
-                t.data = unpack(s.data, super::frame::data_len(s.dlc, s.rtr));
-                t.crc = Some(s.crc);
+        if now == State::CrcDelim && before == State::Frame {
+            self.frame.complete = true;
+            self.frame.seen = self.monitor.seen();
+        }
+        if before == State::AckSlot && now != State::AckSlot {
+            self.frame.ack_passed = true;
+            self.frame.seen.ack = self.monitor.seen().ack;
+        }
+        for (flag, name) in [(m.o_err_bit, "bit"), (m.o_err_stuff, "stuff"), (m.o_err_crc, "crc"), (m.o_err_form, "form"), (m.o_err_ack, "ack"), (m.o_overload, "overload")] {
+            if flag {
+                self.frame.errors.push(name);
             }
-            if t.complete && before == State::AckSlot && self.monitor.state() != State::AckSlot {
-                t.ack = self.monitor.seen().ack;
-            }
-            for (flag, name) in [(m.o_err_bit, "bit"), (m.o_err_stuff, "stuff"), (m.o_err_crc, "crc"), (m.o_err_form, "form"), (m.o_err_ack, "ack"), (m.o_overload, "overload")] {
-                if flag {
-                    t.errors.push(name);
-                }
-            }
-            for (flag, name) in [
-                (out.o_tx_done, "tx_done"),
-                (out.o_arb_lost, "arb_lost"),
-                (out.o_rx_valid, "rx_valid"),
-                (out.o_err_bit, "err_bit"),
-                (out.o_err_stuff, "err_stuff"),
-                (out.o_err_crc, "err_crc"),
-                (out.o_err_form, "err_form"),
-                (out.o_err_ack, "err_ack"),
-                (out.o_overload, "overload"),
-            ] {
-                if flag {
-                    t.dut_events.push(name);
-                }
+        }
+        self.frame.arb_lost |= out.o_arb_lost;
+        self.overloads += out.o_overload as u32;
+        for (flag, name) in [
+            (out.o_tx_done, "tx_done"),
+            (out.o_rx_valid, "rx_valid"),
+            (out.o_err_bit, "err_bit"),
+            (out.o_err_stuff, "err_stuff"),
+            (out.o_err_crc, "err_crc"),
+            (out.o_err_form, "err_form"),
+            (out.o_err_ack, "err_ack"),
+        ] {
+            if flag {
+                self.outcome(name, &out);
             }
         }
         self.rx_dut = rx[0];
@@ -512,9 +527,6 @@ impl Testbench for Bench {
         self.idle_cycles = if quiet { self.idle_cycles + 1 } else { 0 };
         if self.end.is_none() && (self.idle_cycles >= 2 * self.cpb || self.cycle >= self.max_cycles) {
             self.end = Some(self.cycle + self.cpb);
-        }
-        if self.end == Some(self.cycle) {
-            self.close();
         }
         let Some(sample) = sample else { return };
         input.write_values(&mut sample.inputs);
