@@ -49,4 +49,5 @@ registry::protocols! {
     biss    => Biss(model::biss::BenchConfig),
     endat   => Endat(model::endat::BenchConfig),
     esl     => Esl(model::esl::BenchConfig),
+    can     => Can(model::can::BenchConfig),
 }

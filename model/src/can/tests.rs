@@ -219,7 +219,14 @@ fn campaign_counts_by_inverted_bits() {
     }
     let (tried, missed) = campaign::shift_pairs(20, 2);
     eprintln!("shift pairs: {tried} tried, {missed} undetected");
-    assert_eq!(r.values().map(|c| c.detected + c.undetected + c.harmless).sum::<u64>(), 100_000);
+    // What the model finds for these seeds (docs/timing/can.md): no random
+    // corruption of up to six bits escapes; the stuff-shifting double
+    // inversions escape at about 1e-6 (10 in 8.4 million over 40 000
+    // frames, measured in release), none among these 4380.
+    let detected: Vec<u64> = r.values().map(|c| c.detected).collect();
+    assert_eq!(detected, vec![16650, 16713, 16584, 16752, 16613, 16688]);
+    assert!(r.values().all(|c| c.undetected == 0 && c.harmless == 0));
+    assert_eq!((tried, missed), (4380, 0));
 }
 
 #[test]
