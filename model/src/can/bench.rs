@@ -350,6 +350,8 @@ pub struct Bench {
     cpb: u64,
     frame: OnBus,
     overloads: u32,
+    rx_buf: Vec<bool>,
+    tx_buf: Vec<bool>,
     transactions: Vec<Transaction>,
     layout: Layout,
 }
@@ -409,6 +411,8 @@ impl Bench {
             cpb: cc.timing.clocks_per_bit(),
             frame: OnBus::default(),
             overloads: 0,
+            rx_buf: Vec::new(),
+            tx_buf: Vec::new(),
             transactions: Vec::new(),
             layout,
             cfg: cfg.clone(),
@@ -466,7 +470,12 @@ impl Testbench for Bench {
     }
 
     fn step(&mut self, sample: Option<&mut Sample>) {
-        let rx: Vec<bool> = (0..=self.nodes.len()).map(|j| self.rx_at(j)).collect();
+        let mut rx = std::mem::take(&mut self.rx_buf);
+        rx.clear();
+        for j in 0..=self.nodes.len() {
+            let level = self.rx_at(j);
+            rx.push(level);
+        }
         let mut input = In { i_can_rx: rx[0], i_filter_id: self.cfg.dut.filter_id, i_filter_mask: self.cfg.dut.filter_mask, ..In::default() };
         if let Some((at, f)) = self.script.get(self.next) {
             if self.cycle >= *at && !self.last_out.o_tx_busy {
@@ -479,12 +488,15 @@ impl Testbench for Bench {
             }
         }
         let out = self.dut.step(&input);
-        let mut tx = vec![out.o_can_tx];
+        let mut tx = std::mem::take(&mut self.tx_buf);
+        tx.clear();
+        tx.push(out.o_can_tx);
         for (k, n) in self.nodes.iter_mut().enumerate() {
             tx.push(n.step(rx[k + 1]));
         }
         let nodes_tx = tx[1..].iter().all(|&t| t);
         self.bus.push(&tx);
+        self.tx_buf = tx;
         // The listen-only receiver at the core's pin.
         let before = self.monitor.state();
         let m = self.monitor.step(&In { i_can_rx: rx[0], ..In::default() });
@@ -521,6 +533,8 @@ impl Testbench for Bench {
             }
         }
         self.rx_dut = rx[0];
+        let rx0 = rx[0];
+        self.rx_buf = rx;
         self.last_out = out;
         self.cycle += 1;
         let quiet = self.next == self.script.len() && !out.o_tx_busy && self.nodes.iter().all(Emulator::done) && self.dut.state() == State::Idle;
@@ -531,7 +545,7 @@ impl Testbench for Bench {
         let Some(sample) = sample else { return };
         input.write_values(&mut sample.inputs);
         out.write_values(&mut sample.outputs);
-        sample.line.copy_from_slice(&[rx[0] as u64, out.o_can_tx as u64, nodes_tx as u64]);
+        sample.line.copy_from_slice(&[rx0 as u64, out.o_can_tx as u64, nodes_tx as u64]);
         sample.decoded.copy_from_slice(&[self.dut.state() as u64, self.dut.pos() as u64 & 0x7F, self.dut.clock().tq_cnt as u64, self.monitor.state() as u64]);
     }
 

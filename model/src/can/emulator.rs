@@ -152,7 +152,9 @@ impl Emulator {
         while self.phase >= 1.0 {
             self.phase -= 1.0;
             if let Some((at, f)) = self.script.get(self.next) {
-                if self.own_cycle >= *at && self.load(&f.clone()) {
+                if self.own_cycle >= *at && !self.ctrl.out().o_tx_busy {
+                    let f = TxBuffer { id: f.id, ide: f.ide, rtr: f.rtr, dlc: f.dlc, data: f.packed() };
+                    self.ctrl.load(f);
                     self.next += 1;
                 }
             }

@@ -73,3 +73,35 @@ pub fn to_json(file: &Path, bit_rate: u64, sample_point: f64, frames: &[Decoded]
     let doc = serde_json::json!({ "file": file.display().to_string(), "bit_rate": bit_rate, "sample_point": sample_point, "frames": frames });
     serde_json::to_string_pretty(&doc).map_err(|e| Error::Decode(e.to_string()))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scenario::Setup;
+    use crate::{builtin, generate};
+
+    #[test]
+    fn decoding_the_line_of_error_free_can_scenarios_gives_back_the_transcripts_frames() {
+        let dir = tempfile::tempdir().unwrap();
+        let mut compared = 0;
+        for name in ["can_arbitration_3_nodes", "can_extended_frames", "can_rate_1000k", "can_bus_longest"] {
+            let s = builtin::find(name).unwrap();
+            let Setup::Can(cfg) = &s.setup else { unreachable!("{name} is a CAN scenario") };
+            let t = cfg.bit_timing().unwrap();
+            let rate = (cfg.f_sys_mhz * 1e6) as u64 / t.clocks_per_bit();
+            let summary = generate::generate(&s, dir.path()).unwrap();
+            let gen: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&summary.files[2]).unwrap()).unwrap();
+            let decoded = decode(&summary.files[1], "top.line.can_rx", rate, t.sample_point()).unwrap();
+            let gen = gen["transactions"].as_array().unwrap();
+            assert_eq!(decoded.len(), gen.len(), "{name}: frames");
+            for (d, g) in decoded.iter().zip(gen) {
+                assert_eq!(d.error, None, "{name}");
+                for key in ["id", "ide", "rtr", "dlc", "data", "crc", "ack"] {
+                    assert_eq!(serde_json::to_value(d).unwrap()[key], g[key], "{name}: `{key}` decoded vs gen");
+                    compared += 1;
+                }
+            }
+        }
+        assert!(compared >= 70, "{compared}");
+    }
+}

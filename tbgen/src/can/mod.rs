@@ -47,7 +47,7 @@ pub struct TimingArgs {
 impl Protocol for BenchConfig {
     const TRANSACTION_SIGNALS: TransactionSignals = (&["o_tx_done", "o_rx_valid", "o_err_bit", "o_err_stuff", "o_err_crc", "o_err_form", "o_err_ack"], "o_rx_id", "rx_id");
     const SIGROK_DECODER: Option<&'static str> = Some("can");
-    const SIGROK_MINIMUM: (usize, usize) = (10, 300);
+    const SIGROK_MINIMUM: (usize, usize) = (13, 281);
 
     fn decode_command() -> Option<clap::Command> {
         Some(DecodeArgs::command())
@@ -79,7 +79,9 @@ impl Protocol for BenchConfig {
     /// point of the scenario) must print, frame by frame, the identifier
     /// (and extension), DLC, data bytes, CRC sequence and ACK the
     /// transcript holds. Scenarios with errors are not compared: sigrok
-    /// decodes error flags as frames of their own, which no transcript holds.
+    /// decodes error flags as frames of their own, which no transcript
+    /// holds. A remote frame with a DLC above 0 is compared up to its DLC
+    /// and ends the comparison (sigrok's decoder expects data bits in it).
     fn sigrok(&self, transcript: &serde_json::Value) -> Option<SigrokCheck> {
         let t = self.controller_config().ok()?.timing;
         let tb = model::Setup::timebase(self).ok()?;
@@ -97,7 +99,14 @@ impl Protocol for BenchConfig {
             } else {
                 expected.push(Some(id));
             }
-            expected.push(Some(tr["dlc"].as_u64()? as u128));
+            let dlc = tr["dlc"].as_u64()?;
+            expected.push(Some(dlc as u128));
+            if tr["rtr"].as_bool()? && dlc > 0 {
+                // sigrok's decoder reads DLC × 8 data bits even in a remote
+                // frame, so it loses this frame after the DLC (and reads on
+                // into whatever follows): compare up to here.
+                break;
+            }
             expected.extend(tr["data"].as_array()?.iter().map(|b| b.as_u64().map(|v| v as u128)));
             expected.push(Some(tr["crc"].as_u64()? as u128));
             expected.push(Some(tr["ack"].as_bool()? as u128));
