@@ -233,3 +233,48 @@ fn campaign_counts_by_inverted_bits() {
 fn the_controller_and_the_parser_agree_on_every_corruption() {
     assert_eq!(campaign::cross_check(300, 3), 0);
 }
+
+fn timing_125k(c: &mut BenchConfig) {
+    c.timing = TimingSettings { bit_rate_kbps: 125.0, tq_per_bit: 16, sample_point: 0.875, sjw: 1 };
+}
+
+#[test]
+fn an_oscillator_offset_inside_the_tolerance_is_harmless_and_far_beyond_it_is_not() {
+    let run = |ppm: f64| {
+        let mut a = node("a", 10.0, vec![(10.0, Frame::data(0x000, &[0; 8]))]);
+        a.ppm = ppm;
+        let mut c = cfg(vec![(1200.0, Frame::data(0x7FF, &[0xFF; 8]))], vec![a, node("b", 20.0, vec![])]);
+        timing_125k(&mut c);
+        c.max_us = 8000.0;
+        run_to_end(c.bench().unwrap()).transactions
+    };
+    let mut c = BenchConfig::default();
+    timing_125k(&mut c);
+    let tol = c.bit_timing().unwrap().oscillator_tolerance();
+    assert!((tol - 0.003125).abs() < 1e-12, "{tol}");
+    // Two nodes may differ by twice the per-node tolerance.
+    let inside = run(0.8 * 2.0 * tol * 1e6);
+    assert_eq!(inside.iter().map(|t| t.outcome).collect::<Vec<_>>(), vec!["rx_valid", "tx_done"]);
+    let beyond = run(8.0 * 2.0 * tol * 1e6);
+    assert!(beyond.iter().all(|t| t.outcome.starts_with("err_")) && !beyond.is_empty());
+}
+
+#[test]
+fn arbitration_works_across_the_longest_bus_the_timing_allows_and_fails_far_beyond() {
+    let run = |len: f64| {
+        let mut c = cfg(vec![(10.0, Frame::data(0x101, &[0x11]))], vec![node("far", len, vec![(10.0, Frame::data(0x100, &[0x22]))])]);
+        timing_125k(&mut c);
+        c.max_us = 5000.0;
+        run_to_end(c.bench().unwrap()).transactions
+    };
+    let mut c = BenchConfig::default();
+    timing_125k(&mut c);
+    let t = c.bit_timing().unwrap();
+    let longest = t.max_bus_length_m(40_000_000, 150.0 + 2.0 * 25.0, 5.0);
+    assert!((longest - 357.5).abs() < 1e-9, "{longest}");
+    let ok = run(longest);
+    let o: Vec<(&str, u32, bool)> = ok.iter().map(|t| (t.outcome, t.id, t.arb_lost)).collect();
+    assert_eq!(o, vec![("rx_valid", 0x100, true), ("tx_done", 0x101, false)]);
+    let bad = run(800.0);
+    assert!(bad.iter().any(|t| t.outcome.starts_with("err_")), "{bad:?}");
+}
