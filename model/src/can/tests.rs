@@ -278,3 +278,35 @@ fn arbitration_works_across_the_longest_bus_the_timing_allows_and_fails_far_beyo
     let bad = run(800.0);
     assert!(bad.iter().any(|t| t.outcome.starts_with("err_")), "{bad:?}");
 }
+
+#[test]
+fn a_frame_the_filter_rejects_is_still_acknowledged_but_not_reported() {
+    let f = Frame::data(0x123, &[1, 2]);
+    let mut c = cfg(vec![], vec![node("a", 10.0, vec![(10.0, f.clone()), (300.0, Frame::data(0x321, &[3]))])]);
+    c.dut.filter_id = 0x321;
+    c.dut.filter_mask = 0x7FF;
+    let b = c.bench().unwrap();
+    let mut b2 = c.bench().unwrap();
+    while !b2.finished() {
+        b2.step(None);
+    }
+    // The node sent both (the core acknowledged both; it is the only receiver).
+    assert_eq!(b2.nodes()[0].sent().len(), 2);
+    let run = run_to_end(b);
+    let o: Vec<(&str, Option<u32>)> = run.transactions.iter().map(|t| (t.outcome, t.rx_id)).collect();
+    assert_eq!(o, vec![("rx_valid", Some(0x321))]);
+}
+
+#[test]
+fn a_dominant_first_intermission_bit_is_an_overload_condition() {
+    let f = Frame::data(0x555, &[0x55, 0x55]);
+    let intermission = frame::stuff(&f.destuffed_bits()).len() as u32 + 10;
+    let mut c = cfg(vec![], vec![node("a", 10.0, vec![(10.0, f.clone()), (20.0, f)])]);
+    c.faults = vec![flip(&["dut"], 0, 1, intermission)];
+    let run = run_to_end(c.bench().unwrap());
+    show(&run.transactions);
+    let t = &run.transactions;
+    assert_eq!(t.iter().map(|t| t.outcome).collect::<Vec<_>>(), vec!["rx_valid", "rx_valid"]);
+    assert_eq!((t[0].overloads, t[1].overloads), (0, 1));
+    assert!(t.iter().all(|t| t.rec == 0 && t.tec == 0), "an overload frame is no error");
+}

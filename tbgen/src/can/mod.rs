@@ -78,9 +78,9 @@ impl Protocol for BenchConfig {
     /// sigrok's `can` decoder on `can_rx` (nominal bit rate and sample
     /// point of the scenario) must print, frame by frame, the identifier
     /// (and extension), DLC, data bytes, CRC sequence and ACK the
-    /// transcript holds. Scenarios with errors are not compared: sigrok
-    /// decodes error flags as frames of their own, which no transcript
-    /// holds. A remote frame with a DLC above 0 is compared up to its DLC
+    /// transcript holds. Scenarios with errors or overload frames are not
+    /// compared: sigrok decodes error and overload flags as frames of their
+    /// own, which no transcript holds. A remote frame with a DLC above 0 is compared up to its DLC
     /// and ends the comparison (sigrok's decoder expects data bits in it).
     fn sigrok(&self, transcript: &serde_json::Value) -> Option<SigrokCheck> {
         let t = self.controller_config().ok()?.timing;
@@ -89,7 +89,7 @@ impl Protocol for BenchConfig {
         let mut expected = Vec::new();
         for tr in transcript["transactions"].as_array()? {
             let outcome = tr["outcome"].as_str()?;
-            if !(outcome == "tx_done" || outcome == "rx_valid") || !tr["complete"].as_bool()? {
+            if !(outcome == "tx_done" || outcome == "rx_valid") || !tr["complete"].as_bool()? || tr["overloads"].as_u64()? > 0 {
                 return None;
             }
             let id = tr["id"].as_u64()? as u128;
