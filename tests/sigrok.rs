@@ -35,7 +35,7 @@ fn run_sigrok(dir: &std::path::Path, vcd: &std::path::Path, f_sys_hz: u64, check
         .unwrap()
         .lines()
         .filter_map(|l| l.strip_prefix(prefix.as_str()))
-        .map(|hex| u128::from_str_radix(hex.trim(), 16).unwrap())
+        .map(|v| SigrokCheck::value(v).unwrap_or_else(|| panic!("sigrok printed `{v}`, not a value")))
         .collect()
 }
 

@@ -52,4 +52,5 @@ registry::protocols! {
     esl     => Esl(model::esl::BenchConfig),
     sar     => Sar(model::sar58k24::BenchConfig),
     modbus  => Modbus(model::modbus::BenchConfig),
+    can     => Can(model::can::BenchConfig),
 }

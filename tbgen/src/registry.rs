@@ -87,6 +87,29 @@ pub struct SigrokCheck {
 }
 
 impl SigrokCheck {
+    /// The value of one annotation (the text after the prefix): a bare hex
+    /// number (`spi`, `uart`), or a labelled one as the `can` decoder prints
+    /// them: `Identifier: 677 (0x2a5)` and `Data byte 0: 0x00` (hex),
+    /// `Data length code: 4` (decimal), `ACK slot: ACK` / `NACK` (1 / 0).
+    pub fn value(text: &str) -> Option<u128> {
+        let text = text.trim();
+        if let Ok(v) = u128::from_str_radix(text, 16) {
+            return Some(v);
+        }
+        let value = text.rsplit(": ").next()?.trim();
+        if let Some(hex) = value.rsplit("(0x").next().filter(|_| value.contains("(0x")) {
+            return u128::from_str_radix(hex.trim_end_matches(')'), 16).ok();
+        }
+        if let Some(hex) = value.strip_prefix("0x") {
+            return u128::from_str_radix(hex, 16).ok();
+        }
+        match value {
+            "ACK" => Some(1),
+            "NACK" => Some(0),
+            _ => value.parse().ok(),
+        }
+    }
+
     /// The prefix of the decoder's annotation lines (`uart-1: `).
     pub fn prefix(&self) -> String {
         format!("{}-1: ", self.decoder.split(':').next().unwrap_or(""))
@@ -333,6 +356,17 @@ pub fn scenario_of<P: Protocol>(arg: &str, tool: &str, kind: &str) -> Result<(cr
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn sigrok_values_bare_and_labelled() {
+        assert_eq!(SigrokCheck::value("3f"), Some(0x3f));
+        assert_eq!(SigrokCheck::value("Identifier: 677 (0x2a5)"), Some(0x2a5));
+        assert_eq!(SigrokCheck::value("Data byte 0: 0x00"), Some(0));
+        assert_eq!(SigrokCheck::value("Data length code: 4"), Some(4));
+        assert_eq!(SigrokCheck::value("ACK slot: NACK"), Some(0));
+        assert_eq!(SigrokCheck::value("CRC-15 sequence: 0x3194"), Some(0x3194));
+        assert_eq!(SigrokCheck::value("Start of frame"), None);
+    }
 
     #[test]
     fn each_protocols_subcommands_are_named_after_its_table() {

@@ -1,0 +1,85 @@
+//! The CAN bus: a wired-AND of every node's transmit level, each seen at
+//! each node after that node pair's delay.
+//!
+//! ```text
+//!  node i TXD ─(t_tx_i)─> bus at x_i ─(|x_i − x_j| · ns_per_m)─> bus at x_j ─(t_rx_j)─> node j RXD
+//!  rx_j(t) = AND over i of tx_i(t − d_ij),  d_ij = t_tx_i + |x_i − x_j|·ns_per_m + t_rx_j  (≥ 1 cycle)
+//! ```
+//! A node's transceiver loop delay is split evenly between its driver
+//! (`t_tx`) and its receiver (`t_rx`), so that a node hears itself after its
+//! loop delay, as a transceiver datasheet states it.
+
+use serde::{Deserialize, Serialize};
+
+use crate::{ConfigError, Result, Timebase};
+
+/// Where a node sits and how slow its transceiver is.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Place {
+    /// Position along the cable, metres from one end.
+    pub position_m: f64,
+    /// Transceiver loop delay (TXD to RXD), ns.
+    pub loop_delay_ns: f64,
+}
+
+impl Place {
+    /// Checks the fields; `field` names the scenario table.
+    pub fn validate(&self, field: &str) -> Result<()> {
+        if !(0.0..=10_000.0).contains(&self.position_m) {
+            return Err(ConfigError::invalid(format!("{field}.position_m"), format!("{}", self.position_m), "give a position from 0 to 10 000 m"));
+        }
+        if !(0.0..=10_000.0).contains(&self.loop_delay_ns) {
+            return Err(ConfigError::invalid(format!("{field}.loop_delay_ns"), format!("{}", self.loop_delay_ns), "give a loop delay from 0 to 10 000 ns"));
+        }
+        Ok(())
+    }
+}
+
+/// The wired-AND with its delay lines.
+#[derive(Debug, Clone)]
+pub struct Bus {
+    delay: Vec<Vec<usize>>,
+    hist: Vec<Vec<bool>>,
+    len: usize,
+    cycle: usize,
+}
+
+impl Bus {
+    /// A recessive bus for nodes at `places`, `ns_per_m` along the cable.
+    pub fn new(places: &[Place], ns_per_m: f64, tb: &Timebase) -> Bus {
+        let ps = tb.period_ps() as f64;
+        let delay: Vec<Vec<usize>> = places
+            .iter()
+            .map(|a| {
+                places
+                    .iter()
+                    .map(|b| {
+                        let ns = a.loop_delay_ns / 2.0 + (a.position_m - b.position_m).abs() * ns_per_m + b.loop_delay_ns / 2.0;
+                        ((ns * 1e3 / ps).round() as usize).max(1)
+                    })
+                    .collect()
+            })
+            .collect();
+        let len = delay.iter().flatten().copied().max().unwrap_or(1) + 1;
+        Bus { hist: vec![vec![true; len]; places.len()], delay, len, cycle: 0 }
+    }
+
+    /// Delay from node `from`'s TXD to node `to`'s RXD, cycles.
+    pub fn delay(&self, from: usize, to: usize) -> usize {
+        self.delay[from][to]
+    }
+
+    /// The level at node `j`'s RXD this cycle.
+    pub fn rx(&self, j: usize) -> bool {
+        (0..self.hist.len()).all(|i| self.hist[i][(self.cycle + self.len - self.delay[i][j]) % self.len])
+    }
+
+    /// Records this cycle's TXD levels and moves to the next cycle.
+    pub fn push(&mut self, tx: &[bool]) {
+        for (h, &t) in self.hist.iter_mut().zip(tx) {
+            h[self.cycle % self.len] = t;
+        }
+        self.cycle += 1;
+    }
+}
