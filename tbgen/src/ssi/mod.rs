@@ -7,6 +7,13 @@ use crate::registry::{Protocol, SigrokCheck, TransactionSignals};
 
 impl Protocol for BenchConfig {
     const TRANSACTION_SIGNALS: TransactionSignals = (&["o_done"], "o_position", "position");
+
+    /// The state register's values by the model's [`model::ssi::State`] (the RTL's state names).
+    fn wave_names() -> Vec<(&'static str, Vec<(u64, String)>)> {
+        use model::ssi::State as S;
+        let names = vec![("state", crate::registry::enum_names(&[S::Idle, S::Latch, S::High, S::Low, S::Pause], |s| s as u64))];
+        names
+    }
     const SIGROK_DECODER: Option<&'static str> = Some("spi");
     const SIGROK_MINIMUM: (usize, usize) = (10, 25);
 
