@@ -4,8 +4,8 @@
 # prints it, and read back what GTKWave shows:
 #   - the dump file resolved although the current folder is not the layout's
 #     (the `[savefile]` line, see tbgen/src/gtkw.rs);
-#   - the time window frames the first transaction that lasts, from the
-#     transcript (.json) next to it: the transaction fills at least half of
+#   - the time window frames the first transaction that lasts (or the whole
+#     run if none does), from the transcript (.json) next to it: the transaction fills at least half of
 #     the window and lies inside it;
 #   - the state register shows a name (translate filter), not a number;
 #   - every trace of the `decoded` group is among the rows an 800-pixel-high
@@ -36,7 +36,7 @@ for t in d["transactions"]:
         spans.append((t["start_cycle"], t["done_cycle"]))
     else:
         spans.append((t.get("sent_cycle") if t.get("sent_cycle") is not None else t["cycle"], t["cycle"]))
-lasting = [s for s in spans if s[1] > s[0]] or spans or [(0, d["cycles"])]
+lasting = [s for s in spans if s[1] > s[0]] or [(0, d["cycles"])]
 print(lasting[0][0] * ps, lasting[0][1] * ps)
 PY
 )
@@ -65,8 +65,10 @@ if not val("dump"):
     problems.append("GTKWave did not open the dump file from " + os.getcwd() + ": " + " ".join(out.split()[-12:]))
 else:
     start, zoom, width = int(val("start")), float(val("zoom")), float(val("width"))
-    end = start + width * 2 ** (-zoom)
-    if not (start <= t0 and t1 <= end):
+    px = 2 ** (-zoom)
+    end = start + width * px
+    # One pixel of slack: the save file gives the zoom to 6 decimals.
+    if not (start <= t0 and t1 <= end + px):
         problems.append(f"window {start}..{end:.0f} ps does not hold the first transaction {t0}..{t1} ps")
     elif (t1 - t0) < 0.5 * (end - start):
         problems.append(f"the first transaction {t0}..{t1} ps fills less than half the window {start}..{end:.0f} ps")

@@ -190,9 +190,9 @@ fn write_outputs<S: crate::registry::Protocol>(scenario: &Scenario, cfg: &S, out
         .map_err(|e| Error::io(staged.temp(2), e))?;
 
     // Frame the first transaction that lasts (not a zero-length one such as
-    // EnDat's delay measurement), with a little idle line on either side.
-    let first = run.transactions.iter().map(|t| t.span()).find(|(start, end)| end > start);
-    let window = match first.or_else(|| run.transactions.first().map(|t| t.span())) {
+    // EnDat's delay measurement), with a little idle line on either side; a
+    // run without one is shown whole.
+    let window = match run.transactions.iter().map(|t| t.span()).find(|(start, end)| end > start) {
         Some((start, end)) => {
             let lead = (end - start) / 20 + 10;
             (start.saturating_sub(lead) * tb.period_ps(), (end + lead) * tb.period_ps())
