@@ -47,7 +47,7 @@ puts "dump: [gtkwave::getDumpFileName]"
 puts "start: [gtkwave::getWindowStartTime]"
 puts "zoom: [gtkwave::getZoomFactor]"
 puts "width: [gtkwave::getWaveWidth]"
-puts "visible: [gtkwave::getVisibleNumTraces]"
+puts "height: [gtkwave::getWaveHeight]"
 set n [gtkwave::getTotalNumTraces]
 for {set i 0} {\$i < \$n} {incr i} { puts "trace \$i: [gtkwave::getTraceNameFromIndex \$i]" }
 gtkwave::setMarker $mid
@@ -77,9 +77,11 @@ else:
         if not re.fullmatch(r"[A-Z][A-Z0-9_]*", s):
             problems.append(f"state shows `{s}`, not a state name")
     # Every decoded trace must be among the rows GTKWave shows in the
-    # layout's 800-pixel-high window (getVisibleNumTraces).
+    # layout's 800-pixel-high window: its waveform pane's height
+    # (getWaveHeight) over a row of at most 20 pixels (GTKWave's default
+    # font; getVisibleNumTraces counts every unfolded trace, shown or not).
     traces = [n for _, n in re.findall(r"^trace (\d+): (.*)$", out, re.M)]
-    visible = int(val("visible"))
+    visible = int(val("height")) // 20
     decoded = [l.rsplit(".", 1)[1] for l in open(gtkw).read().splitlines() if l.startswith("top.decoded.")]
     group = traces.index("decoded") if "decoded" in traces else -1
     last = group + len(decoded)
