@@ -41,6 +41,13 @@ impl Timebase {
     /// A system clock given in MHz, as scenario files give it.
     pub fn from_mhz(f_sys_mhz: f64) -> Result<Self> {
         let hz = (f_sys_mhz * 1e6).round();
+        if !(f_sys_mhz > 0.0) || hz < 1.0 {
+            return Err(ConfigError::invalid(
+                "f_sys_mhz",
+                format!("{f_sys_mhz} MHz: the system clock must be above 0"),
+                "give the FPGA's system clock in MHz, e.g. 50, 64, 80 or 100",
+            ));
+        }
         if !(hz.is_finite() && hz >= 1.0) || (hz - f_sys_mhz * 1e6).abs() > 1e-3 {
             return Err(ConfigError::invalid(
                 "f_sys_mhz",
@@ -125,6 +132,14 @@ mod tests {
         assert_eq!(tb.cycles_at_least_ns(4000.0), 200);
         assert_eq!(tb.cycles_at_least_ns(4001.0), 201);
         assert_eq!(tb.cycles_nearest_ns(29.0), 1);
+    }
+
+    #[test]
+    fn a_zero_or_negative_clock_is_refused_as_such_not_as_a_fraction() {
+        for mhz in [0.0, -5.0, 1e-9] {
+            let err = Timebase::from_mhz(mhz).unwrap_err().to_string();
+            assert!(err.contains("must be above 0") && !err.contains("whole number"), "{mhz}: {err}");
+        }
     }
 
     #[test]

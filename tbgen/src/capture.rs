@@ -79,7 +79,7 @@ impl Signal {
 }
 
 /// The picoseconds of one unit of a VCD timescale.
-fn timescale_ps(header: &vcd::Header) -> Result<u64> {
+fn timescale_ps(path: &Path, header: &vcd::Header) -> Result<u64> {
     let Some((n, unit)) = header.timescale else { return Ok(1) };
     let unit_ps: u64 = match unit {
         vcd::TimescaleUnit::S => 1_000_000_000_000,
@@ -88,10 +88,45 @@ fn timescale_ps(header: &vcd::Header) -> Result<u64> {
         vcd::TimescaleUnit::NS => 1_000,
         vcd::TimescaleUnit::PS => 1,
         vcd::TimescaleUnit::FS => {
-            return Err(Error::Decode("a femtosecond timescale is finer than the decoders' picosecond resolution; re-export the capture in ps or coarser".into()));
+            return Err(Error::Decode(format!(
+                "{}: a femtosecond timescale is finer than the decoders' picosecond resolution; re-export the capture in ps or coarser",
+                path.display()
+            )));
         }
     };
     Ok(n as u64 * unit_ps)
+}
+
+/// A VCD that cannot be parsed is bad input (exit status 2), named with the
+/// parser's words; a read error of the disk stays an I/O error.
+fn not_vcd(path: &Path, e: std::io::Error) -> Error {
+    match e.kind() {
+        std::io::ErrorKind::InvalidData | std::io::ErrorKind::InvalidInput | std::io::ErrorKind::UnexpectedEof => {
+            Error::Decode(format!("{}: not a readable VCD file ({e}); give a value change dump, e.g. one `tbgen gen` or a simulator wrote", path.display()))
+        }
+        _ => Error::io(path, e),
+    }
+}
+
+/// The dotted paths of the 1-bit signals of a VCD header, for messages
+/// (the first 40, then how many more).
+fn scalars(header: &vcd::Header) -> String {
+    fn walk(items: &[vcd::ScopeItem], prefix: &str, out: &mut Vec<String>) {
+        for item in items {
+            match item {
+                vcd::ScopeItem::Scope(s) => walk(&s.items, &format!("{prefix}{}.", s.identifier), out),
+                vcd::ScopeItem::Var(v) if v.size == 1 => out.push(format!("{prefix}{}", v.reference)),
+                _ => {}
+            }
+        }
+    }
+    let mut names = Vec::new();
+    walk(&header.items, "", &mut names);
+    match names.len() {
+        0 => "none".into(),
+        n if n > 40 => format!("{} and {} more", names[..40].join(", "), n - 40),
+        _ => names.join(", "),
+    }
 }
 
 /// Reads the named scalars of a VCD file. `names` are dotted paths; the
@@ -100,12 +135,14 @@ fn timescale_ps(header: &vcd::Header) -> Result<u64> {
 pub fn read(path: &Path, names: &[(&str, &str)]) -> Result<Vec<Signal>> {
     let file = std::fs::File::open(path).map_err(|e| Error::io(path, e))?;
     let mut parser = vcd::Parser::new(BufReader::new(file));
-    let header = parser.parse_header().map_err(|e| Error::io(path, e))?;
-    let scale = timescale_ps(&header)?;
+    let header = parser.parse_header().map_err(|e| not_vcd(path, e))?;
+    let scale = timescale_ps(path, &header)?;
     let mut ids = Vec::with_capacity(names.len());
     for &(name, option) in names {
         let parts: Vec<&str> = name.split('.').collect();
-        let var = header.find_var(&parts).ok_or_else(|| Error::Decode(format!("{}: no signal `{name}`; give its dotted path with {option}", path.display())))?;
+        let var = header.find_var(&parts).ok_or_else(|| {
+            Error::Decode(format!("{}: no signal `{name}`; give its dotted path with {option}; the capture's 1-bit signals: {}", path.display(), scalars(&header)))
+        })?;
         if var.size != 1 {
             return Err(Error::Decode(format!("{}: `{name}` is {} bits wide; {option} needs a 1-bit line signal", path.display(), var.size)));
         }
@@ -114,7 +151,7 @@ pub fn read(path: &Path, names: &[(&str, &str)]) -> Result<Vec<Signal>> {
     let mut signals: Vec<Signal> = names.iter().map(|&(n, _)| Signal { name: n.to_string(), changes: Vec::new() }).collect();
     let mut t = 0u64;
     for cmd in parser {
-        match cmd.map_err(|e| Error::io(path, e))? {
+        match cmd.map_err(|e| not_vcd(path, e))? {
             vcd::Command::Timestamp(ts) => {
                 t = ts.checked_mul(scale).ok_or_else(|| Error::Decode(format!("{}: timestamp {ts} overflows 64-bit picoseconds", path.display())))?;
             }
@@ -234,6 +271,21 @@ mod tests {
         bits.extend(character(0xC3, true));
         let got = uart_bytes(&line_of(&bits, bit_ps, 0), bit_ps);
         assert_eq!(got.iter().map(|b| (b.value, b.framing_error)).collect::<Vec<_>>(), vec![(0x5A, true), (0xC3, false)]);
+    }
+
+    #[test]
+    fn a_missing_signal_lists_the_captures_signals_and_a_bad_file_is_bad_input() {
+        let s = crate::builtin::find("ssi_seed_12bit").unwrap();
+        let dir = tempfile::tempdir().unwrap();
+        let summary = crate::generate::generate(&s, dir.path()).unwrap();
+        let msg = read(&summary.files[1], &[("top.x", "--clk")]).unwrap_err().to_string();
+        assert!(msg.contains("ssi_seed_12bit.vcd: no signal `top.x`; give its dotted path with --clk; the capture's 1-bit signals: top."), "{msg}");
+        assert!(msg.contains("top.line.ssi_clk_master"), "{msg}");
+        let bad = dir.path().join("g.vcd");
+        std::fs::write(&bad, "garbage\n").unwrap();
+        let e = read(&bad, &[("top.x", "--clk")]).unwrap_err();
+        assert!(e.to_string().contains("g.vcd: not a readable VCD file"), "{e}");
+        assert_eq!(e.exit_code(), 2);
     }
 
     #[test]

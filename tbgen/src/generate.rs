@@ -36,11 +36,16 @@ struct Staged {
 }
 
 impl Staged {
+    /// The four files of scenario `name` alone (the tests' case).
+    #[cfg(test)]
     fn new(dir: &Path, name: &str) -> Staged {
-        let pairs = ["hex", "vcd", "json", "gtkw"]
-            .iter()
-            .map(|ext| (dir.join(format!(".{name}.{ext}.partial")), dir.join(format!("{name}.{ext}"))))
-            .collect();
+        Staged::with_extra(dir, name, &[])
+    }
+
+    /// The four files of scenario `name`, then the `extra` files (filters).
+    fn with_extra(dir: &Path, name: &str, extra: &[String]) -> Staged {
+        let files = ["hex", "vcd", "json", "gtkw"].iter().map(|ext| format!("{name}.{ext}")).chain(extra.iter().cloned());
+        let pairs = files.map(|f| (dir.join(format!(".{f}.partial")), dir.join(f))).collect();
         Staged { pairs, committed: false }
     }
 
@@ -53,12 +58,41 @@ impl Staged {
         File::create(path).map(|f| BufWriter::with_capacity(1 << 20, f)).map_err(|e| Error::io(path, e))
     }
 
+    /// Renames the four files into place, all or none: a destination taken
+    /// by a folder is refused before anything moves, and a rename that fails
+    /// midway puts back the files already replaced.
     fn commit(mut self) -> Result<Vec<PathBuf>> {
+        for (_, dest) in &self.pairs {
+            if dest.is_dir() {
+                return Err(Error::io(dest, std::io::Error::other("is a folder, where tbgen writes a file: move the folder or choose another --out")));
+            }
+        }
+        let mut done: Vec<(&Path, Option<PathBuf>)> = Vec::new();
         for (temp, dest) in &self.pairs {
-            fs::rename(temp, dest).map_err(|e| Error::io(dest, e))?;
+            let backup = dest.exists().then(|| dest.with_file_name(format!(".{}.old", dest.file_name().unwrap_or_default().to_string_lossy())));
+            let moved = match &backup {
+                Some(b) => fs::rename(dest, b),
+                None => Ok(()),
+            };
+            if let Err(e) = moved.and_then(|_| fs::rename(temp, dest)) {
+                if let Some(b) = backup.as_ref().filter(|_| !dest.exists()) {
+                    let _ = fs::rename(b, dest);
+                }
+                for (d, b) in done.iter().rev() {
+                    let _ = match b {
+                        Some(b) => fs::rename(b, d),
+                        None => fs::remove_file(d),
+                    };
+                }
+                return Err(Error::io(dest, e));
+            }
+            done.push((dest, backup));
+        }
+        for b in done.into_iter().filter_map(|(_, b)| b) {
+            let _ = fs::remove_file(b);
         }
         self.committed = true;
-        Ok(self.pairs.iter().map(|(_, d)| d.clone()).collect())
+        Ok(self.pairs.iter().take(4).map(|(_, d)| d.clone()).collect())
     }
 }
 
@@ -103,15 +137,27 @@ impl Visitor for Generate<'_> {
     }
 }
 
-fn write_outputs<S: model::Setup>(scenario: &Scenario, cfg: &S, out_dir: &Path) -> Result<Summary> {
+fn write_outputs<S: crate::registry::Protocol>(scenario: &Scenario, cfg: &S, out_dir: &Path) -> Result<Summary> {
     let value_error = |source| scenario.value_error(source);
     let tb = cfg.timebase().map_err(value_error)?;
     let params = cfg.verilog_parameters().map_err(value_error)?;
     let bench = cfg.bench().map_err(value_error)?;
+    if out_dir.exists() && !out_dir.is_dir() {
+        return Err(Error::io(out_dir, std::io::Error::other("--out names a file, not a folder: give a folder (it is created if missing)")));
+    }
     fs::create_dir_all(out_dir).map_err(|e| Error::io(out_dir, e))?;
-    let staged = Staged::new(out_dir, &scenario.name);
     let layout = bench.layout().clone();
     let core = S::CORE;
+    // State registers shown by name: one filter file per signal and core.
+    let filters: Vec<(String, String, String)> = S::wave_names()
+        .into_iter()
+        .filter_map(|(signal, names)| {
+            let port = layout.decoded.iter().find(|p| p.name == signal)?;
+            let full = if port.width == 1 { format!("top.decoded.{signal}") } else { format!("top.decoded.{signal}[{}:0]", port.width - 1) };
+            Some((full, gtkw::filter_name(core, signal), gtkw::filter_file(&names)))
+        })
+        .collect();
+    let staged = Staged::with_extra(out_dir, &scenario.name, &filters.iter().map(|f| f.1.clone()).collect::<Vec<_>>());
 
     let mut vectors = VectorWriter::new(&layout.inputs, &layout.outputs);
     let comment = format!("tbgen {}: scenario {} for {core}, f_sys {} Hz", env!("CARGO_PKG_VERSION"), scenario.name, tb.f_sys_hz());
@@ -145,8 +191,10 @@ fn write_outputs<S: model::Setup>(scenario: &Scenario, cfg: &S, out_dir: &Path) 
         .and_then(|_| json.flush())
         .map_err(|e| Error::io(staged.temp(2), e))?;
 
-    // Frame the first transaction, with a little idle line on either side.
-    let window = match run.transactions.first().map(|t| t.span()) {
+    // Frame the first transaction that lasts (not a zero-length one such as
+    // EnDat's delay measurement), with a little idle line on either side; a
+    // run without one is shown whole.
+    let window = match run.transactions.iter().map(|t| t.span()).find(|(start, end)| end > start) {
         Some((start, end)) => {
             let lead = (end - start) / 20 + 10;
             (start.saturating_sub(lead) * tb.period_ps(), (end + lead) * tb.period_ps())
@@ -156,11 +204,60 @@ fn write_outputs<S: model::Setup>(scenario: &Scenario, cfg: &S, out_dir: &Path) 
     let groups = signal_names(core, &layout);
     let mut gtkw_out = staged.create(3)?;
     let dumpfile = format!("{}.vcd", scenario.name);
-    gtkw::write(&mut gtkw_out, &gtkw::Layout { dumpfile: &dumpfile, groups: &groups, window_ps: window, scenario: &scenario.name })
+    let shown: Vec<(String, String)> = filters.iter().map(|(signal, file, _)| (signal.clone(), file.clone())).collect();
+    gtkw::write(&mut gtkw_out, &gtkw::Layout { dumpfile: &dumpfile, groups: &groups, window_ps: window, scenario: &scenario.name, filters: &shown })
         .and_then(|_| gtkw_out.flush())
         .map_err(|e| Error::io(staged.temp(3), e))?;
+    for (i, (_, _, text)) in filters.iter().enumerate() {
+        fs::write(staged.temp(4 + i), text).map_err(|e| Error::io(staged.temp(4 + i), e))?;
+    }
 
     drop((hex, json, gtkw_out));
     let files = staged.commit()?;
     Ok(Summary { cycles: run.cycles, records, transactions: run.transactions.len(), files })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn seed() -> Scenario {
+        crate::builtin::find("ssi_seed_12bit").unwrap()
+    }
+
+    #[test]
+    fn a_destination_taken_by_a_folder_leaves_no_file_behind() {
+        let dir = tempfile::tempdir().unwrap();
+        fs::create_dir(dir.path().join("ssi_seed_12bit.vcd")).unwrap();
+        let msg = generate(&seed(), dir.path()).unwrap_err().to_string();
+        assert!(msg.contains("ssi_seed_12bit.vcd: is a folder"), "{msg}");
+        let mut left: Vec<_> = fs::read_dir(dir.path()).unwrap().map(|e| e.unwrap().file_name().into_string().unwrap()).collect();
+        left.sort();
+        assert_eq!(left, vec!["ssi_seed_12bit.vcd"]);
+    }
+
+    #[test]
+    fn a_failed_rename_midway_puts_back_the_files_it_replaced() {
+        let dir = tempfile::tempdir().unwrap();
+        generate(&seed(), dir.path()).unwrap();
+        let old_hex = fs::read(dir.path().join("ssi_seed_12bit.hex")).unwrap();
+        // The .json's temporary file is missing when the commit comes: the
+        // .hex and .vcd already renamed must be rolled back.
+        let staged = Staged::new(dir.path(), "ssi_seed_12bit");
+        fs::write(staged.temp(0), "new hex").unwrap();
+        fs::write(staged.temp(1), "new vcd").unwrap();
+        assert!(staged.commit().is_err());
+        assert_eq!(fs::read(dir.path().join("ssi_seed_12bit.hex")).unwrap(), old_hex);
+        let names: Vec<_> = fs::read_dir(dir.path()).unwrap().map(|e| e.unwrap().file_name().into_string().unwrap()).collect();
+        assert_eq!(names.len(), 5, "the four files and the state filter: {names:?}");
+    }
+
+    #[test]
+    fn an_out_that_is_a_file_is_named_as_such() {
+        let dir = tempfile::tempdir().unwrap();
+        let file = dir.path().join("afile");
+        fs::write(&file, "").unwrap();
+        let msg = generate(&seed(), &file).unwrap_err().to_string();
+        assert!(msg.contains("--out names a file, not a folder"), "{msg}");
+    }
 }

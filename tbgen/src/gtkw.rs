@@ -1,7 +1,18 @@
 //! GTKWave save files (`.gtkw`): the layout an engineer sees on
-//! `make waves`: signals grouped by layer (line, core ports, decoded), full
-//! vector names (`top.ssi_master.o_position[11:0]`), and a time range that
-//! frames the first transaction.
+//! `make waves`: signals grouped by layer (line, decoded, core ports: the
+//! decoded group second so that it shows in an 800-pixel-high window), full
+//! vector names (`top.ssi_master.o_position[11:0]`), state registers named
+//! through translate filter files (`<core>.<signal>.filter`, made from the
+//! model's enums), and a time range that frames the first transaction.
+//!
+//! Where the files are found: GTKWave 3.3 opens a save file's `[dumpfile]`
+//! as given, relative to the current folder, unless the file also has a
+//! `[savefile]` line; then it takes the path from the `[savefile]` to the
+//! `[dumpfile]` and applies it to where the save file is now (`find_dumpfile`
+//! in gtkwave's `savefile.c`). Both lines name bare file names, so the
+//! committed files hold no path of this machine and `gtkwave out/x.gtkw`
+//! works from any folder. Filter files (`^1 name`) are looked up next to
+//! the save file the same way.
 
 use std::io::{self, Write};
 
@@ -11,11 +22,27 @@ const FLAG_HEX: &str = "@22";
 const FLAG_GROUP_OPEN: &str = "@800200";
 const FLAG_GROUP_CLOSE: &str = "@1000200";
 
-/// Window size, and the widths of the hierarchy and signal-name panes; the
-/// zoom is computed for what is left: the waveform pane.
+/// Window size, and the widths of the hierarchy and signal-name panes.
 const WINDOW_PX: f64 = 1400.0;
 const SST_PX: f64 = 260.0;
 const NAMES_PX: f64 = 300.0;
+/// The waveform pane's width that GTKWave 3.3 reports (`getWaveWidth`) for
+/// that window and those panes, under Xvfb: the zoom is computed for it.
+pub const WAVE_PX: f64 = 800.0;
+
+/// `@22` plus GTKWave's file-translated flag (`TR_FTRANSLATED`, 0x2000).
+const FLAG_HEX_TRANSLATED: &str = "@2022";
+
+/// A GTKWave translate filter file: one `value name` line per value, the
+/// value in hex as the trace shows it.
+pub fn filter_file(names: &[(u64, String)]) -> String {
+    names.iter().map(|(v, n)| format!("{v:X} {n}\n")).collect()
+}
+
+/// The filter file's name for `signal` of `core` (`ssi_master.state.filter`).
+pub fn filter_name(core: &str, signal: &str) -> String {
+    format!("{core}.{signal}.filter")
+}
 
 /// What to show.
 pub struct Layout<'a> {
@@ -25,18 +52,22 @@ pub struct Layout<'a> {
     pub groups: &'a [(String, Vec<String>)],
     /// The time window to show at start, in ps: `(start, end)`.
     pub window_ps: (u64, u64),
-    /// Scenario name, for the comment line.
+    /// Scenario name, for the comment line and `[savefile]`.
     pub scenario: &'a str,
+    /// Full signal names shown through a filter file, and the file's name.
+    pub filters: &'a [(String, String)],
 }
 
 /// Writes the save file.
 pub fn write(out: &mut impl Write, layout: &Layout) -> io::Result<()> {
     let (start, end) = layout.window_ps;
     let span = (end.saturating_sub(start)).max(1) as f64;
-    // GTKWave's zoom z shows 2^-z time units per pixel (checked under Xvfb).
-    let zoom = -(span / (WINDOW_PX - SST_PX - NAMES_PX)).log2();
+    // GTKWave's zoom z shows 2^-z time units per pixel (checked under Xvfb
+    // by scripts/check_gtkw_window.sh).
+    let zoom = -(span / WAVE_PX).log2();
     writeln!(out, "[*] tbgen layout for scenario {}", layout.scenario)?;
     writeln!(out, "[dumpfile] \"{}\"", layout.dumpfile)?;
+    writeln!(out, "[savefile] \"{}.gtkw\"", layout.scenario)?;
     writeln!(out, "[timestart] {start}")?;
     writeln!(out, "[size] {} 800", WINDOW_PX as u32)?;
     writeln!(out, "[pos] -1 -1")?;
@@ -49,8 +80,13 @@ pub fn write(out: &mut impl Write, layout: &Layout) -> io::Result<()> {
         writeln!(out, "{FLAG_GROUP_OPEN}")?;
         writeln!(out, "-{title}")?;
         for name in names {
-            let flag = if name.ends_with(']') { FLAG_HEX } else { FLAG_BINARY };
-            writeln!(out, "{flag}")?;
+            match layout.filters.iter().find(|(n, _)| n == name) {
+                Some((_, file)) => {
+                    writeln!(out, "{FLAG_HEX_TRANSLATED}")?;
+                    writeln!(out, "^1 {file}")?;
+                }
+                None => writeln!(out, "{}", if name.ends_with(']') { FLAG_HEX } else { FLAG_BINARY })?,
+            }
             writeln!(out, "{name}")?;
         }
         writeln!(out, "{FLAG_GROUP_CLOSE}")?;

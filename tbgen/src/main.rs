@@ -55,14 +55,17 @@ enum Command {
         out: PathBuf,
     },
     /// Compute a CRC of the catalogue over a bit string given in wire order.
-    #[command(after_help = "Examples:\n  tbgen crc biss-crc6 100010101110001110     # the seed's BiSS-C example: CRC 110101, wire 001010\n  tbgen crc --list")]
+    #[command(after_help = "Examples:\n  tbgen crc biss-crc6 100010101110001110     # the seed's BiSS-C example: CRC 110101, wire 001010\n  tbgen crc modbus-crc16 --bytes 01 03 00 00 00 01   # byte-oriented: CRC 0x0A84, sent 84 0A\n  tbgen crc --list")]
     Crc {
         /// Algorithm name (see --list).
         #[arg(required_unless_present = "list")]
         algorithm: Option<String>,
         /// Bits as a 0/1 string in wire order.
-        #[arg(required_unless_present = "list")]
+        #[arg(required_unless_present_any = ["list", "bytes"], conflicts_with = "bytes")]
         bits: Option<String>,
+        /// Whole bytes in hex instead of bits (Modbus, T-format, ESL), in the order sent.
+        #[arg(long, num_args = 1..)]
+        bytes: Vec<String>,
         /// List the catalogue.
         #[arg(long)]
         list: bool,
@@ -109,9 +112,9 @@ fn run(command: Command) -> Result<(), Error> {
             let chosen = if all {
                 builtin::all()?
             } else if scenarios.is_empty() {
-                return Err(Error::UnknownScenario("(none given: name one, or pass --all)".into()));
+                return Err(Error::UnknownScenario("(none given: name one, or pass --all)".into(), String::new()));
             } else {
-                scenarios.iter().map(|s| builtin::resolve(s)).collect::<Result<Vec<_>, _>>()?
+                builtin::resolve_all(&scenarios)?
             };
             for s in &chosen {
                 let dir = if all { out.join(s.core()) } else { out.clone() };
@@ -126,8 +129,10 @@ fn run(command: Command) -> Result<(), Error> {
                 );
             }
         }
-        Command::Crc { algorithm, bits, list } => {
-            if list {
+        Command::Crc { algorithm, bits, bytes, list } => {
+            if !bytes.is_empty() {
+                out!("{}", crc_cmd::report_bytes(algorithm.as_deref().unwrap_or(""), &bytes)?);
+            } else if list {
                 for a in model::crc::CATALOGUE {
                     outln!("{:<16} {:>2}-bit  {}", a.name, a.width, a.source);
                 }

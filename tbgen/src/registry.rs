@@ -60,12 +60,27 @@ pub trait Protocol: model::Setup + 'static {
         Err(Error::Decode(format!("timing {}: this protocol has no cycle budget yet", Self::TABLE)))
     }
 
+    /// The names of the values of enumerated signals of the waveform's
+    /// `decoded` scope (the state register), as the RTL names them:
+    /// `(signal, [(value, NAME)])`. `tbgen gen` writes a GTKWave translate
+    /// filter per signal so the waveform shows `IDLE`, not `0`.
+    fn wave_names() -> Vec<(&'static str, Vec<(u64, String)>)> {
+        Vec::new()
+    }
+
     /// What an independent decoder (sigrok-cli) must read in the waveform of
     /// a run of this configuration whose transcript is `transcript`; `None`
     /// where there is nothing to check.
     fn sigrok(&self, _transcript: &serde_json::Value) -> Option<SigrokCheck> {
         None
     }
+}
+
+/// `(value, NAME)` of each of `variants` of a model enum: its discriminant
+/// and its Rust name upper-cased, as the RTL spells its states (`NoAck` ->
+/// `NOACK`, `hdl/rtl/biss_master.v`).
+pub fn enum_names<E: std::fmt::Debug + Copy>(variants: &[E], code: fn(E) -> u64) -> Vec<(u64, String)> {
+    variants.iter().map(|&v| (code(v), format!("{v:?}").to_uppercase())).collect()
 }
 
 /// The output pulses that end a transaction, the output holding its result,
@@ -136,6 +151,8 @@ pub struct Entry {
     pub timing_command: fn() -> Option<Command>,
     /// See [`Protocol::timing`].
     pub timing: fn(&ArgMatches) -> Result<String>,
+    /// See [`Protocol::wave_names`].
+    pub wave_names: fn() -> Vec<(&'static str, Vec<(u64, String)>)>,
 }
 
 impl Entry {
@@ -151,6 +168,7 @@ impl Entry {
             decode: P::decode,
             timing_command: P::timing_command,
             timing: P::timing,
+            wave_names: P::wave_names,
         }
     }
 }
@@ -353,6 +371,18 @@ pub fn scenario_of<P: Protocol>(arg: &str, tool: &str, kind: &str) -> Result<(cr
     }
 }
 
+/// A model error from `tool` (`timing tformat`) run on scenario `s`: one
+/// about a field the tool's command line sets (`options`: model field and
+/// option, `("data_id", "--data-id")`) is blamed on the option, the rest on
+/// the scenario file.
+pub fn tool_error(tool: &str, s: &crate::scenario::Scenario, options: &[(&str, &str)], e: model::ConfigError) -> Error {
+    let model::ConfigError::Invalid { field, problem, fix } = &e;
+    match options.iter().find(|(f, _)| f == field) {
+        Some((_, option)) => Error::Decode(format!("{tool}: option {option}: {problem}; {fix}")),
+        None => s.value_error(e),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -366,6 +396,16 @@ mod tests {
         assert_eq!(SigrokCheck::value("ACK slot: NACK"), Some(0));
         assert_eq!(SigrokCheck::value("CRC-15 sequence: 0x3194"), Some(0x3194));
         assert_eq!(SigrokCheck::value("Start of frame"), None);
+    }
+
+    #[test]
+    fn an_error_about_a_command_line_option_blames_the_option_not_the_file() {
+        let s = crate::builtin::find("tformat_readout_all_ids").unwrap();
+        let e = model::ConfigError::invalid("data_id", "0x5 is not in Table 1", "give 0, 1");
+        let msg = tool_error("timing tformat", &s, &[("data_id", "--data-id")], e).to_string();
+        assert_eq!(msg, "timing tformat: option --data-id: 0x5 is not in Table 1; give 0, 1");
+        let e = model::ConfigError::invalid("baud", "x", "y");
+        assert!(tool_error("timing tformat", &s, &[("data_id", "--data-id")], e).to_string().starts_with("scenarios/tformat/readout_all_ids.toml:"));
     }
 
     #[test]
@@ -402,6 +442,38 @@ mod tests {
             assert!(line.starts_with(e.table) && line.contains(e.core), "{line}");
         }
         assert!(t.lines().any(|l| l.starts_with("ssi ") && l.ends_with("sigrok=spi")), "{t}");
+    }
+
+    #[test]
+    fn every_state_name_is_the_rtl_state_of_that_value() {
+        // The names come from the model's enum; the RTL must call the state
+        // of that value the same (`IDLE = 3'd0,`).
+        let mut named = 0;
+        for e in crate::PROTOCOLS {
+            let rtl = std::fs::read_to_string(format!("{}/../hdl/rtl/{}.v", env!("CARGO_MANIFEST_DIR"), e.core)).unwrap();
+            for (signal, names) in (e.wave_names)() {
+                assert!(!names.is_empty(), "{}: {signal}", e.core);
+                for (value, name) in names {
+                    let decl = rtl.lines().find(|l| l.trim_start().starts_with(&format!("{name} ")) && l.contains('='));
+                    let decl = decl.unwrap_or_else(|| panic!("{}: no state {name} in the RTL", e.core));
+                    let rhs = decl.split('=').nth(1).unwrap().trim().trim_end_matches([',', ';']);
+                    let rtl_value = u64::from_str_radix(rhs.rsplit('d').next().unwrap(), 10).unwrap();
+                    assert_eq!(rtl_value, value, "{}: {name}", e.core);
+                    named += 1;
+                }
+            }
+        }
+        assert!(named >= 30, "only {named} state names");
+    }
+
+    #[test]
+    fn enum_names_are_the_rtls_upper_case() {
+        #[derive(Debug, Clone, Copy)]
+        enum S {
+            Idle = 0,
+            NoAck = 10,
+        }
+        assert_eq!(enum_names(&[S::Idle, S::NoAck], |s| s as u64), vec![(0, "IDLE".to_string()), (10, "NOACK".to_string())]);
     }
 
     #[test]

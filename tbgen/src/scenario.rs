@@ -55,9 +55,10 @@ impl Scenario {
     /// Parses and checks a scenario; `origin` is named in every message.
     pub fn parse(text: &str, origin: &str) -> Result<Scenario> {
         let file: ScenarioFile = toml::from_str(text).map_err(|e| {
-            let (line, column) = e.span().map(|s| line_column(text, s.start)).unwrap_or((1, 1));
+            let offset = e.span().map(|s| s.start);
+            let (line, column) = offset.map(|o| line_column(text, o)).unwrap_or((1, 1));
             let mut message = e.message().trim().to_string();
-            if let Some(field) = field_on_line(text, line) {
+            if let Some(field) = offset.and_then(|o| path_at(text, o)).or_else(|| field_on_line(text, line)) {
                 if !message.contains(&field) {
                     message = format!("field `{field}`: {message}");
                 }
@@ -91,8 +92,19 @@ impl Scenario {
 
     /// Reads and checks a scenario file.
     pub fn load(path: &Path) -> Result<Scenario> {
-        let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
-        Scenario::parse(&text, &path.display().to_string())
+        let origin = path.display().to_string();
+        let text = std::fs::read_to_string(path).map_err(|e| match e.kind() {
+            std::io::ErrorKind::NotFound => Error::Scenario {
+                file: origin.clone(),
+                message: "no such scenario file: check the path (`tbgen list` shows the built-in scenarios, named without .toml)".into(),
+            },
+            std::io::ErrorKind::InvalidData => Error::Scenario {
+                file: origin.clone(),
+                message: "not a text file: a scenario is a UTF-8 TOML text file (see scenarios/ for examples)".into(),
+            },
+            _ => Error::io(path, e),
+        })?;
+        Scenario::parse(&text, &origin)
     }
 
     /// The core the scenario's vectors drive (`ssi_master`...).
@@ -119,43 +131,105 @@ impl Scenario {
         }
     }
 
-    /// The 1-based line where a dotted field (`ssi.master.clock_khz`) is set,
-    /// or else where its table starts, or else 1.
+    /// The 1-based line where a dotted field (`ssi.master.clock_khz`,
+    /// `endat.commands[2].command`) is set, or else where the deepest part
+    /// of it that the file writes is (its table, its array entry), or else 1.
     pub fn line_of(&self, dotted: &str) -> usize {
-        let dotted = dotted.split('[').next().unwrap_or(dotted);
-        let (table, key) = match dotted.rsplit_once('.') {
-            Some((t, k)) => (t, k),
-            None => ("", dotted),
-        };
-        let mut current = String::new();
-        let mut table_line = None;
-        for (i, raw) in self.text.lines().enumerate() {
-            let line = raw.trim();
-            if let Some(header) = line.strip_prefix('[').and_then(|l| l.split(']').next()) {
-                current = header.trim().to_string();
-                if current == table {
-                    table_line = Some(i + 1);
-                }
-                continue;
-            }
-            let in_table = current == table;
-            let dotted_key = line.split('=').next().unwrap_or("").trim();
-            let full = if current.is_empty() { dotted_key.to_string() } else { format!("{current}.{dotted_key}") };
-            if (in_table && dotted_key == key) || full == dotted {
-                return i + 1;
-            }
-        }
-        table_line.unwrap_or(1)
+        locate(&self.text, dotted).map(|offset| line_column(&self.text, offset).0).unwrap_or(1)
     }
 }
 
-/// The dotted name (`ssi.master.bits`) of the key set on 1-based `line`, if any.
+/// One step of a field path: a key or an array index.
+enum Step<'a> {
+    Key(&'a str),
+    Index(usize),
+}
+
+/// `endat.commands[2].command` as steps.
+fn steps(dotted: &str) -> Vec<Step<'_>> {
+    let mut out = Vec::new();
+    for part in dotted.split('.') {
+        let mut pieces = part.split('[');
+        if let Some(key) = pieces.next().filter(|k| !k.is_empty()) {
+            out.push(Step::Key(key));
+        }
+        for index in pieces {
+            match index.trim_end_matches(']').parse() {
+                Ok(i) => out.push(Step::Index(i)),
+                Err(_) => return out,
+            }
+        }
+    }
+    out
+}
+
+/// The byte offset of the deepest part of field path `dotted` written in
+/// `text`: the key itself, or the array entry or table holding it.
+fn locate(text: &str, dotted: &str) -> Option<usize> {
+    use toml::de::DeValue;
+    let doc = toml::de::DeTable::parse(text).ok()?;
+    let mut table = Some(doc.get_ref());
+    let mut value: Option<&DeValue> = None;
+    let mut best = None;
+    for step in steps(dotted) {
+        let found = match (step, table, value) {
+            (Step::Key(k), Some(t), _) => t.iter().find(|(key, _)| key.get_ref() == k).map(|(key, v)| (key.span().start, v)),
+            (Step::Index(i), _, Some(DeValue::Array(a))) => a.get(i).map(|v| (v.span().start, v)),
+            _ => None,
+        };
+        let Some((offset, v)) = found else { break };
+        best = Some(offset);
+        value = Some(v.get_ref());
+        table = match v.get_ref() {
+            DeValue::Table(t) => Some(t),
+            _ => None,
+        };
+    }
+    best
+}
+
+/// The field path (`endat.commands[2].command`) of the key or value at byte
+/// `offset` of `text`, if the text parses as TOML and one is there.
+fn path_at(text: &str, offset: usize) -> Option<String> {
+    use toml::de::DeValue;
+    fn walk(v: &DeValue, path: &str, offset: usize, out: &mut Option<String>) {
+        let scalar = |v: &DeValue| !matches!(v, DeValue::Table(_) | DeValue::Array(_));
+        match v {
+            DeValue::Table(t) => {
+                for (k, val) in t {
+                    let p = if path.is_empty() { k.get_ref().to_string() } else { format!("{path}.{}", k.get_ref()) };
+                    if k.span().contains(&offset) || (scalar(val.get_ref()) && val.span().contains(&offset)) {
+                        *out = Some(p.clone());
+                    }
+                    walk(val.get_ref(), &p, offset, out);
+                }
+            }
+            DeValue::Array(a) => {
+                for (i, e) in a.iter().enumerate() {
+                    let p = format!("{path}[{i}]");
+                    if e.span().contains(&offset) {
+                        *out = Some(p.clone());
+                    }
+                    walk(e.get_ref(), &p, offset, out);
+                }
+            }
+            _ => {}
+        }
+    }
+    let (doc, _) = toml::de::DeTable::parse_recoverable(text);
+    let mut out = None;
+    walk(&DeValue::Table(doc.into_inner()), "", offset, &mut out);
+    out
+}
+
+/// The dotted name (`ssi.master.bits`) of the key set on 1-based `line`, if
+/// any: the fallback where the file does not parse as TOML.
 fn field_on_line(text: &str, line: usize) -> Option<String> {
     let mut table = String::new();
     for (i, raw) in text.lines().enumerate() {
         let l = raw.trim();
         if let Some(header) = l.strip_prefix('[').and_then(|h| h.split(']').next()) {
-            table = header.trim().to_string();
+            table = header.trim_start_matches('[').trim().to_string();
         } else if i + 1 == line {
             let key = l.split_once('=')?.0.trim();
             return Some(if table.is_empty() { key.to_string() } else { format!("{table}.{key}") });
@@ -198,6 +272,29 @@ mod tests {
         let msg = Scenario::parse(&text, "t.toml").unwrap_err().to_string();
         assert!(msg.starts_with("t.toml:6: field `master.clock_khz`"), "{msg}");
         assert!(msg.contains("use "), "{msg}");
+    }
+
+    #[test]
+    fn a_value_in_an_array_of_tables_is_placed_on_its_own_line() {
+        let text = "name = \"t\"\n[biss]\n[biss.host]\nframes = 6\n\n[[biss.flips]]\nframe = 0\nbits = [0]\n\n[[biss.flips]]\nframe = 1\nbits = [1]\n\n[[biss.flips]]\nbits = [2]\nframe = 40\n";
+        let msg = Scenario::parse(text, "flip.toml").unwrap_err().to_string();
+        assert!(msg.starts_with("flip.toml:16: field `flips[2].frame`: frame 40, but the run has 6 frames"), "{msg}");
+    }
+
+    #[test]
+    fn a_value_in_an_inline_array_is_placed_on_its_own_line() {
+        let text = "name = \"t\"\n[endat]\n[[endat.commands]]\ncommand = \"pos22\"\nrepeat = 3\n[endat.faults]\nflips = [\n  { request = 1, bits = [2] },\n  { request = 44, bits = [3] },\n]\n";
+        let msg = Scenario::parse(text, "f.toml").unwrap_err().to_string();
+        assert!(msg.starts_with("f.toml:9: field `faults.flips[1].request`"), "{msg}");
+    }
+
+    #[test]
+    fn a_bad_field_in_an_array_entry_is_named_with_its_index_and_no_stray_bracket() {
+        let text = "name = \"t\"\n[endat]\n[[endat.commands]]\ncommand = \"pos22\"\n[[endat.commands]]\ncommand = \"pos99\"\n";
+        let msg = Scenario::parse(text, "c.toml").unwrap_err().to_string();
+        assert!(msg.starts_with("c.toml:6:"), "{msg}");
+        assert!(msg.contains("field `endat.commands[1].command`"), "{msg}");
+        assert!(!msg.contains("`[endat"), "{msg}");
     }
 
     #[test]

@@ -32,7 +32,7 @@ pub struct Waves<W: Write> {
 }
 
 /// The full hierarchical names of a layout's signals as `Waves` declares
-/// them, by scope, for the `.gtkw` writer: `(scope, [name])`.
+/// them, by scope, for the `.gtkw` writer: `(scope, [name])`, in display order.
 pub fn signal_names(core: &str, layout: &Layout) -> Vec<(String, Vec<String>)> {
     let name = |scope: &str, p: &Port| {
         if p.width == 1 {
@@ -43,10 +43,12 @@ pub fn signal_names(core: &str, layout: &Layout) -> Vec<(String, Vec<String>)> {
     };
     let mut ports: Vec<String> = layout.inputs.iter().map(|p| name(core, p)).collect();
     ports.extend(layout.outputs.iter().map(|p| name(core, p)));
+    // The decoded group before the many core ports, so that it shows in an
+    // 800-pixel-high window.
     vec![
         ("line".to_string(), layout.line.iter().map(|p| name("line", p)).collect()),
-        (core.to_string(), ports),
         ("decoded".to_string(), layout.decoded.iter().map(|p| name("decoded", p)).collect()),
+        (core.to_string(), ports),
     ]
 }
 

@@ -381,6 +381,21 @@ impl BenchConfig {
                 return Err(ConfigError::invalid(format!("flips[{j}].bits"), format!("bit {b}"), format!("give bits 0 to {}", len - 1)));
             }
         }
+        // A fault in a frame the run never reaches would pass unnoticed.
+        let frames = self.frame_limit();
+        let scheduled = self.flips.iter().enumerate().map(|(j, f)| (format!("flips[{j}].frame"), f.frame));
+        let scheduled = scheduled
+            .chain(self.stuck.iter().map(|s| ("stuck.from_frame".to_string(), s.from_frame)))
+            .chain(self.delay_step.iter().map(|d| ("delay_step.from_frame".to_string(), d.from_frame)));
+        for (field, frame) in scheduled {
+            if frame >= frames {
+                return Err(ConfigError::invalid(
+                    field,
+                    format!("frame {frame}, but the run has {frames} frames (0 to {})", frames - 1),
+                    "give a frame below host.frames (0-based), or raise host.frames",
+                ));
+            }
+        }
         Ok(())
     }
 

@@ -532,3 +532,18 @@ fn the_start_up_mean_reads_through_ack_jitter_that_own_edge_sampling_misreads() 
     assert!(own_edge.len() >= 20, "own-edge sampling: {} CRC errors in 400 frames", own_edge.len());
     assert!(mean.iter().all(|&k| k < 16), "after calibration the mean reads every frame: errors in frames {mean:?}");
 }
+
+#[test]
+fn a_fault_in_a_frame_the_run_never_reaches_is_refused_with_the_count() {
+    let mut cfg = BenchConfig::seed_example();
+    cfg.host.frames = 6;
+    cfg.flips = vec![FlipFault { frame: 5, slave: 0, bits: vec![0] }];
+    assert!(cfg.validate().is_ok());
+    cfg.flips[0].frame = 40;
+    let e = cfg.validate().unwrap_err();
+    assert_eq!(e.field(), "flips[0].frame");
+    assert!(e.to_string().contains("frame 40, but the run has 6 frames"), "{e}");
+    cfg.flips.clear();
+    cfg.stuck = Some(StuckFault { level: true, from_frame: 6 });
+    assert_eq!(cfg.validate().unwrap_err().field(), "stuck.from_frame");
+}

@@ -84,8 +84,9 @@ pub struct EncoderSettings {
     pub reset_us: f64,
     /// Memory access time `t_ac` in µs (seed: up to 12 ms).
     pub t_ac_us: f64,
-    /// Recovery time I `t_m` after type 2.2 frames, µs (1.25 to 3.75 with `recovery_short`, else 10 to 30).
-    pub t_m_us: f64,
+    /// Recovery time I `t_m` after type 2.2 frames, µs (1.25 to 3.75 with `recovery_short`, else 10 to 30);
+    /// default 2 with `recovery_short`, else 15.
+    pub t_m_us: Option<f64>,
     /// Recovery time I after type 2.1 frames, µs (10 to 30).
     pub t_m21_us: f64,
     /// Recovery time I of type 2.2 frames once word 3 selects the short setting (written, then a reset) on an
@@ -122,7 +123,7 @@ impl Default for EncoderSettings {
             t_cal_us: 5.0,
             reset_us: 20.0,
             t_ac_us: 20.0,
-            t_m_us: 15.0,
+            t_m_us: None,
             t_m21_us: 15.0,
             t_m_short_us: 2.0,
             recovery_short: false,
@@ -370,12 +371,15 @@ impl BenchConfig {
         let tb = self.timebase()?;
         let e = &self.encoder;
         let ns = |field: &str, us: f64| -> Result<u64> { Ok(tb.cycles_at_least_ns(positive(field, us, "give a non-negative time")? * 1e3)) };
-        let t_m_range = if e.recovery_short { (1.25, 3.75) } else { (10.0, 30.0) };
-        if e.t_m_us < t_m_range.0 || e.t_m_us > t_m_range.1 {
+        // Unwritten, t_m follows the recovery setting: a default the user never
+        // wrote must not be what refuses `recovery_short = true`.
+        let (t_m_range, t_m_default) = if e.recovery_short { ((1.25, 3.75), 2.0) } else { ((10.0, 30.0), 15.0) };
+        let t_m_us = e.t_m_us.unwrap_or(t_m_default);
+        if t_m_us < t_m_range.0 || t_m_us > t_m_range.1 {
             return Err(ConfigError::invalid(
                 "encoder.t_m_us",
-                format!("{} µs", e.t_m_us),
-                format!("give {} to {} µs for this recovery setting (seed 2.3.2)", t_m_range.0, t_m_range.1),
+                format!("{t_m_us} µs with encoder.recovery_short = {}", e.recovery_short),
+                format!("give {} to {} µs for this recovery setting, or leave t_m_us out (seed 2.3.2)", t_m_range.0, t_m_range.1),
             ));
         }
         if e.t_m21_us < 10.0 || e.t_m21_us > 30.0 {
@@ -394,7 +398,7 @@ impl BenchConfig {
             t_cal_clocks: ns("encoder.t_cal_us", e.t_cal_us)?,
             reset_clocks: ns("encoder.reset_us", e.reset_us)?,
             t_ac_clocks: ns("encoder.t_ac_us", e.t_ac_us)?,
-            t_m_clocks: ns("encoder.t_m_us", e.t_m_us)?,
+            t_m_clocks: ns("encoder.t_m_us", t_m_us)?,
             t_m21_clocks: ns("encoder.t_m21_us", e.t_m21_us)?,
             t_m_other_clocks: if e.recovery_short { ns("encoder.t_m21_us", e.t_m21_us)? } else { ns("encoder.t_m_short_us", e.t_m_short_us)? },
             recovery_short: e.recovery_short,
@@ -455,6 +459,25 @@ impl BenchConfig {
         let limit = if e.pos_bits() >= 64 { u64::MAX } else { (1u64 << e.pos_bits()) - 1 };
         if let Some((i, p)) = self.positions.iter().enumerate().find(|(_, p)| **p > limit) {
             return Err(ConfigError::invalid(format!("positions[{i}]"), format!("{p} does not fit {} bits", e.pos_bits()), format!("give 0 to {limit}")));
+        }
+        // A fault in a request the run never reaches would pass unnoticed.
+        let f = &self.faults;
+        let scheduled = f.flips.iter().enumerate().map(|(j, x)| (format!("faults.flips[{j}].request"), x.request));
+        let scheduled = scheduled
+            .chain(f.line.stuck_level.map(|_| ("faults.stuck_from".to_string(), f.line.stuck_from)))
+            .chain(f.line.drift_ns.map(|_| ("faults.drift_from".to_string(), f.line.drift_from)))
+            .chain(f.dead_from.map(|r| ("faults.dead_from".to_string(), r)))
+            .chain(f.absent_from.map(|r| ("faults.absent_from".to_string(), r)))
+            .chain(f.stale_ad.iter().enumerate().map(|(j, r)| (format!("faults.stale_ad[{j}]"), *r)))
+            .chain(f.errors_at.map(|(_, r)| ("faults.errors_at".to_string(), r)));
+        for (field, request) in scheduled {
+            if request >= reqs.len() {
+                return Err(ConfigError::invalid(
+                    field,
+                    format!("request {request}, but the commands make {} requests (0 to {})", reqs.len(), reqs.len() - 1),
+                    "give a request below that count (0-based, each `repeat` counted), or add commands",
+                ));
+            }
         }
         positive("host.first_start_us", self.host.first_start_us, "give µs")?;
         positive("host.gap_us", self.host.gap_us, "give µs")?;

@@ -74,9 +74,9 @@ pub fn budget(cfg: &BenchConfig, command: Command) -> Result<Budget> {
     let ns = |c: u64| c as f64 * tb.period_ps() as f64 / 1e3;
     let mut phases = Vec::new();
     let mut push = |name: &str, cycles: u64| phases.push(Phase { name: name.into(), cycles, ns: ns(cycles) });
-    push("t_ST: first low phase after the latching edge F1", m.t_st_clocks);
+    push("t_ST: first low phase after the first falling clock edge (it latches the position)", m.t_st_clocks);
     push("first high phase", half);
-    push("mode bits M2..(M0), F2 to F8 (6 clocks)", 6 * cpb);
+    push("mode bits M2..(M0), falling clock edges 2 to 8 (6 clocks)", 6 * cpb);
     if kind == K::Param21 {
         push("parameter block: MRS/address, parameter, CRC (29 clocks)", 29 * cpb);
     }

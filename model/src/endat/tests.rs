@@ -23,7 +23,7 @@ fn fast(clock_khz: f64, f_sys: f64, cable_m: f64) -> BenchConfig {
     cfg.master.delay_comp = true;
     cfg.master.recovery_short = true;
     cfg.encoder.recovery_short = true;
-    cfg.encoder.t_m_us = 2.0;
+    cfg.encoder.t_m_us = Some(2.0);
     cfg.cable = CableConfig { length_m: cable_m, ..CableConfig::default() };
     cfg
 }
@@ -381,4 +381,33 @@ fn a_selection_whose_frame_had_no_start_bit_is_not_taken_as_made() {
     judge.end();
     judge.begin(Command::Pos22.code(), 0, 0);
     assert_eq!(judge.frame_bits(), 32 + 29, "diagnosis selected");
+}
+
+#[test]
+fn a_fault_in_a_request_the_run_never_makes_is_refused_with_the_count() {
+    use crate::Setup as _;
+    let mut cfg = BenchConfig::example();
+    let n = cfg.requests().len();
+    cfg.faults.flips = vec![Flip { request: n - 1, bits: vec![2] }];
+    assert!(cfg.validate().is_ok());
+    cfg.faults.flips[0].request = n + 36;
+    let e = cfg.validate().unwrap_err();
+    assert_eq!(e.field(), "faults.flips[0].request");
+    assert!(e.to_string().contains(&format!("request {}, but the commands make {n} requests", n + 36)), "{e}");
+    cfg.faults.flips.clear();
+    cfg.faults.dead_from = Some(n);
+    assert_eq!(cfg.validate().unwrap_err().field(), "faults.dead_from");
+}
+
+#[test]
+fn recovery_short_alone_takes_a_short_t_m_instead_of_refusing_the_long_default() {
+    use crate::Setup as _;
+    let mut cfg = BenchConfig::example();
+    cfg.master.clock_khz = 2000.0;
+    cfg.master.recovery_short = true;
+    cfg.encoder.recovery_short = true;
+    assert_eq!(cfg.validate(), Ok(()));
+    cfg.encoder.t_m_us = Some(15.0);
+    let e = cfg.validate().unwrap_err().to_string();
+    assert!(e.contains("15 µs with encoder.recovery_short = true") && e.contains("1.25 to 3.75"), "{e}");
 }

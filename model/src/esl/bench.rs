@@ -315,16 +315,14 @@ impl BenchConfig {
             ));
         }
         for (i, op) in self.ops.iter().enumerate() {
-            if op.data_id > 0xF
-                || op.address > 7
-                || op.mem_address > 0x7F
-                || !(0.0..1e6).contains(&op.gap_us)
-            {
-                return Err(ConfigError::invalid(
-                    format!("ops[{i}]"),
-                    "data_id above 0xF, address above 7, mem_address above 0x7F or a bad gap",
-                    "give data_id 0..0xF, address 0..7, mem_address 0..0x7F, gap_us ≥ 0",
-                ));
+            let range = [
+                ("data_id", op.data_id as f64 > 15.0, format!("{:#X} is above 0xF", op.data_id), "give a Data ID from 0 to 0xF"),
+                ("address", op.address > 7, format!("{} is above 7", op.address), "give an encoder address from 0 to 7"),
+                ("mem_address", op.mem_address > 0x7F, format!("{:#X} is above 0x7F", op.mem_address), "give a memory address from 0 to 0x7F"),
+                ("gap_us", !(0.0..1e6).contains(&op.gap_us), format!("{} µs", op.gap_us), "give a gap from 0 to 1 s in µs"),
+            ];
+            if let Some((field, _, problem, fix)) = range.into_iter().find(|r| r.1) {
+                return Err(ConfigError::invalid(format!("ops[{i}].{field}"), problem, fix));
             }
             if op.broadcast && DataId::from_code(op.data_id).is_some_and(|d| d.is_memory()) {
                 return Err(ConfigError::invalid(

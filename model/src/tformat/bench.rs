@@ -204,8 +204,14 @@ impl BenchConfig {
             }
         }
         for (i, op) in self.ops.iter().enumerate() {
-            if op.data_id > 0xF || op.address > 0x7F || !(0.0..1e7).contains(&op.gap_us) {
-                return Err(ConfigError::invalid(format!("ops[{i}]"), "data_id above 0xF, address above 127 or a bad gap", "give data_id 0..0xF, address 0..127, gap_us ≥ 0"));
+            if op.data_id > 0xF {
+                return Err(ConfigError::invalid(format!("ops[{i}].data_id"), format!("{:#X} is above 0xF", op.data_id), "give a Data ID from 0 to 0xF"));
+            }
+            if op.address > 0x7F {
+                return Err(ConfigError::invalid(format!("ops[{i}].address"), format!("{} is above 127", op.address), "give an EEPROM address from 0 to 127"));
+            }
+            if !(0.0..1e7).contains(&op.gap_us) {
+                return Err(ConfigError::invalid(format!("ops[{i}].gap_us"), format!("{} µs", op.gap_us), "give a gap from 0 to 10 s in µs"));
             }
         }
         Ok(())

@@ -45,6 +45,13 @@ pub struct TimingArgs {
 impl Protocol for BenchConfig {
     const TRANSACTION_SIGNALS: TransactionSignals = (&["o_done"], "o_delay", "delay_cycles");
 
+    /// The state register's values by the model's [`model::biss::State`] (the RTL's state names).
+    fn wave_names() -> Vec<(&'static str, Vec<(u64, String)>)> {
+        use model::biss::State as S;
+        let names = vec![("state", crate::registry::enum_names(&[S::Idle, S::Ack, S::Start, S::Cds, S::Data, S::Err, S::Warn, S::Crc, S::Stop, S::Timeout, S::NoAck], |s| s as u64))];
+        names
+    }
+
     fn decode_command() -> Option<clap::Command> {
         Some(DecodeArgs::command())
     }

@@ -10,7 +10,7 @@ use model::testbench;
 use model::Setup;
 use serde::Serialize;
 
-use crate::{capture, Result};
+use crate::{capture, Error, Result};
 
 /// The cycle budget of one scenario, in TI's published form
 /// `t_cycle = T_MA × (frame bits) + line delay + t_busy + timeout`, beside
@@ -50,6 +50,20 @@ pub fn timing_report(cfg: &BenchConfig, name: &str) -> std::result::Result<Strin
         let delay = a.delay_cycles.map_or("not measured (no ack)".to_string(), |d| format!("{d} cycles"));
         let _ = writeln!(s, "model: start to o_done {frame} cycles ({:.3} us), start to start {period} cycles ({:.3} us) = {:.2} kHz, measured line delay {delay}",
             frame as f64 / f_sys * 1e6, period as f64 / f_sys * 1e6, f_sys / period as f64 / 1e3);
+        // Why the measured delay exceeds the formula's: the formula counts the
+        // cable and the slave's output delay only; the model also counts the
+        // registers between the pins and the delay counter.
+        if let Some(d) = a.delay_cycles {
+            let cable = 2 * cfg.cable.delay_cycles(&tb);
+            let output = tb.cycles_nearest_ns(cfg.slaves[0].output_delay_ns);
+            let sync = model::biss::SYNC_STAGES;
+            let rest = d as i64 - (cable + output + sync) as i64;
+            let _ = writeln!(
+                s,
+                "  measured line delay {d} cycles = {:.1} ns: cable both ways {cable} + slave output delay {output} (the formula's {delay_ns:.1} ns, in whole cycles) + the master's {sync}-flop synchroniser {sync} + {rest} (the delay counter counts the MA edge's own cycle as 1); the formula leaves the synchroniser and the count's start out",
+                d as f64 / f_sys * 1e9
+            );
+        }
     }
     // One register read and one command, each one host operation: the frames
     // the master runs for it back to back, first start to o_reg_done.
@@ -124,6 +138,9 @@ pub struct FrameSeen {
     pub register: Option<RegisterSeen>,
     /// A command (`CTS = 0`) that ended with this frame.
     pub command: Option<CommandSeen>,
+    /// Cells MA clocked after the start bit, and the cells the layout reads.
+    #[serde(skip)]
+    pub cells: Option<(u64, u64)>,
 }
 
 /// A command read off the CDM and CDS bits: the fields of the `gen`
@@ -226,7 +243,42 @@ pub fn decode(path: &Path, ma: &str, slo: &str, layout: &Layout) -> Result<Vec<F
         frames.push(f);
         i = j;
     }
+    check_layout(path, &frames, layout)?;
     Ok(frames)
+}
+
+/// Cells MA clocks after the last CRC bit before it stops (the master's
+/// stop bit and the first timeout clock, as biss_master does): not frame bits.
+const TRAILING_CELLS: u64 = 2;
+
+/// A layout that fits no frame (every frame clocked a different number of
+/// cells after its start bit than the layout reads, and every CRC failed) is
+/// the wrong `--bits` or `--crc-width`, not a line full of errors: say so,
+/// and what would fit.
+fn check_layout(path: &Path, frames: &[FrameSeen], layout: &Layout) -> Result<()> {
+    let read: Vec<&FrameSeen> = frames.iter().filter(|f| f.cells.is_some()).collect();
+    let misfit = |f: &&FrameSeen| f.cells.is_some_and(|(clocked, need)| clocked != need) && f.slaves.iter().all(|s| !s.crc_ok);
+    if read.is_empty() || !read.iter().all(misfit) {
+        return Ok(());
+    }
+    let (clocked, need) = read[0].cells.expect("filtered on cells");
+    let list = |v: &[u32]| v.iter().map(u32::to_string).collect::<Vec<_>>().join(",");
+    let last_w = *layout.crc_width.last().unwrap_or(&6) as u64;
+    let others = need - (1 + *layout.bits.last().unwrap_or(&0) as u64 + 2 + last_w);
+    let hint = match clocked.checked_sub(others + 3 + last_w) {
+        Some(n) if (1..=64).contains(&n) => format!("; with the same CRC widths, --bits {} would fit", {
+            let mut b = layout.bits.clone();
+            *b.last_mut().expect("at least one slave") = n as u32;
+            list(&b)
+        }),
+        _ => String::new(),
+    };
+    Err(Error::Decode(format!(
+        "{}: the frames carry {clocked} bits after the start bit, but --bits {} with --crc-width {} read {need} (per slave: CDS, data, nE, nW, CRC), and every CRC fails{hint}",
+        path.display(),
+        list(&layout.bits),
+        list(&layout.crc_width),
+    )))
 }
 
 /// One frame from its MA burst (falling edge first) and SLO; `next_start`
@@ -245,6 +297,7 @@ fn read_frame(index: usize, burst: &[(u64, bool)], next_start: u64, slo: &captur
         errors: Vec::new(),
         register: None,
         command: None,
+        cells: None,
     };
     let rises: Vec<u64> = burst.iter().filter(|e| e.1).map(|e| e.0).collect();
     if rises.len() < 2 || burst.len() < 2 {
@@ -277,6 +330,8 @@ fn read_sections(f: &mut FrameSeen, ack: u64, period: u64, rises: u64, slo: &cap
         f.errors.push("no_start_bit".into());
         return;
     };
+    let need: u64 = layout.bits.iter().zip(&layout.crc_width).map(|(n, w)| (1 + n + 2 + w) as u64).sum();
+    f.cells = Some((rises.saturating_sub(2 + TRAILING_CELLS) - start, need));
     let mut m = start;
     let mut received = vec![true];
     for s in 0..layout.bits.len() {
@@ -330,6 +385,19 @@ mod tests {
         let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&summary.files[2]).unwrap()).unwrap();
         let period_ps = 1_000_000_000_000 / cfg.timebase().unwrap().f_sys_hz();
         (decoded, json["transactions"].as_array().unwrap().clone(), period_ps)
+    }
+
+    #[test]
+    fn a_wrong_bits_says_the_frame_does_not_fit_and_what_would() {
+        let (s, _) = biss("biss_seed_16bit");
+        let dir = tempfile::tempdir().unwrap();
+        let summary = generate::generate(&s, dir.path()).unwrap();
+        let layout = Layout { bits: vec![12], crc_width: vec![6], crc_poly: vec![3] };
+        let msg = decode(&summary.files[1], "top.line.ma_master", "top.line.slo_master", &layout).unwrap_err().to_string();
+        assert!(msg.contains("biss_seed_16bit.vcd: the frames carry 25 bits after the start bit, but --bits 12 with --crc-width 6 read 21"), "{msg}");
+        assert!(msg.ends_with("--bits 16 would fit"), "{msg}");
+        let right = Layout { bits: vec![16], ..layout };
+        assert!(decode(&summary.files[1], "top.line.ma_master", "top.line.slo_master", &right).is_ok());
     }
 
     #[test]
@@ -405,6 +473,9 @@ mod tests {
         let r = timing_report(&cfg, &s.name).unwrap();
         // 100 ns x 28 bits + 120 ns (10 m both ways + 20 ns output delay) + 200 ns busy + 16 us timeout.
         assert!(r.contains("= 19.120 us"), "{r}");
+        // The measured delay is explained, not just printed: 2 x 4 + 2 + 2 + 1 = 13 cycles = 162.5 ns.
+        assert!(r.contains("measured line delay 13 cycles = 162.5 ns: cable both ways 8 + slave output delay 2"), "{r}");
+        assert!(r.contains("2-flop synchroniser 2 + 1 (the delay counter counts the MA edge's own cycle as 1)"), "{r}");
         assert!(r.contains("52.30 kHz"), "{r}");
         // 14 sync frames, then 33 control frames for a read; the read's last
         // 14 frames already carried CDM = 0, so the command that follows needs

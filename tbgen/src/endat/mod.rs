@@ -53,6 +53,16 @@ pub struct TimingArgs {
 impl Protocol for BenchConfig {
     const TRANSACTION_SIGNALS: TransactionSignals = (&["o_done", "o_meas_done"], "o_position", "position");
 
+    /// The state register's values by the model's [`model::endat::State`] (the RTL's state names).
+    fn wave_names() -> Vec<(&'static str, Vec<(u64, String)>)> {
+        use model::endat::State as S;
+        let mut names = vec![("state", crate::registry::enum_names(&[S::Idle, S::First, S::High, S::Low, S::Pause], |s| s as u64))];
+        use model::endat::RxPhase as P;
+        let phases = [P::Idle, P::Turn, P::Poll, P::FBit, P::Data, P::Crc, P::Ad2, P::Ad2Crc, P::Ad1, P::Ad1Crc];
+        names.push(("rx_phase", phases.iter().map(|&p| (p as u64, format!("RX_{p:?}").to_uppercase())).collect()));
+        names
+    }
+
     fn decode_command() -> Option<clap::Command> {
         Some(DecodeArgs::command())
     }

@@ -1,6 +1,6 @@
 //! `tbgen timing endat`: the cycle-time budget of a configuration, phase by
 //! phase, and the resulting position-read rate; with `--diagram`, the
-//! model's own waveform of the scenario's first request as ASCII.
+//! model's own waveform of the budgeted command as ASCII.
 
 use model::endat::{budget, diagram, Command};
 
@@ -20,18 +20,56 @@ pub fn report(scenario: &Scenario, command: &str, ads: u64, with_diagram: bool) 
             Command::ALL.iter().map(|c| c.name()).collect::<Vec<_>>().join(", ")
         ),
     })?;
+    if ads > 2 {
+        return Err(Error::Decode(format!("timing endat: option --ads {ads}: give 0, 1 or 2 additional data")));
+    }
     let b = budget::budget_for(cfg, cmd, ads).map_err(|e| scenario.value_error(e))?;
+    if ads > 0 && budget::budget_for(cfg, cmd, 0).map_err(|e| scenario.value_error(e))? == b {
+        return Err(Error::Decode(format!(
+            "timing endat: option --ads {ads}: {} frames carry no additional data; drop --ads, or budget a type 2.2 position command (--command pos22)",
+            cmd.name()
+        )));
+    }
     let mut out = format!("scenario {}: {}\n", scenario.name, scenario.description);
     out += &b.render();
     if with_diagram {
-        let m = cfg.master_config().map_err(|e| scenario.value_error(e))?;
-        let start = diagram::first_start(cfg).map_err(|e| scenario.value_error(e))?;
-        let step = (m.clocks_per_bit / 2).max(1);
-        let width = (b.cycle_clocks.min(200 * step) / step) as usize;
-        out += &format!("\nwaveform of the first request, one character per half clock period ({step} cycles), from cycle {start}:\n");
-        out += &diagram::render(cfg, step, start, width).map_err(|e| scenario.value_error(e))?;
-        out += "rx phase: 0 idle, 1 turnaround, 2 polling, 3 F bits, 4 data, 5 CRC, 6/7 additional datum 2 and CRC, 8/9 additional datum 1 and CRC\n";
+        out += &diagram_of(scenario, cfg, cmd, b.cycle_clocks)?;
     }
+    Ok(out)
+}
+
+/// The model's waveform of the budgeted command: its first request in the
+/// scenario, or else a run of the scenario's set-up with that one request.
+fn diagram_of(scenario: &Scenario, cfg: &model::endat::BenchConfig, cmd: Command, cycle_clocks: u64) -> Result<String> {
+    const MAX_COLUMNS: u64 = 200;
+    let err = |e| scenario.value_error(e);
+    let (run_cfg, whose) = if cfg.requests().iter().any(|r| r.command == cmd && !r.measure) {
+        (cfg.clone(), format!("the scenario's first {} request", cmd.name()))
+    } else {
+        let mut one = cfg.clone();
+        one.commands = vec![model::endat::HostCommand::new(cmd)];
+        one.faults = Default::default();
+        (one, format!("one {} request on the scenario's set-up (the scenario has none)", cmd.name()))
+    };
+    let m = run_cfg.master_config().map_err(err)?;
+    let run = model::testbench::run_to_end(model::Setup::bench(&run_cfg).map_err(err)?);
+    let reqs = run_cfg.requests();
+    let start = run
+        .transactions
+        .iter()
+        .find(|t| t.request.is_some_and(|k| reqs[k].command == cmd && !reqs[k].measure))
+        .map(|t| t.start_cycle)
+        .unwrap_or_else(|| diagram::first_start(&run_cfg).unwrap_or(0));
+    let step = (m.clocks_per_bit / 2).max(1);
+    let columns = cycle_clocks.div_ceil(step);
+    let width = columns.min(MAX_COLUMNS) as usize;
+    let mut out = format!("\nwaveform of {whose}, one character per half clock period ({step} cycles), from cycle {start}");
+    if columns > MAX_COLUMNS {
+        out += &format!(" (the first {MAX_COLUMNS} of its {columns} half periods; the rest of the cycle, {} cycles, is cut)", cycle_clocks - MAX_COLUMNS * step);
+    }
+    out += ":\n";
+    out += &diagram::render(&run_cfg, step, start, width).map_err(err)?;
+    out += "rx phase: 0 idle, 1 turnaround, 2 polling, 3 error bits, 4 data, 5 CRC, 6/7 additional datum 2 and CRC, 8/9 additional datum 1 and CRC\n";
     Ok(out)
 }
 
@@ -156,6 +194,26 @@ mod tests {
                 _ => None,
             })
             .collect()
+    }
+
+    #[test]
+    fn the_diagram_draws_the_budgeted_command_and_says_where_it_is_cut() {
+        let s = crate::builtin::find("endat_fault_bit_flips").unwrap();
+        let r = report(&s, "pos22", 0, true).unwrap();
+        assert!(r.contains("waveform of the scenario's first pos22 request"), "{r}");
+        let r = report(&s, "pos21", 0, true).unwrap();
+        assert!(r.contains("waveform of one pos21 request on the scenario's set-up"), "{r}");
+        // t_b of a 2.1 cycle is far longer than 200 half periods.
+        assert!(r.contains("(the first 200 of its"), "{r}");
+    }
+
+    #[test]
+    fn additional_data_for_a_command_that_carries_none_is_refused() {
+        let s = crate::builtin::find("endat_fault_bit_flips").unwrap();
+        let e = report(&s, "pos21", 2, false).unwrap_err().to_string();
+        assert!(e.contains("option --ads 2: pos21 frames carry no additional data"), "{e}");
+        assert!(report(&s, "pos22", 2, false).is_ok());
+        assert!(report(&s, "pos22", 3, false).unwrap_err().to_string().contains("give 0, 1 or 2"));
     }
 
     #[test]

@@ -51,6 +51,13 @@ pub struct TimingArgs {
 
 impl Protocol for BenchConfig {
     const TRANSACTION_SIGNALS: TransactionSignals = (&["o_done"], "o_abs", "abs");
+
+    /// The state register's values by the model's [`model::esl::State`] (the RTL's state names).
+    fn wave_names() -> Vec<(&'static str, Vec<(u64, String)>)> {
+        use model::esl::State as S;
+        let names = vec![("state", crate::registry::enum_names(&[S::Idle, S::Send, S::Wait, S::Recv, S::Gap, S::Settle, S::Quiet], |s| s as u64))];
+        names
+    }
     const SIGROK_DECODER: Option<&'static str> = Some("uart");
     const SIGROK_MINIMUM: (usize, usize) = (13, 1000);
 
@@ -78,7 +85,7 @@ impl Protocol for BenchConfig {
         let TimingArgs { scenario, data_id } = registry::parse_args(args)?;
         let (s, cfg) = registry::scenario_of::<BenchConfig>(&scenario, "timing esl", "an ESL")?;
         let id = if data_id == 0 { 1 } else { data_id };
-        tools::timing_report(&cfg, &s.name, id).map_err(|e| s.value_error(e))
+        tools::timing_report(&cfg, &s.name, id).map_err(|e| registry::tool_error("timing esl", &s, &[("data_id", "--data-id")], e))
     }
 
     /// sigrok's `uart` decoder at 10 Mbps on the line at the host must find,

@@ -1,14 +1,44 @@
-//! SSI in `tbgen`: no decoder or budget of its own; sigrok's `spi` decoder
-//! reads the line at the encoder's pins in the tests.
+//! SSI in `tbgen`: the read budget (`tbgen timing ssi`); sigrok's `spi`
+//! decoder reads the line at the encoder's pins in the tests.
 
+pub mod timing;
+
+use clap::{ArgMatches, CommandFactory, Parser};
 use model::ssi::BenchConfig;
 
-use crate::registry::{Protocol, SigrokCheck, TransactionSignals};
+use crate::registry::{self, Protocol, SigrokCheck, TransactionSignals};
+use crate::Result;
+
+/// SSI: the read cycle and the position-read rate.
+#[derive(Parser)]
+#[command(name = "ssi", after_help = "Examples:\n  tbgen timing ssi                  # the seed scenario ssi_seed_12bit\n  tbgen timing ssi ssi_long_cable_1mhz")]
+pub struct TimingArgs {
+    /// Built-in scenario name or scenario .toml file with an [ssi] table.
+    #[arg(default_value = "ssi_seed_12bit")]
+    scenario: String,
+}
 
 impl Protocol for BenchConfig {
     const TRANSACTION_SIGNALS: TransactionSignals = (&["o_done"], "o_position", "position");
+
+    /// The state register's values by the model's [`model::ssi::State`] (the RTL's state names).
+    fn wave_names() -> Vec<(&'static str, Vec<(u64, String)>)> {
+        use model::ssi::State as S;
+        let names = vec![("state", crate::registry::enum_names(&[S::Idle, S::Latch, S::High, S::Low, S::Pause], |s| s as u64))];
+        names
+    }
     const SIGROK_DECODER: Option<&'static str> = Some("spi");
     const SIGROK_MINIMUM: (usize, usize) = (10, 25);
+
+    fn timing_command() -> Option<clap::Command> {
+        Some(TimingArgs::command())
+    }
+
+    fn timing(args: &ArgMatches) -> Result<String> {
+        let TimingArgs { scenario } = registry::parse_args(args)?;
+        let (s, cfg) = registry::scenario_of::<BenchConfig>(&scenario, "timing ssi", "an SSI")?;
+        timing::timing_report(&cfg, &s.name).map_err(|e| s.value_error(e))
+    }
 
     /// One SPI word per read that clocked, at the encoder's pins: the level
     /// at the storing edge (the idle line, 1) followed by every sampled bit;

@@ -48,6 +48,13 @@ pub struct TimingArgs {
 
 impl Protocol for BenchConfig {
     const TRANSACTION_SIGNALS: TransactionSignals = (&["o_done"], "o_abs", "abs");
+
+    /// The state register's values by the model's [`model::tformat::State`] (the RTL's state names).
+    fn wave_names() -> Vec<(&'static str, Vec<(u64, String)>)> {
+        use model::tformat::State as S;
+        let names = vec![("state", crate::registry::enum_names(&[S::Idle, S::Send, S::Wait, S::Recv, S::Gap, S::Quiet], |s| s as u64))];
+        names
+    }
     const SIGROK_DECODER: Option<&'static str> = Some("uart");
     const SIGROK_MINIMUM: (usize, usize) = (15, 300);
 
@@ -72,7 +79,7 @@ impl Protocol for BenchConfig {
     fn timing(args: &ArgMatches) -> Result<String> {
         let TimingArgs { scenario, data_id } = registry::parse_args(args)?;
         let (s, cfg) = registry::scenario_of::<BenchConfig>(&scenario, "timing tformat", "a T-format")?;
-        timing::timing_report(&cfg, &s.name, data_id).map_err(|e| s.value_error(e))
+        timing::timing_report(&cfg, &s.name, data_id).map_err(|e| registry::tool_error("timing tformat", &s, &[("data_id", "--data-id")], e))
     }
 
     /// sigrok's `uart` decoder at 2.5 Mbps on the line at the host must find,

@@ -7,6 +7,13 @@ use crate::registry::{Protocol, SigrokCheck, TransactionSignals};
 
 impl Protocol for BenchConfig {
     const TRANSACTION_SIGNALS: TransactionSignals = (&["o_valid", "o_frame_err", "o_start_err"], "o_data", "received");
+
+    /// The state register's values by the model's [`model::uart::State`] (the RTL's state names).
+    fn wave_names() -> Vec<(&'static str, Vec<(u64, String)>)> {
+        use model::uart::State as S;
+        let names = vec![("state", crate::registry::enum_names(&[S::Idle, S::Start, S::Data, S::Stop, S::Recover], |s| s as u64))];
+        names
+    }
     const SIGROK_DECODER: Option<&'static str> = Some("uart");
     const SIGROK_MINIMUM: (usize, usize) = (1, 300);
 
