@@ -9,7 +9,16 @@
 # configuration share one build), runs it, and exits with the simulator's
 # status: 0 when every output matched every cycle, non-zero at the first
 # mismatch. With a fourth argument the RTL waveform is dumped there.
-# SIM_BUILD_ONLY=1: build (or find in the cache) and stop before the replay.
+#
+# Environment (all optional; without them nothing above changes):
+#   COVERAGE=1      Verilator only: build with --coverage (line, branch,
+#                   toggle; its own cache key) and write the counts of this
+#                   run to build/coverage/<core>/<scenario>.dat, for
+#                   scripts/coverage.sh. Icarus runs ignore it.
+#   RTL_DIR         directory of the *.v files to build (default hdl/rtl;
+#                   scripts/mutate.py points it at a mutant)
+#   SIM_BUILD_DIR   build cache root (default build/sim)
+#   SIM_BUILD_ONLY=1  build (or find in the cache) and stop before the replay
 set -euo pipefail
 
 usage() { echo "usage: $0 <core> <icarus|verilator> <vectors.hex> [waves.vcd]" >&2; exit 2; }
@@ -35,11 +44,17 @@ half_fs=$(( 500000000000000 / f_sys_hz ))
 words=$(header words_per_record)
 max_words=$(( 1 << 22 ))
 while [ $(( records * words )) -gt "$max_words" ]; do max_words=$(( max_words * 2 )); done
-rtl=("$root"/hdl/rtl/*.v)
+rtl=("${RTL_DIR:-$root/hdl/rtl}"/*.v)
 trace=0
 [ -n "$waves" ] && trace=1
-key=$(printf '%s\n' "$params" "$half_fs" "$trace" "$max_words" | cat - "$tb" "$root/hdl/tb/common/vector_player.vh" "${rtl[@]}" | sha1sum | cut -c1-12)
-build="$root/build/sim/$core/$sim/$key"
+coverage=0 cov_main="$root/hdl/tb/common/coverage_main.cpp"
+[ "${COVERAGE:-0}" = 1 ] && [ "$sim" = verilator ] && coverage=1
+# A coverage build is another binary: its key adds a line (and the main it
+# is built with), so plain builds keep their keys.
+cov_key=() cov_files=()
+[ "$coverage" = 1 ] && cov_key=(coverage) cov_files=("$cov_main")
+key=$(printf '%s\n' "$params" "$half_fs" "$trace" "$max_words" "${cov_key[@]}" | cat - "$tb" "$root/hdl/tb/common/vector_player.vh" "${rtl[@]}" "${cov_files[@]}" | sha1sum | cut -c1-12)
+build="${SIM_BUILD_DIR:-$root/build/sim}/$core/$sim/$key"
 mkdir -p "$build"
 # Parallel runs (cargo's test threads, make -j) may want the same build:
 # one builds while the others wait on the lock, then all reuse it.
@@ -48,6 +63,12 @@ flock 9
 
 plusargs=("+vectors=$vectors" "+records=$records")
 [ -n "$waves" ] && plusargs+=("+waves=$waves")
+if [ "$coverage" = 1 ]; then
+    cov_file="$root/build/coverage/$core/$(basename "$vectors" .hex).dat"
+    mkdir -p "$(dirname "$cov_file")"
+    rm -f "$cov_file"
+    plusargs+=("+coverage_file=$cov_file")
+fi
 
 case "$sim" in
 icarus)
@@ -68,9 +89,12 @@ verilator)
     if [ ! -x "$build/Vtb" ]; then
         gargs=()
         for p in $params; do gargs+=("-G$p"); done
-        targs=()
+        targs=(--binary)
         [ "$trace" = 1 ] && targs+=(--trace)
-        verilator --binary --timing -j 2 -Wno-fatal -Wno-lint -Wno-style "${targs[@]}" \
+        # Verilator 5.006's --binary main never writes coverage: its own main does.
+        [ "$coverage" = 1 ] && targs=(--cc --exe --build --coverage --prefix Vtb "$cov_main")
+        [ "$coverage" = 1 ] && [ "$trace" = 1 ] && targs+=(--trace)
+        verilator --timing -j 2 -Wno-fatal -Wno-lint -Wno-style "${targs[@]}" \
             --top-module "tb_$core" -I"$root/hdl/tb/common" \
             "${gargs[@]}" "-GHALF_PERIOD_FS=$half_fs" "-GMAX_WORDS=$max_words" \
             --Mdir "$build/obj" -o Vtb "$tb" "${rtl[@]}" > "$build/build.log" 2>&1 \

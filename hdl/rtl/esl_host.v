@@ -270,7 +270,7 @@ wire       rx_busy;
 wire       rx_start_err;
 wire       rx_parity_err; // always 0: 10-bit frames (PARITY = 0)
 /* verilator lint_on UNUSEDSIGNAL */
-reg        tx_en_reg = 1'b0;
+reg        tx_en_reg = 1'b0, tx_en_next;
 
 uart_rx #(
     .CLOCKS_PER_BIT(CLOCKS_PER_BIT)
@@ -286,517 +286,106 @@ uart_rx #(
     .o_parity_err(rx_parity_err)
 );
 
-reg [2:0]       state_reg = IDLE;
-reg [3:0]       id_reg = 4'd0;
-reg [2:0]       address_reg = 3'd0;
-reg             broadcast_reg = 1'b0;
-reg [6:0]       mem_address_reg = 7'd0;
-reg [7:0]       wdata_reg = 8'd0;
-reg [1:0]       field_index_reg = 2'd0;
-reg [3:0]       bit_index_reg = 4'd0;
-reg [CNT_W-1:0] cnt_reg = 0;
+reg [2:0]       state_reg = IDLE, state_next;
+reg [3:0]       id_reg = 4'd0, id_next;
+reg [2:0]       address_reg = 3'd0, address_next;
+reg             broadcast_reg = 1'b0, broadcast_next;
+reg [6:0]       mem_address_reg = 7'd0, mem_address_next;
+reg [7:0]       wdata_reg = 8'd0, wdata_next;
+reg [1:0]       field_index_reg = 2'd0, field_index_next;
+reg [3:0]       bit_index_reg = 4'd0, bit_index_next;
+reg [CNT_W-1:0] cnt_reg = 0, cnt_next;
 // cnt_reg is zero: kept beside the counter (every load is at least one), so
 // the state machine tests a flop instead of a 24-input AND.
-reg             cnt_zero_reg = 1'b1;
+reg             cnt_zero_reg = 1'b1, cnt_zero_next;
 localparam integer IDLE_W = $clog2(QUIET_CLOCKS + 1);
-reg [IDLE_W-1:0] idle_reg = 0;
-// The end tests compare the count before its increment with a constant.
+reg [IDLE_W-1:0] idle_reg = 0, idle_next;
+// The end tests compare the count before its increment with a constant,
+// and that comparison is registered with the count (idle_end_reg is
+// idle_reg == END_LAST, compared on idle_next), so that the end of an
+// answer reaches finish and the result enables from a flop.
 localparam [IDLE_W-1:0] END_LAST = END_LAST_32[IDLE_W-1:0];
 localparam [IDLE_W-1:0] QUIET_LAST = QUIET_LAST_32[IDLE_W-1:0];
-wire            end_next_reg = idle_reg == END_LAST;
-wire            quiet_next_reg = idle_reg == QUIET_LAST;
-reg [3:0]       repeats_left_reg = 4'd0;
-reg [3:0]       tries_left_reg = 4'd0;
-reg [4:0]       count_reg = 5'd0;
-reg             frame_err_reg = 1'b0;
-reg [3:0]       page_reg = 4'd8;
+reg             idle_end_reg = 1'b0, idle_quiet_reg = 1'b0;
+reg [3:0]       repeats_left_reg = 4'd0, repeats_left_next;
+reg [3:0]       tries_left_reg = 4'd0, tries_left_next;
+reg [4:0]       count_reg = 5'd0, count_next;
+reg             frame_err_reg = 1'b0, frame_err_next;
+reg [3:0]       page_reg = 4'd8, page_next;
 // The request's CRC-8, built bit by bit as the covered bits go out.
-reg [7:0]       req_crc_reg = 8'd0;
+reg [7:0]       req_crc_reg = 8'd0, req_crc_next;
 
 /* The answer as it arrives: the first two fields, each channel's check,
    and every result field in a shadow published at the end of the answer. */
-reg [7:0]  f0_reg = 8'd0;
-reg [1:0]  f1_reg = 2'd0;   // CA0, CA1 of the second field (a CA answer's SF)
-reg [15:0] crc_reg = 16'd0;   // the channel being received (CRC-8 in bits 7..0)
-reg [7:0]  crcc_reg = 8'd0;   // CRC-8 over the first three fields: the CA answer
-reg        pad_reg = 1'b0;    // a CRC-16 channel wants its 8 zero bits
-reg        ch1_done_reg = 1'b0, ch1_bad_reg = 1'b0;
-reg        ch2_done_reg = 1'b0, ch2_bad_reg = 1'b0, cf2_bad_reg = 1'b0;
-reg        crcc_bad_reg = 1'b0;
-reg        ch1_check_reg = 1'b0, ch2_check_reg = 1'b0;
-reg [7:0]  s_cf = 8'd0, s_sf = 8'd0, s_sf2 = 8'd0, s_alm1 = 8'd0, s_alm2 = 8'd0;
-reg [23:0] s_abs = 24'd0;
-reg [15:0] s_abm = 16'd0, s_rs = 16'd0;
-reg [7:0]  s_sc1 = 8'd0, s_enid = 8'd0, s_temp = 8'd0, s_adf = 8'd0, s_edf = 8'd0;
-reg [6:0]  s_sc2 = 7'd0;
+reg [7:0]  f0_reg = 8'd0, f0_next;
+reg [1:0]  f1_reg = 2'd0, f1_next;         // CA0, CA1 of the second field (a CA answer's SF)
+reg [15:0] crc_reg = 16'd0, crc_next;      // the channel being received (CRC-8 in bits 7..0)
+reg [7:0]  crcc_reg = 8'd0, crcc_next;     // CRC-8 over the first three fields: the CA answer
+reg        pad_reg = 1'b0, pad_next;       // a CRC-16 channel wants its 8 zero bits
+reg        ch1_done_reg = 1'b0, ch1_done_next;
+reg        ch1_bad_reg = 1'b0, ch1_bad_next;
+reg        ch2_done_reg = 1'b0, ch2_done_next;
+reg        ch2_bad_reg = 1'b0, ch2_bad_next;
+reg        cf2_bad_reg = 1'b0, cf2_bad_next;
+reg        crcc_bad_reg = 1'b0, crcc_bad_next;
+reg        ch1_check_reg = 1'b0, ch1_check_next;
+reg        ch2_check_reg = 1'b0, ch2_check_next;
+reg [7:0]  s_cf_reg = 8'd0, s_cf_next;
+reg [7:0]  s_sf_reg = 8'd0, s_sf_next;
+reg [7:0]  s_sf2_reg = 8'd0, s_sf2_next;
+reg [7:0]  s_alm1_reg = 8'd0, s_alm1_next;
+reg [7:0]  s_alm2_reg = 8'd0, s_alm2_next;
+reg [23:0] s_abs_reg = 24'd0, s_abs_next;
+reg [15:0] s_abm_reg = 16'd0, s_abm_next;
+reg [15:0] s_rs_reg = 16'd0, s_rs_next;
+reg [7:0]  s_sc1_reg = 8'd0, s_sc1_next;
+reg [6:0]  s_sc2_reg = 7'd0, s_sc2_next;
+reg [7:0]  s_enid_reg = 8'd0, s_enid_next;
+reg [7:0]  s_temp_reg = 8'd0, s_temp_next;
+reg [7:0]  s_adf_reg = 8'd0, s_adf_next;
+reg [7:0]  s_edf_reg = 8'd0, s_edf_next;
 
-// Sequence counters per encoder address: known, SC1, SC2.
-reg [7:0]  seq_known = 8'd0;
-reg [7:0]  seq_sc1 [0:7];
-reg [6:0]  seq_sc2 [0:7];
+// Sequence counters per encoder address: known, SC1, SC2. The counter
+// tables are written at the edge where seq_write is set (a table in
+// flip-flops, written at address_reg).
+reg [7:0]  seq_known_reg = 8'd0, seq_known_next;
+reg [7:0]  seq_sc1_reg [0:7];
+reg [6:0]  seq_sc2_reg [0:7];
+reg        seq_write;
 integer k;
 initial begin
     for (k = 0; k < 8; k = k + 1) begin
-        seq_sc1[k] = 8'd0;
-        seq_sc2[k] = 7'd0;
+        seq_sc1_reg[k] = 8'd0;
+        seq_sc2_reg[k] = 7'd0;
     end
 end
 
-reg        tx_reg = 1'b1, busy_reg = 1'b0, done_reg = 1'b0;
-reg [7:0]  cf_reg = 8'd0, sf_reg = 8'd0, sf2_reg = 8'd0, alm1_reg = 8'd0, alm2_reg = 8'd0;
-reg [23:0] abs_reg = 24'd0;
-reg [15:0] abm_reg = 16'd0, rs_reg = 16'd0;
-reg [7:0]  sc1_reg = 8'd0, enid_reg = 8'd0, temp_reg = 8'd0, adf_reg = 8'd0, edf_reg = 8'd0;
-reg [6:0]  sc2_reg = 7'd0;
-reg        err_crc1_reg = 1'b0, err_crc2_reg = 1'b0, err_timeout_reg = 1'b0, err_frame_reg = 1'b0;
-reg        err_cf_reg = 1'b0, err_comm_reg = 1'b0, err_seq_reg = 1'b0, err_rs_reg = 1'b0, err_busy_reg = 1'b0;
-
-/* The request: CF (address, code, odd parity), ADF, EDF, then its CRC-8. */
-wire [7:0] req_cf = {~^id_reg, id_reg, address_reg};
-wire [1:0] req_last = (id_reg == ID_E) ? 2'd2 : (id_reg == ID_F) ? 2'd3 : 2'd1;
-wire [3:0] nbit = (bit_index_reg == 4'd9) ? 4'd0 : bit_index_reg + 4'd1;
-wire [1:0] nfield = (bit_index_reg == 4'd9) ? field_index_reg + 2'd1 : field_index_reg;
-reg  [7:0] req_byte;
-always @* begin
-    case (nfield)
-        2'd0: req_byte = req_cf;
-        2'd1: req_byte = {mem_address_reg, 1'b0};
-        default: req_byte = wdata_reg;
-    endcase
-end
-wire       n_is_crc = nfield == req_last;
-wire [2:0] nbit_k = nbit[2:0] - 3'd1;
-wire [2:0] crc_k = 3'd7 - nbit_k;
-wire       n_data = nbit != 4'd0 && nbit != 4'd9;
-wire       tx_bit = (nbit == 4'd0) ? 1'b0 : (nbit == 4'd9) ? 1'b1 : n_is_crc ? req_crc_reg[crc_k] : req_byte[nbit_k];
-wire [7:0] req_crc_step;
-crc_serial #(.WIDTH(8), .POLY(8'h2F)) req_crc_inst (.i_crc(req_crc_reg), .i_bit(tx_bit), .o_crc(req_crc_step));
-
-/* The answer's layout for the Data ID asked for (registered from id_reg,
-   long before the first field), and
-   where the next field falls in it: the channel, the index inside the
-   channel, and what that index means, all registered (a field arrives at
-   most every 10 bits, so one cycle of latency is free). */
-reg [4:0]  n1_reg = 5'd0, l1_reg = 5'd0, n2_reg = 5'd0, l2_reg = 5'd0, total_reg = 5'd0;
-reg        c16_reg = 1'b0, has2_reg = 1'b0, has_rs_reg = 1'b0, is_mem_reg = 1'b0, known_reg = 1'b0;
-reg        in_ch2_reg = 1'b0;
-reg [4:0]  cidx_reg = 5'd0;
-reg [4:0]  kind_q = K_NONE;
-reg        active_q = 1'b0, decode_q = 1'b0, last_data_q = 1'b0, last_crc_q = 1'b0, first_ch2_q = 1'b0;
-wire [4:0] idx = count_reg;
-wire [4:0] cn = in_ch2_reg ? n2_reg : n1_reg;
-wire [4:0] cl = in_ch2_reg ? l2_reg : l1_reg;
-always @(posedge i_clk) begin
-    known_reg <= known_id(id_reg);
-    c16_reg <= ch1_crc16(id_reg);
-    n1_reg <= ch1_fields(id_reg);
-    l1_reg <= ch1_fields(id_reg) + (ch1_crc16(id_reg) ? 5'd2 : 5'd1);
-    n2_reg <= ch2_fields(id_reg);
-    has2_reg <= ch2_fields(id_reg) != 5'd0;
-    l2_reg <= (ch2_fields(id_reg) == 5'd0) ? 5'd0 : ch2_fields(id_reg) + (ch1_crc16(id_reg) ? 5'd2 : 5'd1);
-    total_reg <= ch1_fields(id_reg) + ch2_fields(id_reg) + ((ch2_fields(id_reg) == 5'd0) ? 5'd1 : 5'd2) * (ch1_crc16(id_reg) ? 5'd2 : 5'd1);
-    has_rs_reg <= id_reg == 4'h1 || id_reg == 4'h2 || id_reg == 4'hB || id_reg == 4'h6 || id_reg == 4'hC;
-    is_mem_reg <= id_reg == ID_E || id_reg == ID_F;
-    kind_q <= field_kind(id_reg, in_ch2_reg, cidx_reg);
-    active_q <= !in_ch2_reg || (has2_reg && cidx_reg < l2_reg);
-    decode_q <= cidx_reg < cn && (!in_ch2_reg || has2_reg);
-    last_data_q <= cidx_reg == cn - 5'd1;
-    last_crc_q <= cidx_reg == cl - 5'd1;
-    first_ch2_q <= in_ch2_reg && cidx_reg == 5'd0;
-end
-
-/* The result shadows: cleared when the request ends, each written by the
-   field Table 12 puts there (one-hot enables, registered a field ahead). */
-localparam integer D_CF = 0, D_SF1 = 1, D_SF2 = 2, D_ALM1 = 3, D_ALM2 = 4, D_ABS0 = 5, D_ABS1 = 6,
-    D_ABS2 = 7, D_ABM0 = 8, D_ABM1 = 9, D_SC1 = 10, D_ENID = 11, D_TEMP = 12, D_ADF = 13,
-    D_EDF = 14, D_RS0 = 15, D_RS1SC2 = 16, D_ZEROSC2 = 17, D_RS1 = 18, D_RSEXTHI = 19, D_RSEXTLO = 20;
-reg  [20:0] dec_q = 21'd0;
-reg         fld_q = 1'b0;   // the next field is one of the first 18 of an answer
-always @(posedge i_clk) begin
-    fld_q <= state_reg == RECV && count_reg < 5'd18;
-    dec_q <= 21'd0;
-    if (decode_q) begin
-        case (kind_q)
-            K_CF: dec_q[D_CF] <= !in_ch2_reg;
-            K_SF: dec_q[in_ch2_reg ? D_SF2 : D_SF1] <= 1'b1;
-            K_ALM: dec_q[in_ch2_reg ? D_ALM2 : D_ALM1] <= 1'b1;
-            K_ABS0: dec_q[D_ABS0] <= 1'b1;
-            K_ABS1: dec_q[D_ABS1] <= 1'b1;
-            K_ABS2: dec_q[D_ABS2] <= 1'b1;
-            K_ABM0: dec_q[D_ABM0] <= 1'b1;
-            K_ABM1: dec_q[D_ABM1] <= 1'b1;
-            K_SC1: dec_q[D_SC1] <= 1'b1;
-            K_ENID: dec_q[D_ENID] <= !in_ch2_reg;
-            K_TEMP: dec_q[D_TEMP] <= 1'b1;
-            K_ADF: dec_q[D_ADF] <= 1'b1;
-            K_EDF: dec_q[D_EDF] <= 1'b1;
-            K_RS0: dec_q[D_RS0] <= 1'b1;
-            K_RS1SC2: dec_q[D_RS1SC2] <= 1'b1;
-            K_ZEROSC2: dec_q[D_ZEROSC2] <= 1'b1;
-            K_RS1: dec_q[D_RS1] <= 1'b1;
-            K_RSEXTHI: dec_q[D_RSEXTHI] <= 1'b1;
-            K_RSEXTLO: dec_q[D_RSEXTLO] <= 1'b1;
-            default: ;
-        endcase
-    end
-end
-// fld_q already says RECV (a field never arrives in the cycle after an answer ends).
-wire field_in = (rx_valid || rx_frame_err) && fld_q;
-wire send_last = bit_index_reg == 4'd9 && field_index_reg == req_last;
-// Cleared a cycle after the request ends: the answer's first field is at
-// least a field time away, and the shadows are read only at its end.
-reg  answer_clear = 1'b0;
-always @(posedge i_clk) begin
-    answer_clear <= state_reg == SEND && cnt_zero_reg && send_last;
-    if (answer_clear) begin
-        s_cf <= 8'd0; s_sf <= 8'd0; s_sf2 <= 8'd0; s_alm1 <= 8'd0; s_alm2 <= 8'd0;
-        s_abs <= 24'd0; s_abm <= 16'd0; s_rs <= 16'd0; s_sc1 <= 8'd0; s_sc2 <= 7'd0;
-        s_enid <= 8'd0; s_temp <= 8'd0; s_adf <= 8'd0; s_edf <= 8'd0;
-    end else if (field_in) begin
-        if (dec_q[D_CF]) s_cf <= rx_data;
-        if (dec_q[D_SF1]) s_sf <= rx_data;
-        if (dec_q[D_SF2]) s_sf2 <= rx_data;
-        if (dec_q[D_ALM1]) s_alm1 <= rx_data;
-        if (dec_q[D_ALM2]) s_alm2 <= rx_data;
-        if (dec_q[D_ABS0]) s_abs[7:0] <= rx_data;
-        if (dec_q[D_ABS1]) s_abs[15:8] <= rx_data;
-        if (dec_q[D_ABS2]) s_abs[23:16] <= rx_data;
-        if (dec_q[D_ABM0]) s_abm[7:0] <= rx_data;
-        if (dec_q[D_ABM1]) s_abm[15:8] <= rx_data;
-        if (dec_q[D_SC1]) s_sc1 <= rx_data;
-        if (dec_q[D_ENID]) s_enid <= rx_data;
-        if (dec_q[D_TEMP]) s_temp <= rx_data;
-        if (dec_q[D_ADF]) s_adf <= rx_data;
-        if (dec_q[D_EDF]) s_edf <= rx_data;
-        if (dec_q[D_RS0]) s_rs <= s_rs | {7'd0, rx_data, 1'b0};
-        if (dec_q[D_RS1SC2] || dec_q[D_RS1]) s_rs <= s_rs | {15'd0, rx_data[0]};
-        if (dec_q[D_RS1SC2] || dec_q[D_ZEROSC2]) s_sc2 <= rx_data[7:1];
-        if (dec_q[D_RSEXTHI]) s_rs <= s_rs | {rx_data, 8'd0};
-        if (dec_q[D_RSEXTLO]) s_rs <= s_rs | {8'd0, rx_data};
-    end
-end
-
-/* Byte-wide CRC steps: the channel's register (its init at CH2's first
-   field), fed the received byte, or 0x00 for the padding. */
-wire [15:0] crc_base = (first_ch2_q && !pad_reg) ? (c16_reg ? 16'hFFFF : 16'h0000) : crc_reg;
-wire [7:0]  crc_byte = pad_reg ? 8'h00 : rx_data;
-wire [15:0] c16_chain [0:8];
-wire [7:0]  c8_chain [0:8];
-wire [7:0]  cc_chain [0:8];
-assign c16_chain[0] = crc_base;
-assign c8_chain[0] = crc_base[7:0];
-assign cc_chain[0] = crcc_reg;
-genvar g;
-generate
-    for (g = 0; g < 8; g = g + 1) begin : crc_chain
-        crc_serial #(.WIDTH(16), .POLY(16'h5935)) c16_inst (.i_crc(c16_chain[g]), .i_bit(crc_byte[g]), .o_crc(c16_chain[g+1]));
-        crc_serial #(.WIDTH(8), .POLY(8'h2F)) c8_inst (.i_crc(c8_chain[g]), .i_bit(crc_byte[g]), .o_crc(c8_chain[g+1]));
-        crc_serial #(.WIDTH(8), .POLY(8'h2F)) cc_inst (.i_crc(cc_chain[g]), .i_bit(rx_data[g]), .o_crc(cc_chain[g+1]));
-    end
-endgenerate
-wire [15:0] crc_after = c16_reg ? c16_chain[8] : {8'd0, c8_chain[8]};
-
-/* The checks at the end of an answer (model::esl::frames::check). Their
-   inputs stop changing with the last field, at least CLOCKS_PER_BIT cycles
-   before the end of the answer is seen, so they are computed a cycle ahead
-   into registers (the k_*_q below) without changing any output cycle. */
-wire [4:0] nbytes = (count_reg > 5'd18) ? 5'd18 : count_reg;
-wire       frame_in = frame_err_reg || count_reg > 5'd18;
-wire       comm_path = nbytes == 5'd3;
-wire       comm_ans = !crcc_bad_reg && (f1_reg != 2'b00);
-wire       k_crc1 = comm_path ? crcc_bad_reg : (!ch1_done_reg || ch1_bad_reg);
-wire       k_crc2 = !comm_path && has2_reg && (!ch2_done_reg || ch2_bad_reg);
-wire       k_frame = comm_path ? (frame_in || !comm_ans) : (frame_in || nbytes != total_reg);
-wire       k_cf = comm_path ? (f0_reg[6:0] != req_cf[6:0]) : ((f0_reg != req_cf) || cf2_bad_reg);
-wire       k_comm = comm_path ? comm_ans : (!is_mem_reg && (s_sf[1:0] != 2'b00 || (has2_reg && s_sf2[1:0] != 2'b00)));
-reg  [8:0]  rs9_diff = 9'd0;    // registered: RS and ABS are stable from their fields on
-reg  [15:0] rs16_diff = 16'd0;
-always @(posedge i_clk) begin
-    rs9_diff <= s_rs[8:0] - s_abs[23:15];
-    rs16_diff <= s_rs - s_abs[23:8];
-end
-wire [15:0] tol16 = TOL;
-wire [8:0]  tol9 = TOL[8:0];
-wire       agree9 = rs9_diff <= tol9 || {7'd0, rs9_diff} >= 16'd512 - tol16;
-wire       agree16 = rs16_diff <= tol16 || ({1'b0, rs16_diff} >= 17'h10000 - {1'b0, tol16});
-reg        agree = 1'b1;   // registered: RS and ABS are stable from their fields on
-always @(posedge i_clk) agree <= (id_reg == ID_6) ? agree16 : agree9;
-wire       k_rs = !comm_path && has_rs_reg && !k_crc1 && !k_crc2 && !k_frame && !agree;
-wire       k_any0 = k_crc1 || k_crc2 || k_frame || k_cf || k_comm || k_rs;
-wire       mem_cf = is_mem_reg && !k_any0 && ((s_adf[7:1] != mem_address_reg) || (id_reg == ID_F && !s_adf[0] && s_edf != wdata_reg));
-// This encoder's expected counters, a stage ahead (address and table are stable while it answers).
-reg  [7:0] exp_sc1 = 8'd0;
-reg  [6:0] exp_sc2 = 7'd0;
-reg        exp_known = 1'b0;
-reg        k_crc1_q = 1'b0, k_crc2_q = 1'b0, k_frame_q = 1'b0, k_cf_q = 1'b0, k_comm_q = 1'b0, k_rs_q = 1'b0;
-reg        seq_bad_q = 1'b0;
-always @(posedge i_clk) begin
-    k_crc1_q <= k_crc1;
-    k_crc2_q <= k_crc2;
-    k_frame_q <= k_frame;
-    k_cf_q <= k_cf || mem_cf;
-    k_comm_q <= k_comm;
-    k_rs_q <= k_rs;
-    exp_sc1 <= seq_sc1[address_reg] + 8'd1;
-    exp_sc2 <= seq_sc2[address_reg] + 7'd1;
-    exp_known <= seq_known[address_reg];
-    seq_bad_q <= exp_known && (s_sc1 != exp_sc1 || s_sc2 != exp_sc2);
-end
-wire       safety = c16_reg;
-// The end-of-answer decisions, one more stage ahead (their inputs are stable too).
-reg        clean = 1'b0, flawed_q = 1'b0, mem_clean_q = 1'b0, mem_busy = 1'b0, busy_last_q = 1'b0;
-always @(posedge i_clk) begin
-    clean <= !(k_crc1_q || k_crc2_q || k_frame_q || k_cf_q || k_comm_q);
-    flawed_q <= k_crc1_q || k_crc2_q || k_frame_q || k_cf_q || k_comm_q || k_rs_q;
-    mem_clean_q <= is_mem_reg && !(k_crc1_q || k_crc2_q || k_frame_q || k_cf_q || k_comm_q);
-    mem_busy <= s_adf[0];
-    busy_last_q <= tries_left_reg == 4'd1;
-end
-
-task begin_send;
-    begin
-        state_reg <= SEND;
-        field_index_reg <= 2'd0;
-        bit_index_reg <= 4'd0;
-        cnt_reg <= BIT_LAST; cnt_zero_reg <= 1'b0;
-        req_crc_reg <= 8'd0;
-        tx_en_reg <= 1'b1;
-        tx_reg <= 1'b0;
-    end
-endtask
-
-task finish_done;
-    begin
-        state_reg <= IDLE;
-        busy_reg <= 1'b0;
-        done_reg <= 1'b1;
-    end
-endtask
-
-/* End of one request's answer (or of its timeout): check, publish, then
-   repeat, retry, settle, wait for quiet or finish (model Host::finish). */
-task finish(input timeout);
-    reg flawed, retry;
-    reg [CNT_W-1:0] settle;
-    reg [3:0] repeats;
-    begin
-        flawed = 1'b0;
-        retry = 1'b0;
-        settle = 0;
-        if (broadcast_reg) begin
-            err_cf_reg <= err_cf_reg | !timeout;
-            flawed = !timeout;
-        end else if (timeout) begin
-            err_timeout_reg <= 1'b1;
-            flawed = 1'b1;
-            seq_known[address_reg] <= 1'b0;
-        end else if (known_reg) begin
-            cf_reg <= s_cf; sf_reg <= s_sf; sf2_reg <= s_sf2; alm1_reg <= s_alm1; alm2_reg <= s_alm2;
-            abs_reg <= s_abs; abm_reg <= s_abm; rs_reg <= s_rs; sc1_reg <= s_sc1; sc2_reg <= s_sc2;
-            enid_reg <= s_enid; temp_reg <= s_temp; adf_reg <= s_adf; edf_reg <= s_edf;
-            err_crc1_reg <= err_crc1_reg | k_crc1_q;
-            err_crc2_reg <= err_crc2_reg | k_crc2_q;
-            err_frame_reg <= err_frame_reg | k_frame_q;
-            err_cf_reg <= err_cf_reg | k_cf_q;
-            err_comm_reg <= err_comm_reg | k_comm_q;
-            err_rs_reg <= err_rs_reg | k_rs_q;
-            if (safety && clean) begin
-                // A counter that is not the previous one plus one: a lost,
-                // repeated or stale answer. After an answer that could not be
-                // trusted the next good one is the new reference.
-                err_seq_reg <= err_seq_reg | seq_bad_q;
-                seq_known[address_reg] <= 1'b1;
-                seq_sc1[address_reg] <= s_sc1;
-                seq_sc2[address_reg] <= s_sc2;
-            end else if (safety) begin
-                seq_known[address_reg] <= 1'b0;
-            end
-            flawed = flawed_q;
-            if (mem_clean_q) begin
-                tries_left_reg <= tries_left_reg - 4'd1;
-                if (mem_busy && busy_last_q) begin
-                    err_busy_reg <= 1'b1;
-                end else if (mem_busy) begin
-                    retry = 1'b1;
-                end else if (id_reg == ID_F) begin
-                    if ({1'b0, mem_address_reg} == PAGE_REGISTER) begin
-                        page_reg <= wdata_reg[3:0];
-                        settle = PAGE_LAST + 1'b1;
-                    end else if (page_reg == REGISTER_PAGE) begin
-                        settle = 0;
-                    end else begin
-                        settle = WRITE_LAST + 1'b1;
-                    end
-                end
-            end
-        end else begin
-            // A code Table 3 does not list: whatever comes back is not an answer to it.
-            err_cf_reg <= 1'b1;
-            flawed = 1'b1;
-        end
-        repeats = repeats_left_reg - 4'd1;
-        if (retry) begin
-            state_reg <= GAP;
-            cnt_reg <= (id_reg == ID_F) ? WRITE_LAST : READ_LAST;
-            cnt_zero_reg <= 1'b0;
-        end else begin
-            repeats_left_reg <= repeats;
-            if (repeats != 4'd0) begin
-                state_reg <= GAP;
-                cnt_reg <= GAP_LAST; cnt_zero_reg <= 1'b0;
-            end else if (flawed) begin
-                state_reg <= QUIET;
-                idle_reg <= 0;
-            end else if (settle != 0) begin
-                state_reg <= SETTLE;
-                cnt_reg <= settle - 1'b1; cnt_zero_reg <= 1'b0;
-            end else begin
-                finish_done;
-            end
-        end
-    end
-endtask
-
-always @(posedge i_clk) begin
-    done_reg <= 1'b0;
-    pad_reg <= 1'b0;
-    if (pad_reg) crc_reg <= crc_after;
-    // A channel's CRC fields are in: its register must be back at 0 (the wire residue).
-    ch1_check_reg <= 1'b0;
-    ch2_check_reg <= 1'b0;
-    if (ch1_check_reg) ch1_bad_reg <= crc_reg != 16'd0;
-    if (ch2_check_reg) ch2_bad_reg <= crc_reg != 16'd0;
-    case (state_reg)
-        IDLE: begin
-            if (i_start) begin
-                id_reg <= i_data_id;
-                broadcast_reg <= i_broadcast;
-                address_reg <= i_broadcast ? BCAST : i_address;
-                mem_address_reg <= i_mem_address;
-                wdata_reg <= i_wdata;
-                repeats_left_reg <= (i_data_id == 4'hB || i_data_id == 4'hC || i_data_id == 4'hD) ? 4'd8 : 4'd1;
-                tries_left_reg <= TRIES;
-                busy_reg <= 1'b1;
-                err_crc1_reg <= 1'b0; err_crc2_reg <= 1'b0; err_timeout_reg <= 1'b0; err_frame_reg <= 1'b0;
-                err_cf_reg <= 1'b0; err_comm_reg <= 1'b0; err_seq_reg <= 1'b0; err_rs_reg <= 1'b0; err_busy_reg <= 1'b0;
-                begin_send;
-            end
-        end
-        SEND: begin
-            if (cnt_zero_reg) begin
-                if (send_last) begin
-                    tx_en_reg <= 1'b0;
-                    tx_reg <= 1'b1;
-                    state_reg <= WAIT;
-                    cnt_reg <= TIMEOUT_LAST; cnt_zero_reg <= 1'b0;
-                    count_reg <= 5'd0;
-                    frame_err_reg <= 1'b0;
-                    crc_reg <= 16'd0;
-                    crcc_reg <= 8'd0;
-                    ch1_done_reg <= 1'b0; ch1_bad_reg <= 1'b0;
-                    ch2_done_reg <= 1'b0; ch2_bad_reg <= 1'b0; cf2_bad_reg <= 1'b0;
-                    crcc_bad_reg <= 1'b0;
-                    ch1_check_reg <= 1'b0; ch2_check_reg <= 1'b0;
-                    in_ch2_reg <= 1'b0;
-                    cidx_reg <= 5'd0;
-                    f0_reg <= 8'd0; f1_reg <= 2'd0;
-                end else begin
-                    bit_index_reg <= nbit;
-                    field_index_reg <= nfield;
-                    tx_reg <= tx_bit;
-                    if (n_data && !n_is_crc) req_crc_reg <= req_crc_step;
-                    cnt_reg <= BIT_LAST; cnt_zero_reg <= 1'b0;
-                end
-            end else begin
-                cnt_reg <= cnt_reg - 1'b1;
-                cnt_zero_reg <= cnt_reg == 1;
-            end
-        end
-        WAIT: begin
-            if (rx_busy) begin
-                state_reg <= RECV;
-                idle_reg <= 0;
-            end else if (cnt_zero_reg) begin
-                finish(1'b1);
-            end else begin
-                cnt_reg <= cnt_reg - 1'b1;
-                cnt_zero_reg <= cnt_reg == 1;
-            end
-        end
-        RECV: begin
-            if (rx_valid || rx_frame_err) begin
-                count_reg <= (count_reg > 5'd18) ? 5'd19 : count_reg + 5'd1;
-                frame_err_reg <= frame_err_reg | rx_frame_err;
-                idle_reg <= 0;
-                if (fld_q) begin
-                    if (idx == 5'd0) f0_reg <= rx_data;
-                    if (idx == 5'd1) f1_reg <= rx_data[1:0];
-                    if (idx <= 5'd2) crcc_reg <= cc_chain[8];
-                    if (idx == 5'd2) crcc_bad_reg <= cc_chain[8] != 8'd0;
-                    if (active_q) begin
-                        crc_reg <= crc_after;
-                        if (last_data_q && c16_reg && cn[0]) pad_reg <= 1'b1;
-                        if (last_crc_q) begin
-                            if (in_ch2_reg) begin
-                                ch2_done_reg <= 1'b1;
-                                ch2_check_reg <= 1'b1;
-                            end else begin
-                                ch1_done_reg <= 1'b1;
-                                ch1_check_reg <= 1'b1;
-                            end
-                        end
-                        if (first_ch2_q) cf2_bad_reg <= rx_data != req_cf;
-                    end
-                    if (last_crc_q && !in_ch2_reg) begin
-                        in_ch2_reg <= 1'b1;
-                        cidx_reg <= 5'd0;
-                    end else begin
-                        cidx_reg <= cidx_reg + 5'd1;
-                    end
-                end
-            end else if (!rx_busy) begin
-                idle_reg <= idle_reg + 1'b1;
-                if (end_next_reg) finish(1'b0);
-            end else begin
-                idle_reg <= 0;
-            end
-        end
-        GAP: begin
-            if (cnt_zero_reg) begin
-                begin_send;
-            end else begin
-                cnt_reg <= cnt_reg - 1'b1;
-                cnt_zero_reg <= cnt_reg == 1;
-            end
-        end
-        SETTLE: begin
-            if (cnt_zero_reg) begin
-                finish_done;
-            end else begin
-                cnt_reg <= cnt_reg - 1'b1;
-                cnt_zero_reg <= cnt_reg == 1;
-            end
-        end
-        QUIET: begin
-            if (rx_busy) begin
-                idle_reg <= 0;
-            end else begin
-                idle_reg <= idle_reg + 1'b1;
-                if (quiet_next_reg) finish_done;
-            end
-        end
-        default: state_reg <= IDLE;
-    endcase
-    if (i_rst) begin
-        state_reg <= IDLE;
-        tx_en_reg <= 1'b0;
-        tx_reg <= 1'b1;
-        busy_reg <= 1'b0;
-        done_reg <= 1'b0;
-        page_reg <= 4'd8;
-        seq_known <= 8'd0;
-    end
-end
+reg        tx_reg = 1'b1, tx_next;
+reg        busy_reg = 1'b0, busy_next;
+reg        done_reg = 1'b0, done_next;
+reg [7:0]  cf_reg = 8'd0, cf_next;
+reg [7:0]  sf_reg = 8'd0, sf_next;
+reg [7:0]  sf2_reg = 8'd0, sf2_next;
+reg [7:0]  alm1_reg = 8'd0, alm1_next;
+reg [7:0]  alm2_reg = 8'd0, alm2_next;
+reg [23:0] abs_reg = 24'd0, abs_next;
+reg [15:0] abm_reg = 16'd0, abm_next;
+reg [15:0] rs_reg = 16'd0, rs_next;
+reg [7:0]  sc1_reg = 8'd0, sc1_next;
+reg [6:0]  sc2_reg = 7'd0, sc2_next;
+reg [7:0]  enid_reg = 8'd0, enid_next;
+reg [7:0]  temp_reg = 8'd0, temp_next;
+reg [7:0]  adf_reg = 8'd0, adf_next;
+reg [7:0]  edf_reg = 8'd0, edf_next;
+reg        err_crc1_reg = 1'b0, err_crc1_next;
+reg        err_crc2_reg = 1'b0, err_crc2_next;
+reg        err_timeout_reg = 1'b0, err_timeout_next;
+reg        err_frame_reg = 1'b0, err_frame_next;
+reg        err_cf_reg = 1'b0, err_cf_next;
+reg        err_comm_reg = 1'b0, err_comm_next;
+reg        err_seq_reg = 1'b0, err_seq_next;
+reg        err_rs_reg = 1'b0, err_rs_next;
+reg        err_busy_reg = 1'b0, err_busy_next;
 
 assign o_tx = tx_reg;
 assign o_tx_en = tx_en_reg;
@@ -825,6 +414,712 @@ assign o_err_comm = err_comm_reg;
 assign o_err_seq = err_seq_reg;
 assign o_err_rs = err_rs_reg;
 assign o_err_busy = err_busy_reg;
+
+/* The request: CF (address, code, odd parity), ADF, EDF, then its CRC-8. */
+wire [7:0] req_cf = {~^id_reg, id_reg, address_reg};
+wire [1:0] req_last = (id_reg == ID_E) ? 2'd2 : (id_reg == ID_F) ? 2'd3 : 2'd1;
+wire [3:0] nbit = (bit_index_reg == 4'd9) ? 4'd0 : bit_index_reg + 4'd1;
+wire [1:0] nfield = (bit_index_reg == 4'd9) ? field_index_reg + 2'd1 : field_index_reg;
+reg  [7:0] req_byte;
+always @* begin
+    case (nfield)
+        2'd0: req_byte = req_cf;
+        2'd1: req_byte = {mem_address_reg, 1'b0};
+        default: req_byte = wdata_reg;
+    endcase
+end
+wire       n_is_crc = nfield == req_last;
+wire [2:0] nbit_k = nbit[2:0] - 3'd1;
+wire [2:0] crc_k = 3'd7 - nbit_k;
+wire       n_data = nbit != 4'd0 && nbit != 4'd9;
+wire       tx_bit = (nbit == 4'd0) ? 1'b0 : (nbit == 4'd9) ? 1'b1 : n_is_crc ? req_crc_reg[crc_k] : req_byte[nbit_k];
+wire [7:0] req_crc_step;
+crc_serial #(.WIDTH(8), .POLY(8'h2F)) req_crc_inst (.i_crc(req_crc_reg), .i_bit(tx_bit), .o_crc(req_crc_step));
+wire       send_last = bit_index_reg == 4'd9 && field_index_reg == req_last;
+
+/* The answer's layout for the Data ID asked for (registered from id_reg,
+   long before the first field), and
+   where the next field falls in it: the channel, the index inside the
+   channel, and what that index means, all registered (a field arrives at
+   most every 10 bits, so one cycle of latency is free). */
+reg [4:0]  n1_reg = 5'd0, n1_next;
+reg [4:0]  l1_reg = 5'd0, l1_next;
+reg [4:0]  n2_reg = 5'd0, n2_next;
+reg [4:0]  l2_reg = 5'd0, l2_next;
+reg [4:0]  total_reg = 5'd0, total_next;
+reg        c16_reg = 1'b0, c16_next;
+reg        has2_reg = 1'b0, has2_next;
+reg        has_rs_reg = 1'b0, has_rs_next;
+reg        is_mem_reg = 1'b0, is_mem_next;
+reg        known_reg = 1'b0, known_next;
+reg        in_ch2_reg = 1'b0, in_ch2_next;
+reg [4:0]  cidx_reg = 5'd0, cidx_next;
+reg [4:0]  kind_reg = K_NONE, kind_next;
+reg        active_reg = 1'b0, active_next;
+reg        decode_reg = 1'b0, decode_next;
+reg        last_data_reg = 1'b0, last_data_next;
+reg        last_crc_reg = 1'b0, last_crc_next;
+reg        first_ch2_reg = 1'b0, first_ch2_next;
+wire [4:0] idx = count_reg;
+wire [4:0] cn = in_ch2_reg ? n2_reg : n1_reg;
+wire [4:0] cl = in_ch2_reg ? l2_reg : l1_reg;
+wire [4:0] id_n1 = ch1_fields(id_reg);
+wire [4:0] id_n2 = ch2_fields(id_reg);
+wire       id_c16 = ch1_crc16(id_reg);
+
+/* The result shadows: cleared when the request ends, each written by the
+   field Table 12 puts there (one-hot enables, registered a field ahead). */
+localparam integer D_CF = 0, D_SF1 = 1, D_SF2 = 2, D_ALM1 = 3, D_ALM2 = 4, D_ABS0 = 5, D_ABS1 = 6,
+    D_ABS2 = 7, D_ABM0 = 8, D_ABM1 = 9, D_SC1 = 10, D_ENID = 11, D_TEMP = 12, D_ADF = 13,
+    D_EDF = 14, D_RS0 = 15, D_RS1SC2 = 16, D_ZEROSC2 = 17, D_RS1 = 18, D_RSEXTHI = 19, D_RSEXTLO = 20;
+reg [20:0] dec_reg = 21'd0, dec_next;
+reg        fld_reg = 1'b0, fld_next;   // the next field is one of the first 18 of an answer
+// fld_reg already says RECV (a field never arrives in the cycle after an answer ends).
+wire       field_in = (rx_valid || rx_frame_err) && fld_reg;
+// Cleared a cycle after the request ends: the answer's first field is at
+// least a field time away, and the shadows are read only at its end.
+reg        answer_clear_reg = 1'b0, answer_clear_next;
+
+/* Byte-wide CRC steps: the channel's register (its init at CH2's first
+   field), fed the received byte, or 0x00 for the padding. */
+wire [15:0] crc_base = (first_ch2_reg && !pad_reg) ? (c16_reg ? 16'hFFFF : 16'h0000) : crc_reg;
+wire [7:0]  crc_byte = pad_reg ? 8'h00 : rx_data;
+wire [15:0] c16_chain [0:8];
+wire [7:0]  c8_chain [0:8];
+wire [7:0]  cc_chain [0:8];
+assign c16_chain[0] = crc_base;
+assign c8_chain[0] = crc_base[7:0];
+assign cc_chain[0] = crcc_reg;
+genvar g;
+generate
+    for (g = 0; g < 8; g = g + 1) begin : crc_chain
+        crc_serial #(.WIDTH(16), .POLY(16'h5935)) c16_inst (.i_crc(c16_chain[g]), .i_bit(crc_byte[g]), .o_crc(c16_chain[g+1]));
+        crc_serial #(.WIDTH(8), .POLY(8'h2F)) c8_inst (.i_crc(c8_chain[g]), .i_bit(crc_byte[g]), .o_crc(c8_chain[g+1]));
+        crc_serial #(.WIDTH(8), .POLY(8'h2F)) cc_inst (.i_crc(cc_chain[g]), .i_bit(rx_data[g]), .o_crc(cc_chain[g+1]));
+    end
+endgenerate
+wire [15:0] crc_after = c16_reg ? c16_chain[8] : {8'd0, c8_chain[8]};
+
+/* The checks at the end of an answer (model::esl::frames::check). Their
+   inputs stop changing with the last field, at least CLOCKS_PER_BIT cycles
+   before the end of the answer is seen, so they are computed a cycle ahead
+   into registers (the k_*_reg below) without changing any output cycle. */
+wire [4:0] nbytes = (count_reg > 5'd18) ? 5'd18 : count_reg;
+wire       frame_in = frame_err_reg || count_reg > 5'd18;
+wire       comm_path = nbytes == 5'd3;
+wire       comm_ans = !crcc_bad_reg && (f1_reg != 2'b00);
+wire       k_crc1 = comm_path ? crcc_bad_reg : (!ch1_done_reg || ch1_bad_reg);
+wire       k_crc2 = !comm_path && has2_reg && (!ch2_done_reg || ch2_bad_reg);
+wire       k_frame = comm_path ? (frame_in || !comm_ans) : (frame_in || nbytes != total_reg);
+wire       k_cf = comm_path ? (f0_reg[6:0] != req_cf[6:0]) : ((f0_reg != req_cf) || cf2_bad_reg);
+wire       k_comm = comm_path ? comm_ans : (!is_mem_reg && (s_sf_reg[1:0] != 2'b00 || (has2_reg && s_sf2_reg[1:0] != 2'b00)));
+// Registered: RS and ABS are stable from their fields on.
+reg [8:0]  rs9_diff_reg = 9'd0, rs9_diff_next;
+reg [15:0] rs16_diff_reg = 16'd0, rs16_diff_next;
+wire [15:0] tol16 = TOL;
+wire [8:0]  tol9 = TOL[8:0];
+wire       agree9 = rs9_diff_reg <= tol9 || {7'd0, rs9_diff_reg} >= 16'd512 - tol16;
+wire       agree16 = rs16_diff_reg <= tol16 || ({1'b0, rs16_diff_reg} >= 17'h10000 - {1'b0, tol16});
+reg        agree_reg = 1'b1, agree_next;   // registered: RS and ABS are stable from their fields on
+wire       k_rs = !comm_path && has_rs_reg && !k_crc1 && !k_crc2 && !k_frame && !agree_reg;
+wire       k_any0 = k_crc1 || k_crc2 || k_frame || k_cf || k_comm || k_rs;
+wire       mem_cf = is_mem_reg && !k_any0 && ((s_adf_reg[7:1] != mem_address_reg) || (id_reg == ID_F && !s_adf_reg[0] && s_edf_reg != wdata_reg));
+// This encoder's expected counters, a stage ahead (address and table are stable while it answers).
+reg [7:0]  exp_sc1_reg = 8'd0, exp_sc1_next;
+reg [6:0]  exp_sc2_reg = 7'd0, exp_sc2_next;
+reg        exp_known_reg = 1'b0, exp_known_next;
+reg        k_crc1_reg = 1'b0, k_crc1_next;
+reg        k_crc2_reg = 1'b0, k_crc2_next;
+reg        k_frame_reg = 1'b0, k_frame_next;
+reg        k_cf_reg = 1'b0, k_cf_next;
+reg        k_comm_reg = 1'b0, k_comm_next;
+reg        k_rs_reg = 1'b0, k_rs_next;
+reg        seq_bad_reg = 1'b0, seq_bad_next;
+wire       safety = c16_reg;
+// The end-of-answer decisions, one more stage ahead (their inputs are stable too).
+reg        clean_reg = 1'b0, clean_next;
+reg        flawed_reg = 1'b0, flawed_next;
+reg        mem_clean_reg = 1'b0, mem_clean_next;
+reg        mem_busy_reg = 1'b0, mem_busy_next;
+reg        busy_last_reg = 1'b0, busy_last_next;
+// Any registered check failed but RS (which flags without making the answer untrusted).
+wire       k_any = k_crc1_reg || k_crc2_reg || k_frame_reg || k_cf_reg || k_comm_reg;
+
+// Requests left after this one (the B, C, D repeats).
+wire [3:0] repeats_after = repeats_left_reg - 4'd1;
+
+// Control events of this cycle, acted on after the state case.
+reg             finish;        // an answer (or its absence) is complete (model Host::finish)
+reg             finish_timeout;
+// finish's decisions: the answer was flawed, a busy memory access is repeated,
+// the operation then holds for the write or page time.
+reg             flawed;
+reg             retry;
+reg [CNT_W-1:0] settle;
+
+always @* begin
+    state_next = state_reg;
+    id_next = id_reg;
+    address_next = address_reg;
+    broadcast_next = broadcast_reg;
+    mem_address_next = mem_address_reg;
+    wdata_next = wdata_reg;
+    field_index_next = field_index_reg;
+    bit_index_next = bit_index_reg;
+    cnt_next = cnt_reg;
+    cnt_zero_next = cnt_zero_reg;
+    idle_next = idle_reg;
+    repeats_left_next = repeats_left_reg;
+    tries_left_next = tries_left_reg;
+    count_next = count_reg;
+    frame_err_next = frame_err_reg;
+    page_next = page_reg;
+    req_crc_next = req_crc_reg;
+    f0_next = f0_reg;
+    f1_next = f1_reg;
+    crc_next = crc_reg;
+    crcc_next = crcc_reg;
+    pad_next = 1'b0;
+    ch1_done_next = ch1_done_reg;
+    ch1_bad_next = ch1_bad_reg;
+    ch2_done_next = ch2_done_reg;
+    ch2_bad_next = ch2_bad_reg;
+    cf2_bad_next = cf2_bad_reg;
+    crcc_bad_next = crcc_bad_reg;
+    ch1_check_next = 1'b0;
+    ch2_check_next = 1'b0;
+    in_ch2_next = in_ch2_reg;
+    cidx_next = cidx_reg;
+    s_cf_next = s_cf_reg;
+    s_sf_next = s_sf_reg;
+    s_sf2_next = s_sf2_reg;
+    s_alm1_next = s_alm1_reg;
+    s_alm2_next = s_alm2_reg;
+    s_abs_next = s_abs_reg;
+    s_abm_next = s_abm_reg;
+    s_rs_next = s_rs_reg;
+    s_sc1_next = s_sc1_reg;
+    s_sc2_next = s_sc2_reg;
+    s_enid_next = s_enid_reg;
+    s_temp_next = s_temp_reg;
+    s_adf_next = s_adf_reg;
+    s_edf_next = s_edf_reg;
+    seq_known_next = seq_known_reg;
+    seq_write = 1'b0;
+    tx_next = tx_reg;
+    tx_en_next = tx_en_reg;
+    busy_next = busy_reg;
+    done_next = 1'b0;
+    cf_next = cf_reg;
+    sf_next = sf_reg;
+    sf2_next = sf2_reg;
+    alm1_next = alm1_reg;
+    alm2_next = alm2_reg;
+    abs_next = abs_reg;
+    abm_next = abm_reg;
+    rs_next = rs_reg;
+    sc1_next = sc1_reg;
+    sc2_next = sc2_reg;
+    enid_next = enid_reg;
+    temp_next = temp_reg;
+    adf_next = adf_reg;
+    edf_next = edf_reg;
+    err_crc1_next = err_crc1_reg;
+    err_crc2_next = err_crc2_reg;
+    err_timeout_next = err_timeout_reg;
+    err_frame_next = err_frame_reg;
+    err_cf_next = err_cf_reg;
+    err_comm_next = err_comm_reg;
+    err_seq_next = err_seq_reg;
+    err_rs_next = err_rs_reg;
+    err_busy_next = err_busy_reg;
+    finish = 1'b0;
+    finish_timeout = 1'b0;
+    flawed = 1'b0;
+    retry = 1'b0;
+    settle = 0;
+
+    // The answer's layout and where the next field falls in it.
+    known_next = known_id(id_reg);
+    c16_next = id_c16;
+    n1_next = id_n1;
+    l1_next = id_n1 + (id_c16 ? 5'd2 : 5'd1);
+    n2_next = id_n2;
+    has2_next = id_n2 != 5'd0;
+    l2_next = (id_n2 == 5'd0) ? 5'd0 : id_n2 + (id_c16 ? 5'd2 : 5'd1);
+    total_next = id_n1 + id_n2 + ((id_n2 == 5'd0) ? 5'd1 : 5'd2) * (id_c16 ? 5'd2 : 5'd1);
+    has_rs_next = id_reg == 4'h1 || id_reg == 4'h2 || id_reg == 4'hB || id_reg == 4'h6 || id_reg == 4'hC;
+    is_mem_next = id_reg == ID_E || id_reg == ID_F;
+    kind_next = field_kind(id_reg, in_ch2_reg, cidx_reg);
+    active_next = !in_ch2_reg || (has2_reg && cidx_reg < l2_reg);
+    decode_next = cidx_reg < cn && (!in_ch2_reg || has2_reg);
+    last_data_next = cidx_reg == cn - 5'd1;
+    last_crc_next = cidx_reg == cl - 5'd1;
+    first_ch2_next = in_ch2_reg && cidx_reg == 5'd0;
+
+    // The shadow each field goes to, one-hot.
+    fld_next = state_reg == RECV && count_reg < 5'd18;
+    dec_next = 21'd0;
+    if (decode_reg) begin
+        case (kind_reg)
+            K_CF: dec_next[D_CF] = !in_ch2_reg;
+            K_SF: dec_next[in_ch2_reg ? D_SF2 : D_SF1] = 1'b1;
+            K_ALM: dec_next[in_ch2_reg ? D_ALM2 : D_ALM1] = 1'b1;
+            K_ABS0: dec_next[D_ABS0] = 1'b1;
+            K_ABS1: dec_next[D_ABS1] = 1'b1;
+            K_ABS2: dec_next[D_ABS2] = 1'b1;
+            K_ABM0: dec_next[D_ABM0] = 1'b1;
+            K_ABM1: dec_next[D_ABM1] = 1'b1;
+            K_SC1: dec_next[D_SC1] = 1'b1;
+            K_ENID: dec_next[D_ENID] = !in_ch2_reg;
+            K_TEMP: dec_next[D_TEMP] = 1'b1;
+            K_ADF: dec_next[D_ADF] = 1'b1;
+            K_EDF: dec_next[D_EDF] = 1'b1;
+            K_RS0: dec_next[D_RS0] = 1'b1;
+            K_RS1SC2: dec_next[D_RS1SC2] = 1'b1;
+            K_ZEROSC2: dec_next[D_ZEROSC2] = 1'b1;
+            K_RS1: dec_next[D_RS1] = 1'b1;
+            K_RSEXTHI: dec_next[D_RSEXTHI] = 1'b1;
+            K_RSEXTLO: dec_next[D_RSEXTLO] = 1'b1;
+            default: ;
+        endcase
+    end
+
+    // The shadows (the enables are one-hot: at most one write per field).
+    answer_clear_next = state_reg == SEND && cnt_zero_reg && send_last;
+    if (answer_clear_reg) begin
+        s_cf_next = 8'd0; s_sf_next = 8'd0; s_sf2_next = 8'd0; s_alm1_next = 8'd0; s_alm2_next = 8'd0;
+        s_abs_next = 24'd0; s_abm_next = 16'd0; s_rs_next = 16'd0; s_sc1_next = 8'd0; s_sc2_next = 7'd0;
+        s_enid_next = 8'd0; s_temp_next = 8'd0; s_adf_next = 8'd0; s_edf_next = 8'd0;
+    end else if (field_in) begin
+        if (dec_reg[D_CF]) s_cf_next = rx_data;
+        if (dec_reg[D_SF1]) s_sf_next = rx_data;
+        if (dec_reg[D_SF2]) s_sf2_next = rx_data;
+        if (dec_reg[D_ALM1]) s_alm1_next = rx_data;
+        if (dec_reg[D_ALM2]) s_alm2_next = rx_data;
+        if (dec_reg[D_ABS0]) s_abs_next[7:0] = rx_data;
+        if (dec_reg[D_ABS1]) s_abs_next[15:8] = rx_data;
+        if (dec_reg[D_ABS2]) s_abs_next[23:16] = rx_data;
+        if (dec_reg[D_ABM0]) s_abm_next[7:0] = rx_data;
+        if (dec_reg[D_ABM1]) s_abm_next[15:8] = rx_data;
+        if (dec_reg[D_SC1]) s_sc1_next = rx_data;
+        if (dec_reg[D_ENID]) s_enid_next = rx_data;
+        if (dec_reg[D_TEMP]) s_temp_next = rx_data;
+        if (dec_reg[D_ADF]) s_adf_next = rx_data;
+        if (dec_reg[D_EDF]) s_edf_next = rx_data;
+        if (dec_reg[D_RS0]) s_rs_next = s_rs_reg | {7'd0, rx_data, 1'b0};
+        if (dec_reg[D_RS1SC2] || dec_reg[D_RS1]) s_rs_next = s_rs_reg | {15'd0, rx_data[0]};
+        if (dec_reg[D_RS1SC2] || dec_reg[D_ZEROSC2]) s_sc2_next = rx_data[7:1];
+        if (dec_reg[D_RSEXTHI]) s_rs_next = s_rs_reg | {rx_data, 8'd0};
+        if (dec_reg[D_RSEXTLO]) s_rs_next = s_rs_reg | {8'd0, rx_data};
+    end
+
+    // The end-of-answer checks, a stage or two ahead of finish.
+    rs9_diff_next = s_rs_reg[8:0] - s_abs_reg[23:15];
+    rs16_diff_next = s_rs_reg - s_abs_reg[23:8];
+    agree_next = (id_reg == ID_6) ? agree16 : agree9;
+    k_crc1_next = k_crc1;
+    k_crc2_next = k_crc2;
+    k_frame_next = k_frame;
+    k_cf_next = k_cf || mem_cf;
+    k_comm_next = k_comm;
+    k_rs_next = k_rs;
+    exp_sc1_next = seq_sc1_reg[address_reg] + 8'd1;
+    exp_sc2_next = seq_sc2_reg[address_reg] + 7'd1;
+    exp_known_next = seq_known_reg[address_reg];
+    seq_bad_next = exp_known_reg && (s_sc1_reg != exp_sc1_reg || s_sc2_reg != exp_sc2_reg);
+    clean_next = !k_any;
+    flawed_next = k_any || k_rs_reg;
+    mem_clean_next = is_mem_reg && !k_any;
+    mem_busy_next = s_adf_reg[0];
+    busy_last_next = tries_left_reg == 4'd1;
+
+    if (pad_reg) crc_next = crc_after;
+    // A channel's CRC fields are in: its register must be back at 0 (the wire residue).
+    if (ch1_check_reg) ch1_bad_next = crc_reg != 16'd0;
+    if (ch2_check_reg) ch2_bad_next = crc_reg != 16'd0;
+
+    case (state_reg)
+        IDLE: begin
+            if (i_start) begin
+                id_next = i_data_id;
+                broadcast_next = i_broadcast;
+                address_next = i_broadcast ? BCAST : i_address;
+                mem_address_next = i_mem_address;
+                wdata_next = i_wdata;
+                repeats_left_next = (i_data_id == 4'hB || i_data_id == 4'hC || i_data_id == 4'hD) ? 4'd8 : 4'd1;
+                tries_left_next = TRIES;
+                busy_next = 1'b1;
+                err_crc1_next = 1'b0;
+                err_crc2_next = 1'b0;
+                err_timeout_next = 1'b0;
+                err_frame_next = 1'b0;
+                err_cf_next = 1'b0;
+                err_comm_next = 1'b0;
+                err_seq_next = 1'b0;
+                err_rs_next = 1'b0;
+                err_busy_next = 1'b0;
+                state_next = SEND;
+                field_index_next = 2'd0;
+                bit_index_next = 4'd0;
+                cnt_next = BIT_LAST;
+                cnt_zero_next = 1'b0;
+                req_crc_next = 8'd0;
+                tx_en_next = 1'b1;
+                tx_next = 1'b0;
+            end
+        end
+        SEND: begin
+            if (cnt_zero_reg) begin
+                if (send_last) begin
+                    tx_en_next = 1'b0;
+                    tx_next = 1'b1;
+                    state_next = WAIT;
+                    cnt_next = TIMEOUT_LAST;
+                    cnt_zero_next = 1'b0;
+                    count_next = 5'd0;
+                    frame_err_next = 1'b0;
+                    crc_next = 16'd0;
+                    crcc_next = 8'd0;
+                    ch1_done_next = 1'b0;
+                    ch1_bad_next = 1'b0;
+                    ch2_done_next = 1'b0;
+                    ch2_bad_next = 1'b0;
+                    cf2_bad_next = 1'b0;
+                    crcc_bad_next = 1'b0;
+                    ch1_check_next = 1'b0;
+                    ch2_check_next = 1'b0;
+                    in_ch2_next = 1'b0;
+                    cidx_next = 5'd0;
+                    f0_next = 8'd0;
+                    f1_next = 2'd0;
+                end else begin
+                    bit_index_next = nbit;
+                    field_index_next = nfield;
+                    tx_next = tx_bit;
+                    if (n_data && !n_is_crc) req_crc_next = req_crc_step;
+                    cnt_next = BIT_LAST;
+                    cnt_zero_next = 1'b0;
+                end
+            end else begin
+                cnt_next = cnt_reg - 1'b1;
+                cnt_zero_next = cnt_reg == 1;
+            end
+        end
+        WAIT: begin
+            if (rx_busy) begin
+                state_next = RECV;
+                idle_next = 0;
+            end else if (cnt_zero_reg) begin
+                finish = 1'b1;
+                finish_timeout = 1'b1;
+            end else begin
+                cnt_next = cnt_reg - 1'b1;
+                cnt_zero_next = cnt_reg == 1;
+            end
+        end
+        RECV: begin
+            if (rx_valid || rx_frame_err) begin
+                count_next = (count_reg > 5'd18) ? 5'd19 : count_reg + 5'd1;
+                frame_err_next = frame_err_reg | rx_frame_err;
+                idle_next = 0;
+                if (fld_reg) begin
+                    if (idx == 5'd0) f0_next = rx_data;
+                    if (idx == 5'd1) f1_next = rx_data[1:0];
+                    if (idx <= 5'd2) crcc_next = cc_chain[8];
+                    if (idx == 5'd2) crcc_bad_next = cc_chain[8] != 8'd0;
+                    if (active_reg) begin
+                        crc_next = crc_after;
+                        if (last_data_reg && c16_reg && cn[0]) pad_next = 1'b1;
+                        if (last_crc_reg) begin
+                            if (in_ch2_reg) begin
+                                ch2_done_next = 1'b1;
+                                ch2_check_next = 1'b1;
+                            end else begin
+                                ch1_done_next = 1'b1;
+                                ch1_check_next = 1'b1;
+                            end
+                        end
+                        if (first_ch2_reg) cf2_bad_next = rx_data != req_cf;
+                    end
+                    if (last_crc_reg && !in_ch2_reg) begin
+                        in_ch2_next = 1'b1;
+                        cidx_next = 5'd0;
+                    end else begin
+                        cidx_next = cidx_reg + 5'd1;
+                    end
+                end
+            end else if (!rx_busy) begin
+                idle_next = idle_reg + 1'b1;
+                if (idle_end_reg) finish = 1'b1;
+            end else begin
+                idle_next = 0;
+            end
+        end
+        GAP: begin
+            if (cnt_zero_reg) begin
+                state_next = SEND;
+                field_index_next = 2'd0;
+                bit_index_next = 4'd0;
+                cnt_next = BIT_LAST;
+                cnt_zero_next = 1'b0;
+                req_crc_next = 8'd0;
+                tx_en_next = 1'b1;
+                tx_next = 1'b0;
+            end else begin
+                cnt_next = cnt_reg - 1'b1;
+                cnt_zero_next = cnt_reg == 1;
+            end
+        end
+        SETTLE: begin
+            if (cnt_zero_reg) begin
+                state_next = IDLE;
+                busy_next = 1'b0;
+                done_next = 1'b1;
+            end else begin
+                cnt_next = cnt_reg - 1'b1;
+                cnt_zero_next = cnt_reg == 1;
+            end
+        end
+        QUIET: begin
+            if (rx_busy) begin
+                idle_next = 0;
+            end else begin
+                idle_next = idle_reg + 1'b1;
+                if (idle_quiet_reg) begin
+                    state_next = IDLE;
+                    busy_next = 1'b0;
+                    done_next = 1'b1;
+                end
+            end
+        end
+        default: begin
+            state_next = IDLE;
+        end
+    endcase
+
+    /* End of one request's answer (or of its timeout): check, publish, then
+       repeat, retry, settle, wait for quiet or finish (model Host::finish). */
+    if (finish) begin
+        if (broadcast_reg) begin
+            err_cf_next = err_cf_reg | !finish_timeout;
+            flawed = !finish_timeout;
+        end else if (finish_timeout) begin
+            err_timeout_next = 1'b1;
+            flawed = 1'b1;
+            seq_known_next[address_reg] = 1'b0;
+        end else if (known_reg) begin
+            cf_next = s_cf_reg;
+            sf_next = s_sf_reg;
+            sf2_next = s_sf2_reg;
+            alm1_next = s_alm1_reg;
+            alm2_next = s_alm2_reg;
+            abs_next = s_abs_reg;
+            abm_next = s_abm_reg;
+            rs_next = s_rs_reg;
+            sc1_next = s_sc1_reg;
+            sc2_next = s_sc2_reg;
+            enid_next = s_enid_reg;
+            temp_next = s_temp_reg;
+            adf_next = s_adf_reg;
+            edf_next = s_edf_reg;
+            err_crc1_next = err_crc1_reg | k_crc1_reg;
+            err_crc2_next = err_crc2_reg | k_crc2_reg;
+            err_frame_next = err_frame_reg | k_frame_reg;
+            err_cf_next = err_cf_reg | k_cf_reg;
+            err_comm_next = err_comm_reg | k_comm_reg;
+            err_rs_next = err_rs_reg | k_rs_reg;
+            if (safety && clean_reg) begin
+                // A counter that is not the previous one plus one: a lost,
+                // repeated or stale answer. After an answer that could not be
+                // trusted the next good one is the new reference.
+                err_seq_next = err_seq_reg | seq_bad_reg;
+                seq_known_next[address_reg] = 1'b1;
+                seq_write = 1'b1;
+            end else if (safety) begin
+                seq_known_next[address_reg] = 1'b0;
+            end
+            flawed = flawed_reg;
+            if (mem_clean_reg) begin
+                tries_left_next = tries_left_reg - 4'd1;
+                if (mem_busy_reg && busy_last_reg) begin
+                    err_busy_next = 1'b1;
+                end else if (mem_busy_reg) begin
+                    retry = 1'b1;
+                end else if (id_reg == ID_F) begin
+                    if ({1'b0, mem_address_reg} == PAGE_REGISTER) begin
+                        page_next = wdata_reg[3:0];
+                        settle = PAGE_LAST + 1'b1;
+                    end else if (page_reg == REGISTER_PAGE) begin
+                        settle = 0;
+                    end else begin
+                        settle = WRITE_LAST + 1'b1;
+                    end
+                end
+            end
+        end else begin
+            // A code Table 3 does not list: whatever comes back is not an answer to it.
+            err_cf_next = 1'b1;
+            flawed = 1'b1;
+        end
+        if (retry) begin
+            state_next = GAP;
+            cnt_next = (id_reg == ID_F) ? WRITE_LAST : READ_LAST;
+            cnt_zero_next = 1'b0;
+        end else begin
+            repeats_left_next = repeats_after;
+            if (repeats_after != 4'd0) begin
+                state_next = GAP;
+                cnt_next = GAP_LAST;
+                cnt_zero_next = 1'b0;
+            end else if (flawed) begin
+                state_next = QUIET;
+                idle_next = 0;
+            end else if (settle != 0) begin
+                state_next = SETTLE;
+                cnt_next = settle - 1'b1;
+                cnt_zero_next = 1'b0;
+            end else begin
+                state_next = IDLE;
+                busy_next = 1'b0;
+                done_next = 1'b1;
+            end
+        end
+    end
+end
+
+always @(posedge i_clk) begin
+    state_reg <= state_next;
+    id_reg <= id_next;
+    address_reg <= address_next;
+    broadcast_reg <= broadcast_next;
+    mem_address_reg <= mem_address_next;
+    wdata_reg <= wdata_next;
+    field_index_reg <= field_index_next;
+    bit_index_reg <= bit_index_next;
+    cnt_reg <= cnt_next;
+    cnt_zero_reg <= cnt_zero_next;
+    idle_reg <= idle_next;
+    idle_end_reg <= idle_next == END_LAST;
+    idle_quiet_reg <= idle_next == QUIET_LAST;
+    repeats_left_reg <= repeats_left_next;
+    tries_left_reg <= tries_left_next;
+    count_reg <= count_next;
+    frame_err_reg <= frame_err_next;
+    page_reg <= page_next;
+    req_crc_reg <= req_crc_next;
+    f0_reg <= f0_next;
+    f1_reg <= f1_next;
+    crc_reg <= crc_next;
+    crcc_reg <= crcc_next;
+    pad_reg <= pad_next;
+    ch1_done_reg <= ch1_done_next;
+    ch1_bad_reg <= ch1_bad_next;
+    ch2_done_reg <= ch2_done_next;
+    ch2_bad_reg <= ch2_bad_next;
+    cf2_bad_reg <= cf2_bad_next;
+    crcc_bad_reg <= crcc_bad_next;
+    ch1_check_reg <= ch1_check_next;
+    ch2_check_reg <= ch2_check_next;
+    s_cf_reg <= s_cf_next;
+    s_sf_reg <= s_sf_next;
+    s_sf2_reg <= s_sf2_next;
+    s_alm1_reg <= s_alm1_next;
+    s_alm2_reg <= s_alm2_next;
+    s_abs_reg <= s_abs_next;
+    s_abm_reg <= s_abm_next;
+    s_rs_reg <= s_rs_next;
+    s_sc1_reg <= s_sc1_next;
+    s_sc2_reg <= s_sc2_next;
+    s_enid_reg <= s_enid_next;
+    s_temp_reg <= s_temp_next;
+    s_adf_reg <= s_adf_next;
+    s_edf_reg <= s_edf_next;
+    seq_known_reg <= seq_known_next;
+    if (seq_write) begin
+        seq_sc1_reg[address_reg] <= s_sc1_reg;
+        seq_sc2_reg[address_reg] <= s_sc2_reg;
+    end
+    n1_reg <= n1_next;
+    l1_reg <= l1_next;
+    n2_reg <= n2_next;
+    l2_reg <= l2_next;
+    total_reg <= total_next;
+    c16_reg <= c16_next;
+    has2_reg <= has2_next;
+    has_rs_reg <= has_rs_next;
+    is_mem_reg <= is_mem_next;
+    known_reg <= known_next;
+    in_ch2_reg <= in_ch2_next;
+    cidx_reg <= cidx_next;
+    kind_reg <= kind_next;
+    active_reg <= active_next;
+    decode_reg <= decode_next;
+    last_data_reg <= last_data_next;
+    last_crc_reg <= last_crc_next;
+    first_ch2_reg <= first_ch2_next;
+    dec_reg <= dec_next;
+    fld_reg <= fld_next;
+    answer_clear_reg <= answer_clear_next;
+    rs9_diff_reg <= rs9_diff_next;
+    rs16_diff_reg <= rs16_diff_next;
+    agree_reg <= agree_next;
+    exp_sc1_reg <= exp_sc1_next;
+    exp_sc2_reg <= exp_sc2_next;
+    exp_known_reg <= exp_known_next;
+    k_crc1_reg <= k_crc1_next;
+    k_crc2_reg <= k_crc2_next;
+    k_frame_reg <= k_frame_next;
+    k_cf_reg <= k_cf_next;
+    k_comm_reg <= k_comm_next;
+    k_rs_reg <= k_rs_next;
+    seq_bad_reg <= seq_bad_next;
+    clean_reg <= clean_next;
+    flawed_reg <= flawed_next;
+    mem_clean_reg <= mem_clean_next;
+    mem_busy_reg <= mem_busy_next;
+    busy_last_reg <= busy_last_next;
+    tx_reg <= tx_next;
+    tx_en_reg <= tx_en_next;
+    busy_reg <= busy_next;
+    done_reg <= done_next;
+    cf_reg <= cf_next;
+    sf_reg <= sf_next;
+    sf2_reg <= sf2_next;
+    alm1_reg <= alm1_next;
+    alm2_reg <= alm2_next;
+    abs_reg <= abs_next;
+    abm_reg <= abm_next;
+    rs_reg <= rs_next;
+    sc1_reg <= sc1_next;
+    sc2_reg <= sc2_next;
+    enid_reg <= enid_next;
+    temp_reg <= temp_next;
+    adf_reg <= adf_next;
+    edf_reg <= edf_next;
+    err_crc1_reg <= err_crc1_next;
+    err_crc2_reg <= err_crc2_next;
+    err_timeout_reg <= err_timeout_next;
+    err_frame_reg <= err_frame_next;
+    err_cf_reg <= err_cf_next;
+    err_comm_reg <= err_comm_next;
+    err_seq_reg <= err_seq_next;
+    err_rs_reg <= err_rs_next;
+    err_busy_reg <= err_busy_next;
+
+    // Reset returns the host to IDLE with the line released, page 8 and no
+    // encoder's counters known; results and errors hold until the next
+    // operation, and the answer's registers are loaded before they are read.
+    if (i_rst) begin
+        state_reg <= IDLE;
+        tx_en_reg <= 1'b0;
+        tx_reg <= 1'b1;
+        busy_reg <= 1'b0;
+        done_reg <= 1'b0;
+        page_reg <= 4'd8;
+        seq_known_reg <= 8'd0;
+    end
+end
 
 endmodule
 

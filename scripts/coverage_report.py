@@ -1,0 +1,237 @@
+#!/usr/bin/env python3
+"""coverage_report.py: per-core RTL coverage from Verilator coverage files.
+
+    scripts/coverage_report.py [--baseline FILE] [--write-baseline] CORE=MERGED.dat ...
+
+Each CORE=MERGED.dat is one core's counts, merged over every replay of its
+vector files (scripts/coverage.sh merges them with verilator_coverage).
+Only points in the RTL directory (hdl/rtl, or $RTL_DIR) count: the testbench
+and its vector player are not the design under test. For each core it prints
+
+  * line, branch and toggle figures (covered / total and percent):
+    line    every source line of a Verilator line or branch point; a line is
+            covered when any point spanning it was hit,
+    branch  Verilator's branch points (each arm of an if or ?:),
+    toggle  Verilator's toggle points (one per bit of every signal);
+  * every uncovered line with its code;
+  * every output port of the core (o_* of the testbench's `dut`) that never
+    changed value, and the output bits that never toggled.
+
+With --baseline, exits 1 when a figure falls below the baseline file's
+(lines `core line% branch% toggle%`, '#' comments); --write-baseline writes
+the measured figures of the cores given into that file (others are kept).
+"""
+import argparse
+import os
+import re
+import sys
+from collections import defaultdict
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+def parse_dat(path):
+    """Yields (fields, count) for every point of a Verilator coverage file."""
+    with open(path, encoding="utf-8", errors="replace") as f:
+        for raw in f:
+            if not raw.startswith("C '"):
+                continue
+            key, _, count = raw.rstrip("\n").rpartition("' ")
+            fields = {}
+            for item in key[3:].split("\x01"):
+                if "\x02" in item:
+                    k, v = item.split("\x02", 1)
+                    fields[k] = v
+            yield fields, int(count)
+
+
+def expand_lines(spec, first):
+    """Lines of a point: its `S` list ("12-14,20") or its own line."""
+    lines = set()
+    for part in (spec or "").split(","):
+        part = part.strip()
+        if not part:
+            continue
+        if "-" in part:
+            a, b = part.split("-", 1)
+            lines.update(range(int(a), int(b) + 1))
+        else:
+            lines.add(int(part))
+    return lines or {first}
+
+
+def in_rtl(path, rtl_dir):
+    return os.path.realpath(path).startswith(rtl_dir + os.sep)
+
+
+def pct(hit, total):
+    return 100.0 * hit / total if total else 100.0
+
+
+def analyse(core, dat, rtl_dir):
+    # Points are keyed without the page's module suffix (Verilator names a
+    # module per parameter set: ssi_master__Bc_Cc8...), so that the same
+    # branch or bit under several parameter sets is one point, hit when any
+    # of them hit it.
+    line_hits = defaultdict(int)            # (file, line) -> hits
+    branches = defaultdict(int)             # point -> hits
+    toggles = defaultdict(int)
+    out_bits = defaultdict(dict)            # port -> {bit label: hits}
+    dut = re.compile(r"(^|\.)dut$")
+    for p, n in parse_dat(dat):
+        page = p.get("page", "")
+        fname = p.get("f", "")
+        if not in_rtl(fname, rtl_dir):
+            continue
+        kind = page.split("/", 1)[0]
+        if kind in ("v_line", "v_branch"):
+            for ln in expand_lines(p.get("S"), int(p.get("l", "0"))):
+                line_hits[(fname, ln)] += n
+            if kind == "v_branch":
+                branches[(fname, p.get("l"), p.get("n"), p.get("o"), p.get("h"))] += n
+        elif kind == "v_toggle":
+            name = p.get("o", "")
+            toggles[(fname, p.get("h"), name)] += n
+            if dut.search(p.get("h", "")) and name.startswith("o_"):
+                port = re.sub(r"\[.*$", "", name)
+                out_bits[port][name] = out_bits[port].get(name, 0) + n
+    lines_total = len(line_hits)
+    lines_hit = sum(1 for v in line_hits.values() if v > 0)
+    uncovered = sorted(k for k, v in line_hits.items() if v == 0)
+    return {
+        "core": core,
+        "line": (lines_hit, lines_total),
+        "branch": (sum(1 for v in branches.values() if v > 0), len(branches)),
+        "toggle": (sum(1 for v in toggles.values() if v > 0), len(toggles)),
+        "uncovered": uncovered,
+        "outputs": out_bits,
+    }
+
+
+def source_line(cache, fname, ln):
+    if fname not in cache:
+        try:
+            with open(fname, encoding="utf-8", errors="replace") as f:
+                cache[fname] = f.read().split("\n")
+        except OSError:
+            cache[fname] = []
+    text = cache[fname]
+    return text[ln - 1].strip() if 0 < ln <= len(text) else "?"
+
+
+def report(r, rtl_dir):
+    print(f"== {r['core']}")
+    for kind in ("line", "branch", "toggle"):
+        hit, total = r[kind]
+        print(f"   {kind:<7} {pct(hit, total):6.1f} %  ({hit}/{total})")
+    cache = {}
+    if r["uncovered"]:
+        print(f"   uncovered lines ({len(r['uncovered'])}):")
+        for fname, ln in r["uncovered"]:
+            rel = os.path.relpath(fname, ROOT) if fname.startswith(ROOT + os.sep) else fname
+            print(f"     {rel}:{ln}: {source_line(cache, fname, ln)}")
+    never = sorted(p for p, bits in r["outputs"].items() if all(v == 0 for v in bits.values()))
+    print(f"   outputs that never changed: {', '.join(never) if never else 'none'}")
+    partial = []
+    for port, bits in sorted(r["outputs"].items()):
+        if port in never:
+            continue
+        dead = sorted((b for b, v in bits.items() if v == 0), key=bit_order)
+        if dead:
+            partial.append(f"{port} {compact(dead)}")
+    if partial:
+        print("   output bits that never toggled: " + "; ".join(partial))
+    if not r["outputs"]:
+        print("   (no toggle points on the dut's outputs: was it built with --coverage?)")
+
+
+def bit_order(label):
+    m = re.search(r"\[(\d+)\]$", label)
+    return int(m.group(1)) if m else -1
+
+
+def compact(labels):
+    """o_abs[23], o_abs[22], o_abs[21] -> [21..23]"""
+    idx = sorted(bit_order(b) for b in labels)
+    if idx == [-1]:
+        return ""
+    runs, start, prev = [], idx[0], idx[0]
+    for i in idx[1:] + [None]:
+        if i is not None and i == prev + 1:
+            prev = i
+            continue
+        runs.append(f"{start}" if start == prev else f"{start}..{prev}")
+        if i is not None:
+            start = prev = i
+    return "[" + ",".join(runs) + "]"
+
+
+def read_baseline(path):
+    base = {}
+    if not os.path.exists(path):
+        return base
+    with open(path, encoding="utf-8") as f:
+        for n, raw in enumerate(f, 1):
+            line = raw.split("#", 1)[0].split()
+            if not line:
+                continue
+            if len(line) != 4:
+                sys.exit(f"coverage: {path}:{n}: want `core line% branch% toggle%`, got {raw.strip()!r}")
+            try:
+                base[line[0]] = tuple(float(x) for x in line[1:])
+            except ValueError:
+                sys.exit(f"coverage: {path}:{n}: the figures must be numbers (percent), got {raw.strip()!r}")
+    return base
+
+
+def write_baseline(path, base):
+    with open(path, "w", encoding="utf-8") as f:
+        f.write("# RTL coverage baseline: scripts/coverage.sh fails when a core's figure falls\n")
+        f.write("# below its line here. Percent, one decimal; rewrite with --write-baseline.\n")
+        f.write("# core             line   branch  toggle\n")
+        for core in sorted(base):
+            l, b, t = base[core]
+            f.write(f"{core:<16} {l:6.1f} {b:6.1f} {t:6.1f}\n")
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--baseline", help="baseline file (core line%% branch%% toggle%%)")
+    ap.add_argument("--write-baseline", action="store_true", help="store the measured figures in --baseline")
+    ap.add_argument("cores", nargs="+", metavar="CORE=MERGED.dat")
+    args = ap.parse_args()
+    rtl_dir = os.path.realpath(os.environ.get("RTL_DIR", os.path.join(ROOT, "hdl", "rtl")))
+    results = []
+    for spec in args.cores:
+        core, sep, dat = spec.partition("=")
+        if not sep or not os.path.exists(dat):
+            sys.exit(f"coverage: want CORE=MERGED.dat with an existing file, got {spec!r}")
+        results.append(analyse(core, dat, rtl_dir))
+    for r in results:
+        report(r, rtl_dir)
+    status = 0
+    if args.baseline:
+        base = read_baseline(args.baseline)
+        if args.write_baseline:
+            for r in results:
+                base[r["core"]] = tuple(round(pct(*r[k]), 1) for k in ("line", "branch", "toggle"))
+            write_baseline(args.baseline, base)
+            print(f"coverage: baseline written to {args.baseline}")
+        else:
+            for r in results:
+                if r["core"] not in base:
+                    print(f"coverage: {r['core']} has no line in {args.baseline} (add one with --write-baseline)")
+                    status = 1
+                    continue
+                for kind, want in zip(("line", "branch", "toggle"), base[r["core"]]):
+                    got = round(pct(*r[kind]), 1)
+                    if got < want:
+                        print(f"coverage: {r['core']} {kind} {got:.1f} % is below the baseline {want:.1f} %")
+                        status = 1
+            if status == 0:
+                print(f"coverage: every figure at or above {args.baseline}")
+    return status
+
+
+if __name__ == "__main__":
+    sys.exit(main())
