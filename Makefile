@@ -11,6 +11,8 @@
 #   make bench       model vs Verilator vs Icarus cycles per second
 #   make cosim       every core closed-loop against its encoder emulator (both simulators)
 #   make soak        long runs: 100000 closed-loop transactions per core, the campaigns
+#   make coverage    RTL line/branch/toggle coverage of every core, against the baseline
+#   make mutate      mutation score of every core (long)
 #   make deps        install Icarus, Verilator, yosys, nextpnr, GTKWave, sigrok-cli if missing
 
 CORE ?= ssi_master
@@ -20,7 +22,7 @@ SCENARIO ?=
 CARGO ?= cargo
 TBGEN := target/release/tbgen
 
-.PHONY: all demo vectors test deps build cargo-test hdl-test check-vectors check-gtkw lint sim waves synth bench cosim soak clean
+.PHONY: all demo vectors test deps build cargo-test hdl-test check-vectors check-gtkw lint sim waves synth bench cosim soak coverage mutate clean
 
 all: vectors
 
@@ -77,6 +79,16 @@ cosim:
 soak:
 	@scripts/cosim_regress.sh --sim verilator --transactions 100000
 	$(CARGO) test --release --locked -p model campaign -- --nocapture
+
+# RTL line, branch and toggle coverage of every core over its vectors,
+# against hdl/coverage/baseline.txt (make test reports it from its own
+# Verilator replays).
+coverage:
+	@scripts/coverage.sh
+
+# Mutants of each core replayed against its vectors (long: not in make test).
+mutate:
+	@status=0; for d in vectors/*/; do python3 scripts/mutate.py "$$(basename "$$d")" || status=1; done; exit $$status
 
 synth:
 	@scripts/synth.sh

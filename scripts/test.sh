@@ -12,9 +12,13 @@
 #           cosim                      every core closed-loop against its
 #                                      emulator, 1000 transactions per core
 #                                      and simulator
-#   lane 2: lint, hdl, vectors, gtkw   Verilator lint, every vector file in
-#                                      Icarus and Verilator, committed vectors
-#                                      == fresh ones, every .gtkw in GTKWave
+#   lane 2: lint, hdl, coverage,       Verilator lint, every vector file in
+#           vectors, gtkw              Icarus and Verilator (the Verilator
+#                                      replays on the coverage build), RTL
+#                                      coverage against its baseline,
+#                                      committed vectors == fresh ones, every
+#                                      .gtkw in GTKWave (signals, and the
+#                                      window each opens on)
 #
 # Each stage's output goes to build/test/<stage>.log and is printed whole
 # when the stage ends, so the two lanes never interleave lines. The last
@@ -70,9 +74,13 @@ if [ $fail = 0 ]; then
     (
         lane_fail=0
         stage lint scripts/lint.sh || lane_fail=1
-        stage hdl scripts/regress.sh || lane_fail=1
+        # Coverage costs no second replay: the Verilator replays run on
+        # the coverage-instrumented build and leave their counts behind.
+        stage hdl env COVERAGE=1 scripts/regress.sh || lane_fail=1
+        stage coverage scripts/coverage.sh --report-only || lane_fail=1
         stage vectors scripts/check_vectors.sh || lane_fail=1
         stage gtkw scripts/check_gtkw.sh || lane_fail=1
+        stage gtkw-window scripts/check_gtkw_window.sh || lane_fail=1
         exit $lane_fail
     ) &
     lane2=$!
