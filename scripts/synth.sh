@@ -3,8 +3,8 @@
 # place & route it, and check it meets its required clock frequency.
 #
 # Usage:
-#   scripts/synth.sh              every core listed in hdl/synth.cfg
-#   scripts/synth.sh CORE...      only these cores (each must be listed in the config)
+#   scripts/synth.sh              every core with a hdl/tb/<core>/synth.cfg
+#   scripts/synth.sh CORE...      only these cores (each must have its synth.cfg)
 #
 # Flow, per core (all outputs in build/synth/):
 #   1. yosys 0.23:  read_verilog -defer hdl/rtl/*.v      (all RTL files; only what the
@@ -22,7 +22,9 @@
 # (the core and its log file are named); 2 for a bad config or command line.
 #
 # Environment overrides (paths may be relative to the current directory):
-#   SYNTH_CFG          config file            (default: <repo>/hdl/synth.cfg)
+#   SYNTH_CFG          one config file listing cores, instead of every
+#                      hdl/tb/<core>/synth.cfg (each core keeps its target in
+#                      its own folder, so a new core adds no line elsewhere)
 #   RTL_DIR            directory of *.v files (default: <repo>/hdl/rtl)
 #   SYNTH_BUILD_DIR    output directory       (default: <repo>/build/synth)
 #   SYNTH_SEED         nextpnr placer seed    (default: 1, fixed so figures reproduce)
@@ -33,7 +35,26 @@
 #   SYNTH_SKIP_MISSING =1: a core whose RTL_DIR/<core>.v does not exist yet is shown
 #                      as SKIP instead of FAIL.
 #
-# Config file format: see the header of hdl/synth.cfg.
+# Config file format (hdl/tb/<core>/synth.cfg, or SYNTH_CFG):
+#
+# One core per line:
+#
+#   <core-name> <required-fmax-MHz> [PARAM=value ...]
+#
+#   core-name     Verilog module name; its RTL is hdl/rtl/<core-name>.v. All of
+#                 hdl/rtl/*.v are read, so sub-modules may live in other files.
+#                 Each core may appear only once (outputs are named after it).
+#   required-fmax Clock frequency in MHz the core must reach after place & route
+#                 (integer or decimal). It is also nextpnr's --freq target. If the
+#                 core has several clocks, the one from input port clk, i_clk or
+#                 clk_i is judged (override with SYNTH_CLOCK="<port> ...").
+#   PARAM=value   Top-level parameter overrides, applied with yosys
+#                 `chparam -set PARAM value <core>`. No spaces around '='.
+#                 Prefer plain decimal values (12, 200): like unsized Verilog
+#                 literals they become 32-bit. A sized literal (4'd3) keeps its
+#                 width, and a string needs double quotes (NAME="abc").
+#
+# '#' starts a comment (whole line or end of line); blank lines are ignored.
 set -euo pipefail
 
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -41,7 +62,13 @@ ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 # Resolve a path given by the user relative to the directory we were started in.
 abspath() { case $1 in /*) echo "$1" ;; *) echo "$PWD/$1" ;; esac; }
 
-CFG=$(abspath "${SYNTH_CFG:-$ROOT/hdl/synth.cfg}")
+if [[ -n ${SYNTH_CFG:-} ]]; then
+    CFGS=("$(abspath "$SYNTH_CFG")")
+else
+    shopt -s nullglob
+    CFGS=("$ROOT"/hdl/tb/*/synth.cfg)
+    shopt -u nullglob
+fi
 RTL=$(abspath "${RTL_DIR:-$ROOT/hdl/rtl}")
 OUT=$(abspath "${SYNTH_BUILD_DIR:-$ROOT/build/synth}")
 SEED=${SYNTH_SEED:-1}
@@ -62,13 +89,15 @@ fi
 for tool in yosys nextpnr-ice40; do
     command -v "$tool" >/dev/null 2>&1 || die "$tool not found; run scripts/deps.sh (or: apt-get install $tool)"
 done
-[[ -f $CFG ]] || die "config file $CFG not found"
+(( ${#CFGS[@]} )) || die "no hdl/tb/<core>/synth.cfg found (nor SYNTH_CFG)"
+for CFG in "${CFGS[@]}"; do [[ -f $CFG ]] || die "config file $CFG not found"; done
 [[ -d $RTL ]] || die "RTL directory $RTL not found"
 
 # ---------------------------------------------------------------------------
 # Read the config: CORES[i], FMAX[i], PARAMS[i] (space-separated NAME=VALUE list).
 # ---------------------------------------------------------------------------
 CORES=(); FMAX=(); PARAMS=()
+for CFG in "${CFGS[@]}"; do
 lineno=0
 while IFS= read -r line || [[ -n $line ]]; do
     lineno=$((lineno + 1))
@@ -88,6 +117,7 @@ while IFS= read -r line || [[ -n $line ]]; do
     done
     CORES+=("$core"); FMAX+=("$fmax"); PARAMS+=("${words[*]:2}")
 done <"$CFG"
+done
 
 # Which cores to run: all, or those named on the command line.
 SELECTED=()
@@ -95,14 +125,14 @@ if (( $# )); then
     for want in "$@"; do
         found=
         for i in "${!CORES[@]}"; do [[ ${CORES[i]} == "$want" ]] && found=$i; done
-        [[ -n $found ]] || die "core '$want' is not listed in $CFG"
+        [[ -n $found ]] || die "core '$want' has no synthesis target: add hdl/tb/$want/synth.cfg"
         SELECTED+=("$found")
     done
 else
     SELECTED=("${!CORES[@]}")
 fi
 if (( ${#SELECTED[@]} == 0 )); then
-    echo "synth: no cores listed in $CFG; nothing to do."
+    echo "synth: no cores listed; nothing to do."
     exit 0
 fi
 
