@@ -31,6 +31,9 @@ while [ $# -gt 0 ]; do
     esac
 done
 root=$(cd "$(dirname "$0")/.." && pwd)
+# Every Verilator build compiles the same runtime (verilated*.cpp): with
+# ccache (make deps installs it) each build after the first reuses it.
+command -v ccache > /dev/null 2>&1 && export OBJCACHE=${OBJCACHE:-ccache}
 case "$core" in
 ssi_master) proto=ssi emu=ssi_encoder_emu ;;
 biss_master) proto=biss emu=biss_slave_emu ;;

@@ -22,7 +22,9 @@
 #             sigrok-cli          [sigrok-cli]  + the protocol decoders for `-P uart`;
 #                                               on Debian they ship inside
 #                                               libsigrokdecode4 (/usr/share/libsigrokdecode/decoders)
-#   optional: icepack, icetime    [fpga-icestorm]  installed if possible, only a warning
+#   optional: ccache              [ccache]      Verilator builds share the compiled
+#                                               runtime (verilated*.cpp) through it
+#             icepack, icetime    [fpga-icestorm]  installed if possible, only a warning
 #                                               if not. Note: icetime's timing analysis also
 #                                               needs the big fpga-icestorm-chipdb package,
 #                                               which is NOT installed (nextpnr does timing).
@@ -54,6 +56,7 @@ REQUIRED_TOOLS=(
 OPTIONAL_TOOLS=(
     "icepack:fpga-icestorm"
     "icetime:fpga-icestorm"
+    "ccache:ccache"
 )
 # Package that ships sigrok's Python protocol decoders (uart, spi, ...) on Debian.
 SIGROK_DECODERS_PKG=libsigrokdecode4
@@ -186,6 +189,11 @@ print_versions() {
     ver_line sigrok-cli    "$(first_line sigrok-cli --version), decoders: $SIGROK_DECODERS_PKG $(pkg_version "$SIGROK_DECODERS_PKG")"
     # xvfb-run lets make test open GTKWave headless (scripts/check_gtkw.sh).
     ver_line xvfb-run      "xvfb $(pkg_version xvfb)"
+    if have ccache; then
+        ver_line ccache    "$(first_line ccache --version) (optional)"
+    else
+        ver_line ccache    "not installed (optional)"
+    fi
     # icepack/icetime have no version option: report the package.
     if have icepack; then
         ver_line icepack/icetime "fpga-icestorm $(pkg_version fpga-icestorm) (optional)"

@@ -25,6 +25,9 @@ usage() { echo "usage: $0 <core> <icarus|verilator> <vectors.hex> [waves.vcd]" >
 [ $# -ge 3 ] || usage
 core=$1 sim=$2 vectors=$3 waves=${4:-}
 root=$(cd "$(dirname "$0")/.." && pwd)
+# Every Verilator build compiles the same runtime (verilated*.cpp): with
+# ccache (make deps installs it) each build after the first reuses it.
+command -v ccache > /dev/null 2>&1 && export OBJCACHE=${OBJCACHE:-ccache}
 tb="$root/hdl/tb/$core/tb_$core.v"
 [ -f "$tb" ] || { echo "sim.sh: no testbench $tb for core '$core'" >&2; exit 2; }
 [ -f "$vectors" ] || { echo "sim.sh: no vector file $vectors" >&2; exit 2; }
