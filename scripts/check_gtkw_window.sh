@@ -30,12 +30,14 @@ for gtkw in "${files[@]}"; do
 import json, sys
 d = json.load(open(sys.argv[1]))
 ps = 10**12 // d["f_sys_hz"]
+# A transaction's span, whatever the protocol calls its cycle fields
+# (start_cycle/done_cycle, sent_cycle/cycle, sof_cycle/cycle): from the
+# earliest to the latest of them.
 spans = []
 for t in d["transactions"]:
-    if "start_cycle" in t:
-        spans.append((t["start_cycle"], t["done_cycle"]))
-    else:
-        spans.append((t.get("sent_cycle") if t.get("sent_cycle") is not None else t["cycle"], t["cycle"]))
+    cycles = [v for k, v in t.items() if k.endswith("cycle") and isinstance(v, int)]
+    if cycles:
+        spans.append((min(cycles), max(cycles)))
 lasting = [s for s in spans if s[1] > s[0]] or [(0, d["cycles"])]
 print(lasting[0][0] * ps, lasting[0][1] * ps)
 PY

@@ -49,6 +49,32 @@ impl Protocol for BenchConfig {
     const SIGROK_DECODER: Option<&'static str> = Some("can");
     const SIGROK_MINIMUM: (usize, usize) = (13, 281);
 
+    /// The controller's state (and the listen-only monitor's) by the RTL's
+    /// `localparam` names, which keep the underscores (`CRC_DELIM`).
+    fn wave_names() -> Vec<(&'static str, Vec<(u64, String)>)> {
+        use model::can::State as S;
+        let names: Vec<(u64, String)> = [
+            (S::Integrate, "INTEGRATE"),
+            (S::Idle, "IDLE"),
+            (S::Frame, "FRAME"),
+            (S::CrcDelim, "CRC_DELIM"),
+            (S::AckSlot, "ACK_SLOT"),
+            (S::AckDelim, "ACK_DELIM"),
+            (S::Eof, "EOF"),
+            (S::Intermission, "INTERMISSION"),
+            (S::Suspend, "SUSPEND"),
+            (S::ErrFlag, "ERR_FLAG"),
+            (S::OvlFlag, "OVL_FLAG"),
+            (S::ErrWait, "ERR_WAIT"),
+            (S::ErrDelim, "ERR_DELIM"),
+            (S::BusOff, "BUS_OFF"),
+        ]
+        .iter()
+        .map(|&(s, n)| (s as u64, n.to_string()))
+        .collect();
+        vec![("state", names.clone()), ("monitor_state", names)]
+    }
+
     fn decode_command() -> Option<clap::Command> {
         Some(DecodeArgs::command())
     }

@@ -65,6 +65,11 @@ impl Protocol for BenchConfig {
     const SIGROK_DECODER: Option<&'static str> = Some("uart");
     const SIGROK_MINIMUM: (usize, usize) = (2, 100);
 
+    fn wave_names() -> Vec<(&'static str, Vec<(u64, String)>)> {
+        use model::modbus::State as S;
+        vec![("state", crate::registry::enum_names(&[S::Idle, S::Silence, S::Send, S::Wait, S::Recv], |s| s as u64))]
+    }
+
     fn timing_command() -> Option<clap::Command> {
         Some(TimingArgs::command())
     }

@@ -60,6 +60,11 @@ impl Protocol for BenchConfig {
     const SIGROK_DECODER: Option<&'static str> = Some("uart");
     const SIGROK_MINIMUM: (usize, usize) = (4, 100);
 
+    fn wave_names() -> Vec<(&'static str, Vec<(u64, String)>)> {
+        use model::sar58k24::State as S;
+        vec![("state", crate::registry::enum_names(&[S::Idle, S::Trigger, S::Clr, S::Send, S::Wait], |s| s as u64))]
+    }
+
     fn timing_command() -> Option<clap::Command> {
         Some(TimingArgs::command())
     }
