@@ -22,6 +22,10 @@
 #             sigrok-cli          [sigrok-cli]  + the protocol decoders for `-P uart`;
 #                                               on Debian they ship inside
 #                                               libsigrokdecode4 (/usr/share/libsigrokdecode/decoders)
+#   python:   .venv/ at the repository root, from python/requirements.txt
+#             (pinned; transitive pins in python/constraints.txt): cocotb,
+#             maturin, fusesoc, canopen. Rebuilt only when either file changes
+#             (a stamp in .venv/ holds their hash). Needs python3 with venv.
 #   optional: ccache              [ccache]      Verilator builds share the compiled
 #                                               runtime (verilated*.cpp) through it
 #             icepack, icetime    [fpga-icestorm]  installed if possible, only a warning
@@ -189,6 +193,7 @@ print_versions() {
     ver_line sigrok-cli    "$(first_line sigrok-cli --version), decoders: $SIGROK_DECODERS_PKG $(pkg_version "$SIGROK_DECODERS_PKG")"
     # xvfb-run lets make test open GTKWave headless (scripts/check_gtkw.sh).
     ver_line xvfb-run      "xvfb $(pkg_version xvfb)"
+    ver_line python        "$("$VENV/bin/python" --version 2>&1) in .venv: $("$VENV/bin/python" -m pip freeze 2>/dev/null | grep -E '^(cocotb|maturin|fusesoc|canopen)==' | tr '\n' ' ')"
     if have ccache; then
         ver_line ccache    "$(first_line ccache --version) (optional)"
     else
@@ -200,6 +205,35 @@ print_versions() {
     else
         ver_line icepack/icetime "not installed (optional)"
     fi
+}
+
+# The project's Python environment. Idempotent: when .venv/ exists and its stamp
+# matches the hash of the two pin files, this only checks the interpreter runs.
+REPO_ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+VENV=$REPO_ROOT/.venv
+python_pins_hash() {
+    cat "$REPO_ROOT/python/requirements.txt" "$REPO_ROOT/python/constraints.txt" | sha256sum | cut -d' ' -f1
+}
+venv_is_current() {
+    [[ -x $VENV/bin/python && -f $VENV/.pins && $(cat "$VENV/.pins") == "$(python_pins_hash)" ]]
+}
+ensure_venv() {
+    venv_is_current && return 0
+    if ! have python3 || ! python3 -c 'import venv, ensurepip' >/dev/null 2>&1; then
+        err "python3 with the venv module is needed for .venv/. Fix: sudo apt-get install python3-venv"
+        return 1
+    fi
+    say "building .venv from python/requirements.txt"
+    # The stamp is written last: an interrupted install has none, so the next
+    # run starts again from an empty .venv instead of trusting a half-filled one.
+    # (Built in place: a venv's scripts name its path, so it cannot be renamed.)
+    rm -rf "$VENV"
+    python3 -m venv "$VENV" || return 1
+    "$VENV/bin/pip" install -q --disable-pip-version-check \
+        -r "$REPO_ROOT/python/requirements.txt" -c "$REPO_ROOT/python/constraints.txt" || {
+        err "pip install into .venv failed (see above); is PyPI reachable?"
+        return 1; }
+    python_pins_hash > "$VENV/.pins"
 }
 
 main() {
@@ -259,6 +293,13 @@ main() {
         tool=${pair%%:*}; pkg=${pair#*:}
         have "$tool" || warn "optional tool '$tool' is missing (sudo apt-get install $pkg)"
     done
+
+    if [[ $check_only -eq 0 ]]; then
+        ensure_venv || failed=1
+    elif ! venv_is_current; then
+        err ".venv is missing or older than python/requirements.txt. Fix: make deps"
+        failed=1
+    fi
 
     if [[ $failed -ne 0 ]]; then
         err "toolchain incomplete; see the messages above."
