@@ -22,6 +22,7 @@ pub mod angle;
 pub mod biss;
 pub mod bits;
 pub mod can;
+pub mod canopen;
 pub mod crc;
 pub mod endat;
 pub mod error;

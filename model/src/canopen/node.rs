@@ -1,0 +1,164 @@
+//! The encoder as a node on the bit-level bus: an [`Encoder`] behind a
+//! generic CAN node ([`crate::can::Emulator`]) with its own transceiver
+//! place, oscillator offset and bit timing from its bit-rate code.
+//!
+//! ```text
+//!  can::Emulator (controller) ── o_rx_valid ──> Encoder::on_frame ──> queue (+ response_delay) ──> load when !o_tx_busy
+//!                                 every cycle ──> Encoder::poll  ─────┘   (one frame at a time, in the order produced)
+//! ```
+//! A reset that changes the bit-rate code (5000h) rebuilds the controller
+//! at the new bit rate; it integrates 11 recessive bits before sending its
+//! boot-up, as after power-on.
+
+use std::collections::VecDeque;
+
+use super::encoder::{Encoder, EncoderConfig, BIT_RATES_KBPS};
+use crate::can::emulator::NodeSettings;
+use crate::can::frame::Frame;
+use crate::can::{BitTiming, ControllerConfig, Emulator};
+use crate::{ConfigError, Result, Timebase};
+
+/// Bit timing rules shared by every node of a bench: quanta per bit,
+/// sample point, SJW and synchroniser flops.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NodeTiming {
+    /// Quanta per bit wanted (another from 25 down to 8 is taken if this one does not divide f_sys).
+    pub tq_per_bit: u32,
+    /// Sample point, fraction of the bit.
+    pub sample_point: f64,
+    /// SJW, quanta.
+    pub sjw: u32,
+    /// Synchroniser flops.
+    pub sync_stages: u32,
+}
+
+impl Default for NodeTiming {
+    fn default() -> Self {
+        NodeTiming { tq_per_bit: 16, sample_point: 0.875, sjw: 1, sync_stages: 2 }
+    }
+}
+
+impl NodeTiming {
+    /// The controller configuration for `kbps` at `tb`.
+    pub fn controller(&self, tb: &Timebase, kbps: u32) -> Result<ControllerConfig> {
+        let f = tb.f_sys_hz();
+        let tries = std::iter::once(self.tq_per_bit).chain((8..=25).rev());
+        for tq in tries {
+            if let Ok(t) = BitTiming::for_rate(f, kbps as f64 * 1e3, tq, self.sample_point, self.sjw) {
+                return Ok(ControllerConfig { timing: t, sync_stages: self.sync_stages });
+            }
+        }
+        Err(ConfigError::invalid("f_sys_mhz", format!("{} Hz has no bit timing of 8 to 25 quanta for {kbps} kbit/s", f), "choose f_sys a multiple of the bit rate × 8 .. 25 (40 MHz fits every rate but 800 kbit/s; 48 or 64 MHz fit all)"))
+    }
+}
+
+/// The encoder on the bus.
+#[derive(Debug, Clone)]
+pub struct EncoderNode {
+    enc: Encoder,
+    emu: Emulator,
+    settings: NodeSettings,
+    timing: NodeTiming,
+    tb: Timebase,
+    code: u8,
+    queue: VecDeque<(u64, Frame)>,
+    seen: usize,
+    cycle: u64,
+    delay: u64,
+    received: Vec<(u64, Frame)>,
+}
+
+impl EncoderNode {
+    /// The node at power-on (its boot-up queued).
+    pub fn new(cfg: &EncoderConfig, settings: &NodeSettings, timing: NodeTiming, tb: &Timebase) -> Result<EncoderNode> {
+        let mut enc = Encoder::new(cfg)?;
+        let boot = enc.power_on(0);
+        let code = enc.bit_code();
+        let emu = Emulator::new(&NodeSettings { frames: Vec::new(), ..settings.clone() }, timing.controller(tb, BIT_RATES_KBPS[code as usize])?, tb)?;
+        Ok(EncoderNode {
+            enc,
+            emu,
+            settings: settings.clone(),
+            timing,
+            tb: *tb,
+            code,
+            queue: boot.into_iter().map(|f| (0, f)).collect(),
+            seen: 0,
+            cycle: 0,
+            delay: tb.cycles_nearest_ns(cfg.response_delay_us * 1e3),
+            received: Vec::new(),
+        })
+    }
+
+    fn now_ns(&self) -> u64 {
+        self.tb.ps_at(self.cycle) / 1000
+    }
+
+    /// One reference cycle; returns the node's TXD level.
+    pub fn step(&mut self, rx: bool) -> bool {
+        let now = self.now_ns();
+        let ready = self.cycle + self.delay;
+        let new: Vec<Frame> = self.emu.received()[self.seen..].to_vec();
+        self.seen += new.len();
+        for f in new {
+            self.received.push((self.cycle, f.clone()));
+            let out = self.enc.on_frame(&f, now);
+            self.queue.extend(out.into_iter().map(|f| (ready, f)));
+        }
+        let due = self.enc.poll(now);
+        self.queue.extend(due.into_iter().map(|f| (self.cycle, f)));
+        if self.enc.bit_code() != self.code {
+            // A reset applied a new 5000h: the controller restarts at the new rate.
+            self.code = self.enc.bit_code();
+            if let Ok(cc) = self.timing.controller(&self.tb, BIT_RATES_KBPS[self.code as usize]) {
+                if let Ok(e) = Emulator::new(&NodeSettings { frames: Vec::new(), ..self.settings.clone() }, cc, &self.tb) {
+                    self.emu = e;
+                    self.seen = 0;
+                }
+            }
+        }
+        if let Some((t, f)) = self.queue.front() {
+            if *t <= self.cycle && !self.emu.controller().out().o_tx_busy && self.emu.load(f) {
+                self.queue.pop_front();
+            }
+        }
+        self.cycle += 1;
+        self.emu.step(rx)
+    }
+
+    /// The encoder.
+    pub fn encoder(&self) -> &Encoder {
+        &self.enc
+    }
+
+    /// The encoder, to move its disk or raise an alarm (queue the frames it returns with [`EncoderNode::send`]).
+    pub fn encoder_mut(&mut self) -> &mut Encoder {
+        &mut self.enc
+    }
+
+    /// Queues frames to send now.
+    pub fn send(&mut self, frames: Vec<Frame>) {
+        let c = self.cycle;
+        self.queue.extend(frames.into_iter().map(|f| (c, f)));
+    }
+
+    /// Frames the node sent, in order.
+    pub fn sent(&self) -> &[Frame] {
+        self.emu.sent()
+    }
+
+    /// Frames the node received, with the reference cycle it handed each to the encoder.
+    pub fn received(&self) -> &[(u64, Frame)] {
+        &self.received
+    }
+
+    /// The node's CAN node (controller, counters).
+    pub fn can(&self) -> &Emulator {
+        &self.emu
+    }
+
+    /// The time now, ns.
+    pub fn time_ns(&self) -> u64 {
+        self.now_ns()
+    }
+}
