@@ -22,6 +22,7 @@
 
 pub mod cob;
 pub mod encoder;
+pub mod master;
 pub mod node;
 pub mod od;
 pub mod scaling;

@@ -440,3 +440,133 @@ fn three_encoders_boot_on_one_bus() {
     let ids: Vec<u32> = log.iter().map(|(_, f)| f.id).collect();
     assert_eq!(ids, vec![0x81, 0x82, 0x83]);
 }
+
+mod master {
+    use super::super::master::{In, Master, MasterConfig, Out, Param, State};
+    use super::*;
+
+    fn cfg(node: u8, params: Vec<Param>) -> MasterConfig {
+        let tb = Timebase::from_mhz(40.0).unwrap();
+        MasterConfig { can: NodeTiming::default().controller(&tb, 250).unwrap(), node, params, boot_timeout: 400_000, sdo_timeout: 200_000, retries: 2, pdo_timeout: 600_000, sync_period: 0 }
+    }
+
+    /// Runs the master with `encoders` (and a mute acknowledging node if none) for `cycles`; every output.
+    fn run(m: &mut Master, encoders: &mut [EncoderNode], cycles: u64) -> Vec<Out> {
+        let tb = Timebase::from_mhz(40.0).unwrap();
+        let mut places = vec![crate::can::bus::Place { position_m: 0.0, loop_delay_ns: 150.0 }];
+        places.extend((0..encoders.len().max(1)).map(|k| crate::can::bus::Place { position_m: 10.0 * (k + 1) as f64, loop_delay_ns: 150.0 }));
+        let mut bus = Bus::new(&places, 5.0, &tb);
+        let mut mute = Emulator::new(&NodeSettings { name: "mute".into(), position_m: 10.0, loop_delay_ns: 150.0, ppm: 0.0, ack: true, frames: vec![] }, NodeTiming::default().controller(&tb, 250).unwrap(), &tb).unwrap();
+        let mut outs = Vec::with_capacity(cycles as usize);
+        for _ in 0..cycles {
+            let o = m.step(&In { i_start: false, i_can_rx: bus.rx(0) });
+            let mut tx = vec![o.o_can_tx];
+            if encoders.is_empty() {
+                tx.push(mute.step(bus.rx(1)));
+            }
+            for (k, e) in encoders.iter_mut().enumerate() {
+                tx.push(e.step(bus.rx(k + 1)));
+            }
+            bus.push(&tx);
+            outs.push(o);
+        }
+        outs
+    }
+
+    fn encoder(node: u8, raw: u64) -> EncoderNode {
+        let tb = Timebase::from_mhz(40.0).unwrap();
+        let s = NodeSettings { name: format!("enc{node}"), position_m: 10.0, loop_delay_ns: 150.0, ppm: 0.0, ack: true, frames: vec![] };
+        EncoderNode::new(&EncoderConfig { node_switch: node, raw_position: raw, ..Default::default() }, &s, NodeTiming::default(), &tb).unwrap()
+    }
+
+    fn cycles_of(outs: &[Out], f: impl Fn(&Out) -> bool) -> Vec<usize> {
+        outs.iter().enumerate().filter(|(_, o)| f(o)).map(|(k, _)| k).collect()
+    }
+
+    /// Seed 003 §8 driven by the master: boot-up, 6200h = 10 ms by SDO, NMT start, a position every 10 ms.
+    #[test]
+    fn master_runs_the_setup_example() {
+        let mut m = Master::new(&cfg(0x0C, vec![Param { index: 0x6200, sub: 0, size: 2, value: 10 }])).unwrap();
+        let mut e = vec![encoder(0x0C, 4242)];
+        let outs = run(&mut m, &mut e, 1_400_000);
+        assert_eq!(cycles_of(&outs, |o| o.o_booted).len(), 1);
+        assert_eq!(cycles_of(&outs, |o| o.o_config_done).len(), 1);
+        let pos = cycles_of(&outs, |o| o.o_pos_valid);
+        assert_eq!(pos.len(), 3, "PDOs at 10, 20, 30 ms after the start");
+        for &k in &pos {
+            assert_eq!(outs[k].o_position, 4242);
+        }
+        for w in pos.windows(2) {
+            assert!((w[1] - w[0]).abs_diff(400_000) <= 160);
+        }
+        assert!(cycles_of(&outs, |o| o.o_sdo_abort || o.o_node_lost || o.o_pos_timeout).is_empty());
+        assert_eq!(m.state(), State::Run);
+        // The encoder saw exactly the note's SDO bytes, sized (2B) instead of 22: same object, same value.
+        let sdo: Vec<&Frame> = e[0].received().iter().map(|(_, f)| f).filter(|f| f.id == 0x60C).collect();
+        assert_eq!(sdo.len(), 1);
+        assert_eq!(sdo[0].data, vec![0x2B, 0x00, 0x62, 0x00, 0x0A, 0x00, 0x00, 0x00]);
+    }
+
+    /// An abort stops the configuration and reports code, index and sub-index.
+    #[test]
+    fn master_reports_an_abort() {
+        let mut m = Master::new(&cfg(3, vec![Param { index: 0x6000, sub: 0, size: 2, value: 4 }, Param { index: 0x6001, sub: 0, size: 4, value: 1 }])).unwrap();
+        let outs = run(&mut m, &mut [encoder(3, 0)], 200_000);
+        let a = cycles_of(&outs, |o| o.o_sdo_abort);
+        assert_eq!(a.len(), 1);
+        let o = outs[a[0]];
+        assert_eq!((o.o_abort_code, o.o_abort_index, o.o_abort_sub), (abort::TOO_LOW, 0x6001, 0));
+        assert_eq!(m.state(), State::Failed);
+        assert!(cycles_of(&outs, |o| o.o_config_done).is_empty());
+    }
+
+    /// A node that never boots: reset-node retries, then o_node_lost after (RETRIES + 1) × BOOT_TIMEOUT.
+    #[test]
+    fn master_flags_a_silent_node() {
+        let mut m = Master::new(&cfg(5, vec![])).unwrap();
+        let outs = run(&mut m, &mut [], 1_300_000);
+        assert_eq!(cycles_of(&outs, |o| o.o_node_lost), vec![3 * 400_000 - 1]);
+        assert_eq!(m.state(), State::Failed);
+    }
+
+    /// SYNC producer with TPDO2: positions arrive after each SYNC; the age resets; an emergency is captured.
+    #[test]
+    fn master_sync_pdo_and_emergency() {
+        let mut c = cfg(7, vec![]);
+        c.sync_period = 80_000; // 2 ms
+        let mut m = Master::new(&c).unwrap();
+        let mut e = vec![encoder(7, 99)];
+        let outs = run(&mut m, &mut e, 300_000);
+        let syncs = cycles_of(&outs, |o| o.o_sync_sent).len();
+        let pos = cycles_of(&outs, |o| o.o_pos_valid);
+        assert!(syncs >= 2 && pos.len() == syncs, "{syncs} SYNCs, {} PDOs", pos.len());
+        assert_eq!(outs[pos[0]].o_position, 99);
+        assert_eq!(outs[pos[0] + 1].o_pos_age, 1);
+        let f = e[0].encoder_mut().set_alarm(true, 0);
+        e[0].send(f);
+        let outs = run(&mut m, &mut e, 40_000);
+        let em = cycles_of(&outs, |o| o.o_emcy_valid);
+        assert_eq!(em.len(), 1);
+        assert_eq!((outs[em[0]].o_emcy_code, outs[em[0]].o_emcy_reg), (0x1000, 1));
+    }
+
+    /// No position for PDO_TIMEOUT cycles: one o_pos_timeout pulse and o_pos_stale until the next.
+    #[test]
+    fn master_flags_a_stale_position() {
+        let mut c = cfg(2, vec![]);
+        c.pdo_timeout = 100_000;
+        let mut m = Master::new(&c).unwrap();
+        let outs = run(&mut m, &mut [encoder(2, 0)], 400_000);
+        let done = cycles_of(&outs, |o| o.o_config_done)[0];
+        assert_eq!(cycles_of(&outs, |o| o.o_pos_timeout), vec![done + 100_000]);
+        assert!(outs[done + 100_000].o_pos_stale && outs.last().unwrap().o_pos_stale);
+    }
+
+    /// A bad parameter list is an error naming the entry.
+    #[test]
+    fn master_config_errors_name_the_field() {
+        let e = Master::new(&cfg(2, vec![Param { index: 0x6200, sub: 0, size: 1, value: 300 }])).unwrap_err();
+        assert_eq!(e.field(), "master.params[0].size");
+        assert_eq!(Master::new(&cfg(0, vec![])).unwrap_err().field(), "master.node");
+    }
+}
