@@ -259,6 +259,11 @@ impl Encoder {
         vec![Frame::data(id as u32, &data)]
     }
 
+    /// The configuration.
+    pub fn config(&self) -> &EncoderConfig {
+        &self.cfg
+    }
+
     /// The node number in use.
     pub fn node(&self) -> u8 {
         self.node

@@ -26,10 +26,11 @@ pub mod master;
 pub mod node;
 pub mod od;
 pub mod scaling;
+pub mod sar58k24;
 pub mod sdo;
 
 pub use encoder::{Encoder, EncoderConfig, EncoderKind};
-pub use node::{EncoderNode, NodeTiming};
+pub use node::{Device, DeviceNode, EncoderNode, NodeTiming};
 
 #[cfg(test)]
 mod tests;

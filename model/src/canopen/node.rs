@@ -52,15 +52,50 @@ impl NodeTiming {
     }
 }
 
-/// The encoder on the bus.
+/// A CANopen device at frame level, as a node drives it.
+pub trait Device {
+    /// Power-on: the frames it sends (its boot-up).
+    fn power_on(&mut self, now_ns: u64) -> Vec<Frame>;
+    /// The answers to a received frame.
+    fn on_frame(&mut self, f: &Frame, now_ns: u64) -> Vec<Frame>;
+    /// Frames due by `now_ns`.
+    fn poll(&mut self, now_ns: u64) -> Vec<Frame>;
+    /// The bit rate in use, kbit/s.
+    fn bit_rate_kbps(&self) -> u32;
+    /// Time from a request to its answer, µs.
+    fn response_delay_us(&self) -> f64;
+}
+
+impl Device for Encoder {
+    fn power_on(&mut self, now_ns: u64) -> Vec<Frame> {
+        Encoder::power_on(self, now_ns)
+    }
+    fn on_frame(&mut self, f: &Frame, now_ns: u64) -> Vec<Frame> {
+        Encoder::on_frame(self, f, now_ns)
+    }
+    fn poll(&mut self, now_ns: u64) -> Vec<Frame> {
+        Encoder::poll(self, now_ns)
+    }
+    fn bit_rate_kbps(&self) -> u32 {
+        BIT_RATES_KBPS[self.bit_code() as usize]
+    }
+    fn response_delay_us(&self) -> f64 {
+        self.config().response_delay_us
+    }
+}
+
+/// The DS 406 encoder on the bus.
+pub type EncoderNode = DeviceNode<Encoder>;
+
+/// A device on the bus.
 #[derive(Debug, Clone)]
-pub struct EncoderNode {
-    enc: Encoder,
+pub struct DeviceNode<D> {
+    enc: D,
     emu: Emulator,
     settings: NodeSettings,
     timing: NodeTiming,
     tb: Timebase,
-    code: u8,
+    rate: u32,
     queue: VecDeque<(u64, Frame)>,
     seen: usize,
     cycle: u64,
@@ -69,23 +104,30 @@ pub struct EncoderNode {
 }
 
 impl EncoderNode {
-    /// The node at power-on (its boot-up queued).
+    /// The encoder of `cfg` at power-on (its boot-up queued).
     pub fn new(cfg: &EncoderConfig, settings: &NodeSettings, timing: NodeTiming, tb: &Timebase) -> Result<EncoderNode> {
-        let mut enc = Encoder::new(cfg)?;
+        DeviceNode::with(Encoder::new(cfg)?, settings, timing, tb)
+    }
+}
+
+impl<D: Device> DeviceNode<D> {
+    /// `dev` at power-on (its boot-up queued).
+    pub fn with(mut enc: D, settings: &NodeSettings, timing: NodeTiming, tb: &Timebase) -> Result<DeviceNode<D>> {
         let boot = enc.power_on(0);
-        let code = enc.bit_code();
-        let emu = Emulator::new(&NodeSettings { frames: Vec::new(), ..settings.clone() }, timing.controller(tb, BIT_RATES_KBPS[code as usize])?, tb)?;
-        Ok(EncoderNode {
+        let rate = enc.bit_rate_kbps();
+        let emu = Emulator::new(&NodeSettings { frames: Vec::new(), ..settings.clone() }, timing.controller(tb, rate)?, tb)?;
+        let delay = tb.cycles_nearest_ns(enc.response_delay_us() * 1e3);
+        Ok(DeviceNode {
             enc,
             emu,
             settings: settings.clone(),
             timing,
             tb: *tb,
-            code,
+            rate,
             queue: boot.into_iter().map(|f| (0, f)).collect(),
             seen: 0,
             cycle: 0,
-            delay: tb.cycles_nearest_ns(cfg.response_delay_us * 1e3),
+            delay,
             received: Vec::new(),
         })
     }
@@ -107,10 +149,10 @@ impl EncoderNode {
         }
         let due = self.enc.poll(now);
         self.queue.extend(due.into_iter().map(|f| (self.cycle, f)));
-        if self.enc.bit_code() != self.code {
-            // A reset applied a new 5000h: the controller restarts at the new rate.
-            self.code = self.enc.bit_code();
-            if let Ok(cc) = self.timing.controller(&self.tb, BIT_RATES_KBPS[self.code as usize]) {
+        if self.enc.bit_rate_kbps() != self.rate {
+            // A reset applied a new bit rate (5000h): the controller restarts at the new rate.
+            self.rate = self.enc.bit_rate_kbps();
+            if let Ok(cc) = self.timing.controller(&self.tb, self.rate) {
                 if let Ok(e) = Emulator::new(&NodeSettings { frames: Vec::new(), ..self.settings.clone() }, cc, &self.tb) {
                     self.emu = e;
                     self.seen = 0;
@@ -126,13 +168,13 @@ impl EncoderNode {
         self.emu.step(rx)
     }
 
-    /// The encoder.
-    pub fn encoder(&self) -> &Encoder {
+    /// The device.
+    pub fn encoder(&self) -> &D {
         &self.enc
     }
 
     /// The encoder, to move its disk or raise an alarm (queue the frames it returns with [`EncoderNode::send`]).
-    pub fn encoder_mut(&mut self) -> &mut Encoder {
+    pub fn encoder_mut(&mut self) -> &mut D {
         &mut self.enc
     }
 
