@@ -28,6 +28,7 @@
 
 pub mod bench;
 pub mod builtin;
+pub mod canopen;
 pub mod capture;
 pub mod crc_cmd;
 pub mod error;

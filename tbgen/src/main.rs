@@ -82,6 +82,19 @@ enum Command {
         /// Built-in scenario name or scenario .toml file.
         scenario: String,
     },
+    /// Write the electronic data sheet (CiA 306 EDS) of the emulated CANopen DS 406 encoder.
+    #[command(after_help = "Examples:\n  tbgen eds                          # multiturn 25-bit, to stdout\n  tbgen eds --kind singleturn13 --out enc.eds")]
+    Eds {
+        /// Encoder type (seed 003 §7): multiturn25, singleturn13, angle20, angle23, linear.
+        #[arg(long, default_value = "multiturn25")]
+        kind: String,
+        /// Gateway serial number (5500h, 1018h sub 4).
+        #[arg(long, default_value_t = 0xFFFF_FFFF)]
+        serial: u32,
+        /// Output file (default: stdout).
+        #[arg(long, short)]
+        out: Option<PathBuf>,
+    },
     /// List the registered protocols: table, core, decoder, budget, sigrok decoder.
     #[command(after_help = "Example:\n  tbgen protocols")]
     Protocols,
@@ -144,6 +157,15 @@ fn run(command: Command) -> Result<(), Error> {
         Command::Timing(call) => out!("{}", call.run()?),
         Command::Decode(call) => outln!("{}", call.run()?),
         Command::Protocols => out!("{}", registry::table()),
+        Command::Eds { kind, serial, out } => {
+            let kind: model::canopen::EncoderKind = serde_json::from_value(serde_json::Value::String(kind.clone()))
+                .map_err(|_| Error::Decode(format!("--kind {kind}: give multiturn25, singleturn13, angle20, angle23 or linear")))?;
+            let text = tbgen::canopen::eds::write(&model::canopen::EncoderConfig { kind, serial_number: serial, ..Default::default() });
+            match out {
+                Some(p) => std::fs::write(&p, text).map_err(|e| Error::io(p.display().to_string(), e))?,
+                None => out!("{text}"),
+            }
+        }
     }
     Ok(())
 }
