@@ -22,6 +22,7 @@
 
 pub mod cob;
 pub mod encoder;
+pub mod interpret;
 pub mod master;
 pub mod node;
 pub mod od;
