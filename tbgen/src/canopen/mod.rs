@@ -2,3 +2,4 @@
 //! (`tbgen eds`). Decode and timing follow with the protocol's registry line.
 
 pub mod eds;
+pub mod timing;
