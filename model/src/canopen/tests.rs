@@ -570,3 +570,34 @@ mod master {
         assert_eq!(Master::new(&cfg(0, vec![])).unwrap_err().field(), "master.node");
     }
 }
+
+/// Seed 003 §6.1, §6.2 on the bus: 5000h = 5 (500 kbit/s) and 5001h = 9 at
+/// 250 kbit/s, NMT reset node; the boot-up then comes on 0x89 at 500 kbit/s.
+#[test]
+fn bit_rate_and_node_change_on_the_bus() {
+    let tb = Timebase::from_mhz(40.0).unwrap();
+    let t = NodeTiming::default();
+    let s = NodeSettings { name: "encoder".into(), position_m: 5.0, loop_delay_ns: 150.0, ppm: 0.0, ack: true, frames: vec![] };
+    let mut e = EncoderNode::new(&EncoderConfig { node_switch: 5, bit_rate_switch: 4, ..Default::default() }, &s, t, &tb).unwrap();
+    let frames = vec![
+        Scripted::new(1000.0, Frame::data(0x605, &sdo::download(0x5000, 0, &[5]))),
+        Scripted::new(2000.0, Frame::data(0x605, &sdo::download(0x5001, 0, &[9]))),
+        Scripted::new(3000.0, Frame::data(0, &[0x81, 5])),
+    ];
+    let host_s = NodeSettings { name: "host".into(), position_m: 0.0, frames, ..s.clone() };
+    let mut host = Emulator::new(&host_s, t.controller(&tb, 250).unwrap(), &tb).unwrap();
+    let mut fast = Emulator::new(&NodeSettings { name: "fast".into(), frames: vec![], ..host_s.clone() }, t.controller(&tb, 500).unwrap(), &tb).unwrap();
+    let places = [s.place(), host_s.place()];
+    let mut bus = Bus::new(&places, 5.0, &tb);
+    let reset_done = tb.cycles_nearest_ns(3.6e6);
+    for c in 0..tb.cycles_nearest_ns(5.0e6) {
+        // The 250 kbit/s host leaves the bus once its reset command is out; a 500 kbit/s node takes its place.
+        let h = if c < reset_done { host.step(bus.rx(1)) } else { fast.step(bus.rx(1)) };
+        let tx = [e.step(bus.rx(0)), h];
+        bus.push(&tx);
+    }
+    let ids: Vec<u32> = host.received().iter().map(|f| f.id).collect();
+    assert_eq!(ids, vec![0x85, 0x585, 0x585]);
+    assert_eq!(fast.received(), &[Frame::data(0x89, &[])]);
+    assert_eq!((e.encoder().node(), e.encoder().bit_code()), (9, 5));
+}
