@@ -33,6 +33,7 @@ pub mod biss;
 pub mod check;
 pub mod config;
 pub mod ffi;
+pub mod modbus;
 pub mod sar58k24;
 pub mod ssi;
 
@@ -126,6 +127,9 @@ pub fn open(kind: &str, toml: &str, origin: &str, f_emu_hz: u64) -> Result<Box<d
             toml, origin, f_emu_hz,
         )?)),
         "biss" => Ok(Box::new(biss::BissEmulator::from_toml(
+            toml, origin, f_emu_hz,
+        )?)),
+        "modbus" => Ok(Box::new(modbus::ModbusEmulator::from_toml(
             toml, origin, f_emu_hz,
         )?)),
         "sar58k24" | "sar" => Ok(Box::new(sar58k24::SarEmulator::from_toml(

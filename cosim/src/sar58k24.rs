@@ -33,9 +33,10 @@ use crate::check::{Checks, VIOLATION_PENDING};
 use crate::config::{self, Error};
 use crate::{Emulator, Pins, Result};
 
-/// The emulator needs 8 samples per bit at the fastest baud rate of the seed
-/// (115200): the emulator-clock rule of [`config::emulator_clock`] is 4 x a
-/// "line clock", here 2 x 115.2 kHz.
+/// The emulator needs 8 samples per bit of the configured baud rate (the
+/// emulator-clock rule of [`config::emulator_clock`] is 4 x a "line clock",
+/// here 2 x the baud rate); this is the seed's fastest, 115200 baud, the
+/// limit when no baud rate is given.
 pub const MAX_LINE_KHZ: f64 = 2.0 * 115.2;
 
 /// Random positions (`[random]`).
@@ -227,12 +228,17 @@ impl SarEmulator {
     /// An emulator from TOML text (`origin` names it in errors) at `f_emu_hz`.
     pub fn from_toml(text: &str, origin: &str, f_emu_hz: u64) -> Result<Self> {
         let tables = config::tables(text, origin, "sar")?;
-        let tb = config::emulator_clock(f_emu_hz, &tables.emulator, MAX_LINE_KHZ, "SAR58K24", origin)?;
-        let mut device = tables.device;
+        let mut device = tables.device.clone();
         for k in ["ops", "second_drivers"] {
             device.remove(k);
         }
         let own: Own = own_tables(&mut device, &["random", "checks"], origin)?;
+        // 8 samples per bit of the configured baud rate: the rule of
+        // config::emulator_clock is 4 x a line clock, here 2 x the baud rate.
+        let baud = device.get("baud").and_then(|v| v.as_float().or(v.as_integer().map(|i| i as f64))).unwrap_or(115_200.0);
+        let mut settings = tables.emulator.clone();
+        settings.max_line_clock_khz = settings.max_line_clock_khz.or(Some(2.0 * baud / 1e3));
+        let tb = config::emulator_clock(f_emu_hz, &settings, MAX_LINE_KHZ, "SAR58K24", origin)?;
         device.insert(
             "f_sys_mhz".into(),
             toml::Value::Float(f_emu_hz as f64 / 1e6),

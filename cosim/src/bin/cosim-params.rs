@@ -1,4 +1,4 @@
-//! `cosim-params <ssi|biss> <scenario.toml>`: the Verilog parameters of our
+//! `cosim-params <ssi|biss|sar|modbus|can> <scenario.toml>`: the Verilog parameters of our
 //! own master core for a closed-loop scenario, one `NAME=value` per line,
 //! first `F_SYS_HZ`. `scripts/cosim.sh` builds the closed-loop testbench with
 //! them, so the core and the emulator read one file (the emulator its
@@ -30,7 +30,7 @@ fn params<S: Setup + serde::de::DeserializeOwned>(
 
 fn run(args: &[String]) -> Result<Vec<(String, u64)>, String> {
     let [proto, path] = args else {
-        return Err("usage: cosim-params <ssi|biss> <scenario.toml>".into());
+        return Err("usage: cosim-params <ssi|biss|sar|modbus|can> <scenario.toml>".into());
     };
     let text = std::fs::read_to_string(path).map_err(|e| format!("{path}: {e}"))?;
     let root: toml::Table = text
@@ -44,10 +44,14 @@ fn run(args: &[String]) -> Result<Vec<(String, u64)>, String> {
     let mut table = table.clone();
     table.remove("emulator");
     table.remove("checks");
+    table.remove("random");
     match proto.as_str() {
         "ssi" => params::<model::ssi::BenchConfig>(table, path),
         "biss" => params::<model::biss::BenchConfig>(table, path),
-        other => Err(format!("no protocol `{other}`; give ssi or biss")),
+        "sar" => params::<model::sar58k24::BenchConfig>(table, path),
+        "modbus" => params::<model::modbus::BenchConfig>(table, path),
+        "can" => params::<model::can::BenchConfig>(table, path),
+        other => Err(format!("no protocol `{other}`; give ssi, biss, sar, modbus or can")),
     }
 }
 
