@@ -48,11 +48,36 @@ fn run(args: &[String]) -> Result<Vec<(String, u64)>, String> {
     match proto.as_str() {
         "ssi" => params::<model::ssi::BenchConfig>(table, path),
         "biss" => params::<model::biss::BenchConfig>(table, path),
-        "sar" => params::<model::sar58k24::BenchConfig>(table, path),
-        "modbus" => params::<model::modbus::BenchConfig>(table, path),
+        "sar" => {
+            let harness = first_op(&table, &[("address", "ADDRESS", 1)]);
+            params::<model::sar58k24::BenchConfig>(table, path).map(|p| [p, harness].concat())
+        }
+        "modbus" => {
+            let harness = first_op(&table, &[("address", "ADDRESS", 1), ("count", "COUNT", 1)]);
+            params::<model::modbus::BenchConfig>(table, path).map(|p| [p, harness].concat())
+        }
         "can" => params::<model::can::BenchConfig>(table, path),
         other => Err(format!("no protocol `{other}`; give ssi, biss, sar, modbus or can")),
     }
+}
+
+/// Harness parameters of the closed-loop testbench from the scenario's first
+/// operation (`[[ops]]`): the station it polls, the registers it reads.
+fn first_op(table: &toml::Table, keys: &[(&str, &str, i64)]) -> Vec<(String, u64)> {
+    let op = table
+        .get("ops")
+        .and_then(|v| v.as_array())
+        .and_then(|a| a.first())
+        .and_then(|v| v.as_table());
+    keys.iter()
+        .map(|(key, name, default)| {
+            let v = op
+                .and_then(|t| t.get(*key))
+                .and_then(|v| v.as_integer())
+                .unwrap_or(*default);
+            (name.to_string(), v.max(0) as u64)
+        })
+        .collect()
 }
 
 fn main() -> ExitCode {
