@@ -30,6 +30,7 @@
 //! ```
 
 pub mod biss;
+pub mod can;
 pub mod check;
 pub mod config;
 pub mod ffi;
@@ -127,6 +128,9 @@ pub fn open(kind: &str, toml: &str, origin: &str, f_emu_hz: u64) -> Result<Box<d
             toml, origin, f_emu_hz,
         )?)),
         "biss" => Ok(Box::new(biss::BissEmulator::from_toml(
+            toml, origin, f_emu_hz,
+        )?)),
+        "can" => Ok(Box::new(can::CanEmulator::from_toml(
             toml, origin, f_emu_hz,
         )?)),
         "modbus" => Ok(Box::new(modbus::ModbusEmulator::from_toml(

@@ -56,7 +56,11 @@ fn run(args: &[String]) -> Result<Vec<(String, u64)>, String> {
             let harness = first_op(&table, &[("address", "ADDRESS", 1), ("count", "COUNT", 1)]);
             params::<model::modbus::BenchConfig>(table, path).map(|p| [p, harness].concat())
         }
-        "can" => params::<model::can::BenchConfig>(table, path),
+        "can" => {
+            let nodes = table.get("nodes").and_then(|v| v.as_array()).map_or(0, |a| a.len());
+            params::<model::can::BenchConfig>(table, path)
+                .map(|p| [p, vec![("NODES".to_string(), nodes as u64)]].concat())
+        }
         other => Err(format!("no protocol `{other}`; give ssi, biss, sar, modbus or can")),
     }
 }

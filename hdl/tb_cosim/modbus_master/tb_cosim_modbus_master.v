@@ -83,7 +83,7 @@ always @(posedge clk) begin
 end
 
 integer transactions, seed, flip_bit, n, waited;
-reg [63:0] sent, got, before;
+reg [63:0] sent, got, count_before;
 
 initial begin
     if (!$value$plusargs("transactions=%d", transactions)) transactions = 1000;
@@ -93,7 +93,7 @@ initial begin
     rst <= 1'b0;
     repeat (4) @(posedge clk);
     for (n = 0; n < transactions; n = n + 1) begin
-        before = u_emu.count(0);
+        count_before = u_emu.count(0);
         i_start <= 1'b1;
         @(posedge clk);
         i_start <= 1'b0;
@@ -109,8 +109,8 @@ initial begin
         sent = u_emu.last_value(0);
         got = got_value;
         if (flip_bit >= 0) got = got ^ (64'd1 << flip_bit);
-        if (u_emu.count(0) != before + 1 || u_emu.last_status(0, "answered") != 1)
-            $fatal(1, "poll %0d at %0t: the device saw %0d requests (answered: %0d)", n, $time, u_emu.count(0) - before, u_emu.last_status(0, "answered"));
+        if (u_emu.count(0) != count_before + 1 || u_emu.last_status(0, "answered") != 1)
+            $fatal(1, "poll %0d at %0t: the device saw %0d requests (answered: %0d)", n, $time, u_emu.count(0) - count_before, u_emu.last_status(0, "answered"));
         if (!seen_valid || seen_err || got != sent)
             $fatal(1, "poll %0d at %0t: core read %0d (valid %b, an error pulse %b), the device answered %0d",
                    n, $time, got, seen_valid, seen_err, sent);

@@ -93,7 +93,7 @@ end
 
 localparam COUNTED = (MODE >= 2);
 integer transactions, seed, flip_bit, n, waited;
-reg [63:0] sent, got, before;
+reg [63:0] sent, got, count_before;
 
 initial begin
     if (!$value$plusargs("transactions=%d", transactions)) transactions = 1000;
@@ -103,7 +103,7 @@ initial begin
     rst <= 1'b0;
     repeat (4) @(posedge clk);
     for (n = 0; n < transactions; n = n + 1) begin
-        before = u_emu.count(0);
+        count_before = u_emu.count(0);
         i_start <= 1'b1;
         @(posedge clk);
         i_start <= 1'b0;
@@ -119,8 +119,8 @@ initial begin
         sent = u_emu.last_value(0);
         got = got_position;
         if (flip_bit >= 0) got = got ^ (64'd1 << flip_bit);
-        if (COUNTED && u_emu.count(0) != before + 1)
-            $fatal(1, "read %0d at %0t: the emulator sent %0d frames for one read", n, $time, u_emu.count(0) - before);
+        if (COUNTED && u_emu.count(0) != count_before + 1)
+            $fatal(1, "read %0d at %0t: the emulator sent %0d frames for one read", n, $time, u_emu.count(0) - count_before);
         if (!seen_valid || seen_err || got != sent)
             $fatal(1, "read %0d at %0t: core read %0d (valid %b, an error pulse %b), the emulator sent %0d",
                    n, $time, got, seen_valid, seen_err, sent);
