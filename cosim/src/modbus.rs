@@ -24,8 +24,8 @@ use model::line::Drive;
 use model::modbus::{BenchConfig, Device, Verdict};
 
 use crate::check::{Checks, VIOLATION_PENDING};
-use crate::config::{self, Error};
-use crate::sar58k24::{half_duplex_pins, hex, own_tables, random_list, HalfDuplex, RandomPositions};
+use crate::config::Error;
+use crate::sar58k24::{half_duplex_pins, hex, random_lists, uart_bench, HalfDuplex, RandomPositions};
 use crate::{Emulator, Pins, Result};
 
 /// 8 samples per bit at 115200 baud, as the SAR58K24 emulator.
@@ -104,42 +104,12 @@ pub struct ModbusEmulator {
 impl ModbusEmulator {
     /// An emulator from TOML text (`origin` names it in errors) at `f_emu_hz`.
     pub fn from_toml(text: &str, origin: &str, f_emu_hz: u64) -> Result<Self> {
-        let tables = config::tables(text, origin, "modbus")?;
-        let mut device = tables.device.clone();
-        for k in ["ops", "second_drivers"] {
-            device.remove(k);
-        }
-        let own: Own = own_tables(&mut device, &["random", "checks"], origin)?;
-        // 8 samples per bit of the configured baud rate: the rule of
-        // config::emulator_clock is 4 x a line clock, here 2 x the baud rate.
-        let baud = device.get("baud").and_then(|v| v.as_float().or(v.as_integer().map(|i| i as f64))).unwrap_or(19_200.0);
-        let mut settings = tables.emulator.clone();
-        settings.max_line_clock_khz = settings.max_line_clock_khz.or(Some(2.0 * baud / 1e3));
-        let tb = config::emulator_clock(f_emu_hz, &settings, MAX_LINE_KHZ, "Modbus RTU", origin)?;
-        device.insert(
-            "f_sys_mhz".into(),
-            toml::Value::Float(f_emu_hz as f64 / 1e6),
-        );
-        let mut bench: BenchConfig = config::decode(device, origin)?;
-        if bench.devices.is_empty() || bench.devices.len() > 3 {
-            return Err(Error::field(
-                origin,
-                "devices",
-                format!("{} devices", bench.devices.len()),
-                "give one to three [[devices]] tables",
-            ));
-        }
-        if own.random.count > 1_000_000 {
-            return Err(Error::field(
-                origin,
-                "random.count",
-                format!("{}", own.random.count),
-                "give at most 10^6 random positions",
-            ));
-        }
-        if own.random.count > 0 {
-            for (i, d) in bench.devices.iter_mut().enumerate() {
-                d.positions = random_list(own.random.count, own.random.seed.wrapping_add(i as u64), d.bits.min(32));
+        let (tb, own, mut bench) = uart_bench::<Own, BenchConfig>(text, origin, f_emu_hz, "modbus", "Modbus RTU", 19_200.0)?;
+        let bits: Vec<u32> = bench.devices.iter().map(|d| d.bits).collect();
+        let lists = random_lists(&own.random, &bits, origin, "devices", "[[devices]]")?;
+        for (d, list) in bench.devices.iter_mut().zip(lists) {
+            if let Some(list) = list {
+                d.positions = list;
             }
         }
         bench

@@ -102,6 +102,50 @@ pub(crate) fn own_tables<T: serde::de::DeserializeOwned + Default>(
     config::decode(own, origin)
 }
 
+/// The first steps of a half-duplex UART emulator (SAR58K24, Modbus): the
+/// scenario's table `proto` without the host's keys, the emulator's own
+/// tables (`O`), the emulator clock checked against 8 samples per bit of the
+/// configured baud rate (the rule of [`config::emulator_clock`] is 4 x a
+/// line clock, here 2 x the baud rate), and the model's set-up `B` on the
+/// emulator clock.
+pub(crate) fn uart_bench<O, B>(text: &str, origin: &str, f_emu_hz: u64, proto: &str, name: &str, default_baud: f64) -> Result<(Timebase, O, B)>
+where
+    O: serde::de::DeserializeOwned + Default,
+    B: serde::de::DeserializeOwned,
+{
+    let tables = config::tables(text, origin, proto)?;
+    let mut device = tables.device.clone();
+    for k in ["ops", "second_drivers"] {
+        device.remove(k);
+    }
+    let own: O = own_tables(&mut device, &["random", "checks"], origin)?;
+    let baud = device
+        .get("baud")
+        .and_then(|v| v.as_float().or(v.as_integer().map(|i| i as f64)))
+        .unwrap_or(default_baud);
+    let mut settings = tables.emulator.clone();
+    settings.max_line_clock_khz = settings.max_line_clock_khz.or(Some(2.0 * baud / 1e3));
+    let tb = config::emulator_clock(f_emu_hz, &settings, MAX_LINE_KHZ, name, origin)?;
+    device.insert("f_sys_mhz".into(), toml::Value::Float(f_emu_hz as f64 / 1e6));
+    Ok((tb, own, config::decode(device, origin)?))
+}
+
+/// The random position list of each device (`None`: keep its own), for
+/// devices of `bits`; `field` and `table` name the devices in errors.
+pub(crate) fn random_lists(r: &RandomPositions, bits: &[u32], origin: &str, field: &str, table: &str) -> Result<Vec<Option<Vec<u64>>>> {
+    if bits.is_empty() || bits.len() > 3 {
+        return Err(Error::field(origin, field, format!("{} devices", bits.len()), format!("give one to three {table} tables")));
+    }
+    if r.count > 1_000_000 {
+        return Err(Error::field(origin, "random.count", format!("{}", r.count), "give at most 10^6 random positions"));
+    }
+    Ok(bits
+        .iter()
+        .enumerate()
+        .map(|(i, &b)| (r.count > 0).then(|| random_list(r.count, r.seed.wrapping_add(i as u64), b.min(32))))
+        .collect())
+}
+
 /// A half-duplex pair between the host (end A, at the pins) and the devices
 /// (end B), one delay line per direction for the level and the enable.
 pub(crate) struct HalfDuplex {
@@ -227,42 +271,12 @@ pub struct SarEmulator {
 impl SarEmulator {
     /// An emulator from TOML text (`origin` names it in errors) at `f_emu_hz`.
     pub fn from_toml(text: &str, origin: &str, f_emu_hz: u64) -> Result<Self> {
-        let tables = config::tables(text, origin, "sar")?;
-        let mut device = tables.device.clone();
-        for k in ["ops", "second_drivers"] {
-            device.remove(k);
-        }
-        let own: Own = own_tables(&mut device, &["random", "checks"], origin)?;
-        // 8 samples per bit of the configured baud rate: the rule of
-        // config::emulator_clock is 4 x a line clock, here 2 x the baud rate.
-        let baud = device.get("baud").and_then(|v| v.as_float().or(v.as_integer().map(|i| i as f64))).unwrap_or(115_200.0);
-        let mut settings = tables.emulator.clone();
-        settings.max_line_clock_khz = settings.max_line_clock_khz.or(Some(2.0 * baud / 1e3));
-        let tb = config::emulator_clock(f_emu_hz, &settings, MAX_LINE_KHZ, "SAR58K24", origin)?;
-        device.insert(
-            "f_sys_mhz".into(),
-            toml::Value::Float(f_emu_hz as f64 / 1e6),
-        );
-        let mut bench: BenchConfig = config::decode(device, origin)?;
-        if bench.encoders.is_empty() || bench.encoders.len() > 3 {
-            return Err(Error::field(
-                origin,
-                "encoders",
-                format!("{} encoders", bench.encoders.len()),
-                "give one to three [[encoders]] tables",
-            ));
-        }
-        if own.random.count > 1_000_000 {
-            return Err(Error::field(
-                origin,
-                "random.count",
-                format!("{}", own.random.count),
-                "give at most 10^6 random positions",
-            ));
-        }
-        if own.random.count > 0 {
-            for (i, e) in bench.encoders.iter_mut().enumerate() {
-                e.positions = random_list(own.random.count, own.random.seed.wrapping_add(i as u64), e.bits.min(32));
+        let (tb, own, mut bench) = uart_bench::<Own, BenchConfig>(text, origin, f_emu_hz, "sar", "SAR58K24", 115_200.0)?;
+        let bits: Vec<u32> = bench.encoders.iter().map(|e| e.bits).collect();
+        let lists = random_lists(&own.random, &bits, origin, "encoders", "[[encoders]]")?;
+        for (e, list) in bench.encoders.iter_mut().zip(lists) {
+            if let Some(list) = list {
+                e.positions = list;
             }
         }
         bench
