@@ -83,3 +83,10 @@ async def operation(dut, start, value, errors, limit=2_000_000):
             await RisingEdge(dut.i_clk)
             return got, seen
     raise AssertionError(f"no o_done within {limit} cycles")
+
+
+def planted(value):
+    """`value` with bit COSIM_FLIP_BIT flipped when that is set (a planted
+    misread: the test must then fail)."""
+    k = int(os.environ.get("COSIM_FLIP_BIT", "-1"))
+    return value if value is None or k < 0 else value ^ (1 << k)

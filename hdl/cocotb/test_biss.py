@@ -10,7 +10,7 @@ from cocotb.triggers import RisingEdge
 
 from emu_common import bit, no_violations, open_emulator, run_emulator, start
 
-FRAMES = int(os.environ.get("COSIM_TRANSACTIONS", "8"))
+FRAMES = int(os.environ.get("COSIM_TRANSACTIONS", "4"))
 ERRORS = ("o_err_line", "o_err_ack", "o_err_delay", "o_err_start", "o_err_timeout", "o_err_drift")
 
 

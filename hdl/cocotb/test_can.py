@@ -11,7 +11,7 @@ from cocotb.triggers import RisingEdge
 
 from emu_common import bit, no_violations, open_emulator, run_emulator, start
 
-FRAMES = int(os.environ.get("COSIM_TRANSACTIONS", "6"))
+FRAMES = int(os.environ.get("COSIM_TRANSACTIONS", "4"))
 
 
 @cocotb.test()
