@@ -54,7 +54,11 @@ fn timing_key(k: &str) -> bool {
 }
 
 fn read_json(path: &Path) -> Result<Value> {
-    let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+    let text = std::fs::read_to_string(path).map_err(|e| match e.kind() {
+        // Bad input (exit 2), as every missing file of tbgen's command line.
+        std::io::ErrorKind::NotFound => Error::Decode(format!("{}: no such file; give the path of a transcript (JSON) or a capture (VCD)", path.display())),
+        _ => Error::io(path, e),
+    })?;
     serde_json::from_str(&text).map_err(|e| Error::Decode(format!("{}: not a JSON transcript ({e}); give a `tbgen gen`/`tbgen decode` transcript, an emulator transcript or a VCD", path.display())))
 }
 
@@ -266,6 +270,9 @@ mod tests {
         std::fs::write(&bad, "{\"a\": 1}").unwrap();
         let e = check("biss", &bad, &bad, &[], None).unwrap_err().to_string();
         assert!(e.contains("x.json: no list of transactions"), "{e}");
+        let e = check("biss", &dir.path().join("none.json"), &bad, &[], None).unwrap_err();
+        assert!(e.to_string().contains("none.json: no such file"), "{e}");
+        assert_eq!(e.exit_code(), 2);
         let (vcd, json) = decoded_seed(dir.path());
         let e = check("biss", &json, &vcd, &["--nope".into()], None).unwrap_err().to_string();
         assert!(e.contains("the decoder's options after `--`"), "{e}");
