@@ -15,7 +15,7 @@
 # the run must then fail. Exit status 0 only when every configuration passed.
 set -euo pipefail
 
-usage() { echo "usage: $0 <ssi_master|biss_master> <icarus|verilator> [--transactions N] [--config FILE] [--seed S] [--flip-bit K] [--transcript FILE]" >&2; exit 2; }
+usage() { echo "usage: $0 <core> <icarus|verilator> [--transactions N] [--config FILE] [--seed S] [--flip-bit K] [--transcript FILE]" >&2; exit 2; }
 [ $# -ge 2 ] || usage
 core=$1 sim=$2
 shift 2
@@ -34,10 +34,14 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 # Every Verilator build compiles the same runtime (verilated*.cpp): with
 # ccache (make deps installs it) each build after the first reuses it.
 command -v ccache > /dev/null 2>&1 && export OBJCACHE=${OBJCACHE:-ccache}
+plusarg=""
 case "$core" in
 ssi_master) proto=ssi emu=ssi_encoder_emu ;;
 biss_master) proto=biss emu=biss_slave_emu ;;
-*) echo "cosim.sh: no closed-loop testbench for core '$core' (ssi_master, biss_master)" >&2; exit 2 ;;
+sar_async_host) proto=sar emu=sar58k24_encoder_emu plusarg=sar58k24 ;;
+modbus_master) proto=modbus emu=modbus_device_emu ;;
+can_controller) proto=can emu=can_node_emu ;;
+*) echo "cosim.sh: no closed-loop testbench for core '$core' (ssi_master, biss_master, sar_async_host, modbus_master, can_controller)" >&2; exit 2 ;;
 esac
 case "$sim" in icarus|verilator) ;; *) usage ;; esac
 tb="$root/hdl/tb_cosim/$core/tb_cosim_$core.v"
@@ -54,12 +58,12 @@ for cfg in "${configs[@]}"; do
     params=$("$params_tool" "$proto" "$cfg") || { status=1; continue; }
     f_sys_hz=$(sed -n 's/^F_SYS_HZ=//p' <<< "$params")
     half_fs=$(( 500000000000000 / f_sys_hz ))
-    key=$(printf '%s\n' "$params" | cat - "$tb" "$root/hdl/emu/$emu.v" "$root/hdl/emu/emu_api.vh" "$root/hdl/emu/emu_clocked.vh" "${rtl[@]}" | sha1sum | cut -c1-12)
+    key=$(printf '%s\n' "$params" | cat - "$tb" "$root/hdl/emu/$emu.v" "$root"/hdl/emu/*.vh "${rtl[@]}" | sha1sum | cut -c1-12)
     build="$root/build/cosim/$core/$sim/$key"
     mkdir -p "$build"
     exec 9> "$build/.lock"
     flock 9
-    plusargs=("+${proto}_emu_config=$cfg" "+transactions=$per" "+seed=$seed")
+    plusargs=("+${plusarg:-$proto}_emu_config=$cfg" "+transactions=$per" "+seed=$seed")
     [ -n "$flip" ] && plusargs+=("+flip_bit=$flip")
     [ -n "$transcript" ] && plusargs+=("+transcript=$transcript")
     case "$sim" in

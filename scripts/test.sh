@@ -12,6 +12,8 @@
 #           cosim                      every core closed-loop against its
 #                                      emulator, 1000 transactions per core
 #                                      and simulator
+#           cocotb                     the cocotb examples in Icarus (the
+#                                      emulators from Python, PyO3)
 #   lane 2: lint, hdl, coverage,       Verilator lint, every vector file in
 #           vectors, gtkw              Icarus and Verilator (the Verilator
 #                                      replays on the coverage build), RTL
@@ -68,6 +70,7 @@ if [ $fail = 0 ]; then
         lane_fail=0
         stage cargo-test cargo test --workspace --locked || lane_fail=1
         stage cosim scripts/cosim_regress.sh --transactions 1000 || lane_fail=1
+        stage cocotb scripts/cocotb.sh || lane_fail=1
         exit $lane_fail
     ) &
     lane1=$!

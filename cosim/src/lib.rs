@@ -30,9 +30,12 @@
 //! ```
 
 pub mod biss;
+pub mod can;
 pub mod check;
 pub mod config;
 pub mod ffi;
+pub mod modbus;
+pub mod sar58k24;
 pub mod ssi;
 
 pub use config::Error;
@@ -127,8 +130,17 @@ pub fn open(kind: &str, toml: &str, origin: &str, f_emu_hz: u64) -> Result<Box<d
         "biss" => Ok(Box::new(biss::BissEmulator::from_toml(
             toml, origin, f_emu_hz,
         )?)),
+        "can" => Ok(Box::new(can::CanEmulator::from_toml(
+            toml, origin, f_emu_hz,
+        )?)),
+        "modbus" => Ok(Box::new(modbus::ModbusEmulator::from_toml(
+            toml, origin, f_emu_hz,
+        )?)),
+        "sar58k24" | "sar" => Ok(Box::new(sar58k24::SarEmulator::from_toml(
+            toml, origin, f_emu_hz,
+        )?)),
         other => Err(Error::Usage(format!(
-            "no emulator `{other}`; give one of: ssi, biss"
+            "no emulator `{other}`; give one of: ssi, biss, sar58k24, modbus, can"
         ))),
     }
 }

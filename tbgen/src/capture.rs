@@ -78,23 +78,28 @@ impl Signal {
     }
 }
 
-/// The picoseconds of one unit of a VCD timescale.
-fn timescale_ps(path: &Path, header: &vcd::Header) -> Result<u64> {
-    let Some((n, unit)) = header.timescale else { return Ok(1) };
-    let unit_ps: u64 = match unit {
-        vcd::TimescaleUnit::S => 1_000_000_000_000,
-        vcd::TimescaleUnit::MS => 1_000_000_000,
-        vcd::TimescaleUnit::US => 1_000_000,
-        vcd::TimescaleUnit::NS => 1_000,
-        vcd::TimescaleUnit::PS => 1,
-        vcd::TimescaleUnit::FS => {
-            return Err(Error::Decode(format!(
-                "{}: a femtosecond timescale is finer than the decoders' picosecond resolution; re-export the capture in ps or coarser",
-                path.display()
-            )));
-        }
-    };
-    Ok(n as u64 * unit_ps)
+/// One unit of a VCD timescale as a fraction of a picosecond: `(mul, div)`,
+/// a timestamp `ts` being `ts × mul / div` ps. A femtosecond timescale (what
+/// Icarus and Verilator write by default with `timescale 1fs`) has `div =
+/// 1000`: its times are rounded to the nearest picosecond, the decoders'
+/// resolution (a line edge is never closer than a few ns to the next).
+fn timescale_ps(header: &vcd::Header) -> (u64, u64) {
+    let Some((n, unit)) = header.timescale else { return (1, 1) };
+    let n = n as u64;
+    match unit {
+        vcd::TimescaleUnit::S => (n * 1_000_000_000_000, 1),
+        vcd::TimescaleUnit::MS => (n * 1_000_000_000, 1),
+        vcd::TimescaleUnit::US => (n * 1_000_000, 1),
+        vcd::TimescaleUnit::NS => (n * 1_000, 1),
+        vcd::TimescaleUnit::PS => (n, 1),
+        vcd::TimescaleUnit::FS => (n, 1000),
+    }
+}
+
+/// A timestamp of the capture in picoseconds (rounded to the nearest).
+fn to_ps(path: &Path, ts: u64, (mul, div): (u64, u64)) -> Result<u64> {
+    let t = (ts as u128 * mul as u128 + div as u128 / 2) / div as u128;
+    u64::try_from(t).map_err(|_| Error::Decode(format!("{}: timestamp {ts} overflows 64-bit picoseconds", path.display())))
 }
 
 /// A VCD that cannot be parsed is bad input (exit status 2), named with the
@@ -136,7 +141,7 @@ pub fn read(path: &Path, names: &[(&str, &str)]) -> Result<Vec<Signal>> {
     let file = std::fs::File::open(path).map_err(|e| Error::io(path, e))?;
     let mut parser = vcd::Parser::new(BufReader::new(file));
     let header = parser.parse_header().map_err(|e| not_vcd(path, e))?;
-    let scale = timescale_ps(path, &header)?;
+    let scale = timescale_ps(&header);
     let mut ids = Vec::with_capacity(names.len());
     for &(name, option) in names {
         let parts: Vec<&str> = name.split('.').collect();
@@ -153,7 +158,7 @@ pub fn read(path: &Path, names: &[(&str, &str)]) -> Result<Vec<Signal>> {
     for cmd in parser {
         match cmd.map_err(|e| not_vcd(path, e))? {
             vcd::Command::Timestamp(ts) => {
-                t = ts.checked_mul(scale).ok_or_else(|| Error::Decode(format!("{}: timestamp {ts} overflows 64-bit picoseconds", path.display())))?;
+                t = to_ps(path, ts, scale)?;
             }
             vcd::Command::ChangeScalar(code, v) => {
                 let level = v != vcd::Value::V0;
@@ -302,5 +307,21 @@ mod tests {
         let bit_ps = 100_000;
         let line = Signal { name: "l".into(), changes: vec![(0, true), (500_000, false), (520_000, true)] };
         assert!(uart_bytes(&line, bit_ps).is_empty());
+    }
+
+    #[test]
+    fn a_femtosecond_capture_reads_in_picoseconds() {
+        // What Icarus and Verilator write with `timescale 1fs / 1fs: refused before, read now.
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("fs.vcd");
+        let text = "$timescale 1fs $end\n$scope module tb $end\n$var wire 1 ! clk $end\n$upscope $end\n$enddefinitions $end\n\
+                    #0\n1!\n#10000000\n0!\n#20000499\n1!\n#30000500\n0!\n";
+        std::fs::write(&path, text).unwrap();
+        let sig = read(&path, &[("tb.clk", "--clk")]).unwrap();
+        assert_eq!(sig[0].changes, vec![(0, true), (10_000, false), (20_000, true), (30_001, false)]);
+        let path10 = dir.path().join("fs10.vcd");
+        std::fs::write(&path10, text.replace("1fs", "10fs")).unwrap();
+        let sig = read(&path10, &[("tb.clk", "--clk")]).unwrap();
+        assert_eq!(sig[0].changes[1], (100_000, false));
     }
 }

@@ -30,6 +30,7 @@ pub mod bench;
 pub mod builtin;
 pub mod canopen;
 pub mod capture;
+pub mod check;
 pub mod crc_cmd;
 pub mod error;
 pub mod generate;

@@ -98,6 +98,23 @@ enum Command {
     /// List the registered protocols: table, core, decoder, budget, sigrok decoder.
     #[command(after_help = "Example:\n  tbgen protocols")]
     Protocols,
+    /// Compare what a master did (a VCD of any timescale, or a transcript) with what was expected, transaction by transaction; exit 1 at the first difference.
+    #[command(after_help = "Timing fields (index, *_ps, *_ns, *_us, cycles, delays) are left out: another latency or clock rate passes.\n\nExamples:\n  tbgen check biss --expect vectors/biss_master/biss_seed_16bit.json capture.vcd -- --bits 16 --ma tb.ma --slo tb.slo\n  tbgen check ssi --expect expected.json emulator_transcript.json --timeout-us 600")]
+    Check {
+        /// The protocol (its table name, as `tbgen protocols` lists it).
+        protocol: String,
+        /// The expected transcript (`tbgen gen`/`tbgen decode` JSON, or an emulator's).
+        #[arg(long)]
+        expect: PathBuf,
+        /// What the master did: a VCD (decoded by `tbgen decode <protocol>`) or a JSON transcript.
+        capture: PathBuf,
+        /// Longest time between the starts of two transactions, µs (a late frame is a difference).
+        #[arg(long)]
+        timeout_us: Option<f64>,
+        /// Options of the protocol's decoder for a VCD capture (port names, bits), after `--`.
+        #[arg(last = true)]
+        decoder_args: Vec<String>,
+    },
 }
 
 fn main() -> ExitCode {
@@ -164,6 +181,13 @@ fn run(command: Command) -> Result<(), Error> {
             match out {
                 Some(p) => std::fs::write(&p, text).map_err(|e| Error::io(p.display().to_string(), e))?,
                 None => out!("{text}"),
+            }
+        }
+        Command::Check { protocol, expect, capture, timeout_us, decoder_args } => {
+            let r = tbgen::check::check(&protocol, &expect, &capture, &decoder_args, timeout_us)?;
+            outln!("{}", r.text);
+            if !r.ok {
+                std::process::exit(1);
             }
         }
     }

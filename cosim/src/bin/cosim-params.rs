@@ -1,4 +1,4 @@
-//! `cosim-params <ssi|biss> <scenario.toml>`: the Verilog parameters of our
+//! `cosim-params <ssi|biss|sar|modbus|can> <scenario.toml>`: the Verilog parameters of our
 //! own master core for a closed-loop scenario, one `NAME=value` per line,
 //! first `F_SYS_HZ`. `scripts/cosim.sh` builds the closed-loop testbench with
 //! them, so the core and the emulator read one file (the emulator its
@@ -30,7 +30,7 @@ fn params<S: Setup + serde::de::DeserializeOwned>(
 
 fn run(args: &[String]) -> Result<Vec<(String, u64)>, String> {
     let [proto, path] = args else {
-        return Err("usage: cosim-params <ssi|biss> <scenario.toml>".into());
+        return Err("usage: cosim-params <ssi|biss|sar|modbus|can> <scenario.toml>".into());
     };
     let text = std::fs::read_to_string(path).map_err(|e| format!("{path}: {e}"))?;
     let root: toml::Table = text
@@ -44,11 +44,44 @@ fn run(args: &[String]) -> Result<Vec<(String, u64)>, String> {
     let mut table = table.clone();
     table.remove("emulator");
     table.remove("checks");
+    table.remove("random");
     match proto.as_str() {
         "ssi" => params::<model::ssi::BenchConfig>(table, path),
         "biss" => params::<model::biss::BenchConfig>(table, path),
-        other => Err(format!("no protocol `{other}`; give ssi or biss")),
+        "sar" => {
+            let harness = first_op(&table, &[("address", "ADDRESS", 1)]);
+            params::<model::sar58k24::BenchConfig>(table, path).map(|p| [p, harness].concat())
+        }
+        "modbus" => {
+            let harness = first_op(&table, &[("address", "ADDRESS", 1), ("count", "COUNT", 1)]);
+            params::<model::modbus::BenchConfig>(table, path).map(|p| [p, harness].concat())
+        }
+        "can" => {
+            let nodes = table.get("nodes").and_then(|v| v.as_array()).map_or(0, |a| a.len());
+            params::<model::can::BenchConfig>(table, path)
+                .map(|p| [p, vec![("NODES".to_string(), nodes as u64)]].concat())
+        }
+        other => Err(format!("no protocol `{other}`; give ssi, biss, sar, modbus or can")),
     }
+}
+
+/// Harness parameters of the closed-loop testbench from the scenario's first
+/// operation (`[[ops]]`): the station it polls, the registers it reads.
+fn first_op(table: &toml::Table, keys: &[(&str, &str, i64)]) -> Vec<(String, u64)> {
+    let op = table
+        .get("ops")
+        .and_then(|v| v.as_array())
+        .and_then(|a| a.first())
+        .and_then(|v| v.as_table());
+    keys.iter()
+        .map(|(key, name, default)| {
+            let v = op
+                .and_then(|t| t.get(*key))
+                .and_then(|v| v.as_integer())
+                .unwrap_or(*default);
+            (name.to_string(), v.max(0) as u64)
+        })
+        .collect()
 }
 
 fn main() -> ExitCode {

@@ -1,0 +1,371 @@
+//! The CAN bus emulator: one or more [`model::can::Emulator`] nodes and the
+//! wired-AND bus ([`model::can::Bus`]) they share with the master under test.
+//!
+//! Configuration: the scenario's `[can]` table (`timing`, `ns_per_m`,
+//! `[dut]` for the master's place on the cable, `[[nodes]]` with their own
+//! places, oscillators, ACK and scripted frames); `f_sys_mhz` and the
+//! `dut.frames` script belong to the master's side and are ignored. The
+//! bench's `[[faults]]` (bit flips, a stuck bus) are not emulated yet and are
+//! refused by name. The emulator clock is the nodes' reference clock (the
+//! bit timing is made of its cycles, as the model's nodes are).
+//!
+//! Pins (`emu_step`): in bit 1 the master's TXD; out bit 0 the bus level at
+//! the master's RXD (wired-AND of every node's TXD, each after its delay).
+//!
+//! At run time `schedule_fault` also scripts frames: `[[send]]` tables
+//! `{ node = 0, id = 0x123, dlc = 2, data = [1, 2] }` (with `ide`, `rtr`)
+//! are queued and loaded into that node's controller as soon as it is free.
+//!
+//! Values (`last_value(device)`): `device = node + 16 × field`, field 0 the
+//! data of the last frame the node received (first byte in bits 63..56, as
+//! `i_tx_data`), 1 its identifier, 2 its DLC, 3 frames the node sent.
+//! Statuses: `ide`, `rtr` of that frame. `count` is the frames node 0
+//! received.
+
+use serde::{Deserialize, Serialize};
+
+use model::can::bus::Place;
+use model::can::emulator::Scripted;
+use model::can::frame::Frame;
+use model::can::{BenchConfig, Bus, Emulator as Node};
+
+use crate::check::{Checks, VIOLATION_PENDING};
+use crate::config::{self, Error};
+use crate::{Emulator, Pins, Result};
+
+/// The fastest CAN bit rate (1 Mbit/s).
+pub const MAX_BIT_RATE_KHZ: f64 = 1000.0;
+
+/// A frame scripted at run time.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Send {
+    node: usize,
+    id: u32,
+    #[serde(default)]
+    ide: bool,
+    #[serde(default)]
+    rtr: bool,
+    #[serde(default)]
+    dlc: u8,
+    #[serde(default)]
+    data: Vec<u8>,
+}
+
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SendTables {
+    send: Vec<Send>,
+}
+
+/// A frame as the transcript shows it.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Entry {
+    /// The node.
+    pub node: String,
+    /// `received` or `sent`.
+    pub what: &'static str,
+    /// Emulator cycle the node reported it.
+    pub cycle: u64,
+    /// Identifier.
+    pub id: u32,
+    /// Extended.
+    pub ide: bool,
+    /// Remote.
+    pub rtr: bool,
+    /// DLC.
+    pub dlc: u8,
+    /// Data, hex.
+    pub data: String,
+}
+
+fn entry(node: &str, what: &'static str, cycle: u64, f: &Frame) -> Entry {
+    Entry {
+        node: node.to_string(),
+        what,
+        cycle,
+        id: f.id,
+        ide: f.ide,
+        rtr: f.rtr,
+        dlc: f.dlc,
+        data: crate::sar58k24::hex(&f.data),
+    }
+}
+
+/// Nodes on a CAN bus with the master, on the emulator clock.
+pub struct CanEmulator {
+    f_emu_hz: u64,
+    names: Vec<String>,
+    nodes: Vec<Node>,
+    pending: Vec<Vec<Frame>>,
+    bus: Bus,
+    tx: Vec<bool>,
+    cycle: u64,
+    seen: Vec<(usize, usize, u64)>,
+    entries: Vec<Entry>,
+    checks: Checks,
+}
+
+impl CanEmulator {
+    /// An emulator from TOML text (`origin` names it in errors) at `f_emu_hz`.
+    pub fn from_toml(text: &str, origin: &str, f_emu_hz: u64) -> Result<Self> {
+        let tables = config::tables(text, origin, "can")?;
+        let tb = config::emulator_clock(f_emu_hz, &tables.emulator, MAX_BIT_RATE_KHZ, "CAN", origin)?;
+        let mut device = tables.device;
+        device.insert(
+            "f_sys_mhz".into(),
+            toml::Value::Float(f_emu_hz as f64 / 1e6),
+        );
+        let bench: BenchConfig = config::decode(device, origin)?;
+        if !bench.faults.is_empty() {
+            return Err(Error::field(
+                origin,
+                "faults",
+                "bit flips and a stuck bus are not emulated in co-simulation yet",
+                "remove [[can.faults]] (the vector bench runs them), or script a node's frames",
+            ));
+        }
+        if bench.nodes.is_empty() {
+            return Err(Error::field(
+                origin,
+                "nodes",
+                "no [[can.nodes]]",
+                "give at least one emulated node (name = \"a\")",
+            ));
+        }
+        let cfg = bench
+            .controller_config()
+            .map_err(|e| Error::config(origin, e))?;
+        let mut places: Vec<Place> = vec![bench.dut.place()];
+        let mut nodes = Vec::new();
+        for (k, n) in bench.nodes.iter().enumerate() {
+            n.validate(&format!("nodes[{k}]"))
+                .map_err(|e| Error::config(origin, e))?;
+            places.push(n.place());
+            nodes.push(Node::new(n, cfg.clone(), &tb).map_err(|e| Error::config(origin, e))?);
+        }
+        let n = nodes.len();
+        Ok(CanEmulator {
+            f_emu_hz,
+            names: bench.nodes.iter().map(|n| n.name.clone()).collect(),
+            nodes,
+            pending: vec![Vec::new(); n],
+            bus: Bus::new(&places, bench.ns_per_m, &tb),
+            tx: vec![true; n + 1],
+            cycle: 0,
+            seen: vec![(0, 0, 0); n],
+            entries: Vec::new(),
+            checks: Checks::new(tb.period_ps()),
+        })
+    }
+
+    /// Frames the nodes sent and received so far, in order.
+    pub fn entries(&self) -> &[Entry] {
+        &self.entries
+    }
+
+    fn node(&self, node: usize) -> Result<&Node> {
+        self.nodes.get(node).ok_or_else(|| {
+            Error::Usage(format!(
+                "the CAN emulator has {} node(s), not node {node}",
+                self.nodes.len()
+            ))
+        })
+    }
+}
+
+impl Emulator for CanEmulator {
+    fn kind(&self) -> &'static str {
+        "can"
+    }
+
+    fn step(&mut self, pins: Pins) -> Pins {
+        let rx_master = self.bus.rx(0);
+        self.tx[0] = pins.0 & 2 != 0;
+        for (i, node) in self.nodes.iter_mut().enumerate() {
+            if let Some(f) = self.pending[i].first() {
+                if node.load(f) {
+                    self.pending[i].remove(0);
+                }
+            }
+            self.tx[i + 1] = node.step(self.bus.rx(i + 1));
+            let (r, s, e) = self.seen[i];
+            for f in &node.received()[r..] {
+                self.entries.push(entry(&self.names[i], "received", self.cycle, f));
+            }
+            for f in &node.sent()[s..] {
+                self.entries.push(entry(&self.names[i], "sent", self.cycle, f));
+            }
+            if node.errors() > e {
+                self.checks.push(
+                    self.cycle,
+                    "CAN frame coding (ISO 11898-1: bit, stuff, CRC, form and ACK rules)",
+                    format!(
+                        "node `{}` detected an error ({} so far)",
+                        self.names[i],
+                        node.errors()
+                    ),
+                );
+            }
+            self.seen[i] = (node.received().len(), node.sent().len(), node.errors());
+        }
+        self.bus.push(&self.tx);
+        self.cycle += 1;
+        let flag = if self.checks.pending() {
+            VIOLATION_PENDING
+        } else {
+            0
+        };
+        Pins(rx_master as u32 | flag)
+    }
+
+    fn set_position(&mut self, _device: usize, _position: u64) -> Result<()> {
+        Err(Error::Usage(
+            "a CAN node has no position: script its frames ([[nodes]] frames, or schedule_fault with [[send]] tables)".into(),
+        ))
+    }
+
+    fn set_status(&mut self, _device: usize, name: &str, _value: bool) -> Result<()> {
+        Err(Error::Usage(format!(
+            "a CAN node has no status to set (`{name}`): its ACK is nodes[i].ack"
+        )))
+    }
+
+    fn schedule_fault(&mut self, toml: &str) -> Result<()> {
+        let tables = config::tables(toml, "send", "can")?;
+        let s: SendTables = config::decode(tables.device, "send")?;
+        for (k, f) in s.send.iter().enumerate() {
+            self.node(f.node).map_err(|e| {
+                Error::field("send", format!("send[{k}].node"), e.to_string(), "give a node index of [[can.nodes]]")
+            })?;
+            let frame = Scripted {
+                at_us: 0.0,
+                id: f.id,
+                ide: f.ide,
+                rtr: f.rtr,
+                dlc: f.dlc,
+                data: f.data.clone(),
+            }
+            .frame();
+            frame
+                .validate(&format!("send[{k}]"))
+                .map_err(|e| Error::config("send", e))?;
+            self.pending[f.node].push(frame);
+        }
+        Ok(())
+    }
+
+    fn count(&self) -> u64 {
+        self.nodes.first().map_or(0, |n| n.received().len() as u64)
+    }
+
+    fn last_value(&self, device: usize) -> Option<u64> {
+        let node = self.nodes.get(device % 16)?;
+        let last = node.received().last();
+        match device / 16 {
+            0 => last.map(|f| f.packed()),
+            1 => last.map(|f| f.id as u64),
+            2 => last.map(|f| f.dlc as u64),
+            3 => Some(node.sent().len() as u64),
+            _ => None,
+        }
+    }
+
+    fn last_status(&self, device: usize, name: &str) -> Result<bool> {
+        let last = self.node(device)?.received().last();
+        match name {
+            "ide" => Ok(last.is_some_and(|f| f.ide)),
+            "rtr" => Ok(last.is_some_and(|f| f.rtr)),
+            other => Err(Error::Usage(format!(
+                "a CAN node reports `ide` and `rtr` of the last frame it received, not `{other}`"
+            ))),
+        }
+    }
+
+    fn transcript(&self) -> serde_json::Value {
+        let nodes: Vec<serde_json::Value> = self
+            .nodes
+            .iter()
+            .zip(&self.names)
+            .map(|(n, name)| {
+                serde_json::json!({
+                    "name": name,
+                    "sent": n.sent().len(),
+                    "received": n.received().len(),
+                    "errors": n.errors(),
+                    "arbitrations_lost": n.arbitrations_lost(),
+                })
+            })
+            .collect();
+        serde_json::json!({
+            "protocol": "can",
+            "f_emu_hz": self.f_emu_hz,
+            "nodes": nodes,
+            "frames": self.entries,
+            "violations": self.checks.all(),
+        })
+    }
+
+    fn checks(&mut self) -> &mut Checks {
+        &mut self.checks
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const TWO: &str = "[can]\ntiming = { bit_rate_kbps = 1000, tq_per_bit = 10, sample_point = 0.8, sjw = 2 }\n\
+        [[can.nodes]]\nname = \"a\"\nposition_m = 5\n\
+        [[can.nodes]]\nname = \"b\"\nposition_m = 10\nframes = [{ at_us = 5, id = 0x123, dlc = 2, data = [0xAB, 0xCD] }]\n";
+
+    #[test]
+    fn a_nodes_frame_reaches_the_other_node_through_a_recessive_master() {
+        let mut emu = CanEmulator::from_toml(TWO, "two.toml", 10_000_000).unwrap();
+        let mut dominant = 0;
+        for _ in 0..3000 {
+            dominant += (emu.step(Pins(2)).0 & 1 == 0) as u32;
+        }
+        // Node a received b's frame (and acknowledged it); the master's RXD saw it.
+        assert_eq!(emu.count(), 1);
+        assert_eq!(emu.last_value(16), Some(0x123));
+        assert_eq!(emu.last_value(32), Some(2));
+        assert_eq!(emu.last_value(0), Some(0xABCD << 48));
+        assert_eq!(emu.last_value(1 + 48), Some(1));
+        assert!(dominant > 10);
+        assert!(emu.violations().is_empty(), "{:?}", emu.violations());
+    }
+
+    #[test]
+    fn a_frame_scripted_at_run_time_is_sent() {
+        let mut emu = CanEmulator::from_toml(TWO, "two.toml", 10_000_000).unwrap();
+        emu.schedule_fault("[[send]]\nnode = 0\nid = 0x42\ndlc = 1\ndata = [7]\n").unwrap();
+        for _ in 0..6000 {
+            emu.step(Pins(2));
+        }
+        assert_eq!(emu.last_value(48), Some(1), "node a sent its frame");
+        assert_eq!(emu.last_value(1 + 16), Some(0x42), "node b received it");
+        let err = emu.schedule_fault("[[send]]\nnode = 5\nid = 1\n").err().unwrap().to_string();
+        assert!(err.contains("send[0].node"), "{err}");
+    }
+
+    #[test]
+    fn a_master_holding_the_bus_dominant_is_reported() {
+        let mut emu = CanEmulator::from_toml(TWO, "two.toml", 10_000_000).unwrap();
+        for k in 0..3000 {
+            // A dominant pulse every 30 bits: a form or stuff error at the nodes.
+            let tx = !(k % 300 < 70);
+            emu.step(Pins((tx as u32) << 1));
+        }
+        assert!(!emu.violations().is_empty());
+        assert!(emu.violations()[0].rule.starts_with("CAN frame coding"));
+    }
+
+    #[test]
+    fn faults_and_missing_nodes_are_refused_by_name() {
+        let err = CanEmulator::from_toml("[can]\n", "c.toml", 10_000_000).err().unwrap().to_string();
+        assert!(err.starts_with("c.toml: ") && err.contains("nodes"), "{err}");
+        let err = CanEmulator::from_toml("", "c.toml", 3_000_000).err().unwrap().to_string();
+        assert!(err.contains("at least 4000000 Hz"), "{err}");
+    }
+}

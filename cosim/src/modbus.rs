@@ -1,0 +1,349 @@
+//! The Modbus RTU emulator: one to three [`model::modbus::Device`]s (the
+//! SAR58K24 in its seventh mode) on a half-duplex cable.
+//!
+//! Configuration: the scenario's `[modbus]` table (`baud`, `parity`,
+//! `[[devices]]`, `[cable]`; `[master]` gives the t1.5/t3.5 the devices keep,
+//! as in the scenario); `[[ops]]`, `[[second_drivers]]` and `f_sys_mhz` are
+//! ignored. The emulator's own tables are `[random]` (as for the SAR58K24:
+//! `count` random positions per device from `seed`) and `[checks]`.
+//!
+//! As in the model, a device answers the next entry of its `positions`
+//! list (the last holding) and has no run-time setter: `set_position` is
+//! refused with that explanation; [`Emulator::last_value`] is the value of
+//! the device's last function-03 answer, as on the wire (Gray when `gray`).
+//! Statuses readable with `last_status`: `answered`, `discarded`,
+//! `exception` (the last request the device saw).
+//!
+//! Pins as the SAR58K24's ([`crate::sar58k24`]): in bit 1 the master's
+//! driver level, bit 2 its enable; out bit 0 the devices' level at the
+//! master's end, bit 1 their enable, bit 2 the resolved line level.
+
+use serde::{Deserialize, Serialize};
+
+use model::line::Drive;
+use model::modbus::{BenchConfig, Device, Verdict};
+
+use crate::check::{Checks, VIOLATION_PENDING};
+use crate::config::Error;
+use crate::sar58k24::{half_duplex_pins, hex, random_lists, uart_bench, HalfDuplex, RandomPositions};
+use crate::{Emulator, Pins, Result};
+
+/// 8 samples per bit at 115200 baud, as the SAR58K24 emulator.
+pub const MAX_LINE_KHZ: f64 = crate::sar58k24::MAX_LINE_KHZ;
+
+/// The limits the master is held to (`[checks]`).
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct ModbusChecks {
+    /// Two drivers on the line at once is a violation.
+    pub contention: bool,
+    /// A request the device discards (a silence over t1.5 inside it, a bad
+    /// CRC, a parity or framing error) is a violation.
+    pub discarded: bool,
+}
+
+impl Default for ModbusChecks {
+    fn default() -> Self {
+        ModbusChecks {
+            contention: true,
+            discarded: true,
+        }
+    }
+}
+
+#[derive(Debug, Clone, PartialEq, Deserialize, Default)]
+#[serde(deny_unknown_fields, default)]
+struct Own {
+    random: RandomPositions,
+    checks: ModbusChecks,
+}
+
+/// One request a device saw, and its answer.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Entry {
+    /// The device (index in `[[devices]]`).
+    pub device: usize,
+    /// Emulator cycle the request ended (t3.5 of silence).
+    pub cycle: u64,
+    /// The request, hex.
+    pub request: String,
+    /// What the device did.
+    pub verdict: Verdict,
+    /// The answer meant (before faults), hex.
+    pub answer: String,
+    /// The value of a function-03 answer.
+    pub value: Option<u64>,
+}
+
+/// The value in a function-03 answer `addr 03 n d.. crc crc`.
+fn value_of(answer: &[u8]) -> Option<u64> {
+    if answer.len() < 5 || answer[1] != 0x03 {
+        return None;
+    }
+    let n = answer[2] as usize;
+    let data = answer.get(3..3 + n)?;
+    Some(data.iter().fold(0u64, |v, &b| (v << 8) | b as u64))
+}
+
+/// One to three Modbus devices on their cable, on the emulator clock.
+pub struct ModbusEmulator {
+    f_emu_hz: u64,
+    devices: Vec<Device>,
+    seen: Vec<usize>,
+    line: HalfDuplex,
+    drive: Drive,
+    own: Own,
+    cycle: u64,
+    entries: Vec<Entry>,
+    last: Vec<Option<usize>>,
+    last_value: Vec<Option<u64>>,
+    checks: Checks,
+    in_contention: bool,
+}
+
+impl ModbusEmulator {
+    /// An emulator from TOML text (`origin` names it in errors) at `f_emu_hz`.
+    pub fn from_toml(text: &str, origin: &str, f_emu_hz: u64) -> Result<Self> {
+        let (tb, own, mut bench) = uart_bench::<Own, BenchConfig>(text, origin, f_emu_hz, "modbus", "Modbus RTU", 19_200.0)?;
+        let bits: Vec<u32> = bench.devices.iter().map(|d| d.bits).collect();
+        let lists = random_lists(&own.random, &bits, origin, "devices", "[[devices]]")?;
+        for (d, list) in bench.devices.iter_mut().zip(lists) {
+            if let Some(list) = list {
+                d.positions = list;
+            }
+        }
+        bench
+            .cable
+            .validate("cable")
+            .map_err(|e| Error::config(origin, e))?;
+        let devices = (0..bench.devices.len())
+            .map(|i| {
+                bench
+                    .device_config(i)
+                    .and_then(Device::new)
+                    .map_err(|e| Error::config(origin, e))
+            })
+            .collect::<Result<Vec<_>>>()?;
+        let n = devices.len();
+        Ok(ModbusEmulator {
+            f_emu_hz,
+            devices,
+            seen: vec![0; n],
+            line: HalfDuplex::new(&bench.cable, &tb),
+            drive: Drive {
+                enable: false,
+                level: true,
+            },
+            own,
+            cycle: 0,
+            entries: Vec::new(),
+            last: vec![None; n],
+            last_value: vec![None; n],
+            checks: Checks::new(tb.period_ps()),
+            in_contention: false,
+        })
+    }
+
+    /// The requests seen so far.
+    pub fn entries(&self) -> &[Entry] {
+        &self.entries
+    }
+
+    fn device(&self, device: usize) -> Result<()> {
+        if device < self.devices.len() {
+            Ok(())
+        } else {
+            Err(Error::Usage(format!(
+                "the Modbus emulator has {} device(s), not device {device}",
+                self.devices.len()
+            )))
+        }
+    }
+}
+
+impl Emulator for ModbusEmulator {
+    fn kind(&self) -> &'static str {
+        "modbus"
+    }
+
+    fn step(&mut self, pins: Pins) -> Pins {
+        let host = Drive {
+            enable: pins.0 & 4 != 0,
+            level: pins.0 & 2 != 0,
+        };
+        let ends = self.line.step(host, self.drive);
+        if ends.contention && !self.in_contention && self.own.checks.contention {
+            self.checks.push(
+                self.cycle,
+                "one driver at a time (seed 001, 3.1.7: half-duplex RS-485, the master releases the line after its request)",
+                "the master and a device drive the line together".into(),
+            );
+        }
+        self.in_contention = ends.contention;
+        let mut drive = Drive {
+            enable: false,
+            level: true,
+        };
+        for (i, d) in self.devices.iter_mut().enumerate() {
+            let out = d.step(ends.at_device);
+            if out.enable && !drive.enable {
+                drive = out;
+            }
+            if d.seen().len() > self.seen[i] {
+                for s in &d.seen()[self.seen[i]..] {
+                    let value = value_of(&s.answer);
+                    if value.is_some() {
+                        self.last_value[i] = value;
+                    }
+                    if s.verdict == Verdict::Discarded && self.own.checks.discarded {
+                        self.checks.push(
+                            self.cycle,
+                            "RTU framing (seed 001, 3.1.7 and Modbus over serial line 2.5.1.1: a frame is sent as a continuous stream, silences inside it under t1.5, CRC-16)",
+                            format!("device {i} discarded the request {}", hex(&s.request)),
+                        );
+                    }
+                    self.last[i] = Some(self.entries.len());
+                    self.entries.push(Entry {
+                        device: i,
+                        cycle: s.cycle,
+                        request: hex(&s.request),
+                        verdict: s.verdict.clone(),
+                        answer: hex(&s.answer),
+                        value,
+                    });
+                }
+                self.seen[i] = d.seen().len();
+            }
+        }
+        self.drive = drive;
+        self.cycle += 1;
+        let flag = if self.checks.pending() {
+            VIOLATION_PENDING
+        } else {
+            0
+        };
+        Pins(half_duplex_pins(host, ends.far) | flag)
+    }
+
+    fn set_position(&mut self, _device: usize, _position: u64) -> Result<()> {
+        Err(Error::Usage(
+            "the Modbus emulator answers the positions of devices[i].positions (one per answer, the last holding; [random] count = N makes a random list): the model's device has no run-time setter; compare the master's reading with last_value".into(),
+        ))
+    }
+
+    fn set_status(&mut self, _device: usize, name: &str, _value: bool) -> Result<()> {
+        Err(Error::Usage(format!(
+            "a Modbus device's answers are set by its configuration (`{name}`): exceptions follow from the request, faults from devices[i].faults"
+        )))
+    }
+
+    fn schedule_fault(&mut self, _toml: &str) -> Result<()> {
+        Err(Error::Usage(
+            "Modbus answer faults are scheduled in the configuration (devices[i].faults, by answer number)".into(),
+        ))
+    }
+
+    fn count(&self) -> u64 {
+        self.seen.first().copied().unwrap_or(0) as u64
+    }
+
+    fn last_value(&self, device: usize) -> Option<u64> {
+        self.last_value.get(device).copied().flatten()
+    }
+
+    fn last_status(&self, device: usize, name: &str) -> Result<bool> {
+        self.device(device)?;
+        let e = self.last[device].map(|k| &self.entries[k]);
+        match name {
+            "answered" => Ok(e.is_some_and(|e| e.verdict == Verdict::Answered)),
+            "discarded" => Ok(e.is_some_and(|e| e.verdict == Verdict::Discarded)),
+            "exception" => Ok(e.is_some_and(|e| {
+                e.verdict == Verdict::Answered
+                    && u8::from_str_radix(e.answer.split(' ').nth(1).unwrap_or("0"), 16)
+                        .is_ok_and(|f| f & 0x80 != 0)
+            })),
+            other => Err(Error::Usage(format!(
+                "a Modbus device reports `answered`, `discarded` and `exception`, not `{other}`"
+            ))),
+        }
+    }
+
+    fn transcript(&self) -> serde_json::Value {
+        serde_json::json!({
+            "protocol": "modbus",
+            "f_emu_hz": self.f_emu_hz,
+            "requests": self.entries,
+            "contention_cycles": self.line.contention,
+            "violations": self.checks.all(),
+        })
+    }
+
+    fn checks(&mut self) -> &mut Checks {
+        &mut self.checks
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use model::uart::Parity;
+
+    fn levels(bytes: &[u8], c: usize) -> Vec<bool> {
+        bytes
+            .iter()
+            .flat_map(|&b| Parity::None.levels(b))
+            .flat_map(|bit| std::iter::repeat_n(bit, c))
+            .collect()
+    }
+
+    #[test]
+    fn the_seed_request_01_03_00_00_00_01_84_0a_is_answered_with_383() {
+        // Seed 001, 3.1.7: factory defaults, 19200 baud, position 383.
+        let text = std::fs::read_to_string(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../scenarios/modbus/seed_19200.toml"
+        ))
+        .unwrap();
+        let mut emu = ModbusEmulator::from_toml(&text, "seed_19200.toml", 2_000_000).unwrap();
+        let req = levels(&[0x01, 0x03, 0x00, 0x00, 0x00, 0x01, 0x84, 0x0A], 104);
+        let mut enabled = 0u64;
+        for k in 0..40_000 {
+            let pins = match req.get(k) {
+                Some(&l) => 4 | (l as u32) << 1,
+                None => 2,
+            };
+            enabled += (emu.step(Pins(pins)).0 & 2 != 0) as u64;
+        }
+        assert_eq!(emu.count(), 1);
+        assert_eq!(emu.entries()[0].verdict, Verdict::Answered);
+        // Seed 001, 3.1.7 (5): 01 03 02 XX XX CRC; the CRC checked by the model's frame layer.
+        assert!(emu.entries()[0].answer.starts_with("01 03 02 01 7F "), "{}", emu.entries()[0].answer);
+        let bytes: Vec<u8> = emu.entries()[0].answer.split(' ').map(|b| u8::from_str_radix(b, 16).unwrap()).collect();
+        assert!(model::modbus::frames::crc_ok(&bytes));
+        assert_eq!(emu.last_value(0), Some(383));
+        assert!(emu.last_status(0, "answered").unwrap());
+        assert!(!emu.last_status(0, "exception").unwrap());
+        assert!(enabled > 7 * 10 * 104 - 10, "the answer drove the line for {enabled} cycles");
+        assert!(emu.violations().is_empty());
+    }
+
+    #[test]
+    fn a_request_with_a_long_silence_inside_is_a_violation() {
+        let mut emu = ModbusEmulator::from_toml("[modbus]\nbaud = 19200.0\n", "m.toml", 2_000_000).unwrap();
+        let a = levels(&[0x01, 0x03, 0x00], 104);
+        let b = levels(&[0x00, 0x00, 0x01, 0x84, 0x0A], 104);
+        let mut line: Vec<bool> = a;
+        line.extend(std::iter::repeat_n(true, 2000)); // 1 ms > t1.5 (859 us at 19200)
+        line.extend(b);
+        for k in 0..30_000 {
+            let pins = match line.get(k) {
+                Some(&l) => 4 | (l as u32) << 1,
+                None => 2,
+            };
+            emu.step(Pins(pins));
+        }
+        assert_eq!(emu.entries()[0].verdict, Verdict::Discarded);
+        assert_eq!(emu.violations().len(), 1);
+        assert!(emu.violations()[0].rule.starts_with("RTU framing"));
+    }
+}

@@ -1,0 +1,92 @@
+"""Shared helpers of the cocotb examples: an emulator from encoder_emu (the
+PyO3 module built from the cosim crate by scripts/cocotb.sh) stepped on every
+rising edge of the clock, with the master's pins in and the emulator's out."""
+
+import os
+
+import cocotb
+from cocotb.clock import Clock
+from cocotb.triggers import RisingEdge
+
+import encoder_emu
+
+
+def config_path():
+    """The scenario file the runner chose (COSIM_CONFIG)."""
+    return os.environ["COSIM_CONFIG"]
+
+
+def open_emulator(kind, f_emu_hz):
+    """The emulator of `kind` from the runner's scenario file."""
+    path = config_path()
+    with open(path, encoding="utf-8") as f:
+        return encoder_emu.Emulator(kind, f.read(), f_emu_hz, path)
+
+
+def bit(signal):
+    """A 1-bit signal as 0/1 (X or Z read as 1, the idle level; the HDL
+    wrappers report it, a cocotb test asserts it away at reset)."""
+    v = signal.value
+    return int(v) if v.is_resolvable else 1
+
+
+async def start(dut, f_hz):
+    """Starts the clock at f_hz and holds reset for 4 cycles."""
+    period_ps = round(1e12 / f_hz)
+    cocotb.start_soon(Clock(dut.i_clk, period_ps, units="ps").start())
+    dut.i_rst.value = 1
+    for _ in range(4):
+        await RisingEdge(dut.i_clk)
+    dut.i_rst.value = 0
+    for _ in range(4):
+        await RisingEdge(dut.i_clk)
+
+
+def run_emulator(dut, emu, pins_in, apply_out):
+    """Steps `emu` on each rising edge: pins_in() -> int, apply_out(int)."""
+
+    async def loop():
+        while True:
+            await RisingEdge(dut.i_clk)
+            apply_out(emu.step(pins_in()))
+
+    return cocotb.start_soon(loop())
+
+
+async def wait_for(dut, signal, limit, what):
+    """Waits until `signal` is 1 (at most `limit` cycles)."""
+    for _ in range(limit):
+        await RisingEdge(dut.i_clk)
+        if bit(signal) == 1:
+            return
+    raise AssertionError(f"no {what} within {limit} cycles")
+
+
+def no_violations(emu):
+    v = emu.violations()
+    assert not v, "the master broke the seed's timing rules:\n" + "\n".join(v)
+
+
+async def operation(dut, start, value, errors, limit=2_000_000):
+    """Pulses `start` for one cycle, then until o_done collects the value of
+    `value` at o_valid and the names of the error pulses seen."""
+    start.value = 1
+    await RisingEdge(dut.i_clk)
+    start.value = 0
+    got, seen = None, []
+    for _ in range(limit):
+        await RisingEdge(dut.i_clk)
+        if bit(dut.o_valid):
+            got = int(value.value)
+        seen += [e for e in errors if bit(getattr(dut, e))]
+        if bit(dut.o_done):
+            await RisingEdge(dut.i_clk)
+            return got, seen
+    raise AssertionError(f"no o_done within {limit} cycles")
+
+
+def planted(value):
+    """`value` with bit COSIM_FLIP_BIT flipped when that is set (a planted
+    misread: the test must then fail)."""
+    k = int(os.environ.get("COSIM_FLIP_BIT", "-1"))
+    return value if value is None or k < 0 else value ^ (1 << k)
