@@ -15,7 +15,7 @@
 # the run must then fail. Exit status 0 only when every configuration passed.
 set -euo pipefail
 
-usage() { echo "usage: $0 <ssi_master|biss_master> <icarus|verilator> [--transactions N] [--config FILE] [--seed S] [--flip-bit K] [--transcript FILE]" >&2; exit 2; }
+usage() { echo "usage: $0 <ssi_master|biss_master|endat_master> <icarus|verilator> [--transactions N] [--config FILE] [--seed S] [--flip-bit K] [--transcript FILE]" >&2; exit 2; }
 [ $# -ge 2 ] || usage
 core=$1 sim=$2
 shift 2
@@ -37,7 +37,8 @@ command -v ccache > /dev/null 2>&1 && export OBJCACHE=${OBJCACHE:-ccache}
 case "$core" in
 ssi_master) proto=ssi emu=ssi_encoder_emu ;;
 biss_master) proto=biss emu=biss_slave_emu ;;
-*) echo "cosim.sh: no closed-loop testbench for core '$core' (ssi_master, biss_master)" >&2; exit 2 ;;
+endat_master) proto=endat emu=endat_encoder_emu ;;
+*) echo "cosim.sh: no closed-loop testbench for core '$core' (ssi_master, biss_master, endat_master)" >&2; exit 2 ;;
 esac
 case "$sim" in icarus|verilator) ;; *) usage ;; esac
 tb="$root/hdl/tb_cosim/$core/tb_cosim_$core.v"
@@ -54,7 +55,7 @@ for cfg in "${configs[@]}"; do
     params=$("$params_tool" "$proto" "$cfg") || { status=1; continue; }
     f_sys_hz=$(sed -n 's/^F_SYS_HZ=//p' <<< "$params")
     half_fs=$(( 500000000000000 / f_sys_hz ))
-    key=$(printf '%s\n' "$params" | cat - "$tb" "$root/hdl/emu/$emu.v" "$root/hdl/emu/emu_api.vh" "$root/hdl/emu/emu_clocked.vh" "${rtl[@]}" | sha1sum | cut -c1-12)
+    key=$(printf '%s\n' "$params" | cat - "$tb" "$root/hdl/emu/$emu.v" "$root/hdl/emu/emu_api.vh" "$root/hdl/emu/emu_clocked.vh" "$root/hdl/emu/emu_half_duplex.vh" "${rtl[@]}" | sha1sum | cut -c1-12)
     build="$root/build/cosim/$core/$sim/$key"
     mkdir -p "$build"
     exec 9> "$build/.lock"

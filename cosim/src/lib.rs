@@ -32,7 +32,9 @@
 pub mod biss;
 pub mod check;
 pub mod config;
+pub mod endat;
 pub mod ffi;
+pub mod motion;
 pub mod ssi;
 
 pub use config::Error;
@@ -87,6 +89,13 @@ pub trait Emulator: Send {
     /// next transaction on, independently of every other status.
     fn set_status(&mut self, device: usize, name: &str, value: bool) -> Result<()>;
 
+    /// Moves device `device` along a motion profile (a `[motion]` table in
+    /// TOML text, see [`motion`]) from now on, instead of set positions.
+    fn set_motion(&mut self, device: usize, toml: &str) -> Result<()> {
+        let _ = (device, toml);
+        Err(Error::Usage(format!("the {} emulator takes no motion profile", self.kind())))
+    }
+
     /// Schedules faults given as the scenario's fault tables in TOML text.
     fn schedule_fault(&mut self, toml: &str) -> Result<()>;
 
@@ -127,8 +136,11 @@ pub fn open(kind: &str, toml: &str, origin: &str, f_emu_hz: u64) -> Result<Box<d
         "biss" => Ok(Box::new(biss::BissEmulator::from_toml(
             toml, origin, f_emu_hz,
         )?)),
+        "endat" => Ok(Box::new(endat::EndatEmulator::from_toml(
+            toml, origin, f_emu_hz,
+        )?)),
         other => Err(Error::Usage(format!(
-            "no emulator `{other}`; give one of: ssi, biss"
+            "no emulator `{other}`; give one of: ssi, biss, endat"
         ))),
     }
 }

@@ -47,7 +47,11 @@ fn run(args: &[String]) -> Result<Vec<(String, u64)>, String> {
     match proto.as_str() {
         "ssi" => params::<model::ssi::BenchConfig>(table, path),
         "biss" => params::<model::biss::BenchConfig>(table, path),
-        other => Err(format!("no protocol `{other}`; give ssi or biss")),
+        "endat" => {
+            table.remove("motion");
+            params::<model::endat::BenchConfig>(table, path)
+        }
+        other => Err(format!("no protocol `{other}`; give ssi, biss or endat")),
     }
 }
 
