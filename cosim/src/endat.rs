@@ -59,6 +59,26 @@ pub struct EndatConfig {
     pub faults: FaultSettings,
     /// A motion profile (see [`crate::motion`]).
     pub motion: Option<Motion>,
+    /// The timing limits the master is held to.
+    pub checks: EndatChecks,
+}
+
+/// The master's timing limits (`[checks]`), by default the seed's (seed 004,
+/// 2.3.2: `t_b > 1 ms` between EnDat 2.1 commands; `f_c` up to 8 MHz with
+/// delay compensation, 16 MHz for the encoders that support it).
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct EndatChecks {
+    /// Least time between a type 2.1 transfer's last clock edge and the next transfer, µs.
+    pub t_b_us: f64,
+    /// Fastest clock: no clock phase within a transfer shorter than half its period, kHz.
+    pub max_clock_khz: f64,
+}
+
+impl Default for EndatChecks {
+    fn default() -> Self {
+        EndatChecks { t_b_us: 1000.0, max_clock_khz: 8000.0 }
+    }
 }
 
 impl Default for EndatConfig {
@@ -72,6 +92,7 @@ impl Default for EndatConfig {
             step: 0,
             faults: FaultSettings::default(),
             motion: None,
+            checks: EndatChecks::default(),
         }
     }
 }
@@ -125,6 +146,10 @@ pub struct EndatEmulator {
     seen_answer: &'static str,
     seen_contention: u64,
     in_contention: bool,
+    last_clk: bool,
+    last_clk_edge: u64,
+    after_21: bool,
+    limits: (f64, f64),
     checks: Checks,
 }
 
@@ -165,6 +190,21 @@ impl EndatEmulator {
         let (clk_line, _) = cfg.cable.lines(&tb, true);
         let delay = cfg.cable.delay_cycles(&tb);
         let motion = cfg.motion.clone().map(|motion| Running { motion, since: 0 });
+        let c = &cfg.checks;
+        if !(c.t_b_us >= 0.0 && c.t_b_us < 1e7 && c.max_clock_khz > 0.0 && c.max_clock_khz < 1e6) {
+            return Err(Error::field(
+                origin,
+                "checks",
+                format!("t_b_us = {}, max_clock_khz = {}", c.t_b_us, c.max_clock_khz),
+                "give t_b_us >= 0 (seed: 1000) and max_clock_khz > 0 (seed: 8000)",
+            ));
+        }
+        let checks = Checks::new(tb.period_ps());
+        // t_b and the shortest half period in emulator cycles, one cycle of tolerance.
+        let limits = (
+            checks.cycles_of_ns(c.t_b_us * 1e3) - 1.0,
+            checks.cycles_of_ns(1e6 / (2.0 * c.max_clock_khz)) - 1.0,
+        );
         let mut emu = EndatEmulator {
             f_emu_hz,
             period_ps: tb.period_ps(),
@@ -188,7 +228,11 @@ impl EndatEmulator {
             seen_answer: "ok",
             seen_contention: 0,
             in_contention: false,
-            checks: Checks::new(tb.period_ps()),
+            last_clk: true,
+            last_clk_edge: 0,
+            after_21: false,
+            limits,
+            checks,
         };
         emu.prepare(0);
         Ok(emu)
@@ -274,6 +318,32 @@ impl EndatEmulator {
         }
     }
 
+    /// The master's clock as the encoder sees it (the cable shifts every edge alike):
+    /// `t_b` after a type 2.1 transfer, and the fastest clock within a transfer.
+    fn check_clock(&mut self, clk: bool, gap: u64, latched: bool) {
+        let (t_b, half_min) = self.limits;
+        if latched {
+            if self.after_21 && (gap as f64) < t_b {
+                self.checks.push(
+                    self.cycle,
+                    "t_b (seed 004, 2.3.2: t_b > 1 ms between EnDat 2.1 commands)",
+                    format!("next transfer {:.3} us after the last clock edge of a type 2.1 transfer", self.checks.us(gap)),
+                );
+            }
+        } else if (gap as f64) < half_min {
+            self.checks.push(
+                self.cycle,
+                "f_c (seed 004, 2.3.2: clock frequency up to 8 MHz with delay compensation)",
+                format!("clock {} for {:.3} us within a transfer", if clk { "low" } else { "high" }, self.checks.us(gap)),
+            );
+        }
+        if latched {
+            self.after_21 = false;
+        }
+        self.last_clk = clk;
+        self.last_clk_edge = self.cycle;
+    }
+
     fn watch(&mut self, contention: bool) {
         if self.encoder.violations != self.seen_violations {
             self.seen_violations = self.encoder.violations;
@@ -312,10 +382,15 @@ impl Emulator for EndatEmulator {
             self.encoder.set_position(p);
         }
         let clk = self.clk_line.step(pins.data());
+        let edge = (clk != self.last_clk).then(|| self.cycle - self.last_clk_edge);
         let (at_master, at_encoder) = self.pair.step(master, self.enc_drive);
         let latches = self.encoder.latches;
         self.enc_drive = self.encoder.step(clk, at_encoder.level);
-        if self.encoder.latches != latches {
+        let latched = self.encoder.latches != latches;
+        if let Some(gap) = edge {
+            self.check_clock(clk, gap, latched);
+        }
+        if latched {
             self.on_latch();
         }
         if let Some((_, sent)) = self.encoder.frames.pop_front() {
@@ -326,6 +401,7 @@ impl Emulator for EndatEmulator {
             self.seen_decodes = self.encoder.decodes;
             self.seen_answer = self.encoder.answer_name();
             let mode = bits::string_of(self.encoder.mode() as u128, 6);
+            self.after_21 = model::endat::Command::from_code(self.encoder.mode()).is_some_and(|c| !c.is_type22());
             if let Some(e) = self.entries.last_mut() {
                 e.mode = mode;
                 e.answer = self.seen_answer;
@@ -514,6 +590,20 @@ mod tests {
         transfer(&mut emu, 0b111000, 16, 40, 64 * 40);
         let rules: Vec<&str> = emu.violations().iter().map(|v| v.rule.split(' ').next().unwrap()).collect();
         assert!(rules.contains(&"t_m"), "{rules:?}");
+    }
+
+    #[test]
+    fn a_type_21_transfer_before_t_b_is_reported_and_one_after_it_is_not() {
+        let toml = "[encoder]\noutput_delay_ns = 0\n";
+        let mut emu = EndatEmulator::from_toml(toml, "e.toml", 64_000_000).unwrap();
+        transfer(&mut emu, 0b000111, 16, 33, 64 * 500); // 500 µs later: t_b is 1 ms
+        transfer(&mut emu, 0b000111, 16, 33, 64 * 1010); // 1.01 ms later
+        transfer(&mut emu, 0b000111, 16, 33, 64 * 40);
+        assert_eq!(emu.count(), 3);
+        let rules: Vec<(u64, &str)> = emu.violations().iter().map(|v| (v.cycle, v.rule.split(' ').next().unwrap())).collect();
+        assert_eq!(rules.len(), 1, "{:?}", emu.violations());
+        assert_eq!(rules[0].1, "t_b");
+        assert_eq!(rules[0].0, emu.entries()[1].cycle);
     }
 
     #[test]
