@@ -15,7 +15,7 @@
 # the run must then fail. Exit status 0 only when every configuration passed.
 set -euo pipefail
 
-usage() { echo "usage: $0 <ssi_master|biss_master|endat_master> <icarus|verilator> [--transactions N] [--config FILE] [--seed S] [--flip-bit K] [--transcript FILE]" >&2; exit 2; }
+usage() { echo "usage: $0 <ssi_master|biss_master|endat_master|tformat_host> <icarus|verilator> [--transactions N] [--config FILE] [--seed S] [--flip-bit K] [--transcript FILE]" >&2; exit 2; }
 [ $# -ge 2 ] || usage
 core=$1 sim=$2
 shift 2
@@ -38,7 +38,8 @@ case "$core" in
 ssi_master) proto=ssi emu=ssi_encoder_emu ;;
 biss_master) proto=biss emu=biss_slave_emu ;;
 endat_master) proto=endat emu=endat_encoder_emu ;;
-*) echo "cosim.sh: no closed-loop testbench for core '$core' (ssi_master, biss_master, endat_master)" >&2; exit 2 ;;
+tformat_host) proto=tformat emu=tformat_encoder_emu ;;
+*) echo "cosim.sh: no closed-loop testbench for core '$core' (ssi_master, biss_master, endat_master, tformat_host)" >&2; exit 2 ;;
 esac
 case "$sim" in icarus|verilator) ;; *) usage ;; esac
 tb="$root/hdl/tb_cosim/$core/tb_cosim_$core.v"

@@ -36,6 +36,7 @@ pub mod endat;
 pub mod ffi;
 pub mod motion;
 pub mod ssi;
+pub mod tformat;
 
 pub use config::Error;
 
@@ -139,8 +140,11 @@ pub fn open(kind: &str, toml: &str, origin: &str, f_emu_hz: u64) -> Result<Box<d
         "endat" => Ok(Box::new(endat::EndatEmulator::from_toml(
             toml, origin, f_emu_hz,
         )?)),
+        "tformat" => Ok(Box::new(tformat::TformatEmulator::from_toml(
+            toml, origin, f_emu_hz,
+        )?)),
         other => Err(Error::Usage(format!(
-            "no emulator `{other}`; give one of: ssi, biss, endat"
+            "no emulator `{other}`; give one of: ssi, biss, endat, tformat"
         ))),
     }
 }

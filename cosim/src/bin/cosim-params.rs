@@ -47,11 +47,15 @@ fn run(args: &[String]) -> Result<Vec<(String, u64)>, String> {
     match proto.as_str() {
         "ssi" => params::<model::ssi::BenchConfig>(table, path),
         "biss" => params::<model::biss::BenchConfig>(table, path),
+        "tformat" => {
+            table.remove("motion");
+            params::<model::tformat::BenchConfig>(table, path)
+        }
         "endat" => {
             table.remove("motion");
             params::<model::endat::BenchConfig>(table, path)
         }
-        other => Err(format!("no protocol `{other}`; give ssi, biss or endat")),
+        other => Err(format!("no protocol `{other}`; give ssi, biss, endat or tformat")),
     }
 }
 

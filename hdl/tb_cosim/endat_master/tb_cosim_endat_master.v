@@ -3,7 +3,8 @@
 // position and random F1 and F2 (set independently: F2 comes from a separate
 // detection unit) in the emulator, then one request:
 //   * "send position values" 2.2 (111000), most of them;
-//   * every 50th, "send position values" 2.1 (000111);
+//   * every 50th, "send position values" 2.1 (000111), where f_sys <= 16 MHz
+//     (each costs t_b = 1 ms of simulated time);
 //   * every 16th (not a 2.1 one), a bit of the frame flipped by the emulator
 //     (schedule_fault): the core must flag o_err_crc;
 //   * every 40th, six mode bits that are no command (000000): the encoder
@@ -159,7 +160,8 @@ initial begin
     // The measurement's own transfers (four at least) count as latches too.
     base = u_emu.count(0);
     for (n = 0; n < transactions; n = n + 1) begin
-        is21 = (n % 50) == 49;
+        // A 2.1 read costs t_b = 1 ms after it: only where that is cheap (f_sys <= 16 MHz).
+        is21 = (n % 50) == 49 && F_SYS_HZ <= 16000000;
         type1 = !is21 && (n % 40) == 39;
         flip = !is21 && !type1 && (n % 16) == 15;
         position = {$random(seed), $random(seed)} & mask;
