@@ -29,17 +29,21 @@ use serde::{Deserialize, Serialize};
 
 use model::bits;
 use model::endat::{frame_kind, BenchConfig, Encoder, EncoderSettings, FaultSettings, FrameKind};
-use model::line::{CableConfig, DelayLine, Drive, HalfDuplexLine};
+use model::line::{CableConfig, DelayLine, Drive};
 
-use crate::check::{Checks, VIOLATION_PENDING};
+use crate::check::Checks;
 use crate::config::{self, Error};
 use crate::motion::{Motion, Running};
+use crate::pair::Pair;
 use crate::{Emulator, Pins, Result};
 
 /// The fastest EnDat clock the seed's timing table gives with delay
 /// compensation (seed 004, 2.3.2: `f_c` up to 8 MHz; 16 MHz with the
 /// encoders that support it: set `emulator.max_line_clock_khz`).
 pub const MAX_CLOCK_KHZ: f64 = 8000.0;
+
+/// Both drivers on the data pair.
+const CONTENTION: &str = "t_ST / bus contention (seed 004, 2.2: the master switches its data driver off with the first falling edge and on only while the encoder does not drive)";
 
 /// The emulator's configuration (the scenario's EnDat device tables).
 #[derive(Debug, Clone, PartialEq, Deserialize)]
@@ -129,8 +133,7 @@ pub struct EndatEmulator {
     cfg: EndatConfig,
     encoder: Encoder,
     clk_line: DelayLine,
-    pair: HalfDuplexLine,
-    en_at_master: DelayLine,
+    pair: Pair,
     enc_drive: Drive,
     owned: Option<u64>,
     motion: Option<Running>,
@@ -144,8 +147,6 @@ pub struct EndatEmulator {
     reported_at_latch: u64,
     seen_decodes: u64,
     seen_answer: &'static str,
-    seen_contention: u64,
-    in_contention: bool,
     last_clk: bool,
     last_clk_edge: u64,
     after_21: bool,
@@ -213,8 +214,7 @@ impl EndatEmulator {
             cfg,
             encoder,
             clk_line,
-            pair: HalfDuplexLine::new(delay, true),
-            en_at_master: DelayLine::new(delay, false),
+            pair: Pair::new(delay),
             enc_drive: Drive { enable: true, level: true },
             owned: None,
             motion,
@@ -226,8 +226,6 @@ impl EndatEmulator {
             reported_at_latch: u64::MAX,
             seen_decodes: 0,
             seen_answer: "ok",
-            seen_contention: 0,
-            in_contention: false,
             last_clk: true,
             last_clk_edge: 0,
             after_21: false,
@@ -344,7 +342,7 @@ impl EndatEmulator {
         self.last_clk_edge = self.cycle;
     }
 
-    fn watch(&mut self, contention: bool) {
+    fn watch(&mut self) {
         if self.encoder.violations != self.seen_violations {
             self.seen_violations = self.encoder.violations;
         }
@@ -358,15 +356,6 @@ impl EndatEmulator {
                 "falling clock edge at the encoder while it still held the data line low for t_m".into(),
             );
         }
-        if contention && !self.in_contention {
-            self.seen_contention += 1;
-            self.checks.push(
-                self.cycle,
-                "t_ST / bus contention (seed 004, 2.2: the master switches its data driver off with the first falling edge and on only while the encoder does not drive)",
-                "master and encoder drove the data pair at once".into(),
-            );
-        }
-        self.in_contention = contention;
     }
 }
 
@@ -376,16 +365,16 @@ impl Emulator for EndatEmulator {
     }
 
     fn step(&mut self, pins: Pins) -> Pins {
-        let master = Drive { enable: pins.0 & 4 != 0, level: pins.0 & 2 != 0 };
+        let master = Pair::master_drive(pins);
         if let Some(m) = &self.motion {
             let p = m.position(self.cycle, self.period_ps, self.bits());
             self.encoder.set_position(p);
         }
         let clk = self.clk_line.step(pins.data());
         let edge = (clk != self.last_clk).then(|| self.cycle - self.last_clk_edge);
-        let (at_master, at_encoder) = self.pair.step(master, self.enc_drive);
+        let at_encoder = self.pair.step(master, self.enc_drive, self.cycle, &mut self.checks, CONTENTION);
         let latches = self.encoder.latches;
-        self.enc_drive = self.encoder.step(clk, at_encoder.level);
+        self.enc_drive = self.encoder.step(clk, at_encoder);
         let latched = self.encoder.latches != latches;
         if let Some(gap) = edge {
             self.check_clock(clk, gap, latched);
@@ -407,15 +396,9 @@ impl Emulator for EndatEmulator {
                 e.answer = self.seen_answer;
             }
         }
-        self.watch(at_master.contention || at_encoder.contention);
-        // The encoder's side of the pair at the master's end, without the master's own driver.
-        let far = self.pair.sensed(Drive { enable: false, level: true }, self.enc_drive).0;
-        let _ = at_master;
-        let en = self.en_at_master.step(self.enc_drive.enable);
+        self.watch();
         self.cycle += 1;
-        let level = self.stuck.unwrap_or(far.level);
-        let flag = if self.checks.pending() { VIOLATION_PENDING } else { 0 };
-        Pins(level as u32 | (en as u32) << 1 | flag)
+        self.pair.pins_out(self.enc_drive, &self.checks, self.stuck)
     }
 
     fn set_position(&mut self, device: usize, position: u64) -> Result<()> {

@@ -35,6 +35,7 @@ pub mod config;
 pub mod endat;
 pub mod ffi;
 pub mod motion;
+pub mod pair;
 pub mod ssi;
 pub mod tformat;
 

@@ -25,17 +25,21 @@
 
 use serde::{Deserialize, Serialize};
 
-use model::line::{CableConfig, DelayLine, Drive, HalfDuplexLine};
+use model::line::{CableConfig, Drive};
 use model::tformat::frames::{Alarms, DataId};
 use model::tformat::{AnswerFlip, BenchConfig, Encoder, EncoderSettings};
 
-use crate::check::{Checks, VIOLATION_PENDING};
+use crate::check::Checks;
 use crate::config::{self, Error};
 use crate::motion::Motions;
+use crate::pair::Pair;
 use crate::{Emulator, Pins, Result};
 
 /// The T-format bit rate (seed 002: 2.5 Mbps), the emulator's "line clock".
 pub const MAX_CLOCK_KHZ: f64 = 2500.0;
+
+/// Both drivers on the pair.
+const TURNAROUND: &str = "turnaround (seed 002: the host releases the line before the encoder answers)";
 
 /// The emulator's configuration (the scenario's T-format device tables).
 #[derive(Debug, Clone, PartialEq, Deserialize)]
@@ -82,13 +86,11 @@ pub struct TformatEmulator {
     f_emu_hz: u64,
     period_ps: u64,
     encoder: Encoder,
-    pair: HalfDuplexLine,
-    en_at_master: DelayLine,
+    pair: Pair,
     enc_drive: Drive,
     motions: Motions,
     cycle: u64,
     entries: Vec<Entry>,
-    in_contention: bool,
     checks: Checks,
 }
 
@@ -124,13 +126,11 @@ impl TformatEmulator {
             f_emu_hz,
             period_ps: tb.period_ps(),
             encoder: Encoder::new(enc_cfg),
-            pair: HalfDuplexLine::new(delay, true),
-            en_at_master: DelayLine::new(delay, false),
+            pair: Pair::new(delay),
             enc_drive: Drive { enable: false, level: true },
             motions: Motions::default(),
             cycle: 0,
             entries: Vec::new(),
-            in_contention: false,
             checks: Checks::new(tb.period_ps()),
         })
     }
@@ -204,32 +204,20 @@ impl Emulator for TformatEmulator {
     }
 
     fn step(&mut self, pins: Pins) -> Pins {
-        let host = Drive { enable: pins.0 & 4 != 0, level: pins.0 & 2 != 0 };
+        let host = Pair::master_drive(pins);
         if self.motions.any() {
             if let Some(p) = self.motions.position(0, self.cycle, self.period_ps, 33) {
                 self.encoder.set_position((p & 0x1_FFFF) as u32, (p >> 17) as u16);
             }
         }
-        let (at_host, at_encoder) = self.pair.step(host, self.enc_drive);
+        let at_encoder = self.pair.step(host, self.enc_drive, self.cycle, &mut self.checks, TURNAROUND);
         let answers = self.encoder.answered().len();
-        self.enc_drive = self.encoder.step(at_encoder.level);
+        self.enc_drive = self.encoder.step(at_encoder);
         if self.encoder.answered().len() != answers {
             self.on_answer();
         }
-        let contention = at_host.contention || at_encoder.contention;
-        if contention && !self.in_contention {
-            self.checks.push(
-                self.cycle,
-                "turnaround (seed 002: the host releases the line before the encoder answers)",
-                "host and encoder drove the pair at once".into(),
-            );
-        }
-        self.in_contention = contention;
-        let far = self.pair.sensed(Drive { enable: false, level: true }, self.enc_drive).0;
-        let en = self.en_at_master.step(self.enc_drive.enable);
         self.cycle += 1;
-        let flag = if self.checks.pending() { VIOLATION_PENDING } else { 0 };
-        Pins(far.level as u32 | (en as u32) << 1 | flag)
+        self.pair.pins_out(self.enc_drive, &self.checks, None)
     }
 
     fn set_position(&mut self, device: usize, position: u64) -> Result<()> {
