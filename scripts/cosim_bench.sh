@@ -2,9 +2,9 @@
 # cosim_bench.sh: closed-loop speed against vector replay, per core and simulator.
 #
 #   scripts/cosim_bench.sh [N] [CORE...]   (N transactions, default 1000;
-#                                          cores: default ssi_master biss_master endat_master)
+#                                          cores: default ssi_master biss_master endat_master tformat_host)
 #
-# For each core: the seed (or, for endat_master, the first) configuration of the closed loop
+# For each core: the seed (or, where there is none, the first) configuration of the closed loop
 # (hdl/tb_cosim/<core>/configs/seed_*.toml) is also a scenario file; tbgen
 # turns it, with N reads/frames of moving positions, into golden vectors, and
 # the same N transactions are run (a) as a vector replay (scripts/sim.sh) and
@@ -15,7 +15,7 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 n=${1:-1000}
 shift $(( $# > 0 ? 1 : 0 ))
 cores=("$@")
-[ ${#cores[@]} -gt 0 ] || cores=(ssi_master biss_master endat_master)
+[ ${#cores[@]} -gt 0 ] || cores=(ssi_master biss_master endat_master tformat_host)
 out="$root/build/cosim_bench"
 mkdir -p "$out"
 (cd "$root" && cargo build -q --release -p tbgen -p cosim -j 2)
@@ -25,7 +25,7 @@ calc() { awk "BEGIN { printf \"%.3f\", $1 }"; }
 
 printf '%-12s %-9s %6s %10s %10s %12s %12s %8s\n' core sim N "replay s" "cosim s" "replay c/s" "cosim c/s" "cosim/replay"
 for core in "${cores[@]}"; do
-    cfg=$(ls "$root"/hdl/tb_cosim/$core/configs/seed_*.toml 2> /dev/null | head -n 1)
+    cfg=$( (ls "$root"/hdl/tb_cosim/$core/configs/seed_*.toml 2> /dev/null || true) | head -n 1)
     [ -n "$cfg" ] || cfg=$(ls "$root"/hdl/tb_cosim/$core/configs/*.toml | head -n 1)
     scenario="$out/$core.toml"
     case "$core" in
@@ -35,6 +35,9 @@ for core in "${cores[@]}"; do
     # EnDat: the same number of 2.2 position reads (the closed loop mixes in a few 2.1 reads and faults).
     endat_master) sed -e '/^\[endat.emulator\]$/,/^$/d' -e "s/^\[endat\]$/[endat]\nstep = 7919/" "$cfg" > "$scenario"
                   printf '\n[[endat.commands]]\ncommand = "pos22"\nrepeat = %d\n' "$n" >> "$scenario" ;;
+    # T-format: N Data ID 3 readouts.
+    tformat_host) cp "$cfg" "$scenario"
+                  for _ in $(seq "$n"); do printf '\n[[tformat.ops]]\ndata_id = 3\n'; done >> "$scenario" ;;
     esac
     "$tbgen" gen "$scenario" --out "$out" > /dev/null
     name=$(sed -n 's/^name = "\(.*\)"/\1/p' "$scenario")
