@@ -24,6 +24,7 @@ use model::Timebase;
 
 use crate::check::{Checks, VIOLATION_PENDING};
 use crate::config::{self, Error};
+use crate::motion::Motions;
 use crate::{Emulator, Pins, Result};
 
 /// The fastest MA the seed allows (`TMAS > 100 ns`).
@@ -144,6 +145,7 @@ pub struct BissEmulator {
     slo_at_slaves: bool,
     watch: Watch,
     checks: Checks,
+    motions: Motions,
 }
 
 impl BissEmulator {
@@ -238,6 +240,7 @@ impl BissEmulator {
                 ..Watch::default()
             },
             checks,
+            motions: Motions::default(),
         };
         emu.prepare(0);
         emu.apply_line_faults();
@@ -389,6 +392,14 @@ impl Emulator for BissEmulator {
 
     fn step(&mut self, pins: Pins) -> Pins {
         self.check(pins.data());
+        if self.motions.any() {
+            let period_ps = model::time::PS_PER_S / self.f_emu_hz;
+            for i in 0..self.cfg.slaves.len() {
+                if let Some(p) = self.motions.position(i, self.cycle, period_ps, self.cfg.slaves[i].bits) {
+                    self.chain.slaves_mut()[i].set_position(p);
+                }
+            }
+        }
         let ma = self.to_slaves.step(pins.data());
         let latches = self.chain.latches();
         let frames = self.chain.frames();
@@ -438,8 +449,15 @@ impl Emulator for BissEmulator {
     fn set_position(&mut self, device: usize, position: u64) -> Result<()> {
         let i = self.slave_index(device)?;
         self.owned[i].position = Some(position);
+        self.motions.stop(i);
         self.chain.slaves_mut()[i].set_position(position);
         Ok(())
+    }
+
+    fn set_motion(&mut self, device: usize, toml: &str) -> Result<()> {
+        let i = self.slave_index(device)?;
+        self.owned[i].position = Some(0);
+        self.motions.set(i, toml, self.cycle)
     }
 
     fn set_status(&mut self, device: usize, name: &str, value: bool) -> Result<()> {

@@ -184,6 +184,15 @@ pub extern "C" fn emu_set_status(handle: i32, device: i32, name: *const c_char, 
     })
 }
 
+/// Moves device `device` along a motion profile (a `[motion]` table in TOML text) from now on.
+#[no_mangle]
+pub extern "C" fn emu_set_motion(handle: i32, device: i32, toml: *const c_char) -> i32 {
+    guard(-1, || {
+        let toml = text(toml, "motion")?;
+        with(handle, |e| e.set_motion(device.max(0) as usize, &toml).map(|_| 0))
+    })
+}
+
 /// Schedules faults given as the scenario's fault tables in TOML text.
 #[no_mangle]
 pub extern "C" fn emu_schedule_fault(handle: i32, toml: *const c_char) -> i32 {

@@ -33,10 +33,14 @@ pub mod biss;
 pub mod can;
 pub mod check;
 pub mod config;
+pub mod endat;
 pub mod ffi;
 pub mod modbus;
 pub mod sar58k24;
+pub mod motion;
+pub mod pair;
 pub mod ssi;
+pub mod tformat;
 
 pub use config::Error;
 
@@ -90,6 +94,13 @@ pub trait Emulator: Send {
     /// next transaction on, independently of every other status.
     fn set_status(&mut self, device: usize, name: &str, value: bool) -> Result<()>;
 
+    /// Moves device `device` along a motion profile (a `[motion]` table in
+    /// TOML text, see [`motion`]) from now on, instead of set positions.
+    fn set_motion(&mut self, device: usize, toml: &str) -> Result<()> {
+        let _ = (device, toml);
+        Err(Error::Usage(format!("the {} emulator takes no motion profile", self.kind())))
+    }
+
     /// Schedules faults given as the scenario's fault tables in TOML text.
     fn schedule_fault(&mut self, toml: &str) -> Result<()>;
 
@@ -139,8 +150,14 @@ pub fn open(kind: &str, toml: &str, origin: &str, f_emu_hz: u64) -> Result<Box<d
         "sar58k24" | "sar" => Ok(Box::new(sar58k24::SarEmulator::from_toml(
             toml, origin, f_emu_hz,
         )?)),
+        "endat" => Ok(Box::new(endat::EndatEmulator::from_toml(
+            toml, origin, f_emu_hz,
+        )?)),
+        "tformat" => Ok(Box::new(tformat::TformatEmulator::from_toml(
+            toml, origin, f_emu_hz,
+        )?)),
         other => Err(Error::Usage(format!(
-            "no emulator `{other}`; give one of: ssi, biss, sar58k24, modbus, can"
+            "no emulator `{other}`; give one of: ssi, biss, endat, tformat, sar58k24, modbus, can"
         ))),
     }
 }

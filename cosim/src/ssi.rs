@@ -20,6 +20,7 @@ use model::ssi::{BenchConfig, Encoder, EncoderSettings, StuckFault};
 
 use crate::check::{Checks, VIOLATION_PENDING};
 use crate::config::{self, Error};
+use crate::motion::Motions;
 use crate::{Emulator, Pins, Result};
 
 /// The fastest SSI clock the seed allows (SAR58K24: `f_clk < 250 kHz`).
@@ -130,6 +131,7 @@ pub struct SsiEmulator {
     limits: (f64, f64, f64),
     watch: Watch,
     checks: Checks,
+    motions: Motions,
 }
 
 impl SsiEmulator {
@@ -210,6 +212,7 @@ impl SsiEmulator {
             limits,
             watch,
             checks,
+            motions: Motions::default(),
         };
         emu.prepare(0);
         Ok(emu)
@@ -306,6 +309,12 @@ impl Emulator for SsiEmulator {
 
     fn step(&mut self, pins: Pins) -> Pins {
         self.check(pins.data());
+        if self.motions.any() {
+            let period_ps = model::time::PS_PER_S / self.f_emu_hz;
+            if let Some(p) = self.motions.position(0, self.cycle, period_ps, self.bits) {
+                self.encoder.set_position(p);
+            }
+        }
         let clk = self.to_encoder.step(pins.data());
         let reads = self.encoder.reads();
         let data = self.encoder.step(clk);
@@ -342,8 +351,19 @@ impl Emulator for SsiEmulator {
             )));
         }
         self.owned = Some(position);
+        self.motions.stop(0);
         self.encoder.set_position(position);
         Ok(())
+    }
+
+    fn set_motion(&mut self, device: usize, toml: &str) -> Result<()> {
+        if device != 0 {
+            return Err(Error::Usage(format!(
+                "SSI has one encoder (device 0), not device {device}"
+            )));
+        }
+        self.owned = Some(0);
+        self.motions.set(0, toml, self.cycle)
     }
 
     fn set_status(&mut self, _device: usize, name: &str, _value: bool) -> Result<()> {
@@ -492,5 +512,20 @@ mod tests {
         .unwrap();
         let emu = SsiEmulator::from_toml(&text, "seed_12bit.toml", 50_000_000).unwrap();
         assert_eq!(emu.cfg.positions, vec![495, 0, 4095, 2730]);
+    }
+
+    #[test]
+    fn a_motion_profile_moves_the_position_between_reads() {
+        // 4 MHz: 1 ms = 4000 cycles; 1000 counts per ms from 100.
+        let mut emu = SsiEmulator::from_toml("[checks]\nmax_clock_khz = 500\nt_cs_min_us = 2\n", "e.toml", 4_000_000).unwrap();
+        emu.set_motion(0, "[motion]\nkind = \"constant\"\nstart = 100\ncounts_per_ms = 1000\n").unwrap();
+        read(&mut emu, 12, 10, 4, 2000); // latched at cycle 0: 100
+        for _ in 0..1990 {
+            emu.step(Pins::line(true));
+        }
+        read(&mut emu, 12, 10, 4, 2010); // latched at cycle 4096 (1.024 ms): 1124
+        let got: Vec<(u64, u64)> = emu.entries().iter().map(|e| (e.cycle, e.position)).collect();
+        assert_eq!(got, vec![(0, 100), (4096, 1124)]);
+        assert!(emu.set_motion(0, "[motion]\nkind = \"steps\"\nstart = 0\nstep = 1\nevery_us = -1\n").is_err());
     }
 }

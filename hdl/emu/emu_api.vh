@@ -12,6 +12,7 @@ import "DPI-C" function int emu_step(input int handle, input int pins);
 import "DPI-C" function int emu_set_position(input int handle, input int device, input longint position);
 import "DPI-C" function int emu_set_status(input int handle, input int device, input string name, input int value);
 import "DPI-C" function int emu_schedule_fault(input int handle, input string toml);
+import "DPI-C" function int emu_set_motion(input int handle, input int device, input string toml);
 import "DPI-C" function longint emu_count(input int handle);
 import "DPI-C" function longint emu_last_value(input int handle, input int device);
 import "DPI-C" function int emu_last_status(input int handle, input int device, input string name);
@@ -81,6 +82,20 @@ task set_status(input integer device, input `EMU_STR name, input integer value);
         r = $emu_set_status(emu_handle, device, name, value);
 `endif
         if (r < 0) emu_fail("set_status");
+    end
+endtask
+
+// A motion profile from now on (cosim/src/motion.rs), e.g.
+// "[motion]\nkind = \"constant\"\nstart = 0\ncounts_per_ms = 500".
+task set_motion(input integer device, input `EMU_STR toml);
+    integer r;
+    begin
+`ifdef VERILATOR
+        r = emu_set_motion(emu_handle, device, toml);
+`else
+        r = $emu_set_motion(emu_handle, device, toml);
+`endif
+        if (r < 0) emu_fail("set_motion");
     end
 endtask
 

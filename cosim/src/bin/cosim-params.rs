@@ -61,7 +61,15 @@ fn run(args: &[String]) -> Result<Vec<(String, u64)>, String> {
             params::<model::can::BenchConfig>(table, path)
                 .map(|p| [p, vec![("NODES".to_string(), nodes as u64)]].concat())
         }
-        other => Err(format!("no protocol `{other}`; give ssi, biss, sar, modbus or can")),
+        "tformat" => {
+            table.remove("motion");
+            params::<model::tformat::BenchConfig>(table, path)
+        }
+        "endat" => {
+            table.remove("motion");
+            params::<model::endat::BenchConfig>(table, path)
+        }
+        other => Err(format!("no protocol `{other}`; give ssi, biss, endat, tformat, sar, modbus or can")),
     }
 }
 

@@ -8,6 +8,7 @@
  *   $emu_set_position(handle, device, position)  -> 0 / -1
  *   $emu_set_status(handle, device, name, value) -> 0 / -1
  *   $emu_schedule_fault(handle, toml)            -> 0 / -1
+ *   $emu_set_motion(handle, device, toml)        -> 0 / -1
  *   $emu_count(handle, half)                     -> 32 bits: half 0 low, 1 high
  *   $emu_last_value(handle, device, half)        -> 32 bits: half 0 low, 1 high
  *   $emu_last_status(handle, device, name)       -> 0 / 1 / -1
@@ -37,6 +38,7 @@ extern int32_t emu_step(int32_t handle, int32_t pins);
 extern int32_t emu_set_position(int32_t handle, int32_t device, int64_t position);
 extern int32_t emu_set_status(int32_t handle, int32_t device, const char *name, int32_t value);
 extern int32_t emu_schedule_fault(int32_t handle, const char *toml);
+extern int32_t emu_set_motion(int32_t handle, int32_t device, const char *toml);
 extern int64_t emu_count(int32_t handle);
 extern int64_t emu_last_value(int32_t handle, int32_t device);
 extern int32_t emu_last_status(int32_t handle, int32_t device, const char *name);
@@ -189,6 +191,17 @@ static PLI_INT32 schedule_fault_calltf(PLI_BYTE8 *user) {
     return 0;
 }
 
+static PLI_INT32 set_motion_calltf(PLI_BYTE8 *user) {
+    (void)user;
+    vpiHandle a[MAX_ARGS];
+    if (wrong_count(args(a), 3, "$emu_set_motion"))
+        return 0;
+    char *toml = arg_str(a[2]);
+    put_int(check(emu_set_motion((int32_t)arg_int(a[0]), (int32_t)arg_int(a[1]), toml), "$emu_set_motion"));
+    free(toml);
+    return 0;
+}
+
 static PLI_INT32 count_calltf(PLI_BYTE8 *user) {
     (void)user;
     vpiHandle a[MAX_ARGS];
@@ -290,6 +303,7 @@ static void register_all(void) {
     define("$emu_open", open_calltf);
     define("$emu_step", step_calltf);
     define("$emu_set_position", set_position_calltf);
+    define("$emu_set_motion", set_motion_calltf);
     define("$emu_set_status", set_status_calltf);
     define("$emu_schedule_fault", schedule_fault_calltf);
     define("$emu_count", count_calltf);

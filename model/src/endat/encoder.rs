@@ -301,6 +301,16 @@ pub struct Encoder {
     pub latched_position: u64,
     /// Falling edges that came during the recovery time.
     pub violations: u64,
+    /// Error message 2 from its separate detection unit (seed 2.3.1, 4.2.2: "generated with a separate
+    /// error detection unit"): `Some(e)` sends F2 = !e (low active) whatever F1 is; `None` (default)
+    /// keeps F2 the complement of F1, as the error word alone sets both (seed 3.4.1).
+    pub error2: Option<bool>,
+    /// The busy bit of the additional data set whatever the memory is doing (a testbench's status).
+    pub busy_forced: bool,
+    /// Transfers begun (latching falling edges) since power-on.
+    pub latches: u64,
+    /// Mode words decoded since power-on (the last one is [`Encoder::mode`]).
+    pub decodes: u64,
 }
 
 impl Encoder {
@@ -356,6 +366,10 @@ impl Encoder {
             sent: Vec::new(),
             latched_position: 0,
             violations: 0,
+            error2: None,
+            busy_forced: false,
+            latches: 0,
+            decodes: 0,
             cfg,
         })
     }
@@ -409,6 +423,21 @@ impl Encoder {
     /// Whether the encoder is busy (memory access under way).
     pub fn busy(&self) -> bool {
         self.now < self.busy_until
+    }
+
+    /// How the last request was answered: `ok`, `type_i`, `type_ii` or `ignored`.
+    pub fn answer_name(&self) -> &'static str {
+        match self.answer {
+            Answer::Ok => "ok",
+            Answer::TypeI => "type_i",
+            Answer::TypeII => "type_ii",
+            Answer::Ignored => "ignored",
+        }
+    }
+
+    /// The six mode bits of the current (or last) transfer.
+    pub fn mode(&self) -> u8 {
+        self.mode
     }
 
     /// Additional data selected (I codes) as the encoder holds them.
@@ -609,6 +638,7 @@ impl Encoder {
     }
 
     fn latch(&mut self) {
+        self.latches += 1;
         self.latched = self.output_position(self.position);
         self.latched_position = self.latched;
         self.position = self.position.wrapping_add(self.advance_per_latch) & self.mask();
@@ -628,13 +658,28 @@ impl Encoder {
         }
     }
 
+    /// Recovery time I: the line low until `t_m` after the master's last
+    /// clock edge (seed 004, 2.3.2 and appendix A2, 4.2.1: "setting of the
+    /// clock line to High ... and to wait for the time t_m before renewed
+    /// data transfer is possible"). After a frame's last bit this is `t_m`
+    /// from that edge; when a transfer is abandoned (type I error, a master
+    /// that stops clocking), the silence that tells the encoder the clock has
+    /// stopped is the recovery time itself, so the line is released as soon
+    /// as it is detected and not `t_m` later (which held it low for about
+    /// `2 t_m`, past the 30 µs the appendix tells the control to wait).
     fn to_recovery(&mut self) {
         self.phase = Phase::Recovery;
         self.drive = Drive { enable: !self.absent, level: false };
-        self.recovery_until = self.now + self.t_m();
+        self.recovery_until = self.last_edge + self.t_m();
+        if self.now >= self.recovery_until {
+            // Detected by the silence alone: ready at once, no one-cycle low pulse.
+            self.phase = Phase::Ready;
+            self.drive = Drive { enable: !self.absent, level: true };
+        }
     }
 
     fn decode_mode(&mut self) {
+        self.decodes += 1;
         self.kind = frame_kind(self.mode);
         self.answer = Answer::Ok;
         let cmd = Command::from_code(self.mode);
@@ -863,7 +908,10 @@ impl Encoder {
     fn build_frame(&mut self) {
         let st = self.status().to_vec();
         let f1 = st[0] != 0 || self.errors_f1;
-        let f2 = !f1;
+        let f2 = match self.error2 {
+            Some(e) => !e,
+            None => !f1,
+        };
         let mut bits: Vec<bool> = Vec::new();
         match self.kind {
             FrameKind::Pos21 | FrameKind::Pos22 | FrameKind::Block22 => {
@@ -931,7 +979,7 @@ impl Encoder {
     fn ad_word(&mut self, code: u8, st: &[u16]) -> u32 {
         let wrn = st[1] != 0;
         let rm = true;
-        let busy = self.busy();
+        let busy = self.busy() || self.busy_forced;
         let ad1 = code < 16;
         let supported = self.cfg.ad_supported.contains(&code) || code == 0 || code == 16;
         let impermissible = matches!(code, 26 | 28 | 29 | 30);

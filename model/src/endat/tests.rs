@@ -411,3 +411,41 @@ fn recovery_short_alone_takes_a_short_t_m_instead_of_refusing_the_long_default()
     let e = cfg.validate().unwrap_err().to_string();
     assert!(e.contains("15 µs with encoder.recovery_short = true") && e.contains("1.25 to 3.75"), "{e}");
 }
+
+#[test]
+fn after_a_type_i_error_the_line_is_high_again_t_m_after_the_last_clock_edge() {
+    // Seed A2 4.2.1: after a type I error the control sets the clock high and waits t_m
+    // ("the maximum t_m of 30 µs must at least be waited before the next command"), so the
+    // encoder must be ready again t_m after the last clock edge, not t_m after noticing the
+    // clock stopped (which held the line low for about 2 t_m: issue 10).
+    for t_m21_us in [10.0, 20.0, 30.0] {
+        let mut bench = BenchConfig::example();
+        bench.encoder.t_m21_us = t_m21_us;
+        bench.encoder.output_delay_ns = 0.0;
+        let cfg = bench.encoder_config().unwrap();
+        let t_m = cfg.t_m21_clocks;
+        let mut enc = Encoder::new(cfg).unwrap();
+        let half = 32; // 1 MHz at 64 MHz
+        let mut clk = true;
+        let mut now = 0u64;
+        let mut step = |enc: &mut Encoder, clk: bool, n: u64, now: &mut u64| -> Vec<(u64, crate::line::Drive)> {
+            (0..n).map(|_| { let d = enc.step(clk, false); *now += 1; (*now - 1, d) }).collect()
+        };
+        step(&mut enc, clk, 10, &mut now);
+        // Mode bits 000000 (no mode command): type I; ten clock periods, then the clock stays high.
+        for _ in 0..10 {
+            clk = false;
+            step(&mut enc, clk, half, &mut now);
+            clk = true;
+            step(&mut enc, clk, half, &mut now);
+        }
+        let last_edge = now - half;
+        let after = step(&mut enc, true, 3 * t_m, &mut now);
+        assert_eq!(enc.answer, super::encoder::Answer::TypeI);
+        assert!(after.iter().any(|(_, d)| d.enable && !d.level), "the line is held low in the recovery");
+        let high = after.iter().find(|(_, d)| d.enable && d.level).map(|(c, _)| *c).expect("released");
+        let low_for = high - last_edge;
+        assert!(low_for <= t_m + 2 && low_for >= t_m, "t_m21 = {t_m21_us} us ({t_m} cycles): line released {low_for} cycles after the last edge");
+        assert!(after.iter().skip_while(|(c, _)| *c < high).all(|(_, d)| d.enable && d.level), "stays high");
+    }
+}

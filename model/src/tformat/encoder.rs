@@ -202,6 +202,16 @@ impl Encoder {
         self.alarms
     }
 
+    /// Sets the error flags (a testbench's status; the next answer reports them).
+    pub fn set_alarms(&mut self, alarms: Alarms) {
+        self.alarms = alarms;
+    }
+
+    /// Adds a bit flip to a later answer (a testbench's scheduled fault).
+    pub fn add_flip(&mut self, flip: AnswerFlip) {
+        self.cfg.settings.flips.push(flip);
+    }
+
     /// One EEPROM byte.
     pub fn eeprom(&self, address: usize) -> u8 {
         self.eeprom[address]

@@ -1,0 +1,215 @@
+//! Motion profiles: the position an emulated encoder latches as a function
+//! of the emulator's time, one place for every protocol.
+//!
+//! A profile is a `[motion]` table of the emulator's TOML, or the text a
+//! testbench gives `set_motion(device, toml)` at run time:
+//!
+//! ```toml
+//! [motion]
+//! kind = "constant"          # start + counts_per_ms x t
+//! start = 1000
+//! counts_per_ms = 250.5      # negative: backwards
+//! ```
+//!
+//! `kind = "steps"`: `start`, `step` (counts, signed) every `every_us`;
+//! `kind = "reversal"`: `start`, `counts_per_ms`, reversing every
+//! `half_period_ms` (a triangle: out and back). Time `t` counts from the
+//! moment the profile is set (0 for the TOML's own). Positions wrap at the
+//! encoder's resolution, as a shaft does.
+
+use serde::Deserialize;
+
+use crate::config::Error;
+use crate::Result;
+
+/// One motion profile.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
+pub enum Motion {
+    /// Constant speed.
+    Constant {
+        /// Position at t = 0.
+        start: u64,
+        /// Counts per millisecond (signed).
+        counts_per_ms: f64,
+    },
+    /// A step of `step` counts every `every_us`.
+    Steps {
+        /// Position at t = 0.
+        start: u64,
+        /// Counts per step (signed).
+        step: i64,
+        /// Time between steps, µs.
+        every_us: f64,
+    },
+    /// Constant speed that reverses every `half_period_ms`.
+    Reversal {
+        /// Position at t = 0.
+        start: u64,
+        /// Counts per millisecond of the outward leg (signed).
+        counts_per_ms: f64,
+        /// Time of one leg, ms.
+        half_period_ms: f64,
+    },
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Table {
+    motion: Motion,
+}
+
+impl Motion {
+    /// A profile from TOML text holding a `[motion]` table (`origin` names it in errors).
+    pub fn from_toml(text: &str, origin: &str) -> Result<Motion> {
+        let t: Table = toml::from_str(text).map_err(|e| Error::Toml {
+            origin: origin.to_string(),
+            message: e.to_string().split_whitespace().collect::<Vec<_>>().join(" "),
+        })?;
+        t.motion.validate(origin)?;
+        Ok(t.motion)
+    }
+
+    /// Checks the numbers, naming the field and the fix.
+    pub fn validate(&self, origin: &str) -> Result<()> {
+        let finite = |field: &str, v: f64| {
+            if v.is_finite() && v.abs() < 1e15 {
+                Ok(())
+            } else {
+                Err(Error::field(origin, field, format!("{v}"), "give a finite number"))
+            }
+        };
+        match *self {
+            Motion::Constant { counts_per_ms, .. } => finite("motion.counts_per_ms", counts_per_ms),
+            Motion::Steps { every_us, .. } if !(every_us > 0.0 && every_us.is_finite()) => Err(Error::field(
+                origin,
+                "motion.every_us",
+                format!("{every_us}"),
+                "give the time between steps in µs, more than 0",
+            )),
+            Motion::Steps { .. } => Ok(()),
+            Motion::Reversal { counts_per_ms, half_period_ms, .. } => {
+                finite("motion.counts_per_ms", counts_per_ms)?;
+                if half_period_ms > 0.0 && half_period_ms.is_finite() {
+                    Ok(())
+                } else {
+                    Err(Error::field(
+                        origin,
+                        "motion.half_period_ms",
+                        format!("{half_period_ms}"),
+                        "give the time of one leg in ms, more than 0",
+                    ))
+                }
+            }
+        }
+    }
+
+    /// The position `t_ns` after the profile was set, wrapped to `bits` bits.
+    pub fn position_at(&self, t_ns: f64, bits: u32) -> u64 {
+        let offset: i128 = match *self {
+            Motion::Constant { counts_per_ms, .. } => (counts_per_ms * t_ns / 1e6).floor() as i128,
+            Motion::Steps { step, every_us, .. } => (t_ns / (every_us * 1e3)).floor() as i128 * step as i128,
+            Motion::Reversal { counts_per_ms, half_period_ms, .. } => {
+                let leg = half_period_ms * 1e6;
+                let k = (t_ns / leg).floor();
+                let into = t_ns - k * leg;
+                // Even legs go out from the start, odd ones come back.
+                let along = if (k as i64) % 2 == 0 { into } else { leg - into };
+                (counts_per_ms * along / 1e6).floor() as i128
+            }
+        };
+        let start = match *self {
+            Motion::Constant { start, .. } | Motion::Steps { start, .. } | Motion::Reversal { start, .. } => start,
+        };
+        let modulus: i128 = if bits >= 64 { 1i128 << 64 } else { 1i128 << bits };
+        (start as i128 + offset).rem_euclid(modulus) as u64
+    }
+}
+
+/// A profile and the emulator cycle it was set at.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Running {
+    /// The profile.
+    pub motion: Motion,
+    /// Emulator cycle at t = 0.
+    pub since: u64,
+}
+
+impl Running {
+    /// The position at emulator cycle `cycle` of a clock of `period_ps`.
+    pub fn position(&self, cycle: u64, period_ps: u64, bits: u32) -> u64 {
+        let t_ns = cycle.saturating_sub(self.since) as f64 * period_ps as f64 / 1e3;
+        self.motion.position_at(t_ns, bits)
+    }
+}
+
+/// The motion profiles of an emulator's devices (chain positions), for
+/// every protocol: set one with [`Motions::set`], and before each emulator
+/// cycle ask [`Motions::position`] for the position to hold.
+#[derive(Debug, Clone, Default)]
+pub struct Motions {
+    running: Vec<Option<Running>>,
+}
+
+impl Motions {
+    /// Device `device` follows the `[motion]` table in `toml` from emulator cycle `cycle` on.
+    pub fn set(&mut self, device: usize, toml: &str, cycle: u64) -> Result<()> {
+        let motion = Motion::from_toml(toml, "set_motion")?;
+        if self.running.len() <= device {
+            self.running.resize(device + 1, None);
+        }
+        self.running[device] = Some(Running { motion, since: cycle });
+        Ok(())
+    }
+
+    /// Device `device` no longer moves (the testbench set its position).
+    pub fn stop(&mut self, device: usize) {
+        if let Some(r) = self.running.get_mut(device) {
+            *r = None;
+        }
+    }
+
+    /// Whether any device moves.
+    pub fn any(&self) -> bool {
+        self.running.iter().any(|r| r.is_some())
+    }
+
+    /// The position device `device` holds at `cycle`, if it moves.
+    pub fn position(&self, device: usize, cycle: u64, period_ps: u64, bits: u32) -> Option<u64> {
+        self.running.get(device)?.as_ref().map(|r| r.position(cycle, period_ps, bits))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn constant_speed_steps_and_reversal_give_the_expected_positions() {
+        let m = Motion::from_toml("[motion]\nkind = \"constant\"\nstart = 100\ncounts_per_ms = 1000\n", "m").unwrap();
+        assert_eq!(m.position_at(0.0, 16), 100);
+        assert_eq!(m.position_at(1e6, 16), 1100); // 1 ms later
+        assert_eq!(m.position_at(66e6, 16), (100 + 66_000) % 65_536); // wraps at 16 bits
+        let back = Motion::Constant { start: 5, counts_per_ms: -10.0 };
+        assert_eq!(back.position_at(1e6, 8), 251); // 5 - 10 wraps to 251
+        let s = Motion::from_toml("[motion]\nkind = \"steps\"\nstart = 0\nstep = 7\nevery_us = 10\n", "m").unwrap();
+        assert_eq!(s.position_at(9_999.0, 12), 0);
+        assert_eq!(s.position_at(10_000.0, 12), 7);
+        assert_eq!(s.position_at(35_000.0, 12), 21);
+        let r = Motion::from_toml("[motion]\nkind = \"reversal\"\nstart = 1000\ncounts_per_ms = 100\nhalf_period_ms = 2\n", "m").unwrap();
+        assert_eq!(r.position_at(1e6, 16), 1100);
+        assert_eq!(r.position_at(2e6, 16), 1200); // turning point
+        assert_eq!(r.position_at(3e6, 16), 1100); // on the way back
+        assert_eq!(r.position_at(4e6, 16), 1000);
+        let run = Running { motion: m, since: 1000 };
+        assert_eq!(run.position(1000 + 64_000, 15_625, 16), 1100); // 64 MHz: 64 000 cycles = 1 ms
+    }
+
+    #[test]
+    fn a_bad_profile_names_the_field_and_the_fix() {
+        let e = Motion::from_toml("[motion]\nkind = \"steps\"\nstart = 0\nstep = 1\nevery_us = 0\n", "tb").unwrap_err().to_string();
+        assert!(e.contains("motion.every_us") && e.contains("more than 0"), "{e}");
+        let e = Motion::from_toml("[motion]\nkind = \"warp\"\n", "tb").unwrap_err().to_string();
+        assert!(e.starts_with("tb:") && e.contains("warp"), "{e}");
+    }
+}
