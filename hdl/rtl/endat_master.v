@@ -386,6 +386,21 @@ wire [15:0] cpb_last = meas_frame_reg ? MEAS_CPB_LAST : CPB_LAST;
 wire [CNT_W-1:0] half_last = meas_frame_reg ? MEAS_HALF_LAST : HALF_LAST;
 wire [1:0]  ads = is22 ? ({1'b0, ad1_on_reg} + {1'b0, ad2_on_reg}) : 2'd0;
 wire [15:0] frame_len = {8'd0, nf} + {8'd0, head_len} + 16'd5 + (ads == 2'd2 ? 16'd58 : (ads == 2'd1 ? AD_BITS : 16'd0));
+// The frame length and the block's offsets from the start bit, registered (timing closure:
+// kind -> frame_len -> smp_idx + frame_len + GAP was the critical path). They are read only
+// when the start bit is found, which is many clocks after kind_reg (set at the start) and
+// ad1_on_reg / ad2_on_reg (changed only at the end of a frame) last changed, so the
+// registered values always equal the combinational ones there: no cycle of behaviour moves.
+reg [15:0]  frame_len_reg = 16'd0;
+reg [15:0]  blk_off_reg = 16'd0;       // frame_len + BLOCK_GAP
+reg [15:0]  blk_off_m1_reg = 16'd0;    // frame_len + BLOCK_GAP - 1
+reg [15:0]  blk_stop_off_reg = 16'd0;  // frame_len + BLOCK_GAP + 29 - 1
+always @(posedge i_clk) begin
+    frame_len_reg <= frame_len;
+    blk_off_reg <= frame_len + GAP16;
+    blk_off_m1_reg <= frame_len + GAP16 - 16'd1;
+    blk_stop_off_reg <= frame_len + GAP16 + BLOCK_BITS - 16'd1;
+end
 wire [15:0] d_use = (meas_frame_reg || !((DELAY_COMP != 0) && delay_valid_reg)) ? FIXED_D : delay_reg;
 wire        edge_any = data_sync_reg != data_prev_reg;
 wire        edge_rise = data_sync_reg && !data_prev_reg;
@@ -574,11 +589,11 @@ always @* begin
                         bad_ad1_next = 1'b0;
                         bad_ad2_next = 1'b0;
                         if (kind_reg == KIND_BLOCK22) begin
-                            blk_idx_next = smp_idx_reg + frame_len + GAP16;
-                            blk_m1_next = smp_idx_reg + frame_len + GAP16 - 16'd1;
-                            stop_idx_next = smp_idx_reg + frame_len + GAP16 + BLOCK_BITS - 16'd1;
+                            blk_idx_next = smp_idx_reg + blk_off_reg;
+                            blk_m1_next = smp_idx_reg + blk_off_m1_reg;
+                            stop_idx_next = smp_idx_reg + blk_stop_off_reg;
                         end else if (cont_left_reg <= 8'd1) begin
-                            stop_idx_next = smp_idx_reg + frame_len;
+                            stop_idx_next = smp_idx_reg + frame_len_reg;
                         end
                         drift_next = (DELAY_COMP != 0) && !meas_frame_reg && delay_valid_reg
                                      && ((since_edge_reg > HALF16 + TOL16) || (since_edge_reg + TOL16 < HALF16));

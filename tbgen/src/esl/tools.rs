@@ -340,6 +340,7 @@ mod tests {
             ("esl_baud_plus_6", "as above"),
             ("esl_fault_answer_bit_flips", "a flipped start or stop bit splits the answer differently at the host (it stops at the first idle bit) and on the line"),
             ("esl_fault_truncated_no_answer_intruder", "the intruder's low pulse is sampled differently by the 8-clock receiver and the ideal line decoder"),
+            ("esl_fault_answer_shapes", "a 19th field: the host keeps the 18 fields an answer can have (it counts the rest, flagged `frame`), the line decoder lists every field it reads"),
         ];
         let dir = tempfile::tempdir().unwrap();
         let (mut compared, mut wire_sets) = (0, 0);
