@@ -1,0 +1,110 @@
+//! `make sim` as a new user types it (issue 14, item 3): a scenario file of
+//! one's own and a vector file replay in both simulators, a name that is not
+//! a core lists the cores, an unknown simulator names the supported ones, and
+//! a scenario name that matches nothing says what would. Needs make and the
+//! simulators that `make deps` installs.
+
+use std::fs;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).parent().unwrap().to_path_buf()
+}
+
+/// Runs `make -s sim ARGS...` in the repository and returns (exit code, stdout + stderr).
+fn make_sim(args: &[&str]) -> (i32, String) {
+    let out = Command::new("make")
+        .arg("-s")
+        .arg("-C")
+        .arg(root())
+        .arg("sim")
+        .args(args)
+        // Under `make test` the outer make's jobserver must not leak in.
+        .env_remove("MAKEFLAGS")
+        .env_remove("MAKELEVEL")
+        .env_remove("MFLAGS")
+        .output()
+        .expect("make runs");
+    let text = format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+    (out.status.code().unwrap_or(-1), text)
+}
+
+/// The seed SSI scenario under another name and with other positions: a
+/// scenario no committed vector file holds.
+fn custom_ssi(dir: &Path, name: &str) -> PathBuf {
+    let seed = fs::read_to_string(root().join("scenarios/ssi/seed_12bit.toml")).unwrap();
+    let text = seed
+        .replace("name = \"ssi_seed_12bit\"", &format!("name = \"{name}\""))
+        .replace("positions = [495, 0, 4095, 2730]", "positions = [1, 2047, 3000]");
+    assert_ne!(text, seed, "the seed scenario changed shape; update this test");
+    let path = dir.join(format!("{name}.toml"));
+    fs::write(&path, text).unwrap();
+    path
+}
+
+#[test]
+fn a_scenario_file_of_ones_own_replays_in_both_simulators_without_naming_the_core() {
+    let dir = tempfile::tempdir().unwrap();
+    let name = "sim_cli_custom_ssi";
+    let toml = custom_ssi(dir.path(), name);
+    for sim in ["icarus", "verilator"] {
+        let (code, text) = make_sim(&[&format!("SIM={sim}"), &format!("SCENARIO={}", toml.display())]);
+        assert_eq!(code, 0, "{sim}: {text}");
+        assert!(text.contains(&format!("PASS  {sim:<10} ssi_master   {name}")), "{sim}: {text}");
+        assert!(text.contains("hdl: 1 passed, 0 failed"), "{sim}: {text}");
+    }
+    // Generated where the layout and the vectors can be found again.
+    let hex = root().join(format!("build/custom/{name}/{name}.hex"));
+    assert!(hex.is_file(), "{} written", hex.display());
+}
+
+#[test]
+fn a_vector_file_replays_from_its_path_and_its_core_must_agree() {
+    let hex = root().join("vectors/biss_master/biss_register_read.hex");
+    let (code, text) = make_sim(&["SIM=icarus", &format!("SCENARIO={}", hex.display())]);
+    assert_eq!(code, 0, "{text}");
+    assert!(text.contains("PASS  icarus     biss_master  biss_register_read"), "{text}");
+
+    let (code, text) = make_sim(&["CORE=ssi_master", "SIM=icarus", &format!("SCENARIO={}", hex.display())]);
+    assert_eq!(code, 2, "{text}");
+    assert!(text.contains("is a scenario of core 'biss_master', not 'ssi_master'"), "{text}");
+
+    let (code, text) = make_sim(&["SIM=icarus", "SCENARIO=/nonexistent/x.hex"]);
+    assert_eq!(code, 2, "{text}");
+    assert!(text.contains("no vector file '/nonexistent/x.hex'"), "{text}");
+}
+
+#[test]
+fn a_name_that_is_not_a_core_lists_the_cores() {
+    let (code, text) = make_sim(&["CORE=endat", "SIM=icarus"]);
+    assert_eq!(code, 2, "{text}");
+    assert!(text.contains("unknown core 'endat'"), "{text}");
+    for tb in fs::read_dir(root().join("hdl/tb")).unwrap() {
+        let core = tb.unwrap().file_name().into_string().unwrap();
+        if root().join(format!("hdl/tb/{core}/tb_{core}.v")).is_file() {
+            assert!(text.contains(&core), "{core} listed: {text}");
+        }
+    }
+    assert!(text.contains("Did you mean endat_master?"), "{text}");
+}
+
+#[test]
+fn an_unknown_simulator_names_the_supported_ones() {
+    let (code, text) = make_sim(&["CORE=ssi_master", "SIM=modelsim", "SCENARIO=ssi_seed_12bit"]);
+    assert_eq!(code, 2, "{text}");
+    assert!(text.contains("unknown simulator 'modelsim'; the supported simulators are: icarus verilator"), "{text}");
+}
+
+#[test]
+fn a_scenario_name_that_matches_nothing_says_what_would() {
+    let (code, text) = make_sim(&["CORE=ssi_master", "SIM=icarus", "SCENARIO=my_ssi"]);
+    assert_eq!(code, 2, "{text}");
+    assert!(text.contains("no scenario named 'my_ssi' in vectors/ssi_master/"), "{text}");
+    assert!(text.contains("SCENARIO=path/to/my_ssi.toml"), "{text}");
+    assert!(text.contains("ssi_seed_12bit"), "the core's scenarios listed: {text}");
+
+    let (code, text) = make_sim(&["CORE=ssi_master", "SIM=icarus", "SCENARIO=biss_register_read"]);
+    assert_eq!(code, 2, "{text}");
+    assert!(text.contains("It is a scenario of core 'biss_master' (CORE=biss_master)"), "{text}");
+}
