@@ -84,6 +84,7 @@ if [ $fail = 0 ]; then
         stage gtkw scripts/check_gtkw.sh || lane_fail=1
         stage gtkw-window scripts/check_gtkw_window.sh || lane_fail=1
         stage fusesoc scripts/check_fusesoc.sh || lane_fail=1
+        stage wavedrom .venv/bin/python scripts/timing_diagrams.py --check || lane_fail=1
         exit $lane_fail
     ) &
     lane2=$!
