@@ -31,6 +31,7 @@ pub mod builtin;
 pub mod capture;
 pub mod crc_cmd;
 pub mod error;
+pub mod fields;
 pub mod generate;
 pub mod gtkw;
 pub mod registry;
