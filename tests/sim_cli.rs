@@ -108,3 +108,46 @@ fn a_scenario_name_that_matches_nothing_says_what_would() {
     assert_eq!(code, 2, "{text}");
     assert!(text.contains("It is a scenario of core 'biss_master' (CORE=biss_master)"), "{text}");
 }
+
+/// The newcomer's last step (issue 14, "Done when"): the RTL's own waves
+/// from `make sim WAVES=1` (femtosecond timescale) decode with `tbgen
+/// decode ssi` to the seed's 495 (SAR58K24 manual, SSI section (4)).
+#[test]
+fn the_rtl_waves_of_make_sim_decode_to_the_seed_position() {
+    let (code, text) = make_sim(&["CORE=ssi_master", "SIM=icarus", "SCENARIO=ssi_seed_12bit", "WAVES=1"]);
+    assert_eq!(code, 0, "{text}");
+    let vcd = root().join("build/waves/ssi_seed_12bit.icarus.vcd");
+    let out = Command::new(env!("CARGO_BIN_EXE_tbgen"))
+        .args(["decode", "ssi", vcd.to_str().unwrap(), "--clk", "tb_ssi_master.o_ssi_clk", "--data", "tb_ssi_master.i_ssi_data", "--bits", "12"])
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{stdout}{}", String::from_utf8_lossy(&out.stderr));
+    let json: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+    let positions: Vec<u64> = json["transactions"].as_array().unwrap().iter().map(|t| t["position"].as_u64().unwrap()).collect();
+    assert_eq!(positions, [495, 0, 4095, 2730], "{stdout}");
+    assert_eq!(json["transactions"][0]["received_bits"], "000111101111");
+}
+
+/// Issue 14 item 2: the fabric clocks boards have (48, 60, 120, 150 MHz,
+/// periods of no whole number of picoseconds) generate and replay; the
+/// waves' times are each cycle's exact time rounded to the picosecond.
+#[test]
+fn fabric_clocks_without_a_whole_picosecond_period_generate_and_replay() {
+    let dir = tempfile::tempdir().unwrap();
+    for mhz in [48, 60, 120, 150] {
+        let name = format!("sim_cli_ssi_{mhz}mhz");
+        let toml = custom_ssi(dir.path(), &name);
+        let text = fs::read_to_string(&toml).unwrap().replace("f_sys_mhz = 50", &format!("f_sys_mhz = {mhz}"));
+        fs::write(&toml, text).unwrap();
+        let (code, text) = make_sim(&["SIM=icarus", &format!("SCENARIO={}", toml.display())]);
+        assert_eq!(code, 0, "{mhz} MHz: {text}");
+        assert!(text.contains(&format!("PASS  icarus     ssi_master   {name}")), "{mhz} MHz: {text}");
+        let vcd = fs::read_to_string(root().join(format!("build/custom/{name}/{name}.vcd"))).unwrap();
+        let hex = fs::read_to_string(root().join(format!("build/custom/{name}/{name}.hex"))).unwrap();
+        let cycles: u128 = hex.lines().find_map(|l| l.strip_prefix("// cycles: ")).unwrap().parse().unwrap();
+        let last: u128 = vcd.lines().filter_map(|l| l.strip_prefix('#')).last().unwrap().parse().unwrap();
+        let f = mhz as u128 * 1_000_000;
+        assert_eq!(last, (cycles * 1_000_000_000_000 + f / 2) / f, "{mhz} MHz: the closing timestamp is the run's exact end, rounded");
+    }
+}
