@@ -151,3 +151,13 @@ fn fabric_clocks_without_a_whole_picosecond_period_generate_and_replay() {
         assert_eq!(last, (cycles * 1_000_000_000_000 + f / 2) / f, "{mhz} MHz: the closing timestamp is the run's exact end, rounded");
     }
 }
+
+/// A capture that is not there is bad input (exit status 2) named as such,
+/// not an I/O failure (exit status 1).
+#[test]
+fn decoding_a_missing_capture_says_so_with_exit_status_2() {
+    let out = Command::new(env!("CARGO_BIN_EXE_tbgen")).args(["decode", "ssi", "nothere.vcd"]).output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("nothere.vcd: no such capture file; give the path to a VCD"), "{err}");
+}
