@@ -6,7 +6,10 @@
 #                    every .gtkw layout opened in GTKWave (headless)
 #   make vectors     regenerate vectors/<core>/ from the built-in scenarios
 #   make sim CORE=ssi_master SIM=icarus|verilator [SCENARIO=ssi_seed_12bit] [WAVES=1]
-#   make waves CORE=ssi_master [SCENARIO=ssi_seed_12bit]   open GTKWave on the saved layout
+#                    SCENARIO may also be a scenario file (my_ssi.toml: generated
+#                    into build/custom/ first) or a vector file (path/x.hex); the
+#                    core is then the file's own and CORE may be left out
+#   make waves CORE=ssi_master [SCENARIO=ssi_seed_12bit|my_ssi.toml]   open GTKWave on the saved layout
 #   make synth       yosys + nextpnr-ice40 (hx8k) for every core: logic cells and Fmax
 #   make bench       model vs Verilator vs Icarus cycles per second
 #   make cosim       every core closed-loop against its encoder emulator (both simulators)
@@ -15,7 +18,8 @@
 #   make mutate      mutation score of every core (long)
 #   make deps        install Icarus, Verilator, yosys, nextpnr, GTKWave, sigrok-cli if missing
 
-CORE ?= ssi_master
+# Empty: make sim takes the core from a scenario file, else ssi_master.
+CORE ?=
 SIM ?= icarus
 WAVES ?= 0
 SCENARIO ?=
@@ -62,12 +66,17 @@ check-gtkw:
 	@scripts/check_gtkw.sh
 
 sim:
-	@scripts/regress.sh --core $(CORE) --sim $(SIM) $(if $(SCENARIO),--scenario $(SCENARIO)) $(if $(filter 1,$(WAVES)),--waves)
+	@scripts/regress.sh $(if $(CORE),--core $(CORE),$(if $(SCENARIO),,--core ssi_master)) --sim $(SIM) $(if $(SCENARIO),--scenario $(SCENARIO)) $(if $(filter 1,$(WAVES)),--waves)
 
 waves:
-	@scenario="$(SCENARIO)"; \
-	 if [ -z "$$scenario" ]; then scenario=$$(ls vectors/$(CORE)/*.gtkw | head -n 1 | xargs basename | sed 's/\.gtkw$$//'); fi; \
-	 cd vectors/$(CORE) && gtkwave "$$scenario.gtkw"
+	@core="$(or $(CORE),ssi_master)"; scenario="$(SCENARIO)"; \
+	 case "$$scenario" in \
+	 *.toml) layout=$$(ls build/custom/$$(basename "$$scenario" .toml)/*.gtkw 2>/dev/null | head -n 1); \
+	         [ -n "$$layout" ] || { echo "make waves: no layout for $$scenario in build/custom/ (run make sim SCENARIO=$$scenario first)" >&2; exit 2; } ;; \
+	 "") layout=$$(ls vectors/$$core/*.gtkw | head -n 1) ;; \
+	 *) layout=vectors/$$core/$$scenario.gtkw ;; \
+	 esac; \
+	 gtkwave "$$layout"
 
 # Every core closed-loop against its encoder emulator (hdl/emu/, the cosim
 # library), 1000 transactions per core in each simulator.

@@ -2,16 +2,26 @@
 # regress.sh: replay every committed vector file against its core in Icarus
 # and Verilator and print one line per run, then "N passed, M failed".
 #
-#   scripts/regress.sh [--core CORE] [--sim icarus|verilator] [--scenario NAME] [--waves] [--jobs N]
+#   scripts/regress.sh [--core CORE] [--sim icarus|verilator] [--scenario S] [--waves] [--jobs N]
 #
+# --scenario S is one of:
+#   - a scenario name: the committed vectors/<core>/S.hex;
+#   - a scenario file, S.toml (or a name S with S.toml in the current
+#     folder): tbgen generates its vectors into build/custom/<file name>/
+#     and that file is replayed;
+#   - a vector file, S.hex (tbgen gen's output anywhere): replayed as it is.
+# For a file the core is the one its header names; --core, if given, must
+# agree. An unknown core or simulator is refused with the list of known ones.
 # With --waves, each run also dumps the RTL's waveform to build/waves/<scenario>.<sim>.vcd.
 # --jobs N runs N replays at once (default: the number of cores). Runs that
 # share a simulator build wait for it on sim.sh's lock, so each build is
 # still made once. Lines come in the order runs finish.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-cores=() sims=(icarus verilator) scenario="" waves=0 jobs=$(nproc 2>/dev/null || echo 2)
-usage() { echo "usage: $0 [--core CORE] [--sim icarus|verilator] [--scenario NAME] [--waves] [--jobs N]" >&2; exit 2; }
+supported_sims=(icarus verilator)
+cores=() sims=("${supported_sims[@]}") scenario="" waves=0 jobs=$(nproc 2>/dev/null || echo 2)
+usage() { echo "usage: $0 [--core CORE] [--sim icarus|verilator] [--scenario NAME|FILE.toml|FILE.hex] [--waves] [--jobs N]" >&2; exit 2; }
+die() { echo "regress: $*" >&2; exit 2; }
 while [ $# -gt 0 ]; do
     case "$1" in
     --core) [ $# -ge 2 ] || usage; cores=("$2"); shift 2 ;;
@@ -22,7 +32,85 @@ while [ $# -gt 0 ]; do
     *) usage ;;
     esac
 done
-[[ "$jobs" =~ ^[1-9][0-9]*$ ]] || { echo "regress: --jobs takes a whole number of at least 1, not '$jobs'" >&2; exit 2; }
+[[ "$jobs" =~ ^[1-9][0-9]*$ ]] || die "--jobs takes a whole number of at least 1, not '$jobs'"
+
+# The cores: every core with a testbench (hdl/tb/<core>/tb_<core>.v).
+known_cores=()
+for tb in "$root"/hdl/tb/*/tb_*.v; do
+    c=$(basename "$(dirname "$tb")")
+    [ "$(basename "$tb")" = "tb_$c.v" ] && known_cores+=("$c")
+done
+for sim in "${sims[@]}"; do
+    case " ${supported_sims[*]} " in
+    *" $sim "*) ;;
+    *) die "unknown simulator '$sim'; the supported simulators are: ${supported_sims[*]} (SIM=icarus or SIM=verilator)" ;;
+    esac
+done
+for core in "${cores[@]}"; do
+    case " ${known_cores[*]} " in
+    *" $core "*) ;;
+    *)  near=()
+        for c in "${known_cores[@]}"; do [[ "$c" == *"$core"* || "$core" == *"$c"* ]] && near+=("$c"); done
+        hint=""
+        [ ${#near[@]} -gt 0 ] && hint=" Did you mean ${near[*]}?"
+        die "unknown core '$core'. The cores are: ${known_cores[*]}.$hint" ;;
+    esac
+done
+
+# The header line "// core: X" of a vector file.
+header_core() { sed -n 's#^// core: ##p' "$1" | head -n 1; }
+
+# A scenario given as a file: generate (.toml) or take (.hex) one vector file.
+file=""
+if [ -n "$scenario" ]; then
+    case "$scenario" in
+    *.hex) [ -f "$scenario" ] || die "no vector file '$scenario' (give a path to a .hex that tbgen gen wrote)"
+           file=$(cd "$(dirname "$scenario")" && pwd)/$(basename "$scenario") ;;
+    *.toml) [ -f "$scenario" ] || die "no scenario file '$scenario'"
+           file=$scenario ;;
+    *)     # A name: a committed scenario, or NAME.toml beside the user.
+           found=0 elsewhere=""
+           search=("${known_cores[@]}")
+           [ ${#cores[@]} -gt 0 ] && search=("${cores[@]}")
+           for c in "${search[@]}"; do
+               [ -f "$root/vectors/$c/$scenario.hex" ] && found=1
+           done
+           for c in "${known_cores[@]}"; do
+               [ -f "$root/vectors/$c/$scenario.hex" ] && elsewhere=" It is a scenario of core '$c' (CORE=$c)."
+           done
+           if [ "$found" = 0 ]; then
+               if [ -f "$scenario.toml" ]; then
+                   file=$scenario.toml
+               else
+                   where="vectors/${cores[0]:-*}/"
+                   listed=""
+                   if [ ${#cores[@]} -eq 1 ] && [ -d "$root/vectors/${cores[0]}" ]; then
+                       listed=" Its scenarios: $(cd "$root/vectors/${cores[0]}" && ls -- *.hex | sed 's/\.hex$//' | tr '\n' ' ')"
+                   fi
+                   die "no scenario named '$scenario' in $where and no file $scenario.toml in $PWD. Give a scenario file (SCENARIO=path/to/$scenario.toml) or a vector file (SCENARIO=path/to/$scenario.hex).$elsewhere$listed"
+               fi
+           fi ;;
+    esac
+    if [[ "$file" == *.toml ]]; then
+        stem=$(basename "$file" .toml)
+        out="$root/build/custom/$stem"
+        rm -rf "$out"
+        mkdir -p "$root/build/custom"
+        (cd "$root" && ${CARGO:-cargo} build --release --locked -q -p tbgen) || die "could not build tbgen"
+        "$root/target/release/tbgen" gen "$file" --out "$out" || exit 2
+        hexes=("$out"/*.hex)
+        [ -e "${hexes[0]}" ] || die "tbgen wrote no vector file for $file"
+        file=${hexes[0]}
+    fi
+    if [ -n "$file" ]; then
+        fcore=$(header_core "$file")
+        [ -n "$fcore" ] || die "$file has no tbgen header (// core: ...)"
+        if [ ${#cores[@]} -gt 0 ] && [ "${cores[0]}" != "$fcore" ]; then
+            die "$scenario is a scenario of core '$fcore', not '${cores[0]}' (leave CORE out, or CORE=$fcore)"
+        fi
+        cores=("$fcore")
+    fi
+fi
 if [ ${#cores[@]} -eq 0 ]; then
     for d in "$root"/vectors/*/; do cores+=("$(basename "$d")"); done
 fi
@@ -49,11 +137,15 @@ replay() {
 
 running=0
 for core in "${cores[@]}"; do
-    files=("$root/vectors/$core"/*.hex)
-    [ -e "${files[0]}" ] || { echo "regress: no vectors in vectors/$core/ (run make vectors)" >&2; exit 2; }
+    if [ -n "$file" ]; then
+        files=("$file")
+    else
+        files=("$root/vectors/$core"/*.hex)
+        [ -e "${files[0]}" ] || { echo "regress: no vectors in vectors/$core/ (run make vectors)" >&2; exit 2; }
+    fi
     for f in "${files[@]}"; do
         name=$(basename "$f" .hex)
-        [ -n "$scenario" ] && [ "$name" != "$scenario" ] && continue
+        [ -z "$file" ] && [ -n "$scenario" ] && [ "$name" != "$scenario" ] && continue
         for sim in "${sims[@]}"; do
             if [ "$running" -ge "$jobs" ]; then
                 wait -n || true

@@ -29,7 +29,14 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 # ccache (make deps installs it) each build after the first reuses it.
 command -v ccache > /dev/null 2>&1 && export OBJCACHE=${OBJCACHE:-ccache}
 tb="$root/hdl/tb/$core/tb_$core.v"
-[ -f "$tb" ] || { echo "sim.sh: no testbench $tb for core '$core'" >&2; exit 2; }
+if [ ! -f "$tb" ]; then
+    echo "sim.sh: no testbench $tb for core '$core'; the cores are: $(cd "$root/hdl/tb" && for d in */; do d=${d%/}; [ -f "$d/tb_$d.v" ] && printf '%s ' "$d"; done)" >&2
+    exit 2
+fi
+case "$sim" in
+icarus|verilator) ;;
+*) echo "sim.sh: unknown simulator '$sim'; the supported simulators are: icarus verilator" >&2; exit 2 ;;
+esac
 [ -f "$vectors" ] || { echo "sim.sh: no vector file $vectors" >&2; exit 2; }
 
 header() { sed -n "s#^// $1: ##p" "$vectors" | head -n 1; }

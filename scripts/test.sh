@@ -20,7 +20,9 @@
 #                                      coverage against its baseline,
 #                                      committed vectors == fresh ones, every
 #                                      .gtkw in GTKWave (signals, and the
-#                                      window each opens on)
+#                                      window each opens on), the FuseSoC
+#                                      core files (current; lint and sim
+#                                      targets run in fusesoc)
 #
 # Each stage's output goes to build/test/<stage>.log and is printed whole
 # when the stage ends, so the two lanes never interleave lines. The last
@@ -84,6 +86,8 @@ if [ $fail = 0 ]; then
         stage vectors scripts/check_vectors.sh || lane_fail=1
         stage gtkw scripts/check_gtkw.sh || lane_fail=1
         stage gtkw-window scripts/check_gtkw_window.sh || lane_fail=1
+        stage fusesoc scripts/check_fusesoc.sh || lane_fail=1
+        stage wavedrom .venv/bin/python scripts/timing_diagrams.py --check || lane_fail=1
         exit $lane_fail
     ) &
     lane2=$!

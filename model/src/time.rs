@@ -7,8 +7,14 @@
 
 use crate::{ConfigError, Result};
 
-/// Picoseconds per second: VCD files use a 1 ps timescale so that any
-/// `f_sys` with a whole-picosecond period is represented exactly.
+/// Picoseconds per second. VCD files use a 1 ps timescale: a clock whose
+/// period is a whole number of picoseconds (50, 64, 80, 100 MHz) is written
+/// exactly; any other (48, 60, 120, 150 MHz, whatever a board has) has each
+/// cycle's time rounded to the nearest picosecond from the exact
+/// `n × 10^12 / f_sys` ([`Timebase::ps_at`]), so no edge is more than 0.5 ps
+/// off, and the error never accumulates however long the run. Models count
+/// cycles, never picoseconds, so the rounding touches the waves' time axis
+/// only, never a vector.
 pub const PS_PER_S: u64 = 1_000_000_000_000;
 
 /// The system clock of a model and of the RTL core that mirrors it.
@@ -18,21 +24,13 @@ pub struct Timebase {
 }
 
 impl Timebase {
-    /// A system clock of `f_sys_hz`. Its period must be a whole number of
-    /// picoseconds (true of every practical FPGA clock: 50, 64, 80, 100 MHz...).
+    /// A system clock of `f_sys_hz`, any whole number of hertz up to 1 GHz.
     pub fn new(f_sys_hz: u64) -> Result<Self> {
         if f_sys_hz == 0 || f_sys_hz > 1_000_000_000 {
             return Err(ConfigError::invalid(
                 "f_sys_mhz",
                 format!("{} Hz is not a usable system clock", f_sys_hz),
                 "give a frequency between 1 Hz and 1000 MHz",
-            ));
-        }
-        if PS_PER_S % f_sys_hz != 0 {
-            return Err(ConfigError::invalid(
-                "f_sys_mhz",
-                format!("the period of {} Hz is not a whole number of picoseconds", f_sys_hz),
-                "choose a frequency that divides 10^12 Hz·ps, e.g. 50, 64, 80 or 100 MHz",
             ));
         }
         Ok(Timebase { f_sys_hz })
@@ -63,20 +61,41 @@ impl Timebase {
         self.f_sys_hz
     }
 
-    /// One system-clock period in picoseconds (exact).
-    pub fn period_ps(&self) -> u64 {
-        PS_PER_S / self.f_sys_hz
+    /// Whether the period is a whole number of picoseconds (then every
+    /// time in the waves is exact).
+    pub fn period_is_whole_ps(&self) -> bool {
+        PS_PER_S % self.f_sys_hz == 0
     }
 
-    /// The time of cycle `n` in picoseconds.
+    /// One system-clock period in picoseconds, rounded to the nearest (exact
+    /// when [`Timebase::period_is_whole_ps`]; else at most 0.5 ps off, e.g.
+    /// 20 833 ps for 48 MHz's 20 833.3 ps).
+    pub fn period_ps(&self) -> u64 {
+        (PS_PER_S + self.f_sys_hz / 2) / self.f_sys_hz
+    }
+
+    /// The period in picoseconds as a real number, exact to the float: the
+    /// conversions of durations to cycles use it.
+    fn period_ps_f64(&self) -> f64 {
+        if self.period_is_whole_ps() {
+            self.period_ps() as f64
+        } else {
+            PS_PER_S as f64 / self.f_sys_hz as f64
+        }
+    }
+
+    /// The time of cycle `n` in picoseconds: `n × 10^12 / f_sys` rounded to
+    /// the nearest, so at most 0.5 ps off at every cycle (exact for a
+    /// whole-picosecond period), with no error carried from cycle to cycle.
     pub fn ps_at(&self, cycle: u64) -> u64 {
-        cycle * self.period_ps()
+        let f = self.f_sys_hz as u128;
+        ((cycle as u128 * PS_PER_S as u128 + f / 2) / f) as u64
     }
 
     /// The fewest whole cycles that last at least `ns` nanoseconds: for
     /// minimum times a datasheet guarantees (`t_m`, `T_cs`, recovery times).
     pub fn cycles_at_least_ns(&self, ns: f64) -> u64 {
-        let exact = ns * 1e3 / self.period_ps() as f64;
+        let exact = ns * 1e3 / self.period_ps_f64();
         // Tolerate float noise so that 4000 ns at 50 MHz is exactly 200 cycles.
         (exact - 1e-9).ceil().max(0.0) as u64
     }
@@ -84,7 +103,7 @@ impl Timebase {
     /// The whole number of cycles nearest to `ns` nanoseconds: for delays that
     /// are estimates rather than limits (cable propagation).
     pub fn cycles_nearest_ns(&self, ns: f64) -> u64 {
-        (ns * 1e3 / self.period_ps() as f64).round().max(0.0) as u64
+        (ns * 1e3 / self.period_ps_f64()).round().max(0.0) as u64
     }
 
     /// The divider that makes a bit clock of `f_hz` from `f_sys`, which must be
@@ -142,10 +161,33 @@ mod tests {
         }
     }
 
+    /// Issue 14 item 2: the fabric clocks boards have, whose periods are no
+    /// whole number of picoseconds, are accepted; each cycle's time is the
+    /// exact one rounded, never more than 0.5 ps off, with no drift.
     #[test]
-    fn a_period_that_is_not_whole_picoseconds_is_refused_with_the_field_named() {
-        let err = Timebase::from_mhz(3.0).unwrap_err();
-        assert_eq!(err.field(), "f_sys_mhz");
+    fn any_fabric_clock_is_accepted_with_cycle_times_within_half_a_picosecond() {
+        for mhz in [48.0, 60.0, 120.0, 150.0, 3.0, 33.333333, 50.0, 100.0] {
+            let tb = Timebase::from_mhz(mhz).unwrap_or_else(|e| panic!("{mhz} MHz refused: {e}"));
+            let f = tb.f_sys_hz() as f64;
+            for n in [0u64, 1, 2, 3, 7, 1_000, 123_456_789, 4_294_967_295, 1 << 40] {
+                let exact = n as f64 * 1e12 / f;
+                let err = (tb.ps_at(n) as f64 - exact).abs();
+                // f64 holds these products to well under 0.01 ps.
+                assert!(err <= 0.5 + exact * 1e-15, "{mhz} MHz cycle {n}: {} ps vs {exact}", tb.ps_at(n));
+            }
+            assert_eq!(tb.period_is_whole_ps(), (1e6 / mhz).fract() == 0.0 && mhz == mhz.round(), "{mhz}");
+        }
+        let tb = Timebase::from_mhz(48.0).unwrap();
+        assert_eq!(tb.period_ps(), 20_833);
+        assert_eq!((tb.ps_at(1), tb.ps_at(2), tb.ps_at(3)), (20_833, 41_667, 62_500));
+        // Durations become cycles from the exact period: 4 µs at 48 MHz is 192 cycles.
+        assert_eq!(tb.cycles_at_least_ns(4000.0), 192);
+        let tb = Timebase::from_mhz(150.0).unwrap();
+        assert_eq!((tb.period_ps(), tb.ps_at(3)), (6_667, 20_000));
+        assert_eq!(tb.cycles_at_least_ns(20.0), 3);
+        // Whole-picosecond clocks keep exact times.
+        let tb = Timebase::from_mhz(80.0).unwrap();
+        assert_eq!(tb.ps_at(1_000_001), 12_500_012_500);
     }
 
     #[test]

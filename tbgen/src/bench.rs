@@ -121,12 +121,11 @@ impl Visitor for Measure<'_> {
         fs::create_dir_all(self.scratch).map_err(|e| Error::io(self.scratch, e))?;
         let path = self.scratch.join(format!("{}.bench.vcd", self.scenario.name));
         let tb = cfg.timebase().map_err(value_error)?;
-        let period_ps = tb.period_ps();
         // `gen`'s comment, so that the file is `gen`'s to the byte.
         let comment = format!("tbgen {}: scenario {} for {}, f_sys {} Hz", env!("CARGO_PKG_VERSION"), self.scenario.name, S::CORE, tb.f_sys_hz());
         let vcd_seconds = best_of(|| {
             let file = File::create(&path).map_err(|e| Error::io(&path, e))?;
-            let mut waves = Waves::new(BufWriter::with_capacity(1 << 20, file), S::CORE, &layout, period_ps, &comment).map_err(|e| Error::io(&path, e))?;
+            let mut waves = Waves::new(BufWriter::with_capacity(1 << 20, file), S::CORE, &layout, tb, &comment).map_err(|e| Error::io(&path, e))?;
             let mut next = 0;
             for cycle in 0..cycles {
                 while next + 1 < changes.len() && changes[next + 1].0 <= cycle {

@@ -138,7 +138,11 @@ fn scalars(header: &vcd::Header) -> String {
 /// error for a missing one names the file, the path and `option` (the
 /// command-line flag that sets it).
 pub fn read(path: &Path, names: &[(&str, &str)]) -> Result<Vec<Signal>> {
-    let file = std::fs::File::open(path).map_err(|e| Error::io(path, e))?;
+    let file = std::fs::File::open(path).map_err(|e| match e.kind() {
+        // Bad input like any other (exit status 2), said as such.
+        std::io::ErrorKind::NotFound => Error::Decode(format!("{}: no such capture file; give the path to a VCD (tbgen gen or make sim WAVES=1 writes one)", path.display())),
+        _ => Error::io(path, e),
+    })?;
     let mut parser = vcd::Parser::new(BufReader::new(file));
     let header = parser.parse_header().map_err(|e| not_vcd(path, e))?;
     let scale = timescale_ps(&header);

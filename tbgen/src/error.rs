@@ -52,6 +52,9 @@ pub enum Error {
     /// A waveform that cannot be decoded, or a bad decode option.
     #[error("{0}")]
     Decode(String),
+    /// `tbgen fields`: an unknown protocol, or a configuration field the reference cannot document.
+    #[error("{0}")]
+    Fields(String),
     /// Reading or writing a file failed.
     #[error("{path}: {source}")]
     Io {

@@ -162,7 +162,7 @@ fn write_outputs<S: crate::registry::Protocol>(scenario: &Scenario, cfg: &S, out
     let mut vectors = VectorWriter::new(&layout.inputs, &layout.outputs);
     let comment = format!("tbgen {}: scenario {} for {core}, f_sys {} Hz", env!("CARGO_PKG_VERSION"), scenario.name, tb.f_sys_hz());
     let vcd_path = staged.temp(1).to_path_buf();
-    let mut waves = Waves::new(staged.create(1)?, core, &layout, tb.period_ps(), &comment).map_err(|e| Error::io(&vcd_path, e))?;
+    let mut waves = Waves::new(staged.create(1)?, core, &layout, tb, &comment).map_err(|e| Error::io(&vcd_path, e))?;
     let run = testbench::run(bench, &mut Both { vectors: &mut vectors, waves: &mut waves }).map_err(|e| Error::io(&vcd_path, e))?;
     waves.finish(run.cycles).map_err(|e| Error::io(&vcd_path, e))?;
 
@@ -197,9 +197,9 @@ fn write_outputs<S: crate::registry::Protocol>(scenario: &Scenario, cfg: &S, out
     let window = match run.transactions.iter().map(|t| t.span()).find(|(start, end)| end > start) {
         Some((start, end)) => {
             let lead = (end - start) / 20 + 10;
-            (start.saturating_sub(lead) * tb.period_ps(), (end + lead) * tb.period_ps())
+            (tb.ps_at(start.saturating_sub(lead)), tb.ps_at(end + lead))
         }
-        None => (0, run.cycles * tb.period_ps()),
+        None => (0, tb.ps_at(run.cycles)),
     };
     let groups = signal_names(core, &layout);
     let mut gtkw_out = staged.create(3)?;

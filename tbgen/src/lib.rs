@@ -33,6 +33,7 @@ pub mod capture;
 pub mod check;
 pub mod crc_cmd;
 pub mod error;
+pub mod fields;
 pub mod generate;
 pub mod gtkw;
 pub mod registry;

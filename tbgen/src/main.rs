@@ -95,6 +95,16 @@ enum Command {
         #[arg(long, short)]
         out: Option<PathBuf>,
     },
+    /// Print the reference of a protocol's scenario fields: unit, default, values, meaning.
+    #[command(after_help = "Examples:\n  tbgen fields ssi\n  tbgen fields --all > docs/scenarios.md   # the committed reference")]
+    Fields {
+        /// The protocol's table (tbgen protocols).
+        #[arg(required_unless_present = "all")]
+        protocol: Option<String>,
+        /// Every protocol: docs/scenarios.md.
+        #[arg(long, conflicts_with = "protocol")]
+        all: bool,
+    },
     /// List the registered protocols: table, core, decoder, budget, sigrok decoder.
     #[command(after_help = "Example:\n  tbgen protocols")]
     Protocols,
@@ -173,6 +183,10 @@ fn run(command: Command) -> Result<(), Error> {
         Command::Bench { scenario } => bench(&scenario)?,
         Command::Timing(call) => out!("{}", call.run()?),
         Command::Decode(call) => outln!("{}", call.run()?),
+        Command::Fields { protocol, all } => match protocol {
+            Some(p) if !all => out!("{}", tbgen::fields::protocol(&p)?),
+            _ => out!("{}", tbgen::fields::document()?),
+        },
         Command::Protocols => out!("{}", registry::table()),
         Command::Eds { kind, serial, out } => {
             let kind: model::canopen::EncoderKind = serde_json::from_value(serde_json::Value::String(kind.clone()))

@@ -24,7 +24,7 @@ use crate::{Error, Result};
 /// protocol's folder `tbgen/src/<table>/` on the model's `BenchConfig`.
 /// Everything has a default, so a new protocol starts with
 /// `impl Protocol for BenchConfig { const TRANSACTION_SIGNALS: ... }`.
-pub trait Protocol: model::Setup + 'static {
+pub trait Protocol: model::Setup + serde::Serialize + 'static {
     /// The output pulses that end a transaction, the output holding its
     /// result, and the transcript field that must equal it (the whole-flow
     /// test reads the VCD with them).
@@ -153,6 +153,8 @@ pub struct Entry {
     pub timing: fn(&ArgMatches) -> Result<String>,
     /// See [`Protocol::wave_names`].
     pub wave_names: fn() -> Vec<(&'static str, Vec<(u64, String)>)>,
+    /// The configuration's type path (`model::ssi::bench::BenchConfig`): `tbgen fields` reads its struct.
+    pub config_type: fn() -> &'static str,
 }
 
 impl Entry {
@@ -169,6 +171,7 @@ impl Entry {
             timing_command: P::timing_command,
             timing: P::timing,
             wave_names: P::wave_names,
+            config_type: std::any::type_name::<P>,
         }
     }
 }

@@ -6,7 +6,7 @@
 //! Scopes: `top.line` holds the line-level scalars (clock, data, driver
 //! enables) so that scalar-only readers such as sigrok can decode them;
 //! `top.<core>` holds the core's ports; `top.decoded` holds the model's view.
-//! The timescale is 1 ps, so any `f_sys` with a whole-picosecond period is exact.
+//! The timescale is 1 ps: a whole-picosecond period is exact, any other `f_sys` has each cycle at its exact time rounded to the picosecond (`model::time`).
 
 use std::io::{self, Write};
 
@@ -28,7 +28,7 @@ pub struct Waves<W: Write> {
     /// The values last written, in declaration order (line, ports, decoded).
     last: Vec<u64>,
     last_time: Option<u64>,
-    period_ps: u64,
+    timebase: model::time::Timebase,
 }
 
 /// The full hierarchical names of a layout's signals as `Waves` declares
@@ -53,8 +53,9 @@ pub fn signal_names(core: &str, layout: &Layout) -> Vec<(String, Vec<String>)> {
 }
 
 impl<W: Write> Waves<W> {
-    /// Writes the header for `layout` of `core` at a system-clock period of `period_ps`.
-    pub fn new(out: W, core: &str, layout: &Layout, period_ps: u64, comment: &str) -> io::Result<Self> {
+    /// Writes the header for `layout` of `core` on the system clock `timebase`
+    /// (each cycle at its exact time rounded to the picosecond, [`model::time::Timebase::ps_at`]).
+    pub fn new(out: W, core: &str, layout: &Layout, timebase: model::time::Timebase, comment: &str) -> io::Result<Self> {
         let mut vcd = vcd::Writer::new(out);
         vcd.comment(comment)?;
         vcd.timescale(1, TimescaleUnit::PS)?;
@@ -80,7 +81,7 @@ impl<W: Write> Waves<W> {
         vcd.upscope()?;
         vcd.enddefinitions()?;
         let n = signals.len();
-        Ok(Waves { vcd, signals, last: vec![0; n], last_time: None, period_ps })
+        Ok(Waves { vcd, signals, last: vec![0; n], last_time: None, timebase })
     }
 
     fn write_value(&mut self, index: usize, value: u64) -> io::Result<()> {
@@ -95,7 +96,7 @@ impl<W: Write> Waves<W> {
 
     /// Records the values of cycle `cycle`; writes only the signals that changed.
     pub fn at_cycle(&mut self, cycle: u64, s: &Sample) -> io::Result<()> {
-        let time = cycle * self.period_ps;
+        let time = self.timebase.ps_at(cycle);
         if let Some(last) = self.last_time {
             if time <= last {
                 return Err(io::Error::new(
@@ -142,7 +143,7 @@ impl<W: Write> Waves<W> {
     /// Writes a closing timestamp at the end of cycle `cycles - 1` so viewers
     /// show the whole run, and flushes.
     pub fn finish(mut self, cycles: u64) -> io::Result<()> {
-        let end = cycles * self.period_ps;
+        let end = self.timebase.ps_at(cycles);
         if self.last_time.is_none_or(|t| end > t) {
             self.vcd.timestamp(end)?;
         }

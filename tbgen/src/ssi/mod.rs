@@ -1,13 +1,46 @@
-//! SSI in `tbgen`: the read budget (`tbgen timing ssi`); sigrok's `spi`
-//! decoder reads the line at the encoder's pins in the tests.
+//! SSI in `tbgen`: the read budget (`tbgen timing ssi`), the reads of a
+//! capture (`tbgen decode ssi`); sigrok's `spi` decoder reads the line at
+//! the encoder's pins in the tests.
 
+pub mod decode;
 pub mod timing;
+
+use std::path::PathBuf;
 
 use clap::{ArgMatches, CommandFactory, Parser};
 use model::ssi::BenchConfig;
 
 use crate::registry::{self, Protocol, SigrokCheck, TransactionSignals};
-use crate::Result;
+use crate::{Error, Result};
+
+/// SSI: the reads on clock and data at the master.
+#[derive(Parser)]
+#[command(
+    name = "ssi",
+    after_help = "Examples:\n  tbgen decode ssi vectors/ssi_master/ssi_seed_12bit.vcd --bits 12\n  make sim SCENARIO=ssi_seed_12bit WAVES=1 && \\\n    tbgen decode ssi build/waves/ssi_seed_12bit.icarus.vcd --clk tb_ssi_master.o_ssi_clk --data tb_ssi_master.i_ssi_data --bits 12"
+)]
+pub struct DecodeArgs {
+    /// The VCD file.
+    file: PathBuf,
+    /// Dotted path of the SSI clock at the master.
+    #[arg(long, default_value = "top.line.ssi_clk_master")]
+    clk: String,
+    /// Dotted path of the data line at the master's receiver.
+    #[arg(long, default_value = "top.line.ssi_data_master")]
+    data: String,
+    /// Value bits per read (`[ssi.master] bits`); default: every clocked bit.
+    #[arg(long)]
+    bits: Option<u32>,
+    /// The value is Gray-coded (`code = "gray"`).
+    #[arg(long)]
+    gray: bool,
+    /// Each read carries the value twice (`double_read`).
+    #[arg(long)]
+    double_read: bool,
+    /// Each read carries one more bit that must be 0 (`wire_check`).
+    #[arg(long, conflicts_with = "double_read")]
+    wire_check: bool,
+}
 
 /// SSI: the read cycle and the position-read rate.
 #[derive(Parser)]
@@ -29,6 +62,21 @@ impl Protocol for BenchConfig {
     }
     const SIGROK_DECODER: Option<&'static str> = Some("spi");
     const SIGROK_MINIMUM: (usize, usize) = (10, 25);
+
+    fn decode_command() -> Option<clap::Command> {
+        Some(DecodeArgs::command())
+    }
+
+    fn decode(args: &ArgMatches) -> Result<String> {
+        let DecodeArgs { file, clk, data, bits, gray, double_read, wire_check } = registry::parse_args(args)?;
+        if bits.is_some_and(|b| !(1..=64).contains(&b)) {
+            return Err(Error::Decode(format!("decode ssi: --bits {}: give 1 to 64 bits", bits.unwrap_or_default())));
+        }
+        let layout = decode::Layout { bits, gray, double_read, wire_check };
+        let reads = decode::decode(&file, &clk, &data, &layout)?;
+        let decoded = crate::transcript::Decoded::new("ssi", &file, &[("clk", &clk), ("data", &data)], &reads);
+        serde_json::to_string_pretty(&decoded).map_err(|e| Error::Decode(e.to_string()))
+    }
 
     fn timing_command() -> Option<clap::Command> {
         Some(TimingArgs::command())
