@@ -38,7 +38,7 @@ pub fn timing_report(cfg: &BenchConfig, name: &str, registers: u8) -> std::resul
     let _ = writeln!(s, "\nscenario: {name}, {} baud, parity {:?}, {registers} register(s)", cfg.baud, cfg.parity);
     let _ = writeln!(s, "budget: poll {:.1} µs = {:.0} polls/s", row.poll_us, row.poll_hz());
     let mut two = cfg.clone();
-    two.ops = vec![Operation { op: OpKind::Read, address: cfg.devices[0].address, count: registers, gap_us: 0.0 }; 2];
+    two.ops = vec![Operation { op: OpKind::Read, address: cfg.devices[0].address, count: registers, gap_us: 0.0, new_address: 0 }; 2];
     two.devices.truncate(1);
     two.devices[0].faults.clear();
     if registers == 1 && two.devices[0].bits > 16 {
