@@ -431,7 +431,8 @@ impl Testbench for Bench {
             if let Some(mut t) = self.open.take() {
                 t.done_cycle = self.cycle;
                 t.request = self.master.request().to_vec();
-                t.received = self.master.received().to_vec();
+                // No answer: nothing received (the master's buffer still holds the last answer's characters).
+                t.received = if out.o_err_timeout { Vec::new() } else { self.master.received().to_vec() };
                 if out.o_valid && t.op == OpKind::Read {
                     let d = &self.cfg.devices[0];
                     let v = if d.gray { from_gray(out.o_value as u64) as u32 } else { out.o_value };
