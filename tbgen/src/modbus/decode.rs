@@ -22,7 +22,6 @@ use model::uart::Parity;
 use serde::Serialize;
 
 use crate::capture;
-use crate::transcript::Decoded;
 use crate::uart::line::{self, Char};
 use crate::Result;
 
@@ -208,15 +207,15 @@ fn judge(t: &mut Transaction, answers: &[Char], bit_ps: u64, bits: u64, t15_ps: 
 
 /// The JSON `tbgen decode modbus` prints.
 pub fn to_json(path: &Path, options: &Options, transactions: &[Transaction]) -> Result<String> {
-    let decoded = Decoded::new("modbus", path, &[("line", &options.line), ("tx_en", &options.tx_en)], transactions);
-    Ok(serde_json::to_string_pretty(&decoded).expect("the decoded transactions serialise") + "\n")
+    line::to_json("modbus", path, &options.line, &options.tx_en, transactions)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::builtin;
     use crate::scenario::Setup;
-    use crate::{builtin, generate};
+    use crate::uart::line::generated;
 
     fn options(cfg: &model::modbus::BenchConfig) -> Options {
         Options {
@@ -233,11 +232,10 @@ mod tests {
     fn decoding_the_line_of_every_modbus_scenario_gives_back_every_field_of_gens_transcript() {
         let dir = tempfile::tempdir().unwrap();
         let (mut scenarios, mut compared, mut faults) = (0, 0, 0);
-        for s in builtin::all().unwrap().into_iter().filter(|s| s.core() == "modbus_master") {
+        for name in builtin::all().unwrap().into_iter().filter(|s| s.core() == "modbus_master").map(|s| s.name) {
+            let (s, vcd, gen) = generated(&name, dir.path());
             let Setup::Modbus(cfg) = &s.setup else { unreachable!("{} runs modbus_master", s.name) };
-            let summary = generate::generate(&s, dir.path()).unwrap();
-            let gen: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&summary.files[2]).unwrap()).unwrap();
-            let decoded = decode(&summary.files[1], &options(cfg)).unwrap();
+            let decoded = decode(&vcd, &options(cfg)).unwrap();
             let gen = gen["transactions"].as_array().unwrap();
             assert_eq!(decoded.len(), gen.len(), "{}: transactions", s.name);
             for (d, g) in decoded.iter().zip(gen) {
@@ -259,11 +257,10 @@ mod tests {
 
     #[test]
     fn a_capture_without_the_named_line_lists_the_captures_signals() {
-        let s = builtin::find("modbus_seed_19200").unwrap();
-        let Setup::Modbus(cfg) = &s.setup else { unreachable!() };
         let dir = tempfile::tempdir().unwrap();
-        let summary = generate::generate(&s, dir.path()).unwrap();
-        let e = decode(&summary.files[1], &Options { line: "top.line.rx".into(), ..options(cfg) }).unwrap_err().to_string();
+        let (s, vcd, _) = generated("modbus_seed_19200", dir.path());
+        let Setup::Modbus(cfg) = &s.setup else { unreachable!() };
+        let e = decode(&vcd, &Options { line: "top.line.rx".into(), ..options(cfg) }).unwrap_err().to_string();
         assert!(e.contains("top.line.rx") && e.contains("--line") && e.contains("modbus_seed_19200.vcd") && e.contains("line.line_at_master"), "{e}");
     }
 }

@@ -28,7 +28,6 @@ use model::uart::Parity;
 use serde::Serialize;
 
 use crate::capture;
-use crate::transcript::Decoded;
 use crate::uart::line::{self, Char};
 use crate::Result;
 
@@ -191,15 +190,15 @@ pub fn decode(path: &Path, options: &Options) -> Result<Vec<Burst>> {
 
 /// The JSON `tbgen decode sar` prints.
 pub fn to_json(path: &Path, options: &Options, bursts: &[Burst]) -> Result<String> {
-    let decoded = Decoded::new("sar", path, &[("line", &options.line), ("tx_en", &options.tx_en)], bursts);
-    Ok(serde_json::to_string_pretty(&decoded).expect("the decoded bursts serialise") + "\n")
+    line::to_json("sar", path, &options.line, &options.tx_en, bursts)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::builtin;
     use crate::scenario::Setup;
-    use crate::{builtin, generate};
+    use crate::uart::line::generated;
 
     fn options(cfg: &model::sar58k24::BenchConfig) -> Options {
         Options {
@@ -221,11 +220,10 @@ mod tests {
     fn decoding_the_line_of_every_sar_scenario_gives_back_the_wire_and_every_accepted_position() {
         let dir = tempfile::tempdir().unwrap();
         let (mut scenarios, mut positions, mut faulty) = (0, 0, 0);
-        for s in builtin::all().unwrap().into_iter().filter(|s| s.core() == "sar_async_host") {
+        for name in builtin::all().unwrap().into_iter().filter(|s| s.core() == "sar_async_host").map(|s| s.name) {
+            let (s, vcd, gen) = generated(&name, dir.path());
             let Setup::Sar(cfg) = &s.setup else { unreachable!("{} runs sar_async_host", s.name) };
-            let summary = generate::generate(&s, dir.path()).unwrap();
-            let gen: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&summary.files[2]).unwrap()).unwrap();
-            let decoded = decode(&summary.files[1], &options(cfg)).unwrap();
+            let decoded = decode(&vcd, &options(cfg)).unwrap();
             let wire: Vec<u64> = decoded.iter().flat_map(|b| b.bytes.iter().map(|&x| x as u64)).collect();
             let flags: Vec<&str> = decoded.iter().flat_map(|b| b.errors.iter().copied()).collect();
             let want_flags: Vec<&str> = gen["transactions"].as_array().unwrap().iter().flat_map(|t| t["errors"].as_array().unwrap().iter().map(|e| e.as_str().unwrap())).filter(|e| !["timeout", "stale"].contains(e)).collect();
@@ -244,22 +242,20 @@ mod tests {
     #[test]
     fn the_seed_frame_ff_81_01_7f_00_decodes_to_383_and_8_4155_degrees() {
         // Seed 001, "Product communication": FF 81 01 7F 00 = 383 = 8.4155° at 14 bits.
-        let s = builtin::find("sar_seed_timed_14bit").unwrap();
-        let Setup::Sar(cfg) = &s.setup else { unreachable!() };
         let dir = tempfile::tempdir().unwrap();
-        let summary = generate::generate(&s, dir.path()).unwrap();
-        let d = decode(&summary.files[1], &options(cfg)).unwrap();
+        let (s, vcd, _) = generated("sar_seed_timed_14bit", dir.path());
+        let Setup::Sar(cfg) = &s.setup else { unreachable!() };
+        let d = decode(&vcd, &options(cfg)).unwrap();
         assert_eq!(d[0].bytes, [0xFF, 0x81, 0x01, 0x7F, 0x00]);
         assert_eq!((d[0].position, d[0].angle_deg), (Some(383), Some(8.4155)));
     }
 
     #[test]
     fn a_capture_without_the_named_line_lists_the_captures_signals() {
-        let s = builtin::find("sar_seed_timed_14bit").unwrap();
-        let Setup::Sar(cfg) = &s.setup else { unreachable!() };
         let dir = tempfile::tempdir().unwrap();
-        let summary = generate::generate(&s, dir.path()).unwrap();
-        let e = decode(&summary.files[1], &Options { tx_en: "top.de".into(), ..options(cfg) }).unwrap_err().to_string();
+        let (s, vcd, _) = generated("sar_seed_timed_14bit", dir.path());
+        let Setup::Sar(cfg) = &s.setup else { unreachable!() };
+        let e = decode(&vcd, &Options { tx_en: "top.de".into(), ..options(cfg) }).unwrap_err().to_string();
         assert!(e.contains("top.de") && e.contains("--tx-en") && e.contains("sar_seed_timed_14bit.vcd") && e.contains("line.line_at_host"), "{e}");
     }
 }
