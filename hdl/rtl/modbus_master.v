@@ -1,4 +1,4 @@
-// modbus_master: Modbus RTU master polling a SAR58K24 (function 03, address query); the cycle-for-cycle twin of model::modbus::Master.
+// modbus_master: Modbus RTU master polling a SAR58K24 (function 03, address query, address change); the cycle-for-cycle twin of model::modbus::Master.
 //
 // What it is for
 //   Reads the encoder position with function 03 (one register up to 16
@@ -7,9 +7,11 @@
 //   the serial-line timing: t3.5 of silence before each request, t1.5 as the
 //   longest silence inside an answer, t3.5 of silence ending it. Connect
 //   o_tx/o_tx_en to the RS-485 driver and i_rx to its receiver. Pulse
-//   i_start (read i_count registers from station i_address) or i_query while
-//   o_busy is low; o_done ends the poll with exactly one of o_valid or an
-//   o_err_* pulse.
+//   i_start (read i_count registers from station i_address), i_query, or
+//   i_write (station i_address takes the address i_new_address: function 06
+//   to holding register 0x0010, this project's reading of the manual's empty
+//   "Change the device address", docs/timing/modbus.md) while o_busy is low;
+//   o_done ends the poll with o_valid or o_err_* pulses.
 //
 // Parameters (the Rust MasterConfig field of the same name in lower case)
 //   CLOCKS_PER_BIT  i_clk cycles per bit
@@ -27,10 +29,14 @@
 //   state     IDLE|SILENCE|   SEND     |   WAIT     |      RECV                  |IDLE
 //   o_done    _____________________________________________________________________/‾\_
 //
-// Verdict, in this order: o_err_frame (parity, framing, a silence over t1.5,
-// fewer than 4 or more than 9 characters, or no end within RECV_LIMIT),
-// o_err_crc, o_err_address, o_err_exception (function | 0x80, code on
-// o_exception), o_err_function, o_err_count, else o_valid. The CRC-16
+// Verdict: the line faults pulse each its own flag, together: o_err_parity
+// (a bad parity bit), o_err_framing (a low stop bit), o_err_gap (a silence
+// over t1.5 inside the answer), o_err_length (fewer than 4 or more than 9
+// characters, or no end within RECV_LIMIT). Without any of these, exactly
+// one of, in this order: o_err_crc, o_err_address, o_err_exception
+// (function | 0x80, code on o_exception), o_err_function, o_err_count (byte
+// count or length; for i_write, not the request's echo), else o_valid
+// (o_value, or o_station: the queried station or the new address). The CRC-16
 // (poly 0x8005 reflected, preset FFFF) runs through crc_serial, one byte
 // per cycle: over the request as it is sent, and over the answer as it
 // arrives, where a good frame leaves the register at 0.
@@ -52,7 +58,9 @@ module modbus_master #(
     /* Host interface */
     input  wire        i_start,
     input  wire        i_query,
+    input  wire        i_write,
     input  wire [7:0]  i_address,
+    input  wire [7:0]  i_new_address,
     input  wire [1:0]  i_count,
     output wire        o_busy,
     output wire        o_done,
@@ -64,7 +72,10 @@ module modbus_master #(
     output wire [7:0]  o_exception,
 
     /* Status (one-cycle pulses with o_done) */
-    output wire        o_err_frame,
+    output wire        o_err_parity,
+    output wire        o_err_framing,
+    output wire        o_err_gap,
+    output wire        o_err_length,
     output wire        o_err_crc,
     output wire        o_err_address,
     output wire        o_err_exception,
@@ -101,6 +112,12 @@ localparam [2:0]
     SEND    = 3'd2,
     WAIT    = 3'd3,
     RECV    = 3'd4;
+
+// Operations: the same codes as the model's master::Op.
+localparam [1:0]
+    OP_READ  = 2'd0,
+    OP_QUERY = 2'd1,
+    OP_WRITE = 2'd2;
 
 initial begin
     if (T15_CLOCKS < CLOCKS_PER_BIT || T35_CLOCKS <= T15_CLOCKS) $error("modbus_master: need CLOCKS_PER_BIT <= T15_CLOCKS < T35_CLOCKS");
@@ -149,14 +166,17 @@ uart_tx #(
 reg [2:0]       state_reg = IDLE, state_next;
 reg [CNT_W-1:0] cnt_reg = 0, cnt_next;
 reg             tx_pending_reg = 1'b0, tx_pending_next;
-reg             query_reg = 1'b0, query_next;
+reg [1:0]       op_reg = OP_READ, op_next;
 reg [7:0]       address_reg = 8'd0, address_next;
+reg [7:0]       new_address_reg = 8'd0, new_address_next;
 reg [1:0]       count_reg = 2'd1, count_next;
 reg [3:0]       req_index_reg = 4'd0, req_index_next;
 reg [15:0]      crc_reg = 16'hFFFF, crc_next;
 reg [71:0]      buf_reg = 72'd0, buf_next;
 reg [3:0]       nbytes_reg = 4'd0, nbytes_next;
-reg             spoiled_reg = 1'b0, spoiled_next;
+reg             parity_seen_reg = 1'b0, parity_seen_next;
+reg             framing_seen_reg = 1'b0, framing_seen_next;
+reg             gap_seen_reg = 1'b0, gap_seen_next;
 reg [GAP_W-1:0] gap_reg = 0, gap_next;
 // The line counts as quiet for t3.5 at reset.
 reg [GAP_W-1:0] line_idle_reg = T35, line_idle_next;
@@ -167,7 +187,10 @@ reg        valid_reg = 1'b0, valid_next;
 reg [31:0] value_reg = 32'd0, value_next;
 reg [7:0]  station_reg = 8'd0, station_next;
 reg [7:0]  exception_reg = 8'd0, exception_next;
-reg        err_frame_reg = 1'b0, err_frame_next;
+reg        err_parity_reg = 1'b0, err_parity_next;
+reg        err_framing_reg = 1'b0, err_framing_next;
+reg        err_gap_reg = 1'b0, err_gap_next;
+reg        err_length_reg = 1'b0, err_length_next;
 reg        err_crc_reg = 1'b0, err_crc_next;
 reg        err_address_reg = 1'b0, err_address_next;
 reg        err_exception_reg = 1'b0, err_exception_next;
@@ -182,7 +205,10 @@ assign o_valid = valid_reg;
 assign o_value = value_reg;
 assign o_station = station_reg;
 assign o_exception = exception_reg;
-assign o_err_frame = err_frame_reg;
+assign o_err_parity = err_parity_reg;
+assign o_err_framing = err_framing_reg;
+assign o_err_gap = err_gap_reg;
+assign o_err_length = err_length_reg;
 assign o_err_crc = err_crc_reg;
 assign o_err_address = err_address_reg;
 assign o_err_exception = err_exception_reg;
@@ -217,17 +243,22 @@ generate
     end
 endgenerate
 
-// The request's data bytes: 6 for a read, 2 (FF A0) for the query.
-wire [3:0] data_len = query_reg ? 4'd2 : 4'd6;
+// The request's data bytes: 6 for a read (addr 03 00 00 00 count) and an
+// address change (addr 06 00 10 00 new), 2 (FF A0) for the query.
+wire       query = (op_reg == OP_QUERY);
+wire       write = (op_reg == OP_WRITE);
+wire [3:0] data_len = query ? 4'd2 : 4'd6;
+// The function code of the operation (model: Master::function).
+wire [7:0] function_code = query ? 8'hA0 : (write ? 8'h06 : 8'h03);
 reg  [7:0] req_byte;
 always @* begin
     case (req_index_reg)
-        4'd0: req_byte = query_reg ? 8'hFF : address_reg;
-        4'd1: req_byte = query_reg ? 8'hA0 : 8'h03;
+        4'd0: req_byte = query ? 8'hFF : address_reg;
+        4'd1: req_byte = function_code;
         4'd2: req_byte = 8'h00;
-        4'd3: req_byte = 8'h00;
+        4'd3: req_byte = write ? 8'h10 : 8'h00;
         4'd4: req_byte = 8'h00;
-        default: req_byte = {6'd0, count_reg};
+        default: req_byte = write ? new_address_reg : {6'd0, count_reg};
     endcase
 end
 
@@ -235,6 +266,10 @@ wire char_end = rx_valid || rx_parity_err || rx_frame_err;
 wire [7:0] b0 = buf_reg[7:0];
 wire [7:0] b1 = buf_reg[15:8];
 wire [7:0] b2 = buf_reg[23:16];
+// The echo of an address change: the request's six data bytes.
+wire       echo_ok = (nbytes_reg == 4'd8) && (buf_reg[47:0] == {new_address_reg, 8'h00, 8'h10, 8'h00, 8'h06, address_reg});
+// The line faults of the frame being closed, and a length outside 4..9.
+wire       bad_length = (nbytes_reg < 4'd4) || (nbytes_reg > 4'd9);
 wire [3:0] two_count = {1'b0, count_reg, 1'b0};
 wire [3:0] expected_len = 4'd5 + two_count;
 
@@ -245,15 +280,18 @@ always @* begin
     tx_valid_next = 1'b0;
     tx_data_next = tx_data_reg;
     tx_pending_next = tx_pending_reg;
-    query_next = query_reg;
+    op_next = op_reg;
     address_next = address_reg;
+    new_address_next = new_address_reg;
     count_next = count_reg;
     req_index_next = req_index_reg;
     crc_next = crc_reg;
     crc_byte = rx_data;
     buf_next = buf_reg;
     nbytes_next = nbytes_reg;
-    spoiled_next = spoiled_reg;
+    parity_seen_next = parity_seen_reg;
+    framing_seen_next = framing_seen_reg;
+    gap_seen_next = gap_seen_reg;
     gap_next = gap_reg;
     busy_next = busy_reg;
     done_next = 1'b0;
@@ -261,7 +299,10 @@ always @* begin
     value_next = value_reg;
     station_next = station_reg;
     exception_next = exception_reg;
-    err_frame_next = 1'b0;
+    err_parity_next = 1'b0;
+    err_framing_next = 1'b0;
+    err_gap_next = 1'b0;
+    err_length_next = 1'b0;
     err_crc_next = 1'b0;
     err_address_next = 1'b0;
     err_exception_next = 1'b0;
@@ -271,9 +312,11 @@ always @* begin
 
     case (state_reg)
         IDLE: begin
-            if (i_start || i_query) begin
-                query_next = !i_start;
+            if (i_start || i_query || i_write) begin
+                // One operation per pulse; i_start wins over i_query over i_write.
+                op_next = i_start ? OP_READ : (i_query ? OP_QUERY : OP_WRITE);
                 address_next = i_address;
+                new_address_next = i_new_address;
                 count_next = i_count;
                 req_index_next = 4'd0;
                 crc_next = 16'hFFFF;
@@ -317,7 +360,9 @@ always @* begin
             if (rx_busy) begin
                 state_next = RECV;
                 nbytes_next = 4'd0;
-                spoiled_next = 1'b0;
+                parity_seen_next = 1'b0;
+                framing_seen_next = 1'b0;
+                gap_seen_next = 1'b0;
                 gap_next = 0;
                 crc_next = 16'hFFFF;
                 cnt_next = RECV_LAST;
@@ -336,32 +381,32 @@ always @* begin
                     buf_next[8 * nbytes_reg +: 8] = rx_data;
                 end
                 nbytes_next = (nbytes_reg == 4'd15) ? 4'd15 : nbytes_reg + 1'b1;
-                spoiled_next = spoiled_reg | !rx_valid;
+                parity_seen_next = parity_seen_reg | rx_parity_err;
+                framing_seen_next = framing_seen_reg | rx_frame_err;
                 crc_next = crc_chain[8];
                 gap_next = 0;
             end else if (rx_busy) begin
                 // A start bit: the silence before it is complete.
                 if (nbytes_reg != 0 && gap_reg > T15) begin
-                    spoiled_next = 1'b1;
+                    gap_seen_next = 1'b1;
                 end
                 gap_next = 0;
             end else begin
                 gap_next = gap_reg + 1'b1;
             end
-            if (cnt_reg == 0) begin
-                err_frame_next = 1'b1;
+            if (cnt_reg == 0 || gap_next == T35) begin
                 state_next = IDLE;
                 busy_next = 1'b0;
                 done_next = 1'b1;
-            end else if (gap_next == T35) begin
-                state_next = IDLE;
-                busy_next = 1'b0;
-                done_next = 1'b1;
-                if (spoiled_reg || nbytes_reg < 4'd4 || nbytes_reg > 4'd9) begin
-                    err_frame_next = 1'b1;
+                err_parity_next = parity_seen_reg;
+                err_framing_next = framing_seen_reg;
+                err_gap_next = gap_seen_reg;
+                err_length_next = (cnt_reg == 0) || bad_length;
+                if (parity_seen_reg || framing_seen_reg || gap_seen_reg || cnt_reg == 0 || bad_length) begin
+                    // A spoiled frame is not looked into further.
                 end else if (crc_reg != 16'd0) begin
                     err_crc_next = 1'b1;
-                end else if (query_reg) begin
+                end else if (query) begin
                     if (b0 != 8'hFF) begin
                         err_address_next = 1'b1;
                     end else if (b1 != 8'hA0) begin
@@ -374,11 +419,18 @@ always @* begin
                     end
                 end else if (b0 != address_reg) begin
                     err_address_next = 1'b1;
-                end else if (b1 == 8'h83 && nbytes_reg == 4'd5) begin
+                end else if (b1 == (function_code | 8'h80) && nbytes_reg == 4'd5) begin
                     exception_next = b2;
                     err_exception_next = 1'b1;
-                end else if (b1 != 8'h03) begin
+                end else if (b1 != function_code) begin
                     err_function_next = 1'b1;
+                end else if (write) begin
+                    if (!echo_ok) begin
+                        err_count_next = 1'b1;
+                    end else begin
+                        station_next = new_address_reg;
+                        valid_next = 1'b1;
+                    end
                 end else if (b2 != {4'd0, two_count} || nbytes_reg != expected_len) begin
                     err_count_next = 1'b1;
                 end else begin
@@ -412,14 +464,17 @@ always @(posedge i_clk) begin
     tx_valid_reg <= tx_valid_next;
     tx_data_reg <= tx_data_next;
     tx_pending_reg <= tx_pending_next;
-    query_reg <= query_next;
+    op_reg <= op_next;
     address_reg <= address_next;
+    new_address_reg <= new_address_next;
     count_reg <= count_next;
     req_index_reg <= req_index_next;
     crc_reg <= crc_next;
     buf_reg <= buf_next;
     nbytes_reg <= nbytes_next;
-    spoiled_reg <= spoiled_next;
+    parity_seen_reg <= parity_seen_next;
+    framing_seen_reg <= framing_seen_next;
+    gap_seen_reg <= gap_seen_next;
     gap_reg <= gap_next;
     line_idle_reg <= line_idle_next;
     busy_reg <= busy_next;
@@ -428,7 +483,10 @@ always @(posedge i_clk) begin
     value_reg <= value_next;
     station_reg <= station_next;
     exception_reg <= exception_next;
-    err_frame_reg <= err_frame_next;
+    err_parity_reg <= err_parity_next;
+    err_framing_reg <= err_framing_next;
+    err_gap_reg <= err_gap_next;
+    err_length_reg <= err_length_next;
     err_crc_reg <= err_crc_next;
     err_address_reg <= err_address_next;
     err_exception_reg <= err_exception_next;
@@ -443,14 +501,17 @@ always @(posedge i_clk) begin
         tx_valid_reg <= 1'b0;
         tx_data_reg <= 8'd0;
         tx_pending_reg <= 1'b0;
-        query_reg <= 1'b0;
+        op_reg <= OP_READ;
         address_reg <= 8'd0;
+        new_address_reg <= 8'd0;
         count_reg <= 2'd1;
         req_index_reg <= 4'd0;
         crc_reg <= 16'hFFFF;
         buf_reg <= 72'd0;
         nbytes_reg <= 4'd0;
-        spoiled_reg <= 1'b0;
+        parity_seen_reg <= 1'b0;
+        framing_seen_reg <= 1'b0;
+        gap_seen_reg <= 1'b0;
         gap_reg <= 0;
         line_idle_reg <= T35;
         busy_reg <= 1'b0;
@@ -459,7 +520,10 @@ always @(posedge i_clk) begin
         value_reg <= 32'd0;
         station_reg <= 8'd0;
         exception_reg <= 8'd0;
-        err_frame_reg <= 1'b0;
+        err_parity_reg <= 1'b0;
+        err_framing_reg <= 1'b0;
+        err_gap_reg <= 1'b0;
+        err_length_reg <= 1'b0;
         err_crc_reg <= 1'b0;
         err_address_reg <= 1'b0;
         err_exception_reg <= 1'b0;

@@ -16,29 +16,33 @@ parameter TIMEOUT_CLOCKS = 50000;
 parameter HALF_PERIOD_FS = 50_000_000;
 parameter MAX_WORDS = 1 << 22;
 
-localparam N_IN = 5;
-localparam N_OUT = 15;
+localparam N_IN = 7;
+localparam N_OUT = 18;
 
 `include "vector_player.vh"
 
 reg i_start = 1'b0;
 reg i_query = 1'b0;
+reg i_write = 1'b0;
 reg [7:0] i_address = 8'd1;
+reg [7:0] i_new_address = 8'd1;
 reg [1:0] i_count = 2'd1;
 reg i_rx = 1'b1;
 wire o_tx, o_tx_en, o_busy, o_done, o_valid;
 wire [31:0] o_value;
 wire [7:0] o_station, o_exception;
-wire o_err_frame, o_err_crc, o_err_address, o_err_exception, o_err_function, o_err_count, o_err_timeout;
+wire o_err_parity, o_err_framing, o_err_gap, o_err_length, o_err_crc, o_err_address, o_err_exception, o_err_function, o_err_count, o_err_timeout;
 
 // Port order = the model's modbus::Master::input_ports() / output_ports().
 task apply_inputs;
     begin
         i_start = `IN_WORD(0) & 1'b1;
         i_query = `IN_WORD(1) & 1'b1;
-        i_address = `IN_WORD(2) & 8'hFF;
-        i_count = `IN_WORD(3) & 2'h3;
-        i_rx = `IN_WORD(4) & 1'b1;
+        i_write = `IN_WORD(2) & 1'b1;
+        i_address = `IN_WORD(3) & 8'hFF;
+        i_new_address = `IN_WORD(4) & 8'hFF;
+        i_count = `IN_WORD(5) & 2'h3;
+        i_rx = `IN_WORD(6) & 1'b1;
     end
 endtask
 
@@ -52,13 +56,16 @@ task check_outputs;
         `CHECK(5, "o_value", o_value)
         `CHECK(6, "o_station", o_station)
         `CHECK(7, "o_exception", o_exception)
-        `CHECK(8, "o_err_frame", o_err_frame)
-        `CHECK(9, "o_err_crc", o_err_crc)
-        `CHECK(10, "o_err_address", o_err_address)
-        `CHECK(11, "o_err_exception", o_err_exception)
-        `CHECK(12, "o_err_function", o_err_function)
-        `CHECK(13, "o_err_count", o_err_count)
-        `CHECK(14, "o_err_timeout", o_err_timeout)
+        `CHECK(8, "o_err_parity", o_err_parity)
+        `CHECK(9, "o_err_framing", o_err_framing)
+        `CHECK(10, "o_err_gap", o_err_gap)
+        `CHECK(11, "o_err_length", o_err_length)
+        `CHECK(12, "o_err_crc", o_err_crc)
+        `CHECK(13, "o_err_address", o_err_address)
+        `CHECK(14, "o_err_exception", o_err_exception)
+        `CHECK(15, "o_err_function", o_err_function)
+        `CHECK(16, "o_err_count", o_err_count)
+        `CHECK(17, "o_err_timeout", o_err_timeout)
     end
 endtask
 
@@ -73,7 +80,9 @@ modbus_master #(
     .i_rst(rst),
     .i_start(i_start),
     .i_query(i_query),
+    .i_write(i_write),
     .i_address(i_address),
+    .i_new_address(i_new_address),
     .i_count(i_count),
     .o_busy(o_busy),
     .o_done(o_done),
@@ -81,7 +90,10 @@ modbus_master #(
     .o_value(o_value),
     .o_station(o_station),
     .o_exception(o_exception),
-    .o_err_frame(o_err_frame),
+    .o_err_parity(o_err_parity),
+    .o_err_framing(o_err_framing),
+    .o_err_gap(o_err_gap),
+    .o_err_length(o_err_length),
     .o_err_crc(o_err_crc),
     .o_err_address(o_err_address),
     .o_err_exception(o_err_exception),

@@ -38,6 +38,9 @@ pub enum OpKind {
     Read,
     /// The address query `FF A0 40 38`.
     Query,
+    /// The address change: station `address` becomes `new_address`
+    /// (function 06 to register 0x0010, this project's reading).
+    SetAddress,
 }
 
 /// One poll (`[[modbus.ops]]`).
@@ -55,6 +58,9 @@ pub struct Operation {
     /// Idle time before the poll, µs.
     #[serde(default)]
     pub gap_us: f64,
+    /// `set_address`: the station's new address (1..247).
+    #[serde(default)]
+    pub new_address: u8,
 }
 
 fn default_address() -> u8 {
@@ -106,7 +112,7 @@ impl Default for BenchConfig {
             master: MasterSettings::default(),
             devices: vec![DeviceSettings::default()],
             cable: CableConfig { length_m: 10.0, ..CableConfig::default() },
-            ops: vec![Operation { op: OpKind::Read, address: 1, count: 1, gap_us: 0.0 }],
+            ops: vec![Operation { op: OpKind::Read, address: 1, count: 1, gap_us: 0.0, new_address: 0 }],
             second_drivers: Vec::new(),
         }
     }
@@ -182,6 +188,9 @@ impl BenchConfig {
             if op.count > 3 || !(0.0..1e8).contains(&op.gap_us) {
                 return Err(ConfigError::invalid(format!("ops[{i}]"), format!("count {}, gap {} µs", op.count, op.gap_us), "give count 0 to 3 (1 or 2 are valid reads) and gap_us ≥ 0"));
             }
+            if op.op == OpKind::SetAddress && !(1..=247).contains(&op.new_address) {
+                return Err(ConfigError::invalid(format!("ops[{i}].new_address"), format!("{}", op.new_address), "give the station's new address, 1 to 247"));
+            }
         }
         for (i, d) in self.second_drivers.iter().enumerate() {
             if !(0.0..1e8).contains(&d.at_us) || !(1..=1000).contains(&d.bytes.len()) {
@@ -244,11 +253,12 @@ pub struct Transaction {
     pub value: Option<u32>,
     /// Its angle for the first device's resolution.
     pub angle_deg: Option<f64>,
-    /// The station the query returned.
+    /// The station the query returned, or the new address a good address change confirmed.
     pub station: Option<u8>,
     /// The exception code, if the answer was one.
     pub exception: Option<u8>,
-    /// What the master flagged: `frame`, `crc`, `address`, `exception`, `function`, `count`, `timeout`.
+    /// What the master flagged: `parity`, `framing`, `gap`, `length`, `crc`,
+    /// `address`, `exception`, `function`, `count`, `timeout`.
     pub errors: Vec<&'static str>,
     /// The requests on the wire at the master's pins.
     pub wire_requests: Vec<Vec<u8>>,
@@ -364,7 +374,15 @@ impl Testbench for Bench {
         let mut input = In { i_rx: self.at_master, ..In::default() };
         if !self.waiting && self.end.is_none() && self.cycle >= self.start_at && !self.last_out.o_busy {
             let op = self.cfg.ops[self.next_op].clone();
-            input = In { i_start: op.op == OpKind::Read, i_query: op.op == OpKind::Query, i_address: op.address, i_count: op.count, i_rx: self.at_master };
+            input = In {
+                i_start: op.op == OpKind::Read,
+                i_query: op.op == OpKind::Query,
+                i_write: op.op == OpKind::SetAddress,
+                i_address: op.address,
+                i_new_address: op.new_address,
+                i_count: op.count,
+                i_rx: self.at_master,
+            };
             self.open = Some(Transaction {
                 index: self.next_op,
                 op: op.op,
@@ -413,21 +431,25 @@ impl Testbench for Bench {
             if let Some(mut t) = self.open.take() {
                 t.done_cycle = self.cycle;
                 t.request = self.master.request().to_vec();
-                t.received = self.master.received().to_vec();
+                // No answer: nothing received (the master's buffer still holds the last answer's characters).
+                t.received = if out.o_err_timeout { Vec::new() } else { self.master.received().to_vec() };
                 if out.o_valid && t.op == OpKind::Read {
                     let d = &self.cfg.devices[0];
                     let v = if d.gray { from_gray(out.o_value as u64) as u32 } else { out.o_value };
                     t.value = Some(v);
                     t.angle_deg = Some(angle_deg(v as u64, d.bits));
                 }
-                if out.o_valid && t.op == OpKind::Query {
+                if out.o_valid && t.op != OpKind::Read {
                     t.station = Some(out.o_station);
                 }
                 if out.o_err_exception {
                     t.exception = Some(out.o_exception);
                 }
                 for (flag, name) in [
-                    (out.o_err_frame, "frame"),
+                    (out.o_err_parity, "parity"),
+                    (out.o_err_framing, "framing"),
+                    (out.o_err_gap, "gap"),
+                    (out.o_err_length, "length"),
                     (out.o_err_crc, "crc"),
                     (out.o_err_address, "address"),
                     (out.o_err_exception, "exception"),

@@ -120,7 +120,7 @@ pub fn blind(levels: &[bool], address: u8, count: u8) -> bool {
 /// request) to a read of `count` registers from `address`.
 pub fn detected(address: u8, count: u8, levels: &[bool]) -> bool {
     let mut m = Master::new(master_config()).expect("campaign master configuration is valid");
-    let mut input = In { i_start: true, i_query: false, i_address: address, i_count: count, i_rx: true };
+    let mut input = In { i_start: true, i_address: address, i_count: count, ..In::default() };
     let (mut driving, mut from) = (false, None::<u64>);
     for t in 0..100_000u64 {
         let out = m.step(&input);

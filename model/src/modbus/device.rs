@@ -34,6 +34,10 @@ pub struct DeviceSettings {
     pub answer_delay_us: f64,
     /// The holding register an address change is written to.
     pub address_register: u16,
+    /// The device knows the address change (function 06); without it a
+    /// write is an unknown function, answered with exception 01, as firmware
+    /// that lacks it would answer.
+    pub address_change: bool,
     /// The device's baud error in percent.
     pub baud_error_percent: f64,
     /// Faults on the answers (`frame` counts answers).
@@ -49,6 +53,7 @@ impl Default for DeviceSettings {
             positions: vec![383],
             answer_delay_us: 100.0,
             address_register: frames::ADDRESS_REGISTER,
+            address_change: true,
             baud_error_percent: 0.0,
             faults: Vec::new(),
         }
@@ -215,6 +220,7 @@ impl Device {
                     frames::read_answer(addr, count, v)
                 }
             }
+            frames::WRITE_SINGLE if !self.cfg.settings.address_change => frames::exception_answer(addr, function, Exception::IllegalFunction),
             frames::WRITE_SINGLE if frame.len() == 8 => {
                 let (register, value) = (word(2), word(4));
                 if register != self.cfg.settings.address_register {

@@ -13,18 +13,29 @@
 //!   (`T35_CLOCKS`) since the last character, in either direction.
 //! * `WAIT` ends at the answer's first start bit, or after `TIMEOUT_CLOCKS`
 //!   with `o_err_timeout`.
-//! * `RECV` stores up to 9 characters; a silence longer than t1.5
-//!   (`T15_CLOCKS`) between two characters, a parity or a framing error
-//!   spoils the frame; t3.5 of silence ends it (measured from the receiver's
-//!   stop-bit sample, half a bit before the stop bit ends). A frame that
-//!   never ends (a line held low, a driver that keeps sending) is cut after
-//!   `RECV_LIMIT_CHARS` character times and t3.5 (`o_err_frame`).
-//! * The check gives exactly one verdict, in this order: `o_err_frame`
-//!   (spoiled, or fewer than 4 or more than 9 characters), `o_err_crc`,
+//! * `RECV` stores up to 9 characters; t3.5 of silence ends it (measured
+//!   from the receiver's stop-bit sample, half a bit before the stop bit
+//!   ends). Three line faults spoil the frame, each remembered on its own:
+//!   a character with a bad parity bit (`o_err_parity`), one with a low
+//!   stop bit (`o_err_framing`), a silence longer than t1.5 (`T15_CLOCKS`)
+//!   between two characters (`o_err_gap`). A frame that never ends (a line
+//!   held low, a driver that keeps sending) is cut after `RECV_LIMIT_CHARS`
+//!   character times and t3.5 (`o_err_length`).
+//! * The check: every line fault seen pulses its own flag, together with
+//!   `o_err_length` when the frame had fewer than 4 or more than 9
+//!   characters; a frame with any of these four is not looked into
+//!   further. Otherwise exactly one verdict, in this order: `o_err_crc`,
 //!   `o_err_address` (not the polled station; `FF` for the query),
 //!   `o_err_exception` (function | 0x80, five characters; the code on
-//!   `o_exception`), `o_err_function` (not 03 / A0), `o_err_count` (byte
-//!   count not 2 × registers or the length not matching it), else `o_valid`.
+//!   `o_exception`), `o_err_function` (not 03 / A0 / 06), `o_err_count`
+//!   (byte count not 2 × registers or the length not matching it; for the
+//!   address change, an answer that is not the request's echo), else `o_valid`.
+//! * `i_write` is the address change (this project's reading of the
+//!   manual's empty "Change the device address", `docs/timing/modbus.md`):
+//!   function 06 writing `i_new_address` to holding register 0x0010 of
+//!   station `i_address`; the device answers with the echo and takes the new
+//!   address from the next request. A good echo pulses `o_valid` with the new
+//!   address on `o_station`.
 
 use super::frames;
 use crate::ports::{Port, Ports};
@@ -75,7 +86,7 @@ impl MasterConfig {
 /// The master's states; the RTL's `localparam`s carry the same names and codes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum State {
-    /// Waiting for `i_start` or `i_query`.
+    /// Waiting for `i_start`, `i_query` or `i_write`.
     Idle = 0,
     /// Waiting for t3.5 of silence.
     Silence = 1,
@@ -94,8 +105,13 @@ pub struct In {
     pub i_start: bool,
     /// Send the address query `FF A0 40 38` (one-cycle pulse).
     pub i_query: bool,
+    /// Change station `i_address`'s address to `i_new_address` (function 06
+    /// to register 0x0010; one-cycle pulse).
+    pub i_write: bool,
     /// Station address.
     pub i_address: u8,
+    /// The new address of `i_write` (1..247).
+    pub i_new_address: u8,
     /// Registers: 1 (up to 16 bits) or 2 (17 to 32 bits).
     pub i_count: u8,
     /// The receive line.
@@ -104,7 +120,7 @@ pub struct In {
 
 impl Default for In {
     fn default() -> Self {
-        In { i_start: false, i_query: false, i_address: 1, i_count: 1, i_rx: true }
+        In { i_start: false, i_query: false, i_write: false, i_address: 1, i_new_address: 1, i_count: 1, i_rx: true }
     }
 }
 
@@ -119,7 +135,8 @@ pub struct Out {
     pub o_busy: bool,
     /// One-cycle pulse at the end of an operation.
     pub o_done: bool,
-    /// One-cycle pulse: a good answer; `o_value` or `o_station` holds it.
+    /// One-cycle pulse: a good answer; `o_value` or `o_station` holds it
+    /// (the station the query returned, or the new address after `i_write`).
     pub o_valid: bool,
     /// The registers read, high first (16 or 32 bits).
     pub o_value: u32,
@@ -127,8 +144,14 @@ pub struct Out {
     pub o_station: u8,
     /// The exception code of the last exception answer.
     pub o_exception: u8,
-    /// Pulse: framing, parity, a gap over t1.5, or a bad length.
-    pub o_err_frame: bool,
+    /// Pulse: a character of the answer had a bad parity bit.
+    pub o_err_parity: bool,
+    /// Pulse: a character of the answer had a low stop bit.
+    pub o_err_framing: bool,
+    /// Pulse: a silence longer than t1.5 inside the answer.
+    pub o_err_gap: bool,
+    /// Pulse: fewer than 4 or more than 9 characters, or no end within `RECV_LIMIT_CHARS`.
+    pub o_err_length: bool,
     /// Pulse: CRC.
     pub o_err_crc: bool,
     /// Pulse: the answer is from another station.
@@ -154,7 +177,10 @@ impl Default for Out {
             o_value: 0,
             o_station: 0,
             o_exception: 0,
-            o_err_frame: false,
+            o_err_parity: false,
+            o_err_framing: false,
+            o_err_gap: false,
+            o_err_length: false,
             o_err_crc: false,
             o_err_address: false,
             o_err_exception: false,
@@ -167,7 +193,15 @@ impl Default for Out {
 
 impl Ports for In {
     fn write_values(&self, dst: &mut [u64]) {
-        dst.copy_from_slice(&[self.i_start as u64, self.i_query as u64, self.i_address as u64, (self.i_count & 3) as u64, self.i_rx as u64]);
+        dst.copy_from_slice(&[
+            self.i_start as u64,
+            self.i_query as u64,
+            self.i_write as u64,
+            self.i_address as u64,
+            self.i_new_address as u64,
+            (self.i_count & 3) as u64,
+            self.i_rx as u64,
+        ]);
     }
 }
 
@@ -182,7 +216,10 @@ impl Ports for Out {
             self.o_value as u64,
             self.o_station as u64,
             self.o_exception as u64,
-            self.o_err_frame as u64,
+            self.o_err_parity as u64,
+            self.o_err_framing as u64,
+            self.o_err_gap as u64,
+            self.o_err_length as u64,
             self.o_err_crc as u64,
             self.o_err_address as u64,
             self.o_err_exception as u64,
@@ -207,12 +244,15 @@ pub struct Master {
     req: [u8; 8],
     req_len: u8,
     req_index: u8,
-    query: bool,
+    op: Op,
     address: u8,
+    new_address: u8,
     count: u8,
     buf: [u8; MAX_CHARS],
     nbytes: u8,
-    spoiled: bool,
+    parity_seen: bool,
+    framing_seen: bool,
+    gap_seen: bool,
     gap: u64,
     line_idle: u64,
     cnt: u64,
@@ -233,12 +273,15 @@ impl Master {
             req: [0; 8],
             req_len: 0,
             req_index: 0,
-            query: false,
+            op: Op::Read,
             address: 0,
+            new_address: 0,
             count: 1,
             buf: [0; MAX_CHARS],
             nbytes: 0,
-            spoiled: false,
+            parity_seen: false,
+            framing_seen: false,
+            gap_seen: false,
             gap: 0,
             line_idle: cfg.t35_clocks,
             cnt: 0,
@@ -250,7 +293,15 @@ impl Master {
 
     /// The input ports, in vector order.
     pub fn input_ports() -> Vec<Port> {
-        vec![Port::new("i_start", 1), Port::new("i_query", 1), Port::new("i_address", 8), Port::new("i_count", 2), Port::new("i_rx", 1)]
+        vec![
+            Port::new("i_start", 1),
+            Port::new("i_query", 1),
+            Port::new("i_write", 1),
+            Port::new("i_address", 8),
+            Port::new("i_new_address", 8),
+            Port::new("i_count", 2),
+            Port::new("i_rx", 1),
+        ]
     }
 
     /// The output ports, in vector order.
@@ -264,7 +315,10 @@ impl Master {
             Port::new("o_value", 32),
             Port::new("o_station", 8),
             Port::new("o_exception", 8),
-            Port::new("o_err_frame", 1),
+            Port::new("o_err_parity", 1),
+            Port::new("o_err_framing", 1),
+            Port::new("o_err_gap", 1),
+            Port::new("o_err_length", 1),
             Port::new("o_err_crc", 1),
             Port::new("o_err_address", 1),
             Port::new("o_err_exception", 1),
@@ -295,7 +349,10 @@ impl Master {
         let mut next = Out {
             o_done: false,
             o_valid: false,
-            o_err_frame: false,
+            o_err_parity: false,
+            o_err_framing: false,
+            o_err_gap: false,
+            o_err_length: false,
             o_err_crc: false,
             o_err_address: false,
             o_err_exception: false,
@@ -310,11 +367,23 @@ impl Master {
         let char_end = rx.o_valid || rx.o_parity_err || rx.o_frame_err;
         match self.state {
             State::Idle => {
-                if input.i_start || input.i_query {
-                    self.query = !input.i_start;
+                if input.i_start || input.i_query || input.i_write {
+                    // One operation per pulse; i_start wins over i_query over i_write.
+                    self.op = if input.i_start {
+                        Op::Read
+                    } else if input.i_query {
+                        Op::Query
+                    } else {
+                        Op::Write
+                    };
                     self.address = input.i_address;
+                    self.new_address = input.i_new_address;
                     self.count = input.i_count & 3;
-                    let bytes = if self.query { frames::address_query() } else { frames::read_request(self.address, self.count as u16) };
+                    let bytes = match self.op {
+                        Op::Read => frames::read_request(self.address, self.count as u16),
+                        Op::Query => frames::address_query(),
+                        Op::Write => frames::write_request(self.address, frames::ADDRESS_REGISTER, self.new_address as u16),
+                    };
                     self.req = [0; 8];
                     self.req[..bytes.len()].copy_from_slice(&bytes);
                     self.req_len = bytes.len() as u8;
@@ -350,7 +419,9 @@ impl Master {
                 if rx.o_busy {
                     self.state = State::Recv;
                     self.nbytes = 0;
-                    self.spoiled = false;
+                    self.parity_seen = false;
+                    self.framing_seen = false;
+                    self.gap_seen = false;
                     self.gap = 0;
                     self.cnt = RECV_LIMIT_CHARS * cfg.char_clocks() + cfg.t35_clocks - 1;
                 } else if self.cnt == 0 {
@@ -361,27 +432,30 @@ impl Master {
                 }
             }
             State::Recv => {
+                // The check reads the registers as they were before this edge (the RTL's `_reg`s).
+                let seen = Seen { parity: self.parity_seen, framing: self.framing_seen, gap: self.gap_seen, nbytes: self.nbytes };
                 if char_end {
                     if (self.nbytes as usize) < MAX_CHARS {
                         self.buf[self.nbytes as usize] = rx.o_data;
                     }
                     self.nbytes = self.nbytes.saturating_add(1).min(15);
-                    self.spoiled |= !rx.o_valid;
+                    self.parity_seen |= rx.o_parity_err;
+                    self.framing_seen |= rx.o_frame_err;
                     self.gap = 0;
                 } else if rx.o_busy {
                     // A start bit: the silence before it is complete.
                     if self.nbytes > 0 && self.gap > cfg.t15_clocks {
-                        self.spoiled = true;
+                        self.gap_seen = true;
                     }
                     self.gap = 0;
                 } else {
                     self.gap += 1;
                 }
                 if self.cnt == 0 {
-                    next.o_err_frame = true;
+                    self.check(&mut next, true, seen);
                     self.finish(&mut next);
                 } else if self.gap == cfg.t35_clocks {
-                    self.check(&mut next);
+                    self.check(&mut next, false, seen);
                     self.finish(&mut next);
                 } else {
                     self.cnt -= 1;
@@ -411,39 +485,85 @@ impl Master {
         next.o_done = true;
     }
 
-    /// The one verdict on a complete answer.
-    fn check(&mut self, next: &mut Out) {
-        let n = self.nbytes as usize;
+    /// The verdict on a complete answer (`cut`: ended by `RECV_LIMIT_CHARS`).
+    fn check(&mut self, next: &mut Out, cut: bool, seen: Seen) {
+        let n = seen.nbytes as usize;
         let b = self.buf;
-        if self.spoiled || !(4..=MAX_CHARS).contains(&n) {
-            next.o_err_frame = true;
-        } else if !frames::crc_ok(&b[..n]) {
+        next.o_err_parity = seen.parity;
+        next.o_err_framing = seen.framing;
+        next.o_err_gap = seen.gap;
+        next.o_err_length = cut || !(4..=MAX_CHARS).contains(&n);
+        if next.o_err_parity || next.o_err_framing || next.o_err_gap || next.o_err_length {
+            return;
+        }
+        if !frames::crc_ok(&b[..n]) {
             next.o_err_crc = true;
-        } else if self.query {
-            if b[0] != frames::QUERY_ADDRESS {
-                next.o_err_address = true;
-            } else if b[1] != frames::QUERY_FUNCTION {
-                next.o_err_function = true;
-            } else if n != 5 {
-                next.o_err_count = true;
-            } else {
-                next.o_station = b[2];
-                next.o_valid = true;
+            return;
+        }
+        match self.op {
+            Op::Query => {
+                if b[0] != frames::QUERY_ADDRESS {
+                    next.o_err_address = true;
+                } else if b[1] != frames::QUERY_FUNCTION {
+                    next.o_err_function = true;
+                } else if n != 5 {
+                    next.o_err_count = true;
+                } else {
+                    next.o_station = b[2];
+                    next.o_valid = true;
+                }
             }
-        } else if b[0] != self.address {
-            next.o_err_address = true;
-        } else if b[1] == frames::READ_HOLDING | 0x80 && n == 5 {
-            next.o_exception = b[2];
-            next.o_err_exception = true;
-        } else if b[1] != frames::READ_HOLDING {
-            next.o_err_function = true;
-        } else if b[2] != 2 * self.count || n != 5 + 2 * self.count as usize {
-            next.o_err_count = true;
-        } else {
-            // One register: two bytes; otherwise four (the RTL's two cases).
-            let len = if self.count == 1 { 2 } else { 4 };
-            next.o_value = b[3..3 + len].iter().fold(0u32, |v, &x| (v << 8) | x as u32);
-            next.o_valid = true;
+            _ if b[0] != self.address => next.o_err_address = true,
+            Op::Read | Op::Write if b[1] == self.function() | 0x80 && n == 5 => {
+                next.o_exception = b[2];
+                next.o_err_exception = true;
+            }
+            _ if b[1] != self.function() => next.o_err_function = true,
+            Op::Write => {
+                // The echo: the request itself, byte for byte.
+                if n != 8 || b[..6] != self.req[..6] {
+                    next.o_err_count = true;
+                } else {
+                    next.o_station = self.new_address;
+                    next.o_valid = true;
+                }
+            }
+            Op::Read => {
+                if b[2] != 2 * self.count || n != 5 + 2 * self.count as usize {
+                    next.o_err_count = true;
+                } else {
+                    // One register: two bytes; otherwise four (the RTL's two cases).
+                    let len = if self.count == 1 { 2 } else { 4 };
+                    next.o_value = b[3..3 + len].iter().fold(0u32, |v, &x| (v << 8) | x as u32);
+                    next.o_valid = true;
+                }
+            }
         }
     }
+
+    /// The function code of the operation under way.
+    fn function(&self) -> u8 {
+        match self.op {
+            Op::Read => frames::READ_HOLDING,
+            Op::Query => frames::QUERY_FUNCTION,
+            Op::Write => frames::WRITE_SINGLE,
+        }
+    }
+}
+
+/// The line faults and the character count of the answer so far.
+#[derive(Debug, Clone, Copy)]
+struct Seen {
+    parity: bool,
+    framing: bool,
+    gap: bool,
+    nbytes: u8,
+}
+
+/// The operation under way (the RTL's `op_reg`, same codes).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Op {
+    Read = 0,
+    Query = 1,
+    Write = 2,
 }

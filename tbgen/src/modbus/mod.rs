@@ -1,9 +1,12 @@
-//! Modbus RTU (SAR58K24) in `tbgen`: `tbgen timing modbus` (the poll
-//! budget beside the cycle model's measurement) and the sigrok check of the
-//! line at the master. The `modbus` decoder stacked on `uart` is checked in
+//! Modbus RTU (SAR58K24) in `tbgen`: `tbgen decode modbus` ([`decode`]),
+//! `tbgen timing modbus` (the poll budget beside the cycle model's
+//! measurement) and the sigrok check of the line at the master. The `modbus` decoder stacked on `uart` is checked in
 //! `tbgen/tests/sar_modbus.rs`.
 
+pub mod decode;
 pub mod sigrok_fields;
+
+use std::path::PathBuf;
 
 use std::fmt::Write as _;
 
@@ -14,7 +17,33 @@ use model::uart::Parity;
 use model::Setup;
 
 use crate::registry::{self, Protocol, SigrokCheck, TransactionSignals};
-use crate::Result;
+use crate::{Error, Result};
+
+/// Modbus: the line and the driver enable at the master.
+#[derive(Parser)]
+#[command(name = "modbus", after_help = "Examples:\n  tbgen decode modbus vectors/modbus_master/modbus_seed_19200.vcd\n  tbgen decode modbus capture.vcd --line top.ro --tx-en top.de --baud 115200 --parity even")]
+pub struct DecodeArgs {
+    /// The VCD file.
+    file: PathBuf,
+    /// Dotted path of the RS-485 line (receiver output) at the master.
+    #[arg(long, default_value = "top.line.line_at_master")]
+    line: String,
+    /// Dotted path of the master's RS-485 driver enable.
+    #[arg(long, default_value = "top.line.tx_en_master")]
+    tx_en: String,
+    /// Baud (factory default 19200).
+    #[arg(long, default_value_t = 19_200.0)]
+    baud: f64,
+    /// Parity: none (factory default), odd or even.
+    #[arg(long, default_value = "none", value_parser = crate::uart::line::parse_parity)]
+    parity: Parity,
+    /// The master's answer timeout in µs (`[modbus.master] timeout_us`).
+    #[arg(long, default_value_t = 5000.0)]
+    timeout_us: f64,
+    /// The devices send the position in Gray code.
+    #[arg(long)]
+    gray: bool,
+}
 
 /// Modbus: the poll budget of a scenario's set-up.
 #[derive(Parser)]
@@ -38,7 +67,7 @@ pub fn timing_report(cfg: &BenchConfig, name: &str, registers: u8) -> std::resul
     let _ = writeln!(s, "\nscenario: {name}, {} baud, parity {:?}, {registers} register(s)", cfg.baud, cfg.parity);
     let _ = writeln!(s, "budget: poll {:.1} µs = {:.0} polls/s", row.poll_us, row.poll_hz());
     let mut two = cfg.clone();
-    two.ops = vec![Operation { op: OpKind::Read, address: cfg.devices[0].address, count: registers, gap_us: 0.0 }; 2];
+    two.ops = vec![Operation { op: OpKind::Read, address: cfg.devices[0].address, count: registers, gap_us: 0.0, new_address: 0 }; 2];
     two.devices.truncate(1);
     two.devices[0].faults.clear();
     if registers == 1 && two.devices[0].bits > 16 {
@@ -68,6 +97,20 @@ impl Protocol for BenchConfig {
     fn wave_names() -> Vec<(&'static str, Vec<(u64, String)>)> {
         use model::modbus::State as S;
         vec![("state", crate::registry::enum_names(&[S::Idle, S::Silence, S::Send, S::Wait, S::Recv], |s| s as u64))]
+    }
+
+    fn decode_command() -> Option<clap::Command> {
+        Some(DecodeArgs::command())
+    }
+
+    fn decode(args: &ArgMatches) -> Result<String> {
+        let DecodeArgs { file, line, tx_en, baud, parity, timeout_us, gray } = registry::parse_args(args)?;
+        if !(300.0..=10e6).contains(&baud) || !(timeout_us > 0.0 && timeout_us < 1e7) {
+            return Err(Error::Decode(format!("decode modbus: --baud {baud} or --timeout-us {timeout_us}: give a baud rate from 300 to 10000000 and a positive timeout in µs")));
+        }
+        let options = decode::Options { line, tx_en, baud, parity, timeout_us, gray };
+        let transactions = decode::decode(&file, &options)?;
+        decode::to_json(&file, &options, &transactions)
     }
 
     fn timing_command() -> Option<clap::Command> {

@@ -1,9 +1,13 @@
-//! SAR58K24 asynchronous serial in `tbgen`: `tbgen timing sar` (frame time
+//! SAR58K24 asynchronous serial in `tbgen`: `tbgen decode sar` ([`decode`]),
+//! `tbgen timing sar` (frame time
 //! per baud rate, the highest refresh rate that fits, trigger-to-position
 //! latency, beside the cycle model's measurement) and the sigrok check of
 //! the line at the host.
 
+pub mod decode;
+
 use std::fmt::Write as _;
+use std::path::PathBuf;
 
 use clap::{ArgMatches, CommandFactory, Parser};
 use model::sar58k24::{timing, BenchConfig, Mode, OpKind, Operation};
@@ -12,7 +16,36 @@ use model::uart::Parity;
 use model::Setup;
 
 use crate::registry::{self, Protocol, SigrokCheck, TransactionSignals};
-use crate::Result;
+use crate::{Error, Result};
+
+/// SAR58K24: the line and the host's driver enable.
+#[derive(Parser)]
+#[command(name = "sar", after_help = "Examples:\n  tbgen decode sar vectors/sar_async_host/sar_seed_timed_14bit.vcd --bits 14\n  tbgen decode sar capture.vcd --line top.ro --tx-en top.de --baud 9600 --bits 24 --gray")]
+pub struct DecodeArgs {
+    /// The VCD file.
+    file: PathBuf,
+    /// Dotted path of the line (receiver output) at the host.
+    #[arg(long, default_value = "top.line.line_at_host")]
+    line: String,
+    /// Dotted path of the host's driver enable (bus commands).
+    #[arg(long, default_value = "top.line.tx_en_host")]
+    tx_en: String,
+    /// Baud (2400 to 115200).
+    #[arg(long, default_value_t = 115_200.0)]
+    baud: f64,
+    /// Parity: none, odd or even.
+    #[arg(long, default_value = "none", value_parser = crate::uart::line::parse_parity)]
+    parity: Parity,
+    /// Resolution, 10 to 32 bits (2, 3 or 4 data bytes).
+    #[arg(long, default_value_t = 16)]
+    bits: u32,
+    /// Positions are sent in Gray code.
+    #[arg(long)]
+    gray: bool,
+    /// Idle bit times that end a frame (`[sar.host] gap_bits`).
+    #[arg(long, default_value_t = 15.0)]
+    gap_bits: f64,
+}
 
 /// SAR58K24: the frame and latency budget of a scenario's set-up.
 #[derive(Parser)]
@@ -63,6 +96,22 @@ impl Protocol for BenchConfig {
     fn wave_names() -> Vec<(&'static str, Vec<(u64, String)>)> {
         use model::sar58k24::State as S;
         vec![("state", crate::registry::enum_names(&[S::Idle, S::Trigger, S::Clr, S::Send, S::Wait], |s| s as u64))]
+    }
+
+    fn decode_command() -> Option<clap::Command> {
+        Some(DecodeArgs::command())
+    }
+
+    fn decode(args: &ArgMatches) -> Result<String> {
+        let DecodeArgs { file, line, tx_en, baud, parity, bits, gray, gap_bits } = registry::parse_args(args)?;
+        if !(300.0..=10e6).contains(&baud) || !(10..=32).contains(&bits) || !(1.0..=1e6).contains(&gap_bits) {
+            return Err(Error::Decode(format!(
+                "decode sar: --baud {baud}, --bits {bits} or --gap-bits {gap_bits}: give a baud rate from 300 to 10000000, 10 to 32 bits and 1 to 1000000 idle bit times"
+            )));
+        }
+        let options = decode::Options { line, tx_en, baud, parity, bits, gray, gap_bits };
+        let bursts = decode::decode(&file, &options)?;
+        decode::to_json(&file, &options, &bursts)
     }
 
     fn timing_command() -> Option<clap::Command> {

@@ -1,5 +1,8 @@
 //! The shared 10-bit frame receiver in `tbgen`: sigrok's `uart` decoder
-//! reads the receiver's line in the tests.
+//! reads the receiver's line in the tests. [`line`] is the parity-aware
+//! character reader the SAR58K24 and Modbus decoders share.
+
+pub mod line;
 
 use model::uart::BenchConfig;
 
