@@ -10,7 +10,7 @@ from cocotb.triggers import RisingEdge
 from emu_common import bit, planted, no_violations, open_emulator, operation, run_emulator, start
 
 POLLS = int(os.environ.get("COSIM_TRANSACTIONS", "4"))
-ERRORS = ("o_err_frame", "o_err_crc", "o_err_address", "o_err_exception", "o_err_function", "o_err_count", "o_err_timeout")
+ERRORS = ("o_err_parity", "o_err_framing", "o_err_gap", "o_err_length", "o_err_crc", "o_err_address", "o_err_exception", "o_err_function", "o_err_count", "o_err_timeout")
 
 
 @cocotb.test()
@@ -19,6 +19,8 @@ async def polls_equal_the_devices_answers(dut):
     emu = open_emulator("modbus", f_hz)
     dut.i_start.value = 0
     dut.i_query.value = 0
+    dut.i_write.value = 0
+    dut.i_new_address.value = 0
     dut.i_address.value = int(os.environ.get("COSIM_ADDRESS", "1"))
     dut.i_count.value = int(os.environ.get("COSIM_COUNT", "1"))
     dut.i_rx.value = 1

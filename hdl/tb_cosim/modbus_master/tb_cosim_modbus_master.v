@@ -39,7 +39,7 @@ reg i_start = 1'b0;
 wire o_busy, o_done, o_valid;
 wire [31:0] o_value;
 wire [7:0] o_station, o_exception;
-wire o_err_frame, o_err_crc, o_err_address, o_err_exception, o_err_function, o_err_count, o_err_timeout;
+wire o_err_parity, o_err_framing, o_err_gap, o_err_length, o_err_crc, o_err_address, o_err_exception, o_err_function, o_err_count, o_err_timeout;
 wire o_tx, o_tx_en, bus, dev_line, dev_line_en;
 
 modbus_master #(
@@ -47,10 +47,11 @@ modbus_master #(
     .T35_CLOCKS(T35_CLOCKS), .TIMEOUT_CLOCKS(TIMEOUT_CLOCKS)
 ) dut (
     .i_clk(clk), .i_rst(rst),
-    .i_start(i_start), .i_query(1'b0), .i_address(ADDRESS[7:0]), .i_count(COUNT[1:0]),
+    .i_start(i_start), .i_query(1'b0), .i_write(1'b0), .i_address(ADDRESS[7:0]), .i_new_address(8'd0), .i_count(COUNT[1:0]),
     .o_busy(o_busy), .o_done(o_done), .o_valid(o_valid), .o_value(o_value),
     .o_station(o_station), .o_exception(o_exception),
-    .o_err_frame(o_err_frame), .o_err_crc(o_err_crc), .o_err_address(o_err_address),
+    .o_err_parity(o_err_parity), .o_err_framing(o_err_framing), .o_err_gap(o_err_gap),
+    .o_err_length(o_err_length), .o_err_crc(o_err_crc), .o_err_address(o_err_address),
     .o_err_exception(o_err_exception), .o_err_function(o_err_function),
     .o_err_count(o_err_count), .o_err_timeout(o_err_timeout),
     .o_tx(o_tx), .o_tx_en(o_tx_en), .i_rx(bus)
@@ -77,7 +78,7 @@ always @(posedge clk) begin
             seen_valid <= 1'b1;
             got_value <= o_value;
         end
-        if (o_err_frame || o_err_crc || o_err_address || o_err_exception || o_err_function || o_err_count || o_err_timeout)
+        if (o_err_parity || o_err_framing || o_err_gap || o_err_length || o_err_crc || o_err_address || o_err_exception || o_err_function || o_err_count || o_err_timeout)
             seen_err <= 1'b1;
     end
 end
