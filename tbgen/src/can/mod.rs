@@ -2,6 +2,8 @@
 //! ([`timing`]) and the sigrok check of the `can_rx` line at the core.
 
 pub mod decode;
+#[cfg(test)]
+mod families;
 pub mod sigrok_errors;
 pub mod timing;
 
