@@ -584,16 +584,16 @@ always @* begin
                         tec_next = tec_reg + 9'd8;
                         if (tec_next > 9'd255) go_bus_off = 1'b1;
                     end
-                    if (!go_bus_off) begin
-                        // Six equal consecutive bits complete a passive flag.
-                        if (bit_cnt_reg == 4'd0 || b != last_bit_reg) bit_cnt_next = 4'd1;
-                        else bit_cnt_next = bit_cnt_reg + 4'd1;
+                    // Six equal consecutive bits complete a passive flag.
+                    if (go_bus_off) ;
+                    else if (bit_cnt_reg == 4'd0 || b != last_bit_reg) begin
+                        bit_cnt_next = 4'd1;
                         last_bit_next = b;
-                        if (bit_cnt_next == 4'd6) begin
-                            ack_pass_next = 1'b0;
-                            go_flag_done = 1'b1;
-                        end
-                    end
+                    end else if (bit_cnt_reg == 4'd5) begin
+                        bit_cnt_next = 4'd6;
+                        ack_pass_next = 1'b0;
+                        go_flag_done = 1'b1;
+                    end else bit_cnt_next = bit_cnt_reg + 4'd1;
                 end else if (b) e_flag_bit = 1'b1;
                 else if (bit_cnt_reg == 4'd5) go_flag_done = 1'b1;
                 else bit_cnt_next = bit_cnt_reg + 4'd1;
