@@ -75,7 +75,7 @@ pub fn within_timing_limits(cfg: &BenchConfig) -> Option<bool> {
 impl Protocol for BenchConfig {
     const TRANSACTION_SIGNALS: TransactionSignals = (&["o_tx_done", "o_rx_valid", "o_err_bit", "o_err_stuff", "o_err_crc", "o_err_form", "o_err_ack"], "o_rx_id", "rx_id");
     const SIGROK_DECODER: Option<&'static str> = Some("can");
-    const SIGROK_MINIMUM: (usize, usize) = (13, 281);
+    const SIGROK_MINIMUM: (usize, usize) = (17, 330);
 
     /// The controller's state (and the listen-only monitor's) by the RTL's
     /// `localparam` names, which keep the underscores (`CRC_DELIM`).
