@@ -139,5 +139,5 @@ fn sigrok_can_reads_the_frames_of_the_error_scenarios() {
         scenarios += 1;
     }
     println!("can errors: {scenarios} scenarios, {total:?}");
-    assert!(scenarios >= 14 && total.frames >= 78 && total.values >= 387 && total.cut >= 13, "{scenarios} scenarios, {total:?}");
+    assert!(scenarios >= 15 && total.frames >= 81 && total.values >= 404 && total.cut >= 13, "{scenarios} scenarios, {total:?}");
 }
