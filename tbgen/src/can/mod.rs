@@ -2,6 +2,9 @@
 //! ([`timing`]) and the sigrok check of the `can_rx` line at the core.
 
 pub mod decode;
+#[cfg(test)]
+mod families;
+pub mod sigrok_errors;
 pub mod timing;
 
 use std::path::PathBuf;
@@ -44,10 +47,35 @@ pub struct TimingArgs {
     frames_per_s: f64,
 }
 
+/// sigrok's `can` decoder option for a scenario (nominal bit rate and
+/// sample point of its timing), its bit time and its sample point's offset
+/// in f_sys cycles.
+pub fn sigrok_decoder(cfg: &BenchConfig) -> Option<(String, u64, u64)> {
+    let t = cfg.controller_config().ok()?.timing;
+    let tb = model::Setup::timebase(cfg).ok()?;
+    let bit = t.clocks_per_bit();
+    let rate = tb.f_sys_hz() / bit;
+    let sample = (1 + t.tseg1() as u64) * t.brp as u64;
+    Some((format!("can:can_rx=can_rx:nominal_bitrate={rate}:sample_point={}", t.sample_point() * 100.0), bit, sample))
+}
+
+/// Whether every node of the scenario is inside the limits its bit timing
+/// allows: the bus no longer than [`model::can::BitTiming::max_bus_length_m`]
+/// and each oscillator inside [`model::can::BitTiming::oscillator_tolerance`]
+/// (the core's clock is nominal, so a node may deviate by twice it).
+pub fn within_timing_limits(cfg: &BenchConfig) -> Option<bool> {
+    let t = cfg.bit_timing().ok()?;
+    let f_sys = model::Setup::timebase(cfg).ok()?.f_sys_hz();
+    let t_loop = cfg.dut.loop_delay_ns + cfg.sync_stages as f64 * 1e9 / f_sys as f64;
+    let span = cfg.nodes.iter().map(|n| (n.position_m - cfg.dut.position_m).abs()).fold(0.0, f64::max);
+    let ppm = cfg.nodes.iter().map(|n| n.ppm.abs()).fold(0.0, f64::max);
+    Some(span <= t.max_bus_length_m(f_sys, t_loop, cfg.ns_per_m) && ppm * 1e-6 <= 2.0 * t.oscillator_tolerance())
+}
+
 impl Protocol for BenchConfig {
     const TRANSACTION_SIGNALS: TransactionSignals = (&["o_tx_done", "o_rx_valid", "o_err_bit", "o_err_stuff", "o_err_crc", "o_err_form", "o_err_ack"], "o_rx_id", "rx_id");
     const SIGROK_DECODER: Option<&'static str> = Some("can");
-    const SIGROK_MINIMUM: (usize, usize) = (13, 281);
+    const SIGROK_MINIMUM: (usize, usize) = (17, 330);
 
     /// The controller's state (and the listen-only monitor's) by the RTL's
     /// `localparam` names, which keep the underscores (`CRC_DELIM`).
@@ -104,14 +132,12 @@ impl Protocol for BenchConfig {
     /// sigrok's `can` decoder on `can_rx` (nominal bit rate and sample
     /// point of the scenario) must print, frame by frame, the identifier
     /// (and extension), DLC, data bytes, CRC sequence and ACK the
-    /// transcript holds. Scenarios with errors or overload frames are not
-    /// compared: sigrok decodes error and overload flags as frames of their
-    /// own, which no transcript holds. A remote frame with a DLC above 0 is compared up to its DLC
+    /// transcript holds. Scenarios with errors or overload frames are
+    /// compared by [`sigrok_errors`] instead: sigrok decodes error and
+    /// overload flags as frames of their own, which no transcript holds. A remote frame with a DLC above 0 is compared up to its DLC
     /// and ends the comparison (sigrok's decoder expects data bits in it).
     fn sigrok(&self, transcript: &serde_json::Value) -> Option<SigrokCheck> {
-        let t = self.controller_config().ok()?.timing;
-        let tb = model::Setup::timebase(self).ok()?;
-        let rate = tb.f_sys_hz() / t.clocks_per_bit();
+        let (decoder, _, _) = sigrok_decoder(self)?;
         let mut expected = Vec::new();
         for tr in transcript["transactions"].as_array()? {
             let outcome = tr["outcome"].as_str()?;
@@ -138,7 +164,7 @@ impl Protocol for BenchConfig {
             expected.push(Some(tr["ack"].as_bool()? as u128));
         }
         Some(SigrokCheck {
-            decoder: format!("can:can_rx=can_rx:nominal_bitrate={rate}:sample_point={}", t.sample_point() * 100.0),
+            decoder,
             annotation: "can=id:ext-id:dlc:data:crc-sequence:ack-slot",
             expected,
         })

@@ -1,0 +1,111 @@
+//! The scenario families issue 12 names, each held to what its name says
+//! (`cargo test -p tbgen can::families`): the model's transcript of every
+//! built-in CAN scenario, run here, must show the behaviour the scenario
+//! exists for. The RTL replays the same vectors, so the core is held to it too.
+
+#[cfg(test)]
+mod tests {
+    use crate::builtin;
+    use crate::scenario::Setup;
+    use model::can::{BenchConfig, Transaction};
+
+    fn run(name: &str) -> (BenchConfig, Vec<Transaction>) {
+        let s = builtin::find(name).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let Setup::Can(cfg) = &s.setup else { panic!("{name} is not a CAN scenario") };
+        let run = model::testbench::run_to_end(model::Setup::bench(cfg).unwrap());
+        (cfg.clone(), run.transactions)
+    }
+
+    fn outcomes(t: &[Transaction]) -> Vec<&'static str> {
+        t.iter().map(|t| t.outcome).collect()
+    }
+
+    fn clean(t: &[Transaction]) -> bool {
+        t.iter().all(|t| (t.outcome == "tx_done" || t.outcome == "rx_valid") && t.errors.is_empty() && t.tec == 0 && t.rec == 0)
+    }
+
+    #[test]
+    fn every_bit_rate_of_the_gateway_sends_and_receives_cleanly() {
+        for kbps in [10, 20, 50, 125, 250, 500, 800, 1000] {
+            let (cfg, t) = run(&format!("can_rate_{kbps}k"));
+            assert_eq!(cfg.timing.bit_rate_kbps, kbps as f64);
+            assert!(clean(&t) && t.iter().any(|t| t.outcome == "tx_done") && t.iter().any(|t| t.outcome == "rx_valid"), "{kbps}k: {:?}", outcomes(&t));
+            // Heavy stuffing (runs of 0x00 / 0xFF) and a remote frame.
+            assert!(t.iter().any(|t| t.data.iter().all(|&b| b == 0) && t.data.len() == 8), "{kbps}k: a frame of eight 0x00");
+            assert!(t.iter().any(|t| t.rtr), "{kbps}k: a remote frame");
+        }
+        let points: std::collections::BTreeSet<u64> = builtin::all().unwrap().iter().filter_map(|s| s.setup.get::<BenchConfig>()).map(|c| (c.bit_timing().unwrap().sample_point() * 1e4).round() as u64).collect();
+        assert!(points.len() >= 4, "several sample points: {points:?}");
+    }
+
+    #[test]
+    fn the_longest_bus_of_each_timing_arbitrates_cleanly_and_a_longer_one_does_not() {
+        for name in ["can_bus_longest", "can_bus_longest_10k", "can_bus_longest_500k", "can_bus_longest_1000k"] {
+            let (cfg, t) = run(name);
+            assert!(super::super::within_timing_limits(&cfg).unwrap(), "{name} is within the limits");
+            let far = cfg.nodes.iter().map(|n| n.position_m).fold(0.0, f64::max);
+            let bt = cfg.bit_timing().unwrap();
+            let longest = bt.max_bus_length_m(40_000_000, cfg.dut.loop_delay_ns + cfg.sync_stages as f64 * 25.0, cfg.ns_per_m);
+            assert!(far <= longest && far >= longest - 1.0, "{name}: {far} m is the longest bus ({longest:.1} m)");
+            assert_eq!(outcomes(&t), ["rx_valid", "tx_done"], "{name}: the far node wins arbitration, then the core sends");
+            assert!(clean(&t) && t[0].arb_lost, "{name}: the core lost arbitration in the first frame");
+        }
+        let (cfg, t) = run("can_bus_too_long");
+        assert!(!super::super::within_timing_limits(&cfg).unwrap());
+        assert!(t.iter().any(|t| !t.errors.is_empty() || t.outcome.starts_with("err_")), "beyond the longest bus: errors");
+    }
+
+    #[test]
+    fn oscillators_inside_the_tolerance_work_and_beyond_it_fail() {
+        let (cfg, t) = run("can_osc_inside");
+        assert!(super::super::within_timing_limits(&cfg).unwrap() && clean(&t) && t.len() >= 2, "{:?}", outcomes(&t));
+        let (cfg, t) = run("can_osc_beyond");
+        assert!(!super::super::within_timing_limits(&cfg).unwrap());
+        assert!(t.iter().filter(|t| t.outcome == "err_stuff").count() >= 5, "{:?}", outcomes(&t));
+    }
+
+    #[test]
+    fn every_error_type_is_injected_and_detected() {
+        for (name, outcome) in [("can_err_bit", "err_bit"), ("can_err_stuff", "err_stuff"), ("can_err_crc", "err_crc"), ("can_err_form", "err_form"), ("can_err_ack", "err_ack")] {
+            let (_, t) = run(name);
+            assert_eq!(t[0].outcome, outcome, "{name}: {:?}", outcomes(&t));
+        }
+        // Errors inside flags and delimiters (the core receiving, then sending).
+        let (_, t) = run("can_err_in_flags");
+        assert_eq!(outcomes(&t)[..7], ["err_bit", "err_bit", "err_form", "err_form", "err_form", "err_bit", "rx_valid"]);
+        assert_eq!([t[0].rec, t[1].rec], [1, 9], "a bit error in its own error flag: REC + 8 (rule 4)");
+        assert_eq!(t[5].overloads, 1, "a dominant last error delimiter bit: overload");
+        let (_, t) = run("can_err_in_flags_tx");
+        assert_eq!([t[0].tec, t[1].tec, t[2].tec], [8, 16, 15], "a bit error in its own error flag: TEC + 8 (rule 4)");
+        assert_eq!((t[3].outcome, t[4].tec), ("err_stuff", 38), "stuck dominant: 8 dominant bits after the flag, TEC + 8 each (rule 6)");
+        let (_, t) = run("can_overload");
+        assert_eq!(t[1].overloads, 1);
+    }
+
+    #[test]
+    fn error_passive_bus_off_and_recovery() {
+        let (_, t) = run("can_passive_suspend");
+        let passive = t.iter().position(|t| t.err_state == 1).expect("error-passive");
+        assert_eq!(t[passive].tec, 128);
+        assert!(t.iter().any(|t| t.outcome == "rx_valid" && t.err_state == 1), "receives while passive (another node starts during its suspend)");
+        assert!(t.windows(2).any(|w| w[0].outcome == "err_ack" && w[1].outcome == "err_ack" && w[1].tec == w[0].tec + 8 && w[0].tec >= 128), "a dominant bit in the passive flag after an ACK error: TEC + 8");
+        let (cfg, t) = run("can_bus_off_recovery");
+        assert!(t.iter().any(|t| t.tec >= 256 || t.err_state == 2), "bus-off");
+        let last = t.last().unwrap();
+        assert_eq!((last.outcome, last.tec, last.rec, last.err_state), ("tx_done", 0, 0, 0), "recovered");
+        let bit = cfg.bit_timing().unwrap().clocks_per_bit();
+        let off = t.iter().rev().nth(1).unwrap().cycle;
+        assert!(last.sof_cycle - off >= 128 * 11 * bit, "recovery after 128 × 11 recessive bits");
+    }
+
+    #[test]
+    fn three_nodes_arbitrate_and_extended_frames_are_received_with_ide() {
+        let (cfg, t) = run("can_arbitration_3_nodes");
+        assert!(cfg.nodes.len() >= 2 && clean(&t) && t.iter().any(|t| t.arb_lost), "{:?}", outcomes(&t));
+        let (_, t) = run("can_extended_frames");
+        assert!(t.iter().any(|t| t.outcome == "rx_valid" && t.ide && t.ack), "{:?}", outcomes(&t));
+        let (cfg, t) = run("can_brp1_1000k");
+        assert_eq!(cfg.bit_timing().unwrap().brp, 1);
+        assert!(clean(&t) && t.len() == 2);
+    }
+}
