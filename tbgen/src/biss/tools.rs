@@ -22,7 +22,7 @@ pub fn timing_report(cfg: &BenchConfig, name: &str) -> std::result::Result<Strin
     let t_ma_ns = mc.clocks_per_bit as f64 / f_sys * 1e9;
     let frame_bits = 2 + mc.frame_bits();
     let delay_ns = 2.0 * cfg.cable.length_m * cfg.cable.ns_per_m + cfg.slaves[0].output_delay_ns;
-    let busy_ns = cfg.slaves.iter().map(|s| s.busy_ns).fold(0.0, f64::max);
+    let busy_ns = (0..cfg.slaves.len()).map(|i| cfg.busy_ns(i)).fold(0.0, f64::max);
     let timeout_ns = cfg.slaves.iter().map(|s| s.timeout_us).fold(0.0, f64::max) * 1e3;
     let cycle_ns = t_ma_ns * frame_bits as f64 + delay_ns + busy_ns + timeout_ns;
     let mut s = String::new();
