@@ -55,9 +55,7 @@
 // DELAY_TOL: then they are sampled by their own ack and flagged (o_err_drift).
 // Any cable up to MAX_DELAY is read in the middle of its bit cells. MA keeps running until the
 // last CRC bit is in, then stops at the first half-period boundary where it
-// equals !CDM (the BiSS-C control bit is the inverted MA level in the timeout);
-// a frame that held MA low (CDM = 1) raises it HALF cycles before o_done, so
-// every MA high phase lasts at least HALF + 1 cycles (seed: TMASH > 25 ns).
+// equals !CDM (the BiSS-C control bit is the inverted MA level in the timeout); a frame that held MA low (CDM = 1) raises it HALF cycles before o_done, so every MA high phase lasts at least HALF + 1 cycles (seed: TMASH > 25 ns).
 // Errors: o_err_line (SLO low at start, refused), o_err_ack (no ack: slave
 // absent, line open or stuck high), o_err_delay (ack later than MAX_DELAY),
 // o_err_start (no start bit within TIMEOUT_CLOCKS), o_err_timeout (SLO not
