@@ -404,6 +404,10 @@ mod tests {
     fn every_field_the_decoder_prints_equals_the_gen_transcript_of_every_biss_scenario() {
         let names: Vec<String> = builtin::all().unwrap().into_iter().filter(|s| matches!(s.setup, S::Biss(_))).map(|s| s.name).collect();
         assert_eq!(names.len(), 26);
+        // biss_fault_timeout reads a 16-bit slave as 8 bits on purpose: its
+        // frames fit no layout the master was given, which decode refuses
+        // (a_wrong_bits_says_the_frame_does_not_fit_and_what_would).
+        let names: Vec<String> = names.into_iter().filter(|n| n != "biss_fault_timeout").collect();
         let (mut frames, mut registers, mut failed_registers, mut flagged, mut unseen) = (0, 0, 0, 0, 0);
         let (mut commands, mut failed_commands) = (0, 0);
         for name in &names {
@@ -428,6 +432,9 @@ mod tests {
                         "start_ps" => {}
                         // gen counts cycles from edge 2 to the ack at the synchroniser's output.
                         "delay_ps" => match (value.as_u64(), m["delay_cycles"].as_u64()) {
+                            // SLO already low at edge 2 (a line stuck low): the master's count
+                            // ends within the synchroniser's two cycles, wherever the edge fell.
+                            (Some(0), Some(cycles)) => assert!(cycles <= 2, "{name}: delay 0 ps, {cycles} cycles"),
                             (Some(ps), Some(cycles)) => assert_eq!(ps.div_ceil(period_ps) + 2, cycles, "{name}: delay {ps} ps"),
                             (a, b) => assert_eq!(a.is_some(), b.is_some(), "{name}: delay"),
                         },
@@ -443,7 +450,13 @@ mod tests {
                         "register" if value.is_null() && m[key]["cdm"] == "" => {}
                         // A write that ended before its data went out has no `wdata` on the line.
                         "register" if value.is_object() => {
+                            // An access that ended before its address (k = 12) or its R/W
+                            // bits (k = 18) went out has only part of them on the line.
+                            let sent = m[key]["cdm"].as_str().map_or(0, str::len);
                             for (k, v) in value.as_object().unwrap() {
+                                if (sent < 12 && (k == "id" || k == "addr")) || (sent < 18 && k == "write") {
+                                    continue;
+                                }
                                 assert_eq!(v, &m[key][k], "{name} frame {} register field {k}", d["index"]);
                             }
                         }
