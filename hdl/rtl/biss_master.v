@@ -55,7 +55,7 @@
 // DELAY_TOL: then they are sampled by their own ack and flagged (o_err_drift).
 // Any cable up to MAX_DELAY is read in the middle of its bit cells. MA keeps running until the
 // last CRC bit is in, then stops at the first half-period boundary where it
-// equals !CDM (the BiSS-C control bit is the inverted MA level in the timeout).
+// equals !CDM (the BiSS-C control bit is the inverted MA level in the timeout); a frame that held MA low (CDM = 1) raises it HALF cycles before o_done, so every MA high phase lasts at least HALF + 1 cycles (seed: TMASH > 25 ns).
 // Errors: o_err_line (SLO low at start, refused), o_err_ack (no ack: slave
 // absent, line open or stuck high), o_err_delay (ack later than MAX_DELAY),
 // o_err_start (no start bit within TIMEOUT_CLOCKS), o_err_timeout (SLO not
@@ -486,6 +486,9 @@ always @* begin
         end else begin
             ma_cnt_next = ma_cnt_reg - 1'b1;
         end
+    end else if (ma_cnt_reg != 0) begin
+        // Stopped: counting out the high level that ends a frame.
+        ma_cnt_next = ma_cnt_reg - 1'b1;
     end
 
     // Bit sampling: once per MA period, in the middle of each arriving cell.
@@ -665,6 +668,19 @@ always @* begin
             state_next = IDLE;
         end
     endcase
+
+    // A frame ends with MA high for at least half a period (seed 001,
+    // BiSS-C: TMASH > 25 ns), so that the next frame's first falling edge, in
+    // the cycle after o_done at the earliest, never follows a short high
+    // level: a frame that stopped MA low (CDM = 1) raises it first and ends
+    // HALF cycles later (o_done then).
+    if (finish && (!ma_reg || ma_cnt_reg != 0)) begin
+        if (!ma_reg) begin
+            ma_next = 1'b1;
+            ma_cnt_next = HALF_LAST;
+        end
+        finish = 1'b0;
+    end
 
     if (finish) begin
         state_next = IDLE;

@@ -166,7 +166,7 @@ proptest! {
         let cfg = model::biss::BenchConfig {
             f_sys_mhz: f_sys,
             master: model::biss::MasterSettings { clock_khz: clock, max_delay_ns: max_delay, timeout_us: timeout, cal_frames, delay_tolerance_ns: tol, ..Default::default() },
-            slaves: vec![model::biss::SlaveSettings { bits, crc_width, crc_poly, busy_ns: busy, timeout_us: slave_timeout, positions: vec![position], cds_crc_error: flags[0], ..Default::default() }],
+            slaves: vec![model::biss::SlaveSettings { bits, crc_width, crc_poly, busy_ns: Some(busy), timeout_us: slave_timeout, positions: vec![position], cds_crc_error: flags[0], ..Default::default() }],
             cable: model::line::CableConfig { length_m: cable, jitter_ns: jitter, ..Default::default() },
             host: model::biss::HostSettings {
                 frames,

@@ -167,6 +167,21 @@ biss_master #(
     .i_slo(i_slo)
 );
 
+// While reset is held the player compares nothing (vector_player.vh): here
+// every output is held to the model's reset state (biss::Master::new: MA
+// high, every other output 0) at each falling edge of the reset, so a wrong
+// reset value of an output register that the first cycle would overwrite
+// (a pulse such as o_done or o_err_timeout) is still caught.
+always @(negedge clk) begin
+    if (rst && ({o_ma, o_busy, o_done, o_err_line, o_err_ack, o_err_delay, o_err_start, o_err_timeout,
+                 o_slave_valid, o_crc_err, o_error, o_warning, o_cds, o_reg_busy, o_reg_done, o_reg_err,
+                 o_reg_crc_err, o_err_drift} !== 18'b100000000000000000
+                || o_delay !== 16'd0 || o_slave_index !== 2'd0 || o_data !== 0 || o_reg_rdata !== 8'd0 || o_delay_mean !== 16'd0)) begin
+        $display("MISMATCH in reset: outputs differ from the model's reset state");
+        $fatal(1, "biss_master: an output is not at its reset value while i_rst is high");
+    end
+end
+
 endmodule
 
 `default_nettype wire

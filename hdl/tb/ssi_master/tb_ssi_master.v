@@ -77,6 +77,18 @@ ssi_master #(
     .i_ssi_data(i_ssi_data)
 );
 
+// While reset is held the player compares nothing (vector_player.vh): here
+// every output is held to the model's reset state (ssi::Master::new: clock
+// high, every other output 0) at each falling edge of the reset, so a wrong
+// reset value of an output register that the first cycle would overwrite
+// (a pulse such as o_err_idle) is still caught.
+always @(negedge clk) begin
+    if (rst && ({o_ssi_clk, o_busy, o_done, o_err_idle, o_err_double, o_err_wire} !== 6'b100000 || o_position !== 0)) begin
+        $display("MISMATCH in reset: outputs differ from the model's reset state");
+        $fatal(1, "ssi_master: an output is not at its reset value while i_rst is high");
+    end
+end
+
 endmodule
 
 `default_nettype wire

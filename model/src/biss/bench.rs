@@ -76,8 +76,11 @@ pub struct SlaveSettings {
     pub crc_width: u32,
     /// CRC polynomial without the top term (BiSS-C `x^6 + x + 1`: 3).
     pub crc_poly: u64,
-    /// `t_busy` in ns from the ack to the earliest start bit (seed: at least 2 × TMAS).
-    pub busy_ns: f64,
+    /// `t_busy` in ns from the ack to the earliest start bit (seed: at
+    /// least 2 × TMAS; default exactly 2 × TMAS of the master's MA clock:
+    /// the seed gives it in MA periods, so a fixed time would fall short at
+    /// slow clocks).
+    pub busy_ns: Option<f64>,
     /// BiSS timeout in µs (seed: 16 µs).
     pub timeout_us: f64,
     /// MA edge to SLO change in ns (transceivers and logic).
@@ -110,7 +113,7 @@ impl Default for SlaveSettings {
             bits: 16,
             crc_width: 6,
             crc_poly: 0x03,
-            busy_ns: 250.0,
+            busy_ns: None,
             timeout_us: 16.0,
             output_delay_ns: 20.0,
             id: None,
@@ -308,20 +311,41 @@ impl BenchConfig {
         let tb = self.timebase()?;
         let s = &self.slaves[i];
         let prefix = format!("slaves[{i}]");
-        check_time(&format!("{prefix}.busy_ns"), s.busy_ns)?;
+        // Seed 001, BiSS-C: "Tbusy: Minimum data output delay 2 TMAS".
+        let two_tmas = 2 * self.master_config()?.clocks_per_bit;
+        let busy_clocks = match s.busy_ns {
+            Some(ns) => {
+                check_time(&format!("{prefix}.busy_ns"), ns)?;
+                let clocks = tb.cycles_at_least_ns(ns);
+                if clocks < two_tmas {
+                    return Err(ConfigError::invalid(
+                        format!("{prefix}.busy_ns"),
+                        format!("{ns} ns at {} kHz", self.master.clock_khz),
+                        format!("give at least 2 x TMAS = {} ns (seed: Tbusy 2 TMAS), or leave it out for exactly that", 2e6 / self.master.clock_khz),
+                    ));
+                }
+                clocks
+            }
+            None => two_tmas,
+        };
         check_time(&format!("{prefix}.timeout_us"), s.timeout_us)?;
         check_time(&format!("{prefix}.output_delay_ns"), s.output_delay_ns)?;
         let cfg = SlaveConfig {
             bits: s.bits,
             crc_width: s.crc_width,
             crc_poly: s.crc_poly,
-            busy_clocks: tb.cycles_at_least_ns(s.busy_ns),
+            busy_clocks,
             timeout_clocks: tb.cycles_at_least_ns(s.timeout_us * 1e3),
             id: s.id.unwrap_or(i as u8),
             registers: s.registers.clone(),
         };
         cfg.validate(&prefix)?;
         Ok(cfg)
+    }
+
+    /// Slave `i`'s `t_busy` in ns: as given, or 2 × TMAS of the MA clock.
+    pub fn busy_ns(&self, i: usize) -> f64 {
+        self.slaves[i].busy_ns.unwrap_or(2e6 / self.master.clock_khz)
     }
 
     /// The position slave `i` holds in frame `k`.

@@ -505,7 +505,7 @@ impl Master {
         let (c, o) = (&self.r, &self.out);
         let pulse = o.o_done || o.o_err_line || o.o_err_ack || o.o_err_delay || o.o_err_start || o.o_err_timeout || o.o_slave_valid || o.o_reg_done || o.o_reg_err || o.o_reg_crc_err || o.o_err_drift;
         let request = input.i_start || input.i_reg_start || input.i_cmd_start;
-        if pulse || request || c.slo_meta != input.i_slo || c.slo_sync != input.i_slo {
+        if pulse || request || c.slo_meta != input.i_slo || c.slo_sync != input.i_slo || (!c.ma_run && c.ma_cnt != 0) {
             return 0;
         }
         let ma = if c.ma_run { c.ma_cnt } else { u64::MAX };
@@ -573,6 +573,9 @@ impl Master {
             } else {
                 n.ma_cnt = c.ma_cnt - 1;
             }
+        } else if c.ma_cnt != 0 {
+            // Stopped: counting out the high level that ends a frame.
+            n.ma_cnt = c.ma_cnt - 1;
         }
 
         // Bit sampling: once per MA period, in the middle of each cell as it arrives.
@@ -746,6 +749,19 @@ impl Master {
                     finish = Some((true, false));
                 }
             }
+        }
+
+        // A frame ends with MA high for at least half a period (seed 001,
+        // BiSS-C: TMASH > 25 ns), so that the next frame's first falling
+        // edge, in the cycle after o_done at the earliest, never follows a
+        // short high level: a frame that stopped MA low (CDM = 1) raises it
+        // first and ends H cycles later (o_done then).
+        if finish.is_some() && (!c.ma || c.ma_cnt != 0) {
+            if !c.ma {
+                n.ma = true;
+                n.ma_cnt = half - 1;
+            }
+            finish = None;
         }
 
         if let Some((err_ack, err_timeout)) = finish {

@@ -57,7 +57,10 @@
 //!   half-period boundary where MA equals `!CDM` (the BiSS-C control bit is
 //!   the inverted MA level during the timeout), waits for SLO low (the
 //!   slave's timeout phase) and then high (the slave is ready again), at most
-//!   `TIMEOUT_CLOCKS` from the stop (`o_err_timeout`), and returns MA high.
+//!   `TIMEOUT_CLOCKS` from the stop (`o_err_timeout`), and returns MA high;
+//!   a frame that held MA low (CDM = 1) raises it `H` cycles before `o_done`,
+//!   so every MA high phase lasts at least `H + 1` cycles, also between
+//!   back-to-back frames (seed: TMASH > 25 ns).
 //! * A start while SLO is low (slave still in its timeout, or the line stuck
 //!   low) is refused: `o_done` with `o_err_line` in the next cycle.
 //! * **Register access** (BiSS-C control frame): one CDM bit per frame out,
@@ -85,6 +88,7 @@
 pub mod campaign;
 mod bench;
 pub mod control;
+pub mod seed_timing;
 mod master;
 mod slave;
 

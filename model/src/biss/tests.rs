@@ -117,7 +117,7 @@ fn slo_stuck_low_refuses_the_start() {
 #[test]
 fn a_start_bit_later_than_the_timeout_is_flagged() {
     let mut cfg = BenchConfig::seed_example();
-    cfg.slaves[0].busy_ns = 60_000.0; // longer than the master's 40 µs timeout
+    cfg.slaves[0].busy_ns = Some(60_000.0); // longer than the master's 40 µs timeout
     let t = &frames(&cfg)[0];
     assert_eq!(t.errors, vec!["no_start_bit"]);
     assert!(t.slaves.is_empty());
@@ -546,4 +546,25 @@ fn a_fault_in_a_frame_the_run_never_reaches_is_refused_with_the_count() {
     cfg.flips.clear();
     cfg.stuck = Some(StuckFault { level: true, from_frame: 6 });
     assert_eq!(cfg.validate().unwrap_err().field(), "stuck.from_frame");
+}
+
+#[test]
+fn register_access_and_commands_keep_tmash_tmasl_and_t_busy_at_every_ma_rate() {
+    // Seed 001, BiSS-C timing table: TMASH and TMASL > 25 ns, Tbusy at least
+    // 2 x TMAS. Register read, write and a command at 80 MHz from 100 kHz to
+    // 10 MHz (every even divider of this sweep), MA stopping low for CDM = 1.
+    for khz in [100.0, 250.0, 500.0, 1000.0, 2000.0, 2500.0, 4000.0, 5000.0, 10_000.0] {
+        let cfg = BenchConfig {
+            master: MasterSettings { clock_khz: khz, timeout_us: 400.0, ..MasterSettings::default() },
+            slaves: vec![SlaveSettings { timeout_us: 30.0, registers: vec![0x5A, 0xA5], ..SlaveSettings::default() }],
+            host: HostSettings {
+                registers: vec![RegOp { write: false, id: 0, addr: 1, data: 0 }, RegOp { write: true, id: 0, addr: 0, data: 0x3C }],
+                commands: vec![CmdOp { ids: 0, code: 1 }],
+                ..HostSettings::default()
+            },
+            ..BenchConfig::default()
+        };
+        let bad = seed_timing::check(&cfg).expect("valid scenario");
+        assert!(bad.is_empty(), "{khz} kHz: {} violations, first: {}", bad.len(), bad[0]);
+    }
 }

@@ -22,7 +22,7 @@ pub fn timing_report(cfg: &BenchConfig, name: &str) -> std::result::Result<Strin
     let t_ma_ns = mc.clocks_per_bit as f64 / f_sys * 1e9;
     let frame_bits = 2 + mc.frame_bits();
     let delay_ns = 2.0 * cfg.cable.length_m * cfg.cable.ns_per_m + cfg.slaves[0].output_delay_ns;
-    let busy_ns = cfg.slaves.iter().map(|s| s.busy_ns).fold(0.0, f64::max);
+    let busy_ns = (0..cfg.slaves.len()).map(|i| cfg.busy_ns(i)).fold(0.0, f64::max);
     let timeout_ns = cfg.slaves.iter().map(|s| s.timeout_us).fold(0.0, f64::max) * 1e3;
     let cycle_ns = t_ma_ns * frame_bits as f64 + delay_ns + busy_ns + timeout_ns;
     let mut s = String::new();
@@ -403,7 +403,11 @@ mod tests {
     #[test]
     fn every_field_the_decoder_prints_equals_the_gen_transcript_of_every_biss_scenario() {
         let names: Vec<String> = builtin::all().unwrap().into_iter().filter(|s| matches!(s.setup, S::Biss(_))).map(|s| s.name).collect();
-        assert_eq!(names.len(), 21);
+        assert_eq!(names.len(), 26);
+        // biss_fault_timeout reads a 16-bit slave as 8 bits on purpose: its
+        // frames fit no layout the master was given, which decode refuses
+        // (a_wrong_bits_says_the_frame_does_not_fit_and_what_would).
+        let names: Vec<String> = names.into_iter().filter(|n| n != "biss_fault_timeout").collect();
         let (mut frames, mut registers, mut failed_registers, mut flagged, mut unseen) = (0, 0, 0, 0, 0);
         let (mut commands, mut failed_commands) = (0, 0);
         for name in &names {
@@ -417,7 +421,8 @@ mod tests {
             // mean and tolerance, which the line does not carry.
             let mut model: Vec<serde_json::Value> = model.into_iter().cloned().collect();
             for t in &mut model {
-                t["errors"].as_array_mut().unwrap().retain(|e| e != "delay_departs_from_mean");
+                // `slo_not_released` compares with the master's TIMEOUT_CLOCKS, which the line does not carry either.
+                t["errors"].as_array_mut().unwrap().retain(|e| e != "delay_departs_from_mean" && e != "slo_not_released");
             }
             assert_eq!(decoded.len(), model.len(), "{name}");
             for (d, m) in decoded.iter().zip(&model) {
@@ -427,6 +432,9 @@ mod tests {
                         "start_ps" => {}
                         // gen counts cycles from edge 2 to the ack at the synchroniser's output.
                         "delay_ps" => match (value.as_u64(), m["delay_cycles"].as_u64()) {
+                            // SLO already low at edge 2 (a line stuck low): the master's count
+                            // ends within the synchroniser's two cycles, wherever the edge fell.
+                            (Some(0), Some(cycles)) => assert!(cycles <= 2, "{name}: delay 0 ps, {cycles} cycles"),
                             (Some(ps), Some(cycles)) => assert_eq!(ps.div_ceil(period_ps) + 2, cycles, "{name}: delay {ps} ps"),
                             (a, b) => assert_eq!(a.is_some(), b.is_some(), "{name}: delay"),
                         },
@@ -438,9 +446,17 @@ mod tests {
                                 }
                             }
                         }
+                        // An access that failed in its sync frames (empty `cdm`) is not on the line.
+                        "register" if value.is_null() && m[key]["cdm"] == "" => {}
                         // A write that ended before its data went out has no `wdata` on the line.
                         "register" if value.is_object() => {
+                            // An access that ended before its address (k = 12) or its R/W
+                            // bits (k = 18) went out has only part of them on the line.
+                            let sent = m[key]["cdm"].as_str().map_or(0, str::len);
                             for (k, v) in value.as_object().unwrap() {
+                                if (sent < 12 && (k == "id" || k == "addr")) || (sent < 18 && k == "write") {
+                                    continue;
+                                }
                                 assert_eq!(v, &m[key][k], "{name} frame {} register field {k}", d["index"]);
                             }
                         }
@@ -455,8 +471,12 @@ mod tests {
                 flagged += !m["errors"].as_array().unwrap().is_empty() as u32;
             }
         }
-        assert_eq!((registers, failed_registers, unseen), (4, 2, 2), "register read, write, two faulty accesses; two refused starts");
-        assert_eq!((commands, failed_commands), (2, 1), "biss_command_chain: addressed, unacknowledged");
+        assert_eq!(
+            (registers, failed_registers, unseen),
+            (10, 5, 2),
+            "register read, write, two CRC-4 faults, three along a chain, two aborted mid-way, one failed in its sync frames; two refused starts"
+        );
+        assert_eq!((commands, failed_commands), (3, 1), "biss_command_chain: addressed, unacknowledged; biss_register_chain: broadcast");
         assert!(frames > 200 && flagged >= 10, "{frames} frames, {flagged} flagged");
     }
 
