@@ -166,12 +166,19 @@ impl BissEmulator {
         cfg.cable
             .validate("cable")
             .map_err(|e| Error::config(origin, e))?;
-        // The model converts the slaves' times to cycles of its clock: here the emulator's.
-        let bench = BenchConfig {
+        // The model converts the slaves' times to cycles of its clock: here
+        // the emulator's. A slave's default t_busy is 2 TMAS (seed 001,
+        // BiSS-C); the emulator cannot know the user's MA clock, so TMAS is
+        // that of the fastest clock the master declares
+        // (`emulator.max_line_clock_khz`), the shortest busy time the seed
+        // allows at any clock the master uses. A slower master wanting the
+        // seed's minimum at its own clock sets `busy_ns`.
+        let mut bench = BenchConfig {
             f_sys_mhz: tb.f_sys_hz() as f64 / 1e6,
             slaves: cfg.slaves.clone(),
             ..BenchConfig::default()
         };
+        bench.master.clock_khz = tables.emulator.max_line_clock_khz.unwrap_or(MAX_CLOCK_KHZ);
         let mut slaves = Vec::new();
         for (i, s) in cfg.slaves.iter().enumerate() {
             let limit = if s.bits == 64 {

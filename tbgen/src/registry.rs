@@ -433,7 +433,7 @@ mod tests {
         // An option of another protocol's decoder is refused by this one's parser.
         assert!(cli.clone().try_get_matches_from(["decode", "biss", "x.vcd", "--pos-bits", "13"]).is_err());
         // A protocol without a decoder is not a subcommand.
-        assert!(!Decode::has_subcommand("ssi") && cli.try_get_matches_from(["decode", "ssi", "x.vcd"]).is_err());
+        assert!(!Decode::has_subcommand("uart") && cli.try_get_matches_from(["decode", "uart", "x.vcd"]).is_err());
         assert!(Timing::has_subcommand("endat") && !Timing::has_subcommand("uart"));
     }
 

@@ -311,9 +311,30 @@ impl BenchConfig {
         let tb = self.timebase()?;
         let s = &self.slaves[i];
         let prefix = format!("slaves[{i}]");
-        // Seed 001, BiSS-C: "Tbusy: Minimum data output delay 2 TMAS".
-        let two_tmas = 2 * self.master_config()?.clocks_per_bit;
-        let busy_clocks = match s.busy_ns {
+        check_time(&format!("{prefix}.timeout_us"), s.timeout_us)?;
+        check_time(&format!("{prefix}.output_delay_ns"), s.output_delay_ns)?;
+        let mut cfg = SlaveConfig {
+            bits: s.bits,
+            crc_width: s.crc_width,
+            crc_poly: s.crc_poly,
+            busy_clocks: 0,
+            timeout_clocks: tb.cycles_at_least_ns(s.timeout_us * 1e3),
+            id: s.id.unwrap_or(i as u8),
+            registers: s.registers.clone(),
+        };
+        // The slave's own fields first, so that a bad one is blamed on the
+        // slave's table and not on the master's settings derived from it.
+        cfg.validate(&prefix)?;
+        // Seed 001, BiSS-C: "Tbusy: Minimum data output delay 2 TMAS". TMAS
+        // from the MA clock alone (not master_config, whose divider limits
+        // are the master core's, not the slave's: the co-simulation slave
+        // runs at any emulator clock of 4 x MA or more); at an even divider
+        // it is exactly the master's clocks per bit.
+        if !(self.master.clock_khz >= 100.0 && self.master.clock_khz <= 10_000.0) {
+            return Err(ConfigError::invalid("master.clock_khz", format!("{} kHz", self.master.clock_khz), "give MA from 100 to 10000 kHz (seed: TMAS > 100 ns)"));
+        }
+        let two_tmas = 2 * tb.cycles_nearest_ns(1e6 / self.master.clock_khz).max(1);
+        cfg.busy_clocks = match s.busy_ns {
             Some(ns) => {
                 check_time(&format!("{prefix}.busy_ns"), ns)?;
                 let clocks = tb.cycles_at_least_ns(ns);
@@ -328,18 +349,6 @@ impl BenchConfig {
             }
             None => two_tmas,
         };
-        check_time(&format!("{prefix}.timeout_us"), s.timeout_us)?;
-        check_time(&format!("{prefix}.output_delay_ns"), s.output_delay_ns)?;
-        let cfg = SlaveConfig {
-            bits: s.bits,
-            crc_width: s.crc_width,
-            crc_poly: s.crc_poly,
-            busy_clocks,
-            timeout_clocks: tb.cycles_at_least_ns(s.timeout_us * 1e3),
-            id: s.id.unwrap_or(i as u8),
-            registers: s.registers.clone(),
-        };
-        cfg.validate(&prefix)?;
         Ok(cfg)
     }
 
