@@ -103,6 +103,12 @@ printf '%-12s %8s s\n' total "$total"
 if [ $fail = 0 ]; then
     echo "make test: all checks passed"
 else
+    # Repeat the end of each failed stage's log last, so that a reader who
+    # sees only the tail of the output (a CI summary) still sees the cause.
+    for name in $(awk '$NF == "FAILED" { print $1 }' "$logs/times.txt"); do
+        echo "==== the end of the failed stage $name (whole log: build/test/$name.log)"
+        tail -n 25 "$logs/$name.log"
+    done
     echo "make test: FAILED (see the stages marked FAILED above; logs in build/test/)" >&2
     exit 1
 fi
