@@ -34,6 +34,7 @@ pub mod can;
 pub mod check;
 pub mod config;
 pub mod endat;
+pub mod esl;
 pub mod ffi;
 pub mod modbus;
 pub mod sar58k24;
@@ -156,8 +157,9 @@ pub fn open(kind: &str, toml: &str, origin: &str, f_emu_hz: u64) -> Result<Box<d
         "tformat" => Ok(Box::new(tformat::TformatEmulator::from_toml(
             toml, origin, f_emu_hz,
         )?)),
+        "esl" => Ok(Box::new(esl::EslEmulator::from_toml(toml, origin, f_emu_hz)?)),
         other => Err(Error::Usage(format!(
-            "no emulator `{other}`; give one of: ssi, biss, endat, tformat, sar58k24, modbus, can"
+            "no emulator `{other}`; give one of: ssi, biss, endat, tformat, esl, sar58k24, modbus, can"
         ))),
     }
 }

@@ -191,6 +191,25 @@ pub struct Encoder {
     level: bool,
     answered: Vec<(u64, Vec<u8>)>,
     executed: Vec<DataId>,
+    temp_warning: Option<bool>,
+    requests: u64,
+    last_request: Option<Request>,
+}
+
+/// The last frame set an encoder received (for a co-simulation's checks of
+/// the host: request spacing, character timing).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Request {
+    /// Cycle of the end of its last stop bit.
+    pub end: u64,
+    /// The fields as received (CF first).
+    pub fields: Vec<u8>,
+    /// Addressed to this encoder (or broadcast).
+    pub for_me: bool,
+    /// A stop bit was low.
+    pub stop_error: bool,
+    /// The page register when it arrived (EEPROM or register access).
+    pub page: u8,
 }
 
 impl Encoder {
@@ -235,6 +254,9 @@ impl Encoder {
             level: true,
             answered: Vec::new(),
             executed: Vec::new(),
+            temp_warning: None,
+            requests: 0,
+            last_request: None,
             cfg,
         }
     }
@@ -272,6 +294,47 @@ impl Encoder {
     /// Every answer sent so far: (cycle of its first start bit, fields as intended).
     pub fn answered(&self) -> &[(u64, Vec<u8>)] {
         &self.answered
+    }
+
+    /// Sets the shaft position a testbench wants reported from the next
+    /// answer on (a single-turn clear's offset still applies).
+    pub fn set_position(&mut self, single_turn: u32, multi_turn: u16) {
+        self.single_turn = single_turn & 0xFF_FFFF;
+        self.multi_turn = multi_turn;
+    }
+
+    /// Sets the error flags (ALM1/ALM2, and EA0/EA1 from them) from the next answer on.
+    pub fn set_alarms(&mut self, alarms: Alarms) {
+        self.alarms = alarms;
+    }
+
+    /// Forces DD0 (temperature warning) on or off, whatever the temperature.
+    pub fn set_temp_warning(&mut self, on: bool) {
+        self.temp_warning = Some(on);
+    }
+
+    /// Faults a testbench schedules at run time, in the scenario's own
+    /// fields: appended to `flips`, `truncations`, `sequence_jumps`,
+    /// `foreign_address_answers`; `rs_offset` replaced when given.
+    pub fn add_faults(&mut self, faults: &EncoderSettings, rs_offset: Option<i32>) {
+        let s = &mut self.cfg.settings;
+        s.flips.extend(faults.flips.iter().cloned());
+        s.truncations.extend(faults.truncations.iter().cloned());
+        s.sequence_jumps.extend(faults.sequence_jumps.iter().cloned());
+        s.foreign_address_answers.extend(faults.foreign_address_answers.iter().copied());
+        if let Some(r) = rs_offset {
+            s.rs_offset = r;
+        }
+    }
+
+    /// Frame sets received so far (for this encoder or not).
+    pub fn requests(&self) -> u64 {
+        self.requests
+    }
+
+    /// The last frame set received.
+    pub fn last_request(&self) -> Option<&Request> {
+        self.last_request.as_ref()
     }
 
     /// The 8-times commands executed so far.
@@ -424,10 +487,20 @@ impl Encoder {
 
     /// The request is complete (its end was a bit and a half ago, minus the stop bit's second half).
     fn frame_set_received(&mut self) {
+        let end = self.now - (self.cfg.bit_cycles).round() as u64;
+        if !self.fields.is_empty() {
+            self.requests += 1;
+            self.last_request = Some(Request {
+                end,
+                fields: self.fields.clone(),
+                for_me: self.for_me,
+                stop_error: self.stop_error,
+                page: self.page,
+            });
+        }
         if !self.for_me || self.fields.is_empty() {
             return;
         }
-        let end = self.now - (self.cfg.bit_cycles).round() as u64;
         let fields = std::mem::take(&mut self.fields);
         let cf = frames::parse_control_field(fields[0]);
         let broadcast =
@@ -531,7 +604,9 @@ impl Encoder {
             status: Status {
                 ea0,
                 ea1,
-                temp_warning: s.temperature_c >= s.temperature_warning_c,
+                temp_warning: self
+                    .temp_warning
+                    .unwrap_or(s.temperature_c >= s.temperature_warning_c),
                 ready: true,
                 ..Status::default()
             },

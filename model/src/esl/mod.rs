@@ -42,8 +42,8 @@ pub use bench::{
     Transaction,
 };
 pub use encoder::{
-    AnswerFlip, Encoder, EncoderConfig, EncoderSettings, MemoryInit, SequenceJump, Truncation,
-    PAGES,
+    AnswerFlip, Encoder, EncoderConfig, EncoderSettings, MemoryInit, Request, SequenceJump,
+    Truncation, frame_bits, PAGES,
 };
 pub use host::{Host, HostConfig, In, Out, State, MAX_FIELDS, QUIET_BITS, REPEATS};
 

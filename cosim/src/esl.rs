@@ -1,0 +1,711 @@
+//! The ESL encoder emulator (QS35, seed 000): [`model::esl::Encoder`]s
+//! (one, or a daisy chain on one bus) behind the half-duplex RS-485 pair of
+//! their cable.
+//!
+//! Configuration: the scenario's `[esl]` device tables: `[[encoders]]`
+//! (address, position, alarms, temperature, memory, answer delay, EEPROM
+//! times, repeat window, baud error and the faults `flips`, `truncations`,
+//! `sequence_jumps`, `foreign_address_answers`, `rs_offset`), `[cable]`,
+//! `baud` (default 10 Mbps), `broadcast_address` (the address every encoder
+//! obeys and none answers; none by default) and the emulator's own
+//! `[checks]`; `[host]`, `ops`, `repeat_ops`, `request_flips`, `intruders`
+//! and `f_sys_mhz` are ignored, so a whole scenario file can be given. The
+//! encoders sample the host's request at `f_emu / baud` cycles per bit (any
+//! ratio, rounded bit by bit), so `f_emu` need not be a multiple of the bit
+//! rate; it must be at least 4 x the bit rate (40 MHz at 10 Mbps).
+//!
+//! Pins: in, bit 1 the host's driver level, bit 2 its driver enable (no
+//! clock: bit 0 is ignored); out, bit 0 the encoders' level at the host's end
+//! of the cable (the fail-safe idle high while none drives), bit 1 their
+//! driver enable there.
+//!
+//! Devices are the encoders in the order of `[[encoders]]` (0 for a single
+//! one). A position is `multi_turn << 24 | single_turn` (24-bit ABS, 16-bit
+//! ABM, seed 000 "40 bits"). Statuses (`set_status`), each on its own: the
+//! ALM flags of Table 7 `xc`, `mt`, `led`, `lis` (LED and LIS share ALM bit
+//! 2), `overspeed`, `mem`, `st`, `uv`, `ov` (EA0 and EA1 of the status field
+//! follow from them, Table 5), and `temp_warning` (DD0). `last_status` also
+//! reads `ea0`, `ea1`, `ready` of the last answer's SF.
+//!
+//! Checks of the host (the rules seed 000 states, limits in `[checks]`):
+//! * turnaround: never both drivers on the pair (the host releases the line
+//!   after its request; the encoder answers 2 µs later);
+//! * character timing: every edge of the host's request on the bit grid of
+//!   the 10-bit fields (start, 8 data, stop; Figure 1), within
+//!   `bit_tolerance_percent` of the time since the field's start edge plus
+//!   one emulator cycle, and the fields of a request back to back: a frame
+//!   set of a defined Data ID with another field count than Table 3's (CF and
+//!   CRC; E adds ADF, F adds ADF and EDF) was split by a pause;
+//! * request spacing: the 8 requests of B, C, D "consecutively at a typical
+//!   interval of 40 µs" (each within the encoder's `repeat_window_us` of the
+//!   one before, not interrupted by another request before the 8th);
+//!   "more than 200 µs between each memory read operation" and "more than
+//!   6 ms between each memory write operation" for the EEPROM (the
+//!   encoder's `eeprom_read_us`, `eeprom_write_us`); no memory access within
+//!   the page change time after a write to the page register.
+
+use serde::{Deserialize, Serialize};
+
+use model::esl::frames::{self, Alarms, DataId, Field};
+use model::esl::{BenchConfig, Encoder, EncoderSettings};
+use model::line::{CableConfig, Drive};
+
+use crate::check::Checks;
+use crate::config::{self, Error};
+use crate::motion::Motions;
+use crate::pair::Pair;
+use crate::{Emulator, Pins, Result};
+
+/// Both drivers on the pair.
+const TURNAROUND: &str = "turnaround (seed 000: half duplex; the host releases the line after its request, the encoder answers 2 us later)";
+/// An edge of the request off the bit grid.
+const CHARACTER: &str = "character timing (seed 000 Figure 1: 10-bit fields, start, 8 data LSB first, stop, at the bit rate)";
+/// A request split by a pause.
+const BACK_TO_BACK: &str = "character timing (seed 000 Table 3: a request's fields back to back; a frame set ends when no start bit follows a stop bit)";
+/// B, C, D not 8 times consecutively.
+const REPEAT: &str = "request spacing (seed 000 Table 4: B, C, D minimum 8 times consecutively at a typical interval of 40 us)";
+/// EEPROM reads too close.
+const READ_SPACING: &str = "request spacing (seed 000: wait more than 200 us between each memory read operation)";
+/// EEPROM writes too close.
+const WRITE_SPACING: &str = "request spacing (seed 000: wait more than 6 ms between each memory write operation)";
+/// Memory access during a page change.
+const PAGE_SPACING: &str = "request spacing (seed 000 Table 11: a page change takes 18 ms before the next memory access)";
+
+/// The emulator's own limits (`[checks]`).
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct EslChecks {
+    /// Largest drift of the host's bit edges, percent of the time since the
+    /// field's start edge (the seed gives none; 3 % is what an RS-485 UART
+    /// sampling mid-bit takes with room for the encoder's own error).
+    pub bit_tolerance_percent: f64,
+}
+
+impl Default for EslChecks {
+    fn default() -> Self {
+        EslChecks { bit_tolerance_percent: 3.0 }
+    }
+}
+
+/// The emulator's configuration (the scenario's ESL device tables).
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct EslConfig {
+    /// The encoders on the bus.
+    pub encoders: Vec<EncoderSettings>,
+    /// The cable.
+    pub cable: CableConfig,
+    /// Bit rate, bits per second.
+    pub baud: f64,
+    /// The broadcast address (none: no encoder obeys a foreign address).
+    pub broadcast_address: Option<u8>,
+    /// The checks' limits.
+    pub checks: EslChecks,
+}
+
+impl Default for EslConfig {
+    fn default() -> Self {
+        let b = BenchConfig::default();
+        EslConfig {
+            encoders: b.encoders,
+            cable: b.cable,
+            baud: b.baud,
+            broadcast_address: None,
+            checks: EslChecks::default(),
+        }
+    }
+}
+
+/// One answer as the emulator sent it.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Entry {
+    /// 0-based answer number (all encoders).
+    pub index: u64,
+    /// The encoder (device index, its order in `[[encoders]]`).
+    pub device: usize,
+    /// Emulator cycle of its first start bit (at the encoder).
+    pub cycle: u64,
+    /// The Data ID answered.
+    pub data_id: u8,
+    /// The fields as the encoder built them (before any scheduled flip or truncation).
+    pub fields: Vec<u8>,
+    /// A communication-error answer (CA0 or CA1 set: CF, SF, CRC only).
+    pub comm_error: bool,
+    /// ABS (single turn) when the answer carries it.
+    pub abs: Option<u32>,
+    /// ABM (multi turn) when the answer carries it.
+    pub abm: Option<u16>,
+    /// ALM1 when the answer carries it.
+    pub alm: Option<u8>,
+    /// SF1.
+    pub sf: u8,
+    /// SC1 and SC2 when the answer carries them.
+    pub sc: Option<(u8, u8)>,
+}
+
+/// The host's request bits seen at the encoders' end: the field being timed.
+#[derive(Debug, Clone, Copy, Default)]
+struct CharTimer {
+    /// Cycle of the field's start edge.
+    start: Option<u64>,
+    last: bool,
+}
+
+/// Spacing state per encoder.
+#[derive(Debug, Clone, Default)]
+struct Spacing {
+    seen: u64,
+    /// B/C/D in progress: (Data ID, count so far, end cycle of the last).
+    repeat: Option<(u8, u32, u64)>,
+    last_read: Option<u64>,
+    last_write: Option<u64>,
+    page_write: Option<u64>,
+}
+
+/// ESL encoders and their cable, on the emulator clock.
+pub struct EslEmulator {
+    f_emu_hz: u64,
+    period_ps: u64,
+    bit_cycles: f64,
+    tolerance: f64,
+    encoders: Vec<Encoder>,
+    windows: Vec<(u64, u64, u64, u64)>,
+    spacing: Vec<Spacing>,
+    pair: Pair,
+    bus: Drive,
+    motions: Motions,
+    cycle: u64,
+    chars: CharTimer,
+    entries: Vec<Entry>,
+    last: Vec<Option<usize>>,
+    checks: Checks,
+}
+
+/// The ALM flags by name (Table 7) and their bit in ALM.
+const ALARMS: [(&str, u8); 9] = [
+    ("xc", 0),
+    ("mt", 1),
+    ("led", 2),
+    ("lis", 2),
+    ("overspeed", 3),
+    ("mem", 4),
+    ("st", 5),
+    ("uv", 6),
+    ("ov", 7),
+];
+
+const STATUS_NAMES: &str = "xc, mt, led, lis, overspeed, mem, st, uv, ov, temp_warning";
+
+fn set_alarm(a: &mut Alarms, name: &str, v: bool) -> bool {
+    let f = match name {
+        "xc" => &mut a.xc,
+        "mt" => &mut a.mt,
+        "led" => &mut a.led,
+        "lis" => &mut a.lis,
+        "overspeed" => &mut a.overspeed,
+        "mem" => &mut a.mem,
+        "st" => &mut a.st,
+        "uv" => &mut a.uv,
+        "ov" => &mut a.ov,
+        _ => return false,
+    };
+    *f = v;
+    true
+}
+
+impl EslEmulator {
+    /// An emulator from TOML text (`origin` names it in errors) at `f_emu_hz`.
+    pub fn from_toml(text: &str, origin: &str, f_emu_hz: u64) -> Result<Self> {
+        let mut tables = config::tables(text, origin, "esl")?;
+        for key in ["ops", "repeat_ops", "request_flips", "intruders"] {
+            tables.device.remove(key);
+        }
+        let baud = match tables.device.get("baud") {
+            Some(toml::Value::Float(f)) => *f,
+            Some(toml::Value::Integer(i)) => *i as f64,
+            _ => 10e6,
+        };
+        if !(baud >= 1e3 && baud <= 50e6) {
+            return Err(Error::field(origin, "baud", format!("{baud} bit/s"), "give the bit rate in bit/s (seed 000: 10e6)"));
+        }
+        if tables.emulator.max_line_clock_khz.is_none() {
+            tables.emulator.max_line_clock_khz = Some(baud / 1e3);
+        }
+        let tb = config::emulator_clock(f_emu_hz, &tables.emulator, baud / 1e3, "ESL", origin)?;
+        let cfg: EslConfig = config::decode(tables.device, origin)?;
+        cfg.cable.validate("cable").map_err(|e| Error::config(origin, e))?;
+        if cfg.encoders.is_empty() || cfg.encoders.len() > 8 {
+            return Err(Error::field(origin, "encoders", format!("{} encoders", cfg.encoders.len()), "list 1 to 8 [[encoders]]"));
+        }
+        for (i, e) in cfg.encoders.iter().enumerate() {
+            if cfg.encoders[..i].iter().any(|o| o.address == e.address) || Some(e.address) == cfg.broadcast_address {
+                return Err(Error::field(origin, format!("encoders[{i}].address"), "used twice (or the broadcast address)", "give every encoder on the bus its own address, and keep broadcast_address free"));
+            }
+        }
+        if cfg.broadcast_address.is_some_and(|a| a > 7) {
+            return Err(Error::field(origin, "broadcast_address", "above 7", "give an address 0..7"));
+        }
+        if !(0.0..=20.0).contains(&cfg.checks.bit_tolerance_percent) {
+            return Err(Error::field(origin, "checks.bit_tolerance_percent", format!("{}", cfg.checks.bit_tolerance_percent), "give 0 to 20 %"));
+        }
+        let bench = BenchConfig {
+            f_sys_mhz: tb.f_sys_hz() as f64 / 1e6,
+            baud: cfg.baud,
+            encoders: cfg.encoders.clone(),
+            ..BenchConfig::default()
+        };
+        let mut encoders = Vec::new();
+        let mut windows = Vec::new();
+        for i in 0..cfg.encoders.len() {
+            let mut c = bench.encoder_config(i).map_err(|e| Error::config(origin, e))?;
+            c.broadcast_address = cfg.broadcast_address;
+            windows.push((c.repeat_window, c.eeprom_read, c.eeprom_write, c.page_change));
+            encoders.push(Encoder::new(c));
+        }
+        let delay = cfg.cable.delay_cycles(&tb);
+        let n = encoders.len();
+        Ok(EslEmulator {
+            f_emu_hz,
+            period_ps: tb.period_ps(),
+            bit_cycles: tb.f_sys_hz() as f64 / cfg.baud,
+            tolerance: cfg.checks.bit_tolerance_percent / 100.0,
+            encoders,
+            windows,
+            spacing: vec![Spacing::default(); n],
+            pair: Pair::new(delay),
+            bus: Drive { enable: false, level: true },
+            motions: Motions::default(),
+            cycle: 0,
+            chars: CharTimer { start: None, last: true },
+            entries: Vec::new(),
+            last: vec![None; n],
+            checks: Checks::new(tb.period_ps()),
+        })
+    }
+
+    /// The entries so far.
+    pub fn entries(&self) -> &[Entry] {
+        &self.entries
+    }
+
+    fn device(&self, device: usize) -> Result<()> {
+        if device < self.encoders.len() {
+            Ok(())
+        } else {
+            Err(Error::Usage(format!(
+                "ESL: no device {device}; the bus has {} encoder(s), devices 0..{}",
+                self.encoders.len(),
+                self.encoders.len() - 1
+            )))
+        }
+    }
+
+    fn on_answer(&mut self, device: usize) {
+        let Some((at, fields)) = self.encoders[device].answered().last() else { return };
+        let code = frames::parse_control_field(fields[0]).code;
+        let sf = fields.get(1).copied().unwrap_or(0);
+        let comm_error = sf & frames::STATUS_CA_MASK != 0;
+        let id = DataId::from_code(code).filter(|_| !comm_error);
+        let d = id.map(|id| frames::decode(id, fields)).unwrap_or_default();
+        let has = |f: fn(&Field) -> bool| id.is_some_and(|id| id.channel1().fields.iter().any(f));
+        self.last[device] = Some(self.entries.len());
+        self.entries.push(Entry {
+            index: self.entries.len() as u64,
+            device,
+            cycle: *at,
+            data_id: code,
+            fields: fields.clone(),
+            comm_error,
+            abs: has(|f| matches!(f, Field::Abs(_))).then_some(d.abs),
+            abm: has(|f| matches!(f, Field::Abm(_))).then_some(d.abm),
+            alm: has(|f| matches!(f, Field::Alm)).then_some(d.alm1),
+            sf,
+            sc: has(|f| matches!(f, Field::Sc1)).then_some((d.sc1, d.sc2)),
+        });
+    }
+
+    /// Character timing of the host's request, on its own pins (the cable
+    /// shifts every edge alike).
+    fn time_characters(&mut self, host: Drive) {
+        let level = host.level || !host.enable;
+        let t = &mut self.chars;
+        if level == t.last {
+            return;
+        }
+        t.last = level;
+        let bit = self.bit_cycles;
+        let now = self.cycle;
+        let Some(start) = t.start else {
+            if !level {
+                t.start = Some(now);
+            }
+            return;
+        };
+        let o = (now - start) as f64;
+        let slack = self.tolerance * o + 1.0;
+        if o >= 9.5 * bit {
+            // After the stop bit's middle: a falling edge starts the next field.
+            if !level {
+                if o < 10.0 * bit - slack {
+                    let us = self.checks.us(now - start);
+                    self.checks.push(now, CHARACTER, format!("stop bit short: next start bit {us:.3} us after the field's start edge ({:.3} us for 10 bits)", 10.0 * bit * self.period_ps as f64 / 1e6));
+                }
+                t.start = Some(now);
+            } else {
+                t.start = None;
+            }
+            return;
+        }
+        let n = (o / bit).round();
+        if n < 1.0 || (o - n * bit).abs() > slack {
+            let ns = o * self.period_ps as f64 / 1e3;
+            self.checks.push(now, CHARACTER, format!("an edge {ns:.1} ns after the field's start edge, {:.2} bits: off the bit grid by more than {:.1} % + 1 cycle", o / bit, self.tolerance * 100.0));
+            // Resynchronise on the next falling edge after idle.
+            t.start = None;
+        }
+    }
+
+    /// Request field count and spacing, once per frame set an encoder received.
+    fn on_request(&mut self, device: usize) {
+        let Some(r) = self.encoders[device].last_request().cloned() else { return };
+        let s = &mut self.spacing[device];
+        s.seen = self.encoders[device].requests();
+        // Field count: once per request on the bus (from encoder 0's receiver).
+        let cf = frames::parse_control_field(r.fields[0]);
+        let id = DataId::from_code(cf.code);
+        if device == 0 {
+            if let Some(id) = id {
+                let want = match id {
+                    DataId::IdE => 3,
+                    DataId::IdF => 4,
+                    _ => 2,
+                };
+                if r.fields.len() != want && cf.parity_ok && !r.stop_error {
+                    self.checks.push(r.end, BACK_TO_BACK, format!("a frame set of {} field(s) for Data ID {:X}, which takes {want}", r.fields.len(), cf.code));
+                }
+            }
+        }
+        if !r.for_me || !cf.parity_ok {
+            return;
+        }
+        let (window, read, write, page) = self.windows[device];
+        let since = |t: Option<u64>| t.map(|t| r.end.saturating_sub(t));
+        let us = |c: u64| c as f64 * self.period_ps as f64 / 1e6;
+        let s = &mut self.spacing[device];
+        // B, C, D: 8 consecutive requests.
+        match (s.repeat, id.filter(|d| d.is_repeated())) {
+            (Some((rid, k, at)), Some(_)) if rid == cf.code => {
+                if r.end.saturating_sub(at) > window + 1 {
+                    self.checks.push(r.end, REPEAT, format!("request {} of Data ID {:X} came {:.1} us after the one before, beyond the encoder's repeat window of {:.1} us (the count starts again)", k + 1, cf.code, us(r.end - at), us(window)));
+                    s.repeat = Some((rid, 1, r.end));
+                } else {
+                    s.repeat = if k + 1 >= 8 { None } else { Some((rid, k + 1, r.end)) };
+                }
+            }
+            (prev, now_id) => {
+                if let Some((rid, k, _)) = prev {
+                    self.checks.push(r.end, REPEAT, format!("Data ID {rid:X} sent {k} time(s), then Data ID {:X}: the command was not executed", cf.code));
+                }
+                s.repeat = now_id.map(|_| (cf.code, 1, r.end));
+            }
+        }
+        if let Some(id) = id.filter(|d| d.is_memory()) {
+            let address = r.fields.get(1).map_or(0, |a| a >> 1);
+            if let Some(c) = since(s.page_write).filter(|&c| c + 1 < page) {
+                self.checks.push(r.end, PAGE_SPACING, format!("a memory access {:.1} us after a write to the page register (page change {:.1} us)", us(c), us(page)));
+            }
+            let eeprom = address != frames::PAGE_REGISTER && r.page != frames::REGISTER_PAGE;
+            if id == DataId::IdE && eeprom {
+                if let Some(c) = since(s.last_read).filter(|&c| c + 1 < read) {
+                    self.checks.push(r.end, READ_SPACING, format!("an EEPROM read {:.1} us after the one before (read time {:.1} us)", us(c), us(read)));
+                }
+                s.last_read = Some(r.end);
+            }
+            if id == DataId::IdF {
+                if address == frames::PAGE_REGISTER {
+                    s.page_write = Some(r.end);
+                } else if eeprom {
+                    if let Some(c) = since(s.last_write).filter(|&c| c + 1 < write) {
+                        self.checks.push(r.end, WRITE_SPACING, format!("an EEPROM write {:.1} us after the one before (write time {:.1} us)", us(c), us(write)));
+                    }
+                    s.last_write = Some(r.end);
+                }
+            }
+        }
+    }
+}
+
+impl Emulator for EslEmulator {
+    fn kind(&self) -> &'static str {
+        "esl"
+    }
+
+    fn step(&mut self, pins: Pins) -> Pins {
+        let host = Pair::master_drive(pins);
+        if self.motions.any() {
+            for i in 0..self.encoders.len() {
+                if let Some(p) = self.motions.position(i, self.cycle, self.period_ps, 40) {
+                    self.encoders[i].set_position((p & 0xFF_FFFF) as u32, (p >> 24) as u16);
+                }
+            }
+        }
+        self.time_characters(host);
+        let at_encoder = self.pair.step(host, self.bus, self.cycle, &mut self.checks, TURNAROUND);
+        // Two drivers on the bus: a low wins (as the model's bench).
+        let (mut enable, mut level) = (false, true);
+        for i in 0..self.encoders.len() {
+            let answers = self.encoders[i].answered().len();
+            let d = self.encoders[i].step(at_encoder);
+            if d.enable {
+                enable = true;
+                level &= d.level;
+            }
+            if self.encoders[i].answered().len() != answers {
+                self.on_answer(i);
+            }
+            if self.encoders[i].requests() != self.spacing[i].seen {
+                self.on_request(i);
+            }
+        }
+        self.bus = Drive { enable, level };
+        self.cycle += 1;
+        self.pair.pins_out(self.bus, &self.checks, None)
+    }
+
+    fn set_position(&mut self, device: usize, position: u64) -> Result<()> {
+        self.device(device)?;
+        if position >> 40 != 0 {
+            return Err(Error::Usage(format!(
+                "set_position({device}, {position}): ESL positions have 40 bits (multi_turn << 24 | single_turn)"
+            )));
+        }
+        self.motions.stop(device);
+        self.encoders[device].set_position((position & 0xFF_FFFF) as u32, (position >> 24) as u16);
+        Ok(())
+    }
+
+    fn set_motion(&mut self, device: usize, toml: &str) -> Result<()> {
+        self.device(device)?;
+        self.motions.set(device, toml, self.cycle)
+    }
+
+    fn set_status(&mut self, device: usize, name: &str, value: bool) -> Result<()> {
+        self.device(device)?;
+        let e = &mut self.encoders[device];
+        if name == "temp_warning" {
+            e.set_temp_warning(value);
+            return Ok(());
+        }
+        let mut a = e.alarms();
+        if !set_alarm(&mut a, name, value) {
+            return Err(Error::Usage(format!("ESL encoder has no status `{name}`; give one of {STATUS_NAMES}")));
+        }
+        e.set_alarms(a);
+        Ok(())
+    }
+
+    fn schedule_fault(&mut self, toml: &str) -> Result<()> {
+        #[derive(Deserialize)]
+        #[serde(deny_unknown_fields)]
+        struct T {
+            #[serde(default)]
+            device: usize,
+            #[serde(default)]
+            flips: Vec<model::esl::AnswerFlip>,
+            #[serde(default)]
+            truncations: Vec<model::esl::Truncation>,
+            #[serde(default)]
+            sequence_jumps: Vec<model::esl::SequenceJump>,
+            #[serde(default)]
+            foreign_address_answers: Vec<usize>,
+            rs_offset: Option<i32>,
+        }
+        let tables = config::tables(toml, "fault", "esl")?;
+        let t: T = config::decode(tables.device, "fault")?;
+        self.device(t.device)?;
+        for (i, f) in t.flips.iter().enumerate() {
+            if f.bit > 9 || f.field >= 18 {
+                return Err(Error::field("fault", format!("flips[{i}]"), "field above 17 or bit above 9", "give field 0..17 and bit 0..9 (0 start, 1..8 data, 9 stop)"));
+            }
+        }
+        for (i, j) in t.sequence_jumps.iter().enumerate() {
+            if !(1..=2).contains(&j.channel) {
+                return Err(Error::field("fault", format!("sequence_jumps[{i}].channel"), format!("{}", j.channel), "give channel 1 or 2"));
+            }
+        }
+        let faults = EncoderSettings {
+            flips: t.flips,
+            truncations: t.truncations,
+            sequence_jumps: t.sequence_jumps,
+            foreign_address_answers: t.foreign_address_answers,
+            ..EncoderSettings::default()
+        };
+        self.encoders[t.device].add_faults(&faults, t.rs_offset);
+        Ok(())
+    }
+
+    fn count(&self) -> u64 {
+        self.entries.len() as u64
+    }
+
+    fn last_value(&self, device: usize) -> Option<u64> {
+        let e = &self.entries[(*self.last.get(device)?)?];
+        match (e.abs, e.abm) {
+            (Some(s), Some(m)) => Some((m as u64) << 24 | s as u64),
+            (Some(s), None) => Some(s as u64),
+            (None, Some(m)) => Some((m as u64) << 24),
+            (None, None) => None,
+        }
+    }
+
+    fn last_status(&self, device: usize, name: &str) -> Result<bool> {
+        self.device(device)?;
+        let e = self.last[device]
+            .map(|i| &self.entries[i])
+            .ok_or_else(|| Error::Usage(format!("no ESL answer of device {device} yet")))?;
+        let sf = frames::Status::from_byte(e.sf);
+        match name {
+            "ea0" => return Ok(sf.ea0),
+            "ea1" => return Ok(sf.ea1),
+            "ready" => return Ok(sf.ready),
+            "temp_warning" => return Ok(sf.temp_warning),
+            _ => {}
+        }
+        let bit = ALARMS
+            .iter()
+            .find(|(n, _)| *n == name)
+            .map(|(_, b)| *b)
+            .ok_or_else(|| Error::Usage(format!("ESL has no status `{name}`; give one of {STATUS_NAMES}, ea0, ea1, ready")))?;
+        let alm = e.alm.ok_or_else(|| Error::Usage(format!("the last answer (Data ID {:X}) carried no ALM", e.data_id)))?;
+        Ok(alm >> bit & 1 == 1)
+    }
+
+    fn transcript(&self) -> serde_json::Value {
+        serde_json::json!({
+            "protocol": "esl",
+            "f_emu_hz": self.f_emu_hz,
+            "answers": self.entries,
+            "contention_cycles": self.pair.contention_cycles(),
+            "violations": self.checks.all(),
+        })
+    }
+
+    fn checks(&mut self) -> &mut Checks {
+        &mut self.checks
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use model::esl::frames::request;
+
+    const F: u64 = 80_000_000;
+
+    /// Sends a request's fields (8 cycles per bit at 80 MHz) with the
+    /// driver on, then listens for `listen` cycles; returns the outputs.
+    fn send(emu: &mut EslEmulator, fields: &[u8], bit: usize, listen: usize) -> Vec<Pins> {
+        for &f in fields {
+            for b in model::esl::frame_bits(f) {
+                for _ in 0..bit {
+                    emu.step(Pins((b as u32) << 1 | 4));
+                }
+            }
+        }
+        (0..listen).map(|_| emu.step(Pins(2))).collect()
+    }
+
+    fn rules(emu: &mut EslEmulator) -> Vec<String> {
+        emu.violations().iter().map(|v| v.rule.split(" (").next().unwrap().to_string()).collect()
+    }
+
+    #[test]
+    fn a_safety_readout_carries_the_position_and_alarms_set() {
+        let mut emu = EslEmulator::from_toml("[cable]\nlength_m = 0\n", "e.toml", F).unwrap();
+        emu.set_position(0, (0xBEEFu64 << 24) | 0x12_3456).unwrap();
+        emu.set_status(0, "overspeed", true).unwrap();
+        emu.set_status(0, "uv", true).unwrap();
+        emu.set_status(0, "temp_warning", true).unwrap();
+        let out = send(&mut emu, &request(0, 1, 0, 0), 8, 3000);
+        assert_eq!(emu.count(), 1);
+        assert_eq!(emu.last_value(0), Some((0xBEEFu64 << 24) | 0x12_3456));
+        assert!(emu.last_status(0, "overspeed").unwrap());
+        assert!(emu.last_status(0, "uv").unwrap());
+        assert!(!emu.last_status(0, "st").unwrap());
+        // EA0 from UV, EA1 from OVSP (seed 000 Table 5), DD0 forced.
+        assert!(emu.last_status(0, "ea0").unwrap() && emu.last_status(0, "ea1").unwrap());
+        assert!(emu.last_status(0, "temp_warning").unwrap());
+        assert_eq!(emu.entries()[0].fields.len(), 18, "Data ID 1: 18 fields (Table 12)");
+        assert!(out.iter().any(|p| p.enable()));
+        assert!(emu.violations().is_empty(), "{:?}", emu.violations());
+    }
+
+    #[test]
+    fn a_scheduled_flip_changes_the_line_but_not_the_entry() {
+        let mut emu = EslEmulator::from_toml("[cable]\nlength_m = 0\n", "e.toml", F).unwrap();
+        emu.schedule_fault("flips = [{ answer = 0, field = 3, bit = 1 }]").unwrap();
+        let out = send(&mut emu, &request(0, 5, 0, 0), 8, 1200);
+        let clean = {
+            let mut e = EslEmulator::from_toml("[cable]\nlength_m = 0\n", "e.toml", F).unwrap();
+            send(&mut e, &request(0, 5, 0, 0), 8, 1200)
+        };
+        assert_ne!(out, clean);
+        assert_eq!(emu.entries()[0].abs, Some(0x12_3456));
+    }
+
+    #[test]
+    fn an_emulator_clock_below_four_times_the_bit_rate_is_refused_with_the_minimum() {
+        let err = EslEmulator::from_toml("", "e.toml", 20_000_000).err().unwrap().to_string();
+        assert!(err.contains("at least 40000000 Hz") && err.contains("e.toml"), "{err}");
+        let err = EslEmulator::from_toml("[[encoders]]\naddress = 9\n", "e.toml", F).err().unwrap().to_string();
+        assert!(err.contains("encoders[0]") && err.contains("e.toml"), "{err}");
+    }
+
+    #[test]
+    fn a_host_that_keeps_driving_into_the_answer_is_reported() {
+        let mut emu = EslEmulator::from_toml("[cable]\nlength_m = 0\n", "e.toml", F).unwrap();
+        send(&mut emu, &request(0, 1, 0, 0), 8, 0);
+        for _ in 0..3000 {
+            emu.step(Pins(2 | 4));
+        }
+        assert_eq!(rules(&mut emu), vec!["turnaround"]);
+    }
+
+    #[test]
+    fn a_slow_host_bit_and_a_split_request_are_character_timing_violations() {
+        // 9 cycles per bit instead of 8: 12.5 % slow.
+        let mut emu = EslEmulator::from_toml("[cable]\nlength_m = 0\n", "e.toml", F).unwrap();
+        send(&mut emu, &request(0, 1, 0, 0), 9, 3000);
+        assert!(rules(&mut emu).iter().any(|r| r == "character timing"), "{:?}", emu.violations());
+        // CF, a pause of 3 bits, then the CRC: two frame sets of one field.
+        let mut emu = EslEmulator::from_toml("[cable]\nlength_m = 0\n", "e.toml", F).unwrap();
+        let r = request(0, 1, 0, 0);
+        send(&mut emu, &r[..1], 8, 24);
+        send(&mut emu, &r[1..], 8, 3000);
+        let v = emu.violations().iter().filter(|v| v.rule == BACK_TO_BACK).count();
+        assert!(v >= 1, "{:?}", emu.violations());
+        assert_eq!(emu.count(), 0);
+    }
+
+    #[test]
+    fn clear_commands_must_come_8_times_within_the_repeat_window() {
+        let mut emu = EslEmulator::from_toml("[cable]\nlength_m = 0\n", "e.toml", F).unwrap();
+        let gap = 40 * 80; // 40 µs
+        for _ in 0..8 {
+            send(&mut emu, &request(0, 0xC, 0, 0), 8, gap);
+        }
+        assert!(emu.violations().is_empty(), "{:?}", emu.violations());
+        for _ in 0..3 {
+            send(&mut emu, &request(0, 0xC, 0, 0), 8, gap);
+        }
+        send(&mut emu, &request(0, 1, 0, 0), 8, gap);
+        assert_eq!(rules(&mut emu), vec!["request spacing"]);
+        // Two EEPROM reads 50 µs apart (page 0).
+        let mut emu = EslEmulator::from_toml("[cable]\nlength_m = 0\n", "e.toml", F).unwrap();
+        send(&mut emu, &request(0, 0xF, 0x7F, 0), 8, 18_100 * 80);
+        send(&mut emu, &request(0, 0xE, 0x10, 0), 8, 50 * 80);
+        send(&mut emu, &request(0, 0xE, 0x10, 0), 8, 50 * 80);
+        let r: Vec<&str> = emu.violations().iter().map(|v| v.rule).collect();
+        assert_eq!(r, vec![READ_SPACING]);
+    }
+}
