@@ -43,7 +43,8 @@ modbus_master) proto=modbus emu=modbus_device_emu ;;
 can_controller) proto=can emu=can_node_emu ;;
 endat_master) proto=endat emu=endat_encoder_emu ;;
 tformat_host) proto=tformat emu=tformat_encoder_emu ;;
-*) echo "cosim.sh: no closed-loop testbench for core '$core' (ssi_master, biss_master, endat_master, tformat_host, sar_async_host, modbus_master, can_controller)" >&2; exit 2 ;;
+esl_host) proto=esl emu=esl_encoder_emu ;;
+*) echo "cosim.sh: no closed-loop testbench for core '$core' (ssi_master, biss_master, endat_master, tformat_host, esl_host, sar_async_host, modbus_master, can_controller)" >&2; exit 2 ;;
 esac
 case "$sim" in icarus|verilator) ;; *) usage ;; esac
 tb="$root/hdl/tb_cosim/$core/tb_cosim_$core.v"

@@ -137,7 +137,7 @@ pub struct Entry {
     pub abm: Option<u16>,
     /// ALM1 when the answer carries it.
     pub alm: Option<u8>,
-    /// SF1.
+    /// SF1 (0 for a memory answer, which has none).
     pub sf: u8,
     /// SC1 and SC2 when the answer carries them.
     pub sc: Option<(u8, u8)>,
@@ -303,8 +303,9 @@ impl EslEmulator {
     fn on_answer(&mut self, device: usize) {
         let Some((at, fields)) = self.encoders[device].answered().last() else { return };
         let code = frames::parse_control_field(fields[0]).code;
-        let sf = fields.get(1).copied().unwrap_or(0);
-        let comm_error = sf & frames::STATUS_CA_MASK != 0;
+        let memory = DataId::from_code(code).is_some_and(|d| d.is_memory());
+        let sf = if memory { 0 } else { fields.get(1).copied().unwrap_or(0) };
+        let comm_error = fields.len() == frames::COMM_ERROR_FIELDS && sf & frames::STATUS_CA_MASK != 0;
         let id = DataId::from_code(code).filter(|_| !comm_error);
         let d = id.map(|id| frames::decode(id, fields)).unwrap_or_default();
         let has = |f: fn(&Field) -> bool| id.is_some_and(|id| id.channel1().fields.iter().any(f));
