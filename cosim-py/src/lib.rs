@@ -13,7 +13,7 @@
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
-/// An emulator of `kind` (`ssi`, `biss`, `sar58k24`, `modbus`, `can`) made
+/// An emulator of `kind` (`ssi`, `biss`, `endat`, `tformat`, `esl`, `sar58k24`, `modbus`, `can`) made
 /// from TOML text (`origin` names it in errors) on an emulator clock of
 /// `f_emu_hz`. Errors (bad tables, a clock too slow) raise ValueError with
 /// the file, the field and the fix.

@@ -90,3 +90,26 @@ def planted(value):
     misread: the test must then fail)."""
     k = int(os.environ.get("COSIM_FLIP_BIT", "-1"))
     return value if value is None or k < 0 else value ^ (1 << k)
+
+
+async def request(dut, errors, limit, what):
+    """Pulses i_start for one cycle and waits for o_done (at most `limit`
+    cycles); returns the names of the error pulses seen on the way."""
+    dut.i_start.value = 1
+    await RisingEdge(dut.i_clk)
+    dut.i_start.value = 0
+    seen = []
+    for _ in range(limit):
+        await RisingEdge(dut.i_clk)
+        seen += [e for e in errors if bit(getattr(dut, e))]
+        if bit(dut.o_done):
+            return seen
+    raise AssertionError(f"{what}: no o_done within {limit} cycles")
+
+
+async def idle(dut, cycles):
+    """Waits until o_busy is low, then `cycles` more cycles."""
+    while bit(dut.o_busy):
+        await RisingEdge(dut.i_clk)
+    for _ in range(cycles):
+        await RisingEdge(dut.i_clk)

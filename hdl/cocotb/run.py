@@ -5,10 +5,7 @@
 
 Each entry below names the test module, the core, the scenario file the
 emulator and the core's parameters come from (cosim-params), and the
-cosim-params protocol. EnDat, T-format and ESL join with one line each when
-their cosim adapters land (the adapters are written on another branch):
-    ("endat", "endat_master", "endat.toml", "endat"), and a test_endat.py
-    in the shape of test_ssi.py.
+cosim-params protocol.
 Exit status 0 only when every test passed."""
 
 import os
@@ -27,6 +24,9 @@ TESTS = [
     ("sar58k24", "sar_async_host", "sar58k24.toml", "sar"),
     ("modbus", "modbus_master", "modbus.toml", "modbus"),
     ("can", "can_controller", "can.toml", "can"),
+    ("endat", "endat_master", "endat.toml", "endat"),
+    ("tformat", "tformat_host", "tformat.toml", "tformat"),
+    ("esl", "esl_host", "esl.toml", "esl"),
 ]
 
 
