@@ -94,14 +94,15 @@ def planted(value):
 
 async def request(dut, errors, limit, what):
     """Pulses i_start for one cycle and waits for o_done (at most `limit`
-    cycles); returns the names of the error pulses seen on the way."""
+    cycles); returns the names of the error outputs seen high on the way,
+    each once (pulses, or flags that hold until the next operation)."""
     dut.i_start.value = 1
     await RisingEdge(dut.i_clk)
     dut.i_start.value = 0
     seen = []
     for _ in range(limit):
         await RisingEdge(dut.i_clk)
-        seen += [e for e in errors if bit(getattr(dut, e))]
+        seen += [e for e in errors if e not in seen and bit(getattr(dut, e))]
         if bit(dut.o_done):
             return seen
     raise AssertionError(f"{what}: no o_done within {limit} cycles")
