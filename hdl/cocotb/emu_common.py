@@ -114,3 +114,26 @@ async def idle(dut, cycles):
         await RisingEdge(dut.i_clk)
     for _ in range(cycles):
         await RisingEdge(dut.i_clk)
+
+
+def connect_rs485(dut, emu):
+    """A half-duplex host (o_tx, o_tx_en, i_rx) on the emulator's pair: pins
+    in, bit 1 the host's driver level and bit 2 its enable (no clock)."""
+    dut.i_rx.value = 1
+    run_emulator(dut, emu, lambda: bit(dut.o_tx) << 1 | bit(dut.o_tx_en) << 2,
+                 lambda out: setattr(dut.i_rx, "value", out & 1))
+
+
+async def readout(dut, emu, n, flip, errors, crc_error):
+    """One operation; with `flip`, one data bit of field 4 of the next answer
+    inverted by the emulator, which the host must flag as `crc_error` and
+    nothing else. Returns True when the answer was clean (to be compared)."""
+    if flip:
+        emu.schedule_fault(f"flips = [{{ answer = {emu.count()}, field = 4, bit = 2 }}]")
+    seen = await request(dut, errors, 100_000, f"readout {n}")
+    assert emu.count() == n + 1, f"readout {n}: the emulator answered {emu.count()} times"
+    if flip:
+        assert seen == [crc_error], f"readout {n}: a flipped data bit gave {seen}"
+        return False
+    assert not seen, f"readout {n}: error outputs {seen}"
+    return True

@@ -9,7 +9,7 @@ import random
 
 import cocotb
 
-from emu_common import bit, idle, planted, no_violations, open_emulator, request, run_emulator, start
+from emu_common import connect_rs485, idle, planted, no_violations, open_emulator, readout, start
 
 READS = int(os.environ.get("COSIM_TRANSACTIONS", "8"))
 ERRORS = ("o_err_crc1", "o_err_crc2", "o_err_timeout", "o_err_frame", "o_err_cf",
@@ -26,10 +26,7 @@ async def readouts_equal_the_emulators_positions(dut):
         getattr(dut, name).value = 0
     dut.i_address.value = int(os.environ.get("COSIM_ADDRESS", "0"))
     dut.i_data_id.value = 1
-    dut.i_rx.value = 1
-    # Pins in: bit 1 the host's driver level, bit 2 its enable (no clock).
-    run_emulator(dut, emu, lambda: bit(dut.o_tx) << 1 | bit(dut.o_tx_en) << 2,
-                 lambda out: setattr(dut.i_rx, "value", out & 1))
+    connect_rs485(dut, emu)
     await start(dut, f_hz)
     rng = random.Random(3)
     for n in range(READS):
@@ -37,16 +34,8 @@ async def readouts_equal_the_emulators_positions(dut):
         emu.set_position(0, mt << 24 | st)
         for b, name in enumerate(FLAGS):
             emu.set_status(0, name, bool(alm >> b & 1))
-        flip = n == READS // 2
-        if flip:
-            # ABS1 (field 4) of channel 1, a data bit.
-            emu.schedule_fault(f"flips = [{{ answer = {emu.count()}, field = 4, bit = 2 }}]")
-        seen = await request(dut, ERRORS, 100_000, f"readout {n}")
-        assert emu.count() == n + 1
-        if flip:
-            assert seen == ["o_err_crc1"], f"readout {n}: a flipped data bit gave {seen}"
-        else:
-            assert not seen, f"readout {n}: error pulses {seen}"
+        # ABS1 (field 4) flipped in the middle readout.
+        if await readout(dut, emu, n, n == READS // 2, ERRORS, "o_err_crc1"):
             assert emu.last_value(0) == mt << 24 | st
             got = planted(int(dut.o_abs.value))
             assert got == st, f"readout {n}: host read ABS {got:#x}, the emulator sent {st:#x}"
