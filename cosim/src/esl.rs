@@ -231,7 +231,7 @@ impl EslEmulator {
         if tables.emulator.max_line_clock_khz.is_none() {
             tables.emulator.max_line_clock_khz = Some(baud / 1e3);
         }
-        let tb = config::emulator_clock(f_emu_hz, &tables.emulator, baud / 1e3, "ESL", origin)?;
+        let tb = config::emulator_clock(f_emu_hz, &tables.emulator, baud / 1e3, "ESL (its line clock is the bit rate)", origin)?;
         let cfg: EslConfig = config::decode(tables.device, origin)?;
         cfg.cable.validate("cable").map_err(|e| Error::config(origin, e))?;
         if cfg.encoders.is_empty() || cfg.encoders.len() > 8 {
