@@ -225,7 +225,7 @@ impl EslEmulator {
             Some(toml::Value::Integer(i)) => *i as f64,
             _ => 10e6,
         };
-        if !(baud >= 1e3 && baud <= 50e6) {
+        if !(1e3..=50e6).contains(&baud) {
             return Err(Error::field(origin, "baud", format!("{baud} bit/s"), "give the bit rate in bit/s (seed 000: 10e6)"));
         }
         if tables.emulator.max_line_clock_khz.is_none() {
