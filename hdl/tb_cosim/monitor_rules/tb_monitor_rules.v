@@ -35,7 +35,7 @@ reg slo = 1'b1;
 ssi_monitor #(.F_MON_HZ(4000000)) u_ssi (.i_mon_clk(clk4), .i_ssi_clk(ssi_clk), .i_ssi_data(ssi_data));
 biss_monitor #(.F_MON_HZ(200000000)) u_biss (.i_mon_clk(clk200), .i_ma(ma), .i_slo(slo));
 
-integer which, k;
+integer which, ks, kb;  // one loop variable per master: they run in parallel
 
 // One SSI read: T_cs, then `bits` periods of 2 x `half` ns (one of them,
 // `odd`, with a high phase of `odd_half` ns), the clock left high.
@@ -43,9 +43,9 @@ task ssi_read(input integer t_cs, input integer half, input integer bits, input 
     begin
         ssi_clk = 1'b0;
         #(t_cs);
-        for (k = 0; k < bits; k = k + 1) begin
+        for (ks = 0; ks < bits; ks = ks + 1) begin
             ssi_clk = 1'b1;
-            #(k == odd ? odd_half : half);
+            #(ks == odd ? odd_half : half);
             ssi_clk = 1'b0;
             #(half);
         end
@@ -57,11 +57,11 @@ endtask
 // high of `odd_high` ns and a low of `odd_low` ns. MA is left high.
 task biss_frame(input integer odd, input integer odd_low, input integer odd_high);
     begin
-        for (k = 0; k < 40; k = k + 1) begin
+        for (kb = 0; kb < 40; kb = kb + 1) begin
             ma = 1'b0;
-            #(k == odd ? odd_low : 50);
+            #(kb == odd ? odd_low : 50);
             ma = 1'b1;
-            #(k == odd ? odd_high : 50);
+            #(kb == odd ? odd_high : 50);
         end
     end
 endtask
