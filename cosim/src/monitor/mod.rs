@@ -100,7 +100,7 @@ pub fn field<T: serde::de::DeserializeOwned>(table: &toml::Table, key: &str, ori
 
 /// A limit given in a monitor table must be a finite non-negative number.
 pub fn limit(origin: &str, path: &str, v: f64, fix: &str) -> Result<f64> {
-    if v.is_finite() && v >= 0.0 && v < 1e9 {
+    if (0.0..1e9).contains(&v) {
         Ok(v)
     } else {
         Err(Error::field(origin, path, format!("{v}"), fix))
