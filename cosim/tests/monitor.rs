@@ -145,3 +145,37 @@ fn tbgen_check_takes_a_monitor_transcript_and_finds_a_flipped_position_bit() {
     let (ok, out) = tbgen_check("ssi", &expect, &capture);
     assert!(!ok && out.contains("DIFFERENCE in transaction 7 at ") && out.contains("position expected"), "{out}");
 }
+
+/// The same for BiSS-C: the emulator's `frames` (position, error and
+/// warning of each slave) against the monitor's decoded frames.
+#[test]
+fn tbgen_check_takes_a_biss_monitor_transcript_and_finds_a_flipped_position_bit() {
+    use cosim::{open, Pins};
+    let toml = "[[slaves]]\nbits = 16\n[cable]\nlength_m = 20\n";
+    let (mut emu, mut mon) = (open("biss", toml, "t.toml", 80_000_000).unwrap(), open("biss_monitor", toml, "t.toml", 80_000_000).unwrap());
+    let mut slo = true;
+    for frame in 0..12u64 {
+        emu.set_position(0, frame * 7919 % 65536).unwrap();
+        emu.set_status(0, "error", frame % 3 == 0).unwrap();
+        emu.set_status(0, "warning", frame % 4 == 1).unwrap();
+        // 1700 idle cycles (21 us, beyond the 16 us timeout), then 40 MA periods of 4 + 4 cycles.
+        let ma: Vec<bool> = (0..1700 + 320).map(|c| c < 1700 || (c - 1700) % 8 >= 4).collect();
+        for l in ma {
+            mon.step(Pins(l as u32 | (slo as u32) << 1));
+            slo = emu.step(Pins::line(l)).data();
+        }
+    }
+    let dir = root().join("build/cosim/monitor_rules/check_biss");
+    std::fs::create_dir_all(&dir).unwrap();
+    let (expect, capture) = (dir.join("emulator.json"), dir.join("monitor.json"));
+    std::fs::write(&capture, mon.transcript().to_string()).unwrap();
+    let mut sent = emu.transcript();
+    std::fs::write(&expect, sent.to_string()).unwrap();
+    let (ok, out) = tbgen_check("biss", &expect, &capture);
+    assert!(ok && out.contains("PASS: 12 transactions of biss equal"), "{out}");
+    let p = &mut sent["frames"][5]["slaves"][0]["position"];
+    *p = serde_json::Value::from(p.as_u64().unwrap() ^ 8);
+    std::fs::write(&expect, sent.to_string()).unwrap();
+    let (ok, out) = tbgen_check("biss", &expect, &capture);
+    assert!(!ok && out.contains("DIFFERENCE in transaction 5 at ") && out.contains("slaves[0].position expected"), "{out}");
+}
