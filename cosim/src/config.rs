@@ -57,6 +57,7 @@ pub const SCENARIO_ONLY: &[&str] = &[
     "reads",
     "name",
     "description",
+    "monitor",
 ];
 
 /// The emulator's own table, `[emulator]` (or `[<proto>.emulator]`).

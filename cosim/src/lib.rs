@@ -37,6 +37,7 @@ pub mod endat;
 pub mod esl;
 pub mod ffi;
 pub mod modbus;
+pub mod monitor;
 pub mod sar58k24;
 pub mod motion;
 pub mod pair;
@@ -158,8 +159,10 @@ pub fn open(kind: &str, toml: &str, origin: &str, f_emu_hz: u64) -> Result<Box<d
             toml, origin, f_emu_hz,
         )?)),
         "esl" => Ok(Box::new(esl::EslEmulator::from_toml(toml, origin, f_emu_hz)?)),
+        "ssi_monitor" => Ok(Box::new(monitor::ssi::SsiMonitor::from_toml(toml, origin, f_emu_hz)?)),
+        "biss_monitor" => Ok(Box::new(monitor::biss::BissMonitor::from_toml(toml, origin, f_emu_hz)?)),
         other => Err(Error::Usage(format!(
-            "no emulator `{other}`; give one of: ssi, biss, endat, tformat, esl, sar58k24, modbus, can"
+            "no emulator `{other}`; give one of: ssi, biss, endat, tformat, esl, sar58k24, modbus, can, or a monitor: ssi_monitor, biss_monitor"
         ))),
     }
 }

@@ -38,6 +38,7 @@ pub mod tformat;
 pub mod time;
 pub mod trace;
 pub mod uart;
+pub mod wire;
 
 pub use error::{ConfigError, Result};
 pub use ports::{Port, Ports};

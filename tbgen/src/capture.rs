@@ -15,68 +15,7 @@ use std::path::Path;
 
 use crate::{Error, Result};
 
-/// One scalar's value changes, in time order: `(time_ps, level)`. X and Z
-/// read as high, the level an idle RS-485 receiver with fail-safe biasing
-/// reports.
-#[derive(Debug, Clone, Default, PartialEq, Eq)]
-pub struct Signal {
-    /// Dotted path the signal was found under.
-    pub name: String,
-    /// Changes in time order; repeated values are kept out.
-    pub changes: Vec<(u64, bool)>,
-}
-
-impl Signal {
-    /// The level at `t_ps` (the last change at or before it; high before the
-    /// first change).
-    pub fn level_at(&self, t_ps: u64) -> bool {
-        match self.changes.partition_point(|&(ct, _)| ct <= t_ps) {
-            0 => true,
-            i => self.changes[i - 1].1,
-        }
-    }
-
-    /// The edges: changes that differ from the level before them, starting
-    /// from an idle-high line.
-    pub fn edges(&self) -> Vec<(u64, bool)> {
-        let mut last = true;
-        let mut edges = Vec::new();
-        for &(t, v) in &self.changes {
-            if v != last {
-                edges.push((t, v));
-                last = v;
-            }
-        }
-        edges
-    }
-
-    /// The first time at or after `from_ps` at which the signal is `level`.
-    pub fn next_level(&self, from_ps: u64, level: bool) -> Option<u64> {
-        if self.level_at(from_ps) == level {
-            return Some(from_ps);
-        }
-        let i = self.changes.partition_point(|&(ct, _)| ct <= from_ps);
-        self.changes[i..].iter().find(|&&(_, v)| v == level).map(|&(t, _)| t)
-    }
-}
-
-impl Signal {
-    /// High whenever either signal is: what a receiver hears whose input is
-    /// forced high while its own driver is on (`line.or(&tx_en)`).
-    pub fn or(&self, other: &Signal) -> Signal {
-        let mut times: Vec<u64> = self.changes.iter().chain(&other.changes).map(|c| c.0).collect();
-        times.sort_unstable();
-        times.dedup();
-        let mut changes: Vec<(u64, bool)> = Vec::with_capacity(times.len());
-        for t in times {
-            let level = self.level_at(t) || other.level_at(t);
-            if changes.last().is_none_or(|&(_, last)| last != level) {
-                changes.push((t, level));
-            }
-        }
-        Signal { name: format!("{} | {}", self.name, other.name), changes }
-    }
-}
+pub use model::wire::Signal;
 
 /// One unit of a VCD timescale as a fraction of a picosecond: `(mul, div)`,
 /// a timestamp `ts` being `ts × mul / div` ps. A femtosecond timescale (what
@@ -168,11 +107,7 @@ pub fn read(path: &Path, names: &[(&str, &str)]) -> Result<Vec<Signal>> {
                 let level = v != vcd::Value::V0;
                 for (sig, &id) in signals.iter_mut().zip(&ids) {
                     if id == code {
-                        match sig.changes.last_mut() {
-                            Some(last) if last.0 == t => last.1 = level,
-                            Some(last) if last.1 == level => {}
-                            _ => sig.changes.push((t, level)),
-                        }
+                        sig.push(t, level);
                     }
                 }
             }

@@ -2,7 +2,9 @@
 //! transaction by transaction, against what was expected.
 //!
 //! Both sides are transcripts: a `tbgen gen` or `tbgen decode` transcript
-//! (`transactions`), or an emulator's (`frames`, `reads`, `requests`). A
+//! (`transactions`), a pin-level monitor's (`hdl/emu/<proto>_monitor.v`:
+//! `transactions` from the same decode cores, plus its `violations`), or an
+//! emulator's (`frames`, `reads`, `requests`). A
 //! capture that is a VCD (any timescale, 1 fs included) is first decoded
 //! with the protocol's own decoder (`tbgen decode <protocol>`), whose
 //! options (the port names) follow `--`, so the check does not care what

@@ -11,6 +11,7 @@
 // the comparison flips bit K of the core's o_data, so the run must fail).
 
 `timescale 1fs / 1fs
+`include "biss_monitor.v"
 `default_nettype none
 
 module tb_cosim_biss_master;
@@ -107,11 +108,43 @@ biss_slave_emu #(
     .o_slo(slo)
 );
 
+// The pin-level monitor and protocol checker (hdl/emu/biss_monitor.v) on
+// MA and SLO at the core, reading the emulator's configuration: before each
+// frame it must have decoded every earlier frame with the core's values, and
+// the core must break none of the seed's timing rules it checks.
+// +biss_monitor_transcript=FILE writes its JSON transcript.
+biss_monitor #(
+    .F_MON_HZ(F_SYS_HZ),
+    .PLUSARG("biss_emu_config")
+) u_mon (
+    .i_mon_clk(clk),
+    .i_ma(o_ma),
+    .i_slo(slo)
+);
+
 integer transactions, seed, flip_bit, n, i, waited, valids, bits;
 reg [63:0] position [0:2];
 reg error [0:2];
 reg warning [0:2];
+reg [63:0] core_data [0:2];
+reg core_error [0:2];
+reg core_warning [0:2];
 reg [63:0] sent, got, mask;
+
+// The monitor has decoded `frames` frames, the last one with the core's values.
+task check_monitor(input integer frames);
+    integer s;
+    begin
+        if (u_mon.count(0) != frames)
+            $fatal(1, "at %0t: the monitor decoded %0d frames, the core made %0d", $time, u_mon.count(0), frames);
+        for (s = 0; frames > 0 && s < SLAVES; s = s + 1)
+            if (u_mon.last_value(s) !== core_data[s] || u_mon.last_status(s, "error") != core_error[s]
+                || u_mon.last_status(s, "warning") != core_warning[s] || u_mon.last_status(s, "crc_ok") != 1)
+                $fatal(1, "frame %0d at %0t: slave %0d: the monitor read %0d e%0d w%0d crc_ok %0d on the line, the core %0d e%0d w%0d",
+                       frames - 1, $time, s, u_mon.last_value(s), u_mon.last_status(s, "error"), u_mon.last_status(s, "warning"),
+                       u_mon.last_status(s, "crc_ok"), core_data[s], core_error[s], core_warning[s]);
+    end
+endtask
 
 initial begin
     if (!$value$plusargs("transactions=%d", transactions)) transactions = 1000;
@@ -121,6 +154,7 @@ initial begin
     rst <= 1'b0;
     repeat (4) @(posedge clk);
     for (n = 0; n < transactions; n = n + 1) begin
+        check_monitor(n);
         for (i = 0; i < SLAVES; i = i + 1) begin
             bits = (SLAVE_BITS >> (8 * i)) & 255;
             mask = (bits >= 64) ? {64{1'b1}} : ((64'd1 << bits) - 64'd1);
@@ -144,6 +178,9 @@ initial begin
                 mask = (bits >= 64) ? {64{1'b1}} : ((64'd1 << bits) - 64'd1);
                 sent = u_emu.last_value(i);
                 got = o_data & mask;
+                core_data[i] = got;
+                core_error[i] = o_error;
+                core_warning[i] = o_warning;
                 if (flip_bit >= 0) got = got ^ (64'd1 << flip_bit);
                 if (i != valids)
                     $fatal(1, "frame %0d at %0t: slave %0d reported out of order (expected %0d)", n, $time, i, valids);
@@ -169,10 +206,14 @@ initial begin
             $fatal(1, "frame %0d at %0t: the emulator counted %0d frames", n, $time, u_emu.count(0));
         while (o_busy) @(posedge clk);
     end
+    repeat (4 * TIMEOUT_CLOCKS) @(posedge clk);
+    check_monitor(transactions);
+    if (u_mon.violations(0) != 0)
+        $fatal(1, "the monitor saw %0d timing violation(s) of the seed by the core (PROTOCOL VIOLATION lines above)", u_mon.violations(0));
     if (u_emu.violations(0) != 0)
         $fatal(1, "the core broke %0d timing rule(s) of the seed (PROTOCOL VIOLATION lines above)", u_emu.violations(0));
     $display("cycles %0d", cycles);
-    $display("PASS tb_cosim_biss_master: %0d frames x %0d slave(s), every o_data, o_error, o_warning equal to the emulator's", transactions, SLAVES);
+    $display("PASS tb_cosim_biss_master: %0d frames x %0d slave(s), every o_data, o_error, o_warning equal to the emulator's and to the monitor's", transactions, SLAVES);
     $finish;
 end
 

@@ -7,9 +7,16 @@
 //
 // Plusargs: +ssi_emu_config=<scenario.toml> (the emulator's tables),
 // +transactions=N (default 1000), +seed=S, +flip_bit=K (planted failure:
-// the comparison flips bit K of the core's output, so the run must fail).
+// the comparison flips bit K of the core's output, so the run must fail),
+// +ssi_monitor_transcript=FILE (the monitor's JSON transcript).
+//
+// A pin-level monitor (hdl/emu/ssi_monitor.v) watches the core's clock and
+// the data at its input, reading the same configuration: before each read
+// it must have decoded every earlier read with the core's value, and the
+// core must break none of the seed's timing rules it checks.
 
 `timescale 1fs / 1fs
+`include "ssi_monitor.v"
 `default_nettype none
 
 module tb_cosim_ssi_master;
@@ -74,8 +81,28 @@ ssi_encoder_emu #(
     .o_ssi_data(ssi_data)
 );
 
+// The pin-level monitor and protocol checker, on the same clock.
+ssi_monitor #(
+    .F_MON_HZ(F_SYS_HZ),
+    .PLUSARG("ssi_emu_config")
+) u_mon (
+    .i_mon_clk(clk),
+    .i_ssi_clk(o_ssi_clk),
+    .i_ssi_data(ssi_data)
+);
+
 integer transactions, seed, flip_bit, n, waited;
-reg [63:0] position, sent, got, mask;
+reg [63:0] position, sent, got, mask, core_last;
+
+// The monitor has decoded `reads` reads, the last one the core's `value`.
+task check_monitor(input integer reads, input [63:0] value);
+    begin
+        if (u_mon.count(0) != reads)
+            $fatal(1, "at %0t: the monitor decoded %0d reads, the core made %0d", $time, u_mon.count(0), reads);
+        if (reads > 0 && u_mon.last_value(0) != value)
+            $fatal(1, "read %0d at %0t: the monitor read %0d on the line, the core %0d", reads - 1, $time, u_mon.last_value(0), value);
+    end
+endtask
 
 initial begin
     if (!$value$plusargs("transactions=%d", transactions)) transactions = 1000;
@@ -86,6 +113,7 @@ initial begin
     rst <= 1'b0;
     repeat (4) @(posedge clk);
     for (n = 0; n < transactions; n = n + 1) begin
+        check_monitor(n, core_last);
         position = {$random(seed), $random(seed)} & mask;
         u_emu.set_position(0, position);
         i_start <= 1'b1;
@@ -101,6 +129,7 @@ initial begin
         end
         sent = u_emu.last_value(0);
         got = o_position;
+        core_last = o_position;
         if (flip_bit >= 0) got = got ^ (64'd1 << flip_bit);
         if (u_emu.count(0) != n + 1)
             $fatal(1, "read %0d at %0t: the emulator counted %0d reads", n, $time, u_emu.count(0));
@@ -111,10 +140,14 @@ initial begin
                    n, $time, got, o_err_idle, o_err_double, o_err_wire, sent);
         while (o_busy) @(posedge clk);
     end
+    repeat (4 * CLOCKS_PER_BIT) @(posedge clk);
+    check_monitor(transactions, core_last);
+    if (u_mon.violations(0) != 0)
+        $fatal(1, "the monitor saw %0d timing violation(s) of the seed by the core (PROTOCOL VIOLATION lines above)", u_mon.violations(0));
     if (u_emu.violations(0) != 0)
         $fatal(1, "the core broke %0d timing rule(s) of the seed (PROTOCOL VIOLATION lines above)", u_emu.violations(0));
     $display("cycles %0d", cycles);
-    $display("PASS tb_cosim_ssi_master: %0d reads, every o_position equal to the emulator's", transactions);
+    $display("PASS tb_cosim_ssi_master: %0d reads, every o_position equal to the emulator's and to the monitor's", transactions);
     $finish;
 end
 

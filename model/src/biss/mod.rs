@@ -87,6 +87,7 @@
 
 pub mod campaign;
 mod bench;
+pub mod decode;
 pub mod control;
 pub mod seed_timing;
 mod master;

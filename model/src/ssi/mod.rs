@@ -53,6 +53,7 @@
 //! last low phase; `o_position` and the error pulses are valid with it.
 
 mod bench;
+pub mod decode;
 mod encoder;
 mod master;
 

@@ -1,0 +1,118 @@
+//! A line as a list of level changes: what the pin-level decoders read.
+//!
+//! `tbgen decode` builds these from a captured VCD, the co-simulation
+//! monitors (`cosim::monitor`) from the pins they sample each monitor clock
+//! cycle; both hand them to the same decode cores (`ssi::decode`,
+//! `biss::decode`), so a capture and a live simulation are read alike.
+
+/// One scalar's value changes, in time order: `(time_ps, level)`. X and Z
+/// read as high, the level an idle RS-485 receiver with fail-safe biasing
+/// reports.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct Signal {
+    /// Dotted path (or pin name) the signal was found under.
+    pub name: String,
+    /// Changes in time order; repeated values are kept out.
+    pub changes: Vec<(u64, bool)>,
+}
+
+impl Signal {
+    /// An empty signal named `name` (high until its first change).
+    pub fn named(name: &str) -> Signal {
+        Signal { name: name.to_string(), changes: Vec::new() }
+    }
+
+    /// Appends a level at `t_ps` (not before the last change); a repeated
+    /// level is left out, a second change at the same time replaces the first.
+    pub fn push(&mut self, t_ps: u64, level: bool) {
+        match self.changes.last_mut() {
+            Some(last) if last.0 == t_ps => last.1 = level,
+            Some(last) if last.1 == level => {}
+            _ => self.changes.push((t_ps, level)),
+        }
+    }
+
+    /// The level at `t_ps` (the last change at or before it; high before the
+    /// first change).
+    pub fn level_at(&self, t_ps: u64) -> bool {
+        match self.changes.partition_point(|&(ct, _)| ct <= t_ps) {
+            0 => true,
+            i => self.changes[i - 1].1,
+        }
+    }
+
+    /// The edges: changes that differ from the level before them, starting
+    /// from an idle-high line.
+    pub fn edges(&self) -> Vec<(u64, bool)> {
+        let mut last = true;
+        let mut edges = Vec::new();
+        for &(t, v) in &self.changes {
+            if v != last {
+                edges.push((t, v));
+                last = v;
+            }
+        }
+        edges
+    }
+
+    /// The first time at or after `from_ps` at which the signal is `level`.
+    pub fn next_level(&self, from_ps: u64, level: bool) -> Option<u64> {
+        if self.level_at(from_ps) == level {
+            return Some(from_ps);
+        }
+        let i = self.changes.partition_point(|&(ct, _)| ct <= from_ps);
+        self.changes[i..].iter().find(|&&(_, v)| v == level).map(|&(t, _)| t)
+    }
+
+    /// High whenever either signal is: what a receiver hears whose input is
+    /// forced high while its own driver is on (`line.or(&tx_en)`).
+    pub fn or(&self, other: &Signal) -> Signal {
+        let mut times: Vec<u64> = self.changes.iter().chain(&other.changes).map(|c| c.0).collect();
+        times.sort_unstable();
+        times.dedup();
+        let mut changes: Vec<(u64, bool)> = Vec::with_capacity(times.len());
+        for t in times {
+            let level = self.level_at(t) || other.level_at(t);
+            if changes.last().is_none_or(|&(_, last)| last != level) {
+                changes.push((t, level));
+            }
+        }
+        Signal { name: format!("{} | {}", self.name, other.name), changes }
+    }
+
+    /// The part from `from_ps` on: the level at `from_ps` as its first
+    /// change, then every later one (what a decoder of one transaction reads).
+    pub fn tail(&self, from_ps: u64) -> Signal {
+        let i = self.changes.partition_point(|&(ct, _)| ct <= from_ps);
+        let mut changes = vec![(from_ps, self.level_at(from_ps))];
+        changes.extend_from_slice(&self.changes[i..]);
+        Signal { name: self.name.clone(), changes }
+    }
+
+    /// Drops every change before `t_ps`, keeping the level at `t_ps`.
+    pub fn forget_before(&mut self, t_ps: u64) {
+        *self = self.tail(t_ps);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_signal_keeps_its_levels_and_a_tail_starts_at_the_level_then() {
+        let mut s = Signal::named("clk");
+        for (t, v) in [(0, true), (10, false), (10, false), (20, true), (30, true), (40, false)] {
+            s.push(t, v);
+        }
+        assert_eq!(s.changes, vec![(0, true), (10, false), (20, true), (40, false)]);
+        assert_eq!(s.edges(), vec![(10, false), (20, true), (40, false)]);
+        assert!(!s.level_at(15) && s.level_at(25) && s.level_at(5));
+        assert_eq!(s.next_level(21, false), Some(40));
+        let tail = s.tail(25);
+        assert_eq!(tail.changes, vec![(25, true), (40, false)]);
+        assert_eq!(tail.edges(), vec![(40, false)]);
+        s.forget_before(15);
+        assert_eq!(s.changes, vec![(15, false), (20, true), (40, false)]);
+    }
+}
