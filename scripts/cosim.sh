@@ -91,7 +91,7 @@ for cfg in "${configs[@]}"; do
         if [ ! -x "$build/Vtb" ]; then
             gargs=()
             for p in $params; do gargs+=("-G$p"); done
-            verilator --binary --timing -Wno-fatal -Wno-lint -Wno-style "${vflags[@]}" \
+            verilator --binary --timing -j 2 -Wno-fatal -Wno-lint -Wno-style "${vflags[@]}" \
                 --top-module "tb_cosim_$core" -I"$root/hdl/emu" \
                 "${gargs[@]}" "-GHALF_PERIOD_FS=$half_fs" \
                 -LDFLAGS "-L$EMU_LIB_DIR -lcosim -Wl,-rpath,$EMU_LIB_DIR" \

@@ -109,7 +109,7 @@ verilator)
         # Verilator 5.006's --binary main never writes coverage: its own main does.
         [ "$coverage" = 1 ] && targs=(--cc --exe --build --coverage --prefix Vtb "$cov_main")
         [ "$coverage" = 1 ] && [ "$trace" = 1 ] && targs+=(--trace)
-        verilator --timing -Wno-fatal -Wno-lint -Wno-style "${vflags[@]}" "${targs[@]}" \
+        verilator --timing -j 2 -Wno-fatal -Wno-lint -Wno-style "${vflags[@]}" "${targs[@]}" \
             --top-module "tb_$core" -I"$root/hdl/tb/common" \
             "${gargs[@]}" "-GHALF_PERIOD_FS=$half_fs" "-GMAX_WORDS=$max_words" \
             --Mdir "$build/obj" -o Vtb "$tb" "${rtl[@]}" > "$build/build.log" 2>&1 \
