@@ -54,6 +54,10 @@ if [ -n "$config" ]; then configs=("$config"); else configs=("$root"/hdl/tb_cosi
 eval "$("$root/scripts/emu_lib.sh")"
 params_tool="$EMU_LIB_DIR/cosim-params"
 
+# How Verilator's C++ is compiled (one translation unit at -O1): part of the key.
+vflags=()
+[ "$sim" = verilator ] && read -ra vflags <<< "$("$root/scripts/verilator_make_flags.sh")"
+
 per=$(( (transactions + ${#configs[@]} - 1) / ${#configs[@]} ))
 rtl=("$root"/hdl/rtl/*.v)
 status=0 total=0
@@ -61,7 +65,7 @@ for cfg in "${configs[@]}"; do
     params=$("$params_tool" "$proto" "$cfg") || { status=1; continue; }
     f_sys_hz=$(sed -n 's/^F_SYS_HZ=//p' <<< "$params")
     half_fs=$(( 500000000000000 / f_sys_hz ))
-    key=$(printf '%s\n' "$params" | cat - "$tb" "$root/hdl/emu/$emu.v" "$root"/hdl/emu/*.vh "${rtl[@]}" | sha1sum | cut -c1-12)
+    key=$(printf '%s\n' "$params" "${vflags[@]}" | cat - "$tb" "$root/hdl/emu/$emu.v" "$root"/hdl/emu/*.vh "${rtl[@]}" | sha1sum | cut -c1-12)
     build="$root/build/cosim/$core/$sim/$key"
     mkdir -p "$build"
     exec 9> "$build/.lock"
@@ -88,7 +92,7 @@ for cfg in "${configs[@]}"; do
         if [ ! -x "$build/Vtb" ]; then
             gargs=()
             for p in $params; do gargs+=("-G$p"); done
-            verilator --binary --timing -j 2 -Wno-fatal -Wno-lint -Wno-style \
+            verilator --binary --timing -j 2 -Wno-fatal -Wno-lint -Wno-style "${vflags[@]}" \
                 --top-module "tb_cosim_$core" -I"$root/hdl/emu" \
                 "${gargs[@]}" "-GHALF_PERIOD_FS=$half_fs" \
                 -LDFLAGS "-L$EMU_LIB_DIR -lcosim -Wl,-rpath,$EMU_LIB_DIR" \

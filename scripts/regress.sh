@@ -15,7 +15,8 @@
 # With --waves, each run also dumps the RTL's waveform to build/waves/<scenario>.<sim>.vcd.
 # --jobs N runs N replays at once (default: the number of cores). Runs that
 # share a simulator build wait for it on sim.sh's lock, so each build is
-# still made once. Lines come in the order runs finish.
+# still made once. Runs start longest first; lines come in the order runs
+# finish.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 supported_sims=(icarus verilator)
@@ -135,7 +136,10 @@ replay() {
     fi
 }
 
-running=0
+# The runs, longest first (the `cycles:` header; a Verilator cycle costs
+# about a twentieth of an Icarus one), so that no long replay starts last
+# and keeps one core busy while the other has nothing left to do.
+runs=()
 for core in "${cores[@]}"; do
     if [ -n "$file" ]; then
         files=("$file")
@@ -146,16 +150,24 @@ for core in "${cores[@]}"; do
     for f in "${files[@]}"; do
         name=$(basename "$f" .hex)
         [ -z "$file" ] && [ -n "$scenario" ] && [ "$name" != "$scenario" ] && continue
+        cycles=$(sed -n 's#^// cycles: ##p' "$f" | head -n 1)
         for sim in "${sims[@]}"; do
-            if [ "$running" -ge "$jobs" ]; then
-                wait -n || true
-                running=$((running - 1))
-            fi
-            replay "$core" "$sim" "$f" &
-            running=$((running + 1))
+            cost=${cycles:-0}
+            [ "$sim" = verilator ] && cost=$((cost / 20))
+            runs+=("$cost $core $sim $f")
         done
     done
 done
+running=0
+while read -r _ core sim f; do
+    [ -n "$core" ] || continue
+    if [ "$running" -ge "$jobs" ]; then
+        wait -n || true
+        running=$((running - 1))
+    fi
+    replay "$core" "$sim" "$f" &
+    running=$((running + 1))
+done < <(printf '%s\n' "${runs[@]}" | sort -rn -k1,1)
 wait || true
 passed=$(find "$results" -name 'pass.*' | wc -l)
 failed=$(find "$results" -name 'fail.*' | wc -l)

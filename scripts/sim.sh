@@ -63,7 +63,12 @@ coverage=0 cov_main="$root/hdl/tb/common/coverage_main.cpp"
 # is built with), so plain builds keep their keys.
 cov_key=() cov_files=()
 [ "$coverage" = 1 ] && cov_key=(coverage) cov_files=("$cov_main")
-key=$(printf '%s\n' "$params" "$half_fs" "$trace" "$max_words" "${cov_key[@]}" | cat - "$tb" "$root/hdl/tb/common/vector_player.vh" "${rtl[@]}" "${cov_files[@]}" | sha1sum | cut -c1-12)
+# How Verilator's C++ is compiled (scripts/verilator_make_flags.sh: one
+# translation unit at -O1, a third of the default build's compile time and
+# a faster model); part of the key, so a build made otherwise is not reused.
+vflags=()
+[ "$sim" = verilator ] && read -ra vflags <<< "$("$root/scripts/verilator_make_flags.sh")"
+key=$(printf '%s\n' "$params" "$half_fs" "$trace" "$max_words" "${cov_key[@]}" "${vflags[@]}" | cat - "$tb" "$root/hdl/tb/common/vector_player.vh" "${rtl[@]}" "${cov_files[@]}" | sha1sum | cut -c1-12)
 build="${SIM_BUILD_DIR:-$root/build/sim}/$core/$sim/$key"
 mkdir -p "$build"
 # Parallel runs (cargo's test threads, make -j) may want the same build:
@@ -104,7 +109,7 @@ verilator)
         # Verilator 5.006's --binary main never writes coverage: its own main does.
         [ "$coverage" = 1 ] && targs=(--cc --exe --build --coverage --prefix Vtb "$cov_main")
         [ "$coverage" = 1 ] && [ "$trace" = 1 ] && targs+=(--trace)
-        verilator --timing -j 2 -Wno-fatal -Wno-lint -Wno-style "${targs[@]}" \
+        verilator --timing -j 2 -Wno-fatal -Wno-lint -Wno-style "${vflags[@]}" "${targs[@]}" \
             --top-module "tb_$core" -I"$root/hdl/tb/common" \
             "${gargs[@]}" "-GHALF_PERIOD_FS=$half_fs" "-GMAX_WORDS=$max_words" \
             --Mdir "$build/obj" -o Vtb "$tb" "${rtl[@]}" > "$build/build.log" 2>&1 \
