@@ -54,7 +54,8 @@ if [ -n "$config" ]; then configs=("$config"); else configs=("$root"/hdl/tb_cosi
 eval "$("$root/scripts/emu_lib.sh")"
 params_tool="$EMU_LIB_DIR/cosim-params"
 
-# How Verilator's C++ is compiled (one translation unit at -O1): part of the key.
+# How Verilator's C++ is compiled (one translation unit at -O1): part of the key,
+# with every file a testbench can pull in (the monitors come by `include).
 vflags=()
 [ "$sim" = verilator ] && read -ra vflags <<< "$("$root/scripts/verilator_make_flags.sh")"
 
@@ -65,7 +66,7 @@ for cfg in "${configs[@]}"; do
     params=$("$params_tool" "$proto" "$cfg") || { status=1; continue; }
     f_sys_hz=$(sed -n 's/^F_SYS_HZ=//p' <<< "$params")
     half_fs=$(( 500000000000000 / f_sys_hz ))
-    key=$(printf '%s\n' "$params" "${vflags[@]}" | cat - "$tb" "$root/hdl/emu/$emu.v" "$root"/hdl/emu/*.vh "${rtl[@]}" | sha1sum | cut -c1-12)
+    key=$(printf '%s\n' "$params" "${vflags[@]}" | cat - "$tb" "$root/hdl/emu/$emu.v" "$root"/hdl/emu/*.vh "$root"/hdl/emu/*_monitor.v "${rtl[@]}" | sha1sum | cut -c1-12)
     build="$root/build/cosim/$core/$sim/$key"
     mkdir -p "$build"
     exec 9> "$build/.lock"
