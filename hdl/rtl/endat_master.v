@@ -224,7 +224,7 @@ initial begin
         $error("endat_master: MEAS_HIGH_CLOCKS + MEAS_LOW_CLOCKS must be MEAS_CLOCKS_PER_BIT");
     if ((HIGH_CLOCKS > LOW_CLOCKS) ? (10 * (HIGH_CLOCKS - LOW_CLOCKS) > CLOCKS_PER_BIT)
                                    : (10 * (LOW_CLOCKS - HIGH_CLOCKS) > CLOCKS_PER_BIT))
-        $error("endat_master: HIGH_CLOCKS and LOW_CLOCKS must be within 10 % of 1:1 (seed 2.3.2)");
+        $error("endat_master: HIGH_CLOCKS and LOW_CLOCKS must be within 10 percent of 1:1 (seed 2.3.2)");
     if (T_ST_CLOCKS < LOW_CLOCKS) $error("endat_master: T_ST_CLOCKS must be >= LOW_CLOCKS");
     if (MEAS_COUNT < 4 || (MEAS_COUNT & (MEAS_COUNT - 1)) != 0) $error("endat_master: MEAS_COUNT must be a power of two >= 4");
 end
