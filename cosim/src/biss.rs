@@ -225,7 +225,7 @@ impl BissEmulator {
                     .timeout_clocks,
             );
         }
-        let checks = Checks::new(tb.period_ps());
+        let checks = Checks::for_clock(&tb);
         let min_tmas = checks.cycles_of_ns(cfg.checks.min_tmas_ns) - 1.0;
         let mut emu = BissEmulator {
             f_emu_hz,
@@ -400,9 +400,8 @@ impl Emulator for BissEmulator {
     fn step(&mut self, pins: Pins) -> Pins {
         self.check(pins.data());
         if self.motions.any() {
-            let period_ps = model::time::PS_PER_S / self.f_emu_hz;
             for i in 0..self.cfg.slaves.len() {
-                if let Some(p) = self.motions.position(i, self.cycle, period_ps, self.cfg.slaves[i].bits) {
+                if let Some(p) = self.motions.position_on(i, self.cycle, &self.tb, self.cfg.slaves[i].bits) {
                     self.chain.slaves_mut()[i].set_position(p);
                 }
             }

@@ -26,14 +26,26 @@ pub struct Violation {
 /// The violations of one emulator, and how many the testbench has been shown.
 #[derive(Debug, Clone, Default)]
 pub struct Checks {
-    period_ps: u64,
+    /// The emulator clock period in ps, exact to the float (not rounded
+    /// to whole picoseconds: 48 MHz is 20 833.33 ps).
+    period_ps: f64,
     list: Vec<Violation>,
     shown: usize,
 }
 
 impl Checks {
-    /// Checks on an emulator clock of `period_ps`.
+    /// Checks on an emulator clock of `period_ps` (whole picoseconds).
     pub fn new(period_ps: u64) -> Self {
+        Checks::with_period(period_ps as f64)
+    }
+
+    /// Checks on the emulator clock `tb`, its period exact (any clock the
+    /// shared [`model::Timebase`] accepts).
+    pub fn for_clock(tb: &model::Timebase) -> Self {
+        Checks::with_period(model::time::PS_PER_S as f64 / tb.f_sys_hz() as f64)
+    }
+
+    fn with_period(period_ps: f64) -> Self {
         Checks {
             period_ps,
             list: Vec::new(),
@@ -43,7 +55,7 @@ impl Checks {
 
     /// Records a violation at `cycle`.
     pub fn push(&mut self, cycle: u64, rule: &'static str, detail: String) {
-        let time_ns = cycle as f64 * self.period_ps as f64 / 1e3;
+        let time_ns = cycle as f64 * self.period_ps / 1e3;
         self.list.push(Violation {
             cycle,
             time_ns,
@@ -54,12 +66,12 @@ impl Checks {
 
     /// Cycles to microseconds.
     pub fn us(&self, cycles: u64) -> f64 {
-        cycles as f64 * self.period_ps as f64 / 1e6
+        cycles as f64 * self.period_ps / 1e6
     }
 
     /// A time in ns as emulator cycles (not rounded).
     pub fn cycles_of_ns(&self, ns: f64) -> f64 {
-        ns * 1e3 / self.period_ps as f64
+        ns * 1e3 / self.period_ps
     }
 
     /// Every violation so far.

@@ -134,7 +134,8 @@ fn one_line(s: &str) -> String {
 }
 
 /// Checks the emulator clock and returns its timebase: it must be a usable
-/// clock (whole picoseconds) and at least 4 times the fastest line clock
+/// clock (any whole number of hertz up to 1 GHz, as [`Timebase::new`]
+/// accepts for the model's system clock) and at least 4 times the fastest line clock
 /// (two samples per half period, as the cores need with `CLOCKS_PER_BIT >= 4`).
 pub fn emulator_clock(
     f_emu_hz: u64,
@@ -159,11 +160,9 @@ pub fn emulator_clock(
              give a faster emulator clock, or set emulator.max_line_clock_khz to the fastest clock your master uses"
         )));
     }
-    if f_emu_hz > 1_000_000_000 || model::time::PS_PER_S % f_emu_hz != 0 {
-        return Err(Error::Usage(format!(
-            "{origin}: emulator clock f_emu = {f_emu_hz} Hz has no whole-picosecond period (or is above 1 GHz); give a clock such as 50, 64, 80 or 100 MHz"
-        )));
-    }
+    // Any clock up to 1 GHz, as the model's system clock (issue 14 item 2):
+    // the emulator counts cycles, and times (checks, motion profiles) come
+    // from the exact n x 10^12 / f_emu through the shared Timebase.
     Timebase::new(f_emu_hz).map_err(|e| {
         Error::Usage(format!(
             "{origin}: emulator clock f_emu = {f_emu_hz} Hz: {e}"

@@ -129,7 +129,7 @@ pub struct Entry {
 /// An EnDat encoder and its cable, on the emulator clock.
 pub struct EndatEmulator {
     f_emu_hz: u64,
-    period_ps: u64,
+    tb: model::Timebase,
     cfg: EndatConfig,
     encoder: Encoder,
     clk_line: DelayLine,
@@ -200,7 +200,7 @@ impl EndatEmulator {
                 "give t_b_us >= 0 (seed: 1000) and max_clock_khz > 0 (seed: 8000)",
             ));
         }
-        let checks = Checks::new(tb.period_ps());
+        let checks = Checks::for_clock(&tb);
         // t_b and the shortest half period in emulator cycles, one cycle of tolerance.
         let limits = (
             checks.cycles_of_ns(c.t_b_us * 1e3) - 1.0,
@@ -208,7 +208,7 @@ impl EndatEmulator {
         );
         let mut emu = EndatEmulator {
             f_emu_hz,
-            period_ps: tb.period_ps(),
+            tb,
             warning: cfg.encoder.warnings != 0,
             busy: false,
             cfg,
@@ -270,7 +270,7 @@ impl EndatEmulator {
         }
         if let (Some(ns), true) = (f.line.drift_ns, f.line.drift_from == k) {
             let base = self.cfg.encoder.output_delay_ns;
-            let cycles = ((base + ns) * 1e3 / self.period_ps as f64).round().max(0.0) as u64;
+            let cycles = self.tb.cycles_nearest_ns(base + ns);
             self.encoder.set_output_delay(cycles);
         }
         if let (Some(level), true) = (f.line.stuck_level, f.line.stuck_from == k) {
@@ -367,7 +367,7 @@ impl Emulator for EndatEmulator {
     fn step(&mut self, pins: Pins) -> Pins {
         let master = Pair::master_drive(pins);
         if let Some(m) = &self.motion {
-            let p = m.position(self.cycle, self.period_ps, self.bits());
+            let p = m.position_on(self.cycle, &self.tb, self.bits());
             self.encoder.set_position(p);
         }
         let clk = self.clk_line.step(pins.data());

@@ -141,6 +141,13 @@ impl Running {
         let t_ns = cycle.saturating_sub(self.since) as f64 * period_ps as f64 / 1e3;
         self.motion.position_at(t_ns, bits)
     }
+
+    /// The position at emulator cycle `cycle` of the clock `tb`, timed from
+    /// the exact `n x 10^12 / f_emu` (any clock, whole picoseconds or not).
+    pub fn position_on(&self, cycle: u64, tb: &model::Timebase, bits: u32) -> u64 {
+        let t_ns = tb.ps_at(cycle.saturating_sub(self.since)) as f64 / 1e3;
+        self.motion.position_at(t_ns, bits)
+    }
 }
 
 /// The motion profiles of an emulator's devices (chain positions), for
@@ -177,6 +184,11 @@ impl Motions {
     /// The position device `device` holds at `cycle`, if it moves.
     pub fn position(&self, device: usize, cycle: u64, period_ps: u64, bits: u32) -> Option<u64> {
         self.running.get(device)?.as_ref().map(|r| r.position(cycle, period_ps, bits))
+    }
+
+    /// [`Motions::position`] on the clock `tb` ([`Running::position_on`]).
+    pub fn position_on(&self, device: usize, cycle: u64, tb: &model::Timebase, bits: u32) -> Option<u64> {
+        self.running.get(device)?.as_ref().map(|r| r.position_on(cycle, tb, bits))
     }
 }
 

@@ -117,6 +117,7 @@ pub struct Entry {
 /// An SSI encoder and its cable, on the emulator clock.
 pub struct SsiEmulator {
     f_emu_hz: u64,
+    tb: model::Timebase,
     cfg: SsiConfig,
     encoder: Encoder,
     gray: bool,
@@ -184,7 +185,7 @@ impl SsiEmulator {
                 "give the least T_cs in µs (seed: 4)",
             ));
         }
-        let checks = Checks::new(tb.period_ps());
+        let checks = Checks::for_clock(&tb);
         // Half periods and T_cs in emulator cycles, one cycle of tolerance.
         let limits = (
             checks.cycles_of_ns(1e6 / (2.0 * c.max_clock_khz)) - 1.0,
@@ -198,6 +199,7 @@ impl SsiEmulator {
         };
         let mut emu = SsiEmulator {
             f_emu_hz,
+            tb,
             cfg,
             encoder,
             gray,
@@ -310,8 +312,7 @@ impl Emulator for SsiEmulator {
     fn step(&mut self, pins: Pins) -> Pins {
         self.check(pins.data());
         if self.motions.any() {
-            let period_ps = model::time::PS_PER_S / self.f_emu_hz;
-            if let Some(p) = self.motions.position(0, self.cycle, period_ps, self.bits) {
+            if let Some(p) = self.motions.position_on(0, self.cycle, &self.tb, self.bits) {
                 self.encoder.set_position(p);
             }
         }
@@ -436,6 +437,22 @@ mod tests {
             .to_string();
         assert!(err.contains("at least 1000000 Hz"), "{err}");
         assert!(SsiEmulator::from_toml("", "e.toml", 1_000_000).is_ok());
+    }
+
+    /// Issue 14 item 2: the emulator takes any clock the model's Timebase
+    /// takes (48, 60, 120, 150 MHz have no whole-picosecond period), and its
+    /// times are the exact ones: a check 48 000 cycles in at 48 MHz is at 1 ms.
+    #[test]
+    fn fabric_clocks_without_a_whole_picosecond_period_open_and_keep_exact_time() {
+        for hz in [48_000_000, 60_000_000, 120_000_000, 150_000_000, 45_000_000] {
+            assert!(SsiEmulator::from_toml("", "e.toml", hz).is_ok(), "{hz} Hz refused");
+            assert!(crate::biss::BissEmulator::from_toml("", "s.toml", hz).is_ok(), "BiSS-C at {hz} Hz refused");
+            assert!(crate::endat::EndatEmulator::from_toml("", "e.toml", hz).is_ok(), "EnDat at {hz} Hz refused");
+        }
+        let tb = model::Timebase::new(48_000_000).unwrap();
+        let checks = crate::check::Checks::for_clock(&tb);
+        assert!((checks.us(48_000) - 1000.0).abs() < 1e-6, "{}", checks.us(48_000));
+        assert!(SsiEmulator::from_toml("", "e.toml", 1_000_000_001).is_err(), "above 1 GHz");
     }
 
     /// Clocks `bits` bits with a first low phase of `t_cs` cycles and half

@@ -66,6 +66,21 @@ fn ssi_master_closed_loop_in_verilator() {
     closed_loop_passes_and_a_misread_fails("ssi_master", "verilator");
 }
 
+/// Issue 14 item 2: the loop closes on a fabric clock without a whole-
+/// picosecond period (f_sys = f_emu = 60 MHz) with a line clock that needs
+/// an odd divider (160 kHz = 60 MHz / 375: HIGH_CLOCKS 188, LOW_CLOCKS 187),
+/// and a planted misread still fails.
+#[test]
+fn ssi_master_closes_the_loop_at_a_60_mhz_emulator_clock_with_an_odd_divider_in_verilator() {
+    let cfg = root().join("hdl/tb_cosim/ssi_master/fabric/fabric_60mhz_160khz.toml");
+    let cfg = cfg.to_str().expect("a UTF-8 path");
+    let (ok, out) = cosim("ssi_master", "verilator", &["--config", cfg]);
+    assert!(ok, "60 MHz in verilator:\n{out}");
+    assert!(out.contains("fabric_60mhz_160khz.toml: 90 transactions") && out.matches("PASS").count() == 1, "{out}");
+    let (ok, out) = cosim("ssi_master", "verilator", &["--config", cfg, "--flip-bit", "2"]);
+    assert!(!ok && out.contains("core read"), "a planted misread passed:\n{out}");
+}
+
 #[test]
 fn biss_master_closed_loop_in_icarus() {
     closed_loop_passes_and_a_misread_fails("biss_master", "icarus");

@@ -26,14 +26,21 @@
 //   SLAVE_BITS       data bits per slave, 1..64
 //   SLAVE_CRC_WIDTH  CRC width per slave, 1..8 (BiSS-C: 6)
 //   SLAVE_CRC_POLY   CRC polynomial per slave without the top term (BiSS-C x^6 + x + 1: 8'h03)
-//   CLOCKS_PER_BIT   i_clk cycles per MA period, even, >= 8 (10 MHz MA needs i_clk >= 80 MHz)
+//   CLOCKS_PER_BIT   i_clk cycles per MA period, 8..4096, odd allowed (10 MHz MA needs i_clk >= 80 MHz)
+//   HIGH_CLOCKS      i_clk cycles of each MA high phase; default CLOCKS_PER_BIT - CLOCKS_PER_BIT/2
+//   LOW_CLOCKS       i_clk cycles of each MA low phase; default CLOCKS_PER_BIT/2
+//                    HIGH_CLOCKS + LOW_CLOCKS = CLOCKS_PER_BIT. An odd period gives the high
+//                    phase the extra cycle: bits are sampled by the measured delay whatever
+//                    the split, frame ends and gaps are high levels (TMASH), and the seed's
+//                    TMASH/TMASL > 25 ns then bind the shorter low phase (docs/timing/biss.md)
 //   MAX_DELAY        longest edge-2-to-ack delay compensated, cycles, 1..65535
 //   TIMEOUT_CLOCKS   longest wait for the start bit, for SLO low/high after the
 //                    last clock and for a late ack, cycles (>= 2 * CLOCKS_PER_BIT)
 //   CAL_FRAMES       start-up frames whose mean delay is used afterwards: 1, 2, 4, 8, 16
 //   DELAY_TOL        largest departure from the mean still sampled by it, cycles (< CLOCKS_PER_BIT / 2)
 //
-// Timing (one slave, H = CLOCKS_PER_BIT/2); docs/timing/biss.md has the full story
+// Timing (one slave, H = CLOCKS_PER_BIT/2, the middle of a bit cell, rounded down;
+// MA is high HIGH_CLOCKS and low LOW_CLOCKS cycles); docs/timing/biss.md has the full story
 //
 //   o_ma   ‾‾‾\__/‾‾\__/‾‾\__/‾‾\__/‾‾\__/‾‾\__/‾‾\__/‾‾\_ ... _/‾‾\__/‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾
 //   edge         1     2     3     4     5     6     7           n   (CDM = 0: MA stops high)
@@ -54,8 +61,8 @@
 // ack edge out, unless their delay departs from the mean by more than
 // DELAY_TOL: then they are sampled by their own ack and flagged (o_err_drift).
 // Any cable up to MAX_DELAY is read in the middle of its bit cells. MA keeps running until the
-// last CRC bit is in, then stops at the first half-period boundary where it
-// equals !CDM (the BiSS-C control bit is the inverted MA level in the timeout); a frame that held MA low (CDM = 1) raises it HALF cycles before o_done, so every MA high phase lasts at least HALF + 1 cycles (seed: TMASH > 25 ns).
+// last CRC bit is in, then stops at the first phase boundary where it
+// equals !CDM (the BiSS-C control bit is the inverted MA level in the timeout); a frame that held MA low (CDM = 1) raises it HIGH_CLOCKS cycles before o_done, so every MA high phase lasts at least HIGH_CLOCKS + 1 cycles (seed: TMASH > 25 ns).
 // Errors: o_err_line (SLO low at start, refused), o_err_ack (no ack: slave
 // absent, line open or stuck high), o_err_delay (ack later than MAX_DELAY),
 // o_err_start (no start bit within TIMEOUT_CLOCKS), o_err_timeout (SLO not
@@ -71,6 +78,8 @@ module biss_master #(
     parameter SLAVE_CRC_WIDTH = 6,
     parameter SLAVE_CRC_POLY = 3,
     parameter CLOCKS_PER_BIT = 8,
+    parameter HIGH_CLOCKS = CLOCKS_PER_BIT - CLOCKS_PER_BIT / 2,
+    parameter LOW_CLOCKS = CLOCKS_PER_BIT / 2,
     parameter MAX_DELAY = 160,
     parameter TIMEOUT_CLOCKS = 3200,
     parameter CAL_FRAMES = 4,
@@ -147,17 +156,19 @@ function integer clog2(input integer value);
 endfunction
 
 localparam integer DATA_W = max_bits(SLAVE_BITS, SLAVES);
-localparam integer HALF = CLOCKS_PER_BIT / 2;
+localparam integer HALF = CLOCKS_PER_BIT / 2; // the middle of a bit cell (rounded down), not an MA phase
 localparam integer SMP_W = clog2(2 * CLOCKS_PER_BIT);
 localparam integer CAL_SHIFT = clog2(CAL_FRAMES);
 localparam integer CNT_W = clog2(TIMEOUT_CLOCKS + 3);
 
-localparam [31:0] HALF_LAST_32 = HALF - 1;
+localparam [31:0] HIGH_LAST_32 = HIGH_CLOCKS - 1;
+localparam [31:0] LOW_LAST_32 = LOW_CLOCKS - 1;
 localparam [31:0] FIRST_SAMPLE_32 = HALF + CLOCKS_PER_BIT - 1;
 localparam [31:0] PERIOD_LAST_32 = CLOCKS_PER_BIT - 1;
 localparam [31:0] TIMEOUT_32 = TIMEOUT_CLOCKS;
 localparam [31:0] MAX_DELAY_32 = MAX_DELAY;
-localparam [SMP_W-1:0] HALF_LAST = HALF_LAST_32[SMP_W-1:0];
+localparam [SMP_W-1:0] HIGH_LAST = HIGH_LAST_32[SMP_W-1:0];
+localparam [SMP_W-1:0] LOW_LAST = LOW_LAST_32[SMP_W-1:0];
 localparam [SMP_W-1:0] FIRST_SAMPLE = FIRST_SAMPLE_32[SMP_W-1:0];
 localparam [SMP_W-1:0] PERIOD_LAST = PERIOD_LAST_32[SMP_W-1:0];
 localparam [CNT_W-1:0] TIMEOUT_CNT = TIMEOUT_32[CNT_W-1:0];
@@ -198,7 +209,9 @@ localparam [3:0]
 
 initial begin
     if (SLAVES < 1 || SLAVES > 3) $error("biss_master: SLAVES must be 1..3");
-    if (CLOCKS_PER_BIT < 8 || CLOCKS_PER_BIT % 2 != 0) $error("biss_master: CLOCKS_PER_BIT must be even and >= 8");
+    if (CLOCKS_PER_BIT < 8 || CLOCKS_PER_BIT > 4096) $error("biss_master: CLOCKS_PER_BIT must be 8..4096");
+    if (HIGH_CLOCKS < 1 || LOW_CLOCKS < 1 || HIGH_CLOCKS + LOW_CLOCKS != CLOCKS_PER_BIT)
+        $error("biss_master: HIGH_CLOCKS + LOW_CLOCKS must be CLOCKS_PER_BIT");
     if (MAX_DELAY < 1 || MAX_DELAY > 65535) $error("biss_master: MAX_DELAY must be 1..65535");
     if (TIMEOUT_CLOCKS < 2 * CLOCKS_PER_BIT) $error("biss_master: TIMEOUT_CLOCKS must be >= 2 * CLOCKS_PER_BIT");
     if (CAL_FRAMES != 1 && CAL_FRAMES != 2 && CAL_FRAMES != 4 && CAL_FRAMES != 8 && CAL_FRAMES != 16) $error("biss_master: CAL_FRAMES must be 1, 2, 4, 8 or 16");
@@ -217,8 +230,8 @@ reg [CNT_W-1:0]  cnt_reg = 0, cnt_next;
 reg [15:0]       delay_cnt_reg = 16'd0, delay_cnt_next;
 reg [SMP_W-1:0]  smp_cnt_reg = 0, smp_cnt_next;
 
-// MA generator: toggles every HALF cycles while running; a stop request
-// takes effect at the first half-period boundary where MA equals its level.
+// MA generator: high for HIGH_CLOCKS and low for LOW_CLOCKS cycles while running;
+// a stop request takes effect at the first phase boundary where MA equals its level.
 reg              ma_reg = 1'b1, ma_next;
 reg [SMP_W-1:0]  ma_cnt_reg = 0, ma_cnt_next;
 reg              ma_run_reg = 1'b0, ma_run_next;
@@ -477,7 +490,7 @@ always @* begin
                 ma_run_next = 1'b0;
             end else begin
                 ma_next = !ma_reg;
-                ma_cnt_next = HALF_LAST;
+                ma_cnt_next = ma_reg ? LOW_LAST : HIGH_LAST;
                 if (!ma_reg) begin
                     ma_edges_next = (ma_edges_reg == 2'd2) ? 2'd2 : ma_edges_reg + 2'd1;
                     if (ma_edges_reg == 2'd1) delay_cnt_next = 16'd1;
@@ -515,7 +528,7 @@ always @* begin
                 if (slo_sync_reg) begin
                     state_next = ACK;
                     ma_next = 1'b0;
-                    ma_cnt_next = HALF_LAST;
+                    ma_cnt_next = LOW_LAST;
                     ma_run_next = 1'b1;
                     ma_edges_next = 2'd0;
                     ma_stop_next = 1'b0;
@@ -669,15 +682,15 @@ always @* begin
         end
     endcase
 
-    // A frame ends with MA high for at least half a period (seed 001,
+    // A frame ends with MA high for at least a high phase (seed 001,
     // BiSS-C: TMASH > 25 ns), so that the next frame's first falling edge, in
     // the cycle after o_done at the earliest, never follows a short high
     // level: a frame that stopped MA low (CDM = 1) raises it first and ends
-    // HALF cycles later (o_done then).
+    // HIGH_CLOCKS cycles later (o_done then).
     if (finish && (!ma_reg || ma_cnt_reg != 0)) begin
         if (!ma_reg) begin
             ma_next = 1'b1;
-            ma_cnt_next = HALF_LAST;
+            ma_cnt_next = HIGH_LAST;
         end
         finish = 1'b0;
     end

@@ -14,9 +14,18 @@
 //
 // Parameters (the Rust MasterConfig field of the same name in lower case)
 //   POS_BITS             position bits (word 13), 1..48
-//   CLOCKS_PER_BIT       i_clk cycles per EnDat clock period, even, >= 8 (f_e >= 8 f_c)
+//   CLOCKS_PER_BIT       i_clk cycles per EnDat clock period, >= 8 (f_e >= 8 f_c), odd allowed
+//   HIGH_CLOCKS          i_clk cycles of each clock-high phase; default CLOCKS_PER_BIT - CLOCKS_PER_BIT/2
+//   LOW_CLOCKS           i_clk cycles of each clock-low phase; default CLOCKS_PER_BIT/2
+//                        HIGH_CLOCKS + LOW_CLOCKS = CLOCKS_PER_BIT, within 10 % of 1:1 (seed 2.3.2,
+//                        on-off ratio error). An odd period gives the high phase the extra cycle:
+//                        without compensation the encoder's bit leaves at a rising edge and is
+//                        sampled after the next falling edge, so the cable's round trip is budgeted
+//                        in the high phase (seed 2.1.1: f_c = 1/(2 t_min)); docs/timing/endat.md
 //   MEAS_CLOCKS_PER_BIT  i_clk cycles per clock period of the delay measurement (100..200 kHz)
-//   T_ST_CLOCKS          first low phase after the latching edge (t_ST), >= CLOCKS_PER_BIT/2
+//   MEAS_HIGH_CLOCKS     high phase of the measuring clock; default MEAS_CLOCKS_PER_BIT - MEAS_CLOCKS_PER_BIT/2
+//   MEAS_LOW_CLOCKS      low phase of the measuring clock; default MEAS_CLOCKS_PER_BIT/2
+//   T_ST_CLOCKS          first low phase after the latching edge (t_ST), >= LOW_CLOCKS
 //   DELAY_COMP           1: measure the delay at power-on and sample at falling edge + D
 //   SAMPLE_DELAY         without compensation samples are taken 2 + SAMPLE_DELAY cycles after each falling edge
 //   MEAS_COUNT           measurements per round, power of two >= 4; D = their rounded mean
@@ -55,7 +64,11 @@
 module endat_master #(
     parameter POS_BITS = 25,
     parameter CLOCKS_PER_BIT = 64,
+    parameter HIGH_CLOCKS = CLOCKS_PER_BIT - CLOCKS_PER_BIT / 2,
+    parameter LOW_CLOCKS = CLOCKS_PER_BIT / 2,
     parameter MEAS_CLOCKS_PER_BIT = 320,
+    parameter MEAS_HIGH_CLOCKS = MEAS_CLOCKS_PER_BIT - MEAS_CLOCKS_PER_BIT / 2,
+    parameter MEAS_LOW_CLOCKS = MEAS_CLOCKS_PER_BIT / 2,
     parameter T_ST_CLOCKS = 32,
     parameter DELAY_COMP = 0,
     parameter SAMPLE_DELAY = 0,
@@ -117,8 +130,6 @@ module endat_master #(
     input  wire        i_endat_data_in
 );
 
-localparam integer HALF = CLOCKS_PER_BIT / 2;
-localparam integer MEAS_HALF = MEAS_CLOCKS_PER_BIT / 2;
 localparam integer FIXED_DELAY = 2 + SAMPLE_DELAY;
 localparam integer MAX_A = (T_B_CLOCKS > T_M_CLOCKS) ? T_B_CLOCKS : T_M_CLOCKS;
 localparam integer MAX_B = (T_ERR_CLOCKS > T_ST_CLOCKS) ? T_ERR_CLOCKS : T_ST_CLOCKS;
@@ -127,8 +138,10 @@ localparam integer CNT_MAX = (MAX_C > MEAS_CLOCKS_PER_BIT) ? MAX_C : MEAS_CLOCKS
 localparam integer CNT_W = $clog2(CNT_MAX + 1);
 localparam integer MEAS_LOG2 = $clog2(MEAS_COUNT);
 
-localparam [31:0] HALF_LAST_32 = HALF - 1;
-localparam [31:0] MEAS_HALF_LAST_32 = MEAS_HALF - 1;
+localparam [31:0] HIGH_LAST_32 = HIGH_CLOCKS - 1;
+localparam [31:0] LOW_LAST_32 = LOW_CLOCKS - 1;
+localparam [31:0] MEAS_HIGH_LAST_32 = MEAS_HIGH_CLOCKS - 1;
+localparam [31:0] MEAS_LOW_LAST_32 = MEAS_LOW_CLOCKS - 1;
 localparam [31:0] T_ST_LAST_32 = T_ST_CLOCKS - 1;
 localparam [31:0] T_M_LAST_32 = T_M_CLOCKS - 1;
 localparam [31:0] T_B_LAST_32 = T_B_CLOCKS - 1;
@@ -138,7 +151,7 @@ localparam [31:0] MEAS_CPB_LAST_32 = MEAS_CLOCKS_PER_BIT - 1;
 localparam [31:0] FIXED_DELAY_32 = FIXED_DELAY;
 localparam [31:0] POS_BITS_32 = POS_BITS;
 localparam [31:0] TIMEOUT_32 = TIMEOUT_CLOCKS;
-localparam [31:0] HALF_32 = HALF;
+localparam [31:0] HIGH_32 = HIGH_CLOCKS;
 localparam [31:0] TOL_32 = DELAY_TOL;
 localparam [31:0] DMAX_32 = DELAY_MAX;
 localparam [31:0] GAP_32 = BLOCK_GAP;
@@ -146,8 +159,10 @@ localparam [31:0] MEAS_COUNT_32 = MEAS_COUNT;
 localparam [31:0] RETRIES_32 = MEAS_RETRIES;
 localparam [31:0] MEAS_ROUND_32 = MEAS_COUNT / 2;
 
-localparam [CNT_W-1:0] HALF_LAST = HALF_LAST_32[CNT_W-1:0];
-localparam [CNT_W-1:0] MEAS_HALF_LAST = MEAS_HALF_LAST_32[CNT_W-1:0];
+localparam [CNT_W-1:0] HIGH_LAST = HIGH_LAST_32[CNT_W-1:0];
+localparam [CNT_W-1:0] LOW_LAST = LOW_LAST_32[CNT_W-1:0];
+localparam [CNT_W-1:0] MEAS_HIGH_LAST = MEAS_HIGH_LAST_32[CNT_W-1:0];
+localparam [CNT_W-1:0] MEAS_LOW_LAST = MEAS_LOW_LAST_32[CNT_W-1:0];
 localparam [CNT_W-1:0] T_ST_LAST = T_ST_LAST_32[CNT_W-1:0];
 localparam [CNT_W-1:0] T_M_LAST = T_M_LAST_32[CNT_W-1:0];
 localparam [CNT_W-1:0] T_B_LAST = T_B_LAST_32[CNT_W-1:0];
@@ -157,7 +172,7 @@ localparam [15:0] MEAS_CPB_LAST = MEAS_CPB_LAST_32[15:0];
 localparam [15:0] FIXED_D = FIXED_DELAY_32[15:0];
 localparam [7:0]  POS_LEN = POS_BITS_32[7:0];
 localparam [15:0] TIMEOUT = TIMEOUT_32[15:0];
-localparam [15:0] HALF16 = HALF_32[15:0];
+localparam [15:0] HIGH16 = HIGH_32[15:0];
 localparam [15:0] TOL16 = TOL_32[15:0];
 localparam [15:0] DMAX16 = DMAX_32[15:0];
 localparam [15:0] GAP16 = GAP_32[15:0];
@@ -202,8 +217,15 @@ localparam [2:0]
 
 initial begin
     if (POS_BITS < 1 || POS_BITS > 48) $error("endat_master: POS_BITS must be 1..48");
-    if (CLOCKS_PER_BIT < 8 || CLOCKS_PER_BIT % 2 != 0) $error("endat_master: CLOCKS_PER_BIT must be even and >= 8");
-    if (T_ST_CLOCKS < HALF) $error("endat_master: T_ST_CLOCKS must be >= CLOCKS_PER_BIT/2");
+    if (CLOCKS_PER_BIT < 8) $error("endat_master: CLOCKS_PER_BIT must be >= 8");
+    if (HIGH_CLOCKS < 1 || LOW_CLOCKS < 1 || HIGH_CLOCKS + LOW_CLOCKS != CLOCKS_PER_BIT)
+        $error("endat_master: HIGH_CLOCKS + LOW_CLOCKS must be CLOCKS_PER_BIT");
+    if (MEAS_HIGH_CLOCKS < 1 || MEAS_LOW_CLOCKS < 1 || MEAS_HIGH_CLOCKS + MEAS_LOW_CLOCKS != MEAS_CLOCKS_PER_BIT)
+        $error("endat_master: MEAS_HIGH_CLOCKS + MEAS_LOW_CLOCKS must be MEAS_CLOCKS_PER_BIT");
+    if ((HIGH_CLOCKS > LOW_CLOCKS) ? (10 * (HIGH_CLOCKS - LOW_CLOCKS) > CLOCKS_PER_BIT)
+                                   : (10 * (LOW_CLOCKS - HIGH_CLOCKS) > CLOCKS_PER_BIT))
+        $error("endat_master: HIGH_CLOCKS and LOW_CLOCKS must be within 10 percent of 1:1 (seed 2.3.2)");
+    if (T_ST_CLOCKS < LOW_CLOCKS) $error("endat_master: T_ST_CLOCKS must be >= LOW_CLOCKS");
     if (MEAS_COUNT < 4 || (MEAS_COUNT & (MEAS_COUNT - 1)) != 0) $error("endat_master: MEAS_COUNT must be a power of two >= 4");
 end
 
@@ -383,7 +405,8 @@ wire [7:0]  nf = (kind_reg == KIND_PARAM21) ? 8'd0 : (is22 ? 8'd2 : 8'd1);
 wire [7:0]  head_len = (kind_reg == KIND_PARAM21) ? 8'd24 : ((kind_reg == KIND_TEST21) ? 8'd40 : POS_LEN);
 wire [15:0] k_off = (kind_reg == KIND_PARAM21) ? 16'd37 : 16'd8;
 wire [15:0] cpb_last = meas_frame_reg ? MEAS_CPB_LAST : CPB_LAST;
-wire [CNT_W-1:0] half_last = meas_frame_reg ? MEAS_HALF_LAST : HALF_LAST;
+wire [CNT_W-1:0] high_last = meas_frame_reg ? MEAS_HIGH_LAST : HIGH_LAST;
+wire [CNT_W-1:0] low_last = meas_frame_reg ? MEAS_LOW_LAST : LOW_LAST;
 wire [1:0]  ads = is22 ? ({1'b0, ad1_on_reg} + {1'b0, ad2_on_reg}) : 2'd0;
 wire [15:0] frame_len = {8'd0, nf} + {8'd0, head_len} + 16'd5 + (ads == 2'd2 ? 16'd58 : (ads == 2'd1 ? AD_BITS : 16'd0));
 // The frame length and the block's offsets from the start bit, registered (timing closure:
@@ -596,7 +619,7 @@ always @* begin
                             stop_idx_next = smp_idx_reg + frame_len_reg;
                         end
                         drift_next = (DELAY_COMP != 0) && !meas_frame_reg && delay_valid_reg
-                                     && ((since_edge_reg > HALF16 + TOL16) || (since_edge_reg + TOL16 < HALF16));
+                                     && ((since_edge_reg > HIGH16 + TOL16) || (since_edge_reg + TOL16 < HIGH16));
                     end else if (polls_reg == poll_limit_reg) begin
                         do_abort = 1'b1;
                         abort_timeout = 1'b1;
@@ -823,7 +846,7 @@ always @* begin
                 state_next = FIRST;
                 clk_out_next = 1'b0;
                 fall_idx_next = 16'd1;
-                cnt_next = start_meas ? MEAS_HALF_LAST : T_ST_LAST;
+                cnt_next = start_meas ? MEAS_LOW_LAST : T_ST_LAST;
                 kind_next = start_meas ? KIND_POS21 : frame_kind(i_mode);
                 mode_next = start_meas ? 6'b000111 : i_mode;
                 mrs_next = start_meas ? 8'd0 : i_mrs;
@@ -846,7 +869,7 @@ always @* begin
             if (cnt_reg == 0) begin
                 state_next = HIGH;
                 clk_out_next = 1'b1;
-                cnt_next = half_last;
+                cnt_next = high_last;
             end else begin
                 cnt_next = cnt_reg - 1'b1;
             end
@@ -881,7 +904,7 @@ always @* begin
                     state_next = LOW;
                     clk_out_next = 1'b0;
                     fall_idx_next = k_next;
-                    cnt_next = half_last;
+                    cnt_next = low_last;
                     if (drive_mode || in_block) begin
                         oe_next = 1'b1;
                         dout_next = tx_bits_reg[34];
@@ -905,7 +928,7 @@ always @* begin
             if (cnt_reg == 0) begin
                 state_next = HIGH;
                 clk_out_next = 1'b1;
-                cnt_next = half_last;
+                cnt_next = high_last;
                 if (fall_idx_reg >= 16'd10) meas_cnt_next = 16'd1;
             end else begin
                 cnt_next = cnt_reg - 1'b1;

@@ -10,21 +10,27 @@
 //
 // Parameters (the Rust MasterConfig field of the same name in lower case)
 //   BITS            data bits per read, 1..64
-//   CLOCKS_PER_BIT  i_clk cycles per SSI clock period, even, >= 8
+//   CLOCKS_PER_BIT  i_clk cycles per SSI clock period, >= 8 (odd is allowed)
+//   HIGH_CLOCKS     i_clk cycles of each clock-high phase; default CLOCKS_PER_BIT - CLOCKS_PER_BIT/2
+//   LOW_CLOCKS      i_clk cycles of each clock-low phase (the capture phase); default CLOCKS_PER_BIT/2
+//                   HIGH_CLOCKS + LOW_CLOCKS = CLOCKS_PER_BIT. An odd period gives the high
+//                   phase the extra cycle: the bit leaves the encoder at a rising edge and is
+//                   captured 2 + SAMPLE_DELAY cycles after the next falling edge, so the cable's
+//                   round trip is budgeted in the high phase (docs/timing/ssi.md, "Odd dividers")
 //   GRAY            1: the encoder sends Gray code; o_position is binary
 //   DOUBLE_READ     1: clock 2*BITS bits and flag o_err_double if the copies differ
 //   WIRE_CHECK      1: clock one bit past the LSB and flag o_err_wire unless it is 0
 //                   (DOUBLE_READ and WIRE_CHECK exclude each other)
-//   T_CS_CLOCKS     length of the first low phase (the encoder's T_cs), >= CLOCKS_PER_BIT/2
+//   T_CS_CLOCKS     length of the first low phase (the encoder's T_cs), >= LOW_CLOCKS
 //   PAUSE_CLOCKS    clock-high pause after each read, >= the encoder's monoflop time T_m
 //   SAMPLE_DELAY    cycles between a falling edge and the pin level it samples (long cables);
-//                   2 + SAMPLE_DELAY must be below CLOCKS_PER_BIT/2
+//                   2 + SAMPLE_DELAY must be below LOW_CLOCKS
 //
-// Timing (n = 3 bits, no options, H = CLOCKS_PER_BIT/2); docs/timing/ssi.md has the full story
+// Timing (n = 3 bits, no options, H = HIGH_CLOCKS, L = LOW_CLOCKS); docs/timing/ssi.md has the full story
 //
 //   o_ssi_clk ‾‾‾‾‾\________/‾‾‾‾\____/‾‾‾‾\____/‾‾‾‾\____/‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾
 //   state     IDLE | LATCH  |HIGH|LOW |HIGH|LOW |HIGH|LOW | PAUSE      | IDLE
-//                  |<-T_CS->|<H >|<H >|
+//                  |<-T_CS->|<H >|<L >|
 //   data      ‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾X MSB    X b1     X LSB    X 0 ...(T_m)../‾‾‾‾‾
 //   capture                       ^ fall 2 + 2 + SAMPLE_DELAY (MSB)
 //   o_done    ___________________________________________/‾\__________________
@@ -40,6 +46,8 @@
 module ssi_master #(
     parameter BITS = 12,
     parameter CLOCKS_PER_BIT = 200,
+    parameter HIGH_CLOCKS = CLOCKS_PER_BIT - CLOCKS_PER_BIT / 2,
+    parameter LOW_CLOCKS = CLOCKS_PER_BIT / 2,
     parameter GRAY = 0,
     parameter DOUBLE_READ = 0,
     parameter WIRE_CHECK = 0,
@@ -66,23 +74,25 @@ module ssi_master #(
     input  wire            i_ssi_data
 );
 
-localparam integer HALF = CLOCKS_PER_BIT / 2;
+localparam integer PHASE_MAX = (HIGH_CLOCKS > LOW_CLOCKS) ? HIGH_CLOCKS : LOW_CLOCKS; // the longer phase
 localparam integer SAMPLED = BITS * ((DOUBLE_READ != 0) ? 2 : 1) + ((WIRE_CHECK != 0) ? 1 : 0);
-localparam integer CNT_MAX = (PAUSE_CLOCKS > T_CS_CLOCKS) ? ((PAUSE_CLOCKS > HALF) ? PAUSE_CLOCKS : HALF)
-                                                         : ((T_CS_CLOCKS > HALF) ? T_CS_CLOCKS : HALF);
+localparam integer CNT_MAX = (PAUSE_CLOCKS > T_CS_CLOCKS) ? ((PAUSE_CLOCKS > PHASE_MAX) ? PAUSE_CLOCKS : PHASE_MAX)
+                                                         : ((T_CS_CLOCKS > PHASE_MAX) ? T_CS_CLOCKS : PHASE_MAX);
 localparam integer CNT_W = $clog2(CNT_MAX + 1);
 
 // 32-bit forms of the counter constants, cut to the counter's width below.
-localparam [31:0] HALF_LAST_32 = HALF - 1;
+localparam [31:0] HIGH_LAST_32 = HIGH_CLOCKS - 1;
+localparam [31:0] LOW_LAST_32 = LOW_CLOCKS - 1;
 localparam [31:0] T_CS_LAST_32 = T_CS_CLOCKS - 1;
 localparam [31:0] PAUSE_LAST_32 = PAUSE_CLOCKS - 1;
 // The low-phase count at which the synchronised level is the pin level
 // SAMPLE_DELAY cycles after the falling edge (2 cycles of synchroniser).
-localparam [31:0] CAPTURE_AT_32 = HALF - 2 - SAMPLE_DELAY;
+localparam [31:0] CAPTURE_AT_32 = LOW_CLOCKS - 2 - SAMPLE_DELAY;
 localparam [31:0] SAMPLED_32 = SAMPLED;
 localparam [31:0] BITS_32 = BITS;
 
-localparam [CNT_W-1:0] HALF_LAST = HALF_LAST_32[CNT_W-1:0];
+localparam [CNT_W-1:0] HIGH_LAST = HIGH_LAST_32[CNT_W-1:0];
+localparam [CNT_W-1:0] LOW_LAST = LOW_LAST_32[CNT_W-1:0];
 localparam [CNT_W-1:0] T_CS_LAST = T_CS_LAST_32[CNT_W-1:0];
 localparam [CNT_W-1:0] PAUSE_LAST = PAUSE_LAST_32[CNT_W-1:0];
 localparam [CNT_W-1:0] CAPTURE_AT = CAPTURE_AT_32[CNT_W-1:0];
@@ -99,9 +109,11 @@ localparam [2:0]
 
 initial begin
     if (BITS < 1 || BITS > 64) $error("ssi_master: BITS must be 1..64");
-    if (CLOCKS_PER_BIT < 8 || CLOCKS_PER_BIT % 2 != 0) $error("ssi_master: CLOCKS_PER_BIT must be even and >= 8");
-    if (2 + SAMPLE_DELAY > HALF - 1) $error("ssi_master: 2 + SAMPLE_DELAY must be below CLOCKS_PER_BIT/2");
-    if (T_CS_CLOCKS < HALF) $error("ssi_master: T_CS_CLOCKS must be at least CLOCKS_PER_BIT/2");
+    if (CLOCKS_PER_BIT < 8) $error("ssi_master: CLOCKS_PER_BIT must be >= 8");
+    if (HIGH_CLOCKS < 1 || LOW_CLOCKS < 1 || HIGH_CLOCKS + LOW_CLOCKS != CLOCKS_PER_BIT)
+        $error("ssi_master: HIGH_CLOCKS + LOW_CLOCKS must be CLOCKS_PER_BIT");
+    if (2 + SAMPLE_DELAY > LOW_CLOCKS - 1) $error("ssi_master: 2 + SAMPLE_DELAY must be below LOW_CLOCKS");
+    if (T_CS_CLOCKS < LOW_CLOCKS) $error("ssi_master: T_CS_CLOCKS must be at least LOW_CLOCKS");
     if ((DOUBLE_READ != 0) && (WIRE_CHECK != 0)) $error("ssi_master: DOUBLE_READ and WIRE_CHECK exclude each other");
 end
 
@@ -186,7 +198,7 @@ always @* begin
             if (cnt_reg == 0) begin
                 state_next = (state_reg == LATCH) ? HIGH : LOW;
                 ssi_clk_next = (state_reg == LATCH);
-                cnt_next = HALF_LAST;
+                cnt_next = (state_reg == LATCH) ? HIGH_LAST : LOW_LAST;
             end else begin
                 cnt_next = cnt_reg - 1'b1;
             end
@@ -215,7 +227,7 @@ always @* begin
                     err_wire_next = wire_bad_next;
                 end else begin
                     state_next = HIGH;
-                    cnt_next = HALF_LAST;
+                    cnt_next = HIGH_LAST;
                 end
             end else begin
                 cnt_next = cnt_reg - 1'b1;

@@ -106,20 +106,23 @@ impl Timebase {
         (ns * 1e3 / self.period_ps_f64()).round().max(0.0) as u64
     }
 
-    /// The divider that makes a bit clock of `f_hz` from `f_sys`, which must be
-    /// exact and even (the bit clock is high for half of it and low for half).
+    /// The divider that makes a bit clock of `f_hz` from `f_sys`: it must be
+    /// exact (a whole number of system clocks per period) and at least
+    /// `min` (the core's fewest cycles per period). It may be odd: the
+    /// period then splits into phases one cycle apart ([`BitClock`]).
     /// `field` names the scenario field the frequency came from.
-    pub fn even_divider(&self, f_hz: f64, field: &str) -> Result<u64> {
+    pub fn divider(&self, f_hz: f64, field: &str, min: u64) -> Result<BitClock> {
         let ratio = self.f_sys_hz as f64 / f_hz;
         let divider = ratio.round();
-        if !(ratio.is_finite()) || (ratio - divider).abs() > 1e-6 || divider < 4.0 || divider as u64 % 2 != 0 {
-            let suggestion = even_near(ratio);
+        if !(ratio.is_finite()) || (ratio - divider).abs() > 1e-6 || divider < min as f64 {
+            let suggestion = if ratio.is_finite() { ratio.clamp(min as f64, 1e12).round() as u64 } else { min };
             return Err(ConfigError::invalid(
                 field,
                 format!(
-                    "{} kHz is f_sys / {:.3}, not f_sys divided by an even whole number of at least 4",
+                    "{} kHz is f_sys / {:.3}, not f_sys divided by a whole number of at least {}",
                     f_hz / 1e3,
-                    ratio
+                    ratio,
+                    min
                 ),
                 format!(
                     "use {} kHz (f_sys / {}) or change f_sys_mhz",
@@ -128,16 +131,91 @@ impl Timebase {
                 ),
             ));
         }
-        Ok(divider as u64)
+        Ok(BitClock::of(divider as u64))
     }
 }
 
-/// The even divider nearest `ratio`, at least 4 (for the error's suggestion).
-fn even_near(ratio: f64) -> u64 {
-    // Clamp first: an absurd ratio (a clock of 1e-300 kHz) must not overflow.
-    let r = if ratio.is_finite() { ratio.clamp(4.0, 1e12) } else { 4.0 };
-    let even = (r / 2.0).round() as u64 * 2;
-    even.max(4)
+/// A bit clock made by dividing the system clock: its period in cycles and
+/// how the period splits into a high and a low phase. An even period splits
+/// in halves; an odd one gives the HIGH phase the extra cycle (`high = low +
+/// 1`). Why high: the SSI and EnDat masters sample a bit a fixed number of
+/// cycles after a falling edge, and the bit left the encoder at the rising
+/// edge before it, so the cable's round trip is budgeted in the high phase
+/// (EnDat 2.2 §2.1.1: with a duty cycle other than 1:1 the shorter phase
+/// sets the clock limit); BiSS-C samples by the measured delay, whatever
+/// the split, and its frame ends and gaps are high levels (TMASH). The
+/// seeds' minimum phase times (BiSS-C TMASH and TMASL > 25 ns, EnDat
+/// t_HI and t_LO >= 0.2 µs) then bind the shorter LOW phase.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct BitClock {
+    /// System clocks per period (`CLOCKS_PER_BIT`).
+    pub period: u64,
+    /// System clocks of the high phase (`HIGH_CLOCKS`): `period - period / 2`.
+    pub high: u64,
+    /// System clocks of the low phase (`LOW_CLOCKS`): `period / 2`.
+    pub low: u64,
+}
+
+impl BitClock {
+    /// The split of a period of `period` cycles: halves, or the high phase
+    /// one cycle longer when `period` is odd.
+    pub fn of(period: u64) -> Self {
+        BitClock { period, high: period - period / 2, low: period / 2 }
+    }
+
+    /// The phase parameters a vector header lists: none when the phases are
+    /// equal (the RTL's defaults, `CLOCKS_PER_BIT / 2` each, so vectors of
+    /// even dividers are what they always were), `HIGH_CLOCKS` and
+    /// `LOW_CLOCKS` otherwise, under the names `names`.
+    pub fn parameters(high: u64, low: u64, names: [&'static str; 2]) -> Vec<(&'static str, u64)> {
+        if high == low {
+            Vec::new()
+        } else {
+            vec![(names[0], high), (names[1], low)]
+        }
+    }
+}
+
+/// Test support: the clock phases a bench drives.
+#[cfg(test)]
+pub(crate) mod phases {
+    use std::collections::BTreeMap;
+
+    use crate::testbench::Testbench;
+    use crate::trace::Sample;
+
+    /// How often each run length of line signal `line` (the master's clock
+    /// pin) occurs over a whole run, high runs and low runs apart.
+    pub fn runs<B: Testbench>(mut bench: B, line: usize) -> (BTreeMap<u64, u64>, BTreeMap<u64, u64>) {
+        let mut sample = Sample::for_layout(bench.layout());
+        let (mut high, mut low) = (BTreeMap::new(), BTreeMap::new());
+        let mut level: Option<u64> = None;
+        let mut len = 0;
+        while !bench.finished() {
+            bench.step(Some(&mut sample));
+            let v = sample.line[line];
+            if Some(v) != level {
+                match level {
+                    // The first run (from reset) has no edge before it.
+                    Some(l) if len > 0 => *(if l == 1 { &mut high } else { &mut low }).entry(len).or_insert(0) += 1,
+                    _ => {}
+                }
+                level = Some(v);
+                len = 0;
+            }
+            len += 1;
+        }
+        (high, low)
+    }
+
+    /// Asserts that the shortest high run is `high` cycles and the shortest
+    /// low run `low` cycles, each seen at least 8 times (a frame's worth).
+    pub fn assert_split<B: Testbench>(bench: B, line: usize, high: u64, low: u64, what: &str) {
+        let (h, l) = runs(bench, line);
+        assert_eq!(h.keys().next().copied(), Some(high), "{what}: shortest high phase; high runs {h:?}");
+        assert_eq!(l.keys().next().copied(), Some(low), "{what}: shortest low phase; low runs {l:?}");
+        assert!(h[&high] >= 8 && l[&low] >= 8, "{what}: too few clock phases; {h:?} {l:?}");
+    }
 }
 
 #[cfg(test)]
@@ -191,11 +269,30 @@ mod tests {
     }
 
     #[test]
-    fn bit_clock_dividers_must_be_exact_and_even() {
+    fn bit_clock_dividers_must_be_exact_and_at_least_the_minimum() {
         let tb = Timebase::from_mhz(50.0).unwrap();
-        assert_eq!(tb.even_divider(250e3, "master.clock_khz").unwrap(), 200);
-        let err = tb.even_divider(300e3, "master.clock_khz").unwrap_err();
+        assert_eq!(tb.divider(250e3, "master.clock_khz", 8).unwrap(), BitClock { period: 200, high: 100, low: 100 });
+        let err = tb.divider(300e3, "master.clock_khz", 8).unwrap_err();
         assert_eq!(err.field(), "master.clock_khz");
         assert!(err.to_string().contains("use "), "{}", err);
+    }
+
+    /// Issue 14 item 2: a line clock that needs an odd divider (4 MHz from
+    /// 100 MHz is f_sys / 25) is accepted, the high phase one cycle longer;
+    /// a divider below the core's minimum is still refused, naming the
+    /// field and the fastest clock that would do.
+    #[test]
+    fn odd_dividers_are_accepted_with_the_extra_cycle_high_and_small_ones_refused() {
+        let tb = Timebase::from_mhz(100.0).unwrap();
+        assert_eq!(tb.divider(4e6, "master.clock_khz", 8).unwrap(), BitClock { period: 25, high: 13, low: 12 });
+        let tb = Timebase::from_mhz(90.0).unwrap();
+        assert_eq!(tb.divider(10e6, "master.clock_khz", 8).unwrap(), BitClock { period: 9, high: 5, low: 4 });
+        for (mhz, khz) in [(100.0, 50_000.0), (100.0, 100_000.0), (50.0, 12_500.0)] {
+            let tb = Timebase::from_mhz(mhz).unwrap();
+            let err = tb.divider(khz * 1e3, "master.clock_khz", 8).unwrap_err();
+            assert_eq!(err.field(), "master.clock_khz");
+            let text = err.to_string();
+            assert!(text.contains("at least 8") && text.contains("f_sys / 8"), "{text}");
+        }
     }
 }

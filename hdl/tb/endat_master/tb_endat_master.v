@@ -12,7 +12,11 @@ module tb_endat_master;
 /* Core parameters: set per vector file from its `params:` header line */
 parameter POS_BITS = 25;
 parameter CLOCKS_PER_BIT = 64;
+parameter HIGH_CLOCKS = CLOCKS_PER_BIT - CLOCKS_PER_BIT / 2;
+parameter LOW_CLOCKS = CLOCKS_PER_BIT / 2;
 parameter MEAS_CLOCKS_PER_BIT = 320;
+parameter MEAS_HIGH_CLOCKS = MEAS_CLOCKS_PER_BIT - MEAS_CLOCKS_PER_BIT / 2;
+parameter MEAS_LOW_CLOCKS = MEAS_CLOCKS_PER_BIT / 2;
 parameter T_ST_CLOCKS = 32;
 parameter DELAY_COMP = 0;
 parameter SAMPLE_DELAY = 0;
@@ -122,7 +126,11 @@ endtask
 endat_master #(
     .POS_BITS(POS_BITS),
     .CLOCKS_PER_BIT(CLOCKS_PER_BIT),
+    .HIGH_CLOCKS(HIGH_CLOCKS),
+    .LOW_CLOCKS(LOW_CLOCKS),
     .MEAS_CLOCKS_PER_BIT(MEAS_CLOCKS_PER_BIT),
+    .MEAS_HIGH_CLOCKS(MEAS_HIGH_CLOCKS),
+    .MEAS_LOW_CLOCKS(MEAS_LOW_CLOCKS),
     .T_ST_CLOCKS(T_ST_CLOCKS),
     .DELAY_COMP(DELAY_COMP),
     .SAMPLE_DELAY(SAMPLE_DELAY),

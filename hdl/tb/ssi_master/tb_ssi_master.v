@@ -8,6 +8,8 @@ module tb_ssi_master;
 /* Core parameters: set per vector file from its `params:` header line */
 parameter BITS = 12;
 parameter CLOCKS_PER_BIT = 200;
+parameter HIGH_CLOCKS = CLOCKS_PER_BIT - CLOCKS_PER_BIT / 2;
+parameter LOW_CLOCKS = CLOCKS_PER_BIT / 2;
 parameter GRAY = 0;
 parameter DOUBLE_READ = 0;
 parameter WIRE_CHECK = 0;
@@ -57,6 +59,8 @@ endtask
 ssi_master #(
     .BITS(BITS),
     .CLOCKS_PER_BIT(CLOCKS_PER_BIT),
+    .HIGH_CLOCKS(HIGH_CLOCKS),
+    .LOW_CLOCKS(LOW_CLOCKS),
     .GRAY(GRAY),
     .DOUBLE_READ(DOUBLE_READ),
     .WIRE_CHECK(WIRE_CHECK),

@@ -26,7 +26,11 @@ module tb_cosim_endat_master;
 /* Core parameters (scripts/cosim.sh: from the scenario, by cosim-params) */
 parameter POS_BITS = 25;
 parameter CLOCKS_PER_BIT = 64;
+parameter HIGH_CLOCKS = CLOCKS_PER_BIT - CLOCKS_PER_BIT / 2;
+parameter LOW_CLOCKS = CLOCKS_PER_BIT / 2;
 parameter MEAS_CLOCKS_PER_BIT = 320;
+parameter MEAS_HIGH_CLOCKS = MEAS_CLOCKS_PER_BIT - MEAS_CLOCKS_PER_BIT / 2;
+parameter MEAS_LOW_CLOCKS = MEAS_CLOCKS_PER_BIT / 2;
 parameter T_ST_CLOCKS = 32;
 parameter DELAY_COMP = 0;
 parameter SAMPLE_DELAY = 0;
@@ -66,7 +70,11 @@ wire endat_clk, data_out, data_oe, data_in, enc_oe;
 endat_master #(
     .POS_BITS(POS_BITS),
     .CLOCKS_PER_BIT(CLOCKS_PER_BIT),
+    .HIGH_CLOCKS(HIGH_CLOCKS),
+    .LOW_CLOCKS(LOW_CLOCKS),
     .MEAS_CLOCKS_PER_BIT(MEAS_CLOCKS_PER_BIT),
+    .MEAS_HIGH_CLOCKS(MEAS_HIGH_CLOCKS),
+    .MEAS_LOW_CLOCKS(MEAS_LOW_CLOCKS),
     .T_ST_CLOCKS(T_ST_CLOCKS),
     .DELAY_COMP(DELAY_COMP),
     .SAMPLE_DELAY(SAMPLE_DELAY),

@@ -24,6 +24,8 @@ module tb_cosim_ssi_master;
 /* Core parameters (scripts/cosim.sh: from the scenario, by cosim-params) */
 parameter BITS = 12;
 parameter CLOCKS_PER_BIT = 200;
+parameter HIGH_CLOCKS = CLOCKS_PER_BIT - CLOCKS_PER_BIT / 2;
+parameter LOW_CLOCKS = CLOCKS_PER_BIT / 2;
 parameter GRAY = 0;
 parameter DOUBLE_READ = 0;
 parameter WIRE_CHECK = 0;
@@ -51,6 +53,8 @@ wire [BITS-1:0] o_position;
 ssi_master #(
     .BITS(BITS),
     .CLOCKS_PER_BIT(CLOCKS_PER_BIT),
+    .HIGH_CLOCKS(HIGH_CLOCKS),
+    .LOW_CLOCKS(LOW_CLOCKS),
     .GRAY(GRAY),
     .DOUBLE_READ(DOUBLE_READ),
     .WIRE_CHECK(WIRE_CHECK),

@@ -282,7 +282,8 @@ impl BenchConfig {
         }
         check_time("master.max_delay_ns", m.max_delay_ns)?;
         check_time("master.timeout_us", m.timeout_us)?;
-        let clocks_per_bit = tb.even_divider(m.clock_khz * 1e3, "master.clock_khz")?;
+        let clock = tb.divider(m.clock_khz * 1e3, "master.clock_khz", 8)?;
+        let clocks_per_bit = clock.period;
         let delay_tol = match m.delay_tolerance_ns {
             Some(ns) => {
                 check_time("master.delay_tolerance_ns", ns)?;
@@ -297,6 +298,8 @@ impl BenchConfig {
             slave_crc_width: m.crc_width.clone().unwrap_or_else(|| self.slaves.iter().map(|s| s.crc_width).collect()),
             slave_crc_poly: m.crc_poly.clone().unwrap_or_else(|| self.slaves.iter().map(|s| s.crc_poly).collect()),
             clocks_per_bit,
+            high_clocks: clock.high,
+            low_clocks: clock.low,
             max_delay: tb.cycles_at_least_ns(m.max_delay_ns),
             timeout_clocks: tb.cycles_at_least_ns(m.timeout_us * 1e3),
             cal_frames: m.cal_frames,

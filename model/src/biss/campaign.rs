@@ -87,6 +87,8 @@ fn pair(bits: u32) -> (Master, Chain) {
         slave_crc_width: vec![6],
         slave_crc_poly: vec![0x03],
         clocks_per_bit: 8,
+        high_clocks: 4,
+        low_clocks: 4,
         max_delay: 64,
         timeout_clocks: 400,
         cal_frames: 1,

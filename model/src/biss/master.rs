@@ -4,6 +4,7 @@ use super::control::{self, Access};
 use super::data_crc;
 use crate::crc::{BitSerial, BISS_CTRL_CRC4};
 use crate::ports::{Port, Ports};
+use crate::time::BitClock;
 use crate::{ConfigError, Result};
 
 /// Synchroniser depth on `i_slo` (fixed, as in the RTL).
@@ -27,8 +28,16 @@ pub struct MasterConfig {
     /// CRC polynomial of each slave, normal notation without the top term
     /// (`SLAVE_CRC_POLY`); BiSS-C `x^6 + x + 1`: 0x03.
     pub slave_crc_poly: Vec<u64>,
-    /// System clocks per MA period, even, at least 8 (`CLOCKS_PER_BIT`).
+    /// System clocks per MA period, 8 to 4096 (`CLOCKS_PER_BIT`).
     pub clocks_per_bit: u64,
+    /// System clocks of each MA high phase (`HIGH_CLOCKS`); with
+    /// `low_clocks` it makes up the period. An odd period gives the high
+    /// phase the extra cycle ([`crate::time::BitClock`]): the master
+    /// samples by the measured delay whatever the split, and the seed's
+    /// TMASH and TMASL (> 25 ns) then bind the low phase.
+    pub high_clocks: u64,
+    /// System clocks of each MA low phase (`LOW_CLOCKS`).
+    pub low_clocks: u64,
     /// Longest delay from the second rising MA edge to the ack at the
     /// synchroniser output that the master compensates, cycles (`MAX_DELAY`).
     pub max_delay: u64,
@@ -97,11 +106,18 @@ impl MasterConfig {
                 ));
             }
         }
-        if self.clocks_per_bit < 8 || self.clocks_per_bit % 2 != 0 || self.clocks_per_bit > 4096 {
+        if self.clocks_per_bit < 8 || self.clocks_per_bit > 4096 {
             return Err(ConfigError::invalid(
                 "master.clock_khz",
                 format!("MA is f_sys / {}", self.clocks_per_bit),
-                "make f_sys an even multiple of MA, 8 to 4096 times (10 MHz needs f_sys of at least 80 MHz)",
+                "make f_sys a multiple of MA, 8 to 4096 times (10 MHz needs f_sys of at least 80 MHz)",
+            ));
+        }
+        if self.high_clocks + self.low_clocks != self.clocks_per_bit || self.high_clocks == 0 || self.low_clocks == 0 {
+            return Err(ConfigError::invalid(
+                "master.clock_khz",
+                format!("MA phases of {} + {} cycles for a period of {}", self.high_clocks, self.low_clocks, self.clocks_per_bit),
+                "give high and low phases that make up the period",
             ));
         }
         if self.max_delay < 1 || self.max_delay >= 1 << DELAY_BITS {
@@ -151,11 +167,16 @@ impl MasterConfig {
             ("SLAVE_CRC_WIDTH", pack8(&widths)),
             ("SLAVE_CRC_POLY", pack8(&self.slave_crc_poly)),
             ("CLOCKS_PER_BIT", self.clocks_per_bit),
+        ]
+        .into_iter()
+        .chain(BitClock::parameters(self.high_clocks, self.low_clocks, ["HIGH_CLOCKS", "LOW_CLOCKS"]))
+        .chain([
             ("MAX_DELAY", self.max_delay),
             ("TIMEOUT_CLOCKS", self.timeout_clocks),
             ("CAL_FRAMES", self.cal_frames),
             ("DELAY_TOL", self.delay_tol),
-        ]
+        ])
+        .collect()
     }
 }
 
@@ -537,7 +558,7 @@ impl Master {
         let cfg = &self.cfg;
         let c = self.r;
         let mut n = c;
-        let half = cfg.clocks_per_bit / 2;
+        let (high, low) = (cfg.high_clocks, cfg.low_clocks);
         let period = cfg.clocks_per_bit;
         let mut o = Out {
             o_done: false,
@@ -554,15 +575,16 @@ impl Master {
             ..self.out
         };
 
-        // MA generator: toggles every H cycles while running; stops at a
-        // half-period boundary where MA equals the requested stop level.
+        // MA generator: toggles after HIGH_CLOCKS high and LOW_CLOCKS low
+        // cycles while running; stops at a phase boundary where MA equals
+        // the requested stop level.
         if c.ma_run {
             if c.ma_cnt == 0 {
                 if c.ma_stop && c.ma == c.ma_stop_level {
                     n.ma_run = false;
                 } else {
                     n.ma = !c.ma;
-                    n.ma_cnt = half - 1;
+                    n.ma_cnt = if c.ma { low - 1 } else { high - 1 };
                     if !c.ma {
                         n.ma_edges = (c.ma_edges + 1).min(2);
                         if c.ma_edges == 1 {
@@ -597,7 +619,7 @@ impl Master {
                     if c.slo_sync {
                         n.state = State::Ack;
                         n.ma = false;
-                        n.ma_cnt = half - 1;
+                        n.ma_cnt = low - 1;
                         n.ma_run = true;
                         n.ma_edges = 0;
                         n.ma_stop = false;
@@ -751,15 +773,15 @@ impl Master {
             }
         }
 
-        // A frame ends with MA high for at least half a period (seed 001,
+        // A frame ends with MA high for at least a high phase (seed 001,
         // BiSS-C: TMASH > 25 ns), so that the next frame's first falling
         // edge, in the cycle after o_done at the earliest, never follows a
         // short high level: a frame that stopped MA low (CDM = 1) raises it
-        // first and ends H cycles later (o_done then).
+        // first and ends HIGH_CLOCKS cycles later (o_done then).
         if finish.is_some() && (!c.ma || c.ma_cnt != 0) {
             if !c.ma {
                 n.ma = true;
-                n.ma_cnt = half - 1;
+                n.ma_cnt = high - 1;
             }
             finish = None;
         }

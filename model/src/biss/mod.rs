@@ -29,9 +29,14 @@
 //! 10 MHz), `t_busy` at least 2 × TMAS, BiSS timeout 16 µs.
 //!
 //! # Cycle-level interpretation (the seed's timing figure is missing)
-//! * **MA** is `f_sys / CLOCKS_PER_BIT`, high and low for `H = CLOCKS_PER_BIT/2`
-//!   cycles each, starting low from idle. The slave changes SLO after each
-//!   rising edge of MA at its pin.
+//! * **MA** is `f_sys / CLOCKS_PER_BIT`, high for `HIGH_CLOCKS` and low for
+//!   `LOW_CLOCKS` cycles (`H = CLOCKS_PER_BIT/2` each for an even divider),
+//!   starting low from idle. The slave changes SLO after each rising edge of
+//!   MA at its pin. An odd divider (10 MHz from 90 MHz, `f_sys / 9`) gives the
+//!   high phase the extra cycle: samples are placed by the measured delay,
+//!   whatever the split, and the levels that end and separate frames are
+//!   high (TMASH); the seed's TMASH/TMASL > 25 ns then bind the low phase
+//!   ([`crate::time::BitClock`], `docs/timing/biss.md` "Odd dividers").
 //! * **Line-delay compensation** (every frame): the master counts the cycles
 //!   from its second rising edge to the first low level at the output of its
 //!   two-flop SLO synchroniser (`o_delay`: cable both ways, the slave's output

@@ -568,3 +568,32 @@ fn register_access_and_commands_keep_tmash_tmasl_and_t_busy_at_every_ma_rate() {
         assert!(bad.is_empty(), "{khz} kHz: {} violations, first: {}", bad.len(), bad[0]);
     }
 }
+
+/// Issue 14 item 2: odd MA dividers. MA is HIGH_CLOCKS = period - period / 2
+/// high and LOW_CLOCKS = period / 2 low, every phase (frame ends and the gaps
+/// of a register access included) keeps TMASH and TMASL (> 25 ns) and Tbusy,
+/// and every frame reads back, at odd dividers from 9 to 25.
+#[test]
+fn odd_ma_dividers_split_high_first_keep_the_seed_timing_and_read_back() {
+    for (mhz, khz, high, low) in [(90.0, 10_000.0, 5, 4), (100.0, 4000.0, 13, 12), (55.0, 5000.0, 6, 5), (62.5, 2500.0, 13, 12)] {
+        let mut cfg = BenchConfig {
+            f_sys_mhz: mhz,
+            master: MasterSettings { clock_khz: khz, timeout_us: 400.0, ..MasterSettings::default() },
+            slaves: vec![SlaveSettings { timeout_us: 30.0, registers: vec![0x5A, 0xA5], ..SlaveSettings::default() }],
+            host: HostSettings { registers: vec![RegOp { write: false, id: 0, addr: 1, data: 0 }], ..HostSettings::default() },
+            ..BenchConfig::default()
+        };
+        let m = cfg.master_config().unwrap_or_else(|e| panic!("{khz} kHz from {mhz} MHz refused: {e}"));
+        assert_eq!((m.high_clocks, m.low_clocks), (high, low), "{khz} kHz from {mhz} MHz");
+        let bad = seed_timing::check(&cfg).expect("valid scenario");
+        assert!(bad.is_empty(), "{khz} kHz from {mhz} MHz: {} violations, first: {}", bad.len(), bad[0]);
+        crate::time::phases::assert_split(Bench::new(&cfg).unwrap(), 0, high, low, &format!("MA {khz} kHz from {mhz} MHz"));
+        let ts = frames(&cfg);
+        let reg = ts.iter().find_map(|t| t.register.as_ref()).expect("the register read ends");
+        assert!(reg.ok && reg.rdata == 0xA5, "{reg:?}");
+        cfg.host.registers.clear();
+        cfg.host.frames = 6;
+        let ts = frames(&cfg);
+        assert!(ts.iter().all(|t| t.errors.is_empty() && t.slaves[0].position == t.slaves[0].sent_position), "{ts:#?}");
+    }
+}

@@ -20,6 +20,7 @@ use crate::line::{CableConfig, DelayLine, Drive, HalfDuplexLine};
 use crate::ports::{Port, Ports};
 use crate::testbench::{self, Setup, Testbench};
 use crate::trace::{Layout, Sample};
+use crate::time::BitClock;
 use crate::{ConfigError, Result, Timebase};
 
 /// The master's settings in a scenario's units (`[endat.master]`).
@@ -332,15 +333,16 @@ impl BenchConfig {
         if m.t_r_us < 0.5 {
             return Err(ConfigError::invalid("master.t_r_us", format!("{} µs", m.t_r_us), "give at least 0.5 µs (seed 2.3.2: t_R >= 500 ns)"));
         }
-        let cpb = tb.even_divider(m.clock_khz * 1e3, "master.clock_khz")?;
-        let meas = tb.even_divider(m.meas_clock_khz * 1e3, "master.meas_clock_khz")?;
+        let clock = tb.divider(m.clock_khz * 1e3, "master.clock_khz", 8)?;
+        let meas = tb.divider(m.meas_clock_khz * 1e3, "master.meas_clock_khz", 8)?;
+        let cpb = clock.period;
         let t_st_us = match m.t_st_us {
             Some(v) => positive("master.t_st_us", v, "give t_ST in µs")?,
             None if m.clock_khz >= 16000.0 => 1.0,
             None if m.clock_khz >= 2000.0 => 2.0,
             None => 0.0,
         };
-        let t_st = tb.cycles_at_least_ns(t_st_us * 1e3).max(cpb / 2);
+        let t_st = tb.cycles_at_least_ns(t_st_us * 1e3).max(clock.low);
         let t_m_max = if m.recovery_short { 3.75 } else { 30.0 };
         let t_r = positive("master.t_r_us", m.t_r_us, "give t_R in µs")?;
         let timeout_us = positive("master.timeout_us", m.timeout_us, "give the start-bit timeout in µs")?;
@@ -348,7 +350,11 @@ impl BenchConfig {
         let cfg = MasterConfig {
             pos_bits: self.encoder.singleturn_bits + self.encoder.multiturn_bits,
             clocks_per_bit: cpb,
-            meas_clocks_per_bit: meas,
+            high_clocks: clock.high,
+            low_clocks: clock.low,
+            meas_clocks_per_bit: meas.period,
+            meas_high_clocks: meas.high,
+            meas_low_clocks: meas.low,
             t_st_clocks: t_st,
             delay_comp: m.delay_comp,
             sample_delay: tb.cycles_nearest_ns(positive("master.sample_delay_ns", m.sample_delay_ns, "give ns")?),
@@ -489,10 +495,11 @@ impl BenchConfig {
 
     fn parameters(&self) -> Result<Vec<(&'static str, u64)>> {
         let c = self.master_config()?;
-        Ok(vec![
-            ("POS_BITS", c.pos_bits as u64),
-            ("CLOCKS_PER_BIT", c.clocks_per_bit),
-            ("MEAS_CLOCKS_PER_BIT", c.meas_clocks_per_bit),
+        let mut p = vec![("POS_BITS", c.pos_bits as u64), ("CLOCKS_PER_BIT", c.clocks_per_bit)];
+        p.extend(BitClock::parameters(c.high_clocks, c.low_clocks, ["HIGH_CLOCKS", "LOW_CLOCKS"]));
+        p.push(("MEAS_CLOCKS_PER_BIT", c.meas_clocks_per_bit));
+        p.extend(BitClock::parameters(c.meas_high_clocks, c.meas_low_clocks, ["MEAS_HIGH_CLOCKS", "MEAS_LOW_CLOCKS"]));
+        p.extend([
             ("T_ST_CLOCKS", c.t_st_clocks),
             ("DELAY_COMP", c.delay_comp as u64),
             ("SAMPLE_DELAY", c.sample_delay),
@@ -505,7 +512,8 @@ impl BenchConfig {
             ("T_B_CLOCKS", c.t_b_clocks),
             ("T_ERR_CLOCKS", c.t_err_clocks),
             ("BLOCK_GAP", c.block_gap),
-        ])
+        ]);
+        Ok(p)
     }
 }
 

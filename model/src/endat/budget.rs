@@ -44,7 +44,7 @@ pub fn budget(cfg: &BenchConfig, command: Command) -> Result<Budget> {
     let e = cfg.encoder_config()?;
     let tb = cfg.timebase()?;
     let cpb = m.clocks_per_bit;
-    let half = cpb / 2;
+    let half = m.high_clocks; // the first high phase (the longer one of an odd period)
     let kind = super::frame_kind(command.code());
     use super::FrameKind as K;
     let k_off = if kind == K::Param21 { 8 + super::BLOCK_BITS } else { 8 };

@@ -28,10 +28,24 @@ const SAT16: u64 = 0xFFFF;
 pub struct MasterConfig {
     /// Position bits, word 13 of the manufacturer parameters, 1 to 48 (`POS_BITS`).
     pub pos_bits: u32,
-    /// System clocks per EnDat clock period, even, at least 8 (`CLOCKS_PER_BIT`).
+    /// System clocks per EnDat clock period, at least 8 (`CLOCKS_PER_BIT`).
     pub clocks_per_bit: u64,
+    /// System clocks of each clock-high phase (`HIGH_CLOCKS`); with
+    /// `low_clocks` it makes up the period. An odd period gives the high
+    /// phase the extra cycle ([`crate::time::BitClock`]): without delay
+    /// compensation the encoder's bit leaves at a rising edge and is sampled
+    /// after the next falling edge, so the cable's round trip is budgeted
+    /// in the high phase (seed 2.1.1: with a duty cycle other than 1:1,
+    /// `f_c = 1 / (2 t_min)`).
+    pub high_clocks: u64,
+    /// System clocks of each clock-low phase (`LOW_CLOCKS`).
+    pub low_clocks: u64,
     /// System clocks per clock period of the delay measurement, 100 to 200 kHz (`MEAS_CLOCKS_PER_BIT`).
     pub meas_clocks_per_bit: u64,
+    /// High phase of the measuring clock (`MEAS_HIGH_CLOCKS`), split as `high_clocks`.
+    pub meas_high_clocks: u64,
+    /// Low phase of the measuring clock (`MEAS_LOW_CLOCKS`).
+    pub meas_low_clocks: u64,
     /// First low phase after the latching edge, `t_ST` (`T_ST_CLOCKS`).
     pub t_st_clocks: u64,
     /// Measure the propagation delay at power-on and sample at `F + D` (`DELAY_COMP`).
@@ -62,11 +76,6 @@ pub struct MasterConfig {
 }
 
 impl MasterConfig {
-    /// Half a data clock period.
-    pub fn half(&self) -> u64 {
-        self.clocks_per_bit / 2
-    }
-
     /// The fixed sample delay used without compensation: synchroniser plus `SAMPLE_DELAY`.
     pub fn fixed_delay(&self) -> u64 {
         SYNC_STAGES + self.sample_delay
@@ -84,7 +93,8 @@ impl MasterConfig {
     pub fn delay_limit(clocks_per_bit: u64, pos_bits: u32, block_gap: u64) -> u64 {
         let shortest = (1 + pos_bits as u64 + 5).min(24 + 5);
         let by_stop = (shortest + 1) * clocks_per_bit - 2;
-        let by_gap = (block_gap * clocks_per_bit).saturating_sub(clocks_per_bit / 2);
+        // The longer phase of an odd period (its high phase) keeps the bound safe.
+        let by_gap = (block_gap * clocks_per_bit).saturating_sub(clocks_per_bit - clocks_per_bit / 2);
         by_stop.min(by_gap)
     }
 
@@ -97,28 +107,50 @@ impl MasterConfig {
                 "give 1 to 48 position bits (word 13 of the manufacturer parameters)",
             ));
         }
-        if self.clocks_per_bit < 8 || self.clocks_per_bit % 2 != 0 {
+        if self.clocks_per_bit < 8 {
             return Err(ConfigError::invalid(
                 "master.clock_khz",
                 format!("the EnDat clock is f_sys / {}", self.clocks_per_bit),
-                "make f_sys at least 8 times the EnDat clock (seed 2.1.2: f_e >= 8 f_c) and an even multiple of it",
+                "make f_sys at least 8 times the EnDat clock (seed 2.1.2: f_e >= 8 f_c)",
             ));
         }
-        if self.meas_clocks_per_bit < 8 || self.meas_clocks_per_bit % 2 != 0 {
+        if self.meas_clocks_per_bit < 8 {
             return Err(ConfigError::invalid(
                 "master.meas_clock_khz",
                 format!("f_sys / {}", self.meas_clocks_per_bit),
-                "give a measuring clock of 100 to 200 kHz that divides f_sys evenly",
+                "give a measuring clock of 100 to 200 kHz that divides f_sys",
             ));
         }
-        if self.t_st_clocks < self.half() {
+        for (field, period, high, low) in [
+            ("master.clock_khz", self.clocks_per_bit, self.high_clocks, self.low_clocks),
+            ("master.meas_clock_khz", self.meas_clocks_per_bit, self.meas_high_clocks, self.meas_low_clocks),
+        ] {
+            if high + low != period || high == 0 || low == 0 {
+                return Err(ConfigError::invalid(
+                    field,
+                    format!("phases of {high} + {low} cycles for a period of {period}"),
+                    "give high and low phases that make up the period",
+                ));
+            }
+            // Seed 2.3.2, "on-off ratio error" up to ±10 % (read as the
+            // stricter relative reading: each phase within 45 % to 55 % of
+            // the period, so |high - low| <= period / 10).
+            if 10 * high.abs_diff(low) > period {
+                return Err(ConfigError::invalid(
+                    field,
+                    format!("a clock {high} cycles high and {low} low departs from 1:1 by more than 10 %"),
+                    "give f_sys at least 10 times the clock (an odd divider of 11 or more) or an even divider (seed 2.3.2: on-off ratio error)",
+                ));
+            }
+        }
+        if self.t_st_clocks < self.low_clocks {
             return Err(ConfigError::invalid(
                 "master.t_st_us",
                 format!("{} cycles is shorter than half a clock period", self.t_st_clocks),
                 "give t_ST of at least half the clock period",
             ));
         }
-        if self.fixed_delay() >= self.half() + self.meas_clocks_per_bit / 2 {
+        if self.fixed_delay() >= self.low_clocks + self.meas_low_clocks {
             return Err(ConfigError::invalid(
                 "master.sample_delay_ns",
                 "the fixed sample point falls outside the measuring clock's bit",
@@ -667,7 +699,7 @@ impl Master {
 
         // ---- transmitter: clock, mode bits, parameter block ---------------------------
         let cfg = &self.cfg;
-        let half = c.cpb / 2;
+        let (high, low) = if c.meas_frame { (cfg.meas_high_clocks, cfg.meas_low_clocks) } else { (cfg.high_clocks, cfg.low_clocks) };
         match c.state {
             State::Idle => {
                 n.out.o_endat_clk = true;
@@ -699,7 +731,7 @@ impl Master {
                 if c.cnt == 0 {
                     n.state = State::High;
                     n.out.o_endat_clk = true;
-                    n.cnt = half - 1;
+                    n.cnt = high - 1;
                 } else {
                     n.cnt = c.cnt - 1;
                 }
@@ -724,7 +756,7 @@ impl Master {
                         n.state = State::Low;
                         n.out.o_endat_clk = false;
                         n.fall_idx = k;
-                        n.cnt = half - 1;
+                        n.cnt = low - 1;
                         let in_block = c.kind == FrameKind::Block22 && k >= c.blk_idx && k < c.blk_idx + super::BLOCK_BITS;
                         if (k >= 2 && k < c.k_off) || in_block {
                             n.out.o_endat_data_oe = true;
@@ -750,7 +782,7 @@ impl Master {
                 if c.cnt == 0 {
                     n.state = State::High;
                     n.out.o_endat_clk = true;
-                    n.cnt = half - 1;
+                    n.cnt = high - 1;
                     if c.fall_idx >= 10 {
                         n.meas_cnt = 1;
                     }
@@ -814,11 +846,13 @@ impl Master {
                     } else if c.cont_left <= 1 {
                         n.stop_idx = s + frame;
                     }
-                    let half = cfg.half();
+                    // The edge came D after a rising clock edge, the sample
+                    // is D after the falling edge that follows: a high phase apart.
+                    let high = cfg.high_clocks;
                     n.drift = cfg.delay_comp
                         && !c.meas_frame
                         && c.delay_valid
-                        && (c.since_edge > half + cfg.delay_tol || c.since_edge + cfg.delay_tol < half);
+                        && (c.since_edge > high + cfg.delay_tol || c.since_edge + cfg.delay_tol < high);
                 } else if c.polls == c.poll_limit {
                     self.abort(c, n, true);
                 } else {
@@ -1118,7 +1152,7 @@ fn start_frame(cfg: &MasterConfig, _c: &Regs, n: &mut Regs, meas: bool, code: u8
     n.out.o_endat_clk = false;
     n.fall_idx = 1;
     n.cpb = if meas { cfg.meas_clocks_per_bit } else { cfg.clocks_per_bit };
-    n.cnt = if meas { cfg.meas_clocks_per_bit / 2 } else { cfg.t_st_clocks } - 1;
+    n.cnt = if meas { cfg.meas_low_clocks } else { cfg.t_st_clocks } - 1;
     n.kind = kind;
     n.k_off = if kind == FrameKind::Param21 { 8 + super::BLOCK_BITS } else { 8 };
     n.mode = code;
@@ -1150,7 +1184,11 @@ impl FrameChecker {
         let cfg = MasterConfig {
             pos_bits,
             clocks_per_bit: 8,
+            high_clocks: 4,
+            low_clocks: 4,
             meas_clocks_per_bit: 8,
+            meas_high_clocks: 4,
+            meas_low_clocks: 4,
             t_st_clocks: 4,
             delay_comp: false,
             sample_delay: 0,

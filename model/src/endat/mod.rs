@@ -37,8 +37,16 @@
 //! in `docs/timing/endat.md`; those where real encoders differ are named
 //! configuration fields.
 //!
-//! * The first low phase lasts `T_ST_CLOCKS` (at least half a period); the
-//!   clock then runs with period `CLOCKS_PER_BIT` until the transaction ends.
+//! * The first low phase lasts `T_ST_CLOCKS` (at least `LOW_CLOCKS`); the
+//!   clock then runs with period `CLOCKS_PER_BIT`, high `HIGH_CLOCKS` and low
+//!   `LOW_CLOCKS` cycles, until the transaction ends. An odd divider (4 MHz
+//!   from 100 MHz, `f_sys / 25`: 13 high, 12 low) gives the high phase the
+//!   extra cycle, because without compensation the encoder's bit leaves at a
+//!   rising edge and is sampled after the next falling edge (the round trip
+//!   is budgeted in the high phase; seed 2.1.1 `f_c = 1/(2 t_min)`); the
+//!   phases stay within the seed's ±10 % on-off ratio error (2.3.2). The
+//!   measuring clock splits the same way (`MEAS_HIGH_CLOCKS`,
+//!   `MEAS_LOW_CLOCKS`); `docs/timing/endat.md` "Odd dividers".
 //! * The master drives the line from `F2` and releases it at `F_off`:
 //!   `F8` after the six mode bits, `F37` after mode bits plus its 29-bit
 //!   parameter block (type 2.1 memory, reset, test and communication

@@ -449,3 +449,47 @@ fn after_a_type_i_error_the_line_is_high_again_t_m_after_the_last_clock_edge() {
         assert!(after.iter().skip_while(|(c, _)| *c < high).all(|(_, d)| d.enable && d.level), "stays high");
     }
 }
+
+/// Issue 14 item 2: odd dividers for the EnDat clock and the measuring
+/// clock. 4 MHz from 100 MHz (f_sys / 25) is 13 cycles high and 12 low; from
+/// 45 MHz both clocks are odd (3 MHz = f_sys / 15: 8 and 7; 200 kHz =
+/// f_sys / 225: 113 and 112). The delay measurement finds the expected
+/// delay, the drift check centres on the high phase, and every position reads back.
+#[test]
+fn odd_dividers_split_high_first_and_read_every_position() {
+    use crate::Setup;
+    for (mhz, khz, high, low, meas) in [(100.0, 4000.0, 13, 12, (250, 250)), (45.0, 3000.0, 8, 7, (113, 112))] {
+        let mut cfg = fast(khz, mhz, 50.0);
+        cfg.master.meas_clock_khz = 200.0;
+        cfg.positions = vec![0, 33554431, 104462, 16777216];
+        cfg.commands = vec![HostCommand { repeat: 4, ..HostCommand::new(Command::Pos22) }];
+        let m = cfg.master_config().unwrap_or_else(|e| panic!("{khz} kHz from {mhz} MHz refused: {e}"));
+        assert_eq!((m.high_clocks, m.low_clocks, m.meas_high_clocks, m.meas_low_clocks), (high, low, meas.0, meas.1));
+        let params = cfg.verilog_parameters().unwrap();
+        assert!(params.contains(&("HIGH_CLOCKS", high)) && params.contains(&("LOW_CLOCKS", low)), "{params:?}");
+        assert_eq!(params.iter().any(|(n, _)| *n == "MEAS_HIGH_CLOCKS"), meas.0 != meas.1, "{params:?}");
+        let ts = run(&cfg);
+        assert_eq!(ts[0].kind, "delay_measurement");
+        assert_eq!(ts[0].delay_cycles, Some(cfg.expected_delay().unwrap()), "{mhz} MHz");
+        let got: Vec<_> = commands(&ts).iter().map(|t| t.position.unwrap()).collect();
+        assert_eq!(got, cfg.positions, "{mhz} MHz: {ts:#?}");
+        assert!(commands(&ts).iter().all(|t| t.errors.is_empty()), "{mhz} MHz: {ts:#?}");
+        crate::time::phases::assert_split(Bench::new(&cfg).unwrap(), 0, high, low, &format!("EnDat {khz} kHz from {mhz} MHz"));
+    }
+}
+
+/// Seed 2.3.2 ("on-off ratio error", read as each phase within 45 % to
+/// 55 % of the period): an odd divider below 10 departs from 1:1 by more
+/// than 10 % and is refused, naming the clock field; a divider below 8 is
+/// refused as before.
+#[test]
+fn odd_dividers_beyond_the_on_off_ratio_error_and_dividers_below_eight_are_refused() {
+    let cfg = fast(8000.0, 72.0, 10.0); // f_sys / 9: 5 high, 4 low, 11 % off
+    let e = cfg.master_config().unwrap_err();
+    assert_eq!(e.field(), "master.clock_khz");
+    assert!(e.to_string().contains("10 %"), "{e}");
+    assert!(fast(8000.0, 88.0, 10.0).master_config().is_ok(), "f_sys / 11 is 4.5 % off");
+    let e = fast(16000.0, 64.0, 10.0).master_config().unwrap_err(); // f_sys / 4
+    assert_eq!(e.field(), "master.clock_khz");
+    assert!(e.to_string().contains("at least 8"), "{e}");
+}

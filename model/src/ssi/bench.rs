@@ -21,6 +21,7 @@ use crate::line::{CableConfig, DelayLine};
 use crate::ports::{Port, Ports};
 use crate::testbench::{self, Setup, Testbench};
 use crate::trace::{Layout, Sample};
+use crate::time::BitClock;
 use crate::{ConfigError, Result, Timebase};
 
 /// The reader's settings in a scenario file's units (`[master]`).
@@ -171,9 +172,12 @@ impl BenchConfig {
                 return Err(ConfigError::invalid(field, format!("{value}"), "give a non-negative time"));
             }
         }
+        let clock = tb.divider(m.clock_khz * 1e3, "master.clock_khz", 8)?;
         let cfg = MasterConfig {
             bits: m.bits,
-            clocks_per_bit: tb.even_divider(m.clock_khz * 1e3, "master.clock_khz")?,
+            clocks_per_bit: clock.period,
+            high_clocks: clock.high,
+            low_clocks: clock.low,
             gray: m.code == Code::Gray,
             double_read: m.double_read,
             wire_check: m.wire_check,
@@ -220,16 +224,17 @@ impl BenchConfig {
     /// vector header lists them.
     fn parameters(&self) -> Result<Vec<(&'static str, u64)>> {
         let c = self.master_config()?;
-        Ok(vec![
-            ("BITS", c.bits as u64),
-            ("CLOCKS_PER_BIT", c.clocks_per_bit),
+        let mut p = vec![("BITS", c.bits as u64), ("CLOCKS_PER_BIT", c.clocks_per_bit)];
+        p.extend(BitClock::parameters(c.high_clocks, c.low_clocks, ["HIGH_CLOCKS", "LOW_CLOCKS"]));
+        p.extend([
             ("GRAY", c.gray as u64),
             ("DOUBLE_READ", c.double_read as u64),
             ("WIRE_CHECK", c.wire_check as u64),
             ("T_CS_CLOCKS", c.t_cs_clocks),
             ("PAUSE_CLOCKS", c.pause_clocks),
             ("SAMPLE_DELAY", c.sample_delay),
-        ])
+        ]);
+        Ok(p)
     }
 
     /// Checks everything; the error names the scenario field.

@@ -12,8 +12,14 @@ pub const SYNC_STAGES: u64 = 2;
 pub struct MasterConfig {
     /// Data bits per read, 1 to 64 (`BITS`).
     pub bits: u32,
-    /// System clocks per SSI clock period, even, at least 8 (`CLOCKS_PER_BIT`).
+    /// System clocks per SSI clock period, at least 8 (`CLOCKS_PER_BIT`).
     pub clocks_per_bit: u64,
+    /// System clocks of each clock-high phase (`HIGH_CLOCKS`); with
+    /// `low_clocks` it makes up the period. An odd period gives the high
+    /// phase the extra cycle ([`crate::time::BitClock`]).
+    pub high_clocks: u64,
+    /// System clocks of each clock-low phase, in which the bit is captured (`LOW_CLOCKS`).
+    pub low_clocks: u64,
     /// Decode Gray to binary (`GRAY`).
     pub gray: bool,
     /// Read the value twice in one transfer and compare (`DOUBLE_READ`).
@@ -34,29 +40,36 @@ impl MasterConfig {
         if !(1..=64).contains(&self.bits) {
             return Err(ConfigError::invalid("master.bits", format!("{} bits", self.bits), "read 1 to 64 bits"));
         }
-        if self.clocks_per_bit < 8 || self.clocks_per_bit % 2 != 0 {
+        if self.clocks_per_bit < 8 {
             return Err(ConfigError::invalid(
                 "master.clock_khz",
                 format!("the SSI clock is f_sys / {}", self.clocks_per_bit),
-                "make f_sys at least 8 times the SSI clock and an even multiple of it",
+                "make f_sys at least 8 times the SSI clock",
             ));
         }
-        let half = self.clocks_per_bit / 2;
-        if SYNC_STAGES + self.sample_delay > half - 1 {
+        if self.high_clocks + self.low_clocks != self.clocks_per_bit || self.high_clocks == 0 || self.low_clocks == 0 {
+            return Err(ConfigError::invalid(
+                "master.clock_khz",
+                format!("phases of {} + {} cycles for a period of {}", self.high_clocks, self.low_clocks, self.clocks_per_bit),
+                "give high and low phases that make up the period",
+            ));
+        }
+        let low = self.low_clocks;
+        if SYNC_STAGES + self.sample_delay > low - 1 {
             return Err(ConfigError::invalid(
                 "master.sample_delay_ns",
                 format!(
                     "a sample {} cycles after the falling edge falls outside the {}-cycle low phase",
                     SYNC_STAGES + self.sample_delay,
-                    half
+                    low
                 ),
                 "lower sample_delay_ns or the SSI clock frequency",
             ));
         }
-        if self.t_cs_clocks < half {
+        if self.t_cs_clocks < low {
             return Err(ConfigError::invalid(
                 "master.t_cs_us",
-                format!("{} cycles is shorter than half an SSI clock ({} cycles)", self.t_cs_clocks, half),
+                format!("{} cycles is shorter than a low phase of the SSI clock ({} cycles)", self.t_cs_clocks, low),
                 "give T_cs of at least half the SSI clock period",
             ));
         }
@@ -85,7 +98,7 @@ impl MasterConfig {
 
     /// The `cnt` value of the low-phase cycle that captures the synchronised bit.
     fn capture_count(&self) -> u64 {
-        self.clocks_per_bit / 2 - SYNC_STAGES - self.sample_delay
+        self.low_clocks - SYNC_STAGES - self.sample_delay
     }
 }
 
@@ -157,7 +170,8 @@ impl Ports for Out {
 pub struct Master {
     cfg: MasterConfig,
     // Constants of the configuration, worked out once (the RTL's localparams).
-    half: u64,
+    high: u64,
+    low: u64,
     mask: u64,
     capture_at: u64,
     sampled: u32,
@@ -179,7 +193,8 @@ impl Master {
     pub fn new(cfg: MasterConfig) -> Result<Self> {
         cfg.validate()?;
         Ok(Master {
-            half: cfg.clocks_per_bit / 2,
+            high: cfg.high_clocks,
+            low: cfg.low_clocks,
             mask: if cfg.bits == 64 { u64::MAX } else { (1u64 << cfg.bits) - 1 },
             capture_at: cfg.capture_count(),
             sampled: cfg.sampled_bits(),
@@ -256,7 +271,6 @@ impl Master {
             self.data_meta = input.i_ssi_data;
             return self.out;
         }
-        let half = self.half;
         let mut next = Out { o_done: false, o_err_idle: false, o_err_double: false, o_err_wire: false, ..self.out };
         let mut state = self.state;
         let mut cnt = self.cnt;
@@ -284,7 +298,7 @@ impl Master {
                 if self.cnt == 0 {
                     state = if self.state == State::Latch { State::High } else { State::Low };
                     next.o_ssi_clk = self.state == State::Latch;
-                    cnt = half - 1;
+                    cnt = if self.state == State::Latch { self.high - 1 } else { self.low - 1 };
                 } else {
                     cnt -= 1;
                 }
@@ -304,7 +318,7 @@ impl Master {
                         next.o_err_wire = self.wire_bad;
                     } else {
                         state = State::High;
-                        cnt = half - 1;
+                        cnt = self.high - 1;
                     }
                 } else {
                     cnt -= 1;

@@ -22,6 +22,12 @@
 //! * `T_cs` is read as the length of the first low phase (the time from the
 //!   storing edge to the first rising edge). `T_CS_CLOCKS` is at least half a
 //!   clock period.
+//! * The clock is high `HIGH_CLOCKS` and low `LOW_CLOCKS` cycles
+//!   (`CLOCKS_PER_BIT / 2` each for an even divider). An odd divider (4 MHz
+//!   from 100 MHz, `f_sys / 25`: 13 high, 12 low) gives the high phase the
+//!   extra cycle: a bit leaves the encoder at a rising edge and is captured
+//!   after the next falling edge, so the cable's round trip is budgeted in
+//!   the high phase ([`crate::time::BitClock`], `docs/timing/ssi.md` "Odd dividers").
 //! * After the last sample the clock returns high and stays high for
 //!   `PAUSE_CLOCKS` (at least the encoder's `T_m`); the encoder holds the line
 //!   low until its monoflop expires `T_m` after the last clock edge, then high.
@@ -37,11 +43,11 @@
 //!   other.
 //!
 //! ```text
-//!  n = 3 bits, no options, H = CLOCKS_PER_BIT / 2
+//!  n = 3 bits, no options, H = HIGH_CLOCKS, L = LOW_CLOCKS
 //!
 //!  o_ssi_clk ‾‾‾‾‾\________/‾‾‾‾\____/‾‾‾‾\____/‾‾‾‾\____/‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾
 //!  state     IDLE | LATCH  |HIGH|LOW |HIGH|LOW |HIGH|LOW | PAUSE      | IDLE
-//!                 |<-T_CS->|<H >|<H >|
+//!                 |<-T_CS->|<H >|<L >|
 //!  data      ‾‾‾‾‾‾‾‾‾‾‾‾‾‾‾X MSB    X b1     X LSB    X 0 ...(T_m)../‾‾‾‾‾
 //!                 ^ store   ^ rise 1 ^ rise 2 ^ rise 3 ^ rise 4
 //!  capture                       ^ fall 2 +2+SAMPLE_DELAY (MSB)

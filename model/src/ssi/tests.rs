@@ -156,3 +156,43 @@ proptest! {
         prop_assert!(ts.iter().all(|t| t.errors.is_empty()));
     }
 }
+
+/// Issue 14 item 2: 4 MHz from 100 MHz is f_sys / 25, an odd divider. The
+/// clock is 13 cycles high and 12 low (the high phase takes the extra cycle,
+/// `crate::time::BitClock`), the capture stays 2 cycles into each low phase,
+/// the header names the split, and every value reads back.
+#[test]
+fn an_odd_divider_is_13_cycles_high_and_12_low_and_reads_every_value() {
+    use crate::Setup;
+    let mut cfg = BenchConfig::seed_example();
+    cfg.f_sys_mhz = 100.0;
+    cfg.master.clock_khz = 4000.0;
+    cfg.master.t_cs_us = 1.0;
+    cfg.master.pause_us = 30.0;
+    cfg.encoder.monoflop_us = 25.0;
+    cfg.cable = CableConfig { length_m: 2.0, ..CableConfig::default() };
+    cfg.positions = vec![0, 4095, 495, 2730, 1365];
+    let m = cfg.master_config().expect("f_sys / 25 is accepted");
+    assert_eq!((m.clocks_per_bit, m.high_clocks, m.low_clocks), (25, 13, 12));
+    let params = cfg.verilog_parameters().unwrap();
+    assert_eq!(&params[1..4], &[("CLOCKS_PER_BIT", 25), ("HIGH_CLOCKS", 13), ("LOW_CLOCKS", 12)]);
+    let ts = read(&cfg);
+    assert_eq!(ts.iter().map(|t| t.position).collect::<Vec<_>>(), cfg.positions.iter().map(|&p| Some(p)).collect::<Vec<_>>());
+    assert!(ts.iter().all(|t| t.errors.is_empty()), "{ts:#?}");
+    crate::time::phases::assert_split(Bench::new(&cfg).unwrap(), 0, 13, 12, "SSI 4 MHz from 100 MHz");
+    // An even divider keeps its header as it was: no phase parameters.
+    let even = BenchConfig::seed_example();
+    assert!(even.verilog_parameters().unwrap().iter().all(|(n, _)| !n.ends_with("_CLOCKS") || n.starts_with("T_CS") || n.starts_with("PAUSE")));
+}
+
+#[test]
+fn a_divider_below_eight_is_refused_naming_the_clock_field_and_the_fastest_clock() {
+    let mut cfg = BenchConfig::seed_example();
+    cfg.f_sys_mhz = 100.0;
+    for khz in [50_000.0, 100_000.0, 20_000.0] {
+        cfg.master.clock_khz = khz;
+        let e = cfg.master_config().unwrap_err();
+        assert_eq!(e.field(), "master.clock_khz");
+        assert!(e.to_string().contains("at least 8") && e.to_string().contains("12500 kHz (f_sys / 8)"), "{e}");
+    }
+}
