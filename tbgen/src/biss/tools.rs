@@ -488,8 +488,8 @@ mod tests {
         }
         assert_eq!(
             (registers, failed_registers, unseen),
-            (10, 5, 2),
-            "register read, write, two CRC-4 faults, three along a chain, two aborted mid-way, one failed in its sync frames; two refused starts"
+            (12, 7, 2),
+            "register read, write, two CRC-4 faults, three along a chain, two aborted mid-way, one failed in its sync frames, a missing R and a missing S echo; two refused starts"
         );
         assert_eq!((commands, failed_commands), (3, 1), "biss_command_chain: addressed, unacknowledged; biss_register_chain: broadcast");
         assert!(frames > 200 && flagged >= 10, "{frames} frames, {flagged} flagged");
