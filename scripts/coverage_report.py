@@ -14,6 +14,10 @@ and its vector player are not the design under test. For each core it prints
     branch  Verilator's branch points (each arm of an if or ?:),
     toggle  Verilator's toggle points (one per bit of every signal);
   * every uncovered line with its code;
+  * the code excluded from the figures: every `/* verilator coverage_off */`
+    .. `/* verilator coverage_on */` region of the core's RTL files (Verilator
+    makes no points there), with its line count and the comment above it,
+    which must say why no input reaches it (a defensive default);
   * every output port of the core (o_* of the testbench's `dut`) that never
     changed value, and the output bits that never toggled.
 
@@ -95,6 +99,7 @@ def analyse(core, dat, rtl_dir):
             if dut.search(p.get("h", "")) and name.startswith("o_"):
                 port = re.sub(r"\[.*$", "", name)
                 out_bits[port][name] = out_bits[port].get(name, 0) + n
+    files = sorted({f for f, _ in line_hits})
     lines_total = len(line_hits)
     lines_hit = sum(1 for v in line_hits.values() if v > 0)
     uncovered = sorted(k for k, v in line_hits.items() if v == 0)
@@ -105,7 +110,32 @@ def analyse(core, dat, rtl_dir):
         "toggle": (sum(1 for v in toggles.values() if v > 0), len(toggles)),
         "uncovered": uncovered,
         "outputs": out_bits,
+        "excluded": [x for f in files for x in excluded_regions(f)],
     }
+
+
+def excluded_regions(fname):
+    """(file, first, last, code lines, reason) of every coverage_off region."""
+    try:
+        with open(fname, encoding="utf-8", errors="replace") as f:
+            text = f.read().split("\n")
+    except OSError:
+        return []
+    out, start = [], None
+    for i, raw in enumerate(text, 1):
+        if re.search(r"verilator\s+coverage_off", raw):
+            start = i
+        elif start is not None and re.search(r"verilator\s+coverage_on", raw):
+            body = [t.strip() for t in text[start:i - 1]]
+            code = sum(1 for t in body if t and not t.startswith("//"))
+            above, j = [], start - 2
+            while j >= 0 and text[j].strip().startswith("//"):
+                above.insert(0, text[j].strip().lstrip("/").strip())
+                j -= 1
+            reason = " ".join(above)
+            out.append((fname, start + 1, i - 1, code, reason))
+            start = None
+    return out
 
 
 def source_line(cache, fname, ln):
@@ -130,6 +160,12 @@ def report(r, rtl_dir):
         for fname, ln in r["uncovered"]:
             rel = os.path.relpath(fname, ROOT) if fname.startswith(ROOT + os.sep) else fname
             print(f"     {rel}:{ln}: {source_line(cache, fname, ln)}")
+    if r["excluded"]:
+        total = sum(x[3] for x in r["excluded"])
+        print(f"   excluded (coverage_off, unreachable): {total} line(s) in {len(r['excluded'])} region(s)")
+        for fname, first, last, _, reason in r["excluded"]:
+            rel = os.path.relpath(fname, ROOT) if fname.startswith(ROOT + os.sep) else fname
+            print(f"     {rel}:{first}-{last}: {reason or '(no reason given above coverage_off)'}")
     never = sorted(p for p, bits in r["outputs"].items() if all(v == 0 for v in bits.values()))
     print(f"   outputs that never changed: {', '.join(never) if never else 'none'}")
     partial = []

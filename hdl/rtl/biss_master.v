@@ -132,34 +132,21 @@ module biss_master #(
     input  wire                  i_slo
 );
 
-function integer field8(input integer packed_values, input integer index);
-    begin
-        field8 = (packed_values >> (8 * index)) & 255;
-    end
-endfunction
-
-function integer max_bits(input integer packed_values, input integer count);
-    integer k;
-    begin
-        max_bits = 1;
-        for (k = 0; k < count; k = k + 1)
-            if (field8(packed_values, k) > max_bits) max_bits = field8(packed_values, k);
-    end
-endfunction
-
-function integer clog2(input integer value);
-    integer v;
-    begin
-        clog2 = 0;
-        for (v = value - 1; v > 0; v = v >> 1) clog2 = clog2 + 1;
-    end
-endfunction
-
-localparam integer DATA_W = max_bits(SLAVE_BITS, SLAVES);
+// The per-slave fields of the packed parameters, and the widest slave's data
+// width, as plain constant expressions (no constant functions: Verilator's
+// coverage would count a function evaluated at elaboration as uncovered code).
+localparam integer BITS0 = SLAVE_BITS & 255;
+localparam integer BITS1 = (SLAVE_BITS >> 8) & 255;
+localparam integer BITS2 = (SLAVE_BITS >> 16) & 255;
+localparam integer BITS1_USED = (SLAVES > 1) ? BITS1 : 1;
+localparam integer BITS2_USED = (SLAVES > 2) ? BITS2 : 1;
+localparam integer BITS01_MAX = (BITS1_USED > BITS0) ? BITS1_USED : BITS0;
+localparam integer BITS012_MAX = (BITS2_USED > BITS01_MAX) ? BITS2_USED : BITS01_MAX;
+localparam integer DATA_W = (BITS012_MAX > 1) ? BITS012_MAX : 1;
 localparam integer HALF = CLOCKS_PER_BIT / 2; // the middle of a bit cell (rounded down), not an MA phase
-localparam integer SMP_W = clog2(2 * CLOCKS_PER_BIT);
-localparam integer CAL_SHIFT = clog2(CAL_FRAMES);
-localparam integer CNT_W = clog2(TIMEOUT_CLOCKS + 3);
+localparam integer SMP_W = $clog2(2 * CLOCKS_PER_BIT);
+localparam integer CAL_SHIFT = $clog2(CAL_FRAMES);
+localparam integer CNT_W = $clog2(TIMEOUT_CLOCKS + 3);
 
 localparam [31:0] HIGH_LAST_32 = HIGH_CLOCKS - 1;
 localparam [31:0] LOW_LAST_32 = LOW_CLOCKS - 1;
@@ -180,15 +167,15 @@ localparam [31:0] DELAY_TOL_32 = DELAY_TOL;
 localparam [15:0] DELAY_TOL_16 = DELAY_TOL_32[15:0];
 localparam [31:0] LAST_SLAVE_32 = SLAVES - 1;
 localparam [1:0] LAST_SLAVE = LAST_SLAVE_32[1:0];
-localparam [31:0] BITS0_32 = field8(SLAVE_BITS, 0);
-localparam [31:0] BITS1_32 = field8(SLAVE_BITS, 1);
-localparam [31:0] BITS2_32 = field8(SLAVE_BITS, 2);
-localparam [31:0] CRCW0_32 = field8(SLAVE_CRC_WIDTH, 0);
-localparam [31:0] CRCW1_32 = field8(SLAVE_CRC_WIDTH, 1);
-localparam [31:0] CRCW2_32 = field8(SLAVE_CRC_WIDTH, 2);
-localparam [31:0] POLY0_32 = field8(SLAVE_CRC_POLY, 0);
-localparam [31:0] POLY1_32 = field8(SLAVE_CRC_POLY, 1);
-localparam [31:0] POLY2_32 = field8(SLAVE_CRC_POLY, 2);
+localparam [31:0] BITS0_32 = BITS0;
+localparam [31:0] BITS1_32 = BITS1;
+localparam [31:0] BITS2_32 = BITS2;
+localparam [31:0] CRCW0_32 = SLAVE_CRC_WIDTH & 255;
+localparam [31:0] CRCW1_32 = (SLAVE_CRC_WIDTH >> 8) & 255;
+localparam [31:0] CRCW2_32 = (SLAVE_CRC_WIDTH >> 16) & 255;
+localparam [31:0] POLY0_32 = SLAVE_CRC_POLY & 255;
+localparam [31:0] POLY1_32 = (SLAVE_CRC_POLY >> 8) & 255;
+localparam [31:0] POLY2_32 = (SLAVE_CRC_POLY >> 16) & 255;
 
 // Control frame (model::biss::control): 14 zeros before a start bit.
 localparam [3:0] SYNC_ZEROS = 4'd14;
@@ -403,6 +390,8 @@ wire [3:0] crc4_tx_cmd;
 crc_serial #(.WIDTH(4), .POLY(4'h3)) crc4_cmd   (.i_crc(crc4_tx_reg), .i_bit(cmd_bit),       .o_crc(crc4_tx_cmd));
 
 reg       finish;
+reg       ma_hold;
+reg       frame_end;
 reg       refused;
 reg       fin_ack;
 reg       fin_timeout;
@@ -677,25 +666,30 @@ always @* begin
                 fin_ack = 1'b1;
             end
         end
+        // Codes 11 to 15 are never entered (every assignment above names a
+        // state); coverage counts reachable code only.
+        /* verilator coverage_off */
         default: begin
             state_next = IDLE;
         end
+        /* verilator coverage_on */
     endcase
 
     // A frame ends with MA high for at least a high phase (seed 001,
     // BiSS-C: TMASH > 25 ns), so that the next frame's first falling edge, in
     // the cycle after o_done at the earliest, never follows a short high
     // level: a frame that stopped MA low (CDM = 1) raises it first and ends
-    // HIGH_CLOCKS cycles later (o_done then).
-    if (finish && (!ma_reg || ma_cnt_reg != 0)) begin
-        if (!ma_reg) begin
-            ma_next = 1'b1;
-            ma_cnt_next = HIGH_LAST;
-        end
-        finish = 1'b0;
+    // HIGH_CLOCKS cycles later (o_done then). (Held in its own variable rather than
+    // by clearing finish: Verilator 5.006 counts no coverage in a branch that
+    // clears the variable of its own condition.)
+    ma_hold = finish && (!ma_reg || ma_cnt_reg != 0);
+    frame_end = finish && !ma_hold;
+    if (ma_hold && !ma_reg) begin
+        ma_next = 1'b1;
+        ma_cnt_next = HIGH_LAST;
     end
 
-    if (finish) begin
+    if (frame_end) begin
         state_next = IDLE;
         ma_next = 1'b1;
         ma_run_next = 1'b0;
@@ -712,7 +706,7 @@ always @* begin
     // Control-frame sequencer, at the end of every frame and at a refused
     // start: take this frame's CDS, choose the next CDM. Only frames that
     // completed count as sent.
-    if (finish || refused) begin
+    if (frame_end || refused) begin
         if (frame_ok) zeros_next = cdm_reg ? 4'd0 : ((zeros_reg == SYNC_ZEROS) ? SYNC_ZEROS : zeros_reg + 4'd1);
         cdm_next = 1'b0;
         if (ctl_active_reg) begin

@@ -129,6 +129,21 @@ mod tests {
     }
 
     #[test]
+    fn a_missing_r_or_start_echo_fails_the_access_at_that_frame() {
+        for (name, k) in [("biss_fault_no_read_echo", 17), ("biss_fault_no_start_echo", 19)] {
+            let (s, _) = biss(name);
+            let dir = tempfile::tempdir().unwrap();
+            let summary = generate::generate(&s, dir.path()).unwrap();
+            let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&summary.files[2]).unwrap()).unwrap();
+            let t = json["transactions"].as_array().unwrap();
+            let regs: Vec<&serde_json::Value> = t.iter().filter(|t| !t["register"].is_null()).collect();
+            assert_eq!(regs.len(), 1, "{name}: one access");
+            assert_eq!((regs[0]["register"]["ok"].as_bool(), regs[0]["register"]["crc4_ok"].as_bool()), (Some(false), Some(true)), "{name}: failed, with a right address CRC");
+            assert_eq!(regs[0]["control_index"].as_u64(), Some(k), "{name}: fails at the frame whose echo is missing");
+        }
+    }
+
+    #[test]
     fn a_wrong_bits_says_the_frame_does_not_fit_and_what_would() {
         let (s, _) = biss("biss_seed_16bit");
         let dir = tempfile::tempdir().unwrap();
@@ -144,7 +159,7 @@ mod tests {
     #[test]
     fn every_field_the_decoder_prints_equals_the_gen_transcript_of_every_biss_scenario() {
         let names: Vec<String> = builtin::all().unwrap().into_iter().filter(|s| matches!(s.setup, S::Biss(_))).map(|s| s.name).collect();
-        assert_eq!(names.len(), 26);
+        assert_eq!(names.len(), 28);
         // biss_fault_timeout reads a 16-bit slave as 8 bits on purpose: its
         // frames fit no layout the master was given, which decode refuses
         // (a_wrong_bits_says_the_frame_does_not_fit_and_what_would).
@@ -214,8 +229,8 @@ mod tests {
         }
         assert_eq!(
             (registers, failed_registers, unseen),
-            (10, 5, 2),
-            "register read, write, two CRC-4 faults, three along a chain, two aborted mid-way, one failed in its sync frames; two refused starts"
+            (12, 7, 2),
+            "register read, write, two CRC-4 faults, three along a chain, two aborted mid-way, one failed in its sync frames, a missing R and a missing S echo; two refused starts"
         );
         assert_eq!((commands, failed_commands), (3, 1), "biss_command_chain: addressed, unacknowledged; biss_register_chain: broadcast");
         assert!(frames > 200 && flagged >= 10, "{frames} frames, {flagged} flagged");

@@ -99,6 +99,27 @@ mod tests {
     }
 
     #[test]
+    fn fault_confinement_exceptions_and_bus_off_from_a_flag() {
+        // Rule 3 exception 2: a recessive stuff bit in arbitration read dominant is not counted.
+        let (_, t) = run("can_stuff_exempt_arbitration");
+        assert_eq!(outcomes(&t), ["err_stuff", "tx_done"]);
+        assert_eq!((t[0].tec, t[1].tec), (0, 0), "a stuff error on its own arbitration stuff bit: TEC unchanged");
+        // TEC 248, an ACK error (not counted while passive), then a dominant bit in the passive flag: bus-off.
+        // Rule 6 at the limit: TEC 248 after a bit error, 8 dominant bits after the flag: bus-off.
+        for (name, last_err, outcome) in [("can_bus_off_passive_ack", 31, "err_ack"), ("can_bus_off_rule6", 30, "err_bit")] {
+            let (cfg, t) = run(name);
+            let bit = cfg.bit_timing().unwrap().clocks_per_bit();
+            assert_eq!(t.len(), last_err + 2, "{name}: {:?}", outcomes(&t));
+            assert!(t[..last_err].iter().all(|t| t.outcome == "err_bit"), "{name}: {:?}", outcomes(&t));
+            let e = &t[last_err];
+            assert_eq!((e.outcome, e.tec, e.err_state), (outcome, 248, 1), "{name}: error-passive at TEC 248 in the last error");
+            let last = t.last().unwrap();
+            assert_eq!((last.outcome, last.tec, last.rec, last.err_state), ("tx_done", 0, 0, 0), "{name}: recovered after bus-off");
+            assert!(last.sof_cycle - e.cycle >= 128 * 11 * bit, "{name}: bus-off, then 128 x 11 recessive bits");
+        }
+    }
+
+    #[test]
     fn three_nodes_arbitrate_and_extended_frames_are_received_with_ide() {
         let (cfg, t) = run("can_arbitration_3_nodes");
         assert!(cfg.nodes.len() >= 2 && clean(&t) && t.iter().any(|t| t.arb_lost), "{:?}", outcomes(&t));
