@@ -382,3 +382,43 @@ fn an_inverted_start_bit_re_frames_a_character_and_the_sum_sees_it_unless_it_mat
     assert!(campaign::judge(24, &c, &campaign::levels(&frame), 0x9A9D5C).0);
 }
 
+
+#[test]
+fn a_run_time_position_replaces_the_list_from_the_next_acquisition_on() {
+    // Timed send at 1 kHz: frame k carries positions[k] until set_position,
+    // then every frame carries the position set (closed-loop benches, issue 10).
+    let cfg = timed(1000.0, vec![10, 11, 12, 13], 14);
+    let mut enc = Encoder::new(cfg.encoder_config(0).unwrap()).unwrap();
+    let idle = EncoderIn { rx: true, trigger: true, clr: true };
+    let mut cycles = 0u64;
+    while enc.sent().len() < 2 {
+        enc.step(&idle);
+        cycles += 1;
+        assert!(cycles < 1_000_000);
+    }
+    enc.set_position(0x1234).unwrap();
+    while enc.sent().len() < 4 {
+        enc.step(&idle);
+    }
+    assert_eq!(enc.sent().iter().map(|f| f.position).collect::<Vec<_>>(), vec![10, 11, 0x1234, 0x1234]);
+    assert_eq!(enc.sent()[2].bytes, frames::encode(0x1234, 14));
+    // 14 bits: 2^14 does not fit, and is refused by name.
+    let e = enc.set_position(1 << 14).unwrap_err().to_string();
+    assert!(e.contains("position") && e.contains("14 bits"), "{e}");
+}
+
+#[test]
+fn a_replaced_byte_keeps_the_checksum_right_and_is_read_as_sent() {
+    // Replace: byte 3 of the 16-bit frame (the low data byte) becomes 0x55,
+    // the checksum recomputed: a well-formed frame the host reads as 0x1255.
+    let mut cfg = timed(1000.0, vec![0x1234], 16);
+    cfg.encoders[0].faults = vec![FrameFault { frame: 1, kind: FaultKind::Replace, byte: 3, bit: 0, gap_bits: 0.0, bytes: vec![0x55] }];
+    cfg.ops = listen(3);
+    let t = run_window(&cfg);
+    assert_eq!(t[0].positions, vec![0x1234, 0x1255, 0x1234]);
+    assert!(t[0].errors.is_empty(), "{:?}", t[0].errors);
+    // The checksum byte itself cannot be replaced (the emulator recomputes it).
+    cfg.encoders[0].faults[0].byte = 4;
+    let e = cfg.validate().unwrap_err().to_string();
+    assert!(e.contains("faults[0]") && e.contains("replace"), "{e}");
+}

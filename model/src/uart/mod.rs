@@ -39,6 +39,7 @@
 //! (`CLOCKS_PER_BIT` = 10) that is −5.26 % to +4.17 % without jitter.
 
 mod bench;
+pub mod campaign;
 mod fault;
 mod receiver;
 mod transmitter;
