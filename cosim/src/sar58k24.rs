@@ -557,16 +557,7 @@ mod tests {
         // Seed 001, 3.1.5: BC AA B1 answered FF B1 <position> <sum>.
         let text = "[sar]\nmode = \"bus\"\n[[sar.encoders]]\naddress = 1\nbits = 16\n[sar.random]\ncount = 4\nseed = 9\n";
         let mut emu = SarEmulator::from_toml(text, "bus.toml", 10_000_000).unwrap();
-        let cmd = levels(&[0xBC, 0xAA, 0xB1], 87);
-        let mut line = Vec::new();
-        for k in 0..12_000 {
-            let pins = match cmd.get(k) {
-                Some(&l) => 0b1001 | 4 | (l as u32) << 1,
-                None => 0b1001,
-            };
-            line.push(emu.step(Pins(pins)).0 & 4 != 0);
-        }
-        let got = receive(&line[cmd.len()..], 87);
+        let got = command(&mut emu);
         let p = random_list(4, 9, 16)[0];
         assert_eq!(got[..2], [0xFF, 0xB1]);
         assert_eq!(((got[2] as u64) << 8) | got[3] as u64, p);
@@ -585,8 +576,9 @@ mod tests {
         assert!(emu.violations()[0].rule.starts_with("one driver at a time"));
     }
 
-    /// Sends `BC AA B1` and returns the position in the answer.
-    fn poll(emu: &mut SarEmulator) -> u64 {
+    /// Sends `BC AA B1` at 115200 baud (87 cycles a bit) and returns the
+    /// characters that came back within 1.2 ms.
+    fn command(emu: &mut SarEmulator) -> Vec<u8> {
         let cmd = levels(&[0xBC, 0xAA, 0xB1], 87);
         let mut line = Vec::new();
         for k in 0..12_000 {
@@ -596,7 +588,12 @@ mod tests {
             };
             line.push(emu.step(Pins(pins)).0 & 4 != 0);
         }
-        let got = receive(&line[cmd.len()..], 87);
+        receive(&line[cmd.len()..], 87)
+    }
+
+    /// Sends `BC AA B1` and returns the position in the answer.
+    fn poll(emu: &mut SarEmulator) -> u64 {
+        let got = command(emu);
         assert_eq!(got[..2], [0xFF, 0xB1]);
         ((got[2] as u64) << 8) | got[3] as u64
     }

@@ -217,7 +217,7 @@ fn an_answer_from_the_wrong_address_no_answer_and_noise_are_flagged() {
 #[test]
 fn a_second_driver_on_the_line_is_flagged() {
     // The answer starts about 4.2 + 1.8 + 0.1 ms after reset at 19200 baud.
-    let cfg = BenchConfig { second_drivers: vec![SecondDriver { at_us: 6300.0, bytes: vec![0x00] }], ..BenchConfig::default() };
+    let cfg = BenchConfig { second_drivers: vec![SecondDriver { at_us: 6300.0, bytes: vec![0x00], ..SecondDriver::default() }], ..BenchConfig::default() };
     let mut bench = cfg.bench().unwrap();
     while !crate::Testbench::finished(&bench) {
         crate::Testbench::step(&mut bench, None);
@@ -336,7 +336,7 @@ fn noise_between_frames_is_no_answer_and_the_next_request_waits_for_t3_5_after_i
     // and the next request starts t3.5 after the noise, never inside it.
     let mut cfg = BenchConfig::default();
     cfg.ops = vec![read(1, 1), Operation { gap_us: 20_000.0, ..read(1, 1) }];
-    cfg.second_drivers = vec![SecondDriver { at_us: 20_000.0, bytes: vec![0x01, 0x03] }];
+    cfg.second_drivers = vec![SecondDriver { at_us: 20_000.0, bytes: vec![0x01, 0x03], ..SecondDriver::default() }];
     let t = run(&cfg);
     assert_eq!(t.iter().map(|t| (t.value, t.errors.clone())).collect::<Vec<_>>(), vec![(Some(383), vec![]), (Some(383), vec![])]);
 }

@@ -304,7 +304,7 @@ fn a_second_driver_on_the_bus_is_seen_as_contention_and_flagged() {
     let mut cfg = three_on_a_bus();
     cfg.ops = vec![op(OpKind::Read, 1)];
     // The answer starts ~0.46 ms after the command (3 chars at 115200 plus 100 µs).
-    cfg.second_drivers = vec![SecondDriver { at_us: 700.0, bytes: vec![0x00, 0x00] }];
+    cfg.second_drivers = vec![SecondDriver { at_us: 700.0, bytes: vec![0x00, 0x00], ..SecondDriver::default() }];
     let bench = cfg.bench().unwrap();
     let mut bench = bench;
     while !crate::Testbench::finished(&bench) {
@@ -421,4 +421,23 @@ fn a_replaced_byte_keeps_the_checksum_right_and_is_read_as_sent() {
     cfg.encoders[0].faults[0].byte = 4;
     let e = cfg.validate().unwrap_err().to_string();
     assert!(e.contains("faults[0]") && e.contains("replace"), "{e}");
+}
+
+#[test]
+fn an_unanswered_zeroing_command_ends_when_sent_and_a_glitch_on_the_bus_is_no_character() {
+    // answer_zeroing = false (ZERO_ANSWER = 0): BC AA C4 zeroes, no answer
+    // awaited; a 2 µs low glitch (under half a bit) is rejected by the receiver.
+    let mut cfg = three_on_a_bus();
+    cfg.encoders = vec![EncoderSettings { address: 4, bits: 16, positions: vec![1000, 1000, 1500], answer_zeroing: false, ..EncoderSettings::default() }];
+    // The read after the zeroing 1 ms later; the glitch on the idle bus between.
+    cfg.ops = vec![op(OpKind::Read, 4), op(OpKind::Zero, 4), Operation { gap_us: 1000.0, ..op(OpKind::Read, 4) }];
+    cfg.second_drivers = vec![SecondDriver { at_us: 2000.0, glitch_ns: 2000.0, ..SecondDriver::default() }];
+    let (t, _) = run(&cfg);
+    assert_eq!(t[0].positions, vec![1000]);
+    assert!(t[1].positions.is_empty() && t[1].errors.is_empty() && t[1].wire_answers.iter().all(|a| a.is_empty()), "{:?}", t[1]);
+    // Zeroed at the raw 1000 the next acquisition would read: it reads 1000 - 1000.
+    assert_eq!((t[2].positions.clone(), t[2].errors.clone()), (vec![0], vec![]));
+    // A second driver with neither bytes nor a glitch is refused by name.
+    cfg.second_drivers[0].glitch_ns = 0.0;
+    assert!(cfg.validate().unwrap_err().to_string().contains("second_drivers[0]"));
 }
