@@ -8,9 +8,11 @@
 //! `count` random positions per device from `seed`) and `[checks]`.
 //!
 //! As in the model, a device answers the next entry of its `positions`
-//! list (the last holding) and has no run-time setter: `set_position` is
-//! refused with that explanation; [`Emulator::last_value`] is the value of
-//! the device's last function-03 answer, as on the wire (Gray when `gray`).
+//! list (the last holding), until a testbench calls `set_position(device,
+//! raw)` (every answer from then on carries `raw`) or `set_motion(device,
+//! toml)` (a [`crate::motion`] profile from the call's cycle on);
+//! [`Emulator::last_value`] is the value of the device's last function-03
+//! answer, as on the wire (Gray when `gray`).
 //! Statuses readable with `last_status`: `answered`, `discarded`,
 //! `exception` (the last request the device saw).
 //!
@@ -25,7 +27,7 @@ use model::modbus::{BenchConfig, Device, Verdict};
 
 use crate::check::{Checks, VIOLATION_PENDING};
 use crate::config::Error;
-use crate::sar58k24::{half_duplex_pins, hex, random_lists, uart_bench, HalfDuplex, RandomPositions};
+use crate::sar58k24::{half_duplex_pins, hex, random_lists, uart_bench, HalfDuplex, RandomPositions, Shafts};
 use crate::{Emulator, Pins, Result};
 
 /// 8 samples per bit at 115200 baud, as the SAR58K24 emulator.
@@ -99,6 +101,7 @@ pub struct ModbusEmulator {
     last_value: Vec<Option<u64>>,
     checks: Checks,
     in_contention: bool,
+    shafts: Shafts,
 }
 
 impl ModbusEmulator {
@@ -141,6 +144,7 @@ impl ModbusEmulator {
             last_value: vec![None; n],
             checks: Checks::new(tb.period_ps()),
             in_contention: false,
+            shafts: Shafts::new(&tb, bits, "device"),
         })
     }
 
@@ -180,6 +184,10 @@ impl Emulator for ModbusEmulator {
             );
         }
         self.in_contention = ends.contention;
+        for (i, p) in self.shafts.moving(self.cycle) {
+            // A motion profile wraps at the device's resolution: always fits.
+            let _ = self.devices[i].set_position(p);
+        }
         let mut drive = Drive {
             enable: false,
             level: true,
@@ -225,10 +233,13 @@ impl Emulator for ModbusEmulator {
         Pins(half_duplex_pins(host, ends.far) | flag)
     }
 
-    fn set_position(&mut self, _device: usize, _position: u64) -> Result<()> {
-        Err(Error::Usage(
-            "the Modbus emulator answers the positions of devices[i].positions (one per answer, the last holding; [random] count = N makes a random list): the model's device has no run-time setter; compare the master's reading with last_value".into(),
-        ))
+    fn set_position(&mut self, device: usize, position: u64) -> Result<()> {
+        self.shafts.set_position(device, position)?;
+        self.devices[device].set_position(position).map_err(|e| Error::Usage(e.to_string()))
+    }
+
+    fn set_motion(&mut self, device: usize, toml: &str) -> Result<()> {
+        self.shafts.set_motion(device, toml, self.cycle)
     }
 
     fn set_status(&mut self, _device: usize, name: &str, _value: bool) -> Result<()> {
@@ -325,6 +336,34 @@ mod tests {
         assert!(!emu.last_status(0, "exception").unwrap());
         assert!(enabled > 7 * 10 * 104 - 10, "the answer drove the line for {enabled} cycles");
         assert!(emu.violations().is_empty());
+    }
+
+    #[test]
+    fn set_position_and_set_motion_drive_the_next_answers() {
+        // Issue 10: a closed-loop bench sets the shaft at run time.
+        let mut emu = ModbusEmulator::from_toml("[modbus]\nbaud = 19200.0\n[[modbus.devices]]\npositions = [9]\n", "m.toml", 2_000_000).unwrap();
+        let req = levels(&[0x01, 0x03, 0x00, 0x00, 0x00, 0x01, 0x84, 0x0A], 104);
+        let poll = |emu: &mut ModbusEmulator| {
+            for k in 0..40_000 {
+                let pins = match req.get(k) {
+                    Some(&l) => 4 | (l as u32) << 1,
+                    None => 2,
+                };
+                emu.step(Pins(pins));
+            }
+            emu.last_value(0).unwrap()
+        };
+        assert_eq!(poll(&mut emu), 9);
+        emu.set_position(0, 0xBEEF).unwrap();
+        assert_eq!(poll(&mut emu), 0xBEEF);
+        // 100 counts per ms from 0: each poll (40 000 cycles, 20 ms) reads about 2000 counts later.
+        emu.set_motion(0, "[motion]\nkind = \"constant\"\nstart = 0\ncounts_per_ms = 100\n").unwrap();
+        let (a, b) = (poll(&mut emu), poll(&mut emu));
+        assert!(a < 2000 && b > a + 1900 && b < a + 2100, "{a} {b}");
+        emu.set_position(0, 3).unwrap();
+        assert_eq!(poll(&mut emu), 3);
+        assert!(emu.set_position(2, 3).unwrap_err().to_string().contains("not device 2"));
+        assert!(emu.set_position(0, 1 << 16).unwrap_err().to_string().contains("does not fit 16 bits"));
     }
 
     #[test]

@@ -11,10 +11,12 @@
 //! * `[checks]`: the limits the host is held to (see [`SarChecks`]).
 //!
 //! The position an encoder reads is the next entry of its `positions` list
-//! (one per acquisition, the last holding), exactly as in the model: the
-//! model's encoder has no run-time position setter, so `set_position` is
-//! refused with that explanation and a testbench compares what the host
-//! read with [`Emulator::last_value`] (what the encoder sent).
+//! (one per acquisition, the last holding), exactly as in the model, until
+//! a testbench calls `set_position(device, raw)` (every acquisition from
+//! then on reads `raw`, less the zero offset: the next frame carries it) or
+//! `set_motion(device, toml)` (a [`crate::motion`] profile, from the
+//! emulator's cycle of the call). [`Emulator::last_value`] is what the
+//! encoder last sent (binary, after zeroing).
 //!
 //! Pins (`emu_step`): in bit 0 the trigger line (CLK of 3.1.3, idle high),
 //! bit 1 the host's driver level, bit 2 its driver enable, bit 3 CLR (idle
@@ -31,6 +33,7 @@ use model::Timebase;
 
 use crate::check::{Checks, VIOLATION_PENDING};
 use crate::config::{self, Error};
+use crate::motion::Motions;
 use crate::{Emulator, Pins, Result};
 
 /// The emulator needs 8 samples per bit of the configured baud rate (the
@@ -144,6 +147,54 @@ pub(crate) fn random_lists(r: &RandomPositions, bits: &[u32], origin: &str, fiel
         .enumerate()
         .map(|(i, &b)| (r.count > 0).then(|| random_list(r.count, r.seed.wrapping_add(i as u64), b.min(32))))
         .collect())
+}
+
+/// The run-time positions of a half-duplex emulator's devices (SAR58K24,
+/// Modbus): `set_position` and `set_motion` of [`Emulator`], checked here
+/// once for both; the emulator hands the positions to its model devices.
+pub(crate) struct Shafts {
+    motions: Motions,
+    period_ps: u64,
+    bits: Vec<u32>,
+    what: &'static str,
+}
+
+impl Shafts {
+    /// Devices of `bits` on the emulator clock `tb`; `what` names them in errors.
+    pub(crate) fn new(tb: &Timebase, bits: Vec<u32>, what: &'static str) -> Self {
+        Shafts { motions: Motions::default(), period_ps: tb.period_ps(), bits, what }
+    }
+
+    fn bits(&self, device: usize) -> Result<u32> {
+        self.bits
+            .get(device)
+            .copied()
+            .ok_or_else(|| Error::Usage(format!("the emulator has {} {}(s), not {} {device}", self.bits.len(), self.what, self.what)))
+    }
+
+    /// Checks `set_position(device, position)` and stops the device's motion.
+    pub(crate) fn set_position(&mut self, device: usize, position: u64) -> Result<()> {
+        let bits = self.bits(device)?;
+        if bits < 64 && position >> bits != 0 {
+            return Err(Error::Usage(format!("position {position} does not fit {bits} bits ({} {device}); give a position below 2^{bits}", self.what)));
+        }
+        self.motions.stop(device);
+        Ok(())
+    }
+
+    /// `set_motion(device, toml)` from emulator cycle `cycle` on.
+    pub(crate) fn set_motion(&mut self, device: usize, toml: &str, cycle: u64) -> Result<()> {
+        self.bits(device)?;
+        self.motions.set(device, toml, cycle)
+    }
+
+    /// The positions of the moving devices at `cycle`.
+    pub(crate) fn moving(&self, cycle: u64) -> Vec<(usize, u64)> {
+        if !self.motions.any() {
+            return Vec::new();
+        }
+        (0..self.bits.len()).filter_map(|i| self.motions.position(i, cycle, self.period_ps, self.bits[i]).map(|p| (i, p))).collect()
+    }
 }
 
 /// A half-duplex pair between the host (end A, at the pins) and the devices
@@ -266,6 +317,7 @@ pub struct SarEmulator {
     last: Vec<Option<u64>>,
     checks: Checks,
     in_contention: bool,
+    shafts: Shafts,
 }
 
 impl SarEmulator {
@@ -313,6 +365,7 @@ impl SarEmulator {
             last: vec![None; n],
             checks: Checks::new(tb.period_ps()),
             in_contention: false,
+            shafts: Shafts::new(&tb, bits, "encoder"),
         })
     }
 
@@ -346,6 +399,10 @@ impl Emulator for SarEmulator {
             trigger: self.trigger.step(pins.0 & 1 != 0),
             clr: self.clr.step(pins.0 & 8 != 0),
         };
+        for (i, p) in self.shafts.moving(self.cycle) {
+            // A motion profile wraps at the encoder's resolution: always fits.
+            let _ = self.encoders[i].set_position(p);
+        }
         let mut drive = Drive {
             enable: false,
             level: true,
@@ -391,10 +448,13 @@ impl Emulator for SarEmulator {
         Pins(half_duplex_pins(host, ends.far) | flag)
     }
 
-    fn set_position(&mut self, _device: usize, _position: u64) -> Result<()> {
-        Err(Error::Usage(
-            "the SAR58K24 emulator reads its positions from encoders[i].positions (one per acquisition, the last holding; [random] count = N makes a random list): the model's encoder has no run-time setter; compare the host's reading with last_value".into(),
-        ))
+    fn set_position(&mut self, device: usize, position: u64) -> Result<()> {
+        self.shafts.set_position(device, position)?;
+        self.encoders[device].set_position(position).map_err(|e| Error::Usage(e.to_string()))
+    }
+
+    fn set_motion(&mut self, device: usize, toml: &str) -> Result<()> {
+        self.shafts.set_motion(device, toml, self.cycle)
     }
 
     fn set_status(&mut self, _device: usize, name: &str, _value: bool) -> Result<()> {
@@ -497,16 +557,7 @@ mod tests {
         // Seed 001, 3.1.5: BC AA B1 answered FF B1 <position> <sum>.
         let text = "[sar]\nmode = \"bus\"\n[[sar.encoders]]\naddress = 1\nbits = 16\n[sar.random]\ncount = 4\nseed = 9\n";
         let mut emu = SarEmulator::from_toml(text, "bus.toml", 10_000_000).unwrap();
-        let cmd = levels(&[0xBC, 0xAA, 0xB1], 87);
-        let mut line = Vec::new();
-        for k in 0..12_000 {
-            let pins = match cmd.get(k) {
-                Some(&l) => 0b1001 | 4 | (l as u32) << 1,
-                None => 0b1001,
-            };
-            line.push(emu.step(Pins(pins)).0 & 4 != 0);
-        }
-        let got = receive(&line[cmd.len()..], 87);
+        let got = command(&mut emu);
         let p = random_list(4, 9, 16)[0];
         assert_eq!(got[..2], [0xFF, 0xB1]);
         assert_eq!(((got[2] as u64) << 8) | got[3] as u64, p);
@@ -523,6 +574,50 @@ mod tests {
         }
         assert_eq!(emu.violations().len(), 1, "{:?}", emu.violations());
         assert!(emu.violations()[0].rule.starts_with("one driver at a time"));
+    }
+
+    /// Sends `BC AA B1` at 115200 baud (87 cycles a bit) and returns the
+    /// characters that came back within 1.2 ms.
+    fn command(emu: &mut SarEmulator) -> Vec<u8> {
+        let cmd = levels(&[0xBC, 0xAA, 0xB1], 87);
+        let mut line = Vec::new();
+        for k in 0..12_000 {
+            let pins = match cmd.get(k) {
+                Some(&l) => 0b1001 | 4 | (l as u32) << 1,
+                None => 0b1001,
+            };
+            line.push(emu.step(Pins(pins)).0 & 4 != 0);
+        }
+        receive(&line[cmd.len()..], 87)
+    }
+
+    /// Sends `BC AA B1` and returns the position in the answer.
+    fn poll(emu: &mut SarEmulator) -> u64 {
+        let got = command(emu);
+        assert_eq!(got[..2], [0xFF, 0xB1]);
+        ((got[2] as u64) << 8) | got[3] as u64
+    }
+
+    #[test]
+    fn set_position_and_set_motion_drive_the_next_answers() {
+        // Issue 10: a closed-loop bench sets the shaft at run time.
+        let text = "[sar]\nmode = \"bus\"\n[[sar.encoders]]\naddress = 1\nbits = 16\npositions = [7]\n";
+        let mut emu = SarEmulator::from_toml(text, "bus.toml", 10_000_000).unwrap();
+        assert_eq!(poll(&mut emu), 7);
+        emu.set_position(0, 0xABCD).unwrap();
+        assert_eq!(poll(&mut emu), 0xABCD);
+        assert_eq!(emu.last_value(0), Some(0xABCD));
+        // 1000 counts per ms from 100: each poll (12 000 cycles, 1.2 ms) reads a later position.
+        emu.set_motion(0, "[motion]\nkind = \"constant\"\nstart = 100\ncounts_per_ms = 1000\n").unwrap();
+        let (a, b) = (poll(&mut emu), poll(&mut emu));
+        assert!((100..1400).contains(&a) && b > a + 1000 && b < a + 1400, "{a} {b}");
+        // A set position stops the motion.
+        emu.set_position(0, 5).unwrap();
+        assert_eq!((poll(&mut emu), poll(&mut emu)), (5, 5));
+        let e = emu.set_position(1, 5).unwrap_err().to_string();
+        assert!(e.contains("1 encoder(s), not encoder 1"), "{e}");
+        let e = emu.set_position(0, 1 << 16).unwrap_err().to_string();
+        assert!(e.contains("does not fit 16 bits"), "{e}");
     }
 
     #[test]

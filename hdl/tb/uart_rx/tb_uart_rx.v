@@ -7,13 +7,14 @@ module tb_uart_rx;
 
 /* Core parameters: set per vector file from its `params:` header line */
 parameter CLOCKS_PER_BIT = 10;
+parameter PARITY = 0;
 
 /* Harness parameters */
 parameter HALF_PERIOD_FS = 5_000_000;
 parameter MAX_WORDS = 1 << 22;
 
 localparam N_IN = 1;
-localparam N_OUT = 5;
+localparam N_OUT = 6;
 
 `include "vector_player.vh"
 
@@ -23,8 +24,9 @@ wire o_valid;
 wire o_frame_err;
 wire o_start_err;
 wire o_busy;
+wire o_parity_err;
 
-// Port order = the model's uart::Receiver::input_ports() / output_ports().
+// Port order = the model's uart::Receiver::input_ports() / output_ports(), then o_parity_err (uart::Bench).
 task apply_inputs;
     begin
         i_rx = `IN_WORD(0) & 1'b1;
@@ -38,11 +40,13 @@ task check_outputs;
         `CHECK(2, "o_frame_err", o_frame_err)
         `CHECK(3, "o_start_err", o_start_err)
         `CHECK(4, "o_busy", o_busy)
+        `CHECK(5, "o_parity_err", o_parity_err)
     end
 endtask
 
 uart_rx #(
-    .CLOCKS_PER_BIT(CLOCKS_PER_BIT)
+    .CLOCKS_PER_BIT(CLOCKS_PER_BIT),
+    .PARITY(PARITY)
 ) dut (
     .i_clk(clk),
     .i_rst(rst),
@@ -51,7 +55,8 @@ uart_rx #(
     .o_valid(o_valid),
     .o_frame_err(o_frame_err),
     .o_start_err(o_start_err),
-    .o_busy(o_busy)
+    .o_busy(o_busy),
+    .o_parity_err(o_parity_err)
 );
 
 endmodule

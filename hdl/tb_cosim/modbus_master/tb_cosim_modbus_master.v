@@ -5,10 +5,14 @@
 // and at o_done the core must have pulsed o_valid with exactly the value of
 // the device's answer (u_emu.last_value), no error
 // pulse, and the device must have seen and answered exactly one request.
+// The second half of the polls first sets a random position of 16 x COUNT
+// bits with u_emu.set_position (issue 10), and the answer must carry it
+// (binary, or Gray for a Gray device).
 //
 // Plusargs: +modbus_emu_config=<scenario.toml>, +transactions=N (default
-// 1000), +seed=S (unused), +flip_bit=K (planted failure: the comparison
-// flips bit K of the core's output, so the run must fail).
+// 1000), +seed=S (the positions set in the second half), +flip_bit=K
+// (planted failure: the comparison flips bit K of the core's output, so the
+// run must fail).
 
 `timescale 1fs / 1fs
 `default_nettype none
@@ -84,7 +88,8 @@ always @(posedge clk) begin
 end
 
 integer transactions, seed, flip_bit, n, waited;
-reg [63:0] sent, got, count_before;
+reg [63:0] sent, got, count_before, position;
+localparam [63:0] MASK = (64'd1 << (16 * COUNT)) - 1;
 
 initial begin
     if (!$value$plusargs("transactions=%d", transactions)) transactions = 1000;
@@ -94,6 +99,10 @@ initial begin
     rst <= 1'b0;
     repeat (4) @(posedge clk);
     for (n = 0; n < transactions; n = n + 1) begin
+        if (2 * n >= transactions) begin
+            position = {$random(seed), $random(seed)} & MASK;
+            u_emu.set_position(0, position);
+        end
         count_before = u_emu.count(0);
         i_start <= 1'b1;
         @(posedge clk);
@@ -115,6 +124,8 @@ initial begin
         if (!seen_valid || seen_err || got != sent)
             $fatal(1, "poll %0d at %0t: core read %0d (valid %b, an error pulse %b), the device answered %0d",
                    n, $time, got, seen_valid, seen_err, sent);
+        if (2 * n >= transactions && sent != position && sent != (position ^ (position >> 1)))
+            $fatal(1, "poll %0d at %0t: the testbench set position %0d, the device answered %0d", n, $time, position, sent);
         while (o_busy) @(posedge clk);
     end
     if (u_emu.violations(0) != 0)

@@ -5,10 +5,13 @@
 // trigger pulse in the handshake modes, BC AA Bx on the bus) and at o_done
 // the core must have pulsed o_valid with exactly the position the emulator
 // says it sent (u_emu.last_value), no error pulse, and in the handshake and
-// bus modes the emulator must have sent exactly one frame per read.
+// bus modes the emulator must have sent exactly one frame per read. The
+// second half of the reads first sets a random position of BITS bits with
+// u_emu.set_position (issue 10: the testbench owns the shaft from then on),
+// and the frame must carry exactly that position.
 //
 // Plusargs: +sar58k24_emu_config=<scenario.toml>, +transactions=N (default
-// 1000), +seed=S (unused: the positions come from the configuration),
+// 1000), +seed=S (the positions set in the second half),
 // +flip_bit=K (planted failure: the comparison flips bit K of the core's
 // output, so the run must fail).
 
@@ -93,7 +96,8 @@ end
 
 localparam COUNTED = (MODE >= 2);
 integer transactions, seed, flip_bit, n, waited;
-reg [63:0] sent, got, count_before;
+reg [63:0] sent, got, count_before, position;
+localparam [63:0] MASK = (64'd1 << BITS) - 1;
 
 initial begin
     if (!$value$plusargs("transactions=%d", transactions)) transactions = 1000;
@@ -103,6 +107,10 @@ initial begin
     rst <= 1'b0;
     repeat (4) @(posedge clk);
     for (n = 0; n < transactions; n = n + 1) begin
+        if (2 * n >= transactions) begin
+            position = {$random(seed), $random(seed)} & MASK;
+            u_emu.set_position(0, position);
+        end
         count_before = u_emu.count(0);
         i_start <= 1'b1;
         @(posedge clk);
@@ -124,6 +132,8 @@ initial begin
         if (!seen_valid || seen_err || got != sent)
             $fatal(1, "read %0d at %0t: core read %0d (valid %b, an error pulse %b), the emulator sent %0d",
                    n, $time, got, seen_valid, seen_err, sent);
+        if (2 * n >= transactions && sent != position)
+            $fatal(1, "read %0d at %0t: the testbench set position %0d, the encoder sent %0d", n, $time, position, sent);
         while (o_busy) @(posedge clk);
         // The host's o_done comes in the middle of the last stop bit, while
         // the encoder still drives its line: a host that starts the next

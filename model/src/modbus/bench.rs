@@ -13,6 +13,7 @@ use crate::line::{CableConfig, Drive, HalfDuplexLine};
 use crate::ports::{Port, Ports};
 use crate::testbench::{self, Setup, Testbench};
 use crate::trace::{Layout, Sample};
+pub use crate::uart::SecondDriver;
 use crate::uart::{self, Parity};
 use crate::{ConfigError, Result, Timebase};
 
@@ -69,16 +70,6 @@ fn default_address() -> u8 {
 
 fn default_count() -> u8 {
     1
-}
-
-/// Another device driving the line (`[[modbus.second_drivers]]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct SecondDriver {
-    /// Start, µs after reset.
-    pub at_us: f64,
-    /// The characters it sends.
-    pub bytes: Vec<u8>,
 }
 
 /// Everything a scenario says about a Modbus set-up (`[modbus]`).
@@ -193,9 +184,7 @@ impl BenchConfig {
             }
         }
         for (i, d) in self.second_drivers.iter().enumerate() {
-            if !(0.0..1e8).contains(&d.at_us) || !(1..=1000).contains(&d.bytes.len()) {
-                return Err(ConfigError::invalid(format!("second_drivers[{i}]"), "bad time or bytes", "give at_us ≥ 0 and 1 to 1000 bytes"));
-            }
+            d.validate(i)?;
         }
         Ok(())
     }
@@ -318,10 +307,7 @@ impl Bench {
         let drivers = cfg
             .second_drivers
             .iter()
-            .map(|d| {
-                let levels: Vec<bool> = d.bytes.iter().flat_map(|&b| cfg.parity.levels(b)).flat_map(|bit| std::iter::repeat_n(bit, c as usize)).collect();
-                (tb.cycles_nearest_ns(d.at_us * 1e3), levels)
-            })
+            .map(|d| d.cycle_levels(&tb, cfg.parity, c))
             .collect();
         Ok(Bench {
             master: Master::new(cfg.master_config()?)?,

@@ -17,14 +17,13 @@
 //!
 //! The master runs at 6 clocks per bit so that 100 000 answers take seconds.
 
-use std::collections::BTreeMap;
-
-use rand::seq::index::sample;
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
 
 use super::frames;
 use super::master::{In, Master, MasterConfig};
+pub use crate::uart::campaign::levels;
+use crate::uart::campaign::{characters, corrupt, Tally};
 use crate::uart::Parity;
 
 /// Clocks per bit of the campaign's master.
@@ -35,83 +34,32 @@ pub fn master_config() -> MasterConfig {
     MasterConfig { clocks_per_bit: CLOCKS_PER_BIT, parity: Parity::None, t15_clocks: 15 * CLOCKS_PER_BIT, t35_clocks: 35 * CLOCKS_PER_BIT, timeout_clocks: 2000 }
 }
 
-/// Detected and undetected corruptions.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub struct Counts {
-    /// The master flagged the answer.
-    pub detected: u64,
-    /// The master reported the corrupted answer as good.
-    pub undetected: u64,
-}
-
-impl Counts {
-    fn add(&mut self, detected: bool) {
-        if detected {
-            self.detected += 1;
-        } else {
-            self.undetected += 1;
-        }
-    }
-
-    /// Corruptions counted.
-    pub fn total(&self) -> u64 {
-        self.detected + self.undetected
-    }
-}
-
-/// The campaign's result.
+/// The campaign's result: the tally of [`crate::uart::campaign`].
 #[derive(Debug, Clone, PartialEq, Eq, Default)]
 pub struct Report {
-    /// `inverted bits -> counts`.
-    pub by_flips: BTreeMap<usize, Counts>,
-    /// Corruptions [`blind`] calls blind.
-    pub blind: Counts,
-    /// Corruptions the master judged otherwise than [`blind`] (must be 0).
-    pub disagreements: u64,
+    /// Detected and undetected by inverted bits, and against [`blind`].
+    pub tally: Tally,
 }
 
-impl Report {
-    /// All corruptions run.
-    pub fn total(&self) -> u64 {
-        self.by_flips.values().map(Counts::total).sum()
+impl std::ops::Deref for Report {
+    type Target = Tally;
+    fn deref(&self) -> &Tally {
+        &self.tally
     }
 }
 
 impl std::fmt::Display for Report {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        writeln!(f, "inverted bits | answers | detected | undetected | undetected rate")?;
-        for (k, c) in &self.by_flips {
-            writeln!(f, "{k:>13} | {:>7} | {:>8} | {:>10} | {:.5}", c.total(), c.detected, c.undetected, c.undetected as f64 / c.total() as f64)?;
-        }
-        writeln!(f, "CRC-16 promise: every 1, 2 or 3 inverted data bits and every odd number seen; a re-framed character passes with p = 2^-16")?;
-        writeln!(f, "blind by the frame's own checks: {} (all {} accepted, as they must be)", self.blind.total(), self.blind.undetected)?;
+        self.tally.table(f, "answers", "CRC-16 promise: every 1, 2 or 3 inverted data bits and every odd number seen; a re-framed character passes with p = 2^-16")?;
         write!(f, "total {}, disagreements with the checks {}", self.total(), self.disagreements)
     }
-}
-
-/// The line levels of `bytes`, 10 bits a character.
-pub fn levels(bytes: &[u8]) -> Vec<bool> {
-    bytes.iter().flat_map(|&b| Parity::None.levels(b)).collect()
 }
 
 /// Whether corrupted `levels` still read, bit by bit, as a valid answer of
 /// station `address` to a read of `count` registers: no framing error,
 /// CRC, address, function 03, byte count and length.
 pub fn blind(levels: &[bool], address: u8, count: u8) -> bool {
-    let mut bytes = Vec::new();
-    let mut i = 0;
-    while i < levels.len() {
-        if levels[i] {
-            i += 1;
-            continue;
-        }
-        let bit = |j: usize| levels.get(j).copied().unwrap_or(true);
-        if !bit(i + 9) {
-            return false;
-        }
-        bytes.push((1..=8).fold(0u8, |b, k| b | ((bit(i + k) as u8) << (k - 1))));
-        i += 10;
-    }
+    let Some(bytes) = characters(levels) else { return false };
     let n = 5 + 2 * count as usize;
     bytes.len() == n && frames::crc_ok(&bytes) && bytes[0] == address && bytes[1] == frames::READ_HOLDING && bytes[2] == 2 * count
 }
@@ -149,24 +97,8 @@ pub fn run(trials: u64, max_flips: usize, seed: u64) -> Report {
         let address = rng.random_range(1..=247u8);
         let count = rng.random_range(1..=2u8);
         let clean = levels(&frames::read_answer(address, count as u16, rng.random()));
-        let k = match rng.random_range(0..10) {
-            0..=3 => 1,
-            4..=6 => 2,
-            _ => rng.random_range(3..=max_flips.max(3)),
-        };
-        let mut corrupted = clean;
-        for i in sample(&mut rng, corrupted.len(), k).into_vec() {
-            corrupted[i] = !corrupted[i];
-        }
-        let d = detected(address, count, &corrupted);
-        let b = blind(&corrupted, address, count);
-        report.by_flips.entry(k).or_default().add(d);
-        if b {
-            report.blind.add(d);
-        }
-        if d == b {
-            report.disagreements += 1;
-        }
+        let (k, corrupted) = corrupt(&mut rng, &clean, max_flips);
+        report.tally.add(k, detected(address, count, &corrupted), blind(&corrupted, address, count));
     }
     report
 }

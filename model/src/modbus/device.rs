@@ -147,6 +147,7 @@ pub struct Device {
     driving_until_ps: f64,
     cycle: u64,
     seen: Vec<Seen>,
+    position_now: Option<u64>,
 }
 
 impl Device {
@@ -157,6 +158,7 @@ impl Device {
             address: cfg.settings.address,
             answers: 0,
             reads: 0,
+            position_now: None,
             tx: Transmitter::new(cfg.period_ps, cfg.baud, cfg.settings.baud_error_percent, 0.0, 1).with_parity(cfg.parity),
             rx: Receiver::with_parity(ReceiverConfig { clocks_per_bit: cfg.clocks_per_bit }, cfg.parity)?,
             frame: Vec::new(),
@@ -180,9 +182,20 @@ impl Device {
         &self.seen
     }
 
+    /// Sets the raw position every answer from now on carries, in place of
+    /// the `positions` list (a closed-loop bench moving the shaft). Refused
+    /// when it does not fit the resolution.
+    pub fn set_position(&mut self, raw: u64) -> Result<()> {
+        if raw >> self.cfg.settings.bits != 0 {
+            return Err(ConfigError::invalid("position", format!("{raw} does not fit {} bits", self.cfg.settings.bits), "give a position below 2^bits"));
+        }
+        self.position_now = Some(raw);
+        Ok(())
+    }
+
     fn position(&mut self) -> u64 {
         let p = &self.cfg.settings.positions;
-        let v = p[self.reads.min(p.len() - 1)];
+        let v = self.position_now.unwrap_or_else(|| p[self.reads.min(p.len() - 1)]);
         self.reads += 1;
         if self.cfg.settings.gray {
             to_gray(v)
@@ -242,9 +255,18 @@ impl Device {
         let index = self.answers;
         self.answers += 1;
         let faults: Vec<FrameFault> = self.cfg.settings.faults.iter().filter(|f| f.frame == index).cloned().collect();
-        if let Some(f) = faults.iter().find(|f| f.kind == FaultKind::Retag) {
-            let n = bytes.len();
-            bytes[0] = f.bytes[0];
+        let n = bytes.len();
+        let mut changed = false;
+        for f in &faults {
+            let at = match f.kind {
+                FaultKind::Retag => 0,
+                FaultKind::Replace if f.byte + 2 < n => f.byte,
+                _ => continue,
+            };
+            bytes[at] = f.bytes[0];
+            changed = true;
+        }
+        if changed {
             let crc = frames::crc_bytes(&bytes[..n - 2]);
             bytes[n - 2..].copy_from_slice(&crc);
         }

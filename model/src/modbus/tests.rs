@@ -217,7 +217,7 @@ fn an_answer_from_the_wrong_address_no_answer_and_noise_are_flagged() {
 #[test]
 fn a_second_driver_on_the_line_is_flagged() {
     // The answer starts about 4.2 + 1.8 + 0.1 ms after reset at 19200 baud.
-    let cfg = BenchConfig { second_drivers: vec![SecondDriver { at_us: 6300.0, bytes: vec![0x00] }], ..BenchConfig::default() };
+    let cfg = BenchConfig { second_drivers: vec![SecondDriver { at_us: 6300.0, bytes: vec![0x00], ..SecondDriver::default() }], ..BenchConfig::default() };
     let mut bench = cfg.bench().unwrap();
     while !crate::Testbench::finished(&bench) {
         crate::Testbench::step(&mut bench, None);
@@ -300,4 +300,59 @@ fn the_master_changes_the_device_address_and_the_device_answers_at_the_new_one()
     cfg.ops = vec![Operation { new_address: 0, ..set }];
     let e = cfg.validate().unwrap_err().to_string();
     assert!(e.contains("ops[0].new_address"), "{e}");
+}
+
+#[test]
+fn noise_inside_an_answer_a_wrong_function_and_a_wrong_byte_count_are_each_flagged() {
+    let mut cfg = BenchConfig::default();
+    // A noise byte 55 before the answer's fourth character: 8 characters, CRC wrong.
+    let mut n = fault(FaultKind::Noise, 3, 0);
+    n.bytes = vec![0x55];
+    cfg.devices[0].faults = vec![n];
+    let t = &run(&cfg)[0];
+    assert_eq!((t.value, t.errors.clone()), (None, vec!["crc"]));
+    assert_eq!(t.wire_answers[0].len(), 8, "{:?}", t.wire_answers);
+    // Function 04 with a correct CRC: o_err_function.
+    let mut f = fault(FaultKind::Replace, 1, 0);
+    f.bytes = vec![0x04];
+    cfg.devices[0].faults = vec![f.clone()];
+    let t = &run(&cfg)[0];
+    assert_eq!((t.value, t.errors.clone()), (None, vec!["function"]));
+    // Byte count 04 to a one-register read, CRC correct: o_err_count.
+    f.byte = 2;
+    cfg.devices[0].faults = vec![f.clone()];
+    let t = &run(&cfg)[0];
+    assert_eq!((t.value, t.errors.clone()), (None, vec!["count"]));
+    // The CRC itself cannot be replaced (the emulator recomputes it).
+    f.byte = 8;
+    cfg.devices[0].faults = vec![f];
+    assert!(cfg.validate().unwrap_err().to_string().contains("devices[0].faults[0]"));
+}
+
+#[test]
+fn noise_between_frames_is_no_answer_and_the_next_request_waits_for_t3_5_after_it() {
+    // Two polls 20 ms apart at 19200 baud; a second driver sends 01 03 at
+    // 20 ms, while the line is idle: not an answer (the master is idle),
+    // and the next request starts t3.5 after the noise, never inside it.
+    let mut cfg = BenchConfig::default();
+    cfg.ops = vec![read(1, 1), Operation { gap_us: 20_000.0, ..read(1, 1) }];
+    cfg.second_drivers = vec![SecondDriver { at_us: 20_000.0, bytes: vec![0x01, 0x03], ..SecondDriver::default() }];
+    let t = run(&cfg);
+    assert_eq!(t.iter().map(|t| (t.value, t.errors.clone())).collect::<Vec<_>>(), vec![(Some(383), vec![]), (Some(383), vec![])]);
+}
+
+#[test]
+fn a_run_time_position_replaces_the_list_from_the_next_answer_on() {
+    let mut cfg = BenchConfig::default();
+    cfg.devices[0].positions = vec![1, 2, 3];
+    let mut dev = Device::new(cfg.device_config(0).unwrap()).unwrap();
+    let first = dev.respond(&frames::read_request(1, 1)).1;
+    dev.set_position(0xBEEF).unwrap();
+    let second = dev.respond(&frames::read_request(1, 1)).1;
+    let third = dev.respond(&frames::read_request(1, 1)).1;
+    assert_eq!(first, frames::read_answer(1, 1, 1));
+    assert_eq!(second, frames::read_answer(1, 1, 0xBEEF));
+    assert_eq!(third, second);
+    let e = dev.set_position(1 << 16).unwrap_err().to_string();
+    assert!(e.contains("16 bits"), "{e}");
 }

@@ -11,6 +11,7 @@ use crate::line::{CableConfig, DelayLine, Drive, HalfDuplexLine};
 use crate::ports::{Port, Ports};
 use crate::testbench::{self, Setup, Testbench};
 use crate::trace::{Layout, Sample};
+pub use crate::uart::SecondDriver;
 use crate::uart::{self, Parity};
 use crate::{ConfigError, Result, Timebase};
 
@@ -70,16 +71,6 @@ fn default_gap() -> f64 {
 
 fn default_repeat() -> u32 {
     1
-}
-
-/// Another device driving the line (`[[sar.second_drivers]]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct SecondDriver {
-    /// Start, µs after reset.
-    pub at_us: f64,
-    /// The characters it sends at the nominal rate.
-    pub bytes: Vec<u8>,
 }
 
 /// Everything a scenario says about a SAR58K24 asynchronous set-up (`[sar]`).
@@ -250,9 +241,7 @@ impl BenchConfig {
             }
         }
         for (i, d) in self.second_drivers.iter().enumerate() {
-            if !(0.0..1e8).contains(&d.at_us) || !(1..=1000).contains(&d.bytes.len()) {
-                return Err(ConfigError::invalid(format!("second_drivers[{i}]"), "bad time or bytes", "give at_us ≥ 0 and 1 to 1000 bytes"));
-            }
+            d.validate(i)?;
         }
         Ok(())
     }
@@ -382,10 +371,7 @@ impl Bench {
         let drivers = cfg
             .second_drivers
             .iter()
-            .map(|d| {
-                let levels: Vec<bool> = d.bytes.iter().flat_map(|&b| cfg.parity.levels(b)).flat_map(|bit| std::iter::repeat_n(bit, c as usize)).collect();
-                (tb.cycles_nearest_ns(d.at_us * 1e3), levels)
-            })
+            .map(|d| d.cycle_levels(&tb, cfg.parity, c))
             .collect();
         Ok(Bench {
             host: Host::new(cfg.host_config()?)?,

@@ -22,15 +22,14 @@
 //! The host runs at 6 clocks per bit (the receiver's minimum) so that
 //! 100 000 frames take seconds.
 
-use std::collections::BTreeMap;
-
-use rand::seq::index::sample;
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
 
 use super::encoder::Mode;
 use super::frames;
 use super::host::{Host, HostConfig, In};
+pub use crate::uart::campaign::levels;
+use crate::uart::campaign::{characters, corrupt, Tally};
 use crate::uart::Parity;
 
 /// Clocks per bit of the campaign's host.
@@ -57,58 +56,29 @@ pub fn host_config(bits: u32) -> HostConfig {
     }
 }
 
-/// Detected and undetected corruptions.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub struct Counts {
-    /// The host raised at least one error flag, or accepted nothing.
-    pub detected: u64,
-    /// The host accepted the corrupted frame without a flag.
-    pub undetected: u64,
-}
-
-impl Counts {
-    fn add(&mut self, detected: bool) {
-        if detected {
-            self.detected += 1;
-        } else {
-            self.undetected += 1;
-        }
-    }
-
-    /// Corruptions counted.
-    pub fn total(&self) -> u64 {
-        self.detected + self.undetected
-    }
-}
-
-/// The campaign's result.
+/// The campaign's result: the tally of [`crate::uart::campaign`] and the recoveries.
 #[derive(Debug, Clone, PartialEq, Eq, Default)]
 pub struct Report {
-    /// `inverted bits -> counts`.
-    pub by_flips: BTreeMap<usize, Counts>,
-    /// Corruptions [`blind`] calls blind (a well-formed frame remains).
-    pub blind: Counts,
-    /// Corruptions the host judged otherwise than [`blind`] (must be 0).
-    pub disagreements: u64,
+    /// Detected and undetected by inverted bits, and against [`blind`].
+    pub tally: Tally,
     /// The clean frame after a corruption was not read (must be 0).
     pub lost_recoveries: u64,
 }
 
-impl Report {
-    /// All corruptions run.
-    pub fn total(&self) -> u64 {
-        self.by_flips.values().map(Counts::total).sum()
+impl std::ops::Deref for Report {
+    type Target = Tally;
+    fn deref(&self) -> &Tally {
+        &self.tally
     }
 }
 
 impl std::fmt::Display for Report {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        writeln!(f, "inverted bits |  frames | detected | undetected | undetected rate")?;
-        for (k, c) in &self.by_flips {
-            writeln!(f, "{k:>13} | {:>7} | {:>8} | {:>10} | {:.5}", c.total(), c.detected, c.undetected, c.undetected as f64 / c.total() as f64)?;
-        }
-        writeln!(f, "8-bit sum promise: every inverted data bit seen; two are blind only when their changes cancel mod 256; a character re-framed by an inverted start bit passes with p = 1/256")?;
-        writeln!(f, "blind by the frame's own checks: {} (all {} accepted, as they must be)", self.blind.total(), self.blind.undetected)?;
+        self.tally.table(
+            f,
+            "frames",
+            "8-bit sum promise: every inverted data bit seen; two are blind only when their changes cancel mod 256; a character re-framed by an inverted start bit passes with p = 1/256",
+        )?;
         write!(f, "total {}, disagreements with the checks {}, clean frames lost after a corruption {}", self.total(), self.disagreements, self.lost_recoveries)
     }
 }
@@ -122,27 +92,7 @@ impl std::fmt::Display for Report {
 /// the receiver start inside the character: the characters it then reads
 /// are new bytes, and the sum sees them only with probability 255/256.
 pub fn blind(levels: &[bool], bits: u32) -> bool {
-    let mut bytes = Vec::new();
-    let mut i = 0;
-    while i < levels.len() {
-        if levels[i] {
-            i += 1;
-            continue;
-        }
-        let bit = |j: usize| levels.get(j).copied().unwrap_or(true);
-        let byte = (1..=8).fold(0u8, |b, k| b | ((bit(i + k) as u8) << (k - 1)));
-        if !bit(i + 9) {
-            return false;
-        }
-        bytes.push(byte);
-        i += 10;
-    }
-    frames::decode(&bytes, bits).is_ok()
-}
-
-/// The line levels of a frame: start, data LSB first, stop, per character.
-pub fn levels(frame: &[u8]) -> Vec<bool> {
-    frame.iter().flat_map(|&b| Parity::None.levels(b)).collect()
+    characters(levels).is_some_and(|bytes| frames::decode(&bytes, bits).is_ok())
 }
 
 /// Runs a host over idle, the corrupted frame, idle, the clean frame, idle.
@@ -175,26 +125,11 @@ pub fn run(trials: u64, max_flips: usize, seed: u64) -> Report {
         let bits = [16u32, 24, 32][rng.random_range(0..3)];
         let value = if bits == 32 { rng.random::<u32>() } else { rng.random::<u32>() & ((1 << bits) - 1) };
         let clean = levels(&frames::encode(value, bits));
-        let k = match rng.random_range(0..10) {
-            0..=3 => 1,
-            4..=6 => 2,
-            _ => rng.random_range(3..=max_flips.max(3)),
-        };
-        let mut corrupted = clean.clone();
-        for i in sample(&mut rng, clean.len(), k).into_vec() {
-            corrupted[i] = !corrupted[i];
-        }
+        let (k, corrupted) = corrupt(&mut rng, &clean, max_flips);
         let next = rng.random::<u32>() & 0xFFFF;
         let next_frame = levels(&frames::encode(next, bits));
         let (detected, recovered) = judge(bits, &corrupted, &next_frame, next & if bits == 32 { u32::MAX } else { (1 << bits) - 1 });
-        let is_blind = blind(&corrupted, bits);
-        report.by_flips.entry(k).or_default().add(detected);
-        if is_blind {
-            report.blind.add(detected);
-        }
-        if detected == is_blind {
-            report.disagreements += 1;
-        }
+        report.tally.add(k, detected, blind(&corrupted, bits));
         if !recovered {
             report.lost_recoveries += 1;
         }

@@ -292,6 +292,7 @@ pub struct Encoder {
     driving_until_ps: f64,
     sent: Vec<SentFrame>,
     zeroings: usize,
+    position_now: Option<u64>,
     glitches: usize,
 }
 
@@ -317,6 +318,7 @@ impl Encoder {
             driving_until_ps: -1.0,
             sent: Vec::new(),
             zeroings: 0,
+            position_now: None,
             glitches: 0,
             cfg,
         })
@@ -345,10 +347,26 @@ impl Encoder {
         }
     }
 
-    /// The raw position the next acquisition reads.
+    /// The raw position the next acquisition reads: the one given to
+    /// [`Encoder::set_position`], else the next entry of `positions`.
     fn raw_now(&self) -> u64 {
+        if let Some(p) = self.position_now {
+            return p;
+        }
         let p = &self.cfg.settings.positions;
         p[self.acquisitions.min(p.len() - 1)]
+    }
+
+    /// Sets the raw position every acquisition from now on reads, in place
+    /// of the `positions` list (a closed-loop bench moving the shaft): the
+    /// next frame carries it, minus the zero offset. Refused when it does
+    /// not fit the resolution.
+    pub fn set_position(&mut self, raw: u64) -> Result<()> {
+        if raw & !self.mask() != 0 {
+            return Err(ConfigError::invalid("position", format!("{raw} does not fit {} bits", self.cfg.settings.bits), "give a position below 2^bits"));
+        }
+        self.position_now = Some(raw);
+        Ok(())
     }
 
     /// Reads the position (one acquisition): raw minus the zero offset.
@@ -377,7 +395,12 @@ impl Encoder {
         if let Some(f) = faults.iter().find(|f| f.kind == FaultKind::Retag) {
             tag = f.bytes[0];
         }
-        let bytes = frames::encode_tagged(coded as u32, s.bits, tag);
+        let mut bytes = frames::encode_tagged(coded as u32, s.bits, tag);
+        let n = bytes.len();
+        for f in faults.iter().filter(|f| f.kind == FaultKind::Replace && f.byte + 1 < n) {
+            bytes[f.byte] = f.bytes[0];
+            bytes[n - 1] = frames::checksum(&bytes[..n - 1]);
+        }
         self.sent.push(SentFrame { cycle: self.cycle, bytes: bytes.clone(), position });
         if faults.iter().any(|f| f.kind == FaultKind::Silent) {
             return;

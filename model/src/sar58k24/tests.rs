@@ -304,7 +304,7 @@ fn a_second_driver_on_the_bus_is_seen_as_contention_and_flagged() {
     let mut cfg = three_on_a_bus();
     cfg.ops = vec![op(OpKind::Read, 1)];
     // The answer starts ~0.46 ms after the command (3 chars at 115200 plus 100 µs).
-    cfg.second_drivers = vec![SecondDriver { at_us: 700.0, bytes: vec![0x00, 0x00] }];
+    cfg.second_drivers = vec![SecondDriver { at_us: 700.0, bytes: vec![0x00, 0x00], ..SecondDriver::default() }];
     let bench = cfg.bench().unwrap();
     let mut bench = bench;
     while !crate::Testbench::finished(&bench) {
@@ -382,3 +382,62 @@ fn an_inverted_start_bit_re_frames_a_character_and_the_sum_sees_it_unless_it_mat
     assert!(campaign::judge(24, &c, &campaign::levels(&frame), 0x9A9D5C).0);
 }
 
+
+#[test]
+fn a_run_time_position_replaces_the_list_from_the_next_acquisition_on() {
+    // Timed send at 1 kHz: frame k carries positions[k] until set_position,
+    // then every frame carries the position set (closed-loop benches, issue 10).
+    let cfg = timed(1000.0, vec![10, 11, 12, 13], 14);
+    let mut enc = Encoder::new(cfg.encoder_config(0).unwrap()).unwrap();
+    let idle = EncoderIn { rx: true, trigger: true, clr: true };
+    let mut cycles = 0u64;
+    while enc.sent().len() < 2 {
+        enc.step(&idle);
+        cycles += 1;
+        assert!(cycles < 1_000_000);
+    }
+    enc.set_position(0x1234).unwrap();
+    while enc.sent().len() < 4 {
+        enc.step(&idle);
+    }
+    assert_eq!(enc.sent().iter().map(|f| f.position).collect::<Vec<_>>(), vec![10, 11, 0x1234, 0x1234]);
+    assert_eq!(enc.sent()[2].bytes, frames::encode(0x1234, 14));
+    // 14 bits: 2^14 does not fit, and is refused by name.
+    let e = enc.set_position(1 << 14).unwrap_err().to_string();
+    assert!(e.contains("position") && e.contains("14 bits"), "{e}");
+}
+
+#[test]
+fn a_replaced_byte_keeps_the_checksum_right_and_is_read_as_sent() {
+    // Replace: byte 3 of the 16-bit frame (the low data byte) becomes 0x55,
+    // the checksum recomputed: a well-formed frame the host reads as 0x1255.
+    let mut cfg = timed(1000.0, vec![0x1234], 16);
+    cfg.encoders[0].faults = vec![FrameFault { frame: 1, kind: FaultKind::Replace, byte: 3, bit: 0, gap_bits: 0.0, bytes: vec![0x55] }];
+    cfg.ops = listen(3);
+    let t = run_window(&cfg);
+    assert_eq!(t[0].positions, vec![0x1234, 0x1255, 0x1234]);
+    assert!(t[0].errors.is_empty(), "{:?}", t[0].errors);
+    // The checksum byte itself cannot be replaced (the emulator recomputes it).
+    cfg.encoders[0].faults[0].byte = 4;
+    let e = cfg.validate().unwrap_err().to_string();
+    assert!(e.contains("faults[0]") && e.contains("replace"), "{e}");
+}
+
+#[test]
+fn an_unanswered_zeroing_command_ends_when_sent_and_a_glitch_on_the_bus_is_no_character() {
+    // answer_zeroing = false (ZERO_ANSWER = 0): BC AA C4 zeroes, no answer
+    // awaited; a 2 µs low glitch (under half a bit) is rejected by the receiver.
+    let mut cfg = three_on_a_bus();
+    cfg.encoders = vec![EncoderSettings { address: 4, bits: 16, positions: vec![1000, 1000, 1500], answer_zeroing: false, ..EncoderSettings::default() }];
+    // The read after the zeroing 1 ms later; the glitch on the idle bus between.
+    cfg.ops = vec![op(OpKind::Read, 4), op(OpKind::Zero, 4), Operation { gap_us: 1000.0, ..op(OpKind::Read, 4) }];
+    cfg.second_drivers = vec![SecondDriver { at_us: 2000.0, glitch_ns: 2000.0, ..SecondDriver::default() }];
+    let (t, _) = run(&cfg);
+    assert_eq!(t[0].positions, vec![1000]);
+    assert!(t[1].positions.is_empty() && t[1].errors.is_empty() && t[1].wire_answers.iter().all(|a| a.is_empty()), "{:?}", t[1]);
+    // Zeroed at the raw 1000 the next acquisition would read: it reads 1000 - 1000.
+    assert_eq!((t[2].positions.clone(), t[2].errors.clone()), (vec![0], vec![]));
+    // A second driver with neither bytes nor a glitch is refused by name.
+    cfg.second_drivers[0].glitch_ns = 0.0;
+    assert!(cfg.validate().unwrap_err().to_string().contains("second_drivers[0]"));
+}

@@ -5,6 +5,7 @@ use serde::{Deserialize, Serialize};
 
 use super::receiver::{In, Out, Receiver, ReceiverConfig};
 use super::transmitter::Transmitter;
+use super::Parity;
 use crate::ports::{Port, Ports};
 use crate::testbench::{self, Setup, Testbench};
 use crate::trace::{Layout, Sample};
@@ -45,6 +46,12 @@ pub struct BenchConfig {
     pub first_us: f64,
     /// Low pulses forced onto the line.
     pub low: Vec<LowPulse>,
+    /// The parity bit (`PARITY`; none: 10-bit frames, the ESL and T-format
+    /// default; odd or even: 11-bit frames, the SAR58K24 and Modbus option).
+    pub parity: Parity,
+    /// 0-based numbers of the frames (in sending order, repeats counted)
+    /// whose parity bit is sent inverted (`o_parity_err`).
+    pub parity_flips: Vec<usize>,
 }
 
 impl Default for BenchConfig {
@@ -60,6 +67,8 @@ impl Default for BenchConfig {
             gap_bits: 0.0,
             first_us: 0.5,
             low: Vec::new(),
+            parity: Parity::None,
+            parity_flips: Vec::new(),
         }
     }
 }
@@ -86,6 +95,14 @@ impl BenchConfig {
 
     fn check(&self) -> Result<()> {
         let cfg = self.receiver_config()?;
+        let frames = self.bytes.len() * self.repeat;
+        if let Some(&f) = self.parity_flips.iter().find(|&&f| self.parity == Parity::None || f >= frames) {
+            return Err(ConfigError::invalid(
+                "parity_flips",
+                format!("frame {f} with parity {:?} and {frames} frames sent", self.parity),
+                "set parity to odd or even and list frame numbers below the number of frames sent",
+            ));
+        }
         if !(-20.0..=20.0).contains(&self.error_percent) {
             return Err(ConfigError::invalid("error_percent", format!("{}", self.error_percent), "give a baud error within ±20 %"));
         }
@@ -109,8 +126,7 @@ impl BenchConfig {
             }
         }
         // Refuse up front a run the vector format cannot hold (32-bit cycle stamps).
-        let frames = (self.bytes.len() * self.repeat) as f64;
-        let total = (self.first_us * 1e-6 + frames * (10.0 + self.gap_bits) / self.baud) * self.timebase()?.f_sys_hz() as f64
+        let total = (self.first_us * 1e-6 + frames as f64 * (self.parity.frame_bits() as f64 + self.gap_bits) / self.baud) * self.timebase()?.f_sys_hz() as f64
             + self.low.iter().map(|p| (p.at_us * 1e-6 + p.width_ns * 1e-9) * self.timebase().map_or(0.0, |t| t.f_sys_hz() as f64)).fold(0.0, f64::max);
         if total > u32::MAX as f64 {
             return Err(ConfigError::invalid(
@@ -138,7 +154,7 @@ impl Setup for BenchConfig {
     }
 
     fn verilog_parameters(&self) -> Result<Vec<(&'static str, u64)>> {
-        Ok(vec![("CLOCKS_PER_BIT", self.receiver_config()?.clocks_per_bit)])
+        Ok(vec![("CLOCKS_PER_BIT", self.receiver_config()?.clocks_per_bit), ("PARITY", self.parity.code())])
     }
 
     fn bench(&self) -> Result<Bench> {
@@ -151,7 +167,7 @@ impl Setup for BenchConfig {
 pub struct Transaction {
     /// Cycle of the output pulse.
     pub cycle: u64,
-    /// `byte`, `frame_error` or `start_error`.
+    /// `byte`, `frame_error`, `parity_error` or `start_error`.
     pub kind: &'static str,
     /// The byte received (absent for a start error).
     pub received: Option<u8>,
@@ -174,7 +190,8 @@ pub struct Bench {
     lows: Vec<(u64, u64)>,
     end: u64,
     cycle: u64,
-    frame_cycles: u64,
+    frame_bits: u64,
+    bit_cycles: u64,
     events: Vec<Transaction>,
     layout: Layout,
 }
@@ -185,13 +202,18 @@ impl Bench {
         cfg.check()?;
         let tb = cfg.timebase()?;
         let rc = cfg.receiver_config()?;
-        let mut transmitter = Transmitter::new(tb.period_ps(), cfg.baud, cfg.error_percent, cfg.jitter_ns * 1e3, cfg.seed);
+        let mut transmitter = Transmitter::new(tb.period_ps(), cfg.baud, cfg.error_percent, cfg.jitter_ns * 1e3, cfg.seed).with_parity(cfg.parity);
         let mut at = cfg.first_us * 1e6;
-        for _ in 0..cfg.repeat {
-            for &b in &cfg.bytes {
+        let bytes = cfg.bytes.iter().cycle().take(cfg.bytes.len() * cfg.repeat);
+        for (i, &b) in bytes.enumerate() {
+            if cfg.parity_flips.contains(&i) {
+                let mut levels = cfg.parity.levels(b);
+                levels[9] = !levels[9];
+                transmitter.send_byte_levels(b, &levels, at, cfg.gap_bits);
+            } else {
                 transmitter.send(b, at, cfg.gap_bits);
-                at = 0.0;
             }
+            at = 0.0;
         }
         let lows: Vec<(u64, u64)> = cfg
             .low
@@ -204,19 +226,22 @@ impl Bench {
         let last_low = lows.iter().map(|l| l.1).max().unwrap_or(0);
         let idle_from = tb.cycles_at_least_ns(transmitter.idle_from_ps() / 1e3).max(last_low);
         let end = idle_from + 3 * rc.clocks_per_bit + 16;
+        let mut outputs = Receiver::output_ports();
+        outputs.push(Port::new("o_parity_err", 1));
         let layout = Layout {
             inputs: Receiver::input_ports(),
-            outputs: Receiver::output_ports(),
+            outputs,
             line: vec![Port::new("rx_line", 1)],
             decoded: vec![Port::new("state", 3), Port::new("bit_index", 3)],
         };
         Ok(Bench {
-            receiver: Receiver::new(rc)?,
+            receiver: Receiver::with_parity(rc, cfg.parity)?,
             transmitter,
             lows,
             end,
             cycle: 0,
-            frame_cycles: 10 * rc.clocks_per_bit,
+            frame_bits: cfg.parity.frame_bits() as u64,
+            bit_cycles: rc.clocks_per_bit,
             events: Vec::new(),
             layout,
         })
@@ -227,26 +252,30 @@ impl Bench {
             "byte"
         } else if out.o_frame_err {
             "frame_error"
+        } else if out.o_parity_err {
+            "parity_error"
         } else if out.o_start_err {
             "start_error"
         } else {
             return;
         };
-        // A byte or framing error comes at the stop bit, 9.5 bits after its
-        // start bit began; with a fast sender the next start bit may already
-        // have begun, so the frame is the latest one that started at least
-        // nine bits (and at most a frame and a quarter) before the event. A
-        // start error belongs to no frame.
-        let bit = self.frame_cycles / 10;
+        // A byte, parity or framing error comes at the stop bit, 9.5 bits
+        // (10.5 with parity) after its start bit began; with a fast sender
+        // the next start bit may already have begun, so the frame is the
+        // latest one that started at least nine (ten) bits (and at most a
+        // frame and a quarter) before the event. A start error belongs to no
+        // frame.
+        let bit = self.bit_cycles;
+        let frame_cycles = self.frame_bits * bit;
         let sent = if kind == "start_error" {
             None
         } else {
-            let window = self.frame_cycles + self.frame_cycles / 4;
+            let window = frame_cycles + frame_cycles / 4;
             self.transmitter
                 .sent()
                 .iter()
                 .rev()
-                .find(|s| s.start_cycle + 9 * bit <= self.cycle && self.cycle - s.start_cycle <= window)
+                .find(|s| s.start_cycle + (self.frame_bits - 1) * bit <= self.cycle && self.cycle - s.start_cycle <= window)
                 .copied()
         };
         self.events.push(Transaction {
@@ -277,6 +306,7 @@ impl Testbench for Bench {
         let Some(sample) = sample else { return };
         input.write_values(&mut sample.inputs);
         out.write_values(&mut sample.outputs);
+        sample.outputs[5] = out.o_parity_err as u64;
         sample.line[0] = line as u64;
         sample.decoded[0] = self.receiver.state() as u64;
         sample.decoded[1] = self.receiver.bit_index() as u64;

@@ -26,7 +26,8 @@ pub struct FrameFault {
     /// `gap`: idle bit times inserted before the character.
     #[serde(default)]
     pub gap_bits: f64,
-    /// `noise`: bytes sent just before the frame; `retag`: the second byte.
+    /// `noise`: bytes sent just before character `byte` (0: before the
+    /// frame); `retag`: the address byte; `replace`: character `byte`.
     #[serde(default)]
     pub bytes: Vec<u8>,
 }
@@ -41,7 +42,8 @@ pub enum FaultKind {
     Truncate,
     /// An idle gap before character `byte`.
     Gap,
-    /// `bytes` sent just before the frame, back to back with it.
+    /// `bytes` sent back to back just before character `byte` (0: before
+    /// the frame; inside it otherwise).
     Noise,
     /// The frame is not sent at all (no answer).
     Silent,
@@ -49,6 +51,10 @@ pub enum FaultKind {
     /// answer claiming another address): the SAR58K24's second byte, the
     /// Modbus address. The emulator applies it; [`send_with_faults`] ignores it.
     Retag,
+    /// Character `byte` is `bytes[0]`, the check recomputed (a well-formed
+    /// frame with a wrong field: a Modbus answer's function or byte count).
+    /// The emulator applies it; [`send_with_faults`] ignores it.
+    Replace,
 }
 
 impl FrameFault {
@@ -60,32 +66,34 @@ impl FrameFault {
             FaultKind::Flip => self.byte < len && self.bit < bits,
             FaultKind::Truncate => self.byte < len,
             FaultKind::Gap => self.byte > 0 && self.byte < len && (0.0..=1e5).contains(&self.gap_bits),
-            FaultKind::Noise => !self.bytes.is_empty() && self.bytes.len() <= 64,
+            FaultKind::Noise => !self.bytes.is_empty() && self.bytes.len() <= 64 && self.byte < len,
             FaultKind::Silent => true,
             FaultKind::Retag => self.bytes.len() == 1,
+            FaultKind::Replace => self.bytes.len() == 1 && self.byte + 1 < len,
         };
         if ok {
             return Ok(());
         }
         Err((
             format!("{:?} with byte {}, bit {}, {} bytes", self.kind, self.byte, self.bit, self.bytes.len()),
-            format!("a frame has {len} characters of {bits} bits: flip needs byte < {len} and bit < {bits}; truncate byte < {len}; gap 0 < byte < {len}; noise 1 to 64 bytes; retag one byte"),
+            format!("a frame has {len} characters of {bits} bits: flip needs byte < {len} and bit < {bits}; truncate byte < {len}; gap 0 < byte < {len}; noise 1 to 64 bytes before byte < {len}; retag one byte; replace one byte at byte < {}", len - 1),
         ))
     }
 }
 
-/// Queues `bytes` on `tx` from `now_ps` with `faults` applied (noise first,
-/// then the characters, each possibly flipped or preceded by a gap, up to a
-/// truncation). `Silent` and `Retag` are the caller's.
+/// Queues `bytes` on `tx` from `now_ps` with `faults` applied (the
+/// characters, each possibly preceded by noise or a gap and flipped, up to a
+/// truncation). `Silent`, `Retag` and `Replace` are the caller's.
 pub fn send_with_faults(tx: &mut Transmitter, bytes: &[u8], faults: &[FrameFault], parity: Parity, now_ps: f64) {
-    for f in faults.iter().filter(|f| f.kind == FaultKind::Noise) {
-        for &b in &f.bytes {
-            tx.send(b, now_ps, 0.0);
-        }
-    }
     let keep = faults.iter().find(|f| f.kind == FaultKind::Truncate).map_or(bytes.len(), |f| f.byte);
     for (i, &b) in bytes.iter().enumerate().take(keep) {
-        let gap = faults.iter().filter(|f| f.kind == FaultKind::Gap && f.byte == i).map(|f| f.gap_bits).sum::<f64>();
+        let mut gap = faults.iter().filter(|f| f.kind == FaultKind::Gap && f.byte == i).map(|f| f.gap_bits).sum::<f64>();
+        for f in faults.iter().filter(|f| f.kind == FaultKind::Noise && f.byte == i) {
+            for &n in &f.bytes {
+                tx.send(n, now_ps, gap);
+                gap = 0.0;
+            }
+        }
         let mut levels = parity.levels(b);
         for f in faults.iter().filter(|f| f.kind == FaultKind::Flip && f.byte == i) {
             levels[f.bit] = !levels[f.bit];

@@ -39,8 +39,10 @@
 //! (`CLOCKS_PER_BIT` = 10) that is −5.26 % to +4.17 % without jitter.
 
 mod bench;
+pub mod campaign;
 mod fault;
 mod receiver;
+mod second_driver;
 mod transmitter;
 mod tx;
 mod wire_tap;
@@ -50,6 +52,7 @@ use serde::{Deserialize, Serialize};
 pub use bench::{Bench, BenchConfig, LowPulse, Transaction};
 pub use fault::{send_with_faults, FaultKind, FrameFault};
 pub use receiver::{In, Out, Receiver, ReceiverConfig, State};
+pub use second_driver::SecondDriver;
 pub use transmitter::Transmitter;
 pub use tx::{Tx, TxConfig, TxIn, TxOut, TxState};
 pub use wire_tap::WireTap;

@@ -86,6 +86,14 @@ impl Transmitter {
         start
     }
 
+    /// Queues `byte` as [`Transmitter::send`] does, its levels `levels`
+    /// (a wrong parity or stop bit): the frame is still reported by
+    /// [`Transmitter::sent`] as `byte`'s.
+    pub fn send_byte_levels(&mut self, byte: u8, levels: &[bool], at_ps: f64, gap_bits: f64) {
+        let start = self.send_levels(levels, at_ps, gap_bits);
+        self.pending_frames.push_back((start, byte));
+    }
+
     /// The length of one bit in ps.
     pub fn bit_ps(&self) -> f64 {
         self.bit_ps

@@ -28,7 +28,7 @@ impl Protocol for BenchConfig {
             return None;
         }
         Some(SigrokCheck {
-            decoder: format!("uart:rx=rx_line:baudrate={}", self.baud as u64),
+            decoder: format!("uart:rx=rx_line:baudrate={}:parity={}", self.baud as u64, format!("{:?}", self.parity).to_lowercase()),
             annotation: "uart=rx-data",
             expected: events.iter().map(|e| e["received"].as_u64().map(u128::from)).collect(),
         })
