@@ -58,15 +58,12 @@ impl Protocol for BenchConfig {
     const SIGROK_DECODER: Option<&'static str> = Some("can");
     const SIGROK_MINIMUM: (usize, usize) = (6, 300);
 
-    /// The master's state and its controller's (and the monitor's) by the RTL's names.
+    /// The master's state by the RTL's names (`can_state` and
+    /// `monitor_state` are can_controller's codes: `docs/timing/can.md`).
     fn wave_names() -> Vec<(&'static str, Vec<(u64, String)>)> {
         use model::canopen::master::State as M;
-        let master = registry::enum_names(&[M::WaitBoot, M::SdoSend, M::SdoWait, M::NmtSend, M::Run, M::Failed], |s| s as u64)
-            .into_iter()
-            .map(|(v, _)| (v, ["WAIT_BOOT", "SDO_SEND", "SDO_WAIT", "NMT_SEND", "RUN", "FAILED"][v as usize].to_string()))
-            .collect();
-        let can: Vec<(u64, String)> = <model::can::BenchConfig as Protocol>::wave_names().remove(0).1;
-        vec![("state", master), ("can_state", can.clone()), ("monitor_state", can)]
+        let names = ["WAIT_BOOT", "SDO_SEND", "SDO_WAIT", "NMT_SEND", "RUN", "FAILED"];
+        vec![("state", [M::WaitBoot, M::SdoSend, M::SdoWait, M::NmtSend, M::Run, M::Failed].iter().map(|&s| (s as u64, names[s as usize].to_string())).collect())]
     }
 
     fn decode_command() -> Option<clap::Command> {
