@@ -53,6 +53,8 @@ parameter SYNC_PERIOD = 0;
 parameter F_SYS_HZ = 8000000;
 parameter HALF_PERIOD_FS = 62_500_000;
 
+localparam BIT_CLOCKS = BRP * (1 + PROP_SEG + PHASE_SEG1 + PHASE_SEG2);
+
 reg clk = 1'b0;
 reg rst = 1'b1;
 always #(HALF_PERIOD_FS) clk = ~clk;
@@ -148,6 +150,9 @@ initial begin
             if (bad) $fatal(1, "transaction %0d at %0t: o_sdo_abort, o_node_lost or o_pos_timeout", n, $time);
             if (o_pos_valid) begin
                 got = o_position;
+                // The master takes the frame at the receivers' point (EOF bit 6); the
+                // encoder counts it sent at its end: wait two bits before asking.
+                repeat (2 * BIT_CLOCKS) @(posedge clk);
                 if (flip_bit >= 0) got = got ^ (64'd1 << flip_bit);
                 sent = u_emu.last_value(0);
                 if (got != sent)
