@@ -31,6 +31,7 @@
 
 pub mod biss;
 pub mod can;
+pub mod canopen;
 pub mod check;
 pub mod config;
 pub mod endat;
@@ -146,6 +147,9 @@ pub fn open(kind: &str, toml: &str, origin: &str, f_emu_hz: u64) -> Result<Box<d
         "can" => Ok(Box::new(can::CanEmulator::from_toml(
             toml, origin, f_emu_hz,
         )?)),
+        "canopen" => Ok(Box::new(canopen::CanopenEmulator::from_toml(
+            toml, origin, f_emu_hz,
+        )?)),
         "modbus" => Ok(Box::new(modbus::ModbusEmulator::from_toml(
             toml, origin, f_emu_hz,
         )?)),
@@ -162,7 +166,7 @@ pub fn open(kind: &str, toml: &str, origin: &str, f_emu_hz: u64) -> Result<Box<d
         "ssi_monitor" => Ok(Box::new(monitor::ssi::SsiMonitor::from_toml(toml, origin, f_emu_hz)?)),
         "biss_monitor" => Ok(Box::new(monitor::biss::BissMonitor::from_toml(toml, origin, f_emu_hz)?)),
         other => Err(Error::Usage(format!(
-            "no emulator `{other}`; give one of: ssi, biss, endat, tformat, esl, sar58k24, modbus, can, or a monitor: ssi_monitor, biss_monitor"
+            "no emulator `{other}`; give one of: ssi, biss, endat, tformat, esl, sar58k24, modbus, can, canopen, or a monitor: ssi_monitor, biss_monitor"
         ))),
     }
 }

@@ -28,7 +28,6 @@
 
 pub mod bench;
 pub mod builtin;
-pub mod canopen;
 pub mod capture;
 pub mod check;
 pub mod crc_cmd;
@@ -56,4 +55,5 @@ registry::protocols! {
     sar     => Sar(model::sar58k24::BenchConfig),
     modbus  => Modbus(model::modbus::BenchConfig),
     can     => Can(model::can::BenchConfig),
+    canopen => Canopen(model::canopen::BenchConfig),
 }

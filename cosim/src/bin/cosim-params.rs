@@ -1,4 +1,4 @@
-//! `cosim-params <ssi|biss|endat|tformat|esl|sar|modbus|can> <scenario.toml>`: the Verilog parameters of our
+//! `cosim-params <ssi|biss|endat|tformat|esl|sar|modbus|can|canopen> <scenario.toml>`: the Verilog parameters of our
 //! own master core for a closed-loop scenario, one `NAME=value` per line,
 //! first `F_SYS_HZ`. `scripts/cosim.sh` builds the closed-loop testbench with
 //! them, so the core and the emulator read one file (the emulator its
@@ -30,7 +30,7 @@ fn params<S: Setup + serde::de::DeserializeOwned>(
 
 fn run(args: &[String]) -> Result<Vec<(String, u64)>, String> {
     let [proto, path] = args else {
-        return Err("usage: cosim-params <ssi|biss|endat|tformat|esl|sar|modbus|can> <scenario.toml>".into());
+        return Err("usage: cosim-params <ssi|biss|endat|tformat|esl|sar|modbus|can|canopen> <scenario.toml>".into());
     };
     let text = std::fs::read_to_string(path).map_err(|e| format!("{path}: {e}"))?;
     let root: toml::Table = text
@@ -61,6 +61,7 @@ fn run(args: &[String]) -> Result<Vec<(String, u64)>, String> {
             params::<model::can::BenchConfig>(table, path)
                 .map(|p| [p, vec![("NODES".to_string(), nodes as u64)]].concat())
         }
+        "canopen" => params::<model::canopen::BenchConfig>(table, path),
         "tformat" => {
             table.remove("motion");
             params::<model::tformat::BenchConfig>(table, path)
@@ -75,7 +76,7 @@ fn run(args: &[String]) -> Result<Vec<(String, u64)>, String> {
             let harness = first_op(&table, &[("address", "ADDRESS", 0)]);
             params::<model::esl::BenchConfig>(table, path).map(|p| [p, harness].concat())
         }
-        other => Err(format!("no protocol `{other}`; give ssi, biss, endat, tformat, esl, sar, modbus or can")),
+        other => Err(format!("no protocol `{other}`; give ssi, biss, endat, tformat, esl, sar, modbus, can or canopen")),
     }
 }
 

@@ -10,7 +10,8 @@
 //!                                                             │ SDO_TIMEOUT: resend; after RETRIES o_node_lost, FAILED
 //!  SDO_SEND with the buffer still busy for SDO_TIMEOUT (a frame nobody acknowledges): o_node_lost, FAILED
 //!  NMT_SEND (01 N on COB-ID 0) ─o_tx_done─> RUN (o_config_done)
-//!  RUN: TPDO1/TPDO2 of N → o_pos_valid, o_position, age 0; age ≥ PDO_TIMEOUT → o_pos_timeout (once), o_pos_stale
+//!  RUN: TPDO1/TPDO2 of N → o_pos_valid, o_position; PDO_TIMEOUT cycles without one → o_pos_timeout (once), o_pos_stale
+//!       (the age counter is internal: an output that changes every cycle would put a vector record in every cycle)
 //!       EMCY of N (DLC 8) → o_emcy_valid, o_emcy_code, o_emcy_reg; boot-up of N → SDO_SEND (reconfigure)
 //!       SYNC_PERIOD ≠ 0: a SYNC (0x80, no data) every SYNC_PERIOD cycles
 //!  FAILED: until i_start; i_start in any state restarts at WAIT_BOOT
@@ -27,6 +28,9 @@ use super::cob::{cob_id, EMCY, NMT, NMT_ERR, SDO_RX, SDO_TX, SYNC, TPDO1, TPDO2}
 use crate::can::frame::pack;
 use crate::can::{Controller, ControllerConfig};
 use crate::{ConfigError, Result};
+
+/// The most SDO downloads of a parameter table: the RTL's `PARAM0_*` to `PARAM7_*`.
+pub const MAX_PARAMS: usize = 8;
 
 /// One SDO download of the configuration list (ROM of the RTL).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -47,6 +51,11 @@ impl Param {
     /// The request's 8 data bytes.
     pub fn request(&self) -> [u8; 8] {
         super::sdo::download(self.index, self.sub, &self.value.to_le_bytes()[..self.size as usize])
+    }
+
+    /// The RTL's `PARAMk_OBJECT`: index, sub-index and size in one word.
+    pub fn object_word(&self) -> u32 {
+        (self.index as u32) << 16 | (self.sub as u32) << 8 | self.size as u32
     }
 }
 
@@ -78,18 +87,21 @@ impl MasterConfig {
         if !(1..=127).contains(&self.node) {
             return Err(ConfigError::invalid("master.node", format!("{}", self.node), "give the encoder's node number, 1 to 127"));
         }
+        if self.params.len() > MAX_PARAMS {
+            return Err(ConfigError::invalid("master.params", format!("{} entries", self.params.len()), format!("give at most {MAX_PARAMS} SDO downloads (the RTL's PARAM0..PARAM7)")));
+        }
         for (k, p) in self.params.iter().enumerate() {
             if ![1, 2, 4].contains(&p.size) || (p.size < 4 && p.value >> (8 * p.size as u32) != 0) {
                 return Err(ConfigError::invalid(format!("master.params[{k}].size"), format!("size {} value {:#x}", p.size, p.value), "give size 1, 2 or 4 bytes and a value that fits it"));
             }
         }
         for (f, v) in [("master.boot_timeout", self.boot_timeout), ("master.sdo_timeout", self.sdo_timeout), ("master.pdo_timeout", self.pdo_timeout)] {
-            if v == 0 || v >= 1 << 32 {
-                return Err(ConfigError::invalid(f, format!("{v}"), "give 1 to 2^32 − 1 cycles"));
+            if v == 0 || v >= 1 << 31 {
+                return Err(ConfigError::invalid(f, format!("{v} cycles"), "give 1 to 2^31 − 1 cycles"));
             }
         }
-        if self.sync_period >= 1 << 32 {
-            return Err(ConfigError::invalid("master.sync_period", format!("{}", self.sync_period), "give 0 (off) to 2^32 − 1 cycles"));
+        if self.sync_period >= 1 << 31 {
+            return Err(ConfigError::invalid("master.sync_period", format!("{} cycles", self.sync_period), "give 0 (off) to 2^31 − 1 cycles"));
         }
         if self.retries > 255 {
             return Err(ConfigError::invalid("master.retries", format!("{}", self.retries), "give 0 to 255"));
@@ -156,8 +168,6 @@ pub struct Out {
     pub o_pos_valid: bool,
     /// The last position.
     pub o_position: u32,
-    /// Cycles since the last position (saturating at 2^32 − 1).
-    pub o_pos_age: u32,
     /// No position for PDO_TIMEOUT cycles (pulse, once per silence).
     pub o_pos_timeout: bool,
     /// No position for PDO_TIMEOUT cycles (level, until the next position).
@@ -266,7 +276,8 @@ impl Master {
                 self.sync_cnt += 1;
             }
         }
-        self.timer = self.timer.saturating_add(1);
+        // 32 bits in the RTL, saturating.
+        self.timer = (self.timer + 1).min(u32::MAX as u64);
         if i.i_start {
             self.state = State::WaitBoot;
             self.timer = 0;
@@ -338,7 +349,6 @@ impl Master {
                         self.request(cob_id(NMT, 0), 2, &[0x01, n], false);
                         self.state = State::Run;
                         o.o_config_done = true;
-                        o.o_pos_age = 0;
                         o.o_pos_stale = false;
                         self.timer = 0;
                     }
@@ -370,10 +380,85 @@ impl Master {
                 State::Failed => {}
             }
         }
-        o.o_pos_age = if self.state == State::Run { self.timer.min(u32::MAX as u64) as u32 } else { 0 };
         o.o_state = self.state as u8;
         self.c_out = c_next;
         self.out = o;
         o
+    }
+}
+
+impl Master {
+    /// The input ports, in vector order (the Verilog port names).
+    pub fn input_ports() -> Vec<crate::ports::Port> {
+        use crate::ports::Port;
+        vec![Port::new("i_start", 1), Port::new("i_can_rx", 1)]
+    }
+
+    /// The output ports, in vector order (the Verilog port names).
+    pub fn output_ports() -> Vec<crate::ports::Port> {
+        use crate::ports::Port;
+        vec![
+            Port::new("o_can_tx", 1),
+            Port::new("o_state", 3),
+            Port::new("o_booted", 1),
+            Port::new("o_config_done", 1),
+            Port::new("o_sdo_abort", 1),
+            Port::new("o_abort_code", 32),
+            Port::new("o_abort_index", 16),
+            Port::new("o_abort_sub", 8),
+            Port::new("o_node_lost", 1),
+            Port::new("o_pos_valid", 1),
+            Port::new("o_position", 32),
+            Port::new("o_pos_timeout", 1),
+            Port::new("o_pos_stale", 1),
+            Port::new("o_emcy_valid", 1),
+            Port::new("o_emcy_code", 16),
+            Port::new("o_emcy_reg", 8),
+            Port::new("o_sync_sent", 1),
+        ]
+    }
+
+    /// The table entry being downloaded (`k_reg`).
+    pub fn param_index(&self) -> usize {
+        self.k
+    }
+
+    /// Timeouts counted so far (`tries_reg`).
+    pub fn tries(&self) -> u32 {
+        self.tries
+    }
+
+    /// The boot-up / SDO / age counter (`timer_reg`).
+    pub fn timer(&self) -> u64 {
+        self.timer
+    }
+}
+
+impl crate::Ports for In {
+    fn write_values(&self, dst: &mut [u64]) {
+        dst[0] = self.i_start as u64;
+        dst[1] = self.i_can_rx as u64;
+    }
+}
+
+impl crate::Ports for Out {
+    fn write_values(&self, dst: &mut [u64]) {
+        dst[0] = self.o_can_tx as u64;
+        dst[1] = self.o_state as u64;
+        dst[2] = self.o_booted as u64;
+        dst[3] = self.o_config_done as u64;
+        dst[4] = self.o_sdo_abort as u64;
+        dst[5] = self.o_abort_code as u64;
+        dst[6] = self.o_abort_index as u64;
+        dst[7] = self.o_abort_sub as u64;
+        dst[8] = self.o_node_lost as u64;
+        dst[9] = self.o_pos_valid as u64;
+        dst[10] = self.o_position as u64;
+        dst[11] = self.o_pos_timeout as u64;
+        dst[12] = self.o_pos_stale as u64;
+        dst[13] = self.o_emcy_valid as u64;
+        dst[14] = self.o_emcy_code as u64;
+        dst[15] = self.o_emcy_reg as u64;
+        dst[16] = self.o_sync_sent as u64;
     }
 }

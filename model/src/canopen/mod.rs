@@ -22,6 +22,7 @@
 
 pub mod cob;
 pub mod encoder;
+pub mod bench;
 pub mod interpret;
 pub mod master;
 pub mod node;
@@ -30,6 +31,7 @@ pub mod scaling;
 pub mod sar58k24;
 pub mod sdo;
 
+pub use bench::BenchConfig;
 pub use encoder::{Encoder, EncoderConfig, EncoderKind};
 pub use node::{Device, DeviceNode, EncoderNode, NodeTiming};
 

@@ -1,5 +1,342 @@
-//! CANopen tools: the electronic data sheet of the emulated DS 406 encoder
-//! (`tbgen eds`). Decode and timing follow with the protocol's registry line.
+//! CANopen in `tbgen`: the [`Protocol`] of `model::canopen::BenchConfig`
+//! (core `canopen_master`), `tbgen decode canopen` ([`decode`]: the CAN
+//! decoder's frames read as NMT, SYNC, EMCY/boot-up, PDO, SDO with object
+//! names, node guarding and heartbeat), `tbgen timing canopen` ([`timing`])
+//! and the electronic data sheet of the emulated encoder (`tbgen eds`, [`eds`]).
 
+pub mod decode;
 pub mod eds;
 pub mod timing;
+
+use std::path::PathBuf;
+
+use clap::{ArgMatches, CommandFactory, Parser};
+use model::canopen::BenchConfig;
+
+use crate::registry::{self, Protocol, SigrokCheck, TransactionSignals};
+use crate::{Error, Result};
+
+/// CANopen: the CAN line read as CANopen frames.
+#[derive(Parser)]
+#[command(name = "canopen", after_help = "Examples:\n  tbgen decode canopen vectors/canopen_master/canopen_setup_example.vcd\n  tbgen decode canopen capture.vcd --line top.rxd --bit-rate 500000")]
+pub struct DecodeArgs {
+    /// The VCD file.
+    file: PathBuf,
+    /// Dotted path of the receive line.
+    #[arg(long, default_value = "top.line.can_rx")]
+    line: String,
+    /// Nominal bit rate, bit/s.
+    #[arg(long, default_value_t = 250_000)]
+    bit_rate: u64,
+    /// Sample point, fraction of the bit.
+    #[arg(long, default_value_t = 0.875)]
+    sample_point: f64,
+}
+
+/// CANopen: PDO frame time, latency, bus load per encoder and encoders per SYNC cycle at every bit rate.
+#[derive(Parser)]
+#[command(name = "canopen", after_help = "Examples:\n  tbgen timing canopen\n  tbgen timing canopen --period-ms 1 --cycle-us 500")]
+pub struct TimingArgs {
+    /// Cyclic timer (6200h) of each encoder, ms, for the bus load.
+    #[arg(long, default_value_t = 10.0)]
+    period_ms: f64,
+    /// SYNC cycle, µs, for the encoders that fit one.
+    #[arg(long, default_value_t = 1000.0)]
+    cycle_us: f64,
+}
+
+/// sigrok's `can` decoder option for a scenario: the master's nominal bit rate and sample point.
+pub fn sigrok_decoder(cfg: &BenchConfig) -> Option<String> {
+    let t = cfg.master_config().ok()?.can.timing;
+    let tb = model::Setup::timebase(cfg).ok()?;
+    let rate = tb.f_sys_hz() / t.clocks_per_bit();
+    Some(format!("can:can_rx=can_rx:nominal_bitrate={rate}:sample_point={}", t.sample_point() * 100.0))
+}
+
+impl Protocol for BenchConfig {
+    const TRANSACTION_SIGNALS: TransactionSignals = (&["o_booted", "o_config_done", "o_sdo_abort", "o_node_lost", "o_pos_valid", "o_pos_timeout", "o_emcy_valid", "o_sync_sent"], "o_position", "position");
+    const SIGROK_DECODER: Option<&'static str> = Some("can");
+    const SIGROK_MINIMUM: (usize, usize) = (6, 300);
+
+    /// The master's state by the RTL's names (`can_state` and
+    /// `monitor_state` are can_controller's codes: `docs/timing/can.md`).
+    fn wave_names() -> Vec<(&'static str, Vec<(u64, String)>)> {
+        use model::canopen::master::State as M;
+        let names = ["WAIT_BOOT", "SDO_SEND", "SDO_WAIT", "NMT_SEND", "RUN", "FAILED"];
+        vec![("state", [M::WaitBoot, M::SdoSend, M::SdoWait, M::NmtSend, M::Run, M::Failed].iter().map(|&s| (s as u64, names[s as usize].to_string())).collect())]
+    }
+
+    fn decode_command() -> Option<clap::Command> {
+        Some(DecodeArgs::command())
+    }
+
+    fn decode(args: &ArgMatches) -> Result<String> {
+        let DecodeArgs { file, line, bit_rate, sample_point } = registry::parse_args(args)?;
+        if !(1_000..=1_000_000).contains(&bit_rate) || !(0.5..0.95).contains(&sample_point) {
+            return Err(Error::Decode(format!("decode canopen: --bit-rate {bit_rate} or --sample-point {sample_point}: give 1000 to 1000000 bit/s and a sample point between 0.5 and 0.95")));
+        }
+        let frames = decode::decode(&file, &line, bit_rate, sample_point)?;
+        decode::to_json(&file, &line, bit_rate, sample_point, &frames)
+    }
+
+    fn timing_command() -> Option<clap::Command> {
+        Some(TimingArgs::command())
+    }
+
+    fn timing(args: &ArgMatches) -> Result<String> {
+        let TimingArgs { period_ms, cycle_us } = registry::parse_args(args)?;
+        if !(period_ms > 0.0 && period_ms <= 65_535.0) || !(cycle_us > 0.0 && cycle_us <= 1e7) {
+            return Err(Error::Decode(format!("timing canopen: --period-ms {period_ms} or --cycle-us {cycle_us}: give a cyclic timer of 1 to 65535 ms (6200h) and a SYNC cycle above 0 µs")));
+        }
+        Ok(timing::report(period_ms, cycle_us))
+    }
+
+    /// sigrok's `can` decoder on `can_rx` must print, frame by frame, the
+    /// identifier, DLC, data bytes, CRC sequence and ACK of every frame the
+    /// transcript lists (in every transaction, in order). A scenario with a
+    /// damaged frame (errors, another bit rate on the bus) is not compared:
+    /// sigrok decodes error flags as frames of their own.
+    fn sigrok(&self, transcript: &serde_json::Value) -> Option<SigrokCheck> {
+        let decoder = sigrok_decoder(self)?;
+        let mut expected = Vec::new();
+        for tr in transcript["transactions"].as_array()? {
+            for f in tr["frames"].as_array()? {
+                if !f["complete"].as_bool()? || !f["errors"].as_array()?.is_empty() {
+                    return None;
+                }
+                expected.push(Some(f["id"].as_u64()? as u128));
+                expected.push(Some(f["dlc"].as_u64()? as u128));
+                expected.extend(f["data"].as_array()?.iter().map(|b| b.as_u64().map(|v| v as u128)));
+                expected.push(Some(f["crc"].as_u64()? as u128));
+                expected.push(Some(f["ack"].as_bool()? as u128));
+            }
+        }
+        Some(SigrokCheck { decoder, annotation: "can=id:ext-id:dlc:data:crc-sequence:ack-slot", expected })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use model::canopen::bench::{Bench, Transaction};
+    use model::canopen::sdo::abort;
+    use model::testbench::Testbench;
+
+    use super::*;
+    use crate::builtin;
+
+    fn config(name: &str) -> BenchConfig {
+        builtin::find(name).unwrap().setup.get::<BenchConfig>().unwrap().clone()
+    }
+
+    /// Runs a built-in scenario to its end; the bench (its encoders) and the transcript.
+    fn run(name: &str) -> (Bench, Vec<Transaction>) {
+        let mut b = model::Setup::bench(&config(name)).unwrap();
+        while !b.finished() {
+            b.step(None);
+        }
+        let t = model::testbench::run_to_end(model::Setup::bench(&config(name)).unwrap()).transactions;
+        (b, t)
+    }
+
+    fn outcomes(t: &[Transaction]) -> Vec<&str> {
+        t.iter().map(|t| t.outcome).collect()
+    }
+
+    fn frames(t: &[Transaction]) -> Vec<(u32, Vec<u8>)> {
+        t.iter().flat_map(|t| t.frames.iter().map(|f| (f.id, f.data.clone()))).collect()
+    }
+
+    /// Seed 003 §8, the setup example: boot-up on 0x80 + node without data,
+    /// the SDO write of 6200h sub 0 = 10 on 0x600 + node (the master sends
+    /// it with the size indicated, 2Bh, where the note writes 22h: same
+    /// object, same value), the confirmation `60 00 62 00` on 0x580 + node,
+    /// NMT start `01 <node>` on COB-ID 0, then the position on 0x180 + node
+    /// every 10 ms.
+    #[test]
+    fn the_setup_example_frame_by_frame() {
+        let (_, t) = run("canopen_setup_example");
+        assert_eq!(outcomes(&t), ["booted", "config_done", "pos_valid", "pos_valid", "pos_valid"]);
+        let f = frames(&t);
+        assert_eq!(f[0], (0x8C, vec![]));
+        assert_eq!(f[1], (0x60C, vec![0x2B, 0x00, 0x62, 0x00, 0x0A, 0x00, 0x00, 0x00]));
+        assert_eq!(f[2], (0x58C, vec![0x60, 0x00, 0x62, 0x00, 0, 0, 0, 0]));
+        assert_eq!(f[3], (0x000, vec![0x01, 0x0C]));
+        assert!(f[4..].iter().all(|(id, d)| *id == 0x18C && d == &4242u32.to_le_bytes()));
+        let pdo: Vec<u64> = t.iter().filter(|t| t.outcome == "pos_valid").map(|t| t.cycle).collect();
+        for w in pdo.windows(2) {
+            // 10 ms at 40 MHz, within one bit (160 cycles).
+            assert!((w[1] - w[0]).abs_diff(400_000) <= 160, "{w:?}");
+        }
+        assert!(t.iter().filter(|t| t.outcome == "pos_valid").all(|t| t.position == Some(4242) && t.state == 4));
+    }
+
+    /// Cyclic TPDO1 at two rates: every 1 ms at 1000 kbit/s with a moving
+    /// position (100 000 counts/s: 100 counts per PDO), every 5 ms at 125 kbit/s.
+    /// The spacing at the master varies by the stuff bits of the changing
+    /// data: at most 16 in a 4-byte frame, so within 16 bits.
+    #[test]
+    fn cyclic_pdos_at_two_rates() {
+        for (name, period, bit, step) in [("canopen_cyclic_1ms_1000k", 40_000u64, 16 * 40u64, 100i64), ("canopen_cyclic_5ms_125k", 200_000, 16 * 320, -10)] {
+            let (_, t) = run(name);
+            let pdo: Vec<&Transaction> = t.iter().filter(|t| t.outcome == "pos_valid").collect();
+            assert!(pdo.len() >= 4, "{name}");
+            for w in pdo.windows(2) {
+                assert!((w[1].cycle - w[0].cycle).abs_diff(period) <= bit, "{name}: {} {}", w[0].cycle, w[1].cycle);
+                assert_eq!(w[1].position.unwrap() as i64 - w[0].position.unwrap() as i64, step, "{name}");
+            }
+        }
+    }
+
+    /// Seed 003 §4.2: TPDO2 follows every n-th SYNC (1801h sub 2 = n = 2).
+    #[test]
+    fn tpdo2_after_every_second_sync() {
+        let (_, t) = run("canopen_sync_tpdo2");
+        let o = outcomes(&t);
+        assert_eq!(&o[2..], ["sync_sent", "sync_sent", "pos_valid", "sync_sent", "sync_sent", "pos_valid", "sync_sent", "sync_sent", "pos_valid"]);
+        assert!(t.iter().filter(|t| t.outcome == "pos_valid").all(|t| t.frames.len() == 1 && t.frames[0].id == 0x287 && t.position == Some(99)));
+        assert!(t.iter().filter(|t| t.outcome == "sync_sent").all(|t| t.frames.last().map(|f| (f.id, f.dlc)) == Some((0x080, 0))));
+    }
+
+    /// Seed 003 §3.2.1 A: 1000 units per revolution, range 32 000 (binary,
+    /// cyclic); turn 31 and a half reads 31 × 1000 + 500 = 31 500.
+    #[test]
+    fn scaling_example_a_through_the_master() {
+        let (b, t) = run("canopen_scaling_cyclic");
+        assert_eq!(t.iter().find(|t| t.outcome == "pos_valid").unwrap().position, Some(31_500));
+        assert!(b.encoders().next().unwrap().encoder().scaling().cyclic);
+    }
+
+    /// Seed 003 §3.2.1 B and §3.3: 100 units per revolution, range 5000 (not
+    /// binary: non-cyclic); turn 49 + 8191/8192 reads 4999; the preset 1200
+    /// gives offset = preset − current = 1200 − 4999 = −3799 (6509h) and the output 1200.
+    #[test]
+    fn scaling_example_b_and_preset_through_the_master() {
+        let (b, t) = run("canopen_scaling_non_cyclic_preset");
+        assert_eq!(t.iter().find(|t| t.outcome == "pos_valid").unwrap().position, Some(1200));
+        let e = b.encoders().next().unwrap().encoder();
+        assert!(!e.scaling().cyclic);
+        assert_eq!(e.read(0x6509, 0).unwrap(), (-3799i32).to_le_bytes().to_vec());
+    }
+
+    /// An abort reports its code, index and sub-index and stops the master;
+    /// i_start begins again (NMT reset node after BOOT_TIMEOUT, boot-up, the same abort).
+    #[test]
+    fn an_sdo_abort_is_reported_and_stops_the_master() {
+        let (_, t) = run("canopen_sdo_abort");
+        assert_eq!(outcomes(&t), ["booted", "sdo_abort", "booted", "sdo_abort"]);
+        for a in t.iter().filter(|t| t.outcome == "sdo_abort") {
+            assert_eq!(a.abort, Some((abort::TOO_LOW, 0x6001, 0)));
+            assert_eq!(a.state, 5, "FAILED");
+        }
+        assert_eq!(t[2].frames[0].data, vec![0x81, 0x03]);
+    }
+
+    /// No boot-up from the awaited node: two NMT resets, then o_node_lost after 3 × BOOT_TIMEOUT.
+    #[test]
+    fn a_missing_boot_up_ends_in_node_lost() {
+        let (_, t) = run("canopen_missing_boot_up");
+        assert_eq!(outcomes(&t), ["node_lost"]);
+        assert_eq!(t[0].cycle, 3 * 40_000 - 1);
+        assert_eq!(frames(&t), [(0x85, vec![]), (0, vec![0x81, 6]), (0, vec![0x81, 6])]);
+    }
+
+    /// An encoder at 500 kbit/s on a 250 kbit/s master: only damaged frames, node lost.
+    #[test]
+    fn an_encoder_at_another_bit_rate_is_never_seen() {
+        let (_, t) = run("canopen_other_bit_rate");
+        assert_eq!(outcomes(&t), ["node_lost"]);
+        assert!(t[0].frames.iter().any(|f| !f.errors.is_empty()));
+        assert!(sigrok_check_of("canopen_other_bit_rate").is_none(), "no sigrok comparison over error frames");
+    }
+
+    fn sigrok_check_of(name: &str) -> Option<SigrokCheck> {
+        let s = builtin::find(name).unwrap();
+        let dir = tempfile::tempdir().unwrap();
+        let summary = crate::generate::generate(&s, dir.path()).unwrap();
+        let tr: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&summary.files[2]).unwrap()).unwrap();
+        s.setup.sigrok(&tr)
+    }
+
+    /// An emergency in RUN (seed 003 §9: position error, 1000h, register 01h),
+    /// the DS 301 boot-up form, and a stale position between 4 ms PDOs with a 2.5 ms timeout.
+    #[test]
+    fn emergency_ds301_boot_up_and_pdo_timeout() {
+        let (_, t) = run("canopen_emergency_and_timeout");
+        assert_eq!(outcomes(&t), ["booted", "config_done", "pos_timeout", "emcy_valid", "pos_valid", "pos_timeout", "pos_valid"]);
+        assert_eq!(frames(&t)[0], (0x709, vec![0x00]));
+        assert_eq!(t[3].emcy, Some((0x1000, 0x01)));
+        // PDO_TIMEOUT after NMT start: 2.5 ms = 100 000 cycles after config_done.
+        assert_eq!(t[2].cycle - t[1].cycle, 100_000);
+    }
+
+    /// Three encoders: boot-ups in identifier order, only node 2 started.
+    #[test]
+    fn three_encoders_only_the_masters_node_runs() {
+        let (_, t) = run("canopen_three_encoders");
+        let ids: Vec<u32> = frames(&t).iter().map(|f| f.0).collect();
+        assert_eq!(&ids[..3], [0x81, 0x82, 0x83]);
+        assert!(ids[3..].iter().all(|&id| [0x602, 0x582, 0x000, 0x182].contains(&id)), "{ids:x?}");
+        assert_eq!(t.iter().filter(|t| t.outcome == "pos_valid").map(|t| t.position).collect::<Vec<_>>(), [Some(222), Some(222)]);
+    }
+
+    /// Seed 001 §3.4: the SAR58K24 (14 bits, node 0x20) answers a read with
+    /// `47 26` = 9799 = 215.3100°, on 0x100 + node (its examples; the
+    /// function-code table's 0x180 + node is the named alternative); after
+    /// the zero command the next read is 0.
+    #[test]
+    fn sar58k24_can_mode_example() {
+        let (_, t) = run("canopen_sar58k24_can_mode");
+        let answers: Vec<Vec<u8>> = frames(&t).into_iter().filter(|f| f.0 == 0x120).map(|f| f.1).collect();
+        assert_eq!(answers.len(), 3);
+        assert_eq!(&answers[0][..2], [0x47, 0x26]);
+        let v = u16::from_le_bytes([answers[0][0], answers[0][1]]);
+        assert_eq!(v, 9799);
+        assert_eq!(format!("{:.4}", model::angle::angle_deg(v as u64, 14)), "215.3100");
+        assert_eq!(answers[1][0], 0x20, "the zero command's acknowledgement");
+        assert_eq!(&answers[2][..2], [0, 0]);
+        assert_eq!(outcomes(&t), ["node_lost"], "no CANopen boot-up from a SAR58K24");
+    }
+
+    /// `tbgen decode canopen` on the setup example's waves gives back the transcript's frames and meanings.
+    #[test]
+    fn decode_canopen_reads_the_setup_example() {
+        let s = builtin::find("canopen_setup_example").unwrap();
+        let dir = tempfile::tempdir().unwrap();
+        let summary = crate::generate::generate(&s, dir.path()).unwrap();
+        let decoded = decode::decode(&summary.files[1], "top.line.can_rx", 250_000, 0.875).unwrap();
+        let (_, t) = run("canopen_setup_example");
+        let want: Vec<&model::canopen::bench::BusFrame> = t.iter().flat_map(|t| &t.frames).collect();
+        assert_eq!(decoded.len(), want.len());
+        for (d, w) in decoded.iter().zip(want) {
+            assert_eq!((d.frame.id, &d.frame.data, d.frame.crc, d.frame.ack), (w.id, &w.data, Some(w.crc), w.ack));
+            assert_eq!(d.meaning, w.meaning);
+        }
+        assert_eq!(decoded[1].meaning, "SDO write 6200h sub 0 (Cyclic timer) = 10 (0xA)");
+        let json = decode::to_json(&summary.files[1], "top.line.can_rx", 250_000, 0.875, &decoded).unwrap();
+        assert!(json.contains("\"protocol\": \"canopen\"") && json.contains("boot-up of node 12"));
+    }
+
+    /// `tbgen timing canopen` from its command line; a bad option is refused naming it.
+    #[test]
+    fn timing_canopen_from_the_command_line() {
+        let m = TimingArgs::command().try_get_matches_from(["canopen", "--period-ms", "10"]).unwrap();
+        let r = <BenchConfig as Protocol>::timing(&m).unwrap();
+        assert!(r.contains("3.920%"), "{r}");
+        let m = TimingArgs::command().try_get_matches_from(["canopen", "--period-ms", "0"]).unwrap();
+        assert!(<BenchConfig as Protocol>::timing(&m).unwrap_err().to_string().contains("--period-ms"));
+    }
+
+    /// A bad scenario value is an error naming the field.
+    #[test]
+    fn bad_fields_are_named() {
+        let mut c = config("canopen_setup_example");
+        c.master.params = vec![model::canopen::master::Param { index: 0x6200, sub: 0, size: 2, value: 1 }; 9];
+        assert_eq!(model::Setup::validate(&c).unwrap_err().field(), "master.params");
+        let mut c = config("canopen_setup_example");
+        c.bit_rate_kbps = 300;
+        assert_eq!(model::Setup::validate(&c).unwrap_err().field(), "bit_rate_kbps");
+        let mut c = config("canopen_setup_example");
+        c.master.boot_timeout_us = 0.0;
+        assert_eq!(model::Setup::validate(&c).unwrap_err().field(), "master.boot_timeout_us");
+    }
+}
