@@ -59,7 +59,7 @@ fn each_rule_fires_once_and_the_clean_master_passes(sim: &str) {
     std::fs::write(&ssi, "[encoder]\nbits = 12\nmonoflop_us = 20\n").unwrap();
     let biss = dir.join("biss.toml");
     std::fs::write(&biss, "[[slaves]]\nbits = 16\n").unwrap();
-    let mut cmd = bench(sim);
+    let cmd = bench(sim);
     let cases: [(u32, usize, usize, &[&str]); 7] = [
         (0, 0, 0, &[]),
         (1, 1, 0, &["T_cs (seed 001 SAR58K24 manual, SSI (2): T_cs > 4 us): first low phase 2.500 us"]),

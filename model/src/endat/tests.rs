@@ -428,7 +428,7 @@ fn after_a_type_i_error_the_line_is_high_again_t_m_after_the_last_clock_edge() {
         let half = 32; // 1 MHz at 64 MHz
         let mut clk = true;
         let mut now = 0u64;
-        let mut step = |enc: &mut Encoder, clk: bool, n: u64, now: &mut u64| -> Vec<(u64, crate::line::Drive)> {
+        let step = |enc: &mut Encoder, clk: bool, n: u64, now: &mut u64| -> Vec<(u64, crate::line::Drive)> {
             (0..n).map(|_| { let d = enc.step(clk, false); *now += 1; (*now - 1, d) }).collect()
         };
         step(&mut enc, clk, 10, &mut now);
