@@ -29,7 +29,7 @@ use crate::{ConfigError, Result, Timebase};
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct MasterSettings {
-    /// MA frequency in kHz (seed: TMAS > 100 ns, so up to 10 000 kHz).
+    /// MA frequency in kHz (seed: TMAS > 100 ns, so up to 10 000 kHz); f_sys divided by a whole number of at least 8, odd allowed (the high phase takes the extra cycle).
     pub clock_khz: f64,
     /// Longest delay from the second rising MA edge to the ack that the
     /// master compensates, in ns.

@@ -27,7 +27,7 @@ use crate::{ConfigError, Result, Timebase};
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct MasterSettings {
-    /// EnDat clock in kHz: 100 to 2000 without delay compensation, up to 8000 (16000) with it.
+    /// EnDat clock in kHz: 100 to 2000 without delay compensation, up to 8000 (16000) with it; f_sys divided by a whole number of at least 8, odd from 11 up (the high phase takes the extra cycle; each phase 45 to 55 % of the period).
     pub clock_khz: f64,
     /// Measure the propagation delay at power-on and compensate it.
     pub delay_comp: bool,

@@ -30,7 +30,7 @@ use crate::{ConfigError, Result, Timebase};
 pub struct MasterSettings {
     /// Clocks to read (`BITS`).
     pub bits: u32,
-    /// SSI clock frequency in kHz (the seed's encoder: 100 to 250 kHz).
+    /// SSI clock frequency in kHz (the seed's encoder: 100 to 250 kHz); f_sys divided by a whole number of at least 8, odd allowed (the high phase takes the extra cycle).
     pub clock_khz: f64,
     /// `binary` or `gray`.
     pub code: Code,
