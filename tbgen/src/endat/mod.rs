@@ -45,7 +45,7 @@ pub struct TimingArgs {
     /// Additional data selected (0, 1 or 2; type 2.2 commands).
     #[arg(long, default_value_t = 0)]
     ads: u64,
-    /// Also print the model's waveform of the scenario's first request.
+    /// Also print the model's waveform of the budgeted command (the scenario's first such request, else one on its set-up).
     #[arg(long)]
     diagram: bool,
 }
