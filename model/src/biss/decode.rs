@@ -235,7 +235,11 @@ fn read_frame(index: usize, burst: &[(u64, bool)], next_start: u64, slo: &Signal
         f.errors.push("short_frame".into());
         return f;
     }
-    let period = 2 * (burst[1].0 - t0);
+    // One MA period from rising edge to rising edge: with an odd divider the
+    // high and low phases differ (the high one takes the extra cycle), so
+    // twice the first low phase would be a cycle short and drift by a cycle
+    // per bit.
+    let period = rises[1] - rises[0];
     let r2 = rises[1];
     let last = burst[burst.len() - 1].0;
     // The ack is SLO falling after the second rising edge, while MA runs; a
