@@ -9,7 +9,7 @@ use model::uart::BenchConfig;
 use crate::registry::{Protocol, SigrokCheck, TransactionSignals};
 
 impl Protocol for BenchConfig {
-    const TRANSACTION_SIGNALS: TransactionSignals = (&["o_valid", "o_frame_err", "o_start_err"], "o_data", "received");
+    const TRANSACTION_SIGNALS: TransactionSignals = (&["o_valid", "o_frame_err", "o_start_err", "o_parity_err"], "o_data", "received");
 
     /// The state register's values by the model's [`model::uart::State`] (the RTL's state names).
     fn wave_names() -> Vec<(&'static str, Vec<(u64, String)>)> {
