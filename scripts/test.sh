@@ -115,8 +115,10 @@ else
     # Repeat the end of each failed stage's log last, so that a reader who
     # sees only the tail of the output (a CI summary) still sees the cause.
     for name in $(awk '$NF == "FAILED" { print $1 }' "$logs/times.txt"); do
-        echo "==== the end of the failed stage $name (whole log: build/test/$name.log)"
-        tail -n 25 "$logs/$name.log"
+        echo "==== the failed stage $name: its failure lines, then its last lines (whole log: build/test/$name.log)"
+        grep -E 'FAIL|panicked|assertion|left:|right:|error|below|MISMATCH' "$logs/$name.log" | head -n 20
+        echo "----"
+        tail -n 8 "$logs/$name.log"
     done
     echo "make test: FAILED (see the stages marked FAILED above; logs in build/test/)" >&2
     exit 1
