@@ -3,7 +3,9 @@
 //! `tbgen decode` builds these from a captured VCD, the co-simulation
 //! monitors (`cosim::monitor`) from the pins they sample each monitor clock
 //! cycle; both hand them to the same decode cores (`ssi::decode`,
-//! `biss::decode`), so a capture and a live simulation are read alike.
+//! `biss::decode`, `tformat::decode`, `esl::decode`), so a capture and a
+//! live simulation are read alike. [`uart_bytes`] reads the 10-bit
+//! characters of the RS-485 frame protocols (ESL, T-format) off a line.
 
 /// One scalar's value changes, in time order: `(time_ps, level)`. X and Z
 /// read as high, the level an idle RS-485 receiver with fail-safe biasing
@@ -93,6 +95,56 @@ impl Signal {
     pub fn forget_before(&mut self, t_ps: u64) {
         *self = self.tail(t_ps);
     }
+}
+
+/// One byte read off a UART-style line: start bit 0, 8 data bits LSB first,
+/// stop bit 1 (the character of ESL and T-format).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct UartByte {
+    /// Falling edge of the start bit, ps.
+    pub start_ps: u64,
+    /// The data bits, LSB first on the wire.
+    pub value: u8,
+    /// The stop bit read low.
+    pub framing_error: bool,
+}
+
+/// Reads every character of `line` at `bit_ps` picoseconds per bit, sampling
+/// each bit in its middle from the start bit's falling edge. A start bit that
+/// is high again at its middle is a glitch and is skipped. A character with a
+/// low stop bit is kept and flagged; the reader then waits for the line to
+/// go high before it looks for the next start bit.
+pub fn uart_bytes(line: &Signal, bit_ps: u64) -> Vec<UartByte> {
+    let mut bytes = Vec::new();
+    let mut from = 0u64;
+    while let Some(fall) = line.next_level(from, false) {
+        // A line that is low from the start of the capture is not a start bit.
+        let fall = if fall == 0 && line.changes.first().is_some_and(|&(t, v)| t == 0 && !v) {
+            match line.next_level(0, true) {
+                Some(t) => {
+                    from = t;
+                    continue;
+                }
+                None => break,
+            }
+        } else {
+            fall
+        };
+        let mid = |k: u64| fall + k * bit_ps + bit_ps / 2;
+        if line.level_at(mid(0)) {
+            from = fall + 1;
+            from = line.next_level(from, true).unwrap_or(from);
+            continue;
+        }
+        let value = (0..8).fold(0u8, |acc, k| acc | ((line.level_at(mid(k + 1)) as u8) << k));
+        let stop = line.level_at(mid(9));
+        bytes.push(UartByte { start_ps: fall, value, framing_error: !stop });
+        from = if stop { mid(9) } else { line.next_level(mid(9), true).unwrap_or(u64::MAX) };
+        if from == u64::MAX {
+            break;
+        }
+    }
+    bytes
 }
 
 #[cfg(test)]

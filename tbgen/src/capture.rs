@@ -15,7 +15,7 @@ use std::path::Path;
 
 use crate::{Error, Result};
 
-pub use model::wire::Signal;
+pub use model::wire::{uart_bytes, Signal, UartByte};
 
 /// One unit of a VCD timescale as a fraction of a picosecond: `(mul, div)`,
 /// a timestamp `ts` being `ts × mul / div` ps. A femtosecond timescale (what
@@ -115,56 +115,6 @@ pub fn read(path: &Path, names: &[(&str, &str)]) -> Result<Vec<Signal>> {
         }
     }
     Ok(signals)
-}
-
-/// One byte read off a UART-style line: start bit 0, 8 data bits LSB first,
-/// stop bit 1 (the character of ESL and T-format).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct UartByte {
-    /// Falling edge of the start bit, ps.
-    pub start_ps: u64,
-    /// The data bits, LSB first on the wire.
-    pub value: u8,
-    /// The stop bit read low.
-    pub framing_error: bool,
-}
-
-/// Reads every character of `line` at `bit_ps` picoseconds per bit, sampling
-/// each bit in its middle from the start bit's falling edge. A start bit that
-/// is high again at its middle is a glitch and is skipped. A character with a
-/// low stop bit is kept and flagged; the reader then waits for the line to
-/// go high before it looks for the next start bit.
-pub fn uart_bytes(line: &Signal, bit_ps: u64) -> Vec<UartByte> {
-    let mut bytes = Vec::new();
-    let mut from = 0u64;
-    while let Some(fall) = line.next_level(from, false) {
-        // A line that is low from the start of the capture is not a start bit.
-        let fall = if fall == 0 && line.changes.first().is_some_and(|&(t, v)| t == 0 && !v) {
-            match line.next_level(0, true) {
-                Some(t) => {
-                    from = t;
-                    continue;
-                }
-                None => break,
-            }
-        } else {
-            fall
-        };
-        let mid = |k: u64| fall + k * bit_ps + bit_ps / 2;
-        if line.level_at(mid(0)) {
-            from = fall + 1;
-            from = line.next_level(from, true).unwrap_or(from);
-            continue;
-        }
-        let value = (0..8).fold(0u8, |acc, k| acc | ((line.level_at(mid(k + 1)) as u8) << k));
-        let stop = line.level_at(mid(9));
-        bytes.push(UartByte { start_ps: fall, value, framing_error: !stop });
-        from = if stop { mid(9) } else { line.next_level(mid(9), true).unwrap_or(u64::MAX) };
-        if from == u64::MAX {
-            break;
-        }
-    }
-    bytes
 }
 
 #[cfg(test)]

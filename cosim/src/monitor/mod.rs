@@ -16,7 +16,10 @@
 //! so a long run keeps only one transaction's edges in memory.
 
 pub mod biss;
+pub mod esl;
+pub mod half_duplex;
 pub mod ssi;
+pub mod tformat;
 
 use serde_json::Value;
 

@@ -13,11 +13,19 @@
 // the emulator says it sent (u_emu.last_value / last_status), which must
 // equal what was set, with no error pulse; one answer per request.
 //
+// A pin-level monitor (hdl/emu/esl_monitor.v) watches the host's DI, DE and
+// RO: after every operation it must have flagged an error exactly when the
+// host did (o_err_seq as its `sequence`), and otherwise decoded the host's
+// ABS, ABM and ALM1 off the line; it must see no timing violation of the
+// seed.
+//
 // Plusargs: +esl_emu_config=<scenario.toml>, +transactions=N (default
 // 1000), +seed=S, +flip_bit=K (planted failure: the comparison flips bit K
-// of the host's o_abs, so the run must fail).
+// of the host's o_abs, so the run must fail), +esl_monitor_transcript=FILE
+// (the monitor's JSON transcript).
 
 `timescale 1fs / 1fs
+`include "esl_monitor.v"
 `default_nettype none
 
 module tb_cosim_esl_host;
@@ -114,6 +122,24 @@ esl_encoder_emu #(
     .o_esl_data(rx),
     .o_esl_data_oe(enc_oe)
 );
+
+// The pin-level monitor and protocol checker, on the same clock.
+esl_monitor #(
+    .F_MON_HZ(F_SYS_HZ),
+    .PLUSARG("esl_emu_config")
+) u_mon (
+    .i_mon_clk(clk),
+    .i_esl_data(tx),
+    .i_esl_data_oe(tx_en),
+    .i_esl_rx(rx)
+);
+
+// Any error the monitor's decoder flagged for its last operation.
+function mon_any_error(input integer unused);
+    mon_any_error = u_mon.last_status(0, "crc1") | u_mon.last_status(0, "crc2") | u_mon.last_status(0, "timeout")
+                  | u_mon.last_status(0, "frame") | u_mon.last_status(0, "cf_mismatch") | u_mon.last_status(0, "comm_alarm")
+                  | u_mon.last_status(0, "sequence") | u_mon.last_status(0, "channel_mismatch") | u_mon.last_status(0, "busy");
+endfunction
 
 /* Table 12: fields on the line per Data ID, and what each carries */
 function integer answer_fields(input [3:0] id);
@@ -258,14 +284,29 @@ initial begin
                     $fatal(1, "operation %0d at %0t: the emulator reports other flags than set", n, $time);
             end
         end
+        // The monitor decoded the same operation off the pins.
+        if (u_mon.count(0) != n + 1)
+            $fatal(1, "operation %0d at %0t: the monitor decoded %0d operations", n, $time, u_mon.count(0));
+        if (mon_any_error(0) != any_err || u_mon.last_status(0, "sequence") != o_err_seq)
+            $fatal(1, "operation %0d at %0t (Data ID %h): the monitor flagged error %b sequence %b, the host error %b seq %b",
+                   n, $time, id, mon_any_error(0), u_mon.last_status(0, "sequence"), any_err, o_err_seq);
+        if (!any_err) begin
+            sent = u_mon.last_value(0);
+            if ((has_abs && sent[23:0] !== got_abs) || (has_abm && sent[39:24] !== o_abm)
+                || (has_alm && (u_mon.last_status(0, "uv") != o_alm1[6] || u_mon.last_status(0, "xc") != o_alm1[0] || u_mon.last_status(0, "ov") != o_alm1[7])))
+                $fatal(1, "operation %0d at %0t (Data ID %h): the monitor read ABS %h ABM %h on the line, the host ABS %h ABM %h ALM1 %h",
+                       n, $time, id, sent[23:0], sent[39:24], got_abs, o_abm, o_alm1);
+        end
         while (o_busy) @(posedge clk);
         // A few bits of idle line between operations.
         repeat (4 * CLOCKS_PER_BIT) @(posedge clk);
     end
     if (u_emu.violations(0) != 0)
         $fatal(1, "the host broke %0d timing rule(s) (PROTOCOL VIOLATION lines above)", u_emu.violations(0));
+    if (u_mon.violations(0) != 0)
+        $fatal(1, "the monitor saw %0d timing violation(s) of the seed by the host (PROTOCOL VIOLATION lines above)", u_mon.violations(0));
     $display("cycles %0d", cycles);
-    $display("PASS tb_cosim_esl_host: %0d operations (%0d bit flips, %0d cut answers, %0d sequence jumps flagged), every o_abs, o_abm, o_alm1/2, o_sf equal to the emulator's",
+    $display("PASS tb_cosim_esl_host: %0d operations (%0d bit flips, %0d cut answers, %0d sequence jumps flagged), every o_abs, o_abm, o_alm1/2, o_sf equal to the emulator's and to the monitor's",
              transactions, faults, cuts, jumps);
     $finish;
 end

@@ -10,11 +10,18 @@
 // must equal what the emulator says it sent (u_emu.last_value / last_status),
 // which must equal what was set, with no error pulse; one answer per request.
 //
+// A pin-level monitor (hdl/emu/tformat_monitor.v) watches the host's D, DE
+// and R: after every readout its decoded transaction must equal the host's
+// outputs (ABS, ABM, ALMC; the CRC error of a flipped answer and no other),
+// and it must see no timing violation of the seed.
+//
 // Plusargs: +tformat_emu_config=<scenario.toml>, +transactions=N (default
 // 1000), +seed=S, +flip_bit=K (planted failure: the comparison flips bit K
-// of the host's o_abs, so the run must fail).
+// of the host's o_abs, so the run must fail), +tformat_monitor_transcript=FILE
+// (the monitor's JSON transcript).
 
 `timescale 1fs / 1fs
+`include "tformat_monitor.v"
 `default_nettype none
 
 module tb_cosim_tformat_host;
@@ -84,6 +91,17 @@ tformat_encoder_emu #(
     .i_tf_data_oe(tx_en),
     .o_tf_data(rx),
     .o_tf_data_oe(enc_oe)
+);
+
+// The pin-level monitor and protocol checker, on the same clock.
+tformat_monitor #(
+    .F_MON_HZ(F_SYS_HZ),
+    .PLUSARG("tformat_emu_config")
+) u_mon (
+    .i_mon_clk(clk),
+    .i_tf_data(tx),
+    .i_tf_data_oe(tx_en),
+    .i_tf_rx(rx)
 );
 
 integer transactions, seed, flip_bit, n, waited, k, crc_errs, field, bit_i;
@@ -165,14 +183,32 @@ initial begin
                     $fatal(1, "readout %0d at %0t: the emulator reports other alarms than set (%h)", n, $time, almc);
             end
         end
+        // The monitor decoded the same readout off the pins.
+        if (u_mon.count(0) != n + 1)
+            $fatal(1, "readout %0d at %0t: the monitor decoded %0d transactions", n, $time, u_mon.count(0));
+        if (u_mon.last_status(0, "crc") != flip || u_mon.last_status(0, "timeout") || u_mon.last_status(0, "frame")
+            || u_mon.last_status(0, "cf_mismatch"))
+            $fatal(1, "readout %0d at %0t: the monitor's errors crc %b timeout %b frame %b cf %b (flipped %b)", n, $time,
+                   u_mon.last_status(0, "crc"), u_mon.last_status(0, "timeout"), u_mon.last_status(0, "frame"),
+                   u_mon.last_status(0, "cf_mismatch"), flip);
+        if (!flip) begin
+            sent = u_mon.last_value(0);
+            if ((id != 4'd1 && sent[16:0] !== got_abs) || (id != 4'd0 && sent[32:17] !== o_abm)
+                || (id == 4'd3 && (u_mon.last_status(0, "battery_alarm") != o_almc[7] || u_mon.last_status(0, "over_speed") != o_almc[0]
+                                   || u_mon.last_status(0, "multi_turn_error") != o_almc[5])))
+                $fatal(1, "readout %0d at %0t (Data ID %0d): the monitor read ABS %0d ABM %0d on the line, the host ABS %0d ABM %0d ALMC %h",
+                       n, $time, id, sent[16:0], sent[32:17], got_abs, o_abm, o_almc);
+        end
         while (o_busy) @(posedge clk);
         // Request spacing: a few bits of idle line between operations.
         repeat (4 * CLOCKS_PER_BIT) @(posedge clk);
     end
     if (u_emu.violations(0) != 0)
         $fatal(1, "the host broke %0d timing rule(s) (PROTOCOL VIOLATION lines above)", u_emu.violations(0));
+    if (u_mon.violations(0) != 0)
+        $fatal(1, "the monitor saw %0d timing violation(s) of the seed by the host (PROTOCOL VIOLATION lines above)", u_mon.violations(0));
     $display("cycles %0d", cycles);
-    $display("PASS tb_cosim_tformat_host: %0d readouts (%0d CRC faults flagged), every o_abs, o_abm, o_almc, o_sf equal to the emulator's",
+    $display("PASS tb_cosim_tformat_host: %0d readouts (%0d CRC faults flagged), every o_abs, o_abm, o_almc, o_sf equal to the emulator's and to the monitor's",
              transactions, crc_errs);
     $finish;
 end

@@ -46,6 +46,7 @@
 mod bench;
 pub mod campaign;
 mod encoder;
+pub mod decode;
 pub mod frames;
 mod host;
 
