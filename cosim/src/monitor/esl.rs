@@ -204,7 +204,7 @@ impl EslMonitor {
         let Some(&byte) = r.fields.first() else { return };
         let cf = frames::parse_control_field(byte);
         let id = DataId::from_code(cf.code);
-        if id.is_some() {
+        if id.is_some() && !r.damaged {
             let want = frames::request(0, cf.code, 0, 0).len();
             if r.fields.len() != want {
                 self.base.violation(r.end_ps, RULE_FIELDS, format!("a request of {} frame(s) for Data ID {:X}, which takes {want}", r.fields.len(), cf.code));

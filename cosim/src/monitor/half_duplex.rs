@@ -63,6 +63,8 @@ pub struct Request {
     pub end_ps: u64,
     /// The fields' values (sampled mid-bit), in order.
     pub fields: Vec<u8>,
+    /// A character-timing violation in it (its fields are not all known).
+    pub damaged: bool,
 }
 
 /// The watcher's state.
@@ -84,6 +86,10 @@ pub struct Watch {
     answer_until: Option<u64>,
     answer_last: u64,
     both: bool,
+    /// After a character-timing violation: edges are not timed until the
+    /// line has been high for more than a bit or the driver is off.
+    lost: bool,
+    last_edge: u64,
 }
 
 impl Watch {
@@ -106,6 +112,17 @@ impl Watch {
             answer_until: None,
             answer_last: 0,
             both: false,
+            lost: false,
+            last_edge: 0,
+        }
+    }
+
+    /// A character-timing violation: the field is abandoned.
+    fn lose(&mut self) {
+        self.lost = true;
+        self.field = None;
+        if let Some(r) = &mut self.request {
+            r.damaged = true;
         }
     }
 
@@ -145,7 +162,12 @@ impl Watch {
         // The host's request, as its driver puts it on the line.
         let level = tx || !de;
         let mut ended = None;
-        if let Some(s) = self.field {
+        if self.lost && ((level && self.drive && now - self.last_edge > bit as u64) || !de) {
+            self.lost = false;
+        }
+        if self.lost {
+            // not timed
+        } else if let Some(s) = self.field {
             let o = (now - s) as f64;
             let slack = self.limits.tolerance * o + self.limits.jitter_ps + cycle;
             while self.bits < 8 && now >= self.at(s, self.bits as f64 + 1.5) {
@@ -156,14 +178,17 @@ impl Watch {
             }
             if !self.stop_checked && now >= self.at(s, 9.5) {
                 self.stop_checked = true;
+                self.request.get_or_insert(Request { start_ps: s, end_ps: 0, fields: Vec::new(), damaged: false }).fields.push(self.value);
                 if !level {
                     base.violation(now, r.character, "stop bit low at its middle (framing error)".to_string());
+                    self.lose();
                 }
-                self.request.get_or_insert(Request { start_ps: s, end_ps: 0, fields: Vec::new() }).fields.push(self.value);
             }
-            if !de && self.de && !self.stop_checked {
+            if self.lost {
+                // the stop bit was low
+            } else if !de && self.de && !self.stop_checked {
                 base.violation(now, r.character, format!("driver enable released {:.2} bits into a field", o / bit));
-                self.field = None;
+                self.lose();
             } else if level != self.drive {
                 if self.stop_checked {
                     if !level {
@@ -180,7 +205,7 @@ impl Watch {
                     let n = (o / bit).round();
                     if n < 1.0 || (o - n * bit).abs() > slack {
                         base.violation(now, r.character, format!("an edge {:.1} ns after the field's start edge, {:.2} bits: off the bit grid by more than {} ns", o / 1e3, o / bit, ((slack - cycle) / 1e3).round()));
-                        self.field = None;
+                        self.lose();
                     }
                 }
             } else if self.stop_checked && o >= 10.0 * bit {
@@ -195,6 +220,9 @@ impl Watch {
                 }
             }
             self.start_field(now);
+        }
+        if level != self.drive {
+            self.last_edge = now;
         }
         self.drive = level;
         // The end of the request: the driver enable falls.
@@ -212,6 +240,7 @@ impl Watch {
             self.field = None;
             self.last_end = None;
             self.release_reported = false;
+            self.lost = false;
         }
         self.de = de;
         ended
@@ -224,7 +253,7 @@ impl Watch {
         self.stop_checked = false;
         self.release_reported = false;
         if self.request.is_none() {
-            self.request = Some(Request { start_ps: now, end_ps: 0, fields: Vec::new() });
+            self.request = Some(Request { start_ps: now, end_ps: 0, fields: Vec::new(), damaged: false });
         }
     }
 }
@@ -315,3 +344,7 @@ impl Exchanges {
         }
     }
 }
+
+#[cfg(test)]
+#[path = "half_duplex_tests.rs"]
+mod tests;

@@ -159,7 +159,7 @@ impl TformatMonitor {
         let Some(&cf) = r.fields.first() else { return };
         let code = (cf >> 3) & 0xF;
         let id = DataId::from_code(code);
-        if let Some(id) = id {
+        if let Some(id) = id.filter(|_| !r.damaged) {
             let want = frames::request(id, 0, 0).len();
             if r.fields.len() != want {
                 self.base.violation(r.end_ps, RULE_FIELDS, format!("a request of {} field(s) for Data ID {code:X}, which takes {want}", r.fields.len()));
