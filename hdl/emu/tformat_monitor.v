@@ -1,8 +1,8 @@
 // tformat_monitor: a pin-level monitor and protocol checker of a Tamagawa
 // T-format host, input-only, run by the encoder-tb library
-// (cosim/src/monitor/tformat.rs); the same module name and ports in
-// Verilator (DPI-C) and Icarus (VPI module emu.vpi), beside or without a
-// tformat_encoder_emu.
+// (cosim/src/monitor/tformat.rs); the same module name and ports in both
+// simulators (DPI-C in Verilator, the VPI module emu.vpi in Icarus), beside
+// or without a tformat_encoder_emu.
 //
 // Connect the host's half-duplex RS-485 transceiver as the host drives it:
 // its driver input D (i_tf_data), its driver enable DE (i_tf_data_oe) and the

@@ -141,7 +141,10 @@ impl Watch {
         if rx != self.rx {
             self.rx = rx;
             if !rx && !de && now >= self.rx_char_end {
-                self.rx_char_end = self.at(now, 10.0);
+                // The next start bit is looked for from this one's stop-bit
+                // middle on, as a UART receiver does (an encoder off rate
+                // sends characters shorter or longer than 10 bits).
+                self.rx_char_end = self.at(now, 9.5);
                 self.answer_last = now;
                 self.answer_until = Some(self.at(now, 11.0));
             }
