@@ -20,13 +20,18 @@ fn run(cmd: &mut Command) -> (bool, String) {
 
 /// Builds the rules bench in `sim`; returns a command that runs it.
 fn bench(sim: &str) -> Command {
+    bench_named(sim, "tb_monitor_rules")
+}
+
+/// Builds `hdl/tb_cosim/monitor_rules/<top>.v` in `sim`; returns a command that runs it.
+fn bench_named(sim: &str, top: &str) -> Command {
     let (ok, vars) = run(&mut Command::new(root().join("scripts/emu_lib.sh")));
     assert!(ok, "{vars}");
     let var = |name: &str| vars.lines().find_map(|l| l.strip_prefix(&format!("{name}="))).unwrap().to_string();
     let (lib, vpi, hdl) = (var("EMU_LIB_DIR"), var("EMU_VPI_DIR"), var("EMU_HDL_DIR"));
-    let build = root().join(format!("build/cosim/monitor_rules/{sim}"));
+    let build = root().join(format!("build/cosim/monitor_rules/{sim}{}", if top == "tb_monitor_rules" { String::new() } else { format!("/{top}") }));
     std::fs::create_dir_all(&build).unwrap();
-    let tb = root().join("hdl/tb_cosim/monitor_rules/tb_monitor_rules.v");
+    let tb = root().join(format!("hdl/tb_cosim/monitor_rules/{top}.v"));
     if sim == "icarus" {
         let vvp = build.join("tb.vvp");
         let (ok, out) = run(Command::new("iverilog").args(["-g2005", "-Wno-timescale", "-I", &hdl, "-o"]).arg(&vvp).arg(&tb));
@@ -36,7 +41,7 @@ fn bench(sim: &str) -> Command {
         return cmd;
     }
     let (ok, out) = run(Command::new("verilator")
-        .args(["--binary", "--timing", "-j", "2", "-Wno-fatal", "-Wno-lint", "-Wno-style", "--top-module", "tb_monitor_rules"])
+        .args(["--binary", "--timing", "-j", "2", "-Wno-fatal", "-Wno-lint", "-Wno-style", "--top-module", top])
         .arg(format!("-I{hdl}"))
         .args(["-LDFLAGS", &format!("-L{lib} -lcosim -Wl,-rpath,{lib}"), "--Mdir"])
         .arg(build.join("obj"))
@@ -178,4 +183,75 @@ fn tbgen_check_takes_a_biss_monitor_transcript_and_finds_a_flipped_position_bit(
     std::fs::write(&expect, sent.to_string()).unwrap();
     let (ok, out) = tbgen_check("biss", &expect, &capture);
     assert!(!ok && out.contains("DIFFERENCE in transaction 5 at ") && out.contains("slaves[0].position expected"), "{out}");
+}
+
+/// The T-format and ESL monitors in the simulators: a hand-written host of
+/// each (`hdl/tb_cosim/monitor_rules/tb_half_duplex_rules.v`) breaks each
+/// rule once (cases 1 to 11) or none (case 0); each violation is reported
+/// once with its seed's rule, and the transcripts hold the transactions.
+fn each_half_duplex_rule_fires_once(sim: &str) {
+    use model::tformat::frames::DataId;
+    let dir = root().join(format!("build/cosim/monitor_rules/{sim}/tb_half_duplex_rules/run"));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (tf, esl) = (dir.join("tformat.toml"), dir.join("esl.toml"));
+    std::fs::write(&tf, "baud = 2.5e6\n").unwrap();
+    std::fs::write(&esl, "baud = 10e6\n[[encoders]]\naddress = 3\n").unwrap();
+    let hex = |b: &[u8]| b.iter().map(|x| format!("{x:02x}")).collect::<String>();
+    let bytes = [
+        format!("+tf_id0={}", hex(&model::tformat::frames::request(DataId::Id0, 0, 0))),
+        format!("+tf_id7={}", hex(&model::tformat::frames::request(DataId::Id7, 0, 0))),
+        format!("+tf_idd={}", hex(&model::tformat::frames::request(DataId::IdD, 5, 0))),
+        format!("+esl_id1={}", hex(&model::esl::frames::request(3, 1, 0, 0))),
+        format!("+esl_idb={}", hex(&model::esl::frames::request(3, 0xB, 0, 0))),
+        format!("+esl_ide={}", hex(&model::esl::frames::request(3, 0xE, 0x10, 0))),
+    ];
+    let cmd = bench_named(sim, "tb_half_duplex_rules");
+    let cases: [(u32, usize, usize, &str); 12] = [
+        (0, 0, 0, ""),
+        (1, 1, 0, "character timing (seed 002 6.1: 2.5 Mbps, permissible jitter +-100 ns; 6.3: 10-bit fields, start, 8 data LSB first, delimiter): an edge 1400.0 ns after the field's start edge, 3.50 bits"),
+        (2, 1, 0, "request frame (seed 002 7.2, 8.2: no start bit after a delimiter ends the frame; a request's fields back to back): 2.00 bits of idle line"),
+        (3, 1, 0, "turnaround (seed 002 7.1: the answer comes 3 us (typ.) after the request's delimiter; the host releases the line before): driver enable still on"),
+        (4, 1, 0, "turnaround (seed 002 10: never transmit any request while the encoder transmits its data): the host switched its driver on 2.00 bits after"),
+        (5, 1, 0, "request spacing (seed 002 9: resets 7, 8, C: 10 times in one sequence, with the interval of 40 ms or more): request 2 of reset Data ID 7 0.104 ms after"),
+        (6, 0, 1, "character timing (seed 000 Table 1, Figure 1: 10 Mbps, 10-bit frames, start, 8 data, stop): an edge 350.0 ns after the field's start edge"),
+        (7, 0, 1, "request frame (seed 000 Figure 1: a frame set ends when no start bit follows a stop bit; a request's frames back to back): 1.50 bits of idle line"),
+        (8, 0, 1, "request frame (seed 000 Table 12: a request is RCF and CRC; Data ID E adds ADF, F adds ADF and EDF): a request of 1 frame(s) for Data ID 1, which takes 2"),
+        (9, 0, 1, "turnaround (seed 000 Figure 2: the encoder answers 2.0 us (typ.) after the request; half duplex, the host releases the line before): driver enable still on"),
+        (10, 0, 1, "request spacing (seed 000 Table 4: B, C, D minimum 8 times consecutively at a typical interval of 40 us): Data ID B sent 1 time(s) to address 3, then Data ID 1"),
+        (11, 0, 1, "turnaround (seed 000 Table 1: half duplex; the host does not drive while an encoder answers): the host switched its driver on 2.00 bits after"),
+    ];
+    for (case, n_tf, n_esl, rule) in cases {
+        let (mon_t, mon_e) = (dir.join(format!("tformat_{case}.json")), dir.join(format!("esl_{case}.json")));
+        let (ok, out) = run(Command::new(cmd.get_program()).args(cmd.get_args()).args(&bytes).args([
+            format!("+case={case}"),
+            format!("+tformat_monitor_config={}", tf.display()),
+            format!("+esl_monitor_config={}", esl.display()),
+            format!("+tformat_monitor_transcript={}", mon_t.display()),
+            format!("+esl_monitor_transcript={}", mon_e.display()),
+        ]));
+        assert!(ok, "case {case} in {sim}:\n{out}");
+        assert!(out.contains(&format!("violations tformat {n_tf} esl {n_esl}")), "case {case} in {sim}:\n{out}");
+        assert_eq!(out.matches("PROTOCOL VIOLATION by the master on").count(), n_tf + n_esl, "case {case} in {sim}:\n{out}");
+        assert!(out.contains(rule), "case {case} in {sim}: no `{rule}` in\n{out}");
+        // The transcripts: two transactions each (a reset's requests and B then a readout are one).
+        let (want_t, want_e) = (if case == 5 { 1 } else { 2 }, if case == 10 { 1 } else { 2 });
+        assert!(out.contains(&format!("transactions tformat {want_t} esl {want_e}")), "case {case} in {sim}:\n{out}");
+        let t: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&mon_t).unwrap()).unwrap();
+        assert_eq!((t["transactions"].as_array().unwrap().len(), t["violations"].as_array().unwrap().len()), (want_t, n_tf), "{t}");
+        let t: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&mon_e).unwrap()).unwrap();
+        assert_eq!((t["transactions"].as_array().unwrap().len(), t["violations"].as_array().unwrap().len()), (want_e, n_esl), "{t}");
+        if case == 0 {
+            assert_eq!(t["transactions"][1]["wire_requests"][0], serde_json::json!(model::esl::frames::request(3, 0xE, 0x10, 0)), "{t}");
+        }
+    }
+}
+
+#[test]
+fn each_tformat_and_esl_monitor_rule_fires_in_icarus() {
+    each_half_duplex_rule_fires_once("icarus");
+}
+
+#[test]
+fn each_tformat_and_esl_monitor_rule_fires_in_verilator() {
+    each_half_duplex_rule_fires_once("verilator");
 }
