@@ -49,7 +49,7 @@ use model::esl::frames::{self, DataId};
 use model::esl::EncoderSettings;
 use model::wire::uart_bytes;
 
-use super::half_duplex::{Exchanges, Limits, Request, Rules, Watch, Window};
+use super::half_duplex::{ExchangeDecoder, Exchanges, Limits, Request, Rules, Side, Window};
 use super::{field, limit, listens_only, proto_table, sub, Base};
 use crate::config::{self, Error};
 use crate::{Emulator, Pins, Result};
@@ -110,13 +110,27 @@ struct Spacing {
     page_write: Option<u64>,
 }
 
+/// The decoder and the bit time.
+#[derive(Debug, Clone)]
+struct Decode(Decoder, u64);
+
+impl ExchangeDecoder for Decode {
+    fn exchange(&mut self, line: &Exchanges, (rise, fall, next): Window) -> Option<Value> {
+        self.0.exchange(rise, fall, next, &uart_bytes(&line.wire, self.1)).map(json)
+    }
+
+    fn finish(&mut self) -> Option<Value> {
+        self.0.finish().map(json)
+    }
+}
+
+fn json(t: DecodedOp) -> Value {
+    serde_json::to_value(t).unwrap_or(Value::Null)
+}
+
 /// An ESL monitor.
 pub struct EslMonitor {
-    base: Base,
-    watch: Watch,
-    line: Exchanges,
-    decoder: Decoder,
-    bit_ps: u64,
+    side: Side<Decode>,
     spacing: Vec<Spacing>,
 }
 
@@ -172,32 +186,9 @@ impl EslMonitor {
         let limits = Limits { bit_ps: 1e12 / baud, tolerance: tolerance / 100.0, jitter_ps: 0.0, max_gap_ps: gap * 1e12 / baud, release_ps: (release * 1e6).round() as u64 };
         let rules = Rules { character: RULE_CHARACTER, gap: RULE_GAP, release: RULE_RELEASE, answer: RULE_ANSWER };
         Ok(EslMonitor {
-            base,
-            watch: Watch::new(limits, rules),
-            line: Exchanges::new(12 * bit_ps),
-            decoder: Decoder::new(DecodeOptions { baud, broadcast_address, busy_tries, rs_tolerance }),
-            bit_ps,
+            side: Side::new(base, limits, rules, Decode(Decoder::new(DecodeOptions { baud, broadcast_address, busy_tries, rs_tolerance }), bit_ps)),
             spacing,
         })
-    }
-
-    fn feed(decoder: &mut Decoder, line: &Exchanges, (rise, fall, next): Window, bit_ps: u64) -> Option<DecodedOp> {
-        decoder.exchange(rise, fall, next, &uart_bytes(&line.wire, bit_ps))
-    }
-
-    /// The operations not yet in `base.done` (the decoder's state is not changed).
-    fn pending(&self) -> Vec<Value> {
-        let mut d = self.decoder.clone();
-        let mut out: Vec<DecodedOp> = Vec::new();
-        for w in self.line.pending() {
-            out.extend(Self::feed(&mut d, &self.line, w, self.bit_ps));
-        }
-        out.extend(d.finish());
-        out.iter().map(|t| serde_json::to_value(t).unwrap_or(Value::Null)).collect()
-    }
-
-    fn last(&self) -> Option<Value> {
-        self.pending().pop().or_else(|| self.base.done.last().cloned())
     }
 
     fn on_request(&mut self, r: Request) {
@@ -207,7 +198,7 @@ impl EslMonitor {
         if id.is_some() && !r.damaged {
             let want = frames::request(0, cf.code, 0, 0).len();
             if r.fields.len() != want {
-                self.base.violation(r.end_ps, RULE_FIELDS, format!("a request of {} frame(s) for Data ID {:X}, which takes {want}", r.fields.len(), cf.code));
+                self.side.base.violation(r.end_ps, RULE_FIELDS, format!("a request of {} frame(s) for Data ID {:X}, which takes {want}", r.fields.len(), cf.code));
             }
         }
         if !cf.parity_ok {
@@ -216,7 +207,7 @@ impl EslMonitor {
         let s = &mut self.spacing[usize::from(cf.address & 7)];
         let end = r.end_ps;
         let ms = |ps: u64| ps as f64 / 1e6;
-        let tol = self.base.period_ps;
+        let tol = self.side.base.period_ps;
         let mut found: Vec<(&'static str, String)> = Vec::new();
         match (s.repeat, id.filter(|d| d.is_repeated())) {
             (Some((rid, k, at)), Some(_)) if rid == cf.code => {
@@ -259,7 +250,7 @@ impl EslMonitor {
             }
         }
         for (rule, detail) in found {
-            self.base.violation(end, rule, detail);
+            self.side.base.violation(end, rule, detail);
         }
     }
 }
@@ -270,16 +261,10 @@ impl Emulator for EslMonitor {
     }
 
     fn step(&mut self, pins: Pins) -> Pins {
-        let now = self.base.now_ps();
-        let (rx, tx, de) = (pins.0 & 1 != 0, pins.0 & 2 != 0, pins.0 & 4 != 0);
-        let (decoder, done, bit_ps) = (&mut self.decoder, &mut self.base.done, self.bit_ps);
-        self.line.step(now, tx, de, rx, |line, w| {
-            done.extend(Self::feed(decoder, line, w, bit_ps).map(|t| serde_json::to_value(t).unwrap_or(Value::Null)));
-        });
-        if let Some(r) = self.watch.step(&mut self.base, now, tx, de, rx) {
+        if let Some(r) = self.side.step(pins) {
             self.on_request(r);
         }
-        self.base.step_out()
+        self.side.base.step_out()
     }
 
     fn set_position(&mut self, _: usize, _: u64) -> Result<()> {
@@ -296,12 +281,12 @@ impl Emulator for EslMonitor {
 
     /// Operations seen so far (the one in progress included; B, C, D's eight requests are one).
     fn count(&self) -> u64 {
-        (self.base.done.len() + self.pending().len()) as u64
+        self.side.count()
     }
 
     /// `abm << 24 | abs` after the last operation (the host's registers: held through a short answer).
     fn last_value(&self, _: usize) -> Option<u64> {
-        let t = self.last()?;
+        let t = self.side.last()?;
         Some(t["abm"].as_u64()? << 24 | t["abs"].as_u64()?)
     }
 
@@ -309,7 +294,7 @@ impl Emulator for EslMonitor {
     /// `cf_mismatch`, `comm_alarm`, `sequence`, `channel_mismatch`, `busy`)
     /// or an ALM flag (ALM1) after it.
     fn last_status(&self, _: usize, name: &str) -> Result<bool> {
-        let t = self.last().ok_or_else(|| Error::Usage("esl_monitor: no operation decoded yet".into()))?;
+        let t = self.side.last().ok_or_else(|| Error::Usage("esl_monitor: no operation decoded yet".into()))?;
         if let Some(&(_, bit)) = ALARMS.iter().find(|a| a.0 == name) {
             return Ok(t["alm1"].as_u64().unwrap_or(0) >> bit & 1 == 1);
         }
@@ -320,10 +305,10 @@ impl Emulator for EslMonitor {
     }
 
     fn transcript(&self) -> Value {
-        self.base.transcript("esl", &["rx", "tx", "tx_en"], self.pending())
+        self.side.transcript("esl")
     }
 
     fn checks(&mut self) -> &mut crate::check::Checks {
-        &mut self.base.checks
+        &mut self.side.base.checks
     }
 }

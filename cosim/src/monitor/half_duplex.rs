@@ -23,8 +23,10 @@
 //! request spacing).
 
 use model::wire::Signal;
+use serde_json::Value;
 
 use super::Base;
+use crate::Pins;
 
 /// The rule names of one protocol, as its seed states them.
 #[derive(Debug, Clone, Copy)]
@@ -345,6 +347,66 @@ impl Exchanges {
             self.heard.forget_before(n);
             self.start = Some(n);
         }
+    }
+}
+
+/// A protocol's decoder, one exchange at a time (its transactions as JSON).
+pub trait ExchangeDecoder: Clone {
+    /// One exchange of `line`; the transaction it closed, if any.
+    fn exchange(&mut self, line: &Exchanges, window: Window) -> Option<Value>;
+    /// The transaction still open.
+    fn finish(&mut self) -> Option<Value>;
+}
+
+/// The host's side of the pair as a monitor sees it: the timing watch, the
+/// line not yet decoded and the decoder; what the T-format and ESL monitors
+/// share but their own request checks.
+pub struct Side<D> {
+    /// Clock, violations, decoded transactions.
+    pub base: Base,
+    watch: Watch,
+    line: Exchanges,
+    decoder: D,
+}
+
+impl<D: ExchangeDecoder> Side<D> {
+    /// A side at `base`'s clock with `limits` and `rules`; an exchange is
+    /// decoded 12 bits after the next one began.
+    pub fn new(base: Base, limits: Limits, rules: Rules, decoder: D) -> Self {
+        let settle = (12.0 * limits.bit_ps).round() as u64;
+        Side { base, watch: Watch::new(limits, rules), line: Exchanges::new(settle), decoder }
+    }
+
+    /// One monitor cycle (pins: bit 0 R, bit 1 D, bit 2 DE); the request that ended, if any.
+    pub fn step(&mut self, pins: Pins) -> Option<Request> {
+        let now = self.base.now_ps();
+        let (rx, tx, de) = (pins.0 & 1 != 0, pins.0 & 2 != 0, pins.0 & 4 != 0);
+        let (decoder, done) = (&mut self.decoder, &mut self.base.done);
+        self.line.step(now, tx, de, rx, |line, w| done.extend(decoder.exchange(line, w)));
+        self.watch.step(&mut self.base, now, tx, de, rx)
+    }
+
+    /// The transactions not yet in `base.done` (the decoder's state is not changed).
+    pub fn pending(&self) -> Vec<Value> {
+        let mut d = self.decoder.clone();
+        let mut out: Vec<Value> = self.line.pending().into_iter().filter_map(|w| d.exchange(&self.line, w)).collect();
+        out.extend(d.finish());
+        out
+    }
+
+    /// The last transaction (the one in progress included).
+    pub fn last(&self) -> Option<Value> {
+        self.pending().pop().or_else(|| self.base.done.last().cloned())
+    }
+
+    /// Transactions seen so far (the one in progress included).
+    pub fn count(&self) -> u64 {
+        (self.base.done.len() + self.pending().len()) as u64
+    }
+
+    /// The transcript.
+    pub fn transcript(&self, protocol: &str) -> Value {
+        self.base.transcript(protocol, &["rx", "tx", "tx_en"], self.pending())
     }
 }
 

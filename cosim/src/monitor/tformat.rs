@@ -42,7 +42,7 @@ use model::tformat::decode::{Decoder, Transaction};
 use model::tformat::frames::{self, DataId};
 use model::wire::uart_bytes;
 
-use super::half_duplex::{Exchanges, Limits, Request, Rules, Watch, Window};
+use super::half_duplex::{ExchangeDecoder, Exchanges, Limits, Request, Rules, Side, Window};
 use super::{field, limit, listens_only, proto_table, sub, Base};
 use crate::config::{self, Error};
 use crate::{Emulator, Pins, Result};
@@ -82,13 +82,28 @@ struct MonitorTable {
     reset_interval_us: Option<f64>,
 }
 
+/// The decoder and the bit time.
+#[derive(Debug, Clone)]
+struct Decode(Decoder, u64);
+
+impl ExchangeDecoder for Decode {
+    fn exchange(&mut self, line: &Exchanges, (start, fall, next): Window) -> Option<Value> {
+        let (wire, heard) = (uart_bytes(&line.wire, self.1), uart_bytes(&line.heard, self.1));
+        self.0.exchange(start, fall, next, &wire, &heard, &line.heard).map(json)
+    }
+
+    fn finish(&mut self) -> Option<Value> {
+        self.0.finish().map(json)
+    }
+}
+
+fn json(t: Transaction) -> Value {
+    serde_json::to_value(t).unwrap_or(Value::Null)
+}
+
 /// A T-format monitor.
 pub struct TformatMonitor {
-    base: Base,
-    watch: Watch,
-    line: Exchanges,
-    decoder: Decoder,
-    bit_ps: u64,
+    side: Side<Decode>,
     reset_interval: u64,
     /// A reset sequence in progress: Data ID, requests so far, start of the last.
     reset: Option<(u8, u32, u64)>,
@@ -125,34 +140,9 @@ impl TformatMonitor {
         let rules = Rules { character: RULE_CHARACTER, gap: RULE_GAP, release: RULE_RELEASE, answer: RULE_ANSWER };
         Ok(TformatMonitor {
             reset_interval: ((reset * 1e6).round() as u64).saturating_sub(base.period_ps),
-            base,
-            watch: Watch::new(limits, rules),
-            line: Exchanges::new(12 * bit_ps),
-            decoder: Decoder::new(baud.round() as u64, timeout),
-            bit_ps,
+            side: Side::new(base, limits, rules, Decode(Decoder::new(baud.round() as u64, timeout), bit_ps)),
             reset: None,
         })
-    }
-
-    fn feed(decoder: &mut Decoder, line: &Exchanges, (start, fall, next): Window, bit_ps: u64) -> Option<Transaction> {
-        let wire = uart_bytes(&line.wire, bit_ps);
-        let heard = uart_bytes(&line.heard, bit_ps);
-        decoder.exchange(start, fall, next, &wire, &heard, &line.heard)
-    }
-
-    /// The transactions not yet in `base.done` (the decoder's state is not changed).
-    fn pending(&self) -> Vec<Value> {
-        let mut d = self.decoder.clone();
-        let mut out: Vec<Transaction> = Vec::new();
-        for w in self.line.pending() {
-            out.extend(Self::feed(&mut d, &self.line, w, self.bit_ps));
-        }
-        out.extend(d.finish());
-        out.iter().map(|t| serde_json::to_value(t).unwrap_or(Value::Null)).collect()
-    }
-
-    fn last(&self) -> Option<Value> {
-        self.pending().pop().or_else(|| self.base.done.last().cloned())
     }
 
     fn on_request(&mut self, r: Request) {
@@ -162,7 +152,7 @@ impl TformatMonitor {
         if let Some(id) = id.filter(|_| !r.damaged) {
             let want = frames::request(id, 0, 0).len();
             if r.fields.len() != want {
-                self.base.violation(r.end_ps, RULE_FIELDS, format!("a request of {} field(s) for Data ID {code:X}, which takes {want}", r.fields.len()));
+                self.side.base.violation(r.end_ps, RULE_FIELDS, format!("a request of {} field(s) for Data ID {code:X}, which takes {want}", r.fields.len()));
             }
         }
         let reset = id.is_some_and(|d| d.is_reset());
@@ -170,13 +160,13 @@ impl TformatMonitor {
             Some((rid, k, last)) if reset && rid == code => {
                 let gap = r.start_ps - last;
                 if gap < self.reset_interval {
-                    self.base.violation(r.start_ps, RULE_RESET, format!("request {} of reset Data ID {code:X} {:.3} ms after the one before; at least {:.3} ms", k + 1, gap as f64 / 1e9, (self.reset_interval + self.base.period_ps) as f64 / 1e9));
+                    self.side.base.violation(r.start_ps, RULE_RESET, format!("request {} of reset Data ID {code:X} {:.3} ms after the one before; at least {:.3} ms", k + 1, gap as f64 / 1e9, (self.reset_interval + self.side.base.period_ps) as f64 / 1e9));
                 }
                 self.reset = (k + 1 < 10).then_some((rid, k + 1, r.start_ps));
             }
             prev => {
                 if let Some((rid, k, _)) = prev {
-                    self.base.violation(r.start_ps, RULE_RESET, format!("reset Data ID {rid:X} sent {k} time(s), then Data ID {code:X}: a reset takes 10 requests in one sequence"));
+                    self.side.base.violation(r.start_ps, RULE_RESET, format!("reset Data ID {rid:X} sent {k} time(s), then Data ID {code:X}: a reset takes 10 requests in one sequence"));
                 }
                 self.reset = reset.then_some((code, 1, r.start_ps));
             }
@@ -190,16 +180,10 @@ impl Emulator for TformatMonitor {
     }
 
     fn step(&mut self, pins: Pins) -> Pins {
-        let now = self.base.now_ps();
-        let (rx, tx, de) = (pins.0 & 1 != 0, pins.0 & 2 != 0, pins.0 & 4 != 0);
-        let (decoder, done, bit_ps) = (&mut self.decoder, &mut self.base.done, self.bit_ps);
-        self.line.step(now, tx, de, rx, |line, w| {
-            done.extend(Self::feed(decoder, line, w, bit_ps).map(|t| serde_json::to_value(t).unwrap_or(Value::Null)));
-        });
-        if let Some(r) = self.watch.step(&mut self.base, now, tx, de, rx) {
+        if let Some(r) = self.side.step(pins) {
             self.on_request(r);
         }
-        self.base.step_out()
+        self.side.base.step_out()
     }
 
     fn set_position(&mut self, _: usize, _: u64) -> Result<()> {
@@ -216,18 +200,18 @@ impl Emulator for TformatMonitor {
 
     /// Transactions seen so far (the one in progress included; a reset's ten requests are one).
     fn count(&self) -> u64 {
-        (self.base.done.len() + self.pending().len()) as u64
+        self.side.count()
     }
 
     /// `abm << 17 | abs` after the last transaction (the host's registers: held through a short answer).
     fn last_value(&self, _: usize) -> Option<u64> {
-        let t = self.last()?;
+        let t = self.side.last()?;
         Some(t["abm"].as_u64()? << 17 | t["abs"].as_u64()?)
     }
 
     /// An error of the last transaction (`crc`, `timeout`, `frame`, `cf_mismatch`, `comm_alarm`) or an ALMC flag after it.
     fn last_status(&self, _: usize, name: &str) -> Result<bool> {
-        let t = self.last().ok_or_else(|| Error::Usage("tformat_monitor: no transaction decoded yet".into()))?;
+        let t = self.side.last().ok_or_else(|| Error::Usage("tformat_monitor: no transaction decoded yet".into()))?;
         if let Some(&(_, bit)) = ALMC.iter().find(|a| a.0 == name) {
             return Ok(t["almc"].as_u64().unwrap_or(0) >> bit & 1 == 1);
         }
@@ -240,10 +224,10 @@ impl Emulator for TformatMonitor {
     }
 
     fn transcript(&self) -> Value {
-        self.base.transcript("tformat", &["rx", "tx", "tx_en"], self.pending())
+        self.side.transcript("tformat")
     }
 
     fn checks(&mut self) -> &mut crate::check::Checks {
-        &mut self.base.checks
+        &mut self.side.base.checks
     }
 }
