@@ -159,10 +159,8 @@ impl Watch {
             base.violation(now, r.answer, "the host's driver was on while the encoder drove the line low (both drivers on)".to_string());
         }
         self.both = both;
-        if de && !self.de {
-            if self.answer_until.is_some_and(|u| now < u) {
-                base.violation(now, r.answer, format!("the host switched its driver on {:.2} bits after the start bit of the encoder's last character, inside its answer (a frame set ends when a bit time of idle line follows a character)", (now - self.answer_last) as f64 / bit));
-            }
+        if de && !self.de && self.answer_until.is_some_and(|u| now < u) {
+            base.violation(now, r.answer, format!("the host switched its driver on {:.2} bits after the start bit of the encoder's last character, inside its answer (a frame set ends when a bit time of idle line follows a character)", (now - self.answer_last) as f64 / bit));
         }
         // The host's request, as its driver puts it on the line.
         let level = tx || !de;

@@ -220,7 +220,7 @@ fn esl_monitor_reads_what_the_emulator_sent_and_is_silent_on_a_clean_host() {
     l.run(h.idle(20).take().as_slice());
     let mut set = Vec::new();
     for (k, &id) in ids.iter().enumerate() {
-        let p = (k as u64 * 0x1234_5678_9) & ((1 << 40) - 1);
+        let p = (k as u64 * 0x1_2345_6789) & ((1 << 40) - 1);
         let e = l.emu.as_mut().unwrap();
         e.set_position(0, p).unwrap();
         e.set_status(0, "uv", k % 2 == 0).unwrap();
