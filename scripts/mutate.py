@@ -2,7 +2,7 @@
 """mutate.py: mutation testing of one RTL core against its golden vectors.
 
     scripts/mutate.py CORE [--count N] [--seed S] [--list] [--only ID,...]
-                      [--accepted FILE] [--timeout SECONDS]
+                      [--accepted FILE] [--timeout SECONDS] [--separate] [--show-schema]
 
 Makes mutants of hdl/rtl/<CORE>.v, each one small change a real bug could
 make, picked deterministically (the same seed gives the same mutants):
@@ -23,6 +23,20 @@ mutant that passes every file survives: either the vectors miss a
 behaviour, or the change is equivalent. A mutant that does not build is
 stillborn and does not count. Mutants build in a temporary directory
 (scripts/sim.sh with RTL_DIR and SIM_BUILD_DIR), never in build/sim.
+
+The builds, not the replays, are what cost (a Verilator build is 5 to 15 s
+on a 2-core machine, a replay 0.2 to 0.5 s, and a core's vectors use up to
+17 parameter sets), so the mutants are built as one schema: a copy of the
+core in which each mutated expression reads
+((mutant_id == K) ? <mutated> : <original>), with mutant_id set from the
+plusarg +mutant_id=K (see make_schema). The schema is built once per
+parameter set, replayed once with +mutant_id=0 (the original core, which
+must pass every file), then each mutant is a replay with its own id. A
+mutant the schema cannot hold (a change in a for header or in a statement
+over several lines) is built alone, as is every mutant with --separate;
+if the schema does not build or the original fails in it, every mutant is
+built alone. The selection (ids, seed, count) and the report do not
+depend on the way they are built.
 
 Prints every killed mutant (and the file that killed it), every survivor
 with its diff, and the mutation score killed / (killed + survived).

@@ -451,6 +451,26 @@ fn the_start_up_mean_is_used_and_a_later_delay_step_is_flagged_but_read() {
 }
 
 #[test]
+fn acks_that_jitter_before_the_start_up_mean_within_the_tolerance_are_sampled_by_it_unflagged() {
+    // The set-up of scenarios/biss/calibration_jitter.toml: no delay step,
+    // the acks jitter on both sides of the (rounded down) start-up mean.
+    let mut cfg = BenchConfig::seed_example();
+    cfg.master.clock_khz = 2500.0;
+    cfg.slaves[0].step = 4099;
+    cfg.slaves[0].timeout_us = 4.0;
+    cfg.host = HostSettings { frames: 10, gap_us: 0.5, ..HostSettings::default() };
+    cfg.cable = CableConfig { length_m: 100.0, jitter_ns: 12.0, seed: 1, ..CableConfig::default() };
+    let ts = frames(&cfg);
+    let mean = ts[3].delay_mean_cycles.expect("the mean after 4 frames");
+    let early: Vec<usize> = ts[4..].iter().filter(|t| t.delay_cycles.unwrap() < mean).map(|t| t.index).collect();
+    assert!(early.len() >= 2, "acks before the mean {mean}: {early:?}");
+    for t in &ts {
+        assert!(t.errors.is_empty(), "frame {}: {:?}", t.index, t.errors);
+        assert!(t.slaves[0].crc_ok && t.slaves[0].position == t.slaves[0].sent_position, "frame {}: {t:?}", t.index);
+    }
+}
+
+#[test]
 fn calibration_settings_out_of_range_are_refused_naming_the_field() {
     let mut cfg = BenchConfig::seed_example();
     cfg.master.cal_frames = 3;
