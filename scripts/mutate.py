@@ -2,7 +2,8 @@
 """mutate.py: mutation testing of one RTL core against its golden vectors.
 
     scripts/mutate.py CORE [--count N] [--seed S] [--list] [--only ID,...]
-                      [--accepted FILE] [--timeout SECONDS]
+                      [--accepted FILE] [--timeout SECONDS] [--separate] [--show-schema]
+                      [--jobs N]
 
 Makes mutants of hdl/rtl/<CORE>.v, each one small change a real bug could
 make, picked deterministically (the same seed gives the same mutants):
@@ -24,6 +25,20 @@ behaviour, or the change is equivalent. A mutant that does not build is
 stillborn and does not count. Mutants build in a temporary directory
 (scripts/sim.sh with RTL_DIR and SIM_BUILD_DIR), never in build/sim.
 
+The builds, not the replays, are what cost (a Verilator build is 5 to 15 s
+on a 2-core machine, a replay 0.2 to 0.5 s, and a core's vectors use up to
+17 parameter sets), so the mutants are built as one schema: a copy of the
+core in which each mutated expression reads
+((mutant_id == K) ? <mutated> : <original>), with mutant_id set from the
+plusarg +mutant_id=K (see make_schema). The schema is built once per
+parameter set, replayed once with +mutant_id=0 (the original core, which
+must pass every file), then each mutant is a replay with its own id. A
+mutant the schema cannot hold (a change in a for header or in a statement
+over several lines) is built alone, as is every mutant with --separate;
+if the schema does not build or the original fails in it, every mutant is
+built alone. The selection (ids, seed, count) and the report do not
+depend on the way they are built.
+
 Prints every killed mutant (and the file that killed it), every survivor
 with its diff, and the mutation score killed / (killed + survived).
 Survivors listed in the accepted file (default
@@ -39,6 +54,7 @@ input. Entries of the accepted file:
 (blank lines and lines starting with '#' between entries are ignored).
 """
 import argparse
+import concurrent.futures
 import os
 import random
 import re
@@ -309,42 +325,201 @@ def vector_files(core):
     return sorted(files, key=lambda p: (records(p), p))
 
 
+# ---------------------------------------------------------------------------
+# Mutant schemata: one source holding every selected mutant, each behind a
+# run-time test of the plusarg +mutant_id=K, so that one Verilator build per
+# parameter set serves every mutant instead of one build per mutant and
+# parameter set. A mutant changes one token of one line; the schema wraps the
+# smallest whole expression around the change that can be chosen at run time
+# (a parenthesised expression, an if or case condition, the right-hand side
+# of an assignment on one line, a case item label) as
+#     ((mutant_id == K) ? <expression with the change> : <original expression>)
+# (several mutants of the same expression chain their choices). Verilog gives
+# both arms of ?: the width and signedness the expression had, so the mutant
+# with mutant_id = K computes what the mutated file computes. A mutant whose
+# change sits where a run-time choice cannot go (a for header, a statement
+# that spans lines) is built on its own, as before.
+
+OPEN, CLOSE = "([{", ")]}"
+
+
+def depths(c):
+    """Bracket depth (all of ( [ {) before each column of code line c."""
+    out, d = [], 0
+    for ch in c:
+        if ch in CLOSE:
+            d -= 1
+        out.append(d)
+        if ch in OPEN:
+            d += 1
+    return out
+
+
+def paren_groups(c):
+    """(open, close) columns of every ( ) pair on code line c."""
+    stack, pairs = [], []
+    for i, ch in enumerate(c):
+        if ch == "(":
+            stack.append(i)
+        elif ch == ")" and stack:
+            pairs.append((stack.pop(), i))
+    return pairs
+
+
+def assign_op(c, lo, hi, dep):
+    """Column just after the first assignment operator (= or <=) at bracket
+    depth 0 in c[lo:hi], or None."""
+    for m in re.finditer(r"<=|(?<![<>=!])=(?!=)", c[lo:hi]):
+        p = lo + m.start()
+        if dep[p] == 0:
+            return p + len(m.group())
+    return None
+
+
+def schema_span(c, mut):
+    """Columns [lo, hi) of code line c holding a whole expression around the
+    change of mut that a run-time choice can replace, or None."""
+    lo_m, hi_m = mut.col, mut.col + len(mut.old)
+    dep = depths(c)
+    # Parenthesised groups around the change, outermost first; a group is a
+    # plain expression unless it follows a name (a call: the arguments are
+    # separate) or `for`, or holds a comma or ; of its own.
+    groups = sorted((g for g in paren_groups(c) if g[0] <= lo_m and g[1] + 1 >= hi_m), key=lambda g: g[0])
+    for o, e in groups:
+        before = c[:o].rstrip()
+        word = re.search(r"[\w$]+$", before)
+        if word and word.group() not in ("if", "case", "casez", "casex", "while"):
+            continue
+        inner = range(o + 1, e)
+        if any(c[i] in ",;" and dep[i] == dep[o] + 1 for i in inner):
+            continue
+        if re.search(r"\b(if|case|casez|casex|begin|end|else)\b", c[o:e + 1][1:-1]):
+            continue
+        return o, e + 1
+    if dep[lo_m] != 0:
+        return None
+    # The statement around the change: from the last ; (or the line start)
+    # to the next ; at depth 0, all on this line.
+    start = max([i + 1 for i in range(lo_m) if c[i] == ";" and dep[i] == 0] or [0])
+    ends = [i for i in range(hi_m, len(c)) if c[i] == ";" and dep[i] == 0]
+    if ends:
+        op = assign_op(c, start, lo_m, dep)
+        if op is not None and not re.search(r"\b(if|case|begin|end|else)\b", c[op:ends[0]]):
+            return op, ends[0]
+    # A case item label (`6'd1, 6'd2: ...`): the comma-separated item.
+    colon = next((i for i in range(len(c)) if c[i] == ":" and dep[i] == 0), None)
+    if colon is not None and hi_m <= colon and assign_op(c, 0, colon, dep) is None \
+            and not re.search(r"\b(if|else|case|casez|casex|begin|end|assign|wire)\b|\?", c[:colon]):
+        lo = max([i + 1 for i in range(lo_m) if c[i] == "," and dep[i] == 0] or [0])
+        hi = min([i for i in range(hi_m, colon) if c[i] == "," and dep[i] == 0] or [colon])
+        return lo, hi
+    return None
+
+
+def make_schema(lines, code, picked):
+    """The schema's lines, and the mutants it could not hold."""
+    out = list(lines)
+    by_line, rest = {}, []
+    for m in picked:
+        span = schema_span(code[m.line - 1], m)
+        if span is None:
+            rest.append(m)
+        else:
+            by_line.setdefault(m.line, []).append([m, span])
+    for ln, items in by_line.items():
+        text = lines[ln - 1]
+        # Spans on a line nest or lie apart: each mutant takes the largest
+        # span that holds its own, so that a span is replaced once.
+        spans0 = [tuple(it[1]) for it in items]
+        for it in items:
+            s = tuple(it[1])
+            for o in spans0:
+                if o[0] <= s[0] and s[1] <= o[1] and o[1] - o[0] > s[1] - s[0]:
+                    s = o
+            it[1] = s
+        spans = sorted({tuple(it[1]) for it in items}, reverse=True)
+        if any(a[1] > b[0] for b, a in zip(spans, spans[1:])):
+            rest.extend(it[0] for it in items)  # overlapping, not nested
+            continue
+        new = text
+        for lo, hi in spans:
+            orig = text[lo:hi]
+            arms = []
+            for m, span in items:
+                if tuple(span) != (lo, hi):
+                    continue
+                mut = m.mutated[lo:hi + len(m.new) - len(m.old)]
+                # The mutant's line is this line with its span replaced.
+                assert m.mutated == text[:lo] + mut + text[hi:], (m.id, ln)
+                arms.append(f"(mutant_id == {int(m.id[1:])}) ? ({mut.strip()}) : ")
+            lead = orig[: len(orig) - len(orig.lstrip())]
+            tail = orig[len(orig.rstrip()):]
+            new = new[:lo] + lead + "(" + "".join(arms) + "(" + orig.strip() + "))" + tail + new[hi:]
+        out[ln - 1] = new
+    held = [m for m in picked if m not in rest]
+    # The selector: one integer of the core module, set from +mutant_id=K
+    # (0, the original, without it), declared right after the port list.
+    for i, c in enumerate(code):
+        if re.match(r"^\s*module\b", c):
+            j = i
+            while j < len(code) and not code[j].rstrip().endswith(";"):
+                j += 1
+            out[j] = out[j] + " integer mutant_id; initial if (!$value$plusargs(\"mutant_id=%d\", mutant_id)) mutant_id = 0;"
+            break
+    return out, held, rest
+
+
+def sim_env(workdir, rtl, build):
+    env = dict(os.environ, RTL_DIR=rtl, SIM_BUILD_DIR=build)
+    if shutil.which("ccache"):
+        # Verilator's runtime objects are the same for every build: a
+        # compiler cache private to this run builds them once.
+        env.update(OBJCACHE="ccache", CCACHE_DIR=os.path.join(workdir, "ccache"),
+                   CCACHE_BASEDIR=workdir, CCACHE_NOHASHDIR="true")
+    env.pop("COVERAGE", None)
+    return env
+
+
+def write_rtl(rtl_src, rtl, core, lines):
+    os.makedirs(rtl)
+    for f in os.listdir(rtl_src):
+        if f.endswith(".v"):
+            shutil.copy(os.path.join(rtl_src, f), rtl)
+    with open(os.path.join(rtl, f"{core}.v"), "w", encoding="utf-8") as f:
+        f.write("\n".join(lines))
+
+
+def replay(core, files, env, timeout, plusargs=""):
+    """Replays files shortest first, stopping at the first that fails:
+    (verdict, detail, files run); stillborn when the build fails."""
+    env = dict(env, SIM_PLUSARGS=plusargs)
+    for n, vec in enumerate(files, 1):
+        try:
+            p = subprocess.run([os.path.join(ROOT, "scripts", "sim.sh"), core, "verilator", vec],
+                               env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=timeout)
+            ok, out = p.returncode == 0, p.stdout.decode(errors="replace")
+        except subprocess.TimeoutExpired:
+            return "killed", f"{os.path.basename(vec)} (timeout after {timeout} s)", n
+        if not ok:
+            built = any(os.path.exists(os.path.join(dp, "Vtb")) for dp, _, _ in os.walk(env["SIM_BUILD_DIR"]))
+            if not built:
+                return "stillborn", out.strip().split("\n")[0][:160], n
+            why = next((l.strip() for l in out.split("\n") if "MISMATCH" in l or "rror" in l), "non-zero exit")
+            return "killed", f"{os.path.basename(vec)}: {why[:160]}", n
+    return "survived", "", len(files)
+
+
 def run_mutant(core, mut, rtl_src, files, timeout, workdir):
+    """One mutant on its own: its own source, its own builds."""
     tmp = tempfile.mkdtemp(prefix=f"{mut.id}-", dir=workdir)
     try:
-        rtl = os.path.join(tmp, "rtl")
-        os.mkdir(rtl)
-        for f in os.listdir(rtl_src):
-            if f.endswith(".v"):
-                shutil.copy(os.path.join(rtl_src, f), rtl)
-        path = os.path.join(rtl, f"{core}.v")
-        with open(path, encoding="utf-8") as f:
+        with open(os.path.join(rtl_src, f"{core}.v"), encoding="utf-8") as f:
             lines = f.read().split("\n")
         assert lines[mut.line - 1] == mut.orig
         lines[mut.line - 1] = mut.mutated
-        with open(path, "w", encoding="utf-8") as f:
-            f.write("\n".join(lines))
-        env = dict(os.environ, RTL_DIR=rtl, SIM_BUILD_DIR=os.path.join(tmp, "build"))
-        if shutil.which("ccache"):
-            # Verilator's runtime objects are the same for every mutant: a
-            # compiler cache private to this run builds them once.
-            env.update(OBJCACHE="ccache", CCACHE_DIR=os.path.join(workdir, "ccache"),
-                       CCACHE_BASEDIR=workdir, CCACHE_NOHASHDIR="true")
-        env.pop("COVERAGE", None)
-        for n, vec in enumerate(files, 1):
-            try:
-                p = subprocess.run([os.path.join(ROOT, "scripts", "sim.sh"), core, "verilator", vec],
-                                   env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=timeout)
-                ok, out = p.returncode == 0, p.stdout.decode(errors="replace")
-            except subprocess.TimeoutExpired:
-                return "killed", f"{os.path.basename(vec)} (timeout after {timeout} s)", n
-            if not ok:
-                built = any(os.path.exists(os.path.join(dp, "Vtb")) for dp, _, _ in os.walk(os.path.join(tmp, "build")))
-                if not built:
-                    return "stillborn", out.strip().split("\n")[0][:160], n
-                why = next((l.strip() for l in out.split("\n") if "MISMATCH" in l or "rror" in l), "non-zero exit")
-                return "killed", f"{os.path.basename(vec)}: {why[:160]}", n
-        return "survived", "", len(files)
+        write_rtl(rtl_src, os.path.join(tmp, "rtl"), core, lines)
+        env = sim_env(workdir, os.path.join(tmp, "rtl"), os.path.join(tmp, "build"))
+        return replay(core, files, env, timeout)
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
 
@@ -358,6 +533,11 @@ def main():
     ap.add_argument("--only", help="comma-separated mutant ids to run (M03,M17)")
     ap.add_argument("--accepted", default=os.path.join(ROOT, "hdl", "mutation", "accepted_survivors.txt"))
     ap.add_argument("--timeout", type=int, default=600, help="seconds per replay, build included (default 600)")
+    ap.add_argument("--separate", action="store_true",
+                    help="build every mutant on its own (no schema; slow, the reference the schema is checked against)")
+    ap.add_argument("--show-schema", action="store_true", help="print the schema's changed lines and stop")
+    ap.add_argument("--jobs", type=int, default=1,
+                    help="mutants replayed at once (default 1; 2 on an idle 2-core machine halves the run)")
     args = ap.parse_args()
 
     rtl_src = os.path.realpath(os.environ.get("RTL_DIR", os.path.join(ROOT, "hdl", "rtl")))
@@ -391,12 +571,43 @@ def main():
     results = []
     workdir = tempfile.mkdtemp(prefix=f"mutate-{args.core}-")
     try:
-        for m in picked:
+        alone = picked
+        env = None
+        if not args.separate:
+            schema, held, alone = make_schema(lines, code, picked)
+            if args.show_schema:
+                for n, (a, b) in enumerate(zip(lines, schema), 1):
+                    if a != b:
+                        print(f"{args.core}.v:{n}: {b.strip()}")
+                print(f"held in the schema: {len(held)}; built alone: {' '.join(m.id for m in alone) or 'none'}")
+                return 0
+            # The schema with mutant_id = 0 is the original core: it builds
+            # every parameter set (once, for every mutant) and must pass.
             t0 = time.time()
-            verdict, detail, nrun = run_mutant(args.core, m, rtl_src, files, args.timeout, workdir)
-            results.append((m, verdict, detail))
+            write_rtl(rtl_src, os.path.join(workdir, "schema", "rtl"), args.core, schema)
+            env = sim_env(workdir, os.path.join(workdir, "schema", "rtl"), os.path.join(workdir, "schema", "build"))
+            verdict, detail, _ = replay(args.core, files, env, args.timeout, "+mutant_id=0")
+            if verdict == "survived":
+                print(f"schema: {len(held)} mutants in one build per parameter set "
+                      f"({len(alone)} built alone); builds and the original's replay {time.time() - t0:.0f} s", flush=True)
+            else:
+                print(f"schema: the original core in the schema {'does not build' if verdict == 'stillborn' else 'fails'}"
+                      f" ({detail}); every mutant is built alone", flush=True)
+                held, alone, env = [], picked, None
+        def one(m):
+            t0 = time.time()
+            if m in alone:
+                verdict, detail, nrun = run_mutant(args.core, m, rtl_src, files, args.timeout, workdir)
+            else:
+                verdict, detail, nrun = replay(args.core, files, env, args.timeout, f"+mutant_id={int(m.id[1:])}")
             print(f"{m.id} {verdict:<9} {m.category:<8} {args.core}.v:{m.line}  {time.time() - t0:5.0f} s  "
                   f"({nrun} file{'s' if nrun != 1 else ''}) {detail}", flush=True)
+            return m, verdict, detail
+        # Each mutant's replays are separate processes (sim.sh locks a build
+        # while it is made), so mutants can run side by side; the summary
+        # below is in id order either way.
+        with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, args.jobs)) as pool:
+            results = list(pool.map(one, picked))
     finally:
         shutil.rmtree(workdir, ignore_errors=True)
 

@@ -19,6 +19,8 @@
 #                   scripts/mutate.py points it at a mutant)
 #   SIM_BUILD_DIR   build cache root (default build/sim)
 #   SIM_BUILD_ONLY=1  build (or find in the cache) and stop before the replay
+#   SIM_PLUSARGS    more plusargs for the replay, space-separated
+#                   (scripts/mutate.py: +mutant_id=K picks a mutant of its schema)
 set -euo pipefail
 
 usage() { echo "usage: $0 <core> <icarus|verilator> <vectors.hex> [waves.vcd]" >&2; exit 2; }
@@ -78,6 +80,7 @@ flock 9
 
 plusargs=("+vectors=$vectors" "+records=$records")
 [ -n "$waves" ] && plusargs+=("+waves=$waves")
+if [ -n "${SIM_PLUSARGS:-}" ]; then read -ra extra <<< "$SIM_PLUSARGS"; plusargs+=("${extra[@]}"); fi
 if [ "$coverage" = 1 ]; then
     cov_file="$root/build/coverage/$core/$(basename "$vectors" .hex).dat"
     mkdir -p "$(dirname "$cov_file")"

@@ -116,6 +116,21 @@ can_controller #(
     .i_can_rx(i_can_rx)
 );
 
+// While reset is held the player compares nothing (vector_player.vh): here
+// every output is held to the model's reset state (can::Out::default: TX
+// recessive, every other output 0, error active) at each falling edge of the
+// reset, so a wrong reset value of an output register that the first cycle
+// would overwrite (o_err_state, a pulse such as o_err_bit) is still caught.
+always @(negedge clk) begin
+    if (rst && ({o_can_tx, o_tx_busy, o_tx_done, o_arb_lost, o_rx_valid, o_rx_ide, o_rx_rtr, o_err_bit,
+                 o_err_stuff, o_err_crc, o_err_form, o_err_ack, o_overload} !== 13'b1000000000000
+                || o_rx_id !== 29'd0 || o_rx_dlc !== 4'd0 || o_rx_data !== 64'd0 || o_tec !== 9'd0
+                || o_rec !== 8'd0 || o_err_state !== 2'd0)) begin
+        $display("MISMATCH in reset: outputs differ from the model's reset state");
+        $fatal(1, "can_controller: an output is not at its reset value while i_rst is high");
+    end
+end
+
 endmodule
 
 `default_nettype wire

@@ -423,15 +423,22 @@ fn the_line_observer_follows_control_frames_as_the_master_runs_them() {
     assert_eq!((accesses, failed), (9, 5), "three accesses per case; ID 4 fails in each, the CRC-4 and CDM faults one more each");
 }
 
-#[test]
-fn the_start_up_mean_is_used_and_a_later_delay_step_is_flagged_but_read() {
-    // The set-up of scenarios/biss/calibration_drift.toml.
+/// The calibration scenarios' set-up (scenarios/biss/calibration_*.toml):
+/// 2.5 MHz through 100 m with ±12 ns of jitter (seeded), 4 calibrating frames.
+fn jittery_calibration(frames: usize, seed: u64) -> BenchConfig {
     let mut cfg = BenchConfig::seed_example();
     cfg.master.clock_khz = 2500.0;
     cfg.slaves[0].step = 4099;
     cfg.slaves[0].timeout_us = 4.0;
-    cfg.host = HostSettings { frames: 12, gap_us: 0.5, ..HostSettings::default() };
-    cfg.cable = CableConfig { length_m: 100.0, jitter_ns: 12.0, seed: 7, ..CableConfig::default() };
+    cfg.host = HostSettings { frames, gap_us: 0.5, ..HostSettings::default() };
+    cfg.cable = CableConfig { length_m: 100.0, jitter_ns: 12.0, seed, ..CableConfig::default() };
+    cfg
+}
+
+#[test]
+fn the_start_up_mean_is_used_and_a_later_delay_step_is_flagged_but_read() {
+    // The set-up of scenarios/biss/calibration_drift.toml.
+    let mut cfg = jittery_calibration(12, 7);
     cfg.delay_step = Some(DelayStep { from_frame: 8, extra_ns: 150.0 });
     let ts = frames(&cfg);
     assert_eq!(ts.len(), 12);
@@ -447,6 +454,20 @@ fn the_start_up_mean_is_used_and_a_later_delay_step_is_flagged_but_read() {
         assert!(t.slaves[0].crc_ok && t.slaves[0].position == t.slaves[0].sent_position, "frame {}: {t:?}", t.index);
         let flagged = t.errors == vec!["delay_departs_from_mean"];
         assert_eq!(flagged, t.index >= 8, "frame {}: {:?}", t.index, t.errors);
+    }
+}
+
+#[test]
+fn acks_that_jitter_before_the_start_up_mean_within_the_tolerance_are_sampled_by_it_unflagged() {
+    // The set-up of scenarios/biss/calibration_jitter.toml: no delay step,
+    // the acks jitter on both sides of the (rounded down) start-up mean.
+    let ts = frames(&jittery_calibration(10, 1));
+    let mean = ts[3].delay_mean_cycles.expect("the mean after 4 frames");
+    let early: Vec<usize> = ts[4..].iter().filter(|t| t.delay_cycles.unwrap() < mean).map(|t| t.index).collect();
+    assert!(early.len() >= 2, "acks before the mean {mean}: {early:?}");
+    for t in &ts {
+        assert!(t.errors.is_empty(), "frame {}: {:?}", t.index, t.errors);
+        assert!(t.slaves[0].crc_ok && t.slaves[0].position == t.slaves[0].sent_position, "frame {}: {t:?}", t.index);
     }
 }
 
