@@ -59,6 +59,18 @@ uart_rx #(
     .o_parity_err(o_parity_err)
 );
 
+// While reset is held the player compares nothing (vector_player.vh): here
+// every output is held to the model's reset state (uart::Receiver::new:
+// Out::default(), every output 0) at each falling edge of the reset, so a
+// wrong reset value of an output register that the first cycle would
+// overwrite (a pulse such as o_frame_err) is still caught.
+always @(negedge clk) begin
+    if (rst && ({o_valid, o_frame_err, o_start_err, o_busy, o_parity_err} !== 5'b00000 || o_data !== 8'd0)) begin
+        $display("MISMATCH in reset: outputs differ from the model's reset state");
+        $fatal(1, "uart_rx: an output is not at its reset value while i_rst is high");
+    end
+end
+
 endmodule
 
 `default_nettype wire

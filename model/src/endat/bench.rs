@@ -209,6 +209,25 @@ pub struct Flip {
     pub bits: Vec<u64>,
 }
 
+/// A type 2.1 acknowledgement with other content and a correct CRC: in
+/// request `request` (a `select21`, `receive21`, `send21` or `reset21`) the
+/// encoder XORs `address` into the address (or MRS code) it sends back and
+/// `data` into the data, then computes the CRC over what it sends. Bit flips
+/// break the CRC; this fault reaches the master's content checks
+/// (o_err_type2 for the right address with the data inverted, o_err_ack).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AckXor {
+    /// 0-based request number.
+    pub request: usize,
+    /// XOR into the acknowledged address (MRS code).
+    #[serde(default)]
+    pub address: u8,
+    /// XOR into the acknowledged data.
+    #[serde(default)]
+    pub data: u16,
+}
+
 /// Faults of the line and the encoder's electronics (`[endat.faults]`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
 #[serde(deny_unknown_fields, default)]
@@ -240,6 +259,8 @@ pub struct FaultSettings {
     pub stale_ad: Vec<usize>,
     /// Set the error word to this value before request `errors_at.1`.
     pub errors_at: Option<(u16, usize)>,
+    /// Type 2.1 acknowledgements sent with other content and a correct CRC.
+    pub ack_xor: Vec<AckXor>,
 }
 
 /// Everything a scenario says about an EnDat set-up (`[endat]`).
@@ -475,7 +496,8 @@ impl BenchConfig {
             .chain(f.dead_from.map(|r| ("faults.dead_from".to_string(), r)))
             .chain(f.absent_from.map(|r| ("faults.absent_from".to_string(), r)))
             .chain(f.stale_ad.iter().enumerate().map(|(j, r)| (format!("faults.stale_ad[{j}]"), *r)))
-            .chain(f.errors_at.map(|(_, r)| ("faults.errors_at".to_string(), r)));
+            .chain(f.errors_at.map(|(_, r)| ("faults.errors_at".to_string(), r)))
+            .chain(f.ack_xor.iter().enumerate().map(|(j, x)| (format!("faults.ack_xor[{j}].request"), x.request)));
         for (field, request) in scheduled {
             if request >= reqs.len() {
                 return Err(ConfigError::invalid(
@@ -483,6 +505,21 @@ impl BenchConfig {
                     format!("request {request}, but the commands make {} requests (0 to {})", reqs.len(), reqs.len() - 1),
                     "give a request below that count (0-based, each `repeat` counted), or add commands",
                 ));
+            }
+        }
+        // An acknowledgement fault on a request that sends none would pass unnoticed.
+        for (j, x) in f.ack_xor.iter().enumerate() {
+            let c = &reqs[x.request];
+            let param21 = matches!(c.command, Command::Select21 | Command::Receive21 | Command::Send21 | Command::Reset21);
+            if !param21 || c.raw_mode.is_some() || c.measure {
+                return Err(ConfigError::invalid(
+                    format!("faults.ack_xor[{j}].request"),
+                    format!("request {} is {}, which sends no type 2.1 acknowledgement", x.request, c.command.name()),
+                    "give the number of a select21, receive21, send21 or reset21 request (0-based, each `repeat` counted)",
+                ));
+            }
+            if x.address == 0 && x.data == 0 {
+                return Err(ConfigError::invalid(format!("faults.ack_xor[{j}]"), "address and data 0 change nothing", "give a nonzero address or data XOR"));
             }
         }
         positive("host.first_start_us", self.host.first_start_us, "give µs")?;
@@ -741,6 +778,7 @@ impl Bench {
             }
         }
         self.encoder.flips = f.flips.iter().filter(|x| x.request == k).flat_map(|x| x.bits.iter().copied()).collect();
+        self.encoder.ack_xor = f.ack_xor.iter().filter(|x| x.request == k).fold((0, 0), |(a, d), x| (a ^ x.address, d ^ x.data));
     }
 
     fn host_observes(&mut self, out: &Out) {

@@ -289,6 +289,10 @@ pub struct Encoder {
     pub answer: Answer,
     /// Frame bit indices (after the start bit) to invert in the next frame.
     pub flips: Vec<u64>,
+    /// XOR into the address and data of the next type 2.1 acknowledgement,
+    /// before its CRC is computed (a CRC-valid answer with other content);
+    /// cleared when a frame is built.
+    pub ack_xor: (u8, u16),
     /// Return NOP instead of the selected additional data (type IV) while set.
     pub ad_stale: bool,
     /// Never send a start bit again (encoder dead, line held low).
@@ -360,6 +364,7 @@ impl Encoder {
             frames: Default::default(),
             answer: Answer::Ok,
             flips: Vec::new(),
+            ack_xor: (0, 0),
             ad_stale: false,
             dead: false,
             absent: false,
@@ -946,6 +951,7 @@ impl Encoder {
             }
             FrameKind::Param21 => {
                 let (a, d) = self.pending_ack.take().unwrap_or((0, 0));
+                let (a, d) = (a ^ self.ack_xor.0, d ^ self.ack_xor.1);
                 for i in (0..8).rev() {
                     bits.push((a >> i) & 1 == 1);
                 }
@@ -961,6 +967,7 @@ impl Encoder {
             }
         }
         self.flips.clear();
+        self.ack_xor = (0, 0);
         self.frames.push_back((self.latched, bits.clone()));
         self.sent = bits.clone();
         self.queue = bits.into();

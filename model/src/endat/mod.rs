@@ -100,7 +100,7 @@ mod encoder;
 mod master;
 
 pub use bench::{
-    error_names, Bench, BenchConfig, CableFaults, EncoderSettings, FaultSettings, Flip, HostCommand, HostSettings,
+    error_names, AckXor, Bench, BenchConfig, CableFaults, EncoderSettings, FaultSettings, Flip, HostCommand, HostSettings,
     MasterSettings, Transaction,
 };
 pub use encoder::{AdSource, Encoder, EncoderConfig, EncoderKind, Memory};

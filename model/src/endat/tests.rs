@@ -145,6 +145,32 @@ fn writing_protected_memory_is_answered_inverted_and_flagged_as_type_ii() {
 }
 
 #[test]
+fn a_crc_valid_acknowledgement_with_other_content_is_type_ii_only_when_inverted_at_the_right_address() {
+    // Seed A2 4.2.2: type II returns the address or the data inverted. A
+    // select21 of 0xA1 with parameter 0x1234, acknowledged with a correct
+    // CRC over: the data inverted at the right address (type II); the data
+    // inverted under another address (a mismatch, not type II); one data bit
+    // off (a mismatch); the address inverted (type II).
+    let mut cfg = BenchConfig::example();
+    cfg.commands = vec![HostCommand { repeat: 4, ..HostCommand::with(Command::Select21, 0xA1, 0x1234) }];
+    let x = |request, address, data| AckXor { request, address, data };
+    cfg.faults.ack_xor = vec![x(0, 0, 0xFFFF), x(1, 0x01, 0xFFFF), x(2, 0, 0x0001), x(3, 0xFF, 0)];
+    let ts = run(&cfg);
+    let acks: Vec<Option<(u8, u16)>> = ts.iter().map(|t| t.ack).collect();
+    assert_eq!(acks, vec![Some((0xA1, !0x1234)), Some((0xA0, !0x1234)), Some((0xA1, 0x1235)), Some((!0xA1, 0x1234))]);
+    let errors: Vec<Vec<String>> = ts.iter().map(|t| t.errors.clone()).collect();
+    assert_eq!(errors[0], vec!["type_ii"]);
+    assert_eq!(errors[1], vec!["acknowledgement_mismatch"]);
+    assert_eq!(errors[2], vec!["acknowledgement_mismatch"]);
+    assert_eq!(errors[3], vec!["type_ii"]);
+    // Only a request that sends a type 2.1 acknowledgement can carry the fault.
+    cfg.commands.push(HostCommand::new(Command::Pos21));
+    cfg.faults.ack_xor = vec![x(4, 0, 1)];
+    let e = Bench::new(&cfg).err().expect("refused").to_string();
+    assert!(e.contains("faults.ack_xor[0].request") && e.contains("pos21"), "{e}");
+}
+
+#[test]
 fn an_invalid_mode_command_gets_no_start_bit_and_is_flagged_type_i() {
     // Seed A2 4.2.1: mode bits disrupted (000000 is no mode command) → no start bit; clock high, wait t_m.
     let mut cfg = BenchConfig::example();

@@ -266,7 +266,17 @@ impl Device {
             bytes[at] = f.bytes[0];
             changed = true;
         }
+        // Insertions after replacements (whose `byte` counts the answer as
+        // built), last position first so that each `byte` still names a
+        // character of the answer as built; only before the CRC.
+        let mut inserts: Vec<&FrameFault> = faults.iter().filter(|f| f.kind == FaultKind::Insert && f.byte + 2 <= n).collect();
+        inserts.sort_by_key(|f| std::cmp::Reverse(f.byte));
+        for f in inserts {
+            bytes.splice(f.byte..f.byte, f.bytes.iter().copied());
+            changed = true;
+        }
         if changed {
+            let n = bytes.len();
             let crc = frames::crc_bytes(&bytes[..n - 2]);
             bytes[n - 2..].copy_from_slice(&crc);
         }

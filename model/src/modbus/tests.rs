@@ -323,6 +323,19 @@ fn noise_inside_an_answer_a_wrong_function_and_a_wrong_byte_count_are_each_flagg
     cfg.devices[0].faults = vec![f.clone()];
     let t = &run(&cfg)[0];
     assert_eq!((t.value, t.errors.clone()), (None, vec!["count"]));
+    // A character 00 inserted before the byte count, CRC correct: 8
+    // characters where a one-register read expects 7, o_err_count.
+    let mut ins = fault(FaultKind::Insert, 2, 0);
+    ins.bytes = vec![0x00];
+    cfg.devices[0].faults = vec![ins.clone()];
+    let t = &run(&cfg)[0];
+    assert_eq!((t.value, t.errors.clone()), (None, vec!["count"]));
+    assert_eq!(t.wire_answers[0].len(), 8, "{:?}", t.wire_answers);
+    assert_eq!(&t.wire_answers[0][..4], &[0x01, 0x03, 0x00, 0x02], "{:?}", t.wire_answers);
+    // Nothing can be inserted before the address or into the CRC.
+    ins.byte = 0;
+    cfg.devices[0].faults = vec![ins];
+    assert!(cfg.validate().unwrap_err().to_string().contains("devices[0].faults[0]"));
     // The CRC itself cannot be replaced (the emulator recomputes it).
     f.byte = 8;
     cfg.devices[0].faults = vec![f];

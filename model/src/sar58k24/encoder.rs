@@ -233,6 +233,13 @@ impl EncoderSettings {
         }
         let len = frames::frame_len(self.bits);
         for (i, f) in self.faults.iter().enumerate() {
+            if f.kind == FaultKind::Insert {
+                return Err(ConfigError::invalid(
+                    format!("encoder.faults[{i}].kind"),
+                    "insert",
+                    "a SAR58K24 frame has one length: use flip, truncate, gap, noise, silent, retag or replace",
+                ));
+            }
             f.validate(len, parity).map_err(|e| ConfigError::invalid(format!("encoder.faults[{i}]"), e.0, e.1))?;
         }
         Ok(())

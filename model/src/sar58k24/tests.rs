@@ -421,6 +421,10 @@ fn a_replaced_byte_keeps_the_checksum_right_and_is_read_as_sent() {
     cfg.encoders[0].faults[0].byte = 4;
     let e = cfg.validate().unwrap_err().to_string();
     assert!(e.contains("faults[0]") && e.contains("replace"), "{e}");
+    // An inserted character is a Modbus fault: a SAR58K24 frame has one length.
+    cfg.encoders[0].faults[0] = FrameFault { frame: 1, kind: FaultKind::Insert, byte: 2, bit: 0, gap_bits: 0.0, bytes: vec![0x55] };
+    let e = cfg.validate().unwrap_err().to_string();
+    assert!(e.contains("faults[0].kind") && e.contains("one length"), "{e}");
 }
 
 #[test]

@@ -27,7 +27,8 @@ pub struct FrameFault {
     #[serde(default)]
     pub gap_bits: f64,
     /// `noise`: bytes sent just before character `byte` (0: before the
-    /// frame); `retag`: the address byte; `replace`: character `byte`.
+    /// frame); `retag`: the address byte; `replace`: character `byte`;
+    /// `insert`: characters inserted before character `byte`.
     #[serde(default)]
     pub bytes: Vec<u8>,
 }
@@ -55,6 +56,12 @@ pub enum FaultKind {
     /// frame with a wrong field: a Modbus answer's function or byte count).
     /// The emulator applies it; [`send_with_faults`] ignores it.
     Replace,
+    /// `bytes` inserted before character `byte`, the check recomputed (a
+    /// well-formed frame of the wrong length: a Modbus address-query answer
+    /// with an extra character). The Modbus emulator applies it (when
+    /// `byte` lies before the answer's CRC); [`send_with_faults`] ignores
+    /// it, and the SAR58K24 encoder, whose frames have one length, refuses it.
+    Insert,
 }
 
 impl FrameFault {
@@ -70,6 +77,7 @@ impl FrameFault {
             FaultKind::Silent => true,
             FaultKind::Retag => self.bytes.len() == 1,
             FaultKind::Replace => self.bytes.len() == 1 && self.byte + 1 < len,
+            FaultKind::Insert => !self.bytes.is_empty() && self.bytes.len() <= 64 && self.byte > 0 && self.byte + 1 < len,
         };
         if ok {
             return Ok(());
