@@ -84,9 +84,12 @@ cosim:
 	@scripts/cosim_regress.sh --transactions 1000
 
 # Long runs kept out of make test: 100000 closed-loop transactions per core
-# (Verilator) and the model's corruption campaigns, with their counts.
+# (Verilator), 1000 per core over every configuration in Icarus (make test
+# runs Icarus on each core's cheapest configuration only) and the model's
+# corruption campaigns, with their counts.
 soak:
 	@scripts/cosim_regress.sh --sim verilator --transactions 100000
+	@scripts/cosim_regress.sh --sim icarus --transactions 1000
 	$(CARGO) test --release --locked -p model campaign -- --nocapture
 
 # RTL line, branch and toggle coverage of every core over its vectors,

@@ -120,26 +120,36 @@ mkdir -p "$root/build/logs" "$root/build/waves"
 results=$(mktemp -d)
 trap 'rm -rf "$results"' EXIT
 
-# One replay: prints its PASS/FAIL line and leaves a marker for the count.
+# One replay: prints its PASS/FAIL line with its wall time (the build, or
+# the wait for a build another run makes, apart from the replay itself) and
+# leaves a marker holding the times for the count and the summary.
 replay() {
-    local core=$1 sim=$2 f=$3 name log wave=()
+    local core=$1 sim=$2 f=$3 opt=$4 name log wave=() t0 t1 t2 status=0 build_s run_s
     name=$(basename "$f" .hex)
     log="$root/build/logs/$name.$sim.log"
     [ "$waves" = 1 ] && wave=("$root/build/waves/$name.$sim.vcd")
-    if "$root/scripts/sim.sh" "$core" "$sim" "$f" "${wave[@]}" > "$log" 2>&1; then
-        touch "$results/pass.$core.$sim.$name"
-        printf 'PASS  %-10s %-12s %s\n' "$sim" "$core" "$name"
+    t0=$(date +%s.%N)
+    VERILATOR_OPT=$opt SIM_BUILD_ONLY=1 "$root/scripts/sim.sh" "$core" "$sim" "$f" "${wave[@]}" > "$log" 2>&1 || status=1
+    t1=$(date +%s.%N)
+    if [ "$status" = 0 ]; then
+        VERILATOR_OPT=$opt "$root/scripts/sim.sh" "$core" "$sim" "$f" "${wave[@]}" >> "$log" 2>&1 || status=1
+    fi
+    t2=$(date +%s.%N)
+    build_s=$(awk "BEGIN { printf \"%.1f\", $t1 - $t0 }")
+    run_s=$(awk "BEGIN { printf \"%.1f\", $t2 - $t1 }")
+    echo "$run_s $build_s $sim $core $name" > "$results/$([ $status = 0 ] && echo pass || echo fail).$core.$sim.$name"
+    if [ "$status" = 0 ]; then
+        printf 'PASS  %-10s %-12s %-40s replay %6s s  build %5s s\n' "$sim" "$core" "$name" "$run_s" "$build_s"
     else
-        touch "$results/fail.$core.$sim.$name"
-        { printf 'FAIL  %-10s %-12s %s\n' "$sim" "$core" "$name"
+        { printf 'FAIL  %-10s %-12s %-40s replay %6s s  build %5s s\n' "$sim" "$core" "$name" "$run_s" "$build_s"
           grep -E "MISMATCH|rror" "$log" | head -n 5 | sed 's/^/      /'; } | cat
     fi
 }
 
-# The runs, longest first (the `cycles:` header; a Verilator cycle costs
-# about a twentieth of an Icarus one), so that no long replay starts last
-# and keeps one core busy while the other has nothing left to do.
-runs=()
+# The files to replay, with their cycle counts and build groups (the files
+# of a core that share parameters and clock share one simulator build).
+entries=()
+declare -A group_cycles=() group_files=()
 for core in "${cores[@]}"; do
     if [ -n "$file" ]; then
         files=("$file")
@@ -151,26 +161,66 @@ for core in "${cores[@]}"; do
         name=$(basename "$f" .hex)
         [ -z "$file" ] && [ -n "$scenario" ] && [ "$name" != "$scenario" ] && continue
         cycles=$(sed -n 's#^// cycles: ##p' "$f" | head -n 1)
-        for sim in "${sims[@]}"; do
-            cost=${cycles:-0}
-            [ "$sim" = verilator ] && cost=$((cost / 20))
-            runs+=("$cost $core $sim $f")
-        done
+        cycles=${cycles:-0}
+        group=$(sed -n -e 's#^// params: ##p' -e 's#^// f_sys_hz: ##p' "$f" | tr '\n ' '__' | sha1sum | cut -c1-12)
+        group="$core.$group"
+        group_cycles[$group]=$(( ${group_cycles[$group]:-0} + cycles ))
+        group_files[$group]=$(( ${group_files[$group]:-0} + 1 ))
+        entries+=("$cycles $core $group $f")
+    done
+done
+
+# How each Verilator build is optimised (scripts/verilator_make_flags.sh):
+# -O0 compiles the model in half the CPU time of -O1 (about 7 s less per
+# build) but replays about five times slower (about 16 us more per cycle,
+# coverage on): a build whose files add up to fewer than VERILATOR_O0_CYCLES
+# cycles (default 400000, the break-even) is made at -O0. Most of the ~100
+# parameter sets replay one or two short files, so most builds are -O0.
+o0_cycles=${VERILATOR_O0_CYCLES:-400000}
+
+# The runs, longest first, so that no long replay starts last and keeps one
+# core busy while the other has nothing left to do. The cost is in
+# microseconds of one core: an Icarus cycle about 25 us; a Verilator cycle
+# about 4 us at -O1 and 20 us at -O0, plus the build (about 14 s at -O1, 7 s
+# at -O0) shared by the files of its group.
+runs=()
+for e in "${entries[@]}"; do
+    read -r cycles core group f <<< "$e"
+    for sim in "${sims[@]}"; do
+        opt=1
+        if [ "$sim" = icarus ]; then
+            cost=$(( cycles * 25 ))
+        elif [ "${group_cycles[$group]}" -lt "$o0_cycles" ]; then
+            opt=0
+            cost=$(( cycles * 20 + 7000000 / ${group_files[$group]} ))
+        else
+            cost=$(( cycles * 4 + 14000000 / ${group_files[$group]} ))
+        fi
+        runs+=("$cost $core $sim $opt $f")
     done
 done
 running=0
-while read -r _ core sim f; do
+while read -r _ core sim opt f; do
     [ -n "$core" ] || continue
     if [ "$running" -ge "$jobs" ]; then
         wait -n || true
         running=$((running - 1))
     fi
-    replay "$core" "$sim" "$f" &
+    replay "$core" "$sim" "$f" "$opt" &
     running=$((running + 1))
 done < <(printf '%s\n' "${runs[@]}" | sort -rn -k1,1)
 wait || true
 passed=$(find "$results" -name 'pass.*' | wc -l)
 failed=$(find "$results" -name 'fail.*' | wc -l)
 [ $((passed + failed)) -gt 0 ] || { echo "regress: no scenario matched" >&2; exit 2; }
+# Where the time went: the ten slowest replays and builds, and the sums.
+echo "hdl: the 10 slowest replays (wall seconds; replay, then build or wait for it):"
+cat "$results"/* | sort -rn -k1,1 \
+    | awk 'NR <= 10 { printf "      %7.1f s  build %6.1f s  %-10s %-14s %s\n", $1, $2, $3, $4, $5 }'
+echo "hdl: the 10 slowest builds (wall seconds, waits for another run's build included):"
+cat "$results"/* | sort -rn -k2,2 \
+    | awk 'NR <= 10 { printf "      %7.1f s  %-10s %-14s %s\n", $2, $3, $4, $5 }'
+cat "$results"/* \
+    | awk '{ r[$3] += $1; b[$3] += $2 } END { for (s in r) printf "hdl: %s: replays %.1f s, builds and waits %.1f s (sums of wall times)\n", s, r[s], b[s] }' | sort
 echo "hdl: $passed passed, $failed failed"
 [ "$failed" -eq 0 ]

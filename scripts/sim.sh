@@ -51,10 +51,14 @@ header_core=$(header core)
 
 # Half a system-clock period in femtoseconds (the testbench timescale is 1 fs).
 half_fs=$(( 500000000000000 / f_sys_hz ))
-# The vector memory, in 64-bit words: 4 Mi words, doubled until the file
-# fits, so that ordinary files share one build and long benches still fit.
+# The vector memory, in 64-bit words. Verilator: 4 Mi words, doubled until
+# the file fits, so that ordinary files share one (costly) build and long
+# benches still fit. Icarus builds in a second but allocates the whole
+# memory at every start (4 Mi words: 170 MB, about 1 s of a short replay on
+# a loaded machine): the smallest power of two from 4 Ki words that fits.
 words=$(header words_per_record)
 max_words=$(( 1 << 22 ))
+[ "$sim" = icarus ] && max_words=$(( 1 << 12 ))
 while [ $(( records * words )) -gt "$max_words" ]; do max_words=$(( max_words * 2 )); done
 rtl=("${RTL_DIR:-$root/hdl/rtl}"/*.v)
 trace=0

@@ -42,22 +42,35 @@ mkdir -p "$logs"
 : > "$logs/times.txt"
 started=$(date +%s.%N)
 
-# stage NAME COMMAND...: run COMMAND, log it, print its log and its time.
+# stage NAME COMMAND...: run COMMAND, log it, print its log, its wall time
+# and its CPU time (user + system of the stage and everything it started,
+# from /usr/bin/time when it is there): on a shared machine the CPU seconds
+# compare from run to run, the wall times only under the same load.
+have_time=0
+[ -x /usr/bin/time ] && have_time=1
 stage() {
     local name=$1; shift
-    local t0 t1 status
+    local t0 t1 status cpu="-"
     t0=$(date +%s.%N)
-    "$@" > "$logs/$name.log" 2>&1
-    status=$?
+    if [ "$have_time" = 1 ]; then
+        /usr/bin/time -f '%U %S' -o "$logs/.$name.cpu" "$@" > "$logs/$name.log" 2>&1
+        status=$?
+        cpu=$(awk 'NF == 2 && $1 ~ /^[0-9.]+$/ { printf "%.1f", $1 + $2 }' "$logs/.$name.cpu" 2> /dev/null)
+        [ -n "$cpu" ] || cpu="-"
+    else
+        "$@" > "$logs/$name.log" 2>&1
+        status=$?
+    fi
     t1=$(date +%s.%N)
     local secs
     secs=$(awk "BEGIN { printf \"%.1f\", $t1 - $t0 }")
     # One stage's output at a time, whole, whichever lane it comes from.
     {
         flock 9
-        echo "==== stage $name ($secs s, $([ $status = 0 ] && echo passed || echo FAILED, exit $status))"
+        echo "==== stage $name ($secs s, cpu $cpu s, $([ $status = 0 ] && echo passed || echo FAILED, exit $status))"
         cat "$logs/$name.log"
-        printf '%-12s %8s s  %s\n' "$name" "$secs" "$([ $status = 0 ] && echo passed || echo FAILED)" >> "$logs/times.txt"
+        printf '%-12s %8s s  cpu %8s s  load %5s  %s\n' "$name" "$secs" "$cpu" "$(cut -d' ' -f1 /proc/loadavg 2> /dev/null)" \
+            "$([ $status = 0 ] && echo passed || echo FAILED)" >> "$logs/times.txt"
     } 9> "$logs/.print.lock"
     return $status
 }
@@ -67,15 +80,18 @@ stage deps scripts/deps.sh || fail=1
 if [ $fail = 0 ]; then
     (
         lane_fail=0
-        stage build cargo build --release --locked -p tbgen -p cosim || lane_fail=1
+        # --timings: target/cargo-timings/ shows which crate's compile costs.
+        stage build cargo build --release --locked --timings -p tbgen -p cosim || lane_fail=1
         # Lane 2's vector check needs tbgen: tell it how the build went.
         echo "$lane_fail" > "$logs/.build.status"
         [ $lane_fail = 0 ] || exit 1
-        stage cargo-build cargo test --workspace --locked --no-run || exit 1
+        stage cargo-build cargo test --workspace --locked --no-run --timings || exit 1
         # The dev profile, so that arithmetic overflow panics in tests
         # instead of wrapping silently as it would in release.
         stage cargo-test cargo test --workspace --locked || lane_fail=1
-        stage cosim scripts/cosim_regress.sh --transactions 1000 || lane_fail=1
+        # Icarus on each core's cheapest configuration, Verilator on every
+        # one (make soak: every configuration in Icarus too).
+        stage cosim scripts/cosim_regress.sh --transactions 1000 --quick --jobs 2 || lane_fail=1
         stage cocotb scripts/cocotb.sh || lane_fail=1
         exit $lane_fail
     ) &
@@ -106,9 +122,9 @@ fi
 
 total=$(awk "BEGIN { printf \"%.1f\", $(date +%s.%N) - $started }")
 echo
-echo "==== stage times (wall clock; lanes 1 and 2 overlap)"
+echo "==== stage times (wall clock, lanes 1 and 2 overlap; CPU seconds; the 1-minute load average at the stage's end)"
 cat "$logs/times.txt"
-printf '%-12s %8s s\n' total "$total"
+printf '%-12s %8s s  load %s\n' total "$total" "$(cut -d' ' -f1-3 /proc/loadavg 2> /dev/null)"
 if [ $fail = 0 ]; then
     echo "make test: all checks passed"
 else
