@@ -41,7 +41,8 @@
 #   cl/replay   Verilator replay c/s of the core's bench row / closed-loop
 #               c/s: how many times longer a closed-loop cycle takes than a
 #               vector-replay cycle of the same core (issue 10 aims <= 2;
-#               below 1 the closed loop is the faster)
+#               below 1 the closed loop is the faster; `-` when part 1 did
+#               not run)
 #
 # Part 3, campaigns (model/examples/campaign_speed.rs, 20 000 frames, best
 # of three): frames per second stepping every cycle and with fast-forward,
@@ -53,7 +54,7 @@
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 tbgen="${CARGO_TARGET_DIR:-$root/target}/release/tbgen"
-out="$root/build/bench"
+out=${BENCH_OUT:-$root/build/bench}   # logs, vectors (BENCH_OUT: another folder)
 # Closed-loop binaries load libcosim from this checkout's target, also when
 # their cached build (keyed by content) was copied from another checkout.
 export LD_LIBRARY_PATH="${CARGO_TARGET_DIR:-$root/target}/release${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
@@ -82,7 +83,7 @@ declare -A cosim_n=(
 # The Verilator replay rate of each core's bench row (for cl/replay).
 declare -A replay_rate=()
 
-if want replay || want cosim; then
+if want replay; then
     # Vectors, then every replay build, untimed.
     declare -A core_of=()
     for toml in "$root"/scenarios/bench/*.toml; do
@@ -95,7 +96,9 @@ if want replay || want cosim; then
                 || { echo "bench: building $sim for $name failed (see $out/$name.$sim.build.log)" >&2; exit 1; }
         done
     done
+fi
 
+if want replay; then
     echo "Part 1: vector replay (scenarios/bench/*.toml)"
     printf '%-14s %-15s %8s %6s %10s %11s %10s %10s %9s %8s %8s %8s\n' \
         scenario core cycles quiet "model c/s" "stepped c/s" "veril. c/s" "icarus c/s" "mod/veril" "mod/icar" "ver/icar" "VCD MB/s"
