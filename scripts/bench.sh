@@ -3,6 +3,7 @@
 # same vectors, the closed loop, and the corruption campaigns (`make bench`).
 #
 #   scripts/bench.sh [replay] [cosim] [campaigns]   (default: all three parts)
+#   BENCH_OUT=DIR scripts/bench.sh ...              (vectors and logs; default build/bench)
 #
 # Every simulator model is built first, untimed (replays: SIM_BUILD_ONLY=1 of
 # scripts/sim.sh; closed loop: one transaction of scripts/cosim.sh), and
