@@ -83,12 +83,13 @@ waves:
 cosim:
 	@scripts/cosim_regress.sh --transactions 1000
 
-# Long runs kept out of make test: 100000 closed-loop transactions per core
-# (Verilator), 1000 per core over every configuration in Icarus (make test
-# runs Icarus on each core's cheapest configuration only) and the model's
-# corruption campaigns, with their counts.
+# Long runs kept out of make test: at least 100000 closed-loop transactions
+# per core (Verilator; every configuration at least a tenth of them, the rest
+# on the core's quickest one, two cores at a time) and the model's corruption
+# campaigns, with their counts; and 1000 per core over every configuration
+# in Icarus (make test runs Icarus on each core's cheapest configuration only).
 soak:
-	@scripts/cosim_regress.sh --sim verilator --transactions 100000
+	@scripts/soak.sh --transactions 100000
 	@scripts/cosim_regress.sh --sim icarus --transactions 1000
 	$(CARGO) test --release --locked -p model campaign -- --nocapture
 
@@ -105,6 +106,8 @@ mutate:
 synth:
 	@scripts/synth.sh
 
+# Model, VCD writer, Verilator and Icarus on the same vectors, the closed
+# loop per core in both simulators, the campaigns (columns: scripts/bench.sh).
 bench: build
 	@scripts/bench.sh
 

@@ -1,69 +1,184 @@
 #!/usr/bin/env bash
-# bench.sh: speed of the model against the simulators on the same vectors.
+# bench.sh: speed of the model, the VCD writer, the simulators replaying the
+# same vectors, the closed loop, and the corruption campaigns (`make bench`).
 #
-# For each scenarios/bench/*.toml (sized so that each simulator takes
-# seconds): `tbgen bench` times the model and the VCD writer (best of
-# several runs, see tbgen/src/bench.rs); `tbgen gen` writes the vectors
-# (untimed); each simulator is built without replaying (SIM_BUILD_ONLY=1,
-# untimed, cached under build/sim/), then replays the vectors once, timed.
+#   scripts/bench.sh [replay] [cosim] [campaigns]   (default: all three parts)
+#   BENCH_OUT=DIR scripts/bench.sh ...              (vectors and logs; default build/bench)
 #
-# Columns:
-#   cycles      system-clock cycles of the scenario (= vector records replayed)
+# Every simulator model is built first, untimed (replays: SIM_BUILD_ONLY=1 of
+# scripts/sim.sh; closed loop: one transaction of scripts/cosim.sh), and
+# cached under build/ as `make test` leaves them; then each timed run is one
+# run. The last lines give the wall time of the builds and of the whole run.
+#
+# Part 1, vector replay: one row per scenarios/bench/*.toml (one per core,
+# sized so that each simulator takes seconds):
+#   cycles      system-clock cycles of the scenario, all simulated by each replay
+#               (the vector file holds fewer records: a run of unchanged
+#               cycles is one record)
 #   quiet       share of those cycles the model's fast-forward skips
 #               (Testbench::quiet_cycles: idle, monoflop, recovery, timeouts)
 #   model c/s   model cycles per second with fast-forward, recording nothing:
-#               what campaigns run (cycles / best run time)
+#               what campaigns run (`tbgen bench`: best of at least 3 runs)
 #   stepped c/s the model stepped every cycle, recording nothing
 #   veril. c/s  Verilator cycles per second: cycles / wall time of one replay
-#               of the same vectors (loading the vector file included, build not)
+#               of the scenario's vectors (starting the simulator and
+#               loading the vector file included, build not)
 #   icarus c/s  the same for Icarus (vvp)
-#   mod/veril   model c/s / Verilator c/s (mod/icar, ver/icar likewise)
+#   mod/veril   model c/s / Verilator c/s (mod/icar, ver/icar likewise);
+#               issue 15 aims at mod/veril >= 50 on every row
 #   VCD MB/s    the VCD writer alone: MB (10^6 bytes) of the scenario's VCD
 #               over the time to write it from samples held in memory, no
 #               model running (the file is byte for byte `tbgen gen`'s)
-#   (to come with co-simulation: closed-loop cycles per second per core)
 #
-# All figures of a row come from one run on one machine: quote the ratios,
-# not the absolute numbers, which depend on the machine and its load. The
-# last line is the wall time of the whole script.
+# Part 2, closed loop (scripts/cosim.sh): one row per core with a closed-loop
+# testbench (hdl/tb_cosim/<core>/tb_cosim_<core>.v), on its seed_*.toml
+# configuration (else the first one); Icarus runs N transactions, Verilator
+# 10 N (the core's N is in the table below: each run takes seconds):
+#   config      the configuration file
+#   V trans/s   transactions (reads, frames, operations, PDOs) per second
+#               in Verilator: transactions / wall time of the run
+#   V c/s       Verilator cycles per second of the closed loop
+#   I trans/s, I c/s   the same in Icarus
+#   cl/replay   Verilator replay c/s of the core's bench row / closed-loop
+#               c/s: how many times longer a closed-loop cycle takes than a
+#               vector-replay cycle of the same core (issue 10 aims <= 2;
+#               below 1 the closed loop is the faster; `-` when part 1 did
+#               not run)
+#
+# Part 3, campaigns (model/examples/campaign_speed.rs, 20 000 frames, best
+# of three): frames per second stepping every cycle and with fast-forward,
+# and their ratio; `-` where a campaign has no such run (SAR58K24 and Modbus
+# step their cycle models, ESL and CAN are bit-level).
+#
+# All figures of a run come from one machine at one time: quote the ratios,
+# not the absolute numbers, which depend on the machine and its load.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-tbgen="$root/target/release/tbgen"
-out="$root/build/bench"
+tbgen="${CARGO_TARGET_DIR:-$root/target}/release/tbgen"
+out=${BENCH_OUT:-$root/build/bench}   # logs, vectors (BENCH_OUT: another folder)
+# Closed-loop binaries load libcosim from this checkout's target, also when
+# their cached build (keyed by content) was copied from another checkout.
+export LD_LIBRARY_PATH="${CARGO_TARGET_DIR:-$root/target}/release${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
 mkdir -p "$out"
+parts=("$@")
+[ ${#parts[@]} -gt 0 ] || parts=(replay cosim campaigns)
+want() { [[ " ${parts[*]} " == *" $1 "* ]]; }
+for p in "${parts[@]}"; do
+    case "$p" in replay|cosim|campaigns) ;; *) echo "usage: $0 [replay] [cosim] [campaigns]" >&2; exit 2 ;; esac
+done
 
 now() { date +%s.%N; }
 field() { sed -n "s/^$1: //p"; }
 calc() { awk "BEGIN { printf \"%.6f\", $1 }"; }
-
 started=$(now)
-printf '%-12s %9s %6s %12s %12s %11s %11s %10s %9s %9s %9s\n' \
-    scenario cycles quiet "model c/s" "stepped c/s" "veril. c/s" "icarus c/s" "mod/veril" "mod/icar" "ver/icar" "VCD MB/s"
-for toml in "$root"/scenarios/bench/*.toml; do
-    report=$("$tbgen" bench "$toml")
-    name=$(echo "$report" | field scenario)
-    cycles=$(echo "$report" | field cycles)
-    quiet=$(echo "$report" | field quiet_share)
-    [ -n "$quiet" ] || { echo "bench: '$tbgen bench' gave no quiet_share: its Bench command must call tbgen::bench::report" >&2; exit 1; }
-    model=$(echo "$report" | field model_cycles_per_second)
-    stepped=$(echo "$report" | field model_stepped_cycles_per_second)
-    vcd=$(echo "$report" | field vcd_writer_bytes_per_second)
-    "$tbgen" gen "$toml" --out "$out" > /dev/null
-    vectors="$out/$name.hex"
-    core=$(sed -n 's#^// core: ##p' "$vectors")
-    declare -A rate=()
-    for sim in verilator icarus; do
-        SIM_BUILD_ONLY=1 "$root/scripts/sim.sh" "$core" "$sim" "$vectors" > "$out/$name.$sim.build.log" 2>&1 \
-            || { echo "bench: building $sim for $name failed (see $out/$name.$sim.build.log)" >&2; exit 1; }
-        t0=$(now)
-        "$root/scripts/sim.sh" "$core" "$sim" "$vectors" > "$out/$name.$sim.log" 2>&1 \
-            || { echo "bench: $sim failed on $name (see $out/$name.$sim.log)" >&2; exit 1; }
-        t1=$(now)
-        rate[$sim]=$(calc "$cycles / ($t1 - $t0)")
+build_s=0
+timed_build() { local t0; t0=$(now); "$@"; build_s=$(calc "$build_s + $(now) - $t0"); }
+
+# Closed-loop transactions per core in Icarus (Verilator runs 10 times as
+# many): about 100 000 cycles of the core's bench configuration.
+declare -A cosim_n=(
+    [ssi_master]=50 [biss_master]=60 [endat_master]=100 [tformat_host]=100 [esl_host]=50
+    [sar_async_host]=40 [modbus_master]=30 [can_controller]=25 [canopen_master]=25
+)
+
+# The Verilator replay rate of each core's bench row (for cl/replay).
+declare -A replay_rate=()
+
+if want replay; then
+    # Vectors, then every replay build, untimed.
+    declare -A core_of=()
+    for toml in "$root"/scenarios/bench/*.toml; do
+        name=$(basename "$toml" .toml)
+        "$tbgen" gen "$toml" --out "$out" > /dev/null
+        core_of[$name]=$(sed -n 's#^// core: ##p' "$out/$name.hex")
+        for sim in verilator icarus; do
+            timed_build env SIM_BUILD_ONLY=1 "$root/scripts/sim.sh" "${core_of[$name]}" "$sim" "$out/$name.hex" \
+                > "$out/$name.$sim.build.log" 2>&1 \
+                || { echo "bench: building $sim for $name failed (see $out/$name.$sim.build.log)" >&2; exit 1; }
+        done
     done
-    printf '%-12s %9d %5.1f%% %12.3g %12.3g %11.3g %11.3g %9.0fx %8.0fx %8.1fx %9.1f\n' \
-        "$name" "$cycles" "$(calc "100 * $quiet")" "$model" "$stepped" "${rate[verilator]}" "${rate[icarus]}" \
-        "$(calc "$model / ${rate[verilator]}")" "$(calc "$model / ${rate[icarus]}")" \
-        "$(calc "${rate[verilator]} / ${rate[icarus]}")" "$(calc "$vcd / 1000000")"
-done
-printf 'bench.sh: %.0f s in all\n' "$(calc "$(now) - $started")"
+fi
+
+if want replay; then
+    echo "Part 1: vector replay (scenarios/bench/*.toml)"
+    printf '%-14s %-15s %8s %6s %10s %11s %10s %10s %9s %8s %8s %8s\n' \
+        scenario core cycles quiet "model c/s" "stepped c/s" "veril. c/s" "icarus c/s" "mod/veril" "mod/icar" "ver/icar" "VCD MB/s"
+    for toml in "$root"/scenarios/bench/*.toml; do
+        report=$("$tbgen" bench "$toml")
+        name=$(echo "$report" | field scenario)
+        core=${core_of[$name]}
+        cycles=$(echo "$report" | field cycles)
+        quiet=$(echo "$report" | field quiet_share)
+        [ -n "$quiet" ] || { echo "bench: '$tbgen bench' gave no quiet_share: its Bench command must call tbgen::bench::report" >&2; exit 1; }
+        model=$(echo "$report" | field model_cycles_per_second)
+        stepped=$(echo "$report" | field model_stepped_cycles_per_second)
+        vcd=$(echo "$report" | field vcd_writer_bytes_per_second)
+        declare -A rate=()
+        for sim in verilator icarus; do
+            t0=$(now)
+            "$root/scripts/sim.sh" "$core" "$sim" "$out/$name.hex" > "$out/$name.$sim.log" 2>&1 \
+                || { echo "bench: $sim failed on $name (see $out/$name.$sim.log)" >&2; exit 1; }
+            t1=$(now)
+            rate[$sim]=$(calc "$cycles / ($t1 - $t0)")
+        done
+        replay_rate[$core]=${rate[verilator]}
+        printf '%-14s %-15s %8d %5.1f%% %10.3g %11.3g %10.3g %10.3g %8.0fx %7.0fx %7.1fx %8.1f\n' \
+            "$name" "$core" "$cycles" "$(calc "100 * $quiet")" "$model" "$stepped" "${rate[verilator]}" "${rate[icarus]}" \
+            "$(calc "$model / ${rate[verilator]}")" "$(calc "$model / ${rate[icarus]}")" \
+            "$(calc "${rate[verilator]} / ${rate[icarus]}")" "$(calc "$vcd / 1000000")"
+    done
+    echo
+fi
+
+if want cosim; then
+    # One cosim.sh run: "<transactions> <cycles> <seconds>" from its summary line.
+    cosim_run() {
+        local log=$1; shift
+        "$root/scripts/cosim.sh" "$@" > "$log" 2>&1 || { echo "bench: closed loop failed: $* (see $log)" >&2; exit 1; }
+        sed -n 's/^cosim: .*\.toml: \([0-9]*\) transactions, \([0-9]*\) cycles in \([0-9.]*\) s.*/\1 \2 \3/p' "$log" | head -n 1
+    }
+    cores=()
+    for dir in "$root"/hdl/tb_cosim/*/; do
+        core=$(basename "$dir")
+        [ -f "$dir/tb_cosim_$core.v" ] && cores+=("$core")
+    done
+    declare -A cfg_of=()
+    for core in "${cores[@]}"; do
+        cfg=$( (ls "$root"/hdl/tb_cosim/"$core"/configs/seed_*.toml 2> /dev/null || true) | head -n 1)
+        [ -n "$cfg" ] || cfg=$(ls "$root"/hdl/tb_cosim/"$core"/configs/*.toml | head -n 1)
+        cfg_of[$core]=$cfg
+        for sim in verilator icarus; do
+            timed_build cosim_run "$out/cosim.$core.$sim.build.log" "$core" "$sim" --config "$cfg" --transactions 1 > /dev/null
+        done
+    done
+    echo "Part 2: closed loop (scripts/cosim.sh; Icarus N transactions, Verilator 10 N)"
+    printf '%-15s %-28s %5s %9s %10s %9s %10s %9s\n' core config N "V trans/s" "V c/s" "I trans/s" "I c/s" cl/replay
+    for core in "${cores[@]}"; do
+        n=${cosim_n[$core]:-20}
+        read -r vt vc vs < <(cosim_run "$out/cosim.$core.verilator.log" "$core" verilator --config "${cfg_of[$core]}" --transactions $((10 * n)))
+        read -r it ic is < <(cosim_run "$out/cosim.$core.icarus.log" "$core" icarus --config "${cfg_of[$core]}" --transactions "$n")
+        vrate=$(calc "$vc / $vs")
+        ratio=-
+        [ -n "${replay_rate[$core]:-}" ] && ratio=$(printf '%.2fx' "$(calc "${replay_rate[$core]} / $vrate")")
+        printf '%-15s %-28s %5d %9.0f %10.3g %9.1f %10.3g %9s\n' "$core" "$(basename "${cfg_of[$core]}")" "$n" \
+            "$(calc "$vt / $vs")" "$vrate" "$(calc "$it / $is")" "$(calc "$ic / $is")" "$ratio"
+    done
+    echo
+fi
+
+if want campaigns; then
+    timed_build bash -c "cd '$root' && cargo build -q --release -p model --example campaign_speed -j 2"
+    echo "Part 3: corruption campaigns (frames/s, best of three runs of 20000 frames)"
+    printf '%-10s %-12s %12s %12s %8s\n' campaign kind stepped fast-fwd ratio
+    "${CARGO_TARGET_DIR:-$root/target}/release/examples/campaign_speed" 20000 |
+        while read -r _ name kind _ stepped fast; do
+            ratio=-
+            [ "$stepped" != - ] && [ "$fast" != - ] && ratio=$(printf '%.2fx' "$(calc "$fast / $stepped")")
+            printf '%-10s %-12s %12s %12s %8s\n' "$name" "$kind" "$stepped" "$fast" "$ratio"
+        done
+    echo
+fi
+
+total=$(calc "$(now) - $started")
+printf 'bench.sh: %.0f s in all, of which %.0f s building simulator models and examples (untimed); load average at the end: %s\n' \
+    "$total" "$build_s" "$(cut -d' ' -f1-3 /proc/loadavg)"

@@ -53,7 +53,7 @@ pub fn run(trials: u64, bits: u32, max_flips: u32, seed: u64) -> Report {
 }
 
 /// [`run`], with fast-forward through quiet cycles or stepping every cycle.
-fn run_with(trials: u64, bits: u32, max_flips: u32, seed: u64, fast_forward: bool) -> Report {
+pub fn run_with(trials: u64, bits: u32, max_flips: u32, seed: u64, fast_forward: bool) -> Report {
     let (mut master, mut chain) = pair(bits);
     let mut rng = Pcg64Mcg::seed_from_u64(seed);
     let field = bits + 2 + 6;

@@ -126,7 +126,7 @@ pub fn run(trials: u64, max_flips: usize, seed: u64) -> Report {
 }
 
 /// [`run`], with fast-forward through quiet cycles or stepping every cycle.
-fn run_with(trials: u64, max_flips: usize, seed: u64, fast_forward: bool) -> Report {
+pub fn run_with(trials: u64, max_flips: usize, seed: u64, fast_forward: bool) -> Report {
     let mut host = Host::new(host_config()).expect("campaign host configuration is valid");
     let mut rng = Pcg64Mcg::seed_from_u64(seed);
     let mut report = Report::default();
