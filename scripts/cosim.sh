@@ -42,10 +42,13 @@ sar_async_host) proto=sar emu=sar58k24_encoder_emu plusarg=sar58k24 ;;
 modbus_master) proto=modbus emu=modbus_device_emu ;;
 can_controller) proto=can emu=can_node_emu ;;
 canopen_master) proto=canopen emu=canopen_encoder_emu ;;
+# Not a core of its own: can_controller and the testbench's command sequencer
+# read a SAR58K24 in CAN mode ([[canopen.sar]]) through the CANopen wrapper.
+sar58k24_can) proto=sar_can emu=canopen_encoder_emu plusarg=canopen ;;
 endat_master) proto=endat emu=endat_encoder_emu ;;
 tformat_host) proto=tformat emu=tformat_encoder_emu ;;
 esl_host) proto=esl emu=esl_encoder_emu ;;
-*) echo "cosim.sh: no closed-loop testbench for core '$core' (ssi_master, biss_master, endat_master, tformat_host, esl_host, sar_async_host, modbus_master, can_controller, canopen_master)" >&2; exit 2 ;;
+*) echo "cosim.sh: no closed-loop testbench for core '$core' (ssi_master, biss_master, endat_master, tformat_host, esl_host, sar_async_host, modbus_master, can_controller, canopen_master, sar58k24_can)" >&2; exit 2 ;;
 esac
 case "$sim" in icarus|verilator) ;; *) usage ;; esac
 tb="$root/hdl/tb_cosim/$core/tb_cosim_$core.v"

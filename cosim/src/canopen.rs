@@ -1,38 +1,66 @@
 //! The CANopen encoder emulator: the DS 406 encoders of
 //! [`model::canopen::EncoderNode`] (the Leine & Linde gateway of seed 003)
-//! on the wired-AND bus ([`model::can::Bus`]) they share with the master
-//! under test.
+//! and the SAR58K24 encoders in their CAN mode ([`model::canopen::sar58k24::SarCan`],
+//! seed 001 §3.4) on the wired-AND bus ([`model::can::Bus`]) they share with
+//! the master under test.
 //!
 //! Configuration: the scenario's `[canopen]` table (`bit_rate_kbps`,
 //! `tq_per_bit`, `sample_point`, `sjw`, `sync_stages`, `ns_per_m`,
 //! `[master]` for the master's place on the cable, `[[encoders]]` with
 //! their `[encoders.encoder]`, places, oscillators, power-on and alarm
-//! times); `f_sys_mhz`, the master's table entries other than its place and
-//! `run_us` belong to the master's side. SAR58K24 devices and the tool node
-//! are not emulated here yet and are refused by name. The emulator clock is
-//! the nodes' reference clock.
+//! times, `[[sar]]` with their `[sar.encoder]` and places); `f_sys_mhz`, the
+//! master's table entries other than its place and `run_us` belong to the
+//! master's side. Either kind alone or both on one bus. The service tool
+//! node (`[canopen.tool]`) is refused by name: in co-simulation the master
+//! under test plays its part. The emulator clock is the nodes' reference clock.
+//!
+//! Devices are numbered DS 406 encoders first (`[[encoders]]` in order),
+//! then the SAR58K24s (`[[sar]]` in order): with one encoder and one
+//! SAR58K24 the SAR58K24 is device 1.
 //!
 //! Pins (`emu_step`): in bit 1 the master's TXD; out bit 0 the bus level at
 //! the master's RXD.
 //!
-//! Values (`last_value(device)`): the position (bytes 0..3 little-endian)
-//! of the last TPDO1 or TPDO2 encoder `device` sent; `device + 16`: the
-//! number of frames it sent; `device + 32`: its NMT state code (0
-//! initialisation, 4 stopped, 5 operational, 127 pre-operational).
-//! `set_position(device, raw)` moves the encoder's disk (raw counts).
-//! `set_status(device, "alarm", on)` raises or clears its position alarm
-//! (an emergency frame). `count` is the TPDOs encoder 0 sent.
+//! Values (`last_value(device + 16 × field)`):
+//!
+//! | field | DS 406 encoder | SAR58K24 |
+//! |---|---|---|
+//! | 0 | position (bytes 0..3 little-endian) of its last TPDO1 or TPDO2 | position of its last position answer (to `01` start, `80` click, or sent by itself) |
+//! | 1 | frames it sent | frames it sent (over power cycles) |
+//! | 2 | NMT state code (0 initialisation, 4 stopped, 5 operational, 127 pre-operational) | node in use |
+//! | 3 | bit rate in use, kbit/s | bit rate in use, kbit/s |
+//! | 4 | data of the last frame it sent (first byte in bits 63..56, as a controller's `i_tx_data`) | the same |
+//! | 5 | identifier of the last frame it sent | the same |
+//! | 6 | — | node from the next power-on (`11 <node>` on 0x7E5) |
+//! | 7 | — | bit rate from the next power-on, kbit/s (`13 00 <code>` on 0x7E5) |
+//!
+//! `set_position(device, raw)` moves the disk (raw counts; a SAR58K24
+//! answers it less its zero, reversed after `22`); `set_motion(device,
+//! toml)` moves it along a [`crate::motion`] profile. `set_status(device,
+//! "alarm", on)` raises or clears a DS 406 encoder's position alarm (an
+//! emergency frame); `set_status(device, "power", on)` switches a SAR58K24
+//! off (its transceiver recessive, deaf) and on again (a power-on: the node
+//! and bit rate set on 0x7E5 take effect, configuration mode and any
+//! self-sending end; zero and direction are kept). `last_status`: DS 406
+//! `operational`; SAR58K24 `config_mode`, `sending`, `reversed`, `powered`.
+//! `count` is the position frames device 0 sent.
+
+use std::collections::VecDeque;
 
 use serde::Serialize;
 
 use model::can::bus::Place;
+use model::can::emulator::NodeSettings;
 use model::can::frame::Frame;
 use model::can::Bus;
 use model::canopen::cob::{classify, Service};
-use model::canopen::{BenchConfig, EncoderNode};
+use model::canopen::sar58k24::{SarCan, CONFIG_ID};
+use model::canopen::{BenchConfig, Device, DeviceNode, EncoderNode, NodeTiming};
+use model::Timebase;
 
 use crate::check::{Checks, VIOLATION_PENDING};
 use crate::config::{self, Error};
+use crate::motion::Motions;
 use crate::{Emulator, Pins, Result};
 
 /// The fastest CAN bit rate (1 Mbit/s).
@@ -41,7 +69,7 @@ pub const MAX_BIT_RATE_KHZ: f64 = 1000.0;
 /// A frame as the transcript shows it.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Entry {
-    /// The encoder.
+    /// The device (its name).
     pub node: String,
     /// `received` or `sent`.
     pub what: &'static str,
@@ -51,27 +79,139 @@ pub struct Entry {
     pub id: u32,
     /// Data, hex.
     pub data: String,
-    /// CANopen meaning.
+    /// CANopen meaning (DS 406), or the SAR58K24 command or answer.
     pub meaning: String,
+    /// The position a SAR58K24 position answer carries.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub position: Option<u64>,
 }
 
-/// DS 406 encoders on a CAN bus with the master, on the emulator clock.
+/// A SAR58K24 that remembers, for every frame it produced, whether it
+/// carries a position: its answers to `01` and `80` and the frames it sends
+/// by itself do; the acknowledgements (`20 00`, `22 00`, `31 00`, `11 00`,
+/// `13 00`) do not, even where their bytes equal a position's.
+#[derive(Debug, Clone)]
+struct Recorded {
+    sar: SarCan,
+    produced: VecDeque<(Frame, Option<u64>)>,
+}
+
+impl Recorded {
+    fn position_of(&self, f: &Frame) -> u64 {
+        let n = self.sar.config().bits.div_ceil(8).max(2) as usize;
+        f.data.iter().take(n).rev().fold(0u64, |v, &b| v << 8 | b as u64)
+    }
+
+    fn record(&mut self, frames: &[Frame], positions: bool) {
+        for f in frames {
+            let p = positions.then(|| self.position_of(f));
+            self.produced.push_back((f.clone(), p));
+        }
+    }
+
+    /// What a frame the node sent carried (its entry in the produced list).
+    fn sent(&mut self, f: &Frame) -> Option<u64> {
+        while let Some((g, p)) = self.produced.pop_front() {
+            if &g == f {
+                return p;
+            }
+        }
+        None
+    }
+}
+
+impl Device for Recorded {
+    fn power_on(&mut self, now_ns: u64) -> Vec<Frame> {
+        let out = self.sar.power_on(now_ns);
+        self.record(&out, false);
+        out
+    }
+    fn on_frame(&mut self, f: &Frame, now_ns: u64) -> Vec<Frame> {
+        let own = !f.ide && !f.rtr && f.id == 0x200 + self.sar.node() as u32;
+        let positions = own && matches!(f.data.first(), Some(0x01 | 0x80));
+        let out = self.sar.on_frame(f, now_ns);
+        self.record(&out, positions);
+        out
+    }
+    fn poll(&mut self, now_ns: u64) -> Vec<Frame> {
+        let out = self.sar.poll(now_ns);
+        self.record(&out, true);
+        out
+    }
+    fn bit_rate_kbps(&self) -> u32 {
+        self.sar.bit_rate_kbps()
+    }
+    fn response_delay_us(&self) -> f64 {
+        self.sar.response_delay_us()
+    }
+}
+
+/// What a SAR58K24 frame means (the transcript's `meaning`): `sent` by
+/// the device (an answer) or received (a command, or another node's frame).
+fn sar_meaning(f: &Frame, sent: bool, node: u8, position: Option<u64>) -> String {
+    let b = |i: usize| f.data.get(i).copied().unwrap_or(0);
+    match (sent, f.id == CONFIG_ID, b(0)) {
+        (true, _, _) if position.is_some() => format!("SAR58K24 node {node:#04x}: position {}", position.unwrap_or(0)),
+        (true, true, c) => format!("SAR58K24 configuration: {c:02X} 00 success"),
+        (true, false, 0x20) => "SAR58K24 answer: zeroed (20 00)".into(),
+        (true, false, c @ (0x22 | 0x23)) => format!("SAR58K24 answer: direction ({c:02X} 00)"),
+        (true, false, 0x31) => "SAR58K24 answer: timed send started or stopped (31 00)".into(),
+        (true, false, _) => "SAR58K24 answer".into(),
+        (false, true, 0x04) => "SAR58K24 configuration: enter configuration mode (04 01)".into(),
+        (false, true, 0x11) => format!("SAR58K24 configuration: node {:#04x} from the next power-on", b(1)),
+        (false, true, 0x13) => format!("SAR58K24 configuration: bit rate code {:02X} from the next power-on", b(2)),
+        (false, true, _) => "SAR58K24 configuration channel: unknown command".into(),
+        (false, false, c) if f.id == 0x200 + node as u32 && !f.ide => match c {
+            0x01 => format!("SAR58K24 command to node {:#04x}: start", b(1)),
+            0x80 => format!("SAR58K24 command to node {:#04x}: click (one position)", b(1)),
+            0x20 => format!("SAR58K24 command to node {:#04x}: zero", b(1)),
+            0x22 | 0x23 => format!("SAR58K24 command to node {:#04x}: direction ({c:02X})", b(1)),
+            0x31 => format!("SAR58K24 command to node {:#04x}: timed send {} times a second, or stop", b(1), b(2)),
+            _ => format!("SAR58K24 command to node {:#04x}: unknown ({c:02X})", b(1)),
+        },
+        (false, false, _) => model::canopen::interpret::interpret(f).text,
+    }
+}
+
+/// A SAR58K24 on the bus and its power.
+struct SarSlot {
+    node: DeviceNode<Recorded>,
+    settings: NodeSettings,
+    powered: bool,
+    /// Frames sent before the last power-on (the node's list restarts).
+    sent_before: u64,
+}
+
+enum Slot {
+    Ds406 { node: EncoderNode, power_on: u64 },
+    Sar(Box<SarSlot>),
+}
+
+/// DS 406 encoders and SAR58K24s on a CAN bus with the master, on the emulator clock.
 pub struct CanopenEmulator {
     f_emu_hz: u64,
+    tb: Timebase,
+    timing: NodeTiming,
     names: Vec<String>,
-    nodes: Vec<EncoderNode>,
-    power_on: Vec<u64>,
+    slots: Vec<Slot>,
+    motions: Motions,
     bus: Bus,
     tx: Vec<bool>,
     cycle: u64,
     seen: Vec<(usize, usize, u64)>,
-    pdos: Vec<(u64, Option<u64>)>,
+    positions: Vec<(u64, Option<u64>)>,
+    last_sent: Vec<Option<Frame>>,
     entries: Vec<Entry>,
     checks: Checks,
 }
 
 fn is_pdo(f: &Frame) -> bool {
     !f.ide && matches!(classify(f.id as u16), Service::Tpdo1(_) | Service::Tpdo2(_)) && f.data.len() >= 4
+}
+
+/// The COB-IDs of DS 301 node `n` (NMT error control, EMCY, the four PDO pairs, SDO).
+fn cob_ids(n: u8) -> impl Iterator<Item = u32> {
+    [0x080u32, 0x180, 0x200, 0x280, 0x300, 0x380, 0x400, 0x480, 0x500, 0x580, 0x600, 0x700].into_iter().map(move |f| f + n as u32)
 }
 
 impl CanopenEmulator {
@@ -82,51 +222,113 @@ impl CanopenEmulator {
         let mut device = tables.device;
         device.insert("f_sys_mhz".into(), toml::Value::Float(f_emu_hz as f64 / 1e6));
         let bench: BenchConfig = config::decode(device, origin)?;
-        if !bench.sar.is_empty() || bench.tool.is_some() {
-            return Err(Error::field(origin, "sar", "SAR58K24 devices and the tool node are not emulated in co-simulation yet", "remove [[canopen.sar]] and [canopen.tool] (the vector bench runs them)"));
+        if bench.tool.is_some() {
+            return Err(Error::field(origin, "tool", "the service tool node is not emulated in co-simulation: the master under test plays its part", "remove [canopen.tool] (the vector bench runs it) and send its frames from your master"));
         }
-        if bench.encoders.is_empty() {
-            return Err(Error::field(origin, "encoders", "no [[canopen.encoders]]", "give at least one encoder (name = \"encoder\", [canopen.encoders.encoder] node_switch = 1)"));
+        if bench.encoders.is_empty() && bench.sar.is_empty() {
+            return Err(Error::field(origin, "encoders", "no [[canopen.encoders]] and no [[canopen.sar]]", "give at least one device: a DS 406 encoder (name = \"encoder\", [canopen.encoders.encoder] node_switch = 1) or a SAR58K24 ([[canopen.sar]] with [canopen.sar.encoder] node = 0x20)"));
         }
         model::Setup::validate(&bench).map_err(|e| Error::config(origin, e))?;
+        let timing = bench.node_timing();
         let mut places = vec![Place { position_m: bench.master.position_m, loop_delay_ns: bench.master.loop_delay_ns }];
-        let mut nodes = Vec::new();
-        let mut power_on = Vec::new();
-        for e in &bench.encoders {
-            let s = model::can::emulator::NodeSettings { name: e.name.clone(), position_m: e.position_m, loop_delay_ns: e.loop_delay_ns, ppm: e.ppm, ack: true, frames: Vec::new() };
+        let mut slots = Vec::new();
+        let mut names = Vec::new();
+        let mut ids: Vec<(u32, String)> = Vec::new();
+        for (k, e) in bench.encoders.iter().enumerate() {
+            let s = NodeSettings { name: e.name.clone(), position_m: e.position_m, loop_delay_ns: e.loop_delay_ns, ppm: e.ppm, ack: true, frames: Vec::new() };
             places.push(s.place());
-            nodes.push(EncoderNode::new(&e.encoder, &s, bench.node_timing(), &tb).map_err(|e| Error::config(origin, e))?);
-            power_on.push(tb.cycles_nearest_ns(e.power_on_us * 1e3));
+            let node = EncoderNode::new(&e.encoder, &s, timing, &tb).map_err(|e| Error::config(origin, e))?;
+            ids.extend(cob_ids(node.encoder().node()).map(|id| (id, format!("encoders[{k}] (DS 406 node {})", node.encoder().node()))));
+            slots.push(Slot::Ds406 { node, power_on: tb.cycles_nearest_ns(e.power_on_us * 1e3) });
+            names.push(e.name.clone());
         }
-        let n = nodes.len();
+        for (k, s) in bench.sar.iter().enumerate() {
+            let field = format!("sar[{k}]");
+            let c = &s.encoder;
+            if c.bit_rate_kbps != bench.bit_rate_kbps {
+                return Err(Error::field(
+                    origin,
+                    format!("{field}.encoder.bit_rate_kbps"),
+                    format!("{} kbit/s, but the bus (bit_rate_kbps) runs at {} kbit/s", c.bit_rate_kbps, bench.bit_rate_kbps),
+                    "give the SAR58K24 the bus's bit rate (it would hear nobody at another); change it at run time on 0x7E5 (13 00 <code>) and a power cycle",
+                ));
+            }
+            for (id, what) in [(0x200 + c.node as u32, "command"), (c.answer_base as u32 + c.node as u32, "answer")] {
+                if let Some((_, other)) = ids.iter().find(|(i, _)| *i == id) {
+                    return Err(Error::field(
+                        origin,
+                        format!("{field}.encoder.node"),
+                        format!("{:#04x}: its {what} identifier {id:#05x} is also used by {other}", c.node),
+                        "give every device on the bus its own node (a SAR58K24 uses 0x200 + node and its answer base + node)",
+                    ));
+                }
+            }
+            ids.push((0x200 + c.node as u32, format!("{field} (SAR58K24 node {:#04x})", c.node)));
+            ids.push((c.answer_base as u32 + c.node as u32, format!("{field} (SAR58K24 node {:#04x})", c.node)));
+            let settings = NodeSettings { name: s.name.clone(), position_m: s.position_m, loop_delay_ns: s.loop_delay_ns, ppm: 0.0, ack: true, frames: Vec::new() };
+            places.push(settings.place());
+            let sar = SarCan::new(c).map_err(|e| Error::config(origin, e))?;
+            let node = DeviceNode::with(Recorded { sar, produced: VecDeque::new() }, &settings, timing, &tb).map_err(|e| Error::config(origin, e))?;
+            slots.push(Slot::Sar(Box::new(SarSlot { node, settings, powered: true, sent_before: 0 })));
+            names.push(s.name.clone());
+        }
+        let n = slots.len();
         Ok(CanopenEmulator {
             f_emu_hz,
-            names: bench.encoders.iter().map(|e| e.name.clone()).collect(),
-            nodes,
-            power_on,
+            tb,
+            timing,
+            names,
+            slots,
+            motions: Motions::default(),
             bus: Bus::new(&places, bench.ns_per_m, &tb),
             tx: vec![true; n + 1],
             cycle: 0,
             seen: vec![(0, 0, 0); n],
-            pdos: vec![(0, None); n],
+            positions: vec![(0, None); n],
+            last_sent: vec![None; n],
             entries: Vec::new(),
             checks: Checks::new(tb.period_ps()),
         })
     }
 
-    /// Frames the encoders sent and received so far, in order.
+    /// Frames the devices sent and received so far, in order.
     pub fn entries(&self) -> &[Entry] {
         &self.entries
     }
 
-    fn node_mut(&mut self, device: usize) -> Result<&mut EncoderNode> {
-        let n = self.nodes.len();
-        self.nodes.get_mut(device).ok_or_else(|| Error::Usage(format!("the CANopen emulator has {n} encoder(s), not encoder {device}")))
+    fn slot_mut(&mut self, device: usize) -> Result<&mut Slot> {
+        let n = self.slots.len();
+        self.slots.get_mut(device).ok_or_else(|| Error::Usage(format!("the CANopen emulator has {n} device(s) (DS 406 encoders first, then SAR58K24s), not device {device}")))
     }
-}
 
-fn entry(node: &str, what: &'static str, cycle: u64, f: &Frame) -> Entry {
-    Entry { node: node.to_string(), what, cycle, id: f.id, data: crate::sar58k24::hex(&f.data), meaning: model::canopen::interpret::interpret(f).text }
+    /// The resolution of device `device` as a bit count (motion profiles wrap there).
+    fn bits(&self, device: usize) -> Result<u32> {
+        match self.slots.get(device) {
+            Some(Slot::Sar(s)) => Ok(s.node.encoder().sar.config().bits),
+            Some(Slot::Ds406 { node, .. }) => {
+                let top = node.encoder().config().kind.total_resolution();
+                if top.is_power_of_two() {
+                    Ok(top.trailing_zeros())
+                } else {
+                    Err(Error::Usage(format!("device {device}: a motion profile wraps at a power of two; this encoder has {top} counts (set positions instead)")))
+                }
+            }
+            None => Err(Error::Usage(format!("the CANopen emulator has {} device(s), not device {device}", self.slots.len()))),
+        }
+    }
+
+    fn move_disk(&mut self, device: usize, raw: u64) {
+        match &mut self.slots[device] {
+            Slot::Ds406 { node, .. } => {
+                let now = node.time_ns();
+                node.encoder_mut().set_raw(raw, now);
+            }
+            Slot::Sar(s) => {
+                let now = s.node.time_ns();
+                s.node.encoder_mut().sar.set_raw(raw, now);
+            }
+        }
+    }
 }
 
 impl Emulator for CanopenEmulator {
@@ -137,30 +339,69 @@ impl Emulator for CanopenEmulator {
     fn step(&mut self, pins: Pins) -> Pins {
         let rx_master = self.bus.rx(0);
         self.tx[0] = pins.0 & 2 != 0;
-        for (i, node) in self.nodes.iter_mut().enumerate() {
-            if self.cycle < self.power_on[i] {
-                self.tx[i + 1] = true;
-                continue;
-            }
-            self.tx[i + 1] = node.step(self.bus.rx(i + 1));
-            let (r, s, e) = self.seen[i];
-            // A reset at a new bit rate (5000h) rebuilds the node's controller and its list of frames sent.
-            let s = if s > node.sent().len() { 0 } else { s };
-            for (_, f) in &node.received()[r..] {
-                self.entries.push(entry(&self.names[i], "received", self.cycle, f));
-            }
-            for f in &node.sent()[s..] {
-                self.entries.push(entry(&self.names[i], "sent", self.cycle, f));
-                if is_pdo(f) {
-                    let p = u32::from_le_bytes([f.data[0], f.data[1], f.data[2], f.data[3]]) as u64;
-                    self.pdos[i] = (self.pdos[i].0 + 1, Some(p));
+        if self.motions.any() {
+            for i in 0..self.slots.len() {
+                if let Ok(bits) = self.bits(i) {
+                    if let Some(p) = self.motions.position_on(i, self.cycle, &self.tb, bits) {
+                        self.move_disk(i, p);
+                    }
                 }
             }
-            let errors = node.can().errors();
+        }
+        for i in 0..self.slots.len() {
+            let rx = self.bus.rx(i + 1);
+            let (r, s, e) = self.seen[i];
+            let name = &self.names[i];
+            let (level, errors) = match &mut self.slots[i] {
+                Slot::Ds406 { node, power_on } => {
+                    if self.cycle < *power_on {
+                        self.tx[i + 1] = true;
+                        continue;
+                    }
+                    let level = node.step(rx);
+                    // A reset at a new bit rate (5000h) rebuilds the node's controller and its list of frames sent.
+                    let s = if s > node.sent().len() { 0 } else { s };
+                    for (_, f) in &node.received()[r..] {
+                        self.entries.push(entry(name, "received", self.cycle, f, model::canopen::interpret::interpret(f).text, None));
+                    }
+                    for f in &node.sent()[s..] {
+                        self.entries.push(entry(name, "sent", self.cycle, f, model::canopen::interpret::interpret(f).text, None));
+                        if is_pdo(f) {
+                            let p = u32::from_le_bytes([f.data[0], f.data[1], f.data[2], f.data[3]]) as u64;
+                            self.positions[i] = (self.positions[i].0 + 1, Some(p));
+                        }
+                        self.last_sent[i] = Some(f.clone());
+                    }
+                    self.seen[i] = (node.received().len(), node.sent().len(), node.can().errors());
+                    (level, node.can().errors())
+                }
+                Slot::Sar(slot) => {
+                    if !slot.powered {
+                        self.tx[i + 1] = true;
+                        continue;
+                    }
+                    let level = slot.node.step(rx);
+                    let node_no = slot.node.encoder().sar.node();
+                    for (_, f) in &slot.node.received()[r..] {
+                        self.entries.push(entry(name, "received", self.cycle, f, sar_meaning(f, false, node_no, None), None));
+                    }
+                    let sent: Vec<Frame> = slot.node.sent()[s..].to_vec();
+                    for f in sent {
+                        let p = slot.node.encoder_mut().sent(&f);
+                        self.entries.push(entry(name, "sent", self.cycle, &f, sar_meaning(&f, true, node_no, p), p));
+                        if p.is_some() {
+                            self.positions[i] = (self.positions[i].0 + 1, p);
+                        }
+                        self.last_sent[i] = Some(f);
+                    }
+                    self.seen[i] = (slot.node.received().len(), slot.node.sent().len(), slot.node.can().errors());
+                    (level, slot.node.can().errors())
+                }
+            };
+            self.tx[i + 1] = level;
             if errors > e {
-                self.checks.push(self.cycle, "CAN frame coding (ISO 11898-1: bit, stuff, CRC, form and ACK rules)", format!("encoder `{}` detected an error ({errors} so far)", self.names[i]));
+                self.checks.push(self.cycle, "CAN frame coding (ISO 11898-1: bit, stuff, CRC, form and ACK rules)", format!("device `{}` detected an error ({errors} so far)", self.names[i]));
             }
-            self.seen[i] = (node.received().len(), node.sent().len(), errors);
         }
         self.bus.push(&self.tx);
         self.cycle += 1;
@@ -169,66 +410,115 @@ impl Emulator for CanopenEmulator {
     }
 
     fn set_position(&mut self, device: usize, position: u64) -> Result<()> {
-        let node = self.node_mut(device)?;
-        let top = node.encoder().config().kind.total_resolution();
+        let top = match self.slot_mut(device)? {
+            Slot::Ds406 { node, .. } => node.encoder().config().kind.total_resolution(),
+            Slot::Sar(s) => 1u64 << s.node.encoder().sar.config().bits,
+        };
         if position >= top {
-            return Err(Error::Usage(format!("encoder {device}: raw position {position} is beyond its {top} counts")));
+            return Err(Error::Usage(format!("device {device}: raw position {position} is beyond its {top} counts; give a position below {top}")));
         }
-        let now = node.time_ns();
-        node.encoder_mut().set_raw(position, now);
+        self.motions.stop(device);
+        self.move_disk(device, position);
         Ok(())
+    }
+
+    fn set_motion(&mut self, device: usize, toml: &str) -> Result<()> {
+        self.bits(device)?;
+        self.motions.set(device, toml, self.cycle)
     }
 
     fn set_status(&mut self, device: usize, name: &str, value: bool) -> Result<()> {
-        if name != "alarm" {
-            return Err(Error::Usage(format!("a CANopen encoder has the status `alarm` (position error, an emergency frame), not `{name}`")));
+        let (tb, timing) = (self.tb, self.timing);
+        let seen = self.seen.get_mut(device);
+        let n = self.slots.len();
+        let slot = self.slots.get_mut(device).ok_or_else(|| Error::Usage(format!("the CANopen emulator has {n} device(s) (DS 406 encoders first, then SAR58K24s), not device {device}")))?;
+        match (slot, name) {
+            (Slot::Ds406 { node, .. }, "alarm") => {
+                let now = node.time_ns();
+                let frames = node.encoder_mut().set_alarm(value, now);
+                node.send(frames);
+                Ok(())
+            }
+            (Slot::Ds406 { .. }, other) => Err(Error::Usage(format!("a CANopen DS 406 encoder has the status `alarm` (position error, an emergency frame), not `{other}`"))),
+            (Slot::Sar(s), "power") => {
+                if value && !s.powered {
+                    // Power-on: a new controller (it integrates 11 recessive bits first) at the rate set on 0x7E5.
+                    let sar = s.node.encoder().sar.clone();
+                    let node = DeviceNode::with(Recorded { sar, produced: VecDeque::new() }, &s.settings, timing, &tb).map_err(|e| Error::Usage(format!("device {device}: power-on: {e}")))?;
+                    s.sent_before += s.node.sent().len() as u64;
+                    s.node = node;
+                    if let Some(seen) = seen {
+                        *seen = (0, 0, 0);
+                    }
+                }
+                s.powered = value;
+                Ok(())
+            }
+            (Slot::Sar(_), other) => Err(Error::Usage(format!("a SAR58K24 in CAN mode has the status `power` (off and on again: the node and bit rate set on 0x7E5 take effect), not `{other}`; its answers carry no status bits"))),
         }
-        let node = self.node_mut(device)?;
-        let now = node.time_ns();
-        let frames = node.encoder_mut().set_alarm(value, now);
-        node.send(frames);
-        Ok(())
     }
 
     fn schedule_fault(&mut self, _toml: &str) -> Result<()> {
-        Err(Error::Usage("the CANopen emulator has no faults to schedule yet: move the disk (set_position) or raise an alarm (set_status \"alarm\")".into()))
+        Err(Error::Usage("the CANopen emulator has no faults to schedule yet: move the disk (set_position, set_motion), raise an alarm (set_status \"alarm\") or cycle a SAR58K24's power (set_status \"power\")".into()))
     }
 
     fn count(&self) -> u64 {
-        self.pdos.first().map_or(0, |p| p.0)
+        self.positions.first().map_or(0, |p| p.0)
     }
 
     fn last_value(&self, device: usize) -> Option<u64> {
-        let node = self.nodes.get(device % 16)?;
-        match device / 16 {
-            0 => self.pdos[device % 16].1,
-            1 => Some(node.sent().len() as u64),
-            2 => Some(node.encoder().state() as u64),
+        let (d, field) = (device % 16, device / 16);
+        let slot = self.slots.get(d)?;
+        let last = self.last_sent[d].as_ref();
+        match (slot, field) {
+            (_, 0) => self.positions[d].1,
+            (Slot::Ds406 { node, .. }, 1) => Some(node.sent().len() as u64),
+            (Slot::Sar(s), 1) => Some(s.sent_before + s.node.sent().len() as u64),
+            (Slot::Ds406 { node, .. }, 2) => Some(node.encoder().state() as u64),
+            (Slot::Sar(s), 2) => Some(s.node.encoder().sar.node() as u64),
+            (Slot::Ds406 { node, .. }, 3) => Some(node.encoder().bit_rate_kbps() as u64),
+            (Slot::Sar(s), 3) => Some(s.node.encoder().bit_rate_kbps() as u64),
+            (_, 4) => last.map(|f| f.packed()),
+            (_, 5) => last.map(|f| f.id as u64),
+            (Slot::Sar(s), 6) => Some(s.node.encoder().sar.pending().0 as u64),
+            (Slot::Sar(s), 7) => Some(s.node.encoder().sar.pending().1 as u64),
             _ => None,
         }
     }
 
     fn last_status(&self, device: usize, name: &str) -> Result<bool> {
-        let node = self.nodes.get(device).ok_or_else(|| Error::Usage(format!("no encoder {device}")))?;
-        match name {
-            "operational" => Ok(node.encoder().state() == model::canopen::cob::NmtState::Operational),
-            other => Err(Error::Usage(format!("a CANopen encoder reports `operational`, not `{other}`"))),
+        let slot = self.slots.get(device).ok_or_else(|| Error::Usage(format!("no device {device}")))?;
+        match (slot, name) {
+            (Slot::Ds406 { node, .. }, "operational") => Ok(node.encoder().state() == model::canopen::cob::NmtState::Operational),
+            (Slot::Ds406 { .. }, other) => Err(Error::Usage(format!("a CANopen encoder reports `operational`, not `{other}`"))),
+            (Slot::Sar(s), "config_mode") => Ok(s.node.encoder().sar.config_mode()),
+            (Slot::Sar(s), "sending") => Ok(s.node.encoder().sar.sending()),
+            (Slot::Sar(s), "reversed") => Ok(s.node.encoder().sar.reversed()),
+            (Slot::Sar(s), "powered") => Ok(s.powered),
+            (Slot::Sar(_), other) => Err(Error::Usage(format!("a SAR58K24 reports `config_mode`, `sending`, `reversed` and `powered`, not `{other}`"))),
         }
     }
 
     fn transcript(&self) -> serde_json::Value {
-        let nodes: Vec<serde_json::Value> = self
-            .nodes
+        let devices: Vec<serde_json::Value> = self
+            .slots
             .iter()
             .zip(&self.names)
-            .map(|(n, name)| serde_json::json!({ "name": name, "node": n.encoder().node(), "sent": n.sent().len(), "received": n.received().len(), "errors": n.can().errors() }))
+            .map(|(slot, name)| match slot {
+                Slot::Ds406 { node: n, .. } => serde_json::json!({ "name": name, "kind": "ds406", "node": n.encoder().node(), "sent": n.sent().len(), "received": n.received().len(), "errors": n.can().errors() }),
+                Slot::Sar(s) => serde_json::json!({ "name": name, "kind": "sar58k24", "node": s.node.encoder().sar.node(), "bit_rate_kbps": s.node.encoder().bit_rate_kbps(), "sent": s.sent_before + s.node.sent().len() as u64, "received": s.node.received().len(), "errors": s.node.can().errors() }),
+            })
             .collect();
-        serde_json::json!({ "protocol": "canopen", "f_emu_hz": self.f_emu_hz, "encoders": nodes, "frames": self.entries, "violations": self.checks.all() })
+        serde_json::json!({ "protocol": "canopen", "f_emu_hz": self.f_emu_hz, "encoders": devices, "frames": self.entries, "violations": self.checks.all() })
     }
 
     fn checks(&mut self) -> &mut Checks {
         &mut self.checks
     }
+}
+
+fn entry(node: &str, what: &'static str, cycle: u64, f: &Frame, meaning: String, position: Option<u64>) -> Entry {
+    Entry { node: node.to_string(), what, cycle, id: f.id, data: crate::sar58k24::hex(&f.data), meaning, position }
 }
 
 #[cfg(test)]
@@ -261,5 +551,163 @@ mod tests {
         assert!(emu.set_status(0, "busy", true).is_err());
         let err = CanopenEmulator::from_toml("[canopen]\n", "c.toml", 8_000_000).err().unwrap().to_string();
         assert!(err.starts_with("c.toml: ") && err.contains("encoders"), "{err}");
+    }
+
+    const SAR: &str = "[canopen]\nbit_rate_kbps = 250\n\
+        [[canopen.sar]]\nname = \"sar\"\nposition_m = 10\n[canopen.sar.encoder]\nnode = 0x20\nbits = 14\nraw_position = 9799\n";
+
+    /// A host node (our model's controller) at the master's pins, on the emulator clock.
+    struct Host {
+        emu: CanopenEmulator,
+        host: model::can::Emulator,
+        rx: bool,
+    }
+
+    impl Host {
+        fn new(text: &str) -> Host {
+            let f = 8_000_000;
+            let emu = CanopenEmulator::from_toml(text, "t.toml", f).unwrap();
+            let tb = Timebase::new(f).unwrap();
+            let cc = NodeTiming::default().controller(&tb, 250).unwrap();
+            let s = NodeSettings { name: "host".into(), position_m: 0.0, loop_delay_ns: 150.0, ppm: 0.0, ack: true, frames: Vec::new() };
+            Host { emu, host: model::can::Emulator::new(&s, cc, &tb).unwrap(), rx: true }
+        }
+
+        fn run(&mut self, cycles: u64) {
+            for _ in 0..cycles {
+                let tx = self.host.step(self.rx);
+                self.rx = self.emu.step(Pins((tx as u32) << 1)).0 & 1 != 0;
+            }
+        }
+
+        /// Sends `data` on `id` and runs 2 ms (8 MHz: 16 000 cycles): the frame and its answer.
+        fn send(&mut self, id: u32, data: [u8; 8]) -> Vec<Frame> {
+            let before = self.host.received().len();
+            assert!(self.host.load(&Frame::data(id, &data)));
+            self.run(16_000);
+            self.host.received()[before..].to_vec()
+        }
+    }
+
+    /// Seed 001 §3.4 (5): "80 20" to the factory node 0x20 is answered on
+    /// 0x120 with `47 26` = 9799 (14 bits, 215.3100°), through the emulator.
+    #[test]
+    fn a_sar58k24_alone_answers_the_seeds_click() {
+        let mut h = Host::new(SAR);
+        h.run(1000);
+        let got = h.send(0x220, [0x80, 0x20, 0, 0, 0, 0, 0, 0]);
+        assert_eq!(got, vec![Frame::data(0x120, &[0x47, 0x26, 0, 0, 0, 0, 0, 0])]);
+        assert_eq!((h.emu.count(), h.emu.last_value(0)), (1, Some(9799)));
+        assert_eq!(h.emu.last_value(4 * 16), Some(0x4726 << 48));
+        assert_eq!(h.emu.last_value(5 * 16), Some(0x120));
+        assert_eq!((h.emu.last_value(2 * 16), h.emu.last_value(3 * 16)), (Some(0x20), Some(250)));
+        let t = h.emu.transcript();
+        let sent: Vec<&serde_json::Value> = t["frames"].as_array().unwrap().iter().filter(|e| e["what"] == "sent").collect();
+        assert_eq!(sent.len(), 1);
+        assert_eq!(sent[0]["position"], 9799);
+        assert_eq!(sent[0]["meaning"], "SAR58K24 node 0x20: position 9799");
+        assert!(h.emu.violations().is_empty(), "{:?}", h.emu.violations());
+    }
+
+    /// The zero's acknowledgement `20 00 ..` has the bytes of position 32:
+    /// the emulator counts the answer to a click as a position and the
+    /// acknowledgement not; after the zero the click answers 0, after a
+    /// direction toggle the negated count.
+    #[test]
+    fn acknowledgements_are_not_positions_and_zero_and_direction_apply() {
+        let mut h = Host::new(SAR);
+        h.run(1000);
+        h.emu.set_position(0, 32).unwrap();
+        assert_eq!(h.send(0x220, [0x80, 0x20, 0, 0, 0, 0, 0, 0]), vec![Frame::data(0x120, &[0x20, 0, 0, 0, 0, 0, 0, 0])]);
+        assert_eq!((h.emu.count(), h.emu.last_value(0)), (1, Some(32)));
+        assert_eq!(h.send(0x220, [0x20, 0x20, 0, 0, 0, 0, 0, 0]), vec![Frame::data(0x120, &[0x20, 0, 0, 0, 0, 0, 0, 0])]);
+        assert_eq!(h.emu.count(), 1, "the acknowledgement is no position");
+        h.emu.set_position(0, 42).unwrap();
+        h.send(0x220, [0x80, 0x20, 0, 0, 0, 0, 0, 0]);
+        assert_eq!(h.emu.last_value(0), Some(10));
+        h.send(0x220, [0x22, 0x20, 0, 0, 0, 0, 0, 0]);
+        assert!(h.emu.last_status(0, "reversed").unwrap());
+        h.send(0x220, [0x80, 0x20, 0, 0, 0, 0, 0, 0]);
+        assert_eq!((h.emu.count(), h.emu.last_value(0)), (3, Some((1 << 14) - 10)));
+        assert!(h.emu.set_position(0, 1 << 14).is_err());
+    }
+
+    /// Timed send `31 20 TT`: a position every 1/TT s, and the same bytes stop it.
+    #[test]
+    fn timed_send_and_its_stop() {
+        let mut h = Host::new(SAR);
+        h.run(1000);
+        h.emu.set_motion(0, "[motion]\nkind = \"constant\"\nstart = 0\ncounts_per_ms = 100\n").unwrap();
+        // 250 times a second: every 4 ms.
+        assert_eq!(h.send(0x220, [0x31, 0x20, 250, 0, 0, 0, 0, 0]), vec![Frame::data(0x120, &[0x31, 0, 0, 0, 0, 0, 0, 0])]);
+        assert!(h.emu.last_status(0, "sending").unwrap());
+        h.run(8 * 8000);
+        let n = h.emu.count();
+        assert!((2..=3).contains(&n), "{n} positions in 10 ms");
+        let p = h.emu.last_value(0).unwrap();
+        assert!(p > 400 && p < 1200, "a moving shaft at 100 counts per ms, 4 to 12 ms after the start: {p}");
+        h.send(0x220, [0x31, 0x20, 250, 0, 0, 0, 0, 0]);
+        assert!(!h.emu.last_status(0, "sending").unwrap());
+        let n = h.emu.count();
+        h.run(8 * 8000);
+        assert_eq!(h.emu.count(), n, "stopped");
+    }
+
+    /// 0x7E5: enter configuration, new node, bit rate; effective after a power cycle.
+    #[test]
+    fn configuration_channel_and_a_power_cycle() {
+        let mut h = Host::new(SAR);
+        h.run(1000);
+        assert!(h.send(0x7E5, [0x04, 0x01, 0, 0, 0, 0, 0, 0]).is_empty());
+        assert!(h.emu.last_status(0, "config_mode").unwrap());
+        assert_eq!(h.send(0x7E5, [0x11, 0x35, 0, 0, 0, 0, 0, 0]), vec![Frame::data(0x7E5, &[0x11, 0, 0, 0, 0, 0, 0, 0])]);
+        assert_eq!(h.send(0x7E5, [0x13, 0x00, 0x02, 0, 0, 0, 0, 0]), vec![Frame::data(0x7E5, &[0x13, 0, 0, 0, 0, 0, 0, 0])]);
+        assert_eq!((h.emu.last_value(6 * 16), h.emu.last_value(7 * 16)), (Some(0x35), Some(500)));
+        assert_eq!(h.send(0x7E5, [0x13, 0x00, 0x03, 0, 0, 0, 0, 0]).len(), 1);
+        h.emu.set_status(0, "power", false).unwrap();
+        h.run(1000);
+        assert!(!h.emu.last_status(0, "powered").unwrap());
+        h.emu.set_status(0, "power", true).unwrap();
+        h.run(1000);
+        assert_eq!((h.emu.last_value(2 * 16), h.emu.last_value(3 * 16)), (Some(0x35), Some(250)));
+        assert!(!h.emu.last_status(0, "config_mode").unwrap());
+        assert!(h.send(0x220, [0x80, 0x20, 0, 0, 0, 0, 0, 0]).is_empty(), "the old node is gone");
+        assert_eq!(h.send(0x235, [0x80, 0x35, 0, 0, 0, 0, 0, 0])[0].id, 0x135);
+        assert_eq!(h.emu.last_value(16), Some(4), "frames sent over the power cycle: 11, 13, 13 and a position");
+        assert!(h.emu.set_status(0, "busy", true).unwrap_err().to_string().contains("power"));
+    }
+
+    /// A DS 406 encoder and a SAR58K24 share the bus: the SAR58K24 is device 1.
+    #[test]
+    fn a_ds406_encoder_and_a_sar58k24_on_one_bus() {
+        let text = format!("{SAR}[[canopen.encoders]]\nname = \"enc\"\nposition_m = 20\n[canopen.encoders.encoder]\nnode_switch = 5\nbit_rate_switch = 4\n");
+        let mut h = Host::new(&text);
+        h.run(8000);
+        assert_eq!(h.host.received(), &[Frame::data(0x85, &[])], "the encoder's boot-up");
+        assert_eq!(h.send(0x220, [0x80, 0x20, 0, 0, 0, 0, 0, 0]), vec![Frame::data(0x120, &[0x47, 0x26, 0, 0, 0, 0, 0, 0])]);
+        assert_eq!((h.emu.last_value(1), h.emu.last_value(0)), (Some(9799), None));
+        assert_eq!(h.emu.last_value(32), Some(127), "device 0: the DS 406 encoder, pre-operational");
+        assert!(h.emu.last_status(1, "operational").is_err());
+        assert!(h.emu.set_status(0, "power", false).is_err());
+    }
+
+    /// Bad input names the file, the field and the fix.
+    #[test]
+    fn bad_sar58k24_configurations_are_refused_by_field() {
+        let err = |text: &str| CanopenEmulator::from_toml(text, "s.toml", 8_000_000).err().unwrap().to_string();
+        let e = err(&SAR.replace("node = 0x20", "node = 0"));
+        assert!(e.starts_with("s.toml: ") && e.contains("sar[0].encoder.node") && e.contains("give a node"), "{e}");
+        let e = err(&SAR.replace("bits = 14", "bits = 14\nanswer_base = 0x180\n").replace("node = 0x20", "node = 0x90"));
+        assert!(e.contains("sar[0].encoder.node"), "{e}");
+        let e = err(&SAR.replace("bit_rate_kbps = 250\n[[", "bit_rate_kbps = 500\n[["));
+        assert!(e.contains("sar[0].encoder.bit_rate_kbps") && e.contains("250"), "{e}");
+        let e = err(&format!("{SAR}[[canopen.encoders]]\n[canopen.encoders.encoder]\nnode_switch = 32\nbit_rate_switch = 4\n"));
+        assert!(e.contains("sar[0].encoder.node") && e.contains("0x220") && e.contains("encoders[0]"), "{e}");
+        let e = err(&format!("{SAR}[canopen.tool]\nname = \"tool\"\n"));
+        assert!(e.contains("tool") && e.contains("remove [canopen.tool]"), "{e}");
+        let e = err(&SAR.replace("[[canopen.sar]]", "[[canopen.sar58k24]]").replace("[canopen.sar.encoder]", "[canopen.sar58k24.encoder]"));
+        assert!(e.starts_with("s.toml: ") && e.contains("sar58k24"), "{e}");
+        let e = err(&SAR.replace("bits = 14", "bits = 14\nspeed = 3"));
+        assert!(e.contains("speed"), "{e}");
     }
 }

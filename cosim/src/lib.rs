@@ -147,7 +147,8 @@ pub fn open(kind: &str, toml: &str, origin: &str, f_emu_hz: u64) -> Result<Box<d
         "can" => Ok(Box::new(can::CanEmulator::from_toml(
             toml, origin, f_emu_hz,
         )?)),
-        "canopen" => Ok(Box::new(canopen::CanopenEmulator::from_toml(
+        // The SAR58K24 CAN mode shares the CANopen bus and its [canopen] table ([[canopen.sar]]).
+        "canopen" | "sar58k24_can" => Ok(Box::new(canopen::CanopenEmulator::from_toml(
             toml, origin, f_emu_hz,
         )?)),
         "modbus" => Ok(Box::new(modbus::ModbusEmulator::from_toml(
@@ -168,7 +169,7 @@ pub fn open(kind: &str, toml: &str, origin: &str, f_emu_hz: u64) -> Result<Box<d
         "tformat_monitor" => Ok(Box::new(monitor::tformat::TformatMonitor::from_toml(toml, origin, f_emu_hz)?)),
         "esl_monitor" => Ok(Box::new(monitor::esl::EslMonitor::from_toml(toml, origin, f_emu_hz)?)),
         other => Err(Error::Usage(format!(
-            "no emulator `{other}`; give one of: ssi, biss, endat, tformat, esl, sar58k24, modbus, can, canopen, or a monitor: ssi_monitor, biss_monitor, tformat_monitor, esl_monitor"
+            "no emulator `{other}`; give one of: ssi, biss, endat, tformat, esl, sar58k24, modbus, can, canopen (DS 406 encoders and SAR58K24s in CAN mode; alias sar58k24_can), or a monitor: ssi_monitor, biss_monitor, tformat_monitor, esl_monitor"
         ))),
     }
 }

@@ -120,6 +120,15 @@ fn can_controller_closed_loop_in_icarus_and_verilator() {
     closed_loop_of("can_controller", "verilator", 2, "node 0 received");
 }
 
+/// The SAR58K24 CAN mode: can_controller and the testbench's command
+/// sequencer against canopen_encoder_emu (three configurations); a flipped
+/// bit of a received frame fails.
+#[test]
+fn sar58k24_can_closed_loop_in_icarus_and_verilator() {
+    closed_loop_of("sar58k24_can", "verilator", 3, "core read");
+    closed_loop_of("sar58k24_can", "icarus", 3, "core read");
+}
+
 /// Builds tb_emu_errors in `sim` with F_EMU_HZ = `f_emu`; returns a command that runs it.
 fn errors_bench(sim: &str, f_emu: u64) -> Command {
     let _one = SERIAL.lock().unwrap_or_else(|e| e.into_inner());

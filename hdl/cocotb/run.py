@@ -24,6 +24,7 @@ TESTS = [
     ("sar58k24", "sar_async_host", "sar58k24.toml", "sar"),
     ("modbus", "modbus_master", "modbus.toml", "modbus"),
     ("can", "can_controller", "can.toml", "can"),
+    ("sar58k24_can", "can_controller", "sar58k24_can.toml", "sar_can"),
     ("endat", "endat_master", "endat.toml", "endat"),
     ("tformat", "tformat_host", "tformat.toml", "tformat"),
     ("esl", "esl_host", "esl.toml", "esl"),
@@ -48,7 +49,7 @@ def main(argv):
         cfg = HERE / "configs" / config
         values = params(tool, proto, cfg)
         f_sys = values.pop("F_SYS_HZ")
-        harness = {k: values.pop(k) for k in ("ADDRESS", "COUNT", "NODES") if k in values}
+        harness = {k: values.pop(k) for k in list(values) if k in ("ADDRESS", "COUNT", "NODES") or k.startswith("SAR_")}
         build = ROOT / "build" / "cocotb" / name
         runner = get_runner("icarus")
         runner.build(verilog_sources=rtl, hdl_toplevel=core, parameters=values, build_dir=build, always=True)

@@ -1,9 +1,10 @@
 // canopen_encoder_emu: one or more CANopen DS 406 encoders (the Leine &
-// Linde gateway of seed 003) and the wired-AND bus they share with the
-// master under test, for any testbench, emulated by the encoder-tb model
-// (libcosim, cosim/src/canopen.rs: model::canopen::EncoderNode on
-// model::can::Bus); the same module name and ports in Verilator (DPI-C) and
-// Icarus (VPI module emu.vpi).
+// Linde gateway of seed 003) and/or SAR58K24 encoders in their CAN mode
+// (seed 001 §3.4) and the wired-AND bus they share with the master under
+// test, for any testbench, emulated by the encoder-tb model (libcosim,
+// cosim/src/canopen.rs: model::canopen::EncoderNode and
+// DeviceNode<SarCan> on model::can::Bus); the same module name and ports in
+// Verilator (DPI-C) and Icarus (VPI module emu.vpi).
 //
 // Line-level ports, no tristate: the master's TXD in (i_can_tx, recessive
 // high), the bus level at the master's RXD out (o_can_rx: the wired-AND of
@@ -21,9 +22,17 @@
 //
 // The configuration is a TOML file with the scenario's [canopen] table
 // (bit timing, ns_per_m, [master] for the master's place, [[encoders]] with
-// their [encoders.encoder]; a whole scenario file will do): the parameter
+// their [encoders.encoder], [[sar]] with their [sar.encoder]; a whole
+// scenario file will do): the parameter
 // CONFIG, or the plusarg +<PLUSARG>=<file>. A missing or bad file stops the
 // simulation at time 0 with the file, the field and the fix.
+//
+// A SAR58K24 answers its own commands on 0x200 + node (01 start, 80 click,
+// 20 zero, 22 direction, 31 NN TT timed send and its stop) on 0x100 + node
+// (or 0x180 + node, answer_base) and the configuration channel 0x7E5 (04 01
+// enter, 11 <node>, 13 00 <code>), effective after u_emu.set_status(k,
+// "power", 0) and (k, "power", 1). Devices: the [[encoders]] first, then
+// the [[sar]]; u_emu.last_value(k + 16 * field) as docs/cosim.md lists.
 //
 // Controls (see emu_api.vh): u_emu.count(0) (TPDOs encoder 0 sent),
 // u_emu.last_value(k) (the position of encoder k's last TPDO; k + 16 its

@@ -137,6 +137,31 @@ impl SarCan {
         self.node
     }
 
+    /// The configuration it was made from.
+    pub fn config(&self) -> &SarCanConfig {
+        &self.cfg
+    }
+
+    /// Node and bit rate (kbit/s) from the next power-on (set on 0x7E5).
+    pub fn pending(&self) -> (u8, u32) {
+        (self.next_node, self.next_rate)
+    }
+
+    /// In configuration mode (after `04 01` on 0x7E5, until the next power-on).
+    pub fn config_mode(&self) -> bool {
+        self.config_mode
+    }
+
+    /// Sending by itself: after start (`01`) or a timed send (`31 NN TT`), until stopped.
+    pub fn sending(&self) -> bool {
+        self.period_ns.is_some()
+    }
+
+    /// Counting reversed (`22 NN`).
+    pub fn reversed(&self) -> bool {
+        self.reverse
+    }
+
     /// Moves the disk to `raw` at `now_ns`.
     pub fn set_raw(&mut self, raw: u64, now_ns: u64) {
         self.raw_base = raw & self.mask();

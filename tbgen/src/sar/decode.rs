@@ -164,8 +164,15 @@ pub fn decode(path: &Path, options: &Options) -> Result<Vec<Burst>> {
     let mut k = 0;
     while k < chars.len() {
         if chars[k].from_host {
-            // The host is deaf while it drives: its command is one event.
-            let n = chars[k..].iter().take_while(|c| c.from_host).count();
+            // The host is deaf while it drives: its command is one event. Its
+            // characters end at an idle gap, as the encoder's do: two commands
+            // with no answer between them (the host timed out on the first)
+            // are two events, not one unreadable six-byte command.
+            let gap_ps = (options.gap_bits * bit_ps as f64) as u64;
+            let mut n = 1;
+            while chars.get(k + n).is_some_and(|c| c.from_host && c.start_ps < chars[k + n - 1].end_ps(bit_ps, options.parity) + gap_ps) {
+                n += 1;
+            }
             f.gap();
             let cmd = &chars[k..k + n];
             let bytes = line::values(cmd);
