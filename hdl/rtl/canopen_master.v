@@ -380,9 +380,11 @@ always @* begin
         end
         SDO_WAIT: begin
             if (boot) begin
+                // The node started again: the table from entry 0, with all its retries.
                 booted_next = 1'b1;
                 k_next = 4'd0;
                 timer_next = 32'd0;
+                tries_next = 8'd0;
                 state_next = SDO_SEND;
             end else if (sdo_ours && b0 == 8'h60) begin
                 tries_next = 8'd0;

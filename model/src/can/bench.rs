@@ -99,6 +99,26 @@ fn one() -> u32 {
     1
 }
 
+impl Fault {
+    /// Checks `faults` (`faults[k]` in errors): every target one of `names` (`hint` says which).
+    pub(crate) fn validate_all(faults: &[Fault], names: &[&str], hint: &str) -> Result<()> {
+        for (k, f) in faults.iter().enumerate() {
+            for t in &f.targets {
+                if !names.contains(&t.as_str()) {
+                    return Err(ConfigError::invalid(format!("faults[{k}].targets"), format!("no node `{t}`"), hint));
+                }
+            }
+            if f.kind == FaultKind::StuckDominant && !(f.width_us > 0.0 && f.at_us >= 0.0) {
+                return Err(ConfigError::invalid(format!("faults[{k}].width_us"), format!("{}", f.width_us), "give a stuck line a positive width_us and at_us ≥ 0"));
+            }
+            if f.kind == FaultKind::Flip && (f.bit > 200 || f.count == 0) {
+                return Err(ConfigError::invalid(format!("faults[{k}].bit"), format!("bit {} count {}", f.bit, f.count), "give a bit from 0 to 200 and count ≥ 1"));
+            }
+        }
+        Ok(())
+    }
+}
+
 /// Kinds of [`Fault`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -187,19 +207,8 @@ impl BenchConfig {
                 return Err(ConfigError::invalid(format!("nodes[{k}].name"), format!("`{}` is taken", n.name), "give each node its own name (not `dut`)"));
             }
         }
-        for (k, f) in self.faults.iter().enumerate() {
-            for t in &f.targets {
-                if t != "dut" && !self.nodes.iter().any(|n| &n.name == t) {
-                    return Err(ConfigError::invalid(format!("faults[{k}].targets"), format!("no node `{t}`"), "name `dut` or a node of [[can.nodes]]"));
-                }
-            }
-            if f.kind == FaultKind::StuckDominant && !(f.width_us > 0.0 && f.at_us >= 0.0) {
-                return Err(ConfigError::invalid(format!("faults[{k}].width_us"), format!("{}", f.width_us), "give a stuck line a positive width_us and at_us ≥ 0"));
-            }
-            if f.kind == FaultKind::Flip && (f.bit > 200 || f.count == 0) {
-                return Err(ConfigError::invalid(format!("faults[{k}].bit"), format!("bit {} count {}", f.bit, f.count), "give a bit from 0 to 200 and count ≥ 1"));
-            }
-        }
+        let names: Vec<&str> = std::iter::once("dut").chain(self.nodes.iter().map(|n| n.name.as_str())).collect();
+        Fault::validate_all(&self.faults, &names, "name `dut` or a node of [[can.nodes]]")?;
         if !(1.0..=1e7).contains(&self.max_us) {
             return Err(ConfigError::invalid("max_us", format!("{}", self.max_us), "give 1 to 10 000 000 µs"));
         }
@@ -286,13 +295,73 @@ pub struct Transaction {
 
 /// The frame at the pin as the listen-only receiver sees it.
 #[derive(Debug, Clone, Default)]
-struct OnBus {
-    sof_cycle: u64,
-    complete: bool,
-    seen: super::controller::Seen,
-    ack_passed: bool,
-    errors: Vec<&'static str>,
-    arb_lost: bool,
+pub(crate) struct OnBus {
+    /// Cycle of its SOF.
+    pub(crate) sof_cycle: u64,
+    /// It reached its CRC delimiter.
+    pub(crate) complete: bool,
+    /// What the receiver read of it.
+    pub(crate) seen: super::controller::Seen,
+    /// The receiver passed its ACK slot.
+    pub(crate) ack_passed: bool,
+    /// Errors the receiver detected in it.
+    pub(crate) errors: Vec<&'static str>,
+    /// The core lost arbitration in it (CAN bench only).
+    pub(crate) arb_lost: bool,
+    /// Begun by a SOF and not yet taken (a default frame is not).
+    pub(crate) active: bool,
+}
+
+/// The listen-only receiver at a core's pin and the frame it is reading:
+/// the transcripts of the CAN and CANopen benches.
+pub(crate) struct PinMonitor {
+    monitor: Controller,
+    /// The frame being read.
+    pub(crate) frame: OnBus,
+}
+
+impl PinMonitor {
+    /// A listen-only receiver of `cc`.
+    pub(crate) fn new(cc: ControllerConfig) -> Result<PinMonitor> {
+        let mut monitor = Controller::new(cc)?;
+        monitor.set_listen_only();
+        Ok(PinMonitor { monitor, frame: OnBus::default() })
+    }
+
+    /// The receiver.
+    pub(crate) fn controller(&self) -> &Controller {
+        &self.monitor
+    }
+
+    /// One cycle at `rx` (cycle `cycle`): a SOF begins a new frame (the one
+    /// it replaces is returned), the CRC delimiter completes it, the end of
+    /// the ACK slot records the acknowledgement, and the receiver's errors
+    /// (with `overload`, its overload flags too) go with the frame while it
+    /// is active. Returns the receiver's outputs, its state before and after,
+    /// and the replaced frame.
+    pub(crate) fn step(&mut self, rx: bool, cycle: u64, overload: bool) -> (Out, State, State, Option<OnBus>) {
+        let before = self.monitor.state();
+        let m = self.monitor.step(&In { i_can_rx: rx, ..In::default() });
+        let now = self.monitor.state();
+        let mut replaced = None;
+        if now == State::Frame && before != State::Frame && self.monitor.pos() <= 1 {
+            replaced = Some(std::mem::replace(&mut self.frame, OnBus { sof_cycle: cycle, active: true, ..OnBus::default() }));
+        }
+        if now == State::CrcDelim && before == State::Frame {
+            self.frame.complete = true;
+            self.frame.seen = self.monitor.seen();
+        }
+        if before == State::AckSlot && now != State::AckSlot {
+            self.frame.ack_passed = true;
+            self.frame.seen.ack = self.monitor.seen().ack;
+        }
+        for (flag, name) in [(m.o_err_bit, "bit"), (m.o_err_stuff, "stuff"), (m.o_err_crc, "crc"), (m.o_err_form, "form"), (m.o_err_ack, "ack"), (m.o_overload && overload, "overload")] {
+            if flag && self.frame.active {
+                self.frame.errors.push(name);
+            }
+        }
+        (m, before, now, replaced)
+    }
 }
 
 impl testbench::Transaction for Transaction {
@@ -301,9 +370,10 @@ impl testbench::Transaction for Transaction {
     }
 }
 
-/// Per-target flip windows driven from SOF detection on the undisturbed line.
+/// Per-target flip windows driven from SOF detection on the undisturbed line
+/// (also the CANopen bench's `[[canopen.faults]]`).
 #[derive(Debug, Clone)]
-struct Disturber {
+pub(crate) struct Disturber {
     /// (first frame, count, bit)
     flips: Vec<(u32, u32, u32)>,
     recessive_run: u64,
@@ -313,7 +383,31 @@ struct Disturber {
 }
 
 impl Disturber {
-    fn step(&mut self, level: bool, cycle: u64, cpb: u64) -> bool {
+    /// The flips of `faults` aimed at the node `name` (a fault without targets hits every node).
+    pub(crate) fn new(faults: &[Fault], name: &str) -> Disturber {
+        Disturber {
+            flips: faults.iter().filter(|f| f.kind == FaultKind::Flip && (f.targets.is_empty() || f.targets.iter().any(|t| t == name))).map(|f| (f.frame, f.count, f.bit)).collect(),
+            recessive_run: 0,
+            prev: true,
+            frames: -1,
+            sof: 0,
+        }
+    }
+
+    /// The stuck-dominant windows of `faults`, in cycles [from, to).
+    pub(crate) fn stuck_windows(faults: &[Fault], tb: &Timebase) -> Vec<(u64, u64)> {
+        faults
+            .iter()
+            .filter(|f| f.kind == FaultKind::StuckDominant)
+            .map(|f| {
+                let a = tb.cycles_nearest_ns(f.at_us * 1e3);
+                (a, a + tb.cycles_nearest_ns(f.width_us * 1e3).max(1))
+            })
+            .collect()
+    }
+
+    /// The level the target reads at `cycle`, given the undisturbed `level`.
+    pub(crate) fn step(&mut self, level: bool, cycle: u64, cpb: u64) -> bool {
         if self.prev && !level && self.recessive_run >= 10 * cpb {
             self.frames += 1;
             self.sof = cycle;
@@ -334,7 +428,7 @@ impl Disturber {
 pub struct Bench {
     cfg: BenchConfig,
     dut: Controller,
-    monitor: Controller,
+    monitor: PinMonitor,
     nodes: Vec<Emulator>,
     bus: Bus,
     disturbers: Vec<Disturber>,
@@ -348,7 +442,6 @@ pub struct Bench {
     max_cycles: u64,
     idle_cycles: u64,
     cpb: u64,
-    frame: OnBus,
     overloads: u32,
     rx_buf: Vec<bool>,
     tx_buf: Vec<bool>,
@@ -366,36 +459,17 @@ impl Bench {
         places.extend(cfg.nodes.iter().map(NodeSettings::place));
         let nodes = cfg.nodes.iter().map(|n| Emulator::new(n, cc, &tb)).collect::<Result<Vec<_>>>()?;
         let names: Vec<&str> = std::iter::once("dut").chain(cfg.nodes.iter().map(|n| n.name.as_str())).collect();
-        let disturbers = names
-            .iter()
-            .map(|name| Disturber {
-                flips: cfg.faults.iter().filter(|f| f.kind == FaultKind::Flip && (f.targets.is_empty() || f.targets.iter().any(|t| t == name))).map(|f| (f.frame, f.count, f.bit)).collect(),
-                recessive_run: 0,
-                prev: true,
-                frames: -1,
-                sof: 0,
-            })
-            .collect();
-        let stuck = cfg
-            .faults
-            .iter()
-            .filter(|f| f.kind == FaultKind::StuckDominant)
-            .map(|f| {
-                let a = tb.cycles_nearest_ns(f.at_us * 1e3);
-                (a, a + tb.cycles_nearest_ns(f.width_us * 1e3).max(1))
-            })
-            .collect();
+        let disturbers = names.iter().map(|name| Disturber::new(&cfg.faults, name)).collect();
+        let stuck = Disturber::stuck_windows(&cfg.faults, &tb);
         let layout = Layout {
             inputs: Controller::input_ports(),
             outputs: Controller::output_ports(),
             line: vec![Port::new("can_rx", 1), Port::new("can_tx", 1), Port::new("bus_tx_nodes", 1)],
             decoded: vec![Port::new("state", 4), Port::new("pos", 7), Port::new("tq_cnt", 5), Port::new("monitor_state", 4)],
         };
-        let mut monitor = Controller::new(cc)?;
-        monitor.set_listen_only();
         Ok(Bench {
             dut: Controller::new(cc)?,
-            monitor,
+            monitor: PinMonitor::new(cc)?,
             nodes,
             bus: Bus::new(&places, cfg.ns_per_m, &tb),
             disturbers,
@@ -409,7 +483,6 @@ impl Bench {
             max_cycles: tb.cycles_nearest_ns(cfg.max_us * 1e3),
             idle_cycles: 0,
             cpb: cc.timing.clocks_per_bit(),
-            frame: OnBus::default(),
             overloads: 0,
             rx_buf: Vec::new(),
             tx_buf: Vec::new(),
@@ -435,7 +508,7 @@ impl Bench {
     }
 
     fn outcome(&mut self, outcome: &'static str, out: &Out) {
-        let f = &self.frame;
+        let f = &self.monitor.frame;
         let n = super::frame::data_len(f.seen.dlc, f.seen.rtr);
         self.transactions.push(Transaction {
             index: self.transactions.len(),
@@ -498,26 +571,8 @@ impl Testbench for Bench {
         self.bus.push(&tx);
         self.tx_buf = tx;
         // The listen-only receiver at the core's pin.
-        let before = self.monitor.state();
-        let m = self.monitor.step(&In { i_can_rx: rx[0], ..In::default() });
-        let now = self.monitor.state();
-        if now == State::Frame && before != State::Frame && self.monitor.pos() <= 1 {
-            self.frame = OnBus { sof_cycle: self.cycle, ..OnBus::default() };
-        }
-        if now == State::CrcDelim && before == State::Frame {
-            self.frame.complete = true;
-            self.frame.seen = self.monitor.seen();
-        }
-        if before == State::AckSlot && now != State::AckSlot {
-            self.frame.ack_passed = true;
-            self.frame.seen.ack = self.monitor.seen().ack;
-        }
-        for (flag, name) in [(m.o_err_bit, "bit"), (m.o_err_stuff, "stuff"), (m.o_err_crc, "crc"), (m.o_err_form, "form"), (m.o_err_ack, "ack"), (m.o_overload, "overload")] {
-            if flag {
-                self.frame.errors.push(name);
-            }
-        }
-        self.frame.arb_lost |= out.o_arb_lost;
+        self.monitor.step(rx[0], self.cycle, true);
+        self.monitor.frame.arb_lost |= out.o_arb_lost;
         self.overloads += out.o_overload as u32;
         for (flag, name) in [
             (out.o_tx_done, "tx_done"),
@@ -546,7 +601,7 @@ impl Testbench for Bench {
         input.write_values(&mut sample.inputs);
         out.write_values(&mut sample.outputs);
         sample.line.copy_from_slice(&[rx0 as u64, out.o_can_tx as u64, nodes_tx as u64]);
-        sample.decoded.copy_from_slice(&[self.dut.state() as u64, self.dut.pos() as u64 & 0x7F, self.dut.clock().tq_cnt as u64, self.monitor.state() as u64]);
+        sample.decoded.copy_from_slice(&[self.dut.state() as u64, self.dut.pos() as u64 & 0x7F, self.dut.clock().tq_cnt as u64, self.monitor.controller().state() as u64]);
     }
 
     fn finished(&self) -> bool {

@@ -22,8 +22,9 @@ use super::interpret::interpret;
 use super::master::{In, Master, MasterConfig, Out, Param};
 use super::node::{DeviceNode, EncoderNode, NodeTiming};
 use super::sar58k24::{SarCan, SarCanConfig};
+use crate::can::bench::{Disturber, Fault, OnBus, PinMonitor};
 use crate::can::bus::{Bus, Place};
-use crate::can::controller::{Controller, In as CanIn, State as CanState};
+use crate::can::controller::State as CanState;
 use crate::can::emulator::{Emulator, NodeSettings};
 use crate::can::frame::{unpack, Frame};
 use crate::ports::Port;
@@ -152,6 +153,9 @@ pub struct BenchConfig {
     pub sar: Vec<SarSettings>,
     /// A scripted node (a service tool sending the frames it lists, at the master's bit rate).
     pub tool: Option<NodeSettings>,
+    /// Bus faults (`[[canopen.faults]]`, as `[[can.faults]]`: a bit read
+    /// inverted by `master`, `tool` or a named encoder, or the bus stuck dominant).
+    pub faults: Vec<Fault>,
     /// Run at least this long, µs; the run ends once the bus is idle after it.
     pub run_us: f64,
 }
@@ -170,6 +174,7 @@ impl Default for BenchConfig {
             encoders: Vec::new(),
             sar: Vec::new(),
             tool: None,
+            faults: Vec::new(),
             run_us: 50_000.0,
         }
     }
@@ -211,6 +216,17 @@ impl BenchConfig {
         Ok(c)
     }
 
+    /// The nodes in bus order: `master`, the encoders, the SAR58K24s, `tool`.
+    fn node_names(&self) -> Vec<&str> {
+        let mut v = vec!["master"];
+        v.extend(self.encoders.iter().map(|e| e.name.as_str()));
+        v.extend(self.sar.iter().map(|s| s.name.as_str()));
+        if self.tool.is_some() {
+            v.push("tool");
+        }
+        v
+    }
+
     fn check(&self) -> Result<()> {
         self.master_config()?;
         if !(0.0..=50.0).contains(&self.ns_per_m) {
@@ -240,6 +256,8 @@ impl BenchConfig {
                 s.frame().validate(&format!("tool.frames[{k}]"))?;
             }
         }
+        let names: Vec<&str> = self.node_names();
+        Fault::validate_all(&self.faults, &names, "name `master`, `tool` or an encoder of [[canopen.encoders]] or [[canopen.sar]]")?;
         for (k, &t) in self.master.start_us.iter().enumerate() {
             if !(t >= 0.0 && t < self.run_us) {
                 return Err(ConfigError::invalid(format!("master.start_us[{k}]"), format!("{t}"), "give a time from 0 to run_us"));
@@ -345,30 +363,21 @@ impl testbench::Transaction for Transaction {
     }
 }
 
-#[derive(Debug, Clone, Default)]
-struct OnBus {
-    sof_cycle: u64,
-    complete: bool,
-    seen: crate::can::controller::Seen,
-    ack_passed: bool,
-    errors: Vec<&'static str>,
-    active: bool,
-}
-
 /// The master, the nodes and the bus.
 pub struct Bench {
     master: Master,
-    monitor: Controller,
+    monitor: PinMonitor,
     encoders: Vec<(EncoderNode, u64, Option<u64>)>,
     sars: Vec<DeviceNode<SarCan>>,
     tool: Option<Emulator>,
     bus: Bus,
+    disturbers: Vec<Disturber>,
+    stuck: Vec<(u64, u64)>,
     starts: Vec<u64>,
     cycle: u64,
     run_cycles: u64,
     end: Option<u64>,
     cpb: u64,
-    on_bus: OnBus,
     pending: Vec<BusFrame>,
     rx_buf: Vec<bool>,
     tx_buf: Vec<bool>,
@@ -409,21 +418,20 @@ impl Bench {
             line: vec![Port::new("can_rx", 1), Port::new("can_tx", 1), Port::new("bus_tx_nodes", 1)],
             decoded: vec![Port::new("state", 3), Port::new("param", 4), Port::new("tries", 8), Port::new("can_state", 4), Port::new("monitor_state", 4)],
         };
-        let mut monitor = Controller::new(mc.can)?;
-        monitor.set_listen_only();
         Ok(Bench {
             cpb: mc.can.timing.clocks_per_bit(),
             master: Master::new(&mc)?,
-            monitor,
+            monitor: PinMonitor::new(mc.can)?,
             encoders,
             sars,
             tool,
             bus: Bus::new(&places, cfg.ns_per_m, &tb),
+            disturbers: cfg.node_names().iter().map(|n| Disturber::new(&cfg.faults, n)).collect(),
+            stuck: Disturber::stuck_windows(&cfg.faults, &tb),
             starts: cfg.master.start_us.iter().map(|&t| tb.cycles_nearest_ns(t * 1e3)).collect(),
             cycle: 0,
             run_cycles: tb.cycles_nearest_ns(cfg.run_us * 1e3),
             end: None,
-            on_bus: OnBus::default(),
             pending: Vec::new(),
             rx_buf: Vec::new(),
             tx_buf: Vec::new(),
@@ -442,8 +450,7 @@ impl Bench {
         self.encoders.iter().map(|(e, _, _)| e)
     }
 
-    fn close_frame(&mut self) {
-        let f = std::mem::take(&mut self.on_bus);
+    fn close_frame(&mut self, f: OnBus) {
         if !f.active {
             return;
         }
@@ -490,7 +497,11 @@ impl Testbench for Bench {
         let nodes = 1 + self.encoders.len() + self.sars.len() + self.tool.is_some() as usize;
         let mut rx = std::mem::take(&mut self.rx_buf);
         rx.clear();
-        rx.extend((0..nodes).map(|j| self.bus.rx(j)));
+        let stuck = self.stuck.iter().any(|&(a, b)| (a..b).contains(&self.cycle));
+        for j in 0..nodes {
+            let level = self.bus.rx(j) && !stuck;
+            rx.push(self.disturbers[j].step(level, self.cycle, self.cpb));
+        }
         let input = In { i_start: self.starts.contains(&self.cycle), i_can_rx: rx[0] };
         let out = self.master.step(&input);
         let mut tx = std::mem::take(&mut self.tx_buf);
@@ -521,33 +532,18 @@ impl Testbench for Bench {
         self.bus.push(&tx);
         self.tx_buf = tx;
         // The listen-only receiver at the master's pin.
-        let before = self.monitor.state();
-        let m = self.monitor.step(&CanIn { i_can_rx: rx[0], ..CanIn::default() });
-        let now = self.monitor.state();
-        if now == CanState::Frame && before != CanState::Frame && self.monitor.pos() <= 1 {
-            self.close_frame();
-            self.on_bus = OnBus { sof_cycle: self.cycle, active: true, ..OnBus::default() };
-        }
-        if now == CanState::CrcDelim && before == CanState::Frame {
-            self.on_bus.complete = true;
-            self.on_bus.seen = self.monitor.seen();
-        }
-        if before == CanState::AckSlot && now != CanState::AckSlot {
-            self.on_bus.ack_passed = true;
-            self.on_bus.seen.ack = self.monitor.seen().ack;
-        }
-        for (flag, name) in [(m.o_err_bit, "bit"), (m.o_err_stuff, "stuff"), (m.o_err_crc, "crc"), (m.o_err_form, "form"), (m.o_err_ack, "ack")] {
-            if flag && self.on_bus.active {
-                self.on_bus.errors.push(name);
-            }
+        let (m, before, now, replaced) = self.monitor.step(rx[0], self.cycle, false);
+        if let Some(f) = replaced {
+            self.close_frame(f);
         }
         // A frame ends where a receiver takes it (the cycle the master's
         // controller pulses o_rx_valid for it), or at an error.
         if m.o_rx_valid || (now == CanState::ErrFlag && before != CanState::ErrFlag) {
-            if self.on_bus.active && !self.on_bus.complete {
-                self.on_bus.seen = self.monitor.seen();
+            let mut f = std::mem::take(&mut self.monitor.frame);
+            if f.active && !f.complete {
+                f.seen = self.monitor.controller().seen();
             }
-            self.close_frame();
+            self.close_frame(f);
         }
         for (flag, name) in [
             (out.o_booted, "booted"),
@@ -566,7 +562,7 @@ impl Testbench for Bench {
         let rx0 = rx[0];
         self.rx_buf = rx;
         self.cycle += 1;
-        if self.end.is_none() && self.cycle >= self.run_cycles && !self.on_bus.active && matches!(now, CanState::Idle | CanState::Integrate | CanState::BusOff) {
+        if self.end.is_none() && self.cycle >= self.run_cycles && !self.monitor.frame.active && matches!(now, CanState::Idle | CanState::Integrate | CanState::BusOff) {
             self.end = Some(self.cycle + self.cpb);
         }
         if self.end.is_none() && self.cycle >= 2 * self.run_cycles {
@@ -581,7 +577,7 @@ impl Testbench for Bench {
             self.master.param_index() as u64 & 0xF,
             self.master.tries() as u64 & 0xFF,
             self.master.controller().state() as u64,
-            self.monitor.state() as u64,
+            self.monitor.controller().state() as u64,
         ]);
     }
 
@@ -594,7 +590,8 @@ impl Testbench for Bench {
     }
 
     fn into_transactions(mut self) -> Vec<Transaction> {
-        self.close_frame();
+        let f = std::mem::take(&mut self.monitor.frame);
+        self.close_frame(f);
         let rest = std::mem::take(&mut self.pending);
         if let Some(last) = self.transactions.last_mut() {
             last.frames.extend(rest);

@@ -317,7 +317,8 @@ impl Encoder {
             return Vec::new();
         }
         self.alarms ^= ALARM_POSITION_ERROR;
-        self.error_register = on as u8;
+        // Bit 0, generic error, follows the alarm; bit 4 (a life guarding event) stays.
+        self.error_register = (self.error_register & !0x01) | on as u8;
         self.emcy(if on { 0x1000 } else { 0x0000 })
     }
 
@@ -368,7 +369,10 @@ impl Encoder {
         }
         if let Some(t) = self.life_deadline {
             if now_ns >= t {
+                // Life guarding event: emergency 8130h with error register
+                // bit 4, communication error (CiA 301; the note is silent).
                 self.life_deadline = None;
+                self.error_register |= 0x10;
                 out.extend(self.emcy(0x8130));
             }
         }

@@ -319,9 +319,12 @@ impl Master {
                     let p = self.cfg.params[self.k];
                     let ours = rx && id == cob_id(SDO_TX, n) && c.o_rx_dlc >= 8 && byte(1) as u16 | (byte(2) as u16) << 8 == p.index && byte(3) == p.sub;
                     if boot {
+                        // The node started again: the table from its first
+                        // entry, with all its retries (a new node, not a late answer).
                         o.o_booted = true;
                         self.k = 0;
                         self.timer = 0;
+                        self.tries = 0;
                         self.state = State::SdoSend;
                     } else if ours && byte(0) == 0x60 {
                         self.tries = 0;

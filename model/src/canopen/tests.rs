@@ -304,12 +304,14 @@ fn node_guarding_and_heartbeat() {
     assert_eq!(e.on_frame(&rtr, 0), vec![Frame::data(0x706, &[0xFF])]);
     e.on_frame(&Frame::data(0, &[1, 6]), 0);
     assert_eq!(e.on_frame(&rtr, 0), vec![Frame::data(0x706, &[0x05])]);
-    // Life guarding: 100 ms × 3 without a guard request → EMCY 8130h.
+    // Life guarding: 100 ms × 3 without a guard request → EMCY 8130h with
+    // error register bit 4, communication error (CiA 301), kept in 1001h.
     write(&mut e, 0x100C, 100);
     write(&mut e, 0x100D, 3);
     e.on_frame(&rtr, 0);
     assert!(e.poll(299 * MS).is_empty());
-    assert_eq!(e.poll(300 * MS), vec![Frame::data(0x86, &[0x30, 0x81, 0, 0, 0, 0, 0, 0])]);
+    assert_eq!(e.poll(300 * MS), vec![Frame::data(0x86, &[0x30, 0x81, 0x10, 0, 0, 0, 0, 0])]);
+    assert_eq!(e.read(0x1001, 0), Ok(vec![0x10]));
     let mut h = enc(6);
     write(&mut h, 0x1017, 50);
     assert!(h.on_frame(&rtr, 0).is_empty(), "heartbeat on: guarding off");

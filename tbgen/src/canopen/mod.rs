@@ -117,7 +117,7 @@ impl Protocol for BenchConfig {
 
 #[cfg(test)]
 mod tests {
-    use model::canopen::bench::{Bench, Transaction};
+    use model::canopen::bench::{Bench, BusFrame as BusFrameT, Transaction};
     use model::canopen::sdo::abort;
     use model::testbench::Testbench;
 
@@ -295,6 +295,193 @@ mod tests {
         assert_eq!(answers[1][0], 0x20, "the zero command's acknowledgement");
         assert_eq!(&answers[2][..2], [0, 0]);
         assert_eq!(outcomes(&t), ["node_lost"], "no CANopen boot-up from a SAR58K24");
+    }
+
+    /// Each abort code of the SDO server (CiA 301 codes: seed 003 lists
+    /// none) through the master: `80h`, the index and sub-index echoed, the
+    /// code little-endian in bytes 4 to 7; o_sdo_abort carries code, index and
+    /// the sub-index sent (non-zero for 1800h sub 5 and 1018h sub 4), then FAILED.
+    #[test]
+    fn every_abort_code_through_the_master() {
+        for (name, code, index, sub) in [
+            ("canopen_abort_no_object", abort::NO_OBJECT, 0x2000u16, 0u8),
+            ("canopen_abort_no_subindex", abort::NO_SUBINDEX, 0x1800, 5),
+            ("canopen_abort_read_only", abort::READ_ONLY, 0x1018, 4),
+            ("canopen_abort_length", abort::LENGTH, 0x6200, 0),
+            ("canopen_abort_range", abort::RANGE, 0x5001, 0),
+        ] {
+            let (_, t) = run(name);
+            assert_eq!(outcomes(&t), ["booted", "sdo_abort"], "{name}");
+            assert_eq!(t[1].abort, Some((code, index, sub)), "{name}");
+            assert_eq!(t[1].state, 5, "{name}: FAILED");
+            let [i0, i1] = index.to_le_bytes();
+            let [c0, c1, c2, c3] = code.to_le_bytes();
+            assert_eq!(frames(&t)[2], (0x585, vec![0x80, i0, i1, sub, c0, c1, c2, c3]), "{name}");
+        }
+        assert_eq!(config("canopen_abort_range").master_config().unwrap().can.timing.brp, 1);
+    }
+
+    /// Node guarding: each remote frame on 0x700 + node is answered with the
+    /// NMT state (05h operational) and bit 7 toggling, first 0; when the
+    /// guarding stops, guard time × life time factor (1 ms × 2) later the
+    /// encoder sends the life guarding emergency 8130h (error register bit 4).
+    #[test]
+    fn node_guarding_and_the_life_guarding_emergency() {
+        let (_, t) = run("canopen_node_guarding");
+        assert_eq!(outcomes(&t), ["booted", "config_done", "emcy_valid"]);
+        let f = frames(&t);
+        let answers: Vec<&Vec<u8>> = f.iter().filter(|(id, d)| *id == 0x708 && !d.is_empty()).map(|(_, d)| d).collect();
+        assert_eq!(answers, [&vec![0x05], &vec![0x85], &vec![0x05]]);
+        assert_eq!(t[2].emcy, Some((0x8130, 0x10)));
+        assert_eq!(f.last().unwrap(), &(0x88, vec![0x30, 0x81, 0x10, 0, 0, 0, 0, 0]));
+        // The emergency 2 ms after the last guarding answer ended, within a frame time.
+        let last_answer = t[2].frames.iter().rev().find(|b| b.id == 0x708).unwrap();
+        let emcy = t[2].frames.last().unwrap();
+        assert!((emcy.sof_cycle - last_answer.sof_cycle).abs_diff(80_000) < 4_000, "{} {}", last_answer.sof_cycle, emcy.sof_cycle);
+    }
+
+    /// All eight table entries, in order, with the command of their size
+    /// (2Bh, 23h, 2Fh); the heartbeat 1017h = 2 ms: 7Fh while
+    /// pre-operational, 05h after NMT start; the preset 1234 read back.
+    #[test]
+    fn eight_entries_and_the_heartbeat() {
+        let (_, t) = run("canopen_eight_params_heartbeat");
+        assert_eq!(&outcomes(&t)[..2], ["booted", "config_done"]);
+        let f = frames(&t);
+        let requests: Vec<(u8, u16, u8)> = f.iter().filter(|(id, _)| *id == 0x608).map(|(_, d)| (d[0], u16::from_le_bytes([d[1], d[2]]), d[3])).collect();
+        assert_eq!(requests, [(0x2B, 0x1017, 0), (0x2B, 0x6000, 0), (0x23, 0x6001, 0), (0x23, 0x6002, 0), (0x23, 0x6003, 0), (0x2F, 0x1800, 2), (0x2F, 0x1801, 2), (0x2B, 0x6200, 0)]);
+        let beats: Vec<&BusFrameT> = t.iter().flat_map(|t| &t.frames).filter(|b| b.id == 0x708).collect();
+        assert_eq!(beats[0].data, [0x7F]);
+        assert!(beats.len() >= 3 && beats[1..].iter().all(|b| b.data == [0x05]), "{beats:?}");
+        assert!(t.iter().filter(|t| t.outcome == "pos_valid").all(|t| t.position == Some(1234)));
+    }
+
+    /// Seed 003 §6: 5001h = 5 written to node 4 takes effect at the reset:
+    /// the boot-up comes from node 5, which the master then configures and runs.
+    #[test]
+    fn a_node_change_takes_effect_after_the_reset() {
+        let (b, t) = run("canopen_node_change_reset");
+        assert_eq!(&outcomes(&t)[..3], ["booted", "config_done", "pos_valid"]);
+        assert_eq!(frames(&t)[..5], [(0x84, vec![]), (0x604, vec![0x2F, 0x01, 0x50, 0x00, 0x05, 0, 0, 0]), (0x584, vec![0x60, 0x01, 0x50, 0x00, 0, 0, 0, 0]), (0x000, vec![0x81, 0x04]), (0x85, vec![])]);
+        assert!(t.iter().filter(|t| t.outcome == "pos_valid").all(|t| t.frames.last().unwrap().id == 0x185 && t.position == Some(4444)));
+        assert_eq!(b.encoders().next().unwrap().encoder().node(), 5);
+    }
+
+    /// Seed 003 §6: 5000h = 4 (250 kbit/s) takes effect at the reset the
+    /// master sends after i_start: from then on the encoder's frames are
+    /// damaged at 500 kbit/s and the master flags the node lost.
+    #[test]
+    fn a_bit_rate_change_takes_effect_after_the_reset() {
+        let (b, t) = run("canopen_bit_rate_change_reset");
+        assert_eq!(outcomes(&t), ["booted", "config_done", "node_lost"]);
+        assert_eq!(t[1].frames[0].data, [0x2F, 0x00, 0x50, 0x00, 0x04, 0, 0, 0]);
+        let f = &t[2].frames;
+        let reset = f.iter().position(|b| b.id == 0 && b.data == [0x81, 0x03]).unwrap();
+        assert!(f[reset + 1..].iter().all(|b| !b.errors.is_empty()) && f.len() > reset + 1);
+        assert_eq!(b.encoders().next().unwrap().encoder().bit_code(), 4);
+    }
+
+    /// No SDO answer: the request again after each SDO_TIMEOUT; a boot-up
+    /// during SDO_WAIT restarts the table with all its retries; after
+    /// RETRIES = 2 more timeouts, o_node_lost.
+    #[test]
+    fn sdo_timeouts_retries_and_a_boot_up_during_the_wait() {
+        let (_, t) = run("canopen_sdo_no_answer");
+        assert_eq!(outcomes(&t), ["booted", "booted", "node_lost"]);
+        assert_eq!(t[1].state, 1, "SDO_SEND after the second boot-up");
+        let req = |k: usize| t[k].frames.iter().filter(|b| b.id == 0x606).count();
+        assert_eq!((req(1), req(2)), (2, 3));
+    }
+
+    /// Nobody acknowledges: no frame has its ACK slot dominant, the buffer stays
+    /// busy, so the master gives up from SDO_SEND (one SDO_TIMEOUT in SDO_WAIT,
+    /// one in SDO_SEND) or, alone on the bus, after RETRIES boot timeouts.
+    #[test]
+    fn frames_nobody_acknowledges() {
+        let (_, t) = run("canopen_no_ack_sdo");
+        assert_eq!(outcomes(&t), ["booted", "node_lost"]);
+        assert!(t[1].frames.iter().filter(|b| b.id == 0x606 && !b.ack).count() > 5);
+        let (_, t) = run("canopen_no_ack_boot");
+        assert_eq!(outcomes(&t), ["node_lost"]);
+        assert_eq!(t[0].cycle, 3 * 20_000 - 1);
+        assert!(t[0].frames.iter().all(|b| b.id == 0 && b.data == [0x81, 0x06] && !b.ack));
+    }
+
+    /// A boot-up in RUN (the node reset by a tool): o_booted, the table
+    /// again, NMT start, positions again; SYNCs go on around it.
+    #[test]
+    fn a_boot_up_during_run_configures_again() {
+        let (_, t) = run("canopen_reset_in_run");
+        let o = outcomes(&t);
+        let second = o.iter().enumerate().skip(1).find(|(_, o)| **o == "booted").unwrap().0;
+        assert!(t[second - 1].frames.iter().any(|b| b.id == 0 && b.data == [0x81, 0x03]));
+        assert_eq!(t[second].frames.last().map(|b| b.id), Some(0x83));
+        assert!(o[second + 1..].contains(&"config_done"));
+        assert!(o[second + 1..].contains(&"pos_valid") && o.contains(&"sync_sent"));
+    }
+
+    /// Bus faults: the master's CRC error on a frame whose bit it read wrong,
+    /// the frame sent again and received whole; the stuck-dominant bus;
+    /// the master stays in RUN and every position is right.
+    #[test]
+    fn bus_faults_leave_the_master_running() {
+        let (_, t) = run("canopen_bus_faults");
+        let all: Vec<&BusFrameT> = t.iter().flat_map(|t| &t.frames).collect();
+        let bad = all.iter().position(|b| b.errors.contains(&"crc")).unwrap();
+        assert_eq!((all[bad + 1].id, all[bad + 1].data.clone(), all[bad + 1].errors.len()), (0x1ABCDEF, vec![0x12, 0x34], 0));
+        assert!(all.iter().any(|b| b.errors.contains(&"stuff")));
+        assert!(t.iter().filter(|t| t.outcome == "pos_valid").all(|t| t.position == Some(1111) && t.state == 4));
+        assert_eq!(outcomes(&t).iter().filter(|o| **o == "pos_valid").count(), 5);
+    }
+
+    /// Bus-off: 32 SYNC attempts, each with an error, then silence for at
+    /// least 128 × 11 recessive bits (80 cycles a bit), then the SYNC goes
+    /// out and TPDO2 answers.
+    #[test]
+    fn bus_off_and_recovery() {
+        let (_, t) = run("canopen_bus_off");
+        let all: Vec<&BusFrameT> = t.iter().flat_map(|t| &t.frames).collect();
+        let damaged: Vec<&&BusFrameT> = all.iter().filter(|b| !b.errors.is_empty()).collect();
+        assert_eq!(damaged.len(), 32);
+        let sync = t.iter().find(|t| t.outcome == "sync_sent").unwrap();
+        assert!(sync.frames.last().unwrap().sof_cycle - damaged.last().unwrap().sof_cycle >= 128 * 11 * 80);
+        assert!(t.iter().any(|t| t.outcome == "pos_valid" && t.position == Some(2222) && t.frames[0].id == 0x283));
+    }
+
+    /// Seed 001 §3.4 ② ③ on the bus: configuration commands are ignored
+    /// before `04 01`, answered after it (`11 00`, `13 00` for the codes 00,
+    /// 02, 03); node and bit rate wait for the next power-on (the answers stay
+    /// on 0x120 at 250 kbit/s); start sends every cycle_ms, `31 20 TT` stops
+    /// it, starts a timed send at TT per second and stops it; after the
+    /// direction command the count runs backwards; after zero the read is 0.
+    #[test]
+    fn sar58k24_configuration_and_commands() {
+        let (_, t) = run("canopen_sar58k24_config");
+        let f = frames(&t);
+        let cfg: Vec<&Vec<u8>> = f.iter().filter(|(id, _)| *id == 0x7E5).map(|(_, d)| d).collect();
+        let b = |x: &[u8]| -> Vec<u8> { let mut v = x.to_vec(); v.resize(8, 0); v };
+        assert_eq!(cfg, [&b(&[0x11, 0x21]), &b(&[0x04, 0x01]), &b(&[0x11, 0x21]), &b(&[0x11]), &b(&[0x13, 0, 0]), &b(&[0x13]), &b(&[0x13, 0, 2]), &b(&[0x13]), &b(&[0x13, 0, 3]), &b(&[0x13])]);
+        let answers: Vec<&BusFrameT> = t.iter().flat_map(|t| &t.frames).filter(|b| b.id == 0x120).collect();
+        let pos = |b: &BusFrameT| u16::from_le_bytes([b.data[0], b.data[1]]) as i64;
+        // Start: the answer, then one every 1 ms, counting up 1 a millisecond.
+        let stream: Vec<&&BusFrameT> = answers.iter().take_while(|b| b.data[0] != 0x31).collect();
+        assert!(stream.len() >= 4);
+        for w in stream.windows(2) {
+            assert!((w[1].sof_cycle - w[0].sof_cycle).abs_diff(40_000) < 1_000);
+            assert_eq!(pos(w[1]) - pos(w[0]), 1);
+        }
+        let acks: Vec<u8> = answers.iter().filter(|b| b.data[1..].iter().all(|&x| x == 0) && [0x20, 0x22, 0x31].contains(&b.data[0])).map(|b| b.data[0]).collect();
+        assert_eq!(acks, [0x31, 0x31, 0x31, 0x22, 0x20]);
+        // The timed send: one position 5 ms after the second 31 command.
+        let k31: Vec<usize> = answers.iter().enumerate().filter(|(_, b)| b.data[0] == 0x31 && b.data[1] == 0).map(|(k, _)| k).collect();
+        assert_eq!(k31[2] - k31[1], 2);
+        assert!((answers[k31[1] + 1].sof_cycle - answers[k31[1]].sof_cycle).abs_diff(200_000) < 2_000);
+        // Reversed after 22 20: 2^14 − the forward count; zeroed after 20 20.
+        let last_two: Vec<&&BusFrameT> = answers.iter().rev().take(3).collect();
+        // Zeroed while counting backwards: 0, then 2^14 − 1 ... (the read comes a little later).
+        assert!(pos(last_two[0]) <= 2 || pos(last_two[0]) >= 16_384 - 2, "{:?}", last_two[0].data);
+        assert_eq!(last_two[1].data, b(&[0x20]));
+        assert!(pos(last_two[2]) > 16_384 - 1_100 && pos(last_two[2]) < 16_384 - 1_000, "{:?}", last_two[2].data);
     }
 
     /// `tbgen decode canopen` on the setup example's waves gives back the transcript's frames and meanings.
