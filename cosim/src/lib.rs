@@ -165,8 +165,9 @@ pub fn open(kind: &str, toml: &str, origin: &str, f_emu_hz: u64) -> Result<Box<d
         "esl" => Ok(Box::new(esl::EslEmulator::from_toml(toml, origin, f_emu_hz)?)),
         "ssi_monitor" => Ok(Box::new(monitor::ssi::SsiMonitor::from_toml(toml, origin, f_emu_hz)?)),
         "biss_monitor" => Ok(Box::new(monitor::biss::BissMonitor::from_toml(toml, origin, f_emu_hz)?)),
+        "endat_monitor" => Ok(Box::new(monitor::endat::EndatMonitor::from_toml(toml, origin, f_emu_hz)?)),
         other => Err(Error::Usage(format!(
-            "no emulator `{other}`; give one of: ssi, biss, endat, tformat, esl, sar58k24, modbus, can, canopen, or a monitor: ssi_monitor, biss_monitor"
+            "no emulator `{other}`; give one of: ssi, biss, endat, tformat, esl, sar58k24, modbus, can, canopen, or a monitor: ssi_monitor, biss_monitor, endat_monitor"
         ))),
     }
 }

@@ -20,13 +20,18 @@ fn run(cmd: &mut Command) -> (bool, String) {
 
 /// Builds the rules bench in `sim`; returns a command that runs it.
 fn bench(sim: &str) -> Command {
+    bench_of(sim, "tb_monitor_rules")
+}
+
+/// Builds the rules bench `hdl/tb_cosim/monitor_rules/<top>.v` in `sim`; returns a command that runs it.
+fn bench_of(sim: &str, top: &str) -> Command {
     let (ok, vars) = run(&mut Command::new(root().join("scripts/emu_lib.sh")));
     assert!(ok, "{vars}");
     let var = |name: &str| vars.lines().find_map(|l| l.strip_prefix(&format!("{name}="))).unwrap().to_string();
     let (lib, vpi, hdl) = (var("EMU_LIB_DIR"), var("EMU_VPI_DIR"), var("EMU_HDL_DIR"));
-    let build = root().join(format!("build/cosim/monitor_rules/{sim}"));
+    let build = root().join(format!("build/cosim/monitor_rules/{sim}")).join(if top == "tb_monitor_rules" { "" } else { top });
     std::fs::create_dir_all(&build).unwrap();
-    let tb = root().join("hdl/tb_cosim/monitor_rules/tb_monitor_rules.v");
+    let tb = root().join(format!("hdl/tb_cosim/monitor_rules/{top}.v"));
     if sim == "icarus" {
         let vvp = build.join("tb.vvp");
         let (ok, out) = run(Command::new("iverilog").args(["-g2005", "-Wno-timescale", "-I", &hdl, "-o"]).arg(&vvp).arg(&tb));
@@ -36,7 +41,7 @@ fn bench(sim: &str) -> Command {
         return cmd;
     }
     let (ok, out) = run(Command::new("verilator")
-        .args(["--binary", "--timing", "-j", "2", "-Wno-fatal", "-Wno-lint", "-Wno-style", "--top-module", "tb_monitor_rules"])
+        .args(["--binary", "--timing", "-j", "2", "-Wno-fatal", "-Wno-lint", "-Wno-style", "--top-module", top])
         .arg(format!("-I{hdl}"))
         .args(["-LDFLAGS", &format!("-L{lib} -lcosim -Wl,-rpath,{lib}"), "--Mdir"])
         .arg(build.join("obj"))
@@ -178,4 +183,64 @@ fn tbgen_check_takes_a_biss_monitor_transcript_and_finds_a_flipped_position_bit(
     std::fs::write(&expect, sent.to_string()).unwrap();
     let (ok, out) = tbgen_check("biss", &expect, &capture);
     assert!(!ok && out.contains("DIFFERENCE in transaction 5 at ") && out.contains("slaves[0].position expected"), "{out}");
+}
+
+/// The EnDat monitor in the simulators: `tb_endat_monitor_rules.v` breaks each
+/// rule of seed 004 the monitor checks once (cases 1 to 10) or none (case 0);
+/// the transcript written at the end holds the decoded transfers.
+fn each_endat_rule_fires_once_and_the_clean_master_passes(sim: &str) {
+    let dir = root().join(format!("build/cosim/monitor_rules/{sim}/endat_run"));
+    std::fs::create_dir_all(&dir).unwrap();
+    let plain = dir.join("endat.toml");
+    std::fs::write(&plain, "[emulator]\nmax_line_clock_khz = 1000\n[encoder]\noutput_delay_ns = 0\n").unwrap();
+    let fc = dir.join("endat_fc.toml");
+    std::fs::write(&fc, "[emulator]\nmax_line_clock_khz = 1000\n[monitor]\nmax_clock_khz = 1000\n").unwrap();
+    let comp = dir.join("endat_comp.toml");
+    std::fs::write(&comp, "[emulator]\nmax_line_clock_khz = 1000\n[master]\ndelay_comp = true\n").unwrap();
+    let cmd = bench_of(sim, "tb_endat_monitor_rules");
+    let cases: [(u32, usize, usize, &[&str]); 11] = [
+        (0, 0, 2, &[]),
+        (1, 2, 2, &["f_c (seed 004 EnDat 2.2, 2.3.2 and 2.1.1: f_c up to 2 MHz without, 8 MHz with delay compensation; with deviating duty cycle f_c = 1/(2 t_min)): clock high for 0.250 us", "clock low for 0.250 us"]),
+        (2, 1, 2, &["on-off ratio (seed 004 EnDat 2.2, 2.3.2: on-off ratio error within 10 %): clock high 0.750 us and low 0.250 us"]),
+        (3, 1, 2, &["t_ST (seed 004 EnDat 2.2, 2.3 and 2.3.2 note 8: the first clock's low level t_ST = 2 us for f_c = 2 to 8 MHz, 1 us at 16 MHz): first low phase 0.250 us at a 2000 kHz clock"]),
+        (4, 2, 2, &["send block (seed 004 EnDat 2.2, 2.3: the master drives the data line from the second falling clock edge", "switched its data driver on outside a transfer", "still on at R8"]),
+        (5, 1, 2, &["t_m (seed 004 EnDat 2.2, 2.3.2: recovery time I; the next transfer only after the encoder's t_m): next transfer 10.500 us after"]),
+        (6, 1, 2, &["t_R (seed 004 EnDat 2.2, 2.3.2: recovery time II t_R >= 500 ns, time before the next query can be received): the line rose at the master 0.250 us before"]),
+        (7, 1, 2, &["t_m after an error (seed 004 EnDat 2.2, appendix A2 4.2.1: after an error handling the maximum t_m of 30 us must at least be waited before the next command): next transfer 20.500 us after"]),
+        (8, 1, 2, &["t_b (seed 004 EnDat 2.2, 2.3.2: t_b > 1 ms between EnDat 2.1 commands): next transfer 500.500 us after"]),
+        (9, 3, 4, &["measurement clock (seed 004 EnDat 2.2, 2.1.2: the propagation time is measured with a reduced clock of 100 kHz to 200 kHz)"]),
+        (10, 1, 2, &["delay measurement (seed 004 EnDat 2.2, 2.1.2: measured at least three times", "a delay measurement of 2 frame(s)"]),
+    ];
+    for (case, n, transfers, rules) in cases {
+        let t = dir.join(format!("endat_{case}.json"));
+        let cfg = match case {
+            1 => &fc,
+            9 | 10 => &comp,
+            _ => &plain,
+        };
+        let (ok, out) = run(Command::new(cmd.get_program()).args(cmd.get_args()).args([
+            format!("+case={case}"),
+            format!("+endat_monitor_config={}", cfg.display()),
+            format!("+endat_monitor_transcript={}", t.display()),
+        ]));
+        assert!(ok, "case {case} in {sim}:\n{out}");
+        assert!(out.contains(&format!("violations endat {n}")), "case {case} in {sim}:\n{out}");
+        assert_eq!(out.matches("PROTOCOL VIOLATION by the master on").count(), n, "case {case} in {sim}:\n{out}");
+        for r in rules {
+            assert!(out.contains(r), "case {case} in {sim}: no `{r}` in\n{out}");
+        }
+        let t: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&t).unwrap()).unwrap();
+        assert_eq!(t["transactions"].as_array().unwrap().len(), transfers, "case {case} in {sim}: {t}");
+        assert_eq!(t["violations"].as_array().unwrap().len(), n, "{t}");
+    }
+}
+
+#[test]
+fn each_endat_monitor_rule_fires_in_icarus() {
+    each_endat_rule_fires_once_and_the_clean_master_passes("icarus");
+}
+
+#[test]
+fn each_endat_monitor_rule_fires_in_verilator() {
+    each_endat_rule_fires_once_and_the_clean_master_passes("verilator");
 }
