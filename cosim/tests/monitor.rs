@@ -37,7 +37,8 @@ fn bench_of(sim: &str, top: &str) -> Command {
         let (ok, out) = run(Command::new("iverilog").args(["-g2005", "-Wno-timescale", "-I", &hdl, "-o"]).arg(&vvp).arg(&tb));
         assert!(ok, "{out}");
         let mut cmd = Command::new("vvp");
-        cmd.args(["-n", "-M", &vpi, "-m", "emu"]).arg(vvp);
+        // The release library emu_lib.sh built, not a debug one cargo test's LD_LIBRARY_PATH would find first.
+        cmd.args(["-n", "-M", &vpi, "-m", "emu"]).arg(vvp).env("LD_LIBRARY_PATH", &lib);
         return cmd;
     }
     let (ok, out) = run(Command::new("verilator")
@@ -48,7 +49,9 @@ fn bench_of(sim: &str, top: &str) -> Command {
         .args(["-o", "Vtb"])
         .arg(&tb));
     assert!(ok, "{out}");
-    Command::new(build.join("obj/Vtb"))
+    let mut cmd = Command::new(build.join("obj/Vtb"));
+    cmd.env("LD_LIBRARY_PATH", &lib);
+    cmd
 }
 
 /// `tbgen check` (the workspace's binary) on two transcripts.
@@ -76,7 +79,7 @@ fn each_rule_fires_once_and_the_clean_master_passes(sim: &str) {
     ];
     for (case, n_ssi, n_biss, rules) in cases {
         let (mon_s, mon_b) = (dir.join(format!("ssi_{case}.json")), dir.join(format!("biss_{case}.json")));
-        let (ok, out) = run(Command::new(cmd.get_program()).args(cmd.get_args()).args([
+        let (ok, out) = run(Command::new(cmd.get_program()).args(cmd.get_args()).envs(cmd.get_envs().filter_map(|(k, v)| Some((k, v?)))).args([
             format!("+case={case}"),
             format!("+ssi_monitor_config={}", ssi.display()),
             format!("+biss_monitor_config={}", biss.display()),
@@ -218,7 +221,7 @@ fn each_endat_rule_fires_once_and_the_clean_master_passes(sim: &str) {
             9 | 10 => &comp,
             _ => &plain,
         };
-        let (ok, out) = run(Command::new(cmd.get_program()).args(cmd.get_args()).args([
+        let (ok, out) = run(Command::new(cmd.get_program()).args(cmd.get_args()).envs(cmd.get_envs().filter_map(|(k, v)| Some((k, v?)))).args([
             format!("+case={case}"),
             format!("+endat_monitor_config={}", cfg.display()),
             format!("+endat_monitor_transcript={}", t.display()),
