@@ -52,9 +52,11 @@
 //!   them has at least three frames, and the first other transfer comes
 //!   after one.
 //!
-//! Transfers end (and are decoded) when the clock has been high for more
-//! than twice the transfer's first high phase (the decoder's rule), so a
-//! monitor's count and last value cover a transfer as soon as it is over.
+//! Transfers end when the clock has been high for more than twice the
+//! transfer's first high phase (the decoder's rule); one is decoded at the
+//! next transfer's start, or 10 µs after its last edge (by then the
+//! encoder's last bits have crossed the cable back). Its count and last
+//! value cover the transfer in progress too (decoded as far as it got).
 //!
 //! Configuration (a whole scenario file will do): `[monitor]` fields below;
 //! defaults from `[master]` (`delay_comp`, `meas_clock_khz`), `[encoder]`
@@ -97,6 +99,10 @@ pub const RULE_T_B: &str = "t_b (seed 004 EnDat 2.2, 2.3.2: t_b > 1 ms between E
 pub const RULE_MEAS_CLOCK: &str = "measurement clock (seed 004 EnDat 2.2, 2.1.2: the propagation time is measured with a reduced clock of 100 kHz to 200 kHz)";
 /// See [`RULE_FC_MAX`].
 pub const RULE_MEAS_COUNT: &str = "delay measurement (seed 004 EnDat 2.2, 2.1.2: measured at least three times, automatically after each power interruption, before compensated transfers)";
+
+/// How long after a transfer's last clock edge it is decoded (if no transfer starts before), ps: seed 004
+/// 2.3.2's longest high phase `t_HI` (10 µs); the round trip of any cable is shorter.
+const SETTLE_PS: u64 = 10_000_000;
 
 /// The monitor's own table (`[monitor]`), every field optional.
 #[derive(Debug, Clone, Default, Deserialize)]
@@ -394,8 +400,10 @@ impl Emulator for EndatMonitor {
         let now = self.base.now_ps();
         let (clk, d, de, rx) = (pins.0 & 1 != 0, pins.0 & 2 != 0, pins.0 & 4 != 0, pins.0 & 8 != 0);
         let line = if de { d } else { rx };
-        // A burst is over once a falling edge would no longer continue it.
-        if clk && self.clk_now && self.cur.as_ref().is_some_and(|b| b.falls.len() >= 2 && !b.continues_at(now)) {
+        // A burst is over once a falling edge would no longer continue it; it is decoded 10 us (t_HI's maximum)
+        // after its last edge, when every bit the encoder sent has crossed the cable back (or at the next start).
+        let settled = |b: &Burst| b.rises.last().is_some_and(|&r| now - r > SETTLE_PS);
+        if clk && self.clk_now && self.cur.as_ref().is_some_and(|b| b.falls.len() >= 2 && !b.continues_at(now) && settled(b)) {
             self.finish(now);
         }
         // The data line first, so that the clock edge of this cycle sees it.
