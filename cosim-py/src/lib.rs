@@ -8,7 +8,14 @@
 //! emu = encoder_emu.Emulator("ssi", open("encoder.toml").read(), 50_000_000, "encoder.toml")
 //! out = emu.step(pins)              # once per rising edge of the emulator clock
 //! emu.set_position(0, 495); emu.last_value(0); emu.count(); emu.violations()
+//! mon = encoder_emu.Monitor("ssi", open("encoder.toml").read(), 50_000_000, "encoder.toml")
+//! mon.step(pins)                    # the master's pins, once per rising edge of the monitor clock
+//! mon.count(); mon.last_value(0); mon.violations(); mon.transcript()
 //! ```
+//!
+//! [`Monitor`] is the pin-level monitor and protocol checker of a protocol
+//! (`cosim::monitor`): any `<proto>_monitor` the library opens, so a new
+//! monitor needs no line here.
 
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -93,9 +100,74 @@ impl Emulator {
     }
 }
 
+/// The pin-level monitor and protocol checker of `protocol` (`ssi`, `biss`,
+/// `endat`, and every other `<protocol>_monitor` of the library) from TOML
+/// text (the emulator's file or a whole scenario will do) on a monitor clock
+/// of `f_mon_hz`. It only listens: `step(pins)` with the master's pins (the
+/// same bits as the HDL monitor's ports, `hdl/emu/<protocol>_monitor.v`:
+/// SSI clock, data; BiSS-C MA, SLO; EnDat clock, data, data_oe, data_in)
+/// returns True when a new violation was seen. Errors raise ValueError with
+/// the file, the field and the fix.
+#[pyclass(unsendable)]
+struct Monitor {
+    inner: Box<dyn cosim::Emulator>,
+}
+
+#[pymethods]
+impl Monitor {
+    #[new]
+    #[pyo3(signature = (protocol, toml, f_mon_hz, origin = "<toml>"))]
+    fn new(protocol: &str, toml: &str, f_mon_hz: u64, origin: &str) -> PyResult<Self> {
+        let kind = format!("{}_monitor", protocol.trim_end_matches("_monitor"));
+        Ok(Monitor { inner: cosim::open(&kind, toml, origin, f_mon_hz).map_err(err)? })
+    }
+
+    /// The monitor's kind (`<protocol>_monitor`).
+    #[getter]
+    fn kind(&self) -> &'static str {
+        self.inner.kind()
+    }
+
+    /// One rising edge of the monitor clock with the master's pins; True when a violation is new.
+    fn step(&mut self, pins: u32) -> bool {
+        self.inner.step(cosim::Pins(pins)).0 & cosim::check::VIOLATION_PENDING != 0
+    }
+
+    /// Transactions seen so far (the one in progress included).
+    fn count(&self) -> u64 {
+        self.inner.count()
+    }
+
+    /// The position of the last transaction seen (of slave `device` in a BiSS-C chain; None: none yet).
+    fn last_value(&self, device: usize) -> Option<u64> {
+        self.inner.last_value(device)
+    }
+
+    /// A status of the last transaction seen (SSI `error`; BiSS-C `error`, `warning`, `crc_ok`; EnDat `f1`,
+    /// `f2`, `crc_ok`, `error`).
+    fn last_status(&self, device: usize, name: &str) -> PyResult<bool> {
+        self.inner.last_status(device, name).map_err(err)
+    }
+
+    /// Every violation of the seed's timing rules so far, one line each (time, rule with the seed's section, what).
+    fn violations(&mut self) -> Vec<String> {
+        self.inner
+            .violations()
+            .iter()
+            .map(|v| format!("at {} ns (monitor cycle {}): {}: {}", v.time_ns, v.cycle, v.rule, v.detail))
+            .collect()
+    }
+
+    /// The transcript (every transaction as `tbgen decode` prints it, every violation) as JSON text.
+    fn transcript(&self) -> String {
+        self.inner.transcript().to_string()
+    }
+}
+
 /// The module.
 #[pymodule]
 fn encoder_emu(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Emulator>()?;
+    m.add_class::<Monitor>()?;
     Ok(())
 }

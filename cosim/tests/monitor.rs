@@ -20,16 +20,16 @@ fn run(cmd: &mut Command) -> (bool, String) {
 
 /// Builds the rules bench in `sim`; returns a command that runs it.
 fn bench(sim: &str) -> Command {
-    bench_named(sim, "tb_monitor_rules")
+    bench_of(sim, "tb_monitor_rules")
 }
 
-/// Builds `hdl/tb_cosim/monitor_rules/<top>.v` in `sim`; returns a command that runs it.
-fn bench_named(sim: &str, top: &str) -> Command {
+/// Builds the rules bench `hdl/tb_cosim/monitor_rules/<top>.v` in `sim`; returns a command that runs it.
+fn bench_of(sim: &str, top: &str) -> Command {
     let (ok, vars) = run(&mut Command::new(root().join("scripts/emu_lib.sh")));
     assert!(ok, "{vars}");
     let var = |name: &str| vars.lines().find_map(|l| l.strip_prefix(&format!("{name}="))).unwrap().to_string();
     let (lib, vpi, hdl) = (var("EMU_LIB_DIR"), var("EMU_VPI_DIR"), var("EMU_HDL_DIR"));
-    let build = root().join(format!("build/cosim/monitor_rules/{sim}{}", if top == "tb_monitor_rules" { String::new() } else { format!("/{top}") }));
+    let build = root().join(format!("build/cosim/monitor_rules/{sim}")).join(if top == "tb_monitor_rules" { "" } else { top });
     std::fs::create_dir_all(&build).unwrap();
     let tb = root().join(format!("hdl/tb_cosim/monitor_rules/{top}.v"));
     if sim == "icarus" {
@@ -37,7 +37,8 @@ fn bench_named(sim: &str, top: &str) -> Command {
         let (ok, out) = run(Command::new("iverilog").args(["-g2005", "-Wno-timescale", "-I", &hdl, "-o"]).arg(&vvp).arg(&tb));
         assert!(ok, "{out}");
         let mut cmd = Command::new("vvp");
-        cmd.args(["-n", "-M", &vpi, "-m", "emu"]).arg(vvp);
+        // The release library emu_lib.sh built, not a debug one cargo test's LD_LIBRARY_PATH would find first.
+        cmd.args(["-n", "-M", &vpi, "-m", "emu"]).arg(vvp).env("LD_LIBRARY_PATH", &lib);
         return cmd;
     }
     let (ok, out) = run(Command::new("verilator")
@@ -48,7 +49,9 @@ fn bench_named(sim: &str, top: &str) -> Command {
         .args(["-o", "Vtb"])
         .arg(&tb));
     assert!(ok, "{out}");
-    Command::new(build.join("obj/Vtb"))
+    let mut cmd = Command::new(build.join("obj/Vtb"));
+    cmd.env("LD_LIBRARY_PATH", &lib);
+    cmd
 }
 
 /// `tbgen check` (the workspace's binary) on two transcripts.
@@ -76,7 +79,7 @@ fn each_rule_fires_once_and_the_clean_master_passes(sim: &str) {
     ];
     for (case, n_ssi, n_biss, rules) in cases {
         let (mon_s, mon_b) = (dir.join(format!("ssi_{case}.json")), dir.join(format!("biss_{case}.json")));
-        let (ok, out) = run(Command::new(cmd.get_program()).args(cmd.get_args()).args([
+        let (ok, out) = run(Command::new(cmd.get_program()).args(cmd.get_args()).envs(cmd.get_envs().filter_map(|(k, v)| Some((k, v?)))).args([
             format!("+case={case}"),
             format!("+ssi_monitor_config={}", ssi.display()),
             format!("+biss_monitor_config={}", biss.display()),
@@ -205,7 +208,7 @@ fn each_half_duplex_rule_fires_once(sim: &str) {
         format!("+esl_idb={}", hex(&model::esl::frames::request(3, 0xB, 0, 0))),
         format!("+esl_ide={}", hex(&model::esl::frames::request(3, 0xE, 0x10, 0))),
     ];
-    let cmd = bench_named(sim, "tb_half_duplex_rules");
+    let cmd = bench_of(sim, "tb_half_duplex_rules");
     let cases: [(u32, usize, usize, &str); 12] = [
         (0, 0, 0, ""),
         (1, 1, 0, "character timing (seed 002 6.1: 2.5 Mbps, permissible jitter +-100 ns; 6.3: 10-bit fields, start, 8 data LSB first, delimiter): an edge 1400.0 ns after the field's start edge, 3.50 bits"),
@@ -222,7 +225,7 @@ fn each_half_duplex_rule_fires_once(sim: &str) {
     ];
     for (case, n_tf, n_esl, rule) in cases {
         let (mon_t, mon_e) = (dir.join(format!("tformat_{case}.json")), dir.join(format!("esl_{case}.json")));
-        let (ok, out) = run(Command::new(cmd.get_program()).args(cmd.get_args()).args(&bytes).args([
+        let (ok, out) = run(Command::new(cmd.get_program()).args(cmd.get_args()).envs(cmd.get_envs().filter_map(|(k, v)| Some((k, v?)))).args(&bytes).args([
             format!("+case={case}"),
             format!("+tformat_monitor_config={}", tf.display()),
             format!("+esl_monitor_config={}", esl.display()),
@@ -246,6 +249,56 @@ fn each_half_duplex_rule_fires_once(sim: &str) {
     }
 }
 
+/// The EnDat monitor in the simulators: `tb_endat_monitor_rules.v` breaks each
+/// rule of seed 004 the monitor checks once (cases 1 to 10) or none (case 0);
+/// the transcript written at the end holds the decoded transfers.
+fn each_endat_rule_fires_once_and_the_clean_master_passes(sim: &str) {
+    let dir = root().join(format!("build/cosim/monitor_rules/{sim}/endat_run"));
+    std::fs::create_dir_all(&dir).unwrap();
+    let plain = dir.join("endat.toml");
+    std::fs::write(&plain, "[emulator]\nmax_line_clock_khz = 1000\n[encoder]\noutput_delay_ns = 0\n").unwrap();
+    let fc = dir.join("endat_fc.toml");
+    std::fs::write(&fc, "[emulator]\nmax_line_clock_khz = 1000\n[monitor]\nmax_clock_khz = 1000\n").unwrap();
+    let comp = dir.join("endat_comp.toml");
+    std::fs::write(&comp, "[emulator]\nmax_line_clock_khz = 1000\n[master]\ndelay_comp = true\n").unwrap();
+    let cmd = bench_of(sim, "tb_endat_monitor_rules");
+    let cases: [(u32, usize, usize, &[&str]); 11] = [
+        (0, 0, 2, &[]),
+        (1, 2, 2, &["f_c (seed 004 EnDat 2.2, 2.3.2 and 2.1.1: f_c up to 2 MHz without, 8 MHz with delay compensation; with deviating duty cycle f_c = 1/(2 t_min)): clock high for 0.250 us", "clock low for 0.250 us"]),
+        (2, 1, 2, &["on-off ratio (seed 004 EnDat 2.2, 2.3.2: on-off ratio error within 10 %): clock high 0.750 us and low 0.250 us"]),
+        (3, 1, 2, &["t_ST (seed 004 EnDat 2.2, 2.3 and 2.3.2 note 8: the first clock's low level t_ST = 2 us for f_c = 2 to 8 MHz, 1 us at 16 MHz): first low phase 0.250 us at a 2000 kHz clock"]),
+        (4, 2, 2, &["send block (seed 004 EnDat 2.2, 2.3: the master drives the data line from the second falling clock edge", "switched its data driver on outside a transfer", "still on at R8"]),
+        (5, 1, 2, &["t_m (seed 004 EnDat 2.2, 2.3.2: recovery time I; the next transfer only after the encoder's t_m): next transfer 10.500 us after"]),
+        (6, 1, 2, &["t_R (seed 004 EnDat 2.2, 2.3.2: recovery time II t_R >= 500 ns, time before the next query can be received): the line rose at the master 0.250 us before"]),
+        (7, 1, 2, &["t_m after an error (seed 004 EnDat 2.2, appendix A2 4.2.1: after an error handling the maximum t_m of 30 us must at least be waited before the next command): next transfer 20.500 us after"]),
+        (8, 1, 2, &["t_b (seed 004 EnDat 2.2, 2.3.2: t_b > 1 ms between EnDat 2.1 commands): next transfer 500.500 us after"]),
+        (9, 3, 4, &["measurement clock (seed 004 EnDat 2.2, 2.1.2: the propagation time is measured with a reduced clock of 100 kHz to 200 kHz)"]),
+        (10, 1, 2, &["delay measurement (seed 004 EnDat 2.2, 2.1.2: measured at least three times", "a delay measurement of 2 frame(s)"]),
+    ];
+    for (case, n, transfers, rules) in cases {
+        let t = dir.join(format!("endat_{case}.json"));
+        let cfg = match case {
+            1 => &fc,
+            9 | 10 => &comp,
+            _ => &plain,
+        };
+        let (ok, out) = run(Command::new(cmd.get_program()).args(cmd.get_args()).envs(cmd.get_envs().filter_map(|(k, v)| Some((k, v?)))).args([
+            format!("+case={case}"),
+            format!("+endat_monitor_config={}", cfg.display()),
+            format!("+endat_monitor_transcript={}", t.display()),
+        ]));
+        assert!(ok, "case {case} in {sim}:\n{out}");
+        assert!(out.contains(&format!("violations endat {n}")), "case {case} in {sim}:\n{out}");
+        assert_eq!(out.matches("PROTOCOL VIOLATION by the master on").count(), n, "case {case} in {sim}:\n{out}");
+        for r in rules {
+            assert!(out.contains(r), "case {case} in {sim}: no `{r}` in\n{out}");
+        }
+        let t: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&t).unwrap()).unwrap();
+        assert_eq!(t["transactions"].as_array().unwrap().len(), transfers, "case {case} in {sim}: {t}");
+        assert_eq!(t["violations"].as_array().unwrap().len(), n, "{t}");
+    }
+}
+
 #[test]
 fn each_tformat_and_esl_monitor_rule_fires_in_icarus() {
     each_half_duplex_rule_fires_once("icarus");
@@ -254,4 +307,14 @@ fn each_tformat_and_esl_monitor_rule_fires_in_icarus() {
 #[test]
 fn each_tformat_and_esl_monitor_rule_fires_in_verilator() {
     each_half_duplex_rule_fires_once("verilator");
+}
+
+#[test]
+fn each_endat_monitor_rule_fires_in_icarus() {
+    each_endat_rule_fires_once_and_the_clean_master_passes("icarus");
+}
+
+#[test]
+fn each_endat_monitor_rule_fires_in_verilator() {
+    each_endat_rule_fires_once_and_the_clean_master_passes("verilator");
 }

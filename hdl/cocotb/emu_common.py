@@ -137,3 +137,37 @@ async def readout(dut, emu, n, flip, errors, crc_error):
         return False
     assert not seen, f"readout {n}: error outputs {seen}"
     return True
+
+
+def open_monitor(protocol, f_mon_hz, extra=""):
+    """The pin-level monitor and protocol checker of `protocol` (ssi, biss,
+    endat, ...: encoder_emu.Monitor) from the runner's scenario file, with
+    `extra` TOML appended (a [monitor] table, say)."""
+    path = config_path()
+    with open(path, encoding="utf-8") as f:
+        return encoder_emu.Monitor(protocol, f.read() + extra, f_mon_hz, path)
+
+
+def run_monitor(dut, mon, pins_in, fail_on_violation=True):
+    """Steps `mon` on each rising edge with pins_in() -> int (the master's
+    pins, as the HDL monitor's ports). With fail_on_violation, the first
+    violation of the seed's timing rules fails the test at once, naming it."""
+
+    async def loop():
+        while True:
+            await RisingEdge(dut.i_clk)
+            if mon.step(pins_in()) and fail_on_violation:
+                raise AssertionError("the master broke the seed's timing rules (monitor):\n" + "\n".join(mon.violations()))
+
+    return cocotb.start_soon(loop())
+
+
+def monitor_agrees(mon, count, value=None, device=0, **status):
+    """The monitor decoded `count` transactions, the last with position
+    `value` (when given) and the statuses `status` (name=bool)."""
+    assert mon.count() == count, f"the monitor decoded {mon.count()} transactions, expected {count}"
+    if value is not None:
+        assert mon.last_value(device) == value, f"transaction {count - 1}: the monitor read {mon.last_value(device)} on the line, expected {value}"
+    for name, want in status.items():
+        got = mon.last_status(device, name)
+        assert got == want, f"transaction {count - 1}: the monitor's {name} is {got}, expected {want}"

@@ -16,6 +16,7 @@
 //! so a long run keeps only one transaction's edges in memory.
 
 pub mod biss;
+pub mod endat;
 pub mod esl;
 pub mod half_duplex;
 pub mod ssi;

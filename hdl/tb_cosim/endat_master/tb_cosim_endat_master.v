@@ -16,9 +16,18 @@
 //
 // Plusargs: +endat_emu_config=<scenario.toml>, +transactions=N (default 1000),
 // +seed=S, +flip_bit=K (planted failure: the comparison flips bit K of the
-// core's o_position, so the run must fail).
+// core's o_position, so the run must fail), +endat_monitor_transcript=FILE
+// (the monitor's JSON transcript).
+//
+// A pin-level monitor (hdl/emu/endat_monitor.v) watches the core's clock, its
+// data driver and the data at its input, reading the same configuration:
+// before each transfer it must have decoded every earlier one as the core
+// read it (position, F1, F2; the CRC error of a flipped frame; no start bit
+// after the type I answer), and the core must break none of the seed's
+// timing rules it checks.
 
 `timescale 1fs / 1fs
+`include "endat_monitor.v"
 `default_nettype none
 
 module tb_cosim_endat_master;
@@ -140,7 +149,44 @@ endat_encoder_emu #(
     .o_endat_data_oe(enc_oe)
 );
 
+// The pin-level monitor and protocol checker, on the same clock.
+endat_monitor #(
+    .F_MON_HZ(F_SYS_HZ),
+    .PLUSARG("endat_emu_config")
+) u_mon (
+    .i_mon_clk(clk),
+    .i_endat_clk(endat_clk),
+    .i_endat_data(data_out),
+    .i_endat_data_oe(data_oe),
+    .i_endat_data_in(data_in)
+);
+
 integer transactions, seed, flip_bit, n, waited, flip_at, crc_errs, type1s;
+integer mbase, last_kind;
+reg [63:0] core_last;
+reg core_f1, core_f2;
+
+// The monitor has decoded `seen` transfers since the power-on measurement, the
+// last one as the core read it: kind 0 a clean read (position, F1, F2 of a
+// 2.2 frame), 1 a flipped frame bit (CRC error), 2 no start bit (type I).
+task check_monitor(input integer seen, input integer kind, input is21_last);
+    begin
+        if (u_mon.count(0) != mbase + seen)
+            $fatal(1, "at %0t: the monitor decoded %0d transfers after the power-on measurement, the core made %0d", $time, u_mon.count(0) - mbase, seen);
+        if (seen > 0) begin
+            if (kind == 0 && (u_mon.last_value(0) != core_last || u_mon.last_status(0, "f1") != core_f1
+                              || !u_mon.last_status(0, "crc_ok")))
+                $fatal(1, "transfer %0d at %0t: the monitor read %0d F1 %0d crc_ok %0d on the line, the core %0d F1 %b",
+                       seen - 1, $time, u_mon.last_value(0), u_mon.last_status(0, "f1"), u_mon.last_status(0, "crc_ok"), core_last, core_f1);
+            if (kind == 0 && !is21_last && u_mon.last_status(0, "f2") != core_f2)
+                $fatal(1, "transfer %0d at %0t: the monitor read F2 %0d on the line, the core %b", seen - 1, $time, u_mon.last_status(0, "f2"), core_f2);
+            if (kind == 1 && u_mon.last_status(0, "crc_ok"))
+                $fatal(1, "transfer %0d at %0t: a frame bit flipped by the emulator, the monitor saw no CRC error", seen - 1, $time);
+            if (kind == 2 && !u_mon.last_status(0, "error"))
+                $fatal(1, "transfer %0d at %0t: a type I answer (no start bit), the monitor saw no error", seen - 1, $time);
+        end
+    end
+endtask
 reg [63:0] base;
 integer emu_f2;
 reg [63:0] position, mask, got, sent;
@@ -167,7 +213,10 @@ initial begin
     while (o_busy) @(posedge clk);
     // The measurement's own transfers (four at least) count as latches too.
     base = u_emu.count(0);
+    mbase = u_mon.count(0);
+    last_kind = 0;
     for (n = 0; n < transactions; n = n + 1) begin
+        check_monitor(n, last_kind, is21);
         // A 2.1 read costs t_b = 1 ms after it: only where that is cheap (f_sys <= 16 MHz).
         is21 = (n % 50) == 49 && F_SYS_HZ <= 16000000;
         type1 = !is21 && (n % 40) == 39;
@@ -196,6 +245,10 @@ initial begin
             if (waited > 200 * CLOCKS_PER_BIT + TIMEOUT_CLOCKS * CLOCKS_PER_BIT + T_ERR_CLOCKS)
                 $fatal(1, "transfer %0d: no o_done", n);
         end
+        core_last = o_position & mask;
+        core_f1 = o_f1;
+        core_f2 = o_f2;
+        last_kind = type1 ? 2 : (flip ? 1 : 0);
         if (u_emu.count(0) != base + n + 1)
             $fatal(1, "transfer %0d at %0t: the emulator counted %0d transfers after the %0d of the power-on measurement", n, $time, u_emu.count(0) - base, base);
         if (other_errors(flip, type1))
@@ -225,10 +278,14 @@ initial begin
         end
         while (o_busy) @(posedge clk);
     end
+    repeat (4 * CLOCKS_PER_BIT) @(posedge clk);
+    check_monitor(transactions, last_kind, is21);
+    if (u_mon.violations(0) != 0)
+        $fatal(1, "the monitor saw %0d timing violation(s) of the seed by the core (PROTOCOL VIOLATION lines above)", u_mon.violations(0));
     if (u_emu.violations(0) != 0)
         $fatal(1, "the core broke %0d timing rule(s) of the seed (PROTOCOL VIOLATION lines above)", u_emu.violations(0));
     $display("cycles %0d", cycles);
-    $display("PASS tb_cosim_endat_master: %0d transfers (%0d CRC faults flagged, %0d type I answered), every o_position, o_f1, o_f2 equal to the emulator's",
+    $display("PASS tb_cosim_endat_master: %0d transfers (%0d CRC faults flagged, %0d type I answered), every o_position, o_f1, o_f2 equal to the emulator's and to the monitor's",
              transactions, crc_errs, type1s);
     $finish;
 end

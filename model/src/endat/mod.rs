@@ -94,6 +94,7 @@
 //! `docs/timing/endat.md` has the same diagrams rendered from the model.
 
 pub mod budget;
+pub mod decode;
 mod bench;
 pub mod diagram;
 mod encoder;
