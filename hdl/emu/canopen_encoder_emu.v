@@ -3,8 +3,10 @@
 // (seed 001 §3.4) and the wired-AND bus they share with the master under
 // test, for any testbench, emulated by the encoder-tb model (libcosim,
 // cosim/src/canopen.rs: model::canopen::EncoderNode and
-// DeviceNode<SarCan> on model::can::Bus); the same module name and ports in
-// Verilator (DPI-C) and Icarus (VPI module emu.vpi).
+// DeviceNode<SarCan> on model::can::Bus); the same module name and ports
+// in both simulators: DPI-C in Verilator, the VPI module emu.vpi in Icarus.
+// (A comment line must not begin with the simulator's name: Verilator reads
+// such a line as one of its directives.)
 //
 // Line-level ports, no tristate: the master's TXD in (i_can_tx, recessive
 // high), the bus level at the master's RXD out (o_can_rx: the wired-AND of
