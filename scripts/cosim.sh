@@ -57,6 +57,10 @@ if [ -n "$config" ]; then configs=("$config"); else configs=("$root"/hdl/tb_cosi
 # The library, its VPI module and the parameter tool.
 eval "$("$root/scripts/emu_lib.sh")"
 params_tool="$EMU_LIB_DIR/cosim-params"
+# The simulators load the library emu_lib.sh just built: under `cargo test`,
+# LD_LIBRARY_PATH names target/debug first, where an older libcosim.so may
+# lie (it would win over the Verilator binary's rpath and Icarus's search).
+export LD_LIBRARY_PATH="$EMU_LIB_DIR${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
 
 # How Verilator's C++ is compiled (one translation unit at -O1): part of the key,
 # with every file a testbench can pull in (the monitors come by `include).
