@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # lint.sh: Verilator --lint-only -Wall on every core in hdl/rtl/, with its
 # default parameters and with the parameters of every committed vector file,
-# so that width corners (1-bit, 64-bit) are linted too. Any warning fails.
+# so that width corners (1-bit, 64-bit) are linted too; then every emulator
+# wrapper and monitor in hdl/emu/. Any warning fails.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
@@ -23,5 +24,19 @@ for rtl in hdl/rtl/*.v; do
         fi
     done
 done
-echo "lint: $runs runs over $(ls hdl/rtl/*.v | wc -l) cores, $([ $status = 0 ] && echo clean || echo WARNINGS)"
+# The emulator wrappers and monitors (hdl/emu/) go into users' testbenches,
+# which may lint with -Wall: they must be clean too. They are simulation
+# code (blocking assignments in clocked blocks, as in a testbench), hence
+# -Wno-BLKSEQ; the DPI-C branch is the one Verilator reads.
+wrappers=0
+for emu in hdl/emu/*.v; do
+    module=$(basename "$emu" .v)
+    runs=$((runs + 1)) wrappers=$((wrappers + 1))
+    if ! out=$(verilator --lint-only -Wall -Wno-BLKSEQ -Ihdl/emu --top-module "$module" "$emu" 2>&1); then
+        echo "lint FAIL $emu"
+        echo "$out" | head -n 20
+        status=1
+    fi
+done
+echo "lint: $runs runs over $(ls hdl/rtl/*.v | wc -l) cores and $wrappers emulator wrappers and monitors, $([ $status = 0 ] && echo clean || echo WARNINGS)"
 exit $status

@@ -56,6 +56,9 @@ wire [3:0] emu_pins_in = {1'b1, 1'b0, i_can_tx, 1'b1};
 `include "emu_half_duplex.vh"
 
 assign o_can_rx = emu_out[0];
+// A CAN node has no separate driver enable: the wired-AND bus level is
+// emu_out[0]; the half-duplex body's other two outputs are not wired out.
+wire unused_emu_out = |emu_out[2:1];
 
 endmodule
 

@@ -147,9 +147,14 @@ endfunction
 
 // Protocol violations of the master the emulator has seen so far.
 function integer violations(input integer unused);
+`ifdef VERILATOR
+    longint seen;
+`endif
     begin
 `ifdef VERILATOR
-        violations = emu_violations(emu_handle);
+        // Saturates at the largest integer rather than wrapping negative.
+        seen = emu_violations(emu_handle);
+        violations = (seen > 64'sd2147483647) ? 2147483647 : seen[31:0];
 `else
         violations = $emu_violations(emu_handle);
 `endif
@@ -175,12 +180,15 @@ task emu_show_violations(input integer stop);
 `else
         n = $emu_print_violations(emu_handle, "");
 `endif
-        if (stop && n > 0)
+        if (stop != 0 && n > 0)
             $fatal(1, "the master broke a timing rule of the protocol (STOP_ON_VIOLATION = 1)");
     end
 endtask
 
 // Opens the emulator at time 0; a bad configuration stops the run here.
+// Under DPI-C the transcript is written by the wrapper's `final` block, so
+// the task leaves its last argument unused there (lint waiver below).
+/* verilator lint_off UNUSEDSIGNAL */
 task emu_start(input `EMU_STR kind, input `EMU_STR path, input [63:0] f_emu_hz, input `EMU_STR transcript);
     begin
 `ifdef VERILATOR
@@ -191,3 +199,4 @@ task emu_start(input `EMU_STR kind, input `EMU_STR path, input [63:0] f_emu_hz, 
         if (emu_handle < 0) emu_fail("opening the emulator");
     end
 endtask
+/* verilator lint_on UNUSEDSIGNAL */

@@ -54,9 +54,9 @@ module endat_encoder_emu #(
 `include "emu_api.vh"
 
 localparam EMU_KIND = "endat";
-localparam EMU_PIN0 = "i_endat_clk";
-localparam EMU_PIN1 = "i_endat_data";
-localparam EMU_PIN2 = "i_endat_data_oe";
+localparam [8*24:1] EMU_PIN0 = "i_endat_clk";
+localparam [8*24:1] EMU_PIN1 = "i_endat_data";
+localparam [8*24:1] EMU_PIN2 = "i_endat_data_oe";
 wire emu_clk_in = i_endat_clk;
 wire emu_data_in = i_endat_data;
 wire emu_oe_in = i_endat_data_oe;

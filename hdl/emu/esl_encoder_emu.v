@@ -58,9 +58,9 @@ module esl_encoder_emu #(
 `include "emu_api.vh"
 
 localparam EMU_KIND = "esl";
-localparam EMU_PIN0 = "(none)";
-localparam EMU_PIN1 = "i_esl_data";
-localparam EMU_PIN2 = "i_esl_data_oe";
+localparam [8*24:1] EMU_PIN0 = "(none)";
+localparam [8*24:1] EMU_PIN1 = "i_esl_data";
+localparam [8*24:1] EMU_PIN2 = "i_esl_data_oe";
 wire emu_clk_in = 1'b1;
 wire emu_data_in = i_esl_data;
 wire emu_oe_in = i_esl_data_oe;

@@ -53,9 +53,9 @@ module tformat_encoder_emu #(
 `include "emu_api.vh"
 
 localparam EMU_KIND = "tformat";
-localparam EMU_PIN0 = "(none)";
-localparam EMU_PIN1 = "i_tf_data";
-localparam EMU_PIN2 = "i_tf_data_oe";
+localparam [8*24:1] EMU_PIN0 = "(none)";
+localparam [8*24:1] EMU_PIN1 = "i_tf_data";
+localparam [8*24:1] EMU_PIN2 = "i_tf_data_oe";
 wire emu_clk_in = 1'b1;
 wire emu_data_in = i_tf_data;
 wire emu_oe_in = i_tf_data_oe;
