@@ -44,7 +44,7 @@ async def reads_equal_what_the_encoder_sent(dut):
     dut.trigger.value = 0
     dut.enc_addr.value = 6
     dut.rxd.value = 1
-    cocotb.start_soon(Clock(dut.clk, round(1e12 / F_HZ), units="ps").start())
+    cocotb.start_soon(Clock(dut.clk, 2 * round(5e11 / F_HZ), units="ps").start())
 
     async def pair():
         # pins in: bit 1 the reader's DI, bit 2 its DE; out: bit 0 its RO
@@ -96,7 +96,8 @@ def main():
 
     build = HERE / "build" / "cocotb"
     runner = get_runner("icarus")
-    runner.build(verilog_sources=[HERE / "esl_reader.v"], hdl_toplevel="esl_reader", build_dir=build, always=True)
+    runner.build(verilog_sources=[HERE / "esl_reader.v"], hdl_toplevel="esl_reader", build_dir=build, always=True,
+                 timescale=("1ns", "1ps"))
     xml = runner.test(hdl_toplevel="esl_reader", test_module=Path(__file__).stem, test_dir=HERE, build_dir=build,
                       results_xml=str(build / "results.xml"))
     total, fails = get_results(xml)

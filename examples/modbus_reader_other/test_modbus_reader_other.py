@@ -44,7 +44,7 @@ async def polls_equal_what_the_device_answered(dut):
     dut.poll.value = 0
     dut.slave.value = 0x11
     dut.ro.value = 1
-    cocotb.start_soon(Clock(dut.clk, round(1e12 / F_HZ), units="ps").start())
+    cocotb.start_soon(Clock(dut.clk, 2 * round(5e11 / F_HZ), units="ps").start())
 
     async def line():
         # pins in: bit 1 the reader's DI, bit 2 its DE; out: bit 2 the
@@ -90,7 +90,8 @@ def main():
 
     build = HERE / "build" / "cocotb"
     runner = get_runner("icarus")
-    runner.build(verilog_sources=[HERE / "modbus_reader.v"], hdl_toplevel="modbus_reader", build_dir=build, always=True)
+    runner.build(verilog_sources=[HERE / "modbus_reader.v"], hdl_toplevel="modbus_reader", build_dir=build, always=True,
+                 timescale=("1ns", "1ps"))
     xml = runner.test(hdl_toplevel="modbus_reader", test_module=Path(__file__).stem, test_dir=HERE, build_dir=build,
                       results_xml=str(build / "results.xml"))
     total, fails = get_results(xml)

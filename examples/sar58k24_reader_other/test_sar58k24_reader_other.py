@@ -43,7 +43,7 @@ async def bus_reads_equal_what_the_encoder_sent(dut):
     dut.ask.value = 0
     dut.station.value = 5
     dut.rx_line.value = 1
-    cocotb.start_soon(Clock(dut.clock, round(1e12 / F_HZ), units="ps").start())
+    cocotb.start_soon(Clock(dut.clock, 2 * round(5e11 / F_HZ), units="ps").start())
 
     async def line():
         # pins in: bit 0 trigger and bit 3 CLR (idle high: unused in the bus
@@ -92,7 +92,8 @@ def main():
 
     build = HERE / "build" / "cocotb"
     runner = get_runner("icarus")
-    runner.build(verilog_sources=[HERE / "sar_reader.v"], hdl_toplevel="sar_reader", build_dir=build, always=True)
+    runner.build(verilog_sources=[HERE / "sar_reader.v"], hdl_toplevel="sar_reader", build_dir=build, always=True,
+                 timescale=("1ns", "1ps"))
     xml = runner.test(hdl_toplevel="sar_reader", test_module=Path(__file__).stem, test_dir=HERE, build_dir=build,
                       results_xml=str(build / "results.xml"))
     total, fails = get_results(xml)
