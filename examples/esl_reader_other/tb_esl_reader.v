@@ -76,13 +76,13 @@ initial begin
         @(posedge clk) trigger <= 1'b0;
         while (!fresh && !fail) @(posedge clk);
         if (fail)
-            $fatal(1, "read %0d at %0t ns: the reader failed (why %0d: 1 timeout, 2 frame, 3 CRC, 4 CF, 5 CA); the emulator sent %0h",
+            $fatal(1, "read %0d at %0d ns: the reader failed (why %0d: 1 timeout, 2 frame, 3 CRC, 4 CF, 5 CA); the emulator sent %0h",
                    n, $time, fail_why, u_emu.last_value(0));
         got = {24'd0, turns, angle};
         if (flip_bit >= 0) got[flip_bit] = ~got[flip_bit];
         if (got !== u_emu.last_value(0) || got !== position || status[2] !== ea0 || status[3] !== ea1
             || status[4] !== alm[9])
-            $fatal(1, "read %0d at %0t ns: reader %0h SF %b; emulator sent %0h, set %0h, EA0 %b EA1 %b DD0 %b",
+            $fatal(1, "read %0d at %0d ns: reader %0h SF %b; emulator sent %0h, set %0h, EA0 %b EA1 %b DD0 %b",
                    n, $time, got, status, u_emu.last_value(0), position, ea0, ea1, alm[9]);
     end
     if (u_emu.count(0) != reads)

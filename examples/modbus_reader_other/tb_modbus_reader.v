@@ -52,13 +52,13 @@ initial begin
         @(posedge clk) poll <= 1'b0;
         while (!ok && !err) @(posedge clk);
         if (err)
-            $fatal(1, "poll %0d at %0t ns: the reader failed (code %0d: 1 no answer, 2 framing/noise, 3 gap, 4 CRC, 5 exception %0h, 6 header); the device answered %0h",
+            $fatal(1, "poll %0d at %0d ns: the reader failed (code %0d: 1 no answer, 2 framing/noise, 3 gap, 4 CRC, 5 exception %0h, 6 header); the device answered %0h",
                    n, $time, err_code, exception, u_emu.last_value(0));
         value = {32'd0, position};
         if (flip_bit >= 0) value[flip_bit] = ~value[flip_bit];
         if (value !== u_emu.last_value(0) || value !== expected || u_emu.count(0) != n + 1
             || !u_emu.last_status(0, "answered"))
-            $fatal(1, "poll %0d at %0t ns: reader %0h; the device answered %0h (set %0h), %0d requests seen",
+            $fatal(1, "poll %0d at %0d ns: reader %0h; the device answered %0h (set %0h), %0d requests seen",
                    n, $time, value, u_emu.last_value(0), expected, u_emu.count(0));
     end
     if (u_emu.violations(0) != 0)

@@ -50,12 +50,12 @@ initial begin
         @(posedge clock);
         while (!got && !bad) @(posedge clock);
         if (bad)
-            $fatal(1, "read %0d at %0t ns: the reader found no good answer (why %0d: 0 none, 1 broken, 2 header, 3 checksum); the emulator sent %0d",
+            $fatal(1, "read %0d at %0d ns: the reader found no good answer (why %0d: 0 none, 1 broken, 2 header, 3 checksum); the emulator sent %0d",
                    n, $time, why, u_emu.last_value(0));
         value = {40'd0, word};
         if (flip_bit >= 0) value[flip_bit] = ~value[flip_bit];
         if (value !== u_emu.last_value(0) || value !== position)
-            $fatal(1, "read %0d at %0t ns: reader %0d; the emulator sent %0d, set %0d",
+            $fatal(1, "read %0d at %0d ns: reader %0d; the emulator sent %0d, set %0d",
                    n, $time, value, u_emu.last_value(0), position);
         // the next command one character time after the answer
         repeat (80) @(posedge clock);
