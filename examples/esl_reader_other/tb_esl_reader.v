@@ -44,8 +44,8 @@ reg [9:0] alm;                      // xc mt led lis overspeed mem st uv ov temp
 reg ea0, ea1;
 reg [8*64-1:0] fault;
 
-// xorshift64: the testbench's own random numbers, the same in Icarus and
-// Verilator (Verilator 5.006's $random(seed) degenerates to runs of ones).
+// xorshift64: the testbench's own random numbers, the same in both
+// simulators (in Verilator 5.006, $random(seed) gives runs of ones).
 reg [63:0] rng = 64'h9E37_79B9_7F4A_7C15;
 task next_random;
     begin

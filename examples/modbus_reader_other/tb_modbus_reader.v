@@ -38,8 +38,8 @@ modbus_device_emu #(.CONFIG("device.toml"), .F_EMU_HZ(153600), .TRANSCRIPT("buil
 integer reads, n, flip_bit;
 reg [63:0] value, expected;
 
-// xorshift64: the testbench's own random numbers, the same in Icarus and
-// Verilator (Verilator 5.006's $random(seed) degenerates to runs of ones).
+// xorshift64: the testbench's own random numbers, the same in both
+// simulators (in Verilator 5.006, $random(seed) gives runs of ones).
 reg [63:0] rng = 64'h9E37_79B9_7F4A_7C15;
 task next_random;
     begin

@@ -37,8 +37,8 @@ sar58k24_encoder_emu #(.CONFIG("encoder.toml"), .F_EMU_HZ(153600), .TRANSCRIPT("
 integer reads, n, flip_bit;
 reg [63:0] position, value;
 
-// xorshift64: the testbench's own random numbers, the same in Icarus and
-// Verilator (Verilator 5.006's $random(seed) degenerates to runs of ones).
+// xorshift64: the testbench's own random numbers, the same in both
+// simulators (in Verilator 5.006, $random(seed) gives runs of ones).
 reg [63:0] rng = 64'h9E37_79B9_7F4A_7C15;
 task next_random;
     begin
