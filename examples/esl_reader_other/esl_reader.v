@@ -34,7 +34,7 @@
 `default_nettype none
 
 module esl_reader #(
-    parameter BIT_CLKS = 6,          // system clocks per bit (60 MHz / 10 Mbps)
+    parameter BIT_CLKS = 6,          // system clocks per bit (60 MHz / 10 Mbps); 6 or more
     parameter REPLY_TIMEOUT = 300,   // clocks from the request's end to the answer's start bit (5 us)
     parameter QUIET_CLKS = 120       // idle receiver before the next request may go (20 bits)
 ) (
