@@ -287,7 +287,7 @@ fn x_on_an_emulator_input_is_reported_with_time_and_pin_in_icarus() {
 /// The masters we did not write, each with its copyable Makefile, pass in both simulators.
 #[test]
 fn the_independent_examples_pass_in_icarus_and_verilator() {
-    for example in ["ssi_reader_other", "biss_reader_other", "esl_reader_other", "sar58k24_reader_other", "modbus_reader_other"] {
+    for example in ["ssi_reader_other", "biss_reader_other", "esl_reader_other", "sar58k24_reader_other", "modbus_reader_other", "canopen_reader_other"] {
         for sim in ["icarus", "verilator"] {
             let _one = SERIAL.lock().unwrap_or_else(|e| e.into_inner());
             let dir = root().join("examples").join(example);
