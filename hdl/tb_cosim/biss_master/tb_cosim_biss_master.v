@@ -126,6 +126,7 @@ biss_monitor #(
     .i_slo(slo)
 );
 
+`include "emu_random.vh"
 integer transactions, seed, flip_bit, n, i, waited, valids, bits;
 reg [63:0] position [0:2];
 reg error [0:2];
@@ -153,6 +154,7 @@ endtask
 initial begin
     if (!$value$plusargs("transactions=%d", transactions)) transactions = 1000;
     if (!$value$plusargs("seed=%d", seed)) seed = 1;
+    random_seed(seed);
     if (!$value$plusargs("flip_bit=%d", flip_bit)) flip_bit = -1;
     repeat (4) @(posedge clk);
     rst <= 1'b0;
@@ -162,9 +164,9 @@ initial begin
         for (i = 0; i < SLAVES; i = i + 1) begin
             bits = (SLAVE_BITS >> (8 * i)) & 255;
             mask = (bits >= 64) ? {64{1'b1}} : ((64'd1 << bits) - 64'd1);
-            position[i] = {$random(seed), $random(seed)} & mask;
-            error[i] = $random(seed);
-            warning[i] = $random(seed);
+            position[i] = random64(0) & mask;
+            error[i] = random32(0);
+            warning[i] = random32(0);
             u_emu.set_position(i, position[i]);
             u_emu.set_status(i, "error", error[i]);
             u_emu.set_status(i, "warning", warning[i]);

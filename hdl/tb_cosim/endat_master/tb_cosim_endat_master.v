@@ -161,6 +161,7 @@ endat_monitor #(
     .i_endat_data_in(data_in)
 );
 
+`include "emu_random.vh"
 integer transactions, seed, flip_bit, n, waited, flip_at, crc_errs, type1s;
 integer mbase, last_kind;
 reg [63:0] core_last;
@@ -202,6 +203,7 @@ endfunction
 initial begin
     if (!$value$plusargs("transactions=%d", transactions)) transactions = 1000;
     if (!$value$plusargs("seed=%d", seed)) seed = 1;
+    random_seed(seed);
     if (!$value$plusargs("flip_bit=%d", flip_bit)) flip_bit = -1;
     mask = (POS_BITS >= 64) ? {64{1'b1}} : ((64'd1 << POS_BITS) - 64'd1);
     crc_errs = 0;
@@ -221,15 +223,15 @@ initial begin
         is21 = (n % 50) == 49 && F_SYS_HZ <= 16000000;
         type1 = !is21 && (n % 40) == 39;
         flip = !is21 && !type1 && (n % 16) == 15;
-        position = {$random(seed), $random(seed)} & mask;
-        f1 = $random(seed);
-        f2 = $random(seed);
+        position = random64(0) & mask;
+        f1 = random32(0);
+        f2 = random32(0);
         u_emu.set_position(0, position);
         u_emu.set_status(0, "f1", f1);
         u_emu.set_status(0, "f2", f2);
         if (flip) begin
             // One bit of F1, F2, the position or the CRC (bits after the start bit).
-            flip_at = {$random(seed)} % (POS_BITS + 7);
+            flip_at = {random32(0)} % (POS_BITS + 7);
             $sformat(fault, "[faults]\nflips = [{ request = %0d, bits = [%0d] }]", u_emu.count(0), flip_at);
             u_emu.schedule_fault(fault);
         end

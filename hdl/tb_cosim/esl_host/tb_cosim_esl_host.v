@@ -168,6 +168,7 @@ function [3:0] pick_id(input [2:0] r);
     endcase
 endfunction
 
+`include "emu_random.vh"
 integer transactions, seed, flip_bit, n, waited, field, bit_i, faults, jumps, cuts;
 reg [23:0] st;
 reg [15:0] mt;
@@ -183,13 +184,14 @@ reg [8*120-1:0] fault;
 initial begin
     if (!$value$plusargs("transactions=%d", transactions)) transactions = 1000;
     if (!$value$plusargs("seed=%d", seed)) seed = 1;
+    random_seed(seed);
     if (!$value$plusargs("flip_bit=%d", flip_bit)) flip_bit = -1;
     faults = 0; jumps = 0; cuts = 0; have_ref = 1'b0;
     repeat (4) @(posedge clk);
     rst <= 1'b0;
     repeat (4) @(posedge clk);
     for (n = 0; n < transactions; n = n + 1) begin
-        id = pick_id($random(seed));
+        id = pick_id(random32(0));
         safety = id == 4'h1 || id == 4'h2 || id == 4'h8;
         has_abs = id == 4'h1 || id == 4'h2 || id == 4'h4 || id == 4'h5 || id == 4'h6;
         has_abm = id == 4'h1 || id == 4'h4;
@@ -197,10 +199,10 @@ initial begin
         flip = (n % 16) == 15;
         cut = !flip && (n % 37) == 36;
         jump = !flip && !cut && safety && have_ref && (n % 29) == 28;
-        st = $random(seed);
-        mt = $random(seed);
-        flags = $random(seed);
-        tw = $random(seed);
+        st = random32(0);
+        mt = random32(0);
+        flags = random32(0);
+        tw = random32(0);
         u_emu.set_position(0, {mt, st});
         u_emu.set_status(0, "xc", flags[0]);
         u_emu.set_status(0, "mt", flags[1]);
@@ -219,18 +221,18 @@ initial begin
                    flags[1] | flags[0] | flags[3] | flags[4],
                    flags[6] | flags[5] | flags[8] | flags[7] | flags[2], 2'b00};
         if (flip) begin
-            field = 1 + {$random(seed)} % (answer_fields(id) - 1);
-            bit_i = 1 + {$random(seed)} % 8;
+            field = 1 + {random32(0)} % (answer_fields(id) - 1);
+            bit_i = 1 + {random32(0)} % 8;
             $sformat(fault, "flips = [{ answer = %0d, field = %0d, bit = %0d }]", u_emu.count(0), field, bit_i);
             u_emu.schedule_fault(fault);
         end
         if (cut) begin
-            field = 1 + {$random(seed)} % (answer_fields(id) - 1);
+            field = 1 + {random32(0)} % (answer_fields(id) - 1);
             $sformat(fault, "truncations = [{ answer = %0d, fields = %0d }]", u_emu.count(0), field);
             u_emu.schedule_fault(fault);
         end
         if (jump) begin
-            bit_i = 1 + {$random(seed)} % 2;
+            bit_i = 1 + {random32(0)} % 2;
             $sformat(fault, "sequence_jumps = [{ answer = %0d, channel = %0d }]", u_emu.count(0), bit_i);
             u_emu.schedule_fault(fault);
         end

@@ -95,6 +95,7 @@ ssi_monitor #(
     .i_ssi_data(ssi_data)
 );
 
+`include "emu_random.vh"
 integer transactions, seed, flip_bit, n, waited;
 reg [63:0] position, sent, got, mask, core_last;
 
@@ -111,6 +112,7 @@ endtask
 initial begin
     if (!$value$plusargs("transactions=%d", transactions)) transactions = 1000;
     if (!$value$plusargs("seed=%d", seed)) seed = 1;
+    random_seed(seed);
     if (!$value$plusargs("flip_bit=%d", flip_bit)) flip_bit = -1;
     mask = (BITS >= 64) ? {64{1'b1}} : ((64'd1 << BITS) - 64'd1);
     repeat (4) @(posedge clk);
@@ -118,7 +120,7 @@ initial begin
     repeat (4) @(posedge clk);
     for (n = 0; n < transactions; n = n + 1) begin
         check_monitor(n, core_last);
-        position = {$random(seed), $random(seed)} & mask;
+        position = random64(0) & mask;
         u_emu.set_position(0, position);
         i_start <= 1'b1;
         @(posedge clk);

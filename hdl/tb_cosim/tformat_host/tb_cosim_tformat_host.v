@@ -104,6 +104,7 @@ tformat_monitor #(
     .i_tf_rx(rx)
 );
 
+`include "emu_random.vh"
 integer transactions, seed, flip_bit, n, waited, k, crc_errs, field, bit_i;
 reg [16:0] st;
 reg [15:0] mt;
@@ -117,6 +118,7 @@ reg [8*80-1:0] fault;
 initial begin
     if (!$value$plusargs("transactions=%d", transactions)) transactions = 1000;
     if (!$value$plusargs("seed=%d", seed)) seed = 1;
+    random_seed(seed);
     if (!$value$plusargs("flip_bit=%d", flip_bit)) flip_bit = -1;
     crc_errs = 0;
     repeat (4) @(posedge clk);
@@ -125,9 +127,9 @@ initial begin
     for (n = 0; n < transactions; n = n + 1) begin
         id = (n % 5) == 4 ? 4'd0 : ((n % 7) == 6 ? 4'd1 : 4'd3);
         flip = (n % 16) == 15;
-        st = $random(seed);
-        mt = $random(seed);
-        almc = $random(seed) & 8'hEF; // bit 4 is always 0
+        st = random32(0);
+        mt = random32(0);
+        almc = random32(0) & 8'hEF; // bit 4 is always 0
         u_emu.set_position(0, {mt, st});
         u_emu.set_status(0, "over_speed", almc[0]);
         u_emu.set_status(0, "full_absolute", almc[1]);
@@ -140,8 +142,8 @@ initial begin
         want_sf = {2'b00, almc[5] | almc[6] | almc[7], almc[2], 4'b0000};
         if (flip) begin
             // A data bit (1..8) of a field after CF: SF, the data or the CRC.
-            field = 1 + {$random(seed)} % (id == 4'd3 ? 10 : 5);
-            bit_i = 1 + {$random(seed)} % 8;
+            field = 1 + {random32(0)} % (id == 4'd3 ? 10 : 5);
+            bit_i = 1 + {random32(0)} % 8;
             $sformat(fault, "flips = [{ answer = %0d, field = %0d, bit = %0d }]", u_emu.count(0), field, bit_i);
             u_emu.schedule_fault(fault);
         end
