@@ -94,7 +94,7 @@ failed=0 grand=0
 for core in "${cores[@]}"; do
     cat "$out/$core.summary"
     grep -q '^soak: .*: pass$' "$out/$core.summary" || failed=$((failed + 1))
-    t=$(sed -n 's/^soak: *[a-z_]* *\([0-9]*\) transactions.*/\1/p' "$out/$core.summary")
+    t=$(sed -n 's/^soak: *[a-z0-9_]* *\([0-9]*\) transactions.*/\1/p' "$out/$core.summary")
     grand=$(( grand + ${t:-0} ))
 done
 echo "soak: ${#cores[@]} cores, $grand transactions in Verilator, $(( $(date +%s) - started )) s: $([ $failed = 0 ] && echo pass || echo "$failed FAILED")"
