@@ -88,6 +88,7 @@ pub struct Watch {
     value: u8,
     stop_checked: bool,
     parity_checked: bool,
+    resync: bool,
     lost: bool,
     last_edge: u64,
     /// The request in progress (DE on, at least one character).
@@ -118,6 +119,7 @@ impl Watch {
             value: 0,
             stop_checked: false,
             parity_checked: false,
+            resync: false,
             lost: false,
             last_edge: 0,
             request: None,
@@ -165,9 +167,14 @@ impl Watch {
         }
     }
 
+    /// A character-timing violation: the character is abandoned, and
+    /// neither the gap to the next character nor the release after it is
+    /// measured (their reference is lost with it).
     fn lose(&mut self) {
         self.lost = true;
         self.ch = None;
+        self.resync = true;
+        self.last_end = None;
     }
 
     /// One monitor cycle at `now`: the host's driver input `tx`, its enable
@@ -290,7 +297,8 @@ impl Watch {
                 }
             }
             self.check_wait(base, now, "a request");
-        } else if let Some(m) = self.last_stop_mid {
+            self.resync = false;
+        } else if let Some(m) = self.last_stop_mid.filter(|_| !std::mem::take(&mut self.resync)) {
             let gap = now as f64 - m;
             if gap > self.limits.max_gap_ps + base.period_ps as f64 && !self.gap_reported {
                 self.gap_reported = true;
