@@ -19,7 +19,8 @@
 //!   character on the line, either direction (from its stop bit's middle);
 //! * release: DE off within `release_ps` of the request's last stop bit
 //!   (reported when it falls);
-//! * answer: never both drivers on (R low while the host drives a 1), never
+//! * answer: never both drivers on (R low for a quarter bit or more while
+//!   the host drives a 1: an echoing receiver lags the driver), never
 //!   DE switched on inside a character of the device;
 //! * wait: after a request (or trigger) that the device answers, the next
 //!   request only once an answer character has begun or `timeout_ps` has
@@ -102,6 +103,7 @@ pub struct Watch {
     dev_char: Option<u64>,
     dev_stop_mid: Option<f64>,
     both: bool,
+    both_since: Option<u64>,
     /// A request (or trigger) waiting for its answer: when it ended.
     awaiting: Option<u64>,
 }
@@ -130,6 +132,7 @@ impl Watch {
             dev_char: None,
             dev_stop_mid: None,
             both: false,
+            both_since: None,
             awaiting: None,
         }
     }
@@ -193,11 +196,19 @@ impl Watch {
                 self.awaiting = None;
             }
         }
-        let both = de && tx && !rx;
-        if both && !self.both {
-            base.violation(now, r.answer, "the host's driver was on while the device drove the line low (both drivers on)".to_string());
+        // Low at the receiver while the host drives a 1 for a quarter bit or
+        // more: another driver (a receiver that echoes the host's own driver,
+        // or a resolved line level, lags it by a few cycles at each edge).
+        if de && tx && !rx {
+            let since = *self.both_since.get_or_insert(now);
+            if !self.both && (now - since) as f64 >= bit / 4.0 {
+                self.both = true;
+                base.violation(since, r.answer, "the host's driver was on while the device drove the line low (both drivers on)".to_string());
+            }
+        } else {
+            self.both_since = None;
+            self.both = false;
         }
-        self.both = both;
         if de && !self.de && self.device_busy(now) {
             let d = self.dev_char.unwrap_or(now);
             base.violation(now, r.answer, format!("the host switched its driver on {:.2} bits into a character of the device", (now - d) as f64 / bit));
