@@ -89,7 +89,7 @@ endtask
 reg [63:0] req;
 reg [15:0] c;
 reg [7:0] sum;
-integer i;
+integer i, is;  // one loop variable per host: they run in parallel
 
 // The Modbus master: request 1, answer, request 2, answer.
 task mb_request(input [7:0] station, input integer bad_char, input integer gap_at, input integer hold);
@@ -142,9 +142,9 @@ task sar_answer(input integer de_inside, input integer trig_inside);
     reg [7:0] b;
     begin
         sum = 8'hFF + 8'hB1 + 8'h01 + 8'h02 + 8'h03 + 8'h04;
-        for (i = 0; i < 7; i = i + 1) begin
-            b = i == 0 ? 8'hFF : (i == 1 ? 8'hB1 : (i == 6 ? sum : i - 1));
-            if (i == 6 && (de_inside || trig_inside)) begin
+        for (is = 0; is < 7; is = is + 1) begin
+            b = is == 0 ? 8'hFF : (is == 1 ? 8'hB1 : (is == 6 ? sum : is - 1));
+            if (is == 6 && (de_inside || trig_inside)) begin
                 fork
                     s_char(b, 1'b0, -1, 0);
                     begin
