@@ -114,11 +114,13 @@ task mb_answer(input integer de_inside);
         c = crc16(req[63:8], 7);
         for (i = 0; i < 9; i = i + 1) begin
             if (i == 8 && de_inside) begin
-                // 0xFF: after the start bit the line is high, so only the switch-on is wrong
-                fork
-                    mb_char(8'hFF, 1'b0, -1, 0, 1'b0);
-                    begin #(2 * BIT); mb_de = 1'b1; #(BIT); mb_de = 1'b0; end
-                join
+                // 0xFF: after the start bit the line is high, so only the
+                // switch-on is wrong; DE on for the third bit (inline, no fork).
+                for (km = 0; km < 11; km = km + 1) begin
+                    mb_r = km == 0 ? 1'b0 : 1'b1;
+                    mb_de = km == 2;
+                    #(BIT);
+                end
             end else
                 mb_char(i < 7 ? req[8 * (7 - i) +: 8] : (i == 7 ? c[7:0] : c[15:8]), 1'b0, -1, 0, 1'b0);
         end
@@ -145,14 +147,12 @@ task sar_answer(input integer de_inside, input integer trig_inside);
         for (is = 0; is < 7; is = is + 1) begin
             b = is == 0 ? 8'hFF : (is == 1 ? 8'hB1 : (is == 6 ? sum : is - 1));
             if (is == 6 && (de_inside || trig_inside)) begin
-                fork
-                    s_char(b, 1'b0, -1, 0);
-                    begin
-                        #(2 * BIT);
-                        if (de_inside) begin s_de = 1'b1; #(BIT); s_de = 1'b0; end
-                        else begin s_trig = 1'b0; #(20000); s_trig = 1'b1; end
-                    end
-                join
+                // DE on (or the trigger low) for the third bit of the last character.
+                for (ks = 0; ks < 10; ks = ks + 1) begin
+                    s_r = ks == 0 ? 1'b0 : (ks <= 8 ? b[ks - 1] : 1'b1);
+                    if (de_inside) s_de = ks == 2; else s_trig = ks != 2;
+                    #(BIT);
+                end
             end else
                 s_char(b, 1'b0, -1, 0);
         end
