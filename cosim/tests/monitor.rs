@@ -318,3 +318,82 @@ fn each_endat_monitor_rule_fires_in_icarus() {
 fn each_endat_monitor_rule_fires_in_verilator() {
     each_endat_rule_fires_once_and_the_clean_master_passes("verilator");
 }
+
+/// The SAR58K24 and Modbus RTU monitors in the simulators: a hand-written
+/// Modbus master and SAR58K24 bus host
+/// (`hdl/tb_cosim/monitor_rules/tb_uart_monitor_rules.v`) break each rule
+/// once (cases 1 to 14) or none (case 0); each violation is reported once
+/// with its rule; the clean transcripts are captures `tbgen check` reads
+/// (pass, and a flipped register or position bit is found).
+fn each_uart_rule_fires_once(sim: &str) {
+    use cosim::monitor::{modbus as mb, sar};
+    let dir = root().join(format!("build/cosim/monitor_rules/{sim}/tb_uart_monitor_rules/run"));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (mbt, sart) = (dir.join("modbus.toml"), dir.join("sar.toml"));
+    std::fs::write(&mbt, "[modbus]\nbaud = 15625.0\nparity = \"even\"\n[modbus.master]\ntimeout_us = 5000.0\n[[modbus.devices]]\naddress = 1\nbits = 32\n").unwrap();
+    std::fs::write(&sart, "[sar]\nbaud = 15625.0\nmode = \"bus\"\n[sar.host]\ntimeout_us = 5000.0\n[[sar.encoders]]\naddress = 1\nbits = 32\n").unwrap();
+    let cmd = bench_of(sim, "tb_uart_monitor_rules");
+    let cases: [(u32, usize, usize, &str); 15] = [
+        (0, 0, 0, ""),
+        (1, 1, 0, mb::RULE_CHARACTER),
+        (2, 1, 0, mb::RULE_CHARACTER),
+        (3, 1, 0, mb::RULE_T15),
+        (4, 1, 0, mb::RULE_T35),
+        (5, 1, 0, mb::RULE_RELEASE),
+        (6, 1, 0, mb::RULE_ANSWER),
+        (7, 1, 0, mb::RULE_TIMEOUT),
+        (8, 0, 1, sar::RULE_CHARACTER),
+        (9, 0, 1, sar::RULE_GAP),
+        (10, 0, 1, sar::RULE_RELEASE),
+        (11, 0, 1, sar::RULE_ANSWER),
+        (12, 0, 1, sar::RULE_WAIT),
+        (13, 0, 1, sar::RULE_T2),
+        (14, 0, 1, sar::RULE_TRIGGER_BUSY),
+    ];
+    for (case, n_mb, n_sar, rule) in cases {
+        let (mon_m, mon_s) = (dir.join(format!("modbus_{case}.json")), dir.join(format!("sar_{case}.json")));
+        let (ok, out) = run(Command::new(cmd.get_program()).args(cmd.get_args()).envs(cmd.get_envs().filter_map(|(k, v)| Some((k, v?)))).args([
+            format!("+case={case}"),
+            format!("+modbus_monitor_config={}", mbt.display()),
+            format!("+sar58k24_monitor_config={}", sart.display()),
+            format!("+modbus_monitor_transcript={}", mon_m.display()),
+            format!("+sar58k24_monitor_transcript={}", mon_s.display()),
+        ]));
+        assert!(ok, "case {case} in {sim}:\n{out}");
+        assert!(out.contains(&format!("violations modbus {n_mb} sar {n_sar}")), "case {case} in {sim}:\n{out}");
+        assert_eq!(out.matches("PROTOCOL VIOLATION by the master on").count(), n_mb + n_sar, "case {case} in {sim}:\n{out}");
+        assert!(out.contains(rule), "case {case} in {sim}: no `{rule}` in\n{out}");
+        let t: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&mon_m).unwrap()).unwrap();
+        assert_eq!(t["violations"].as_array().unwrap().len(), n_mb, "{t}");
+        let t: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&mon_s).unwrap()).unwrap();
+        assert_eq!(t["violations"].as_array().unwrap().len(), n_sar, "{t}");
+    }
+    // The clean transcripts: two polls of 0x12345678, two frames of 0x01020304.
+    let expect = dir.join("expect_modbus.json");
+    let poll = r#"{"op": "read", "address": 1, "count": 2, "value": VALUE, "errors": []}"#;
+    std::fs::write(&expect, format!("{{\"transactions\": [{}, {}]}}", poll.replace("VALUE", "305419896"), poll.replace("VALUE", "305419896"))).unwrap();
+    let (ok, out) = tbgen_check("modbus", &expect, &dir.join("modbus_0.json"));
+    assert!(ok && out.contains("PASS: 2 transactions of modbus equal"), "{out}");
+    std::fs::write(&expect, format!("{{\"transactions\": [{}, {}]}}", poll.replace("VALUE", "305419896"), poll.replace("VALUE", "305419900"))).unwrap();
+    let (ok, out) = tbgen_check("modbus", &expect, &dir.join("modbus_0.json"));
+    assert!(!ok && out.contains("DIFFERENCE in transaction 1 at ") && out.contains("value expected 305419900, captured 305419896"), "{out}");
+    let expect = dir.join("expect_sar.json");
+    let ev = |kind: &str, pos: &str| format!(r#"{{"kind": "{kind}", "position": {pos}, "errors": []}}"#);
+    let list = |p: &str| format!("{{\"transactions\": [{}, {}, {}, {}]}}", ev("command", "null"), ev("frame", "16909060"), ev("command", "null"), ev("frame", p));
+    std::fs::write(&expect, list("16909060")).unwrap();
+    let (ok, out) = tbgen_check("sar", &expect, &dir.join("sar_0.json"));
+    assert!(ok && out.contains("PASS: 4 transactions of sar equal"), "{out}");
+    std::fs::write(&expect, list("16909061")).unwrap();
+    let (ok, out) = tbgen_check("sar", &expect, &dir.join("sar_0.json"));
+    assert!(!ok && out.contains("DIFFERENCE in transaction 3 at ") && out.contains("position expected 16909061, captured 16909060"), "{out}");
+}
+
+#[test]
+fn each_sar58k24_and_modbus_monitor_rule_fires_in_icarus() {
+    each_uart_rule_fires_once("icarus");
+}
+
+#[test]
+fn each_sar58k24_and_modbus_monitor_rule_fires_in_verilator() {
+    each_uart_rule_fires_once("verilator");
+}

@@ -19,8 +19,11 @@ pub mod biss;
 pub mod endat;
 pub mod esl;
 pub mod half_duplex;
+pub mod modbus;
+pub mod sar;
 pub mod ssi;
 pub mod tformat;
+pub mod uart;
 
 use serde_json::Value;
 

@@ -9,10 +9,19 @@
 // bits with u_emu.set_position (issue 10), and the answer must carry it
 // (binary, or Gray for a Gray device).
 //
+// A pin-level monitor (hdl/emu/modbus_monitor.v) watches the master's D, DE
+// and R: before each poll it must have decoded every earlier poll with the
+// registers the core read and the device answered, and the run fails on any
+// timing rule it saw broken (t1.5, t3.5, character timing, turnaround,
+// response timeout).
+//
 // Plusargs: +modbus_emu_config=<scenario.toml>, +transactions=N (default
 // 1000), +seed=S (the positions set in the second half), +flip_bit=K
 // (planted failure: the comparison flips bit K of the core's output, so the
-// run must fail).
+// run must fail), +modbus_monitor_transcript=FILE (the monitor's JSON
+// transcript).
+
+`include "modbus_monitor.v"
 
 `timescale 1fs / 1fs
 `default_nettype none
@@ -71,6 +80,15 @@ modbus_device_emu #(
     .o_line(dev_line), .o_line_en(dev_line_en), .o_bus(bus)
 );
 
+// The pin-level monitor and protocol checker, on the same clock.
+modbus_monitor #(
+    .F_MON_HZ(F_SYS_HZ),
+    .PLUSARG("modbus_emu_config")
+) u_mon (
+    .i_mon_clk(clk),
+    .i_line(o_tx), .i_line_en(o_tx_en), .i_rx(bus)
+);
+
 reg seen_valid = 1'b0, seen_err = 1'b0;
 reg [31:0] got_value = 0;
 always @(posedge clk) begin
@@ -124,14 +142,18 @@ initial begin
         if (!seen_valid || seen_err || got != sent)
             $fatal(1, "poll %0d at %0t: core read %0d (valid %b, an error pulse %b), the device answered %0d",
                    n, $time, got, seen_valid, seen_err, sent);
+        // The monitor decoded the same poll off the pins (the one in progress counts).
+        if (u_mon.count(0) != n + 1 || u_mon.last_status(0, "valid") != 1 || u_mon.last_value(0) != got_value)
+            $fatal(1, "poll %0d at %0t: the monitor decoded %0d polls, valid %0d, value %0d; the core read %0d",
+                   n, $time, u_mon.count(0), u_mon.last_status(0, "valid"), u_mon.last_value(0), got_value);
         if (2 * n >= transactions && sent != position && sent != (position ^ (position >> 1)))
             $fatal(1, "poll %0d at %0t: the testbench set position %0d, the device answered %0d", n, $time, position, sent);
         while (o_busy) @(posedge clk);
     end
-    if (u_emu.violations(0) != 0)
-        $fatal(1, "the core broke %0d rule(s) of the seed (PROTOCOL VIOLATION lines above)", u_emu.violations(0));
+    if (u_emu.violations(0) != 0 || u_mon.violations(0) != 0)
+        $fatal(1, "the core broke %0d rule(s) of the seed seen by the emulator, %0d seen by the monitor (PROTOCOL VIOLATION lines above)", u_emu.violations(0), u_mon.violations(0));
     $display("cycles %0d", cycles);
-    $display("PASS tb_cosim_modbus_master: %0d polls, every o_value equal to the device's answer", transactions);
+    $display("PASS tb_cosim_modbus_master: %0d polls, every o_value equal to the device's answer and to the monitor's", transactions);
     $finish;
 end
 

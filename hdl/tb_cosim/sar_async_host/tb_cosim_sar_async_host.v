@@ -10,10 +10,19 @@
 // u_emu.set_position (issue 10: the testbench owns the shaft from then on),
 // and the frame must carry exactly that position.
 //
+// A pin-level monitor (hdl/emu/sar58k24_monitor.v) watches the host's D, DE,
+// R, trigger and CLR: at each o_done it must have decoded one frame per
+// read with the position the core read and the emulator sent, and the run
+// fails on any timing rule it saw broken (character timing, command gap,
+// turnaround, answer wait, T2).
+//
 // Plusargs: +sar58k24_emu_config=<scenario.toml>, +transactions=N (default
 // 1000), +seed=S (the positions set in the second half),
 // +flip_bit=K (planted failure: the comparison flips bit K of the core's
-// output, so the run must fail).
+// output, so the run must fail), +sar58k24_monitor_transcript=FILE (the
+// monitor's JSON transcript).
+
+`include "sar58k24_monitor.v"
 
 `timescale 1fs / 1fs
 `default_nettype none
@@ -77,6 +86,15 @@ sar58k24_encoder_emu #(
     .o_line(enc_line), .o_line_en(enc_line_en), .o_bus(bus)
 );
 
+// The pin-level monitor and protocol checker, on the same clock.
+sar58k24_monitor #(
+    .F_MON_HZ(F_SYS_HZ),
+    .PLUSARG("sar58k24_emu_config")
+) u_mon (
+    .i_mon_clk(clk),
+    .i_line(o_tx), .i_line_en(o_tx_en), .i_rx(bus), .i_trigger(o_trigger), .i_clr(o_clr)
+);
+
 // Each error pulse and the position at o_valid, caught between start and done.
 reg seen_valid = 1'b0, seen_err = 1'b0;
 reg [31:0] got_position = 0;
@@ -96,7 +114,7 @@ end
 
 localparam COUNTED = (MODE >= 2);
 integer transactions, seed, flip_bit, n, waited;
-reg [63:0] sent, got, count_before, position;
+reg [63:0] sent, got, count_before, position, mon_before;
 localparam [63:0] MASK = (64'd1 << BITS) - 1;
 
 initial begin
@@ -112,6 +130,7 @@ initial begin
             u_emu.set_position(0, position);
         end
         count_before = u_emu.count(0);
+        mon_before = u_mon.count(0);
         i_start <= 1'b1;
         @(posedge clk);
         i_start <= 1'b0;
@@ -132,6 +151,10 @@ initial begin
         if (!seen_valid || seen_err || got != sent)
             $fatal(1, "read %0d at %0t: core read %0d (valid %b, an error pulse %b), the emulator sent %0d",
                    n, $time, got, seen_valid, seen_err, sent);
+        // The monitor decoded the same frame off the pins.
+        if ((COUNTED ? u_mon.count(0) != mon_before + 1 : u_mon.count(0) <= mon_before) || u_mon.last_value(0) != got_position)
+            $fatal(1, "read %0d at %0t: the monitor decoded %0d frames, the last %0d; the core read %0d",
+                   n, $time, u_mon.count(0) - mon_before, u_mon.last_value(0), got_position);
         if (2 * n >= transactions && sent != position)
             $fatal(1, "read %0d at %0t: the testbench set position %0d, the encoder sent %0d", n, $time, position, sent);
         while (o_busy) @(posedge clk);
@@ -141,10 +164,10 @@ initial begin
         // Wait the rest of that bit and the cable, as a bus master should.
         repeat (2 * CLOCKS_PER_BIT) @(posedge clk);
     end
-    if (u_emu.violations(0) != 0)
-        $fatal(1, "the core broke %0d rule(s) of the seed (PROTOCOL VIOLATION lines above)", u_emu.violations(0));
+    if (u_emu.violations(0) != 0 || u_mon.violations(0) != 0)
+        $fatal(1, "the core broke %0d rule(s) of the seed seen by the emulator, %0d seen by the monitor (PROTOCOL VIOLATION lines above)", u_emu.violations(0), u_mon.violations(0));
     $display("cycles %0d", cycles);
-    $display("PASS tb_cosim_sar_async_host: %0d reads, every o_position equal to the emulator's", transactions);
+    $display("PASS tb_cosim_sar_async_host: %0d reads, every o_position equal to the emulator's and to the monitor's", transactions);
     $finish;
 end
 

@@ -27,6 +27,7 @@
 
 mod bench;
 pub mod campaign;
+pub mod decode;
 mod device;
 pub mod frames;
 mod master;

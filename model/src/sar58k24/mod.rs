@@ -24,6 +24,7 @@
 
 mod bench;
 pub mod campaign;
+pub mod decode;
 mod encoder;
 pub mod frames;
 mod host;

@@ -40,6 +40,7 @@
 
 mod bench;
 pub mod campaign;
+pub mod line;
 mod fault;
 mod receiver;
 mod second_driver;

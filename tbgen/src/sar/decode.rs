@@ -1,5 +1,7 @@
 //! `tbgen decode sar`: the line at a SAR58K24 asynchronous host, captured as
-//! a VCD, turned into the frames on it.
+//! a VCD, turned into the frames on it. The decode core is
+//! [`model::sar58k24::decode`] (shared with the co-simulation monitor
+//! `sar58k24_monitor`); this module reads the capture's two scalars.
 //!
 //! Two scalars are read: the line at the host and the host's driver enable
 //! (its bus commands; a capture of a timed or handshake mode has the enable
@@ -23,13 +25,13 @@
 
 use std::path::Path;
 
-use model::sar58k24::frames;
 use model::uart::Parity;
-use serde::Serialize;
 
 use crate::capture;
-use crate::uart::line::{self, Char};
+use crate::uart::line;
 use crate::Result;
+
+pub use model::sar58k24::decode::Burst;
 
 /// What the decoder needs besides the file.
 #[derive(Debug, Clone, PartialEq)]
@@ -50,149 +52,11 @@ pub struct Options {
     pub gap_bits: f64,
 }
 
-/// One event on the line: a command, a frame, a flagged fault or a
-/// boundary after characters that made no frame.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Burst {
-    /// 0-based event number.
-    pub index: usize,
-    /// The first character's start bit, ps.
-    pub start_ps: u64,
-    /// `command` (the host drove it), `frame` (a position accepted), `fault`
-    /// (the host flags it) or `noise` (characters that made no frame, ended
-    /// by a gap without a flag).
-    pub kind: &'static str,
-    /// The characters since the previous event.
-    pub bytes: Vec<u8>,
-    /// A command: `read` or `zero`; `null` for bytes that are no command.
-    pub command: Option<&'static str>,
-    /// The encoder a command addresses.
-    pub address: Option<u8>,
-    /// The position of the frame (binary, after Gray decoding).
-    pub position: Option<u32>,
-    /// Its angle, `360° × a / 2^bits` cut to four decimals.
-    pub angle_deg: Option<f64>,
-    /// The host's flags: `checksum`, `parity`, `frame`, `address`.
-    pub errors: Vec<&'static str>,
-}
-
-/// The host's frame finder over characters (`model::sar58k24::Host::step`).
-struct Finder<'a> {
-    options: &'a Options,
-    len: usize,
-    window: Vec<u8>,
-    count: usize,
-    synced: bool,
-    pending: Vec<Char>,
-    last_end_ps: Option<u64>,
-    tag: u8,
-    out: Vec<Burst>,
-}
-
-impl Finder<'_> {
-    fn emit(&mut self, kind: &'static str, errors: Vec<&'static str>, position: Option<u32>) {
-        let start_ps = self.pending.first().map_or(0, |c| c.start_ps);
-        let angle_deg = position.map(|v| model::angle::angle_deg(v as u64, self.options.bits));
-        let bytes = line::values(&self.pending);
-        self.pending.clear();
-        self.out.push(Burst { index: self.out.len(), start_ps, kind, bytes, command: None, address: None, position, angle_deg, errors });
-    }
-
-    /// An idle gap of the host's `GAP_CLOCKS`: a frame boundary.
-    fn gap(&mut self) {
-        if self.count != 0 {
-            if self.synced && self.count < self.len {
-                self.emit("fault", vec!["frame"], None);
-            }
-            self.count = 0;
-            self.synced = true;
-        }
-        if !self.pending.is_empty() {
-            self.emit("noise", Vec::new(), None);
-        }
-    }
-
-    fn char(&mut self, c: Char, bit_ps: u64) {
-        let gap_ps = (self.options.gap_bits * bit_ps as f64) as u64;
-        if self.last_end_ps.is_some_and(|e| c.start_ps >= e + gap_ps) {
-            self.gap();
-        }
-        // Idle is counted from the receiver's stop-bit sample.
-        self.last_end_ps = Some(c.start_ps + (self.options.parity.frame_bits() as u64 - 1) * bit_ps + bit_ps / 2);
-        self.pending.push(c);
-        if c.parity_error || c.framing_error {
-            let errors = [(c.parity_error, "parity"), (c.framing_error, "frame")].into_iter().filter(|f| f.0).map(|f| f.1).collect();
-            self.count = 0;
-            self.synced = false;
-            self.emit("fault", errors, None);
-            return;
-        }
-        let l = self.len;
-        self.window.remove(0);
-        self.window.push(c.value);
-        self.count = (self.count + 1).min(l + 1);
-        let w = &self.window;
-        let header_ok = w[0] == frames::SYNC && w[1] == self.tag;
-        if self.count >= l && header_ok && frames::checksum(&w[..l - 1]) == w[l - 1] {
-            let data = w[2..l - 1].iter().fold(0u64, |v, &x| (v << 8) | x as u64) & ((1u64 << self.options.bits) - 1);
-            let v = if self.options.gray { model::gray::from_gray(data) } else { data } as u32;
-            self.count = 0;
-            self.synced = true;
-            self.emit("frame", Vec::new(), Some(v));
-        } else if self.count == l && self.synced {
-            self.synced = false;
-            let error = if w[0] == frames::SYNC && w[1] & 0xF0 == 0xB0 && self.tag & 0xF0 == 0xB0 && w[1] != self.tag {
-                "address"
-            } else if !header_ok {
-                "frame"
-            } else {
-                "checksum"
-            };
-            self.emit("fault", vec![error], None);
-        }
-    }
-}
-
 /// Decodes `path` with `options`.
 pub fn decode(path: &Path, options: &Options) -> Result<Vec<Burst>> {
     let signals = capture::read(path, &[(&options.line, "--line"), (&options.tx_en, "--tx-en")])?;
-    let (line_sig, tx_en) = (&signals[0], &signals[1]);
-    let bit_ps = (1e12 / options.baud).round() as u64;
-    let len = frames::frame_len(options.bits);
-    let mut f = Finder { options, len, window: vec![0; len], count: 0, synced: true, pending: Vec::new(), last_end_ps: None, tag: frames::TAG_81, out: Vec::new() };
-    let chars = line::chars(line_sig, Some(tx_en), bit_ps, options.parity);
-    let mut k = 0;
-    while k < chars.len() {
-        if chars[k].from_host {
-            // The host is deaf while it drives: its command is one event. Its
-            // characters end at an idle gap, as the encoder's do: two commands
-            // with no answer between them (the host timed out on the first)
-            // are two events, not one unreadable six-byte command.
-            let gap_ps = (options.gap_bits * bit_ps as f64) as u64;
-            let mut n = 1;
-            while chars.get(k + n).is_some_and(|c| c.from_host && c.start_ps < chars[k + n - 1].end_ps(bit_ps, options.parity) + gap_ps) {
-                n += 1;
-            }
-            f.gap();
-            let cmd = &chars[k..k + n];
-            let bytes = line::values(cmd);
-            let (command, address) = match frames::parse_command(&bytes) {
-                Some(frames::Command::Read(a)) => (Some("read"), Some(a)),
-                Some(frames::Command::Zero(a)) => (Some("zero"), Some(a)),
-                None => (None, None),
-            };
-            if let Some(a) = address {
-                f.tag = 0xB0 | a;
-            }
-            f.out.push(Burst { index: f.out.len(), start_ps: cmd[0].start_ps, kind: "command", bytes, command, address, position: None, angle_deg: None, errors: Vec::new() });
-            k += n;
-        } else {
-            f.char(chars[k], bit_ps);
-            k += 1;
-        }
-    }
-    f.gap();
-    Ok(f.out)
+    let o = model::sar58k24::decode::Options { baud: options.baud, parity: options.parity, bits: options.bits, gray: options.gray, gap_bits: options.gap_bits };
+    Ok(model::sar58k24::decode::decode(&signals[0], &signals[1], &o))
 }
 
 /// The JSON `tbgen decode sar` prints.
