@@ -113,6 +113,7 @@ always @(posedge clk) begin
 end
 
 localparam COUNTED = (MODE >= 2);
+`include "emu_random.vh"
 integer transactions, seed, flip_bit, n, waited;
 reg [63:0] sent, got, count_before, position, mon_before;
 localparam [63:0] MASK = (64'd1 << BITS) - 1;
@@ -120,13 +121,14 @@ localparam [63:0] MASK = (64'd1 << BITS) - 1;
 initial begin
     if (!$value$plusargs("transactions=%d", transactions)) transactions = 1000;
     if (!$value$plusargs("seed=%d", seed)) seed = 1;
+    random_seed(seed);
     if (!$value$plusargs("flip_bit=%d", flip_bit)) flip_bit = -1;
     repeat (4) @(posedge clk);
     rst <= 1'b0;
     repeat (4) @(posedge clk);
     for (n = 0; n < transactions; n = n + 1) begin
         if (2 * n >= transactions) begin
-            position = {$random(seed), $random(seed)} & MASK;
+            position = random64(0) & MASK;
             u_emu.set_position(0, position);
         end
         count_before = u_emu.count(0);
