@@ -5,7 +5,10 @@
 //
 // Each read: a random position and a random F1 go into the emulator, the
 // reader is asked, and what it took must equal what the emulator says it
-// latched and sent, with a good CRC; no timing rule may be broken.
+// latched and sent, with a good CRC, and what the pin-level monitor decoded
+// on the line; no timing rule may be broken (the emulator's checks and the
+// monitor's: t_b, t_m, t_R, the clock, the send block). Both write their
+// JSON transcripts into build/ for `tbgen check endat`.
 
 `timescale 1ns / 1ps
 `default_nettype none
@@ -30,6 +33,11 @@ endat_encoder_emu #(.CONFIG("encoder.toml"), .F_EMU_HZ(4000000), .TRANSCRIPT("bu
     .o_endat_data(din), .o_endat_data_oe(enc_oe)
 );
 
+// The pin-level monitor and protocol checker: it only listens.
+endat_monitor #(.CONFIG("encoder.toml"), .F_MON_HZ(4000000), .TRANSCRIPT("build/monitor.json")) u_mon (
+    .i_mon_clk(clk), .i_endat_clk(ck), .i_endat_data(dout), .i_endat_data_oe(dout_en), .i_endat_data_in(din)
+);
+
 integer reads, n, seed, f1;
 reg [63:0] position;
 
@@ -52,8 +60,11 @@ initial begin
                    n, $time, pos, err1, crc_ok, no_start, u_emu.last_value(0), f1);
         @(posedge clk);
     end
-    if (u_emu.violations(0) != 0)
-        $fatal(1, "the reader broke %0d timing rule(s) of EnDat (PROTOCOL VIOLATION lines above)", u_emu.violations(0));
+    // The monitor decodes a transfer at the next one's start or 10 us after its last edge: long since.
+    if (u_mon.count(0) != reads || u_mon.last_value(0) !== pos)
+        $fatal(1, "the monitor decoded %0d transfers, the last position %0d; the reader read %0d", u_mon.count(0), u_mon.last_value(0), pos);
+    if (u_emu.violations(0) != 0 || u_mon.violations(0) != 0)
+        $fatal(1, "the reader broke %0d + %0d timing rule(s) of EnDat (PROTOCOL VIOLATION lines above)", u_emu.violations(0), u_mon.violations(0));
     $display("PASS endat_reader: %0d reads equal to what the emulator sent", reads);
     $finish;
 end

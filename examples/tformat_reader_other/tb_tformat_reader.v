@@ -6,7 +6,10 @@
 // Each read: a random single-turn and multi-turn position and random ALMC
 // flags go into the emulator, the reader asks for Data ID 3 (every fourth
 // read Data ID 0), and what it took must equal what the emulator says it
-// sent; no timing rule may be broken.
+// sent, and what the pin-level monitor decoded on the line; no timing rule
+// may be broken (the emulator's checks and the monitor's: character timing,
+// turnaround, request spacing). Both write their JSON transcripts into
+// build/ for `tbgen check tformat`.
 
 `timescale 1ns / 1ps
 `default_nettype none
@@ -32,6 +35,11 @@ tformat_reader #(.BIT(8), .TIMEOUT(400)) dut (     // 2.5 Mbps, 20 us timeout
 
 tformat_encoder_emu #(.CONFIG("encoder.toml"), .F_EMU_HZ(20000000), .TRANSCRIPT("build/transcript.json")) u_emu (
     .i_emu_clk(clk), .i_tf_data(tx), .i_tf_data_oe(tx_en), .o_tf_data(rx), .o_tf_data_oe(enc_oe)
+);
+
+// The pin-level monitor and protocol checker: it only listens.
+tformat_monitor #(.CONFIG("encoder.toml"), .F_MON_HZ(20000000), .TRANSCRIPT("build/monitor.json")) u_mon (
+    .i_mon_clk(clk), .i_tf_data(tx), .i_tf_data_oe(tx_en), .i_tf_rx(rx)
 );
 
 integer reads, n, seed, k;
@@ -69,8 +77,10 @@ initial begin
                    n, id, $time, st, mt, almc, bad, why, want_st, want_mt, want_almc);
         @(posedge clk);
     end
-    if (u_emu.violations(0) != 0)
-        $fatal(1, "the reader broke %0d timing rule(s) of T-format (PROTOCOL VIOLATION lines above)", u_emu.violations(0));
+    if (u_mon.count(0) != reads || u_mon.last_value(0) !== {mt, st})   // both hold ABM through a Data ID 0 answer
+        $fatal(1, "the monitor decoded %0d readouts, the last ABM << 17 | ABS %0d; the reader read %0d", u_mon.count(0), u_mon.last_value(0), {mt, st});
+    if (u_emu.violations(0) != 0 || u_mon.violations(0) != 0)
+        $fatal(1, "the reader broke %0d + %0d timing rule(s) of T-format (PROTOCOL VIOLATION lines above)", u_emu.violations(0), u_mon.violations(0));
     $display("PASS tformat_reader: %0d reads equal to what the emulator sent", reads);
     $finish;
 end
