@@ -48,8 +48,8 @@ module endat_reader #(
     output reg                 got,         // one cycle: pos_out, err1_out and crc_ok are new
     output reg                 no_start,    // one cycle: no start bit within POLL_MAX periods
     output reg                 ck = 1'b1,   // idle high from power-up, before any reset
-    output reg                 dout,        // to the transceiver's D
-    output reg                 dout_en,     // to the transceiver's DE
+    output reg                 dout = 1'b1,    // to the transceiver's D
+    output reg                 dout_en = 1'b0, // to the transceiver's DE (off from power-up, as ck is idle)
     input  wire                din          // from the transceiver's R
 );
 

@@ -49,7 +49,7 @@ module tformat_reader #(
     output reg         bad,           // one cycle: an answer failed a check, or none came
     output reg  [2:0]  why,           // with bad: 1 timeout, 2 framing, 3 field count, 4 CF, 5 SF alarm, 6 CRC
     output reg         tx = 1'b1,     // to the transceiver's D (idle high)
-    output reg         tx_en,         // to the transceiver's DE
+    output reg         tx_en = 1'b0,  // to the transceiver's DE (off from power-up)
     input  wire        rx             // from the transceiver's R
 );
 
