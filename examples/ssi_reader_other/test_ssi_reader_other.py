@@ -19,21 +19,12 @@ from cocotb.clock import Clock
 from cocotb.triggers import RisingEdge
 
 import encoder_emu
+# bit(): a pin as 0/1 (X or Z as the idle 1); planted(): the read with bit COSIM_FLIP_BIT
+# flipped when that is set (a planted misread: the test must then fail). hdl/cocotb/.
+from emu_common import bit, planted
 
 F_HZ = 8_000_000                      # the reader's clock and the emulator's
 READS = int(os.environ.get("COSIM_TRANSACTIONS", "100"))
-
-
-def bit(signal):
-    """A 1-bit signal as 0/1 (X or Z read as the idle level 1)."""
-    v = signal.value
-    return int(v) if v.is_resolvable else 1
-
-
-def planted(value):
-    """`value` with bit COSIM_FLIP_BIT flipped when that is set (the test must then fail)."""
-    k = int(os.environ.get("COSIM_FLIP_BIT", "-1"))
-    return value if k < 0 else value ^ (1 << k)
 
 
 @cocotb.test()
