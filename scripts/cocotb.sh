@@ -3,6 +3,10 @@
 # each running one of our cores against its emulator from Python.
 #
 #   scripts/cocotb.sh [proto ...]        (default: every example)
+#   scripts/cocotb.sh --dir DIR --top TOP --config FILE [NAME=VALUE ...]
+#                                        (a master we did not write: DIR/test_<DIR's name>.py
+#                                         drives TOP, DIR's .v files but tb_*.v; an example's
+#                                         `make cocotb`, examples/*/Makefile)
 #
 # Builds what they need when out of date, so it works on a fresh clone after
 # `make deps` (which installs cocotb and maturin into .venv/): the emulator

@@ -284,23 +284,64 @@ fn x_on_an_emulator_input_is_reported_with_time_and_pin_in_icarus() {
     );
 }
 
+/// The masters we did not write (`examples/<dir>/`: a master, a copyable
+/// testbench and Makefile, and a cocotb test `test_<dir>.py`), with the
+/// reads of each HDL run and of each cocotb run. Adding an example is one
+/// line here: its Makefile's `SIM=icarus`, `SIM=verilator` and `cocotb`
+/// targets are what the tests below run.
+const EXAMPLES: [(&str, u32, u32); 8] = [
+    ("ssi_reader_other", 100, 20),
+    ("biss_reader_other", 100, 20),
+    // Each EnDat 2.1 read rests t_b > 1 ms (4,400 cycles): fewer reads.
+    ("endat_reader_other", 30, 5),
+    ("tformat_reader_other", 100, 20),
+    ("esl_reader_other", 100, 20),
+    ("sar58k24_reader_other", 100, 10),
+    ("modbus_reader_other", 100, 6),
+    ("canopen_reader_other", 100, 6),
+];
+
+/// `make -C examples/<dir> <args>` with `env`, one at a time.
+fn make_example(dir: &str, args: &[String], env: &[(&str, String)]) -> (bool, String) {
+    let _one = SERIAL.lock().unwrap_or_else(|e| e.into_inner());
+    let mut cmd = Command::new("make");
+    cmd.arg("-C").arg(root().join("examples").join(dir)).args(args);
+    for (k, v) in env {
+        cmd.env(k, v);
+    }
+    run(&mut cmd)
+}
+
 /// The masters we did not write, each with its copyable Makefile, pass in both simulators.
 #[test]
 fn the_independent_examples_pass_in_icarus_and_verilator() {
-    for example in ["ssi_reader_other", "biss_reader_other", "esl_reader_other", "sar58k24_reader_other", "modbus_reader_other", "canopen_reader_other"] {
+    for (example, reads, _) in EXAMPLES {
         for sim in ["icarus", "verilator"] {
-            let _one = SERIAL.lock().unwrap_or_else(|e| e.into_inner());
-            let dir = root().join("examples").join(example);
-            let (ok, out) = run(Command::new("make")
-                .arg("-C")
-                .arg(&dir)
-                .args([&format!("SIM={sim}"), "READS=100"]));
+            let (ok, out) = make_example(example, &[format!("SIM={sim}"), format!("READS={reads}")], &[]);
             assert!(ok, "{example} in {sim}:\n{out}");
             assert!(
-                out.contains("PASS") && out.contains("100 "),
+                out.contains("PASS") && out.contains(&format!(": {reads} ")),
                 "{example} in {sim}:\n{out}"
             );
         }
+    }
+}
+
+/// Each of them passes from cocotb (`make cocotb`: the master against the
+/// emulator driven from Python), and its test fails when a read differs
+/// (`COSIM_FLIP_BIT` flips a bit of what the master read before the
+/// comparison).
+#[test]
+fn the_independent_examples_pass_from_cocotb_and_a_flipped_bit_fails() {
+    for (example, _, reads) in EXAMPLES {
+        let n = ("COSIM_TRANSACTIONS", reads.to_string());
+        let (ok, out) = make_example(example, &["cocotb".into()], &[n.clone()]);
+        assert!(ok, "{example} from cocotb:\n{out}");
+        // Every cocotb module of the example reports "1 of 1 passed".
+        assert!(out.contains("1 of 1 passed") && !out.contains(" 0 of 1 passed"), "{example} from cocotb:\n{out}");
+        let (ok, out) = make_example(example, &["cocotb".into()], &[n, ("COSIM_FLIP_BIT", "2".into())]);
+        assert!(!ok, "{example}: a planted misread passed cocotb:\n{out}");
+        assert!(out.contains("0 of 1 passed"), "{example}:\n{out}");
     }
 }
 

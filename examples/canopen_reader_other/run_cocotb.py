@@ -5,7 +5,7 @@ emulators from encoder-tb's Python module encoder_emu.
 
     <encoder-tb>/.venv/bin/python run_cocotb.py [transactions]
 
-Environment: FLIP_BIT=k flips bit k of every value read before the
+Environment: FLIP_BIT=k (or COSIM_FLIP_BIT=k, as in the other examples) flips bit k of every value read before the
 comparison (a planted misread: the tests must then fail). Exit status 0
 only when every test passed."""
 
@@ -27,7 +27,7 @@ TESTS = [
 
 
 def main(argv):
-    count = argv[0] if argv else "6"
+    count = os.environ.get("COSIM_TRANSACTIONS") or (argv[0] if argv else "6")
     failed = 0
     for module, top, sources, params, config in TESTS:
         build = HERE / "build" / "cocotb" / module
@@ -35,7 +35,7 @@ def main(argv):
         runner.build(verilog_sources=[str(HERE / s) for s in sources], hdl_toplevel=top, parameters=params,
                      build_dir=build, always=True, timescale=("1ns", "1ps"))
         env = {"EMU_CONFIG": str(HERE / config), "TRANSACTIONS": count, "PYTHONPATH": os.pathsep.join(filter(None, [str(HERE), os.environ.get("PYTHONPATH")])),
-               "FLIP_BIT": os.environ.get("FLIP_BIT", "-1")}
+               "FLIP_BIT": os.environ.get("COSIM_FLIP_BIT", os.environ.get("FLIP_BIT", "-1"))}
         results = runner.test(hdl_toplevel=top, test_module=module, test_dir=HERE, build_dir=build,
                               extra_env=env, results_xml=str(build / "results.xml"))
         total, fails = get_results(results)

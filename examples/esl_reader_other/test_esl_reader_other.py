@@ -9,7 +9,7 @@ broken.
 
     python test_esl_reader_other.py       (make cocotb: builds and runs it in Icarus)
 
-READS=N sets the number of reads (default 20); COSIM_FLIP_BIT=k flips bit k
+COSIM_TRANSACTIONS=N (or READS=N) sets the number of reads (default 20); COSIM_FLIP_BIT=k flips bit k
 of every value the reader took before the comparison (a planted misread:
 the test must then fail)."""
 
@@ -24,7 +24,7 @@ from cocotb.triggers import RisingEdge
 
 HERE = Path(__file__).resolve().parent
 F_HZ = 60_000_000                     # 6 clocks per bit at 10 Mbps
-READS = int(os.environ.get("READS", "20"))
+READS = int(os.environ.get("COSIM_TRANSACTIONS", os.environ.get("READS", "20")))
 FLIP = int(os.environ.get("COSIM_FLIP_BIT", "-1"))
 
 

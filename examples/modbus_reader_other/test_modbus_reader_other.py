@@ -24,7 +24,7 @@ from cocotb.triggers import ClockCycles, RisingEdge
 
 HERE = Path(__file__).resolve().parent
 F_HZ = 153_600                        # 8 clocks per bit at 19200 baud
-READS = int(os.environ.get("READS", "6"))
+READS = int(os.environ.get("COSIM_TRANSACTIONS", os.environ.get("READS", "6")))
 FLIP = int(os.environ.get("COSIM_FLIP_BIT", "-1"))
 
 

@@ -8,7 +8,7 @@ emulator sent, one frame per read, never two drivers on the line.
 
     python test_sar58k24_reader_other.py   (make cocotb: builds and runs it in Icarus)
 
-READS=N sets the number of reads (default 10); COSIM_FLIP_BIT=k flips bit k
+COSIM_TRANSACTIONS=N (or READS=N) sets the number of reads (default 10); COSIM_FLIP_BIT=k flips bit k
 of every value the reader took before the comparison (a planted misread:
 the test must then fail)."""
 
@@ -23,7 +23,7 @@ from cocotb.triggers import ClockCycles, RisingEdge
 
 HERE = Path(__file__).resolve().parent
 F_HZ = 153_600                        # 8 clocks per bit at 19200 baud
-READS = int(os.environ.get("READS", "10"))
+READS = int(os.environ.get("COSIM_TRANSACTIONS", os.environ.get("READS", "10")))
 FLIP = int(os.environ.get("COSIM_FLIP_BIT", "-1"))
 
 

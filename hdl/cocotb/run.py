@@ -1,7 +1,10 @@
 """Runs the cocotb examples under Icarus: one test module per protocol
-(test_<proto>.py) against our own core, with the emulator from encoder_emu.
+(test_<proto>.py) against our own core, with the emulator from encoder_emu;
+or, with --dir, a master we did not write (examples/<dir>/test_<dir>.py,
+run by the example's `make cocotb`).
 
     .venv/bin/python hdl/cocotb/run.py [proto ...]
+    .venv/bin/python hdl/cocotb/run.py --dir DIR --top TOP --config FILE [NAME=VALUE ...]
 
 Each entry below names the test module, the core, the scenario file the
 emulator and the core's parameters come from (cosim-params), and the
@@ -30,6 +33,45 @@ TESTS = [
     ("esl", "esl_host", "esl.toml", "esl"),
 ]
 
+def run_master(argv):
+    """`--dir DIR --top TOP --config FILE [NAME=VALUE ...]`: the test module
+    DIR/test_<DIR's name>.py drives TOP (every .v in DIR but the tb_*.v, with
+    the parameters NAME=VALUE) against the emulator made from DIR/FILE. This
+    is how an example's Makefile (`make cocotb`) runs its master, in this
+    checkout or in a copy anywhere else. Returns the number of failed tests."""
+    opts, parameters = {}, {}
+    it = iter(argv)
+    for a in it:
+        if a in ("--dir", "--top", "--config"):
+            opts[a[2:]] = next(it, None)
+        elif "=" in a:
+            k, v = a.split("=", 1)
+            parameters[k] = v
+        else:
+            raise SystemExit(f"run.py: `{a}`: give --dir DIR --top TOP --config FILE and parameters as NAME=VALUE")
+    if None in opts.values() or set(opts) != {"dir", "top", "config"}:
+        raise SystemExit("run.py: give --dir DIR --top TOP --config FILE (and parameters as NAME=VALUE)")
+    src = Path(opts["dir"]).resolve()
+    test = src / f"test_{src.name}.py"
+    config = src / opts["config"]
+    for f in (test, config):
+        if not f.is_file():
+            raise SystemExit(f"run.py: {f}: no such file (the test module is test_<directory name>.py)")
+    sources = sorted(str(p) for p in src.glob("*.v") if not p.name.startswith("tb_"))
+    build = src / "build" / "cocotb"
+    runner = get_runner("icarus")
+    runner.build(verilog_sources=sources, hdl_toplevel=opts["top"], parameters=parameters, build_dir=build, always=True,
+                 timescale=("1ns", "1ps"))
+    # The runner hands the simulator its own sys.path as PYTHONPATH: the test module's directory goes there.
+    sys.path.insert(0, str(src))
+    env = {"COSIM_CONFIG": str(config)}
+    results = runner.test(hdl_toplevel=opts["top"], test_module=test.stem, test_dir=build, build_dir=build,
+                          extra_env=env, results_xml=str(build / "results.xml"))
+    total, fails = get_results(results)
+    print(f"cocotb: {src.name} ({opts['top']}, Icarus): {total - fails} of {total} passed")
+    print(f"cocotb: {'pass' if fails == 0 and total > 0 else 'FAIL'}")
+    return fails if total > 0 else 1
+
 
 def params(tool, proto, config):
     out = subprocess.run([tool, proto, str(config)], check=True, capture_output=True, text=True).stdout
@@ -38,6 +80,8 @@ def params(tool, proto, config):
 
 
 def main(argv):
+    if argv and argv[0].startswith("--"):
+        return 1 if run_master(argv) else 0
     chosen = set(argv) or {t[0] for t in TESTS}
     lib_dir = os.environ.get("EMU_LIB_DIR", str(ROOT / "target" / "release"))
     tool = str(Path(lib_dir) / "cosim-params")

@@ -4,7 +4,9 @@
 //! Both sides are transcripts: a `tbgen gen` or `tbgen decode` transcript
 //! (`transactions`), a pin-level monitor's (`hdl/emu/<proto>_monitor.v`:
 //! `transactions` from the same decode cores, plus its `violations`), or an
-//! emulator's (`frames`, `reads`, `requests`). A
+//! emulator's (`frames`, `reads`, `requests`; EnDat `transfers`, T-format
+//! and ESL `answers`, read under the decoders' names by
+//! `emulator_entries`). A
 //! capture that is a VCD (any timescale, 1 fs included) is first decoded
 //! with the protocol's own decoder (`tbgen decode <protocol>`), whose
 //! options (the port names) follow `--`, so the check does not care what
@@ -66,15 +68,114 @@ fn read_json(path: &Path) -> Result<Value> {
 
 fn side(path: &Path, v: Value) -> Result<Side> {
     let ps_per_cycle = v.get("f_emu_hz").and_then(Value::as_f64).map(|f| 1e12 / f);
-    for key in ["transactions", "frames", "reads", "requests"] {
+    for key in ["transactions", "frames", "reads", "requests", "transfers", "answers"] {
         if let Some(Value::Array(list)) = v.get(key) {
-            return Ok(Side { what: path.display().to_string(), list: list.clone(), ps_per_cycle });
+            let list = match key {
+                "transfers" | "answers" => emulator_entries(key, list),
+                _ => list.clone(),
+            };
+            return Ok(Side { what: path.display().to_string(), list, ps_per_cycle });
         }
     }
     Err(Error::Decode(format!(
-        "{}: no list of transactions (`transactions`, `frames`, `reads` or `requests`) in it; give a transcript that tbgen or an emulator wrote",
+        "{}: no list of transactions (`transactions`, `frames`, `reads`, `requests`, `transfers` or `answers`) in it; give a transcript that tbgen or an emulator wrote",
         path.display()
     )))
+}
+
+/// `(emulator's name, decoder's name)` of the fields an EnDat, T-format or
+/// ESL emulator's entry shares with the transactions `tbgen decode` and the
+/// pin-level monitors write (`model::<proto>::decode`); the rest of an entry
+/// (`sent_bits`, `answer`, `warning`, `busy`, `comm_error`, `device`) has no
+/// counterpart there and is left out.
+const EMULATOR_FIELDS: [(&str, &str); 10] = [
+    ("mode", "mode"),
+    ("position", "position"),
+    ("f1", "f1"),
+    ("f2", "f2"),
+    ("data_id", "data_id"),
+    ("abs", "abs"),
+    ("abm", "abm"),
+    ("almc", "almc"),
+    ("alm", "alm1"),
+    ("sf", "sf"),
+];
+
+/// The entries of an EnDat (`transfers`), T-format or ESL (`answers`)
+/// emulator transcript under the decoders' names, so that an emulator's and
+/// a monitor's (or `tbgen decode`'s) transcripts compare field by field:
+///
+/// * a field the entry does not carry (`null`: ABM in a Data ID 0 answer, F2
+///   in a type 2.1 frame) is left out, since a decoder holds the host's
+///   register there (the value of an earlier answer);
+/// * T-format and ESL `fields` (the answer as the encoder built it, CRC
+///   last) are the decoders' `received` (what crossed the wire); ESL `sc`
+///   is `sc1`, `sc2`;
+/// * EnDat: a transfer the encoder answered without a frame (`answer` other
+///   than `ok`: error handling, an ignored command) keeps its `mode` only,
+///   as a decoder reads no position there;
+/// * ESL: the runs of B, C and D requests (seed 000 Table 4: "minimum 8
+///   times consecutively") are one operation of the decoder, so each run
+///   of the same encoder and Data ID becomes its last answer.
+fn emulator_entries(key: &str, list: &[Value]) -> Vec<Value> {
+    let mut out: Vec<Value> = Vec::new();
+    let mut run: Option<(Value, u64, u64)> = None; // ESL: (device, data_id, answers so far)
+    for e in list {
+        let Some(o) = e.as_object() else {
+            out.push(e.clone());
+            continue;
+        };
+        let mut n = serde_json::Map::new();
+        for (k, v) in o {
+            if timing_key(k) {
+                n.insert(k.clone(), v.clone());
+            }
+        }
+        let answered = o.get("answer").is_none_or(|a| a == "ok");
+        for (from, to) in EMULATOR_FIELDS {
+            match o.get(from) {
+                Some(Value::Null) | None => {}
+                Some(_) if !answered && from != "mode" => {}
+                Some(v) => {
+                    n.insert(to.to_string(), v.clone());
+                }
+            }
+        }
+        if key == "answers" {
+            if let Some(f) = o.get("fields") {
+                n.insert("received".into(), f.clone());
+            }
+            if let Some(Value::Array(sc)) = o.get("sc") {
+                if let [a, b] = sc.as_slice() {
+                    n.insert("sc1".into(), a.clone());
+                    n.insert("sc2".into(), b.clone());
+                }
+            }
+        }
+        // ESL runs of B (0x0B), C, D: one operation of 8 answers.
+        let id = o.get("data_id").and_then(Value::as_u64).filter(|d| o.contains_key("device") && (0x0B..=0x0D).contains(d));
+        let continues = match (id, &run) {
+            (Some(id), Some((dev, rid, count))) => o.get("device") == Some(dev) && *rid == id && *count < u64::from(model::esl::REPEATS),
+            _ => false,
+        };
+        if continues {
+            if let Some((_, _, count)) = run.as_mut() {
+                *count += 1;
+            }
+            // The operation starts at the run's first answer; its results are the last one's.
+            if let Some(Value::Object(first)) = out.pop() {
+                for (k, v) in first {
+                    if timing_key(&k) {
+                        n.insert(k, v);
+                    }
+                }
+            }
+        } else {
+            run = id.map(|id| (o.get("device").cloned().unwrap_or(Value::Null), id, 1));
+        }
+        out.push(Value::Object(n));
+    }
+    out
 }
 
 /// Reads a capture: a JSON transcript, or a VCD decoded by `protocol`'s decoder with `decoder_args`.
@@ -278,5 +379,117 @@ mod tests {
         let (vcd, json) = decoded_seed(dir.path());
         let e = check("biss", &json, &vcd, &["--nope".into()], None).unwrap_err().to_string();
         assert!(e.contains("the decoder's options after `--`"), "{e}");
+    }
+
+    /// A closed loop's two transcripts of one run (`tests/check/`): the
+    /// emulator's (its `TRANSCRIPT`) and the pin-level monitor's, as files in
+    /// `dir`. EnDat and T-format: 12 reads of the masters we did not write
+    /// (`make -C examples/<proto>_reader_other READS=12`, `build/transcript.json`
+    /// and `build/monitor.json`); ESL: 12 operations of `esl_host`'s closed
+    /// loop (`hdl/tb_cosim/esl_host`, `readout_0m.toml`, Icarus, with the
+    /// emulator's `TRANSCRIPT` set and `+esl_monitor_transcript`).
+    fn closed_loop(proto: &str, dir: &Path) -> (std::path::PathBuf, std::path::PathBuf, Value) {
+        let fixtures = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/check");
+        let read = |f: &str| std::fs::read_to_string(fixtures.join(f)).unwrap();
+        let (emu, mon) = (dir.join(format!("{proto}_emulator.json")), dir.join(format!("{proto}_monitor.json")));
+        std::fs::write(&emu, read(&format!("{proto}_emulator.json"))).unwrap();
+        let text = read(&format!("{proto}_monitor.json"));
+        std::fs::write(&mon, &text).unwrap();
+        (emu, mon, serde_json::from_str(&text).unwrap())
+    }
+
+    /// The field a T-format or ESL monitor names the single-turn position, EnDat's `position`.
+    fn position_field(proto: &str) -> &'static str {
+        if proto == "endat" { "position" } else { "abs" }
+    }
+
+    #[test]
+    fn an_emulators_and_a_monitors_transcript_of_a_clean_closed_loop_agree() {
+        for proto in ["endat", "tformat", "esl"] {
+            let dir = tempfile::tempdir().unwrap();
+            let (emu, mon, v) = closed_loop(proto, dir.path());
+            let n = v["transactions"].as_array().unwrap().len();
+            assert!(n >= 10, "{proto}: {n} transactions");
+            for (a, b) in [(&emu, &mon), (&mon, &emu), (&emu, &emu), (&mon, &mon)] {
+                let r = check(proto, a, b, &[], None).unwrap();
+                assert!(r.ok, "{proto}: {}", r.text);
+                assert!(r.text.starts_with(&format!("PASS: {n} transactions of {proto} equal")), "{}", r.text);
+            }
+            // The emulator's entries under the decoders' names: the position is compared.
+            let want = side(&emu, read_json(&emu).unwrap()).unwrap();
+            let carried = want.list.iter().filter(|t| t.get(position_field(proto)).is_some_and(Value::is_u64)).count();
+            assert!(carried * 2 > n && want.list[3].get(position_field(proto)).is_some(), "{proto}: {:?}", want.list);
+        }
+    }
+
+    #[test]
+    fn a_flipped_position_bit_in_a_monitors_transcript_is_found_with_its_transaction_and_time() {
+        for proto in ["endat", "tformat", "esl"] {
+            let dir = tempfile::tempdir().unwrap();
+            let (emu, mon, mut v) = closed_loop(proto, dir.path());
+            let t = &mut v["transactions"][3];
+            let field = position_field(proto);
+            let clean = t[field].as_u64().unwrap();
+            t[field] = Value::from(clean ^ 4);
+            let when = t["start_ps"].as_f64().unwrap() / 1e6;
+            std::fs::write(&mon, v.to_string()).unwrap();
+            for (a, b, want, got) in [(&emu, &mon, clean, clean ^ 4), (&mon, &emu, clean ^ 4, clean)] {
+                let r = check(proto, a, b, &[], None).unwrap();
+                assert!(!r.ok, "{proto}: {}", r.text);
+                // The capture's time of the transaction: the monitor's start, or the emulator's cycle.
+                let head = if b == &mon { format!("DIFFERENCE in transaction 3 at {when:.3} us: ") } else { "DIFFERENCE in transaction 3 at ".to_string() };
+                assert!(r.text.starts_with(&head), "{proto}: {} (want {head})", r.text);
+                assert!(r.text.contains(&format!("{field} expected {want}, captured {got}")), "{proto}: {}", r.text);
+            }
+        }
+    }
+
+    #[test]
+    fn a_late_transaction_in_a_monitors_transcript_breaks_the_timeout() {
+        for proto in ["endat", "tformat", "esl"] {
+            let dir = tempfile::tempdir().unwrap();
+            let (emu, mon, mut v) = closed_loop(proto, dir.path());
+            let list = v["transactions"].as_array_mut().unwrap();
+            let starts: Vec<f64> = list.iter().map(|t| t["start_ps"].as_f64().unwrap()).collect();
+            let gap = starts.windows(2).map(|w| (w[1] - w[0]) / 1e6).fold(0.0, f64::max);
+            let limit = (gap * 1.5).ceil();
+            assert!(check(proto, &emu, &mon, &[], Some(limit)).unwrap().ok, "{proto}: the clean run within {limit} us");
+            // Transaction 5 and every later one a whole timeout late.
+            for t in list.iter_mut().skip(5) {
+                t["start_ps"] = Value::from(t["start_ps"].as_f64().unwrap() + limit * 1e6);
+            }
+            let late = (starts[5] - starts[4]) / 1e6 + limit;
+            std::fs::write(&mon, v.to_string()).unwrap();
+            let r = check(proto, &emu, &mon, &[], Some(limit)).unwrap();
+            assert!(!r.ok, "{proto}: {}", r.text);
+            let want = format!(
+                "DIFFERENCE in transaction 5 at {:.3} us: it starts {late:.3} us after transaction 4, beyond the timeout of {limit} us",
+                starts[5] / 1e6 + limit
+            );
+            assert_eq!(r.text, want, "{proto}");
+            // Without the timeout the values still agree.
+            assert!(check(proto, &emu, &mon, &[], None).unwrap().ok, "{proto}");
+        }
+    }
+
+    #[test]
+    fn an_esl_run_of_eight_b_c_or_d_answers_is_one_operation_as_the_decoder_groups_it() {
+        let answer = |i: u64, id: u64, abs: u64| {
+            serde_json::json!({"index": i, "device": 0, "cycle": 100 * i, "data_id": id, "fields": [i], "comm_error": false,
+                               "abs": abs, "abm": null, "alm": 1, "sf": 0, "sc": [i, i + 1]})
+        };
+        let mut list: Vec<Value> = (0..8).map(|i| answer(i, 0x0C, 10 + i)).collect();
+        list.push(answer(8, 0x0C, 30)); // a ninth C begins the next operation
+        list.push(answer(9, 1, 40));
+        let out = emulator_entries("answers", &list);
+        assert_eq!(out.len(), 3, "{out:?}");
+        // The first operation: its start (index, cycle) from the first answer, its results from the eighth.
+        assert_eq!((out[0]["index"].as_u64(), out[0]["cycle"].as_u64()), (Some(0), Some(0)));
+        assert_eq!((out[0]["abs"].as_u64(), out[0]["sc1"].as_u64(), out[0]["sc2"].as_u64()), (Some(17), Some(7), Some(8)));
+        assert_eq!(out[0]["alm1"].as_u64(), Some(1));
+        assert_eq!(out[0]["received"], serde_json::json!([7]));
+        assert!(out[0].get("abm").is_none() && out[0].get("alm").is_none() && out[0].get("device").is_none());
+        assert_eq!((out[1]["index"].as_u64(), out[1]["abs"].as_u64()), (Some(8), Some(30)));
+        assert_eq!((out[2]["data_id"].as_u64(), out[2]["abs"].as_u64()), (Some(1), Some(40)));
     }
 }
