@@ -29,18 +29,22 @@ biss_slave_emu #(.CONFIG("slave.toml"), .F_EMU_HZ(40000000), .TRANSCRIPT("build/
     .i_emu_clk(clk), .i_ma(ma), .o_slo(slo)
 );
 
+// Random numbers that are the same in both simulators (emu_random.vh says
+// why not $random).
+`include "emu_random.vh"
 integer frames, n, seed, error, warning;
 reg [63:0] position;
 
 initial begin
     if (!$value$plusargs("frames=%d", frames)) frames = 1000;
     seed = 11;
+    random_seed(seed);
     repeat (3) @(posedge clk);
     reset_n <= 1'b1;
     for (n = 0; n < frames; n = n + 1) begin
-        position = $random(seed) & 16'hFFFF;
-        error = $random(seed) & 1;
-        warning = $random(seed) & 1;
+        position = random32(0) & 16'hFFFF;
+        error = random32(0) & 1;
+        warning = random32(0) & 1;
         u_emu.set_position(0, position);
         u_emu.set_status(0, "error", error);
         u_emu.set_status(0, "warning", warning);
