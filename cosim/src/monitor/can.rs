@@ -169,6 +169,7 @@ impl CanWatch {
         let (rx, tx) = (pins.0 & 1 != 0, pins.0 & 2 != 0);
         let cycle = self.base.period_ps;
         let mut out = Vec::new();
+        let (rx_was, rise_was) = (self.rx_level, self.rx_rise);
         // Bus idle for 10.5 bits: the frames of the window are final.
         if rx && tx && self.rx_level && self.open && now - self.rx_rise >= self.bits(10.5) {
             out = self.flush(now);
@@ -188,8 +189,9 @@ impl CanWatch {
                 self.tx_fall = now;
                 self.dominant_reported = false;
                 // A SOF of the master: the bus recessive at its receiver for 7.5 bits or more.
-                let idle = now - self.rx_rise;
-                if rx && idle >= self.bits(7.5) {
+                // (The bus before this cycle: RXD follows TXD by the loop delay, or at once.)
+                let idle = now - rise_was;
+                if rx_was && idle >= self.bits(7.5) {
                     let least = 11.0 * self.t.bit_ps * (1.0 - self.t.tolerance) - self.t.prop_ps - 2.0 * cycle as f64;
                     if (idle as f64) < least {
                         self.base.violation(now, RULE_INTERMISSION, format!("the master's SOF {:.2} bits after the bus's last dominant bit; 11 recessive bits (ACK delimiter and EOF, or error delimiter, and 3 of intermission) come first", idle as f64 / self.t.bit_ps));
@@ -249,7 +251,9 @@ impl CanWatch {
         let sof = d.sof_ps;
         let tx_at = |w: &CanWatch, k: usize| w.tx.level_at(w.at(sof, k));
         let rx_at = |w: &CanWatch, k: usize| w.rx.level_at(w.at(sof, k));
-        let by_master = !tx_at(self, 0) && (0..stuffed.max(1)).all(|k| !(tx_at(self, k) && !rx_at(self, k)));
+        // Arbitration is lost only in the arbitration field (wire bits, stuff bits included).
+        let arbitration = if d.error.is_none() { let a = model::can::frame::arbitration_end(d.ide) as usize; a + a / 4 + 1 } else { 40 };
+        let by_master = !tx_at(self, 0) && (0..stuffed.min(arbitration).max(1)).all(|k| !(tx_at(self, k) && !rx_at(self, k)));
         let seen = Seen { frame: d, by_master, end_ps };
         if by_master && !self.grid(&seen, stuffed) {
             return seen;
@@ -299,7 +303,14 @@ impl CanWatch {
         let Some(&(sof, _)) = edges.iter().rev().find(|&&(t, l)| !l && t <= sof_rx + bit as u64 && t + 2 * bit as u64 >= sof_rx) else {
             return true;
         };
-        let last = sof + ((through as f64 + 1.0) * bit) as u64;
+        // Through the CRC's last bit; a damaged frame (read off the master's
+        // grid, perhaps) to the end of the master's transmission: TXD then
+        // recessive for 7 bits.
+        let mut last = sof + ((through as f64 + 1.0) * bit) as u64;
+        if s.frame.error.is_some() {
+            let after: Vec<(u64, bool)> = edges.iter().copied().filter(|&(t, _)| t > sof).collect();
+            last = after.iter().enumerate().find(|&(i, &(t, l))| l && after.get(i + 1).is_none_or(|&(u, _)| (u - t) as f64 >= 7.0 * bit)).map_or(last, |(_, &(t, _))| t + 1).max(last);
+        }
         let rx_edges = self.rx.edges();
         let cycle = 2.0 * self.base.period_ps as f64;
         for &(t, _) in edges.iter().filter(|&&(t, _)| t > sof && t < last) {
