@@ -1,9 +1,9 @@
 // canopen_monitor: a pin-level monitor and protocol checker of a CANopen
 // master (DS 301 / DS 406, seed 003) or of a master of SAR58K24 encoders in
 // their CAN mode (seed 001 §3.4), input-only, run by the encoder-tb library
-// (cosim/src/monitor/canopen.rs); the same module name and ports in
-// Verilator (DPI-C) and Icarus (VPI module emu.vpi), beside or without a
-// canopen_encoder_emu.
+// (cosim/src/monitor/canopen.rs); the same module name and ports in both
+// simulators (DPI-C in Verilator, the VPI module emu.vpi in Icarus), beside
+// or without a canopen_encoder_emu.
 //
 // Connect the master's TXD (i_can_tx) and RXD (i_can_rx; with
 // canopen_encoder_emu, its o_can_rx); clock it with i_mon_clk at F_MON_HZ
