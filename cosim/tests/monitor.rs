@@ -393,7 +393,7 @@ fn each_can_rule_fires_once(sim: &str) {
     rx[n - 10] = false;
     let mut l = CanLine::default();
     l.idle(20).bits(&tx, &rx).idle(30);
-    cases.push((l, 1, 1, "form (ISO 11898-1 10.4: CRC delimiter, ACK delimiter and EOF recessive; the transmitter's ACK slot recessive): TXD dominant in the CRC delimiter"));
+    cases.push((l, 1, 1, "form (ISO 11898-1 10.4: CRC delimiter, ACK delimiter and EOF recessive; the transmitter's ACK slot recessive): TXD dominant in the CRC delimiter, ACK delimiter or EOF (wire bit"));
     // 3 intermission: the next SOF after 2 bits of it.
     let mut l = CanLine::default();
     l.idle(20).bits(&f.wire_bits(false), &f.wire_bits(true)).idle(2).sent(&f).idle(20);

@@ -270,7 +270,7 @@ impl CanWatch {
                 form.push((n - 8, "ACK delimiter"));
                 form.extend((n - 7..n).map(|k| (k, "EOF")));
             }
-            Some("form") => form.push((d.bits - 1, "a delimiter or EOF bit")),
+            Some("form") => form.push((d.bits - 1, "CRC delimiter, ACK delimiter or EOF")),
             Some("stuff") if by_master && !self.error_flag(sof, d.bits - 1) => {
                 let k = d.bits - 1;
                 let t = self.at(d.sof_ps, k);
