@@ -432,7 +432,7 @@ fn each_can_rule_fires_once(sim: &str) {
         l.sent(&sync).idle(gap);
     }
     l.sent(&sync).idle(20);
-    cases.push((l, 0, 1, "SYNC period (the master's configured SYNC period, `sync_period_us`; the seeds state none): SYNC 3"));
+    cases.push((l, 0, 1, "SYNC period (the master's configured SYNC period, `sync_period_us`; the seeds state none): SYNC 2982.000 us after the previous one; the period is 2000.000 us"));
     // 10 SAR58K24: a click answered, then two clicks 100 us apart.
     let mut l = CanLine::default();
     l.idle(20).sent(&click).heard(&Frame::data(0x120, &[0x47, 0x26, 0, 0, 0, 0, 0, 0])).sent(&click).idle(50).sent(&click).idle(20);
