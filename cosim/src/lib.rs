@@ -171,8 +171,10 @@ pub fn open(kind: &str, toml: &str, origin: &str, f_emu_hz: u64) -> Result<Box<d
         "endat_monitor" => Ok(Box::new(monitor::endat::EndatMonitor::from_toml(toml, origin, f_emu_hz)?)),
         "sar58k24_monitor" => Ok(Box::new(monitor::sar::SarMonitor::from_toml(toml, origin, f_emu_hz)?)),
         "modbus_monitor" => Ok(Box::new(monitor::modbus::ModbusMonitor::from_toml(toml, origin, f_emu_hz)?)),
+        "can_monitor" => Ok(Box::new(monitor::can::CanMonitor::from_toml(toml, origin, f_emu_hz)?)),
+        "canopen_monitor" | "sar58k24_can_monitor" => Ok(Box::new(monitor::canopen::CanopenMonitor::from_toml(toml, origin, f_emu_hz)?)),
         other => Err(Error::Usage(format!(
-            "no emulator `{other}`; give one of: ssi, biss, endat, tformat, esl, sar58k24, modbus, can, canopen (DS 406 encoders and SAR58K24s in CAN mode; alias sar58k24_can), or a monitor: ssi_monitor, biss_monitor, endat_monitor, tformat_monitor, esl_monitor, sar58k24_monitor, modbus_monitor"
+            "no emulator `{other}`; give one of: ssi, biss, endat, tformat, esl, sar58k24, modbus, can, canopen (DS 406 encoders and SAR58K24s in CAN mode; alias sar58k24_can), or a monitor: ssi_monitor, biss_monitor, endat_monitor, tformat_monitor, esl_monitor, sar58k24_monitor, modbus_monitor, can_monitor, canopen_monitor"
         ))),
     }
 }

@@ -396,4 +396,174 @@ fn each_sar58k24_and_modbus_monitor_rule_fires_in_icarus() {
 #[test]
 fn each_sar58k24_and_modbus_monitor_rule_fires_in_verilator() {
     each_uart_rule_fires_once("verilator");
+
+/// A CAN line as `tb_can_monitor_rules.v` plays it: one character per bit
+/// (`'0' + 2 × TXD + RXD`), `I`/`i` for 100/10 idle bits, `f`/`n` 3 % short / nominal bits.
+#[derive(Default)]
+struct CanLine(String);
+
+impl CanLine {
+    fn bits(&mut self, tx: &[bool], rx: &[bool]) -> &mut Self {
+        for (&t, &r) in tx.iter().zip(rx) {
+            self.0.push(char::from(b'0' + 2 * t as u8 + r as u8));
+        }
+        self
+    }
+    fn idle(&mut self, n: usize) -> &mut Self {
+        self.0.push_str(&"I".repeat(n / 100));
+        self.0.push_str(&"i".repeat(n % 100 / 10));
+        self.0.push_str(&"3".repeat(n % 10));
+        self
+    }
+    /// A frame the master sends, acknowledged by another node, and 3 bits of intermission.
+    fn sent(&mut self, f: &model::can::frame::Frame) -> &mut Self {
+        self.bits(&f.wire_bits(false), &f.wire_bits(true)).idle(3)
+    }
+    /// A frame another node sends, acknowledged by the master.
+    fn heard(&mut self, f: &model::can::frame::Frame) -> &mut Self {
+        let rx = f.wire_bits(true);
+        let tx: Vec<bool> = (0..rx.len()).map(|k| k != rx.len() - 9).collect();
+        self.bits(&tx, &rx).idle(3)
+    }
+}
+
+/// The CAN and CANopen monitors in the simulators: `tb_can_monitor_rules.v`
+/// plays a line the model's frames make, breaking each rule once (cases 1
+/// to 10) or none (case 0); each violation is reported once, by the CAN
+/// monitor (CAN rules) and the CANopen monitor (CAN and CANopen rules); the
+/// clean transcript passes `tbgen check can`, a flipped data bit is found
+/// with its time.
+fn each_can_rule_fires_once(sim: &str) {
+    use model::can::frame::Frame;
+    let dir = root().join(format!("build/cosim/monitor_rules/{sim}/tb_can_monitor_rules/run"));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (can, canopen) = (dir.join("can.toml"), dir.join("canopen.toml"));
+    std::fs::write(&can, "[can]\nf_sys_mhz = 8\ntiming = { bit_rate_kbps = 500, tq_per_bit = 16, sample_point = 0.75, sjw = 1 }\n").unwrap();
+    std::fs::write(&canopen, "[canopen]\nf_sys_mhz = 8\nbit_rate_kbps = 500\ntq_per_bit = 16\nsample_point = 0.75\n[canopen.master]\nsdo_timeout_us = 1000\nsync_period_us = 2000\n[[canopen.sar]]\n[canopen.sar.encoder]\nnode = 0x20\nbit_rate_kbps = 500\n").unwrap();
+    let f = Frame::data(0x123, &[0xDE, 0xAD]);
+    let sdo = |index: u16, v: u16| Frame::data(0x605, &model::canopen::sdo::download(index, 0, &v.to_le_bytes()));
+    let confirm = |index: u16| Frame::data(0x585, &[0x60, index as u8, (index >> 8) as u8, 0, 0, 0, 0, 0]);
+    let (start, sync) = (Frame::data(0, &[1, 5]), Frame::data(0x80, &[]));
+    let guard = Frame { id: 0x705, ide: false, rtr: true, dlc: 1, data: vec![] };
+    let click = Frame::data(0x220, &[0x80, 0x20, 0, 0, 0, 0, 0, 0]);
+    let mut cases: Vec<(CanLine, usize, usize, &str)> = Vec::new();
+    // 0 clean: boot-up, SDO and answer, start, guarding at 10 ms, SYNC at 2 ms, a click and its answer.
+    let mut l = CanLine::default();
+    l.idle(20).heard(&Frame::data(0x85, &[])).sent(&sdo(0x100C, 10)).heard(&confirm(0x100C)).sent(&start);
+    for _ in 0..2 {
+        l.sent(&guard).heard(&Frame::data(0x705, &[0x05])).idle(800);
+        for _ in 0..4 {
+            l.sent(&sync).idle(940);
+        }
+        l.sent(&sync).idle(35);
+    }
+    l.sent(&click).heard(&Frame::data(0x120, &[0x47, 0x26, 0, 0, 0, 0, 0, 0])).sent(&f).idle(20);
+    cases.push((l, 0, 0, ""));
+    // 1 stuffing: six recessive identifier bits with no stuff bit.
+    let raw = Frame::data(0x7E5, &[0x55]).destuffed_bits();
+    let mut l = CanLine::default();
+    l.idle(20).bits(&raw, &raw).idle(30);
+    cases.push((l, 1, 1, "stuffing (ISO 11898-1 10.5: after five equal bits from SOF to the CRC's end the transmitter inserts one of the other level): six equal bits in the master's frame ending at wire bit 6"));
+    // 2 form: the master's CRC delimiter dominant.
+    let (mut tx, mut rx) = (f.wire_bits(false), f.wire_bits(true));
+    let n = tx.len();
+    tx[n - 10] = false;
+    rx[n - 10] = false;
+    let mut l = CanLine::default();
+    l.idle(20).bits(&tx, &rx).idle(30);
+    cases.push((l, 1, 1, "form (ISO 11898-1 10.4: CRC delimiter, ACK delimiter and EOF recessive; the transmitter's ACK slot recessive): TXD dominant in the CRC delimiter, ACK delimiter or EOF (wire bit"));
+    // 3 intermission: the next SOF after 2 bits of it.
+    let mut l = CanLine::default();
+    l.idle(20).bits(&f.wire_bits(false), &f.wire_bits(true)).idle(2).sent(&f).idle(20);
+    cases.push((l, 1, 1, "intermission (ISO 11898-1 10.4.5: 3 recessive bits after EOF or an error delimiter before a SOF, 11 in all): the master's SOF 10.00 bits after"));
+    // 4 bit time: a frame 3 % fast.
+    let mut l = CanLine::default();
+    l.idle(20);
+    l.0.push('f');
+    l.bits(&f.wire_bits(false), &f.wire_bits(true));
+    l.0.push('n');
+    l.idle(30);
+    cases.push((l, 1, 1, "bit time (ISO 11898-1 11.3: the transmitter's edges on the nominal bit time of the configured bit rate, within the oscillator tolerance and SJW): a TXD edge"));
+    // 5 dominant length: an error flag of 8 bits.
+    let mut l = CanLine::default();
+    l.idle(20).bits(&[false; 8], &[false; 8]).idle(30);
+    cases.push((l, 1, 1, "dominant length (ISO 11898-1 10.4.4: no dominant level longer than an error flag, 6 bits): TXD dominant for more than 6.00 bits"));
+    // 6 SDO: a second request 100 us after the first, unanswered.
+    let mut l = CanLine::default();
+    l.idle(20).sent(&sdo(0x6200, 1)).idle(50).sent(&sdo(0x6200, 2)).idle(20);
+    cases.push((l, 0, 1, "SDO (seed 003 §8 step 5: a request on 0x600 + node is confirmed on 0x580 + node; one request outstanding until its answer or the SDO timeout): SDO request to node 5"));
+    // 7 NMT start twice.
+    let mut l = CanLine::default();
+    l.idle(20).sent(&start).idle(50).sent(&start).idle(20);
+    cases.push((l, 0, 1, "NMT start (seed 003 §8 step 6: one NMT start remote node brings the node to operational; a second with no stop, reset or boot-up between): NMT start (node 5) while node 5 was already started"));
+    // 8 guarding: 10 ms guard time, the third request 16 ms after the second.
+    let mut l = CanLine::default();
+    l.idle(20).sent(&sdo(0x100C, 10)).heard(&confirm(0x100C));
+    for gap in [4900, 7900, 100] {
+        l.sent(&guard).heard(&Frame::data(0x705, &[0x05])).idle(gap);
+    }
+    cases.push((l, 0, 1, "node guarding (DS 301: the master guards each node at its guard time 100Ch; seed 003 §2.1 node guard 0x700 + node): guard request to node 5 16."));
+    // 9 SYNC every 2 ms, one after 3 ms.
+    let mut l = CanLine::default();
+    l.idle(20);
+    for gap in [940, 1440, 940] {
+        l.sent(&sync).idle(gap);
+    }
+    l.sent(&sync).idle(20);
+    cases.push((l, 0, 1, "SYNC period (the master's configured SYNC period, `sync_period_us`; the seeds state none): SYNC 2982.000 us after the previous one; the period is 2000.000 us"));
+    // 10 SAR58K24: a click answered, then two clicks 100 us apart.
+    let mut l = CanLine::default();
+    l.idle(20).sent(&click).heard(&Frame::data(0x120, &[0x47, 0x26, 0, 0, 0, 0, 0, 0])).sent(&click).idle(50).sent(&click).idle(20);
+    cases.push((l, 0, 1, "SAR58K24 command (seed 001 §3.4 (3): each command is answered; the next command to the node after the answer or the answer timeout): command 80 to SAR58K24 node 0x20"));
+    let cmd = bench_of(sim, "tb_can_monitor_rules");
+    for (case, (line, n_can, n_canopen, rule)) in cases.iter().enumerate() {
+        let (t_can, t_co) = (dir.join(format!("can_{case}.json")), dir.join(format!("canopen_{case}.json")));
+        let (ok, out) = run(Command::new(cmd.get_program()).args(cmd.get_args()).envs(cmd.get_envs().filter_map(|(k, v)| Some((k, v?)))).args([
+            format!("+bits={}", line.0),
+            format!("+n={}", line.0.len()),
+            format!("+can_monitor_config={}", can.display()),
+            format!("+canopen_monitor_config={}", canopen.display()),
+            format!("+can_monitor_transcript={}", t_can.display()),
+            format!("+canopen_monitor_transcript={}", t_co.display()),
+        ]));
+        assert!(ok, "case {case} in {sim}:\n{out}");
+        assert!(out.contains(&format!("violations can {n_can} canopen {n_canopen}")), "case {case} in {sim}:\n{out}");
+        assert_eq!(out.matches("PROTOCOL VIOLATION by the master on").count(), n_can + n_canopen, "case {case} in {sim}:\n{out}");
+        assert!(out.contains(rule), "case {case} in {sim}: no `{rule}` in\n{out}");
+        let t: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&t_can).unwrap()).unwrap();
+        assert_eq!(t["violations"].as_array().unwrap().len(), *n_can, "{t}");
+        let t: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&t_co).unwrap()).unwrap();
+        assert_eq!(t["violations"].as_array().unwrap().len(), *n_canopen, "{t}");
+        if case == 0 {
+            // 4 + 2 × 7 + 3 frames, each read as CANopen too.
+            assert_eq!(t["transactions"].as_array().unwrap().len(), 21, "{t}");
+            assert_eq!(t["transactions"][0]["meaning"], "boot-up of node 5 (gateway form)", "{t}");
+            assert_eq!(t["transactions"][1]["meaning"], "SDO write 100Ch sub 0 (Guard time) = 10 (0xA)", "{t}");
+            assert_eq!(t["transactions"][1]["sender"], "master", "{t}");
+        }
+    }
+    // The clean run's CAN transcript against the frames played, by `tbgen check can`; then one data bit flipped.
+    let t: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(dir.join("can_0.json")).unwrap()).unwrap();
+    let mut want: Vec<serde_json::Value> = t["transactions"].as_array().unwrap().iter().map(|v| serde_json::json!({"id": v["id"], "dlc": v["dlc"], "data": v["data"], "error": null})).collect();
+    assert_eq!(want.len(), 21);
+    assert_eq!(want[20], serde_json::json!({"id": 0x123, "dlc": 2, "data": [0xDE, 0xAD], "error": null}));
+    let expect = dir.join("expect.json");
+    std::fs::write(&expect, serde_json::json!({ "transactions": want }).to_string()).unwrap();
+    let (ok, out) = tbgen_check("can", &expect, &dir.join("can_0.json"));
+    assert!(ok && out.contains("PASS: 21 transactions of can equal"), "{out}");
+    want[20]["data"][1] = serde_json::Value::from(0xAD ^ 4);
+    std::fs::write(&expect, serde_json::json!({ "transactions": want }).to_string()).unwrap();
+    let (ok, out) = tbgen_check("can", &expect, &dir.join("can_0.json"));
+    let sof = t["transactions"][20]["sof_ps"].as_u64().unwrap() as f64 / 1e6;
+    assert!(!ok && out.contains(&format!("DIFFERENCE in transaction 20 at {sof:.3} us: data[1] expected 169, captured 173")), "{out}");
+}
+
+#[test]
+fn each_can_monitor_rule_fires_in_icarus() {
+    each_can_rule_fires_once("icarus");
+}
+
+#[test]
+fn each_can_monitor_rule_fires_in_verilator() {
+    each_can_rule_fires_once("verilator");
 }

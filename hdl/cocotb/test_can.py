@@ -1,7 +1,10 @@
 """cocotb example: can_controller on a wired-AND bus with emulated CAN nodes:
 frames the core sends are received exactly by node 0, frames a node sends
 (scripted from Python) are received exactly by the core; no node detects
-an error."""
+an error. The pin-level monitor (encoder_emu.Monitor("can", ...)) watches
+TXD and RXD: after each frame it has decoded exactly that frame, sent by
+the core or by the node, and the core breaks none of the CAN rules it
+checks."""
 
 import os
 import random
@@ -9,7 +12,7 @@ import random
 import cocotb
 from cocotb.triggers import RisingEdge
 
-from emu_common import bit, no_violations, open_emulator, run_emulator, start
+from emu_common import bit, monitor_agrees, no_violations, open_emulator, open_monitor, run_emulator, run_monitor, start
 
 FRAMES = int(os.environ.get("COSIM_TRANSACTIONS", "4"))
 
@@ -23,6 +26,8 @@ async def frames_cross_the_bus_both_ways(dut):
                  ("i_filter_id", 0), ("i_filter_mask", 0), ("i_can_rx", 1)):
         getattr(dut, s).value = v
     run_emulator(dut, emu, lambda: bit(dut.o_can_tx) << 1, lambda out: setattr(dut.i_can_rx, "value", out & 1))
+    mon = open_monitor("can", f_hz)
+    run_monitor(dut, mon, lambda: bit(dut.i_can_rx) | bit(dut.o_can_tx) << 1)
     await start(dut, f_hz)
     bit_clocks = int(dut.BRP.value) * (1 + int(dut.PROP_SEG.value) + int(dut.PHASE_SEG1.value) + int(dut.PHASE_SEG2.value))
     for _ in range(20 * bit_clocks):
@@ -55,4 +60,7 @@ async def frames_cross_the_bus_both_ways(dut):
             assert (int(dut.o_rx_id.value), int(dut.o_rx_data.value)) == (ident, data)
         for _ in range(12 * bit_clocks):
             await RisingEdge(dut.i_clk)
+        monitor_agrees(mon, n + 1, data, master=(n % 2 == 0), error=False)
+        assert mon.last_value(1) == ident, f"frame {n}: the monitor decoded identifier {mon.last_value(1):x}"
     no_violations(emu)
+    assert not mon.violations(), "\n".join(mon.violations())

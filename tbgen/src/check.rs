@@ -227,7 +227,7 @@ fn differ(path: &str, a: &Value, b: &Value) -> Option<(String, String, String)> 
 /// A transaction's start in picoseconds, if its transcript says.
 fn start_ps(t: &Value, ps_per_cycle: Option<f64>) -> Option<f64> {
     let o = t.as_object()?;
-    for (k, scale) in [("start_ps", 1.0), ("time_ps", 1.0), ("time_ns", 1e3), ("start_ns", 1e3)] {
+    for (k, scale) in [("start_ps", 1.0), ("sof_ps", 1.0), ("time_ps", 1.0), ("time_ns", 1e3), ("start_ns", 1e3)] {
         if let Some(v) = o.get(k).and_then(Value::as_f64) {
             return Some(v * scale);
         }

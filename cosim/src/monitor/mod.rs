@@ -16,6 +16,8 @@
 //! so a long run keeps only one transaction's edges in memory.
 
 pub mod biss;
+pub mod can;
+pub mod canopen;
 pub mod endat;
 pub mod esl;
 pub mod half_duplex;

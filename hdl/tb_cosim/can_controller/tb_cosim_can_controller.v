@@ -9,9 +9,17 @@
 //
 // Plusargs: +can_emu_config=<scenario.toml>, +transactions=N (default 1000),
 // +seed=S, +flip_bit=K (planted failure: the comparison flips bit K of the
-// core's data, so the run must fail).
+// core's data, so the run must fail), +can_monitor_transcript=FILE (the
+// monitor's JSON transcript).
+//
+// A pin-level monitor (hdl/emu/can_monitor.v) watches the core's TXD and
+// RXD, reading the same configuration: after each transaction it must have
+// decoded exactly one more frame, the one the core sent (sender "master")
+// or received, with its identifier, DLC and data; and the core must break
+// none of the CAN rules it checks.
 
 `timescale 1fs / 1fs
+`include "can_monitor.v"
 `default_nettype none
 
 module tb_cosim_can_controller;
@@ -78,6 +86,29 @@ can_node_emu #(
     .i_can_tx(can_tx),
     .o_can_rx(can_rx)
 );
+
+// The pin-level monitor and protocol checker, on the same clock.
+can_monitor #(
+    .F_MON_HZ(F_SYS_HZ),
+    .PLUSARG("can_emu_config")
+) u_mon (
+    .i_mon_clk(clk),
+    .i_can_tx(can_tx),
+    .i_can_rx(can_rx)
+);
+
+// The monitor has decoded `frames` frames, the last one `mid`, `mdlc`, data `mdata` under `mmask`, sent by the core when `by_core`.
+task check_monitor(input integer frames, input [28:0] mid, input [3:0] mdlc, input [63:0] mdata, input [63:0] mmask, input by_core);
+    reg [63:0] seen;
+    begin
+        seen = u_mon.last_value(0) & mmask;
+        if (u_mon.count(0) != frames || u_mon.last_value(1) != mid || u_mon.last_value(2) != mdlc
+            || seen != (mdata & mmask) || u_mon.last_status(0, "master") != by_core || u_mon.last_status(0, "error") != 0)
+            $fatal(1, "frame %0d at %0t: the monitor decoded %0d frames, the last id %h dlc %0d data %h (by the core: %0d); expected %0d frames, id %h dlc %0d data %h (by the core: %0d)",
+                   frames - 1, $time, u_mon.count(0), u_mon.last_value(1), u_mon.last_value(2), seen,
+                   u_mon.last_status(0, "master"), frames, mid, mdlc, mdata & mmask, by_core);
+    end
+endtask
 
 reg seen_done = 1'b0, seen_rx = 1'b0, seen_err = 1'b0;
 reg [63:0] rx_data = 0;
@@ -178,11 +209,15 @@ initial begin
         end
         // The frame's end of frame and intermission.
         repeat (12 * BIT_CLOCKS) @(posedge clk);
+        if (n % 2 == 0) check_monitor(n + 1, {18'd0, id}, dlc, data, mask, 1'b1);
+        else check_monitor(n + 1, {18'd0, id}, 4'd8, data, ~64'd0, 1'b0);
     end
+    if (u_mon.violations(0) != 0)
+        $fatal(1, "the monitor saw %0d CAN rule violation(s) by the core (PROTOCOL VIOLATION lines above)", u_mon.violations(0));
     if (u_emu.violations(0) != 0)
         $fatal(1, "the nodes detected %0d error(s) in the core's frames (PROTOCOL VIOLATION lines above)", u_emu.violations(0));
     $display("cycles %0d", cycles);
-    $display("PASS tb_cosim_can_controller: %0d frames, each received exactly as sent, both ways", transactions);
+    $display("PASS tb_cosim_can_controller: %0d frames, each received exactly as sent, both ways, and decoded alike by the monitor", transactions);
     $finish;
 end
 

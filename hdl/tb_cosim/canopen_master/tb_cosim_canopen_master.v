@@ -11,9 +11,16 @@
 //
 // Plusargs: +canopen_emu_config=<scenario.toml>, +transactions=N (default
 // 1000), +seed=S, +flip_bit=K (planted failure: the comparison flips bit K
-// of o_position, so the run must fail).
+// of o_position, so the run must fail), +canopen_monitor_transcript=FILE
+// (the monitor's JSON transcript).
+//
+// A pin-level monitor (hdl/emu/canopen_monitor.v) watches the master's TXD
+// and RXD with the same configuration: at every o_pos_valid the position of
+// the last PDO it decoded must equal the master's, and the master must break
+// none of the CAN and CANopen rules it checks (SDO, NMT start, SYNC period).
 
 `timescale 1fs / 1fs
+`include "canopen_monitor.v"
 `default_nettype none
 
 module tb_cosim_canopen_master;
@@ -120,6 +127,16 @@ canopen_encoder_emu #(
     .o_can_rx(can_rx)
 );
 
+// The pin-level monitor and protocol checker, on the same clock.
+canopen_monitor #(
+    .F_MON_HZ(F_SYS_HZ),
+    .PLUSARG("canopen_emu_config")
+) u_mon (
+    .i_mon_clk(clk),
+    .i_can_tx(can_tx),
+    .i_can_rx(can_rx)
+);
+
 // Anything that must never happen once configured.
 reg bad = 1'b0;
 always @(posedge clk) if (o_sdo_abort || o_node_lost || (o_pos_timeout && !rst)) bad <= 1'b1;
@@ -157,16 +174,20 @@ initial begin
                 sent = u_emu.last_value(0);
                 if (got != sent)
                     $fatal(1, "transaction %0d at %0t: the encoder sent position %0d, the master reports %0d", n, $time, sent, got);
+                if (u_mon.last_value(5) != o_position)
+                    $fatal(1, "transaction %0d at %0t: the monitor decoded position %0d on the bus, the master reports %0d", n, $time, u_mon.last_value(5), o_position);
                 pdos = pdos + 1;
                 if (got != pos && pdos >= 3)
                     $fatal(1, "transaction %0d at %0t: position %0d set, still %0d after %0d PDOs", n, $time, pos, got, pdos);
             end
         end
     end
+    if (u_mon.violations(0) != 0)
+        $fatal(1, "the monitor saw %0d CAN/CANopen rule violation(s) by the master (PROTOCOL VIOLATION lines above)", u_mon.violations(0));
     if (u_emu.violations(0) != 0)
         $fatal(1, "the encoder detected %0d error(s) in the master's frames (PROTOCOL VIOLATION lines above)", u_emu.violations(0));
     $display("cycles %0d", cycles);
-    $display("PASS tb_cosim_canopen_master: %0d positions, each reported exactly as the encoder sent it", transactions);
+    $display("PASS tb_cosim_canopen_master: %0d positions, each reported exactly as the encoder sent it and the monitor decoded it", transactions);
     $finish;
 end
 

@@ -29,9 +29,17 @@
 //
 // Plusargs: +canopen_emu_config=<scenario.toml>, +transactions=N (default
 // 1000), +seed=S, +flip_bit=K (planted failure: the comparison flips bit K
-// of the received data, so the run must fail with "core read").
+// of the received data, so the run must fail with "core read"),
+// +canopen_monitor_transcript=FILE (the monitor's JSON transcript).
+//
+// A pin-level monitor (hdl/emu/canopen_monitor.v) watches the controller's
+// TXD and RXD with the same configuration: each answer the core read must
+// be the last frame the monitor decoded (identifier and data), and the
+// command sequence must break none of the CAN rules and SAR58K24 command
+// rules it checks (a command only after the answer to the previous one).
 
 `timescale 1fs / 1fs
+`include "canopen_monitor.v"
 `default_nettype none
 
 module tb_cosim_sar58k24_can;
@@ -108,6 +116,16 @@ canopen_encoder_emu #(
     .o_can_rx(can_rx)
 );
 
+// The pin-level monitor and protocol checker, on the same clock.
+canopen_monitor #(
+    .F_MON_HZ(F_SYS_HZ),
+    .PLUSARG("canopen_emu_config")
+) u_mon (
+    .i_mon_clk(clk),
+    .i_can_tx(can_tx),
+    .i_can_rx(can_rx)
+);
+
 // The node in use, and the identifiers of the SAR58K24's frames.
 reg [7:0] node = SAR_NODE;
 wire [11:0] answer_id = SAR_ANSWER_BASE + node;
@@ -144,7 +162,7 @@ reg [8*64-1:0] cmd;
 `endif
 
 integer transactions, seed, flip_bit, n, waited, heard, r, k, positions;
-reg [63:0] raw, zero, got_data, want, sent_data, sent_id, p;
+reg [63:0] raw, zero, got_data, read_data, want, sent_data, sent_id, p;
 reg [11:0] got_id;
 reg [3:0] got_dlc;
 reg reverse;
@@ -207,6 +225,7 @@ task expect_frame(input [11:0] want_id, input [63:0] want_data, input is_positio
         wait_frame(want_id, limit);
         got_id = q_id[q_head];
         got_data = q_data[q_head];
+        read_data = q_data[q_head];
         got_dlc = q_dlc[q_head];
         q_pop <= 1'b1;
         @(posedge clk);
@@ -221,6 +240,8 @@ task expect_frame(input [11:0] want_id, input [63:0] want_data, input is_positio
             $fatal(1, "transaction %0d at %0t: the SAR58K24 sent %h [%h]; the core read %h [%h] dlc %0d", n, $time, sent_id, sent_data, got_id, got_data, got_dlc);
         if (u_emu.last_value(SAR_DEVICE + 16) != heard)
             $fatal(1, "transaction %0d at %0t: the SAR58K24 sent %0d frames, the core read %0d", n, $time, u_emu.last_value(SAR_DEVICE + 16), heard);
+        if (u_mon.last_value(1) != got_id || u_mon.last_value(0) != read_data || u_mon.last_status(0, "master"))
+            $fatal(1, "transaction %0d at %0t: the monitor decoded %h [%h] last (by the core: %0d); the core read %h [%h]", n, $time, u_mon.last_value(1), u_mon.last_value(0), u_mon.last_status(0, "master"), got_id, read_data);
         if (got_id != want_id || got_data != want_data)
             $fatal(1, "transaction %0d at %0t: expected %h [%h]; the core read %h [%h]", n, $time, want_id, want_data, got_id, got_data);
         if (is_position && u_emu.last_value(SAR_DEVICE) != expected(0))
@@ -373,6 +394,8 @@ initial begin
     repeat (20 * BIT_CLOCKS) @(posedge clk);
     if (q_count != 0 || u_emu.last_value(SAR_DEVICE + 16) != heard)
         $fatal(1, "at the end: the SAR58K24 sent %0d frames, the core read %0d", u_emu.last_value(SAR_DEVICE + 16), heard);
+    if (u_mon.violations(0) != 0)
+        $fatal(1, "the monitor saw %0d CAN or SAR58K24 command rule violation(s) by the core (PROTOCOL VIOLATION lines above)", u_mon.violations(0));
     if (u_emu.violations(0) != 0)
         $fatal(1, "the emulated devices detected %0d error(s) in the core's frames (PROTOCOL VIOLATION lines above)", u_emu.violations(0));
     $display("cycles %0d", cycles);

@@ -25,6 +25,7 @@ pub mod bus;
 pub mod campaign;
 
 pub mod controller;
+pub mod decode;
 pub mod emulator;
 pub mod frame;
 pub mod timing;

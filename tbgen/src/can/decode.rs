@@ -1,71 +1,19 @@
-//! `tbgen decode can`: a captured CAN line turned into frames. A frame
-//! starts at a falling edge after at least 11 recessive bits (bus idle,
-//! after EOF and intermission, or after an error delimiter and
-//! intermission); its bits are sampled at `(k + sample point)` bit times
-//! after that edge (hard synchronisation at SOF only: enough for captures
-//! from one clock domain and for short frames at a few hundred ppm), and
-//! read by the model's destuffing parser.
+//! `tbgen decode can`: a captured CAN line turned into frames by the
+//! model's decode core ([`model::can::decode`], which the CAN and CANopen
+//! pin-level monitors of `cosim` share).
 
 use std::path::Path;
-
-use serde::Serialize;
 
 use crate::capture;
 use crate::{Error, Result};
 
-/// One frame found on the line.
-#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
-pub struct Decoded {
-    /// SOF edge, ps.
-    pub sof_ps: u64,
-    /// Identifier.
-    pub id: u32,
-    /// Extended.
-    pub ide: bool,
-    /// Remote.
-    pub rtr: bool,
-    /// DLC.
-    pub dlc: u8,
-    /// Data bytes.
-    pub data: Vec<u8>,
-    /// CRC sequence received.
-    pub crc: Option<u16>,
-    /// ACK slot dominant.
-    pub ack: bool,
-    /// What the parser found wrong (`stuff`, `crc`, `form`, `truncated`).
-    pub error: Option<String>,
-}
+/// One frame found on the line (the model's decode core, shared with the CAN monitors).
+pub use model::can::decode::Decoded;
 
 /// Decodes `line` of `file`.
 pub fn decode(file: &Path, line: &str, bit_rate: u64, sample_point: f64) -> Result<Vec<Decoded>> {
     let sig = capture::read(file, &[(line, "--line")])?.remove(0);
-    let bit_ps = 1_000_000_000_000 / bit_rate;
-    let mut frames = Vec::new();
-    let mut idle_since = 0u64;
-    let mut after = 0u64;
-    for (t, level) in sig.edges() {
-        if level {
-            idle_since = t;
-            continue;
-        }
-        if t < after || t - idle_since < 11 * bit_ps - bit_ps / 2 {
-            continue;
-        }
-        let bits: Vec<bool> = (0..200u64).map(|k| sig.level_at(t + k * bit_ps + (sample_point * bit_ps as f64) as u64)).collect();
-        let d = match model::can::frame::parse(&bits) {
-            Ok(p) => {
-                after = t + p.len as u64 * bit_ps;
-                Decoded { sof_ps: t, id: p.frame.id, ide: p.frame.ide, rtr: p.frame.rtr, dlc: p.frame.dlc, data: p.frame.data, crc: Some(p.crc), ack: p.ack, error: None }
-            }
-            Err((e, at)) => {
-                after = t + at as u64 * bit_ps;
-                let name = serde_json::to_value(e).ok().and_then(|v| v.as_str().map(str::to_string)).unwrap_or_default();
-                Decoded { sof_ps: t, id: 0, ide: false, rtr: false, dlc: 0, data: Vec::new(), crc: None, ack: false, error: Some(name) }
-            }
-        };
-        frames.push(d);
-    }
-    Ok(frames)
+    Ok(model::can::decode::frames(&sig, 1_000_000_000_000 / bit_rate, sample_point))
 }
 
 /// The frames as JSON.
