@@ -1,12 +1,28 @@
 #!/usr/bin/env python3
 """coverage_report.py: per-core RTL coverage from Verilator coverage files.
 
-    scripts/coverage_report.py [--baseline FILE] [--write-baseline] CORE=MERGED.dat ...
+    scripts/coverage_report.py [--baseline FILE] [--write-baseline]
+                               [--merge-with CORE=MERGED.dat]... CORE=MERGED.dat ...
 
 Each CORE=MERGED.dat is one core's counts, merged over every replay of its
 vector files (scripts/coverage.sh merges them with verilator_coverage).
 Only points in the RTL directory (hdl/rtl, or $RTL_DIR) count: the testbench
-and its vector player are not the design under test. For each core it prints
+and its vector player are not the design under test.
+
+Coverage is counted per module, as an engineer reads it: a core's figures
+take every point of every module in its hierarchy (the core's own file and
+the modules it instantiates: can_controller in canopen_master, uart_rx and
+crc_serial in esl_host), each point once however many instances or
+parameter sets hold it, and a point is hit when any testbench that
+instantiates its module hit it: the counts of every CORE=MERGED.dat given
+and of every --merge-with CORE=MERGED.dat (a core whose counts are only
+lent to the others, not reported). So can_controller's lines in
+canopen_master's figures are merged with can_controller's own vectors; the
+points of a core's own file can only come from its own vectors (no other
+testbench instantiates it), and a shared module's points are the same in
+every core's figures. The report also gives the figures of each module
+file. Outputs that never changed are the core's own ports, from its own
+testbench only. For each core it prints
 
   * line, branch and toggle figures (covered / total and percent):
     line    every source line of a Verilator line or branch point; a line is
@@ -72,15 +88,17 @@ def pct(hit, total):
     return 100.0 * hit / total if total else 100.0
 
 
-def analyse(core, dat, rtl_dir):
-    # Points are keyed without the page's module suffix (Verilator names a
-    # module per parameter set: ssi_master__Bc_Cc8...), so that the same
-    # branch or bit under several parameter sets is one point, hit when any
-    # of them hit it.
-    line_hits = defaultdict(int)            # (file, line) -> hits
-    branches = defaultdict(int)             # point -> hits
-    toggles = defaultdict(int)
-    out_bits = defaultdict(dict)            # port -> {bit label: hits}
+def points(dat, rtl_dir):
+    """The RTL points of one merged counts file, keyed per module.
+
+    A key leaves out the instance (`h`) and the page's module suffix
+    (Verilator names a module per parameter set: ssi_master__Bc_Cc8...), so
+    that the same line, branch or bit of a module, in any instance, under
+    any parameter set and in any testbench, is one point.
+    Returns {kind: {key: hits}} for line, branch, toggle, and the output
+    bits of the testbench's `dut` ({port: {bit label: hits}})."""
+    pts = {"line": defaultdict(int), "branch": defaultdict(int), "toggle": defaultdict(int)}
+    out_bits = defaultdict(dict)
     dut = re.compile(r"(^|\.)dut$")
     for p, n in parse_dat(dat):
         page = p.get("page", "")
@@ -90,28 +108,35 @@ def analyse(core, dat, rtl_dir):
         kind = page.split("/", 1)[0]
         if kind in ("v_line", "v_branch"):
             for ln in expand_lines(p.get("S"), int(p.get("l", "0"))):
-                line_hits[(fname, ln)] += n
+                pts["line"][(fname, ln)] += n
             if kind == "v_branch":
-                branches[(fname, p.get("l"), p.get("n"), p.get("o"), p.get("h"))] += n
+                pts["branch"][(fname, p.get("l"), p.get("n"), p.get("o"))] += n
         elif kind == "v_toggle":
             name = p.get("o", "")
-            toggles[(fname, p.get("h"), name)] += n
+            pts["toggle"][(fname, name)] += n
             if dut.search(p.get("h", "")) and name.startswith("o_"):
                 port = re.sub(r"\[.*$", "", name)
                 out_bits[port][name] = out_bits[port].get(name, 0) + n
-    files = sorted({f for f, _ in line_hits})
-    lines_total = len(line_hits)
-    lines_hit = sum(1 for v in line_hits.values() if v > 0)
-    uncovered = sorted(k for k, v in line_hits.items() if v == 0)
-    return {
-        "core": core,
-        "line": (lines_hit, lines_total),
-        "branch": (sum(1 for v in branches.values() if v > 0), len(branches)),
-        "toggle": (sum(1 for v in toggles.values() if v > 0), len(toggles)),
-        "uncovered": uncovered,
-        "outputs": out_bits,
-        "excluded": [x for f in files for x in excluded_regions(f)],
-    }
+    return pts, out_bits
+
+
+def analyse(core, own, pool):
+    """One core's figures: the points of its own counts (own = points()),
+    each hit when any counts file in pool ({kind: {key: hits}}, summed over
+    every testbench) hit it."""
+    pts, out_bits = own
+    res = {"core": core, "outputs": out_bits, "modules": {}}
+    for kind in ("line", "branch", "toggle"):
+        keys = pts[kind]
+        res[kind] = (sum(1 for k in keys if pool[kind][k] > 0), len(keys))
+        for k in keys:
+            mod = res["modules"].setdefault(k[0], {"line": [0, 0], "branch": [0, 0], "toggle": [0, 0]})
+            mod[kind][1] += 1
+            mod[kind][0] += pool[kind][k] > 0
+    files = sorted(res["modules"])
+    res["uncovered"] = sorted(k for k in pts["line"] if pool["line"][k] == 0)
+    res["excluded"] = [x for f in files for x in excluded_regions(f)]
+    return res
 
 
 def excluded_regions(fname):
@@ -154,6 +179,10 @@ def report(r, rtl_dir):
     for kind in ("line", "branch", "toggle"):
         hit, total = r[kind]
         print(f"   {kind:<7} {pct(hit, total):6.1f} %  ({hit}/{total})")
+    if len(r["modules"]) > 1:
+        for fname, mod in sorted(r["modules"].items()):
+            figs = "  ".join(f"{k} {pct(*mod[k]):5.1f} %" for k in ("line", "branch", "toggle"))
+            print(f"     {os.path.basename(fname):<22} {figs}")
     cache = {}
     if r["uncovered"]:
         print(f"   uncovered lines ({len(r['uncovered'])}):")
@@ -234,15 +263,26 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--baseline", help="baseline file (core line%% branch%% toggle%%)")
     ap.add_argument("--write-baseline", action="store_true", help="store the measured figures in --baseline")
+    ap.add_argument("--merge-with", action="append", default=[], metavar="CORE=MERGED.dat",
+                    help="another core's counts, merged into the module points but not reported")
     ap.add_argument("cores", nargs="+", metavar="CORE=MERGED.dat")
     args = ap.parse_args()
     rtl_dir = os.path.realpath(os.environ.get("RTL_DIR", os.path.join(ROOT, "hdl", "rtl")))
-    results = []
-    for spec in args.cores:
+    own, pool = [], {"line": defaultdict(int), "branch": defaultdict(int), "toggle": defaultdict(int)}
+    for spec in args.cores + args.merge_with:
         core, sep, dat = spec.partition("=")
         if not sep or not os.path.exists(dat):
             sys.exit(f"coverage: want CORE=MERGED.dat with an existing file, got {spec!r}")
-        results.append(analyse(core, dat, rtl_dir))
+        pts = points(dat, rtl_dir)
+        for kind, keys in pts[0].items():
+            for k, n in keys.items():
+                pool[kind][k] += n
+        if spec in args.cores:
+            own.append((core, pts))
+    results = [analyse(core, pts, pool) for core, pts in own]
+    if args.merge_with:
+        print("coverage: module points also merged with the counts of "
+              + ", ".join(m.partition("=")[0] for m in args.merge_with))
     for r in results:
         report(r, rtl_dir)
     status = 0

@@ -148,6 +148,21 @@ canopen_master #(
     .i_can_rx(i_can_rx)
 );
 
+// While reset is held the player compares nothing (vector_player.vh): here
+// every output is held to the model's reset state (canopen::master::Master::new:
+// TX recessive, state WAIT_BOOT, every other output 0) at each falling edge
+// of the reset, so a wrong reset value of an output register that the first
+// cycle would overwrite (a pulse such as o_sdo_abort) is still caught.
+always @(negedge clk) begin
+    if (rst && ({o_can_tx, o_booted, o_config_done, o_sdo_abort, o_node_lost, o_pos_valid, o_pos_timeout,
+                 o_pos_stale, o_emcy_valid, o_sync_sent} !== 10'b1000000000
+                || o_state !== 3'd0 || o_abort_code !== 32'd0 || o_abort_index !== 16'd0
+                || o_abort_sub !== 8'd0 || o_position !== 32'd0 || o_emcy_code !== 16'd0 || o_emcy_reg !== 8'd0)) begin
+        $display("MISMATCH in reset: outputs differ from the model's reset state");
+        $fatal(1, "canopen_master: an output is not at its reset value while i_rst is high");
+    end
+end
+
 endmodule
 
 `default_nettype wire

@@ -184,6 +184,23 @@ endat_master #(
     .o_delay(o_delay)
 );
 
+// While reset is held the player compares nothing (vector_player.vh): here
+// every output is held to the model's reset state (endat::master::Master::new:
+// clock high, o_f2 high, o_busy = DELAY_COMP, o_delay = 2 + SAMPLE_DELAY,
+// every other output 0) at each falling edge of the reset, so a wrong reset
+// value of an output register that the first cycle would overwrite (a pulse,
+// a line level) is still caught.
+always @(negedge clk) begin
+    if (rst && ({o_endat_clk, o_endat_data_out, o_endat_data_oe, o_done, o_f1, o_f2, o_err_crc, o_ad1_valid, o_err_ad1_crc,
+                 o_ad2_valid, o_err_ad2_crc, o_err_type2, o_err_type3, o_err_type4, o_err_ack, o_err_timeout,
+                 o_err_absent, o_err_idle, o_err_delay, o_meas_done, o_err_meas, o_delay_valid} !== 22'b1000010000000000000000
+                || o_busy !== (DELAY_COMP != 0) || o_delay !== 2 + SAMPLE_DELAY
+                || o_position !== 48'd0 || o_ad1 !== 24'd0 || o_ad2 !== 24'd0 || o_ack_addr !== 8'd0 || o_ack_data !== 16'd0)) begin
+        $display("MISMATCH in reset: outputs differ from the model's reset state");
+        $fatal(1, "endat_master: an output is not at its reset value while i_rst is high");
+    end
+end
+
 endmodule
 
 `default_nettype wire

@@ -154,6 +154,19 @@ esl_host #(
     .o_err_busy(o_err_busy)
 );
 
+// While reset is held the player compares nothing (vector_player.vh): here
+// every output is held to the model's reset state (esl::host::Host::new: TX idle high, every other output 0) at each
+// falling edge of the reset, so a wrong reset value of an output register
+// that the first cycle would overwrite (a pulse, a line level) is still caught.
+always @(negedge clk) begin
+    if (rst && ({o_tx, o_tx_en, o_busy, o_done, o_err_crc1, o_err_crc2, o_err_timeout, o_err_frame, o_err_cf,
+                 o_err_comm, o_err_seq, o_err_rs, o_err_busy} !== 13'b1000000000000
+                || {o_cf, o_sf, o_sf2, o_alm1, o_alm2, o_abs, o_abm, o_rs, o_sc1, o_sc2, o_enid, o_temp, o_adf, o_edf} !== 143'd0)) begin
+        $display("MISMATCH in reset: outputs differ from the model's reset state");
+        $fatal(1, "esl_host: an output is not at its reset value while i_rst is high");
+    end
+end
+
 endmodule
 
 `default_nettype wire

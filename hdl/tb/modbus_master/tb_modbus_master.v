@@ -105,6 +105,19 @@ modbus_master #(
     .i_rx(i_rx)
 );
 
+// While reset is held the player compares nothing (vector_player.vh): here
+// every output is held to the model's reset state (modbus::master::Out::default: TX idle high, every other output 0) at each
+// falling edge of the reset, so a wrong reset value of an output register
+// that the first cycle would overwrite (a pulse, a line level) is still caught.
+always @(negedge clk) begin
+    if (rst && ({o_tx, o_tx_en, o_busy, o_done, o_valid, o_err_parity, o_err_framing, o_err_gap, o_err_length, o_err_crc,
+                 o_err_address, o_err_exception, o_err_function, o_err_count, o_err_timeout} !== 15'b100000000000000
+                || o_value !== 32'd0 || o_station !== 8'd0 || o_exception !== 8'd0)) begin
+        $display("MISMATCH in reset: outputs differ from the model's reset state");
+        $fatal(1, "modbus_master: an output is not at its reset value while i_rst is high");
+    end
+end
+
 endmodule
 
 `default_nettype wire

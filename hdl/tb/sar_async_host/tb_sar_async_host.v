@@ -101,6 +101,18 @@ sar_async_host #(
     .i_rx(i_rx)
 );
 
+// While reset is held the player compares nothing (vector_player.vh): here
+// every output is held to the model's reset state (sar58k24::host::Out::default: TX idle high, o_trigger and o_clr high, every other output 0) at each
+// falling edge of the reset, so a wrong reset value of an output register
+// that the first cycle would overwrite (a pulse, a line level) is still caught.
+always @(negedge clk) begin
+    if (rst && ({o_tx, o_tx_en, o_trigger, o_clr, o_busy, o_done, o_valid, o_err_checksum, o_err_parity, o_err_frame,
+                 o_err_address, o_err_timeout, o_err_stale} !== 13'b1011000000000 || o_position !== 32'd0)) begin
+        $display("MISMATCH in reset: outputs differ from the model's reset state");
+        $fatal(1, "sar_async_host: an output is not at its reset value while i_rst is high");
+    end
+end
+
 endmodule
 
 `default_nettype wire

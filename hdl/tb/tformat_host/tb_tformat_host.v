@@ -94,6 +94,18 @@ tformat_host #(
     .i_rx(i_rx)
 );
 
+// While reset is held the player compares nothing (vector_player.vh): here
+// every output is held to the model's reset state (tformat::host::Host::new: TX idle high, every other output 0) at each
+// falling edge of the reset, so a wrong reset value of an output register
+// that the first cycle would overwrite (a pulse, a line level) is still caught.
+always @(negedge clk) begin
+    if (rst && ({o_tx, o_tx_en, o_busy, o_done, o_err_crc, o_err_timeout, o_err_frame, o_err_cf, o_err_comm} !== 9'b100000000
+                || {o_cf, o_sf, o_abs, o_abm, o_enid, o_almc, o_adf, o_edf} !== 81'd0)) begin
+        $display("MISMATCH in reset: outputs differ from the model's reset state");
+        $fatal(1, "tformat_host: an output is not at its reset value while i_rst is high");
+    end
+end
+
 endmodule
 
 `default_nettype wire
