@@ -131,9 +131,41 @@ impl Transmitter {
         self.queued_until_ps
     }
 
+    /// The level the line keeps until the next edge falls due.
+    pub fn level(&self) -> bool {
+        self.level
+    }
+
     /// Frames started so far.
     pub fn sent(&self) -> &[Sent] {
         &self.sent
+    }
+
+    /// How many of the next [`Transmitter::step`]s change nothing: no edge
+    /// and no frame start falls due in them, so the line keeps its level
+    /// (fast-forward; `u64::MAX` once everything queued is sent).
+    pub fn quiet(&self) -> u64 {
+        let next = [self.edges.front().map(|e| e.0), self.pending_frames.front().map(|f| f.0)].into_iter().flatten().fold(f64::INFINITY, f64::min);
+        if next == f64::INFINITY {
+            return u64::MAX;
+        }
+        // The first cycle whose start is at or after `next` (the same
+        // comparison as `step`'s, on the same products, so no rounding can
+        // put the estimate one cycle off).
+        let mut due = (next / self.period_ps).ceil().max(0.0) as u64;
+        while due > 0 && (due - 1) as f64 * self.period_ps >= next {
+            due -= 1;
+        }
+        while (due as f64 * self.period_ps) < next {
+            due += 1;
+        }
+        due.saturating_sub(self.cycle)
+    }
+
+    /// The same as `n` calls of [`Transmitter::step`], for `n` up to
+    /// [`Transmitter::quiet`]: only the cycle count moves.
+    pub fn skip(&mut self, n: u64) {
+        self.cycle += n;
     }
 
     /// The line level during the current cycle; then advances one cycle.
