@@ -18,6 +18,23 @@ pub struct Sent {
     pub byte: u8,
 }
 
+/// The first cycle from `from` on whose start (`cycle × period_ps`) is at
+/// or after `t_ps`: the cycle in which an edge or a driver change at `t_ps`
+/// shows, by the comparison the models' `step`s make (fast-forward: the
+/// cycles before it are quiet). Cycle × period stays below 2^53 ps (the
+/// vector format's 32-bit cycles), so the product is exact in `f64` either way.
+pub fn first_cycle_at(from: u64, period_ps: u64, t_ps: f64) -> u64 {
+    let estimate = (t_ps / period_ps as f64).ceil();
+    let mut c = if estimate > from as f64 { estimate.min(1e18) as u64 } else { from };
+    while c > from && ((c - 1) * period_ps) as f64 >= t_ps {
+        c -= 1;
+    }
+    while ((c * period_ps) as f64) < t_ps {
+        c += 1;
+    }
+    c
+}
+
 /// The sender.
 #[derive(Debug, Clone)]
 pub struct Transmitter {
@@ -149,17 +166,7 @@ impl Transmitter {
         if next == f64::INFINITY {
             return u64::MAX;
         }
-        // The first cycle whose start is at or after `next` (the same
-        // comparison as `step`'s, on the same products, so no rounding can
-        // put the estimate one cycle off).
-        let mut due = (next / self.period_ps).ceil().max(0.0) as u64;
-        while due > 0 && (due - 1) as f64 * self.period_ps >= next {
-            due -= 1;
-        }
-        while (due as f64 * self.period_ps) < next {
-            due += 1;
-        }
-        due.saturating_sub(self.cycle)
+        first_cycle_at(self.cycle, self.period_ps as u64, next) - self.cycle
     }
 
     /// The same as `n` calls of [`Transmitter::step`], for `n` up to
