@@ -543,24 +543,11 @@ impl Testbench for Bench {
 
     fn quiet_cycles(&self) -> u64 {
         let c = self.cycle;
-        let host = match self.end {
-            Some(end) => end.saturating_sub(c),
-            None if self.open.is_some() || self.last_out.o_busy => u64::MAX,
-            None => self.start_at.saturating_sub(c),
-        };
         // The cycle after a start shows its pulse falling.
         let just_started = self.open.as_ref().is_some_and(|t| t.start_cycle + 1 == c);
-        if host == 0 || just_started {
+        let q = uart::bench_quiet(c, self.end, self.open.is_some() || self.last_out.o_busy, self.start_at, just_started, &self.drivers);
+        if q == 0 {
             return 0;
-        }
-        // Not into (nor through) a second driver's levels.
-        let mut q = host;
-        for (from, levels) in &self.drivers {
-            if c < *from {
-                q = q.min(from - c);
-            } else if c < from + levels.len() as u64 {
-                return 0;
-            }
         }
         let out = &self.last_out;
         let input = In { i_rx: self.at_host, ..In::default() };
