@@ -271,6 +271,8 @@ pub struct Bench {
     wire_tap: uart::WireTap,
     at_master: bool,
     device_drive: Drive,
+    /// Devices driving in the last step.
+    devices_on: usize,
     device_contention: u64,
     fault_contention: u64,
     next_op: usize,
@@ -317,6 +319,7 @@ impl Bench {
             wire_tap: uart::WireTap::with_parity(c, cfg.parity)?,
             at_master: true,
             device_drive: Drive::default(),
+            devices_on: 0,
             device_contention: 0,
             fault_contention: 0,
             next_op: 0,
@@ -411,6 +414,7 @@ impl Testbench for Bench {
         if on.len() > 1 {
             self.device_contention += 1;
         }
+        self.devices_on = on.len();
         self.device_drive = on.first().map_or(Drive { enable: false, level: true }, |d| **d);
         self.at_master = at_master.level;
         if out.o_done {
@@ -477,6 +481,45 @@ impl Testbench for Bench {
 
     fn finished(&self) -> bool {
         self.end.is_some_and(|e| self.cycle >= e)
+    }
+
+    fn quiet_cycles(&self) -> u64 {
+        let c = self.cycle;
+        // The cycle after a start shows its pulse falling.
+        let just_started = self.open.as_ref().is_some_and(|t| t.start_cycle + 1 == c);
+        let q = uart::bench_quiet(c, self.end, self.waiting || self.last_out.o_busy, self.start_at, just_started, &self.drivers);
+        if q == 0 {
+            return 0;
+        }
+        let out = &self.last_out;
+        let input = In { i_rx: self.at_master, ..In::default() };
+        let master_drive = Drive { enable: out.o_tx_en, level: out.o_tx };
+        let (near, far) = self.line.sensed(master_drive, self.device_drive);
+        // The level a second driver left at the near end gives way to the line's.
+        if near.level != self.at_master {
+            return 0;
+        }
+        let at_device = far.level;
+        let devices = self.devices.iter().map(|d| d.quiet(at_device)).min().unwrap_or(u64::MAX);
+        q.min(self.master.quiet(&input))
+            .min(self.wire_tap.quiet(input.i_rx, out.o_tx_en))
+            .min(self.line.quiet(master_drive, self.device_drive))
+            .min(devices)
+    }
+
+    fn skip(&mut self, n: u64) {
+        let out = self.last_out;
+        let master_drive = Drive { enable: out.o_tx_en, level: out.o_tx };
+        self.master.skip(n);
+        self.wire_tap.skip(n);
+        self.line.skip(n, master_drive, self.device_drive);
+        for d in &mut self.devices {
+            d.skip(n);
+        }
+        if self.devices_on > 1 {
+            self.device_contention += n;
+        }
+        self.cycle += n;
     }
 
     fn cycle(&self) -> u64 {

@@ -288,6 +288,49 @@ impl Device {
         self.driving_until_ps = self.tx.idle_from_ps();
     }
 
+    /// How many of the next steps with the line at `rx` change nothing but
+    /// counters (fast-forward): no character, frame end, answer or edge,
+    /// and the same drive.
+    pub fn quiet(&self, rx: bool) -> u64 {
+        let c = self.cycle;
+        let period = self.cfg.period_ps;
+        let now_ps = (c * period) as f64;
+        let mut q = self.tx.quiet();
+        // The drive enable falls at `driving_until_ps`, the receiver's
+        // own-driver blanking one cycle later; a quiet cycle repeats the last
+        // step's drive, so the window ends where the level that step saw
+        // changes (at once when it changed at this cycle).
+        let last_ps = (c.saturating_sub(1) * period) as f64;
+        for edge in [self.driving_until_ps, self.driving_until_ps + period as f64] {
+            if last_ps < edge {
+                q = q.min(uart::first_cycle_at(c, period, edge) - c);
+            }
+        }
+        if let Some((at, _)) = &self.pending {
+            q = q.min(at.saturating_sub(c));
+        }
+        if self.rx.state() == uart::State::Idle && !self.frame.is_empty() {
+            q = q.min(self.cfg.t35.saturating_sub(self.idle + 1));
+        }
+        let driving = now_ps < self.driving_until_ps + period as f64;
+        q.min(self.rx.quiet(&uart::In { i_rx: rx || driving }))
+    }
+
+    /// The same as `n` steps with the last line level, for `n` up to [`Device::quiet`].
+    pub fn skip(&mut self, n: u64) {
+        if self.rx.state() != uart::State::Idle {
+            if !self.frame.is_empty() && self.idle > self.cfg.t15 {
+                self.bad = true;
+            }
+            self.idle = 0;
+        } else if !self.frame.is_empty() {
+            self.idle += n;
+        }
+        self.rx.skip(n);
+        self.tx.skip(n);
+        self.cycle += n;
+    }
+
     /// One system clock: `rx` is the line at the device; returns its driver.
     pub fn step(&mut self, rx: bool) -> Drive {
         let now_ps = (self.cycle * self.cfg.period_ps) as f64;

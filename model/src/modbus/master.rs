@@ -39,7 +39,7 @@
 
 use super::frames;
 use crate::ports::{Port, Ports};
-use crate::uart::{self, Parity, Receiver, ReceiverConfig, Tx, TxConfig, TxIn, TxOut};
+use crate::uart::{self, Parity, Receiver, ReceiverConfig, Tx, TxConfig, TxIn, TxOut, TxState};
 use crate::{ConfigError, Result};
 
 /// Characters kept of an answer (the longest: 01 03 04 d d d d crc crc).
@@ -341,6 +341,71 @@ impl Master {
     /// The request being or last sent.
     pub fn request(&self) -> &[u8] {
         &self.req[..self.req_len as usize]
+    }
+
+    /// How many of the next steps with `input` only run counters
+    /// (fast-forward): no output or state changes, no pulse comes and no
+    /// character ends. The receiver waits between two samples (or idles),
+    /// the sender is idle, and the silence, timeout, gap and limit counters
+    /// are short of their ends. 0 while a pulse is up, a request is being
+    /// sent, or `input` starts an operation.
+    pub fn quiet(&self, input: &In) -> u64 {
+        let o = &self.out;
+        let pulse = o.o_done
+            || o.o_valid
+            || o.o_err_parity
+            || o.o_err_framing
+            || o.o_err_gap
+            || o.o_err_length
+            || o.o_err_crc
+            || o.o_err_address
+            || o.o_err_exception
+            || o.o_err_function
+            || o.o_err_count
+            || o.o_err_timeout;
+        let rx = self.rx_out;
+        if pulse || rx.o_valid || rx.o_parity_err || rx.o_frame_err || self.tx_pending || self.tx_in.i_valid || self.tx.state() != TxState::Idle {
+            return 0;
+        }
+        let t35 = self.cfg.t35_clocks;
+        let fsm = match self.state {
+            State::Idle if input.i_start || input.i_query || input.i_write => return 0,
+            State::Idle => u64::MAX,
+            State::Silence if rx.o_busy || o.o_tx_en => u64::MAX,
+            State::Silence => t35.saturating_sub(self.line_idle),
+            State::Send => return 0,
+            State::Wait if rx.o_busy => return 0,
+            State::Wait => self.cnt,
+            State::Recv if rx.o_busy => self.cnt,
+            State::Recv => self.cnt.min(t35.saturating_sub(self.gap + 1)),
+        };
+        fsm.min(self.rx.quiet(&uart::In { i_rx: input.i_rx || o.o_tx_en }))
+    }
+
+    /// The same as `n` steps with the last input, for `n` up to [`Master::quiet`].
+    pub fn skip(&mut self, n: u64) {
+        let rx = self.rx_out;
+        match self.state {
+            State::Wait => self.cnt -= n,
+            State::Recv => {
+                if rx.o_busy {
+                    if self.nbytes > 0 && self.gap > self.cfg.t15_clocks {
+                        self.gap_seen = true;
+                    }
+                    self.gap = 0;
+                } else {
+                    self.gap += n;
+                }
+                self.cnt -= n;
+            }
+            State::Idle | State::Silence | State::Send => {}
+        }
+        if rx.o_busy || self.out.o_tx_en {
+            self.line_idle = 0;
+        } else {
+            self.line_idle = (self.line_idle + n).min(self.cfg.t35_clocks);
+        }
+        self.rx.skip(n);
     }
 
     /// One rising edge.

@@ -341,6 +341,8 @@ pub struct Bench {
     wire_tap: uart::WireTap,
     at_host: bool,
     encoder_drive: Drive,
+    /// Encoders driving in the last step.
+    encoders_on: usize,
     encoder_contention: u64,
     fault_contention: u64,
     next_op: usize,
@@ -383,6 +385,7 @@ impl Bench {
             wire_tap: uart::WireTap::with_parity(c, cfg.parity)?,
             at_host: true,
             encoder_drive: Drive::default(),
+            encoders_on: 0,
             encoder_contention: 0,
             fault_contention: 0,
             next_op: 0,
@@ -494,6 +497,7 @@ impl Testbench for Bench {
         if on.len() > 1 {
             self.encoder_contention += 1;
         }
+        self.encoders_on = on.len();
         self.encoder_drive = on.first().map_or(Drive { enable: false, level: true }, |d| **d);
         self.at_host = at_host.level;
         if let Some(t) = self.open.as_mut().or(self.transactions.last_mut()) {
@@ -535,6 +539,50 @@ impl Testbench for Bench {
 
     fn finished(&self) -> bool {
         self.end.is_some_and(|e| self.cycle >= e)
+    }
+
+    fn quiet_cycles(&self) -> u64 {
+        let c = self.cycle;
+        // The cycle after a start shows its pulse falling.
+        let just_started = self.open.as_ref().is_some_and(|t| t.start_cycle + 1 == c);
+        let q = uart::bench_quiet(c, self.end, self.open.is_some() || self.last_out.o_busy, self.start_at, just_started, &self.drivers);
+        if q == 0 {
+            return 0;
+        }
+        let out = &self.last_out;
+        let input = In { i_rx: self.at_host, ..In::default() };
+        let host_drive = Drive { enable: out.o_tx_en, level: out.o_tx };
+        let (near, far) = self.line.sensed(host_drive, self.encoder_drive);
+        // The level a second driver left at the near end gives way to the line's.
+        if near.level != self.at_host {
+            return 0;
+        }
+        let at_encoder = far.level;
+        let enc_in = EncoderIn { rx: at_encoder, trigger: self.trigger_line.output(), clr: self.clr_line.output() };
+        let encoders = self.encoders.iter().map(|e| e.quiet(&enc_in)).min().unwrap_or(u64::MAX);
+        q.min(self.host.quiet(&input))
+            .min(self.wire_tap.quiet(input.i_rx, out.o_tx_en))
+            .min(self.line.quiet(host_drive, self.encoder_drive))
+            .min(self.trigger_line.quiet(out.o_trigger))
+            .min(self.clr_line.quiet(out.o_clr))
+            .min(encoders)
+    }
+
+    fn skip(&mut self, n: u64) {
+        let out = self.last_out;
+        let host_drive = Drive { enable: out.o_tx_en, level: out.o_tx };
+        self.host.skip(n);
+        self.wire_tap.skip(n);
+        self.line.skip(n, host_drive, self.encoder_drive);
+        self.trigger_line.skip(n);
+        self.clr_line.skip(n);
+        for e in &mut self.encoders {
+            e.skip(n);
+        }
+        if self.encoders_on > 1 {
+            self.encoder_contention += n;
+        }
+        self.cycle += n;
     }
 
     fn cycle(&self) -> u64 {

@@ -417,6 +417,66 @@ impl Encoder {
         self.driving_until_ps = self.tx.idle_from_ps();
     }
 
+    /// How many of the next steps with `input` change nothing but counters
+    /// (fast-forward): no acquisition, frame, zeroing, character or edge,
+    /// and the same drive. 0 while the trigger or CLR input is moving.
+    pub fn quiet(&self, input: &EncoderIn) -> u64 {
+        let mode = self.cfg.mode;
+        let c = self.cycle;
+        let mut q = self.tx.quiet();
+        if mode.has_clr() {
+            // A CLR edge (the count starts or resets) is stepped.
+            if input.clr == (self.clr_low != 0) {
+                return 0;
+            }
+            let m = self.cfg.clr_min_low.max(1);
+            if !input.clr && self.clr_low < m {
+                q = q.min(m - self.clr_low - 1);
+            }
+        }
+        if mode.is_timed() {
+            q = q.min(self.next_timed.saturating_sub(c));
+        }
+        if mode.is_handshake() && (self.trigger_low > 0 || input.trigger != self.trigger_before) {
+            return 0;
+        }
+        if let Some((at, _)) = self.pending_send {
+            q = q.min(at.saturating_sub(c));
+        }
+        if mode.is_bus() {
+            // The drive enable falls at `driving_until_ps`, the receiver's
+            // own-driver blanking one cycle later.
+            // A quiet cycle repeats the last step's drive, so the window ends
+            // where the level that step saw changes (at once when it changed
+            // at this cycle).
+            let period = self.cfg.period_ps as f64;
+            let now_ps = (c * self.cfg.period_ps) as f64;
+            let last_ps = (c.saturating_sub(1) * self.cfg.period_ps) as f64;
+            for edge in [self.driving_until_ps, self.driving_until_ps + period] {
+                if last_ps < edge {
+                    q = q.min(uart::first_cycle_at(c, self.cfg.period_ps, edge) - c);
+                }
+            }
+            let driving = now_ps < self.driving_until_ps + period;
+            q = q.min(self.rx.quiet(&uart::In { i_rx: input.rx || driving }));
+        }
+        q
+    }
+
+    /// The same as `n` steps with the last input, for `n` up to [`Encoder::quiet`].
+    pub fn skip(&mut self, n: u64) {
+        if self.cfg.mode.has_clr() && self.clr_low != 0 {
+            // The CLR input stays low (a high one keeps the count at 0).
+            self.clr_low += n;
+        }
+        if self.cfg.mode.is_bus() {
+            self.rx.skip(n);
+            self.since_byte += n;
+        }
+        self.tx.skip(n);
+        self.cycle += n;
+    }
+
     /// One system clock; returns what the encoder drives on its TXD pair.
     pub fn step(&mut self, input: &EncoderIn) -> Drive {
         let mode = self.cfg.mode;

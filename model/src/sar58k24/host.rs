@@ -309,6 +309,46 @@ impl Host {
         (self.window >> (8 * (l - 1 - j))) as u8
     }
 
+    /// How many of the next steps with `input` only run counters
+    /// (fast-forward): no output, state or character count changes and no
+    /// pulse comes. The receiver waits between two samples (or idles), the
+    /// sender is idle, the frame gap, stale and state counters are short of
+    /// their ends. 0 while a pulse is up, a command is being sent, or
+    /// `input` starts an operation.
+    pub fn quiet(&self, input: &In) -> u64 {
+        let o = &self.out;
+        let pulse = o.o_done || o.o_valid || o.o_err_checksum || o.o_err_parity || o.o_err_frame || o.o_err_address || o.o_err_timeout || o.o_err_stale;
+        let rx = self.rx_out;
+        if pulse || rx.o_valid || rx.o_parity_err || rx.o_frame_err || self.tx_pending || self.tx_in.i_valid || self.tx.state() != uart::TxState::Idle {
+            return 0;
+        }
+        let cfg = self.cfg;
+        let fsm = match self.state {
+            State::Idle if input.i_start || input.i_zero => return 0,
+            State::Idle => u64::MAX,
+            State::Trigger | State::Clr | State::Wait => self.cnt,
+            State::Send => return 0,
+        };
+        let gap = if !rx.o_busy && self.count != 0 { cfg.gap_clocks.saturating_sub(self.idle + 1) } else { u64::MAX };
+        let stale = if cfg.stale_clocks != 0 { cfg.stale_clocks.saturating_sub(self.stale + 1) } else { u64::MAX };
+        let line = uart::In { i_rx: input.i_rx || o.o_tx_en };
+        fsm.min(gap).min(stale).min(self.rx.quiet(&line))
+    }
+
+    /// The same as `n` steps with the last input, for `n` up to [`Host::quiet`].
+    pub fn skip(&mut self, n: u64) {
+        if !self.rx_out.o_busy && self.count != 0 {
+            self.idle += n;
+        }
+        if self.cfg.stale_clocks != 0 {
+            self.stale += n;
+        }
+        if matches!(self.state, State::Trigger | State::Clr | State::Wait) {
+            self.cnt -= n;
+        }
+        self.rx.skip(n);
+    }
+
     /// One rising edge of the system clock.
     pub fn step(&mut self, input: &In) -> Out {
         let cfg = self.cfg;

@@ -316,6 +316,23 @@ impl Testbench for Bench {
         self.cycle >= self.end
     }
 
+    fn quiet_cycles(&self) -> u64 {
+        // Until a low pulse begins or ends ...
+        let c = self.cycle;
+        let lows = self.lows.iter().map(|&(a, b)| if c < a { a - c } else if c < b { b - c } else { u64::MAX }).min().unwrap_or(u64::MAX);
+        let forced_low = self.lows.iter().any(|&(a, b)| c >= a && c < b);
+        // ... the sender's next edge or frame start, the receiver's next
+        // sample, or the end.
+        let line = self.transmitter.level() && !forced_low;
+        lows.min(self.transmitter.quiet()).min(self.receiver.quiet(&In { i_rx: line })).min(self.end.saturating_sub(c))
+    }
+
+    fn skip(&mut self, n: u64) {
+        self.transmitter.skip(n);
+        self.receiver.skip(n);
+        self.cycle += n;
+    }
+
     fn cycle(&self) -> u64 {
         self.cycle
     }

@@ -49,3 +49,29 @@ impl SecondDriver {
         (tb.cycles_nearest_ns(self.at_us * 1e3), levels)
     }
 }
+
+/// Fast-forward of a host bench (SAR58K24, Modbus) before its models'
+/// own limits: how many cycles from `cycle` pass with no operation starting
+/// (`end` of the run, the host `busy` or `waiting`, the next start at
+/// `start_at`), no start pulse falling (`just_started`) and no second driver
+/// (its first cycle and its levels, one per cycle) beginning; 0 inside a
+/// second driver's levels.
+pub fn bench_quiet(cycle: u64, end: Option<u64>, busy: bool, start_at: u64, just_started: bool, drivers: &[(u64, Vec<bool>)]) -> u64 {
+    let host = match end {
+        Some(end) => end.saturating_sub(cycle),
+        None if busy => u64::MAX,
+        None => start_at.saturating_sub(cycle),
+    };
+    if just_started {
+        return 0;
+    }
+    let mut q = host;
+    for (from, levels) in drivers {
+        if cycle < *from {
+            q = q.min(from - cycle);
+        } else if cycle < from + levels.len() as u64 {
+            return 0;
+        }
+    }
+    q
+}

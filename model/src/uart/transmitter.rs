@@ -18,6 +18,23 @@ pub struct Sent {
     pub byte: u8,
 }
 
+/// The first cycle from `from` on whose start (`cycle × period_ps`) is at
+/// or after `t_ps`: the cycle in which an edge or a driver change at `t_ps`
+/// shows, by the comparison the models' `step`s make (fast-forward: the
+/// cycles before it are quiet). Cycle × period stays below 2^53 ps (the
+/// vector format's 32-bit cycles), so the product is exact in `f64` either way.
+pub fn first_cycle_at(from: u64, period_ps: u64, t_ps: f64) -> u64 {
+    let estimate = (t_ps / period_ps as f64).ceil();
+    let mut c = if estimate > from as f64 { estimate.min(1e18) as u64 } else { from };
+    while c > from && ((c - 1) * period_ps) as f64 >= t_ps {
+        c -= 1;
+    }
+    while ((c * period_ps) as f64) < t_ps {
+        c += 1;
+    }
+    c
+}
+
 /// The sender.
 #[derive(Debug, Clone)]
 pub struct Transmitter {
@@ -131,9 +148,31 @@ impl Transmitter {
         self.queued_until_ps
     }
 
+    /// The level the line keeps until the next edge falls due.
+    pub fn level(&self) -> bool {
+        self.level
+    }
+
     /// Frames started so far.
     pub fn sent(&self) -> &[Sent] {
         &self.sent
+    }
+
+    /// How many of the next [`Transmitter::step`]s change nothing: no edge
+    /// and no frame start falls due in them, so the line keeps its level
+    /// (fast-forward; `u64::MAX` once everything queued is sent).
+    pub fn quiet(&self) -> u64 {
+        let next = [self.edges.front().map(|e| e.0), self.pending_frames.front().map(|f| f.0)].into_iter().flatten().fold(f64::INFINITY, f64::min);
+        if next == f64::INFINITY {
+            return u64::MAX;
+        }
+        first_cycle_at(self.cycle, self.period_ps as u64, next) - self.cycle
+    }
+
+    /// The same as `n` calls of [`Transmitter::step`], for `n` up to
+    /// [`Transmitter::quiet`]: only the cycle count moves.
+    pub fn skip(&mut self, n: u64) {
+        self.cycle += n;
     }
 
     /// The line level during the current cycle; then advances one cycle.
