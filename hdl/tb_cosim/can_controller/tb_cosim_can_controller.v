@@ -140,6 +140,7 @@ string cmd;
 reg [8*256-1:0] cmd;
 `endif
 
+`include "emu_random.vh"
 integer transactions, seed, flip_bit, n, waited, len;
 reg [63:0] data, mask, got, want, count_before;
 reg [10:0] id;
@@ -149,22 +150,23 @@ reg rtr;
 initial begin
     if (!$value$plusargs("transactions=%d", transactions)) transactions = 1000;
     if (!$value$plusargs("seed=%d", seed)) seed = 1;
+    random_seed(seed);
     if (!$value$plusargs("flip_bit=%d", flip_bit)) flip_bit = -1;
     repeat (4) @(posedge clk);
     rst <= 1'b0;
     // Bus integration: 11 recessive bits before the core takes part.
     repeat (20 * BIT_CLOCKS) @(posedge clk);
     for (n = 0; n < transactions; n = n + 1) begin
-        id = $random(seed);
-        data = {$random(seed), $random(seed)};
+        id = random32(0);
+        data = random64(0);
         clear <= 1'b1;
         @(posedge clk);
         clear <= 1'b0;
         count_before = u_emu.count(0);
         if (n % 2 == 0) begin
             // The core sends; node 0 receives.
-            dlc = $unsigned($random(seed)) % 9;
-            rtr = ($unsigned($random(seed)) % 8) == 0;
+            dlc = $unsigned(random32(0)) % 9;
+            rtr = ($unsigned(random32(0)) % 8) == 0;
             len = (rtr || dlc == 0) ? 0 : dlc;
             mask = (len == 0) ? 64'd0 : ~(64'hFFFFFFFFFFFFFFFF >> (8 * len));
             i_tx_id <= id;

@@ -141,12 +141,14 @@ canopen_monitor #(
 reg bad = 1'b0;
 always @(posedge clk) if (o_sdo_abort || o_node_lost || (o_pos_timeout && !rst)) bad <= 1'b1;
 
+`include "emu_random.vh"
 integer transactions, seed, flip_bit, n, pdos, waited;
 reg [63:0] pos, got, sent;
 
 initial begin
     if (!$value$plusargs("transactions=%d", transactions)) transactions = 1000;
     if (!$value$plusargs("seed=%d", seed)) seed = 1;
+    random_seed(seed);
     if (!$value$plusargs("flip_bit=%d", flip_bit)) flip_bit = -1;
     repeat (4) @(posedge clk);
     rst <= 1'b0;
@@ -158,7 +160,7 @@ initial begin
             $fatal(1, "no o_config_done after %0d cycles (state %0d, abort %b code %h index %h sub %h)", waited, o_state, bad, o_abort_code, o_abort_index, o_abort_sub);
     end
     for (n = 0; n < transactions; n = n + 1) begin
-        pos = {$random(seed)} & 64'h1FF_FFFF;
+        pos = {random32(0)} & 64'h1FF_FFFF;
         u_emu.set_position(0, pos);
         pdos = 0;
         got = ~64'd0;
