@@ -55,6 +55,10 @@
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 tbgen="${CARGO_TARGET_DIR:-$root/target}/release/tbgen"
+# The Verilator column is the -O1 model's (scripts/verilator_make_flags.sh):
+# left to itself, sim.sh would build a bench file whose parameters match a
+# few short committed files at -O0, compiled faster but replaying slower.
+export VERILATOR_OPT=${VERILATOR_OPT:-1}
 out=${BENCH_OUT:-$root/build/bench}   # logs, vectors (BENCH_OUT: another folder)
 # Closed-loop binaries load libcosim from this checkout's target, also when
 # their cached build (keyed by content) was copied from another checkout.

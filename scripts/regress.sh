@@ -124,15 +124,15 @@ trap 'rm -rf "$results"' EXIT
 # the wait for a build another run makes, apart from the replay itself) and
 # leaves a marker holding the times for the count and the summary.
 replay() {
-    local core=$1 sim=$2 f=$3 opt=$4 name log wave=() t0 t1 t2 status=0 build_s run_s
+    local core=$1 sim=$2 f=$3 name log wave=() t0 t1 t2 status=0 build_s run_s
     name=$(basename "$f" .hex)
     log="$root/build/logs/$name.$sim.log"
     [ "$waves" = 1 ] && wave=("$root/build/waves/$name.$sim.vcd")
     t0=$(date +%s.%N)
-    VERILATOR_OPT=$opt SIM_BUILD_ONLY=1 "$root/scripts/sim.sh" "$core" "$sim" "$f" "${wave[@]}" > "$log" 2>&1 || status=1
+    SIM_BUILD_ONLY=1 "$root/scripts/sim.sh" "$core" "$sim" "$f" "${wave[@]}" > "$log" 2>&1 || status=1
     t1=$(date +%s.%N)
     if [ "$status" = 0 ]; then
-        VERILATOR_OPT=$opt "$root/scripts/sim.sh" "$core" "$sim" "$f" "${wave[@]}" >> "$log" 2>&1 || status=1
+        "$root/scripts/sim.sh" "$core" "$sim" "$f" "${wave[@]}" >> "$log" 2>&1 || status=1
     fi
     t2=$(date +%s.%N)
     build_s=$(awk "BEGIN { printf \"%.1f\", $t1 - $t0 }")
@@ -170,12 +170,15 @@ for core in "${cores[@]}"; do
     done
 done
 
-# How each Verilator build is optimised (scripts/verilator_make_flags.sh):
-# -O0 compiles the model in half the CPU time of -O1 (about 7 s less per
-# build) but replays about five times slower (about 16 us more per cycle,
-# coverage on): a build whose files add up to fewer than VERILATOR_O0_CYCLES
-# cycles (default 400000, the break-even) is made at -O0. Most of the ~100
-# parameter sets replay one or two short files, so most builds are -O0.
+# How each Verilator build is optimised (scripts/verilator_make_flags.sh)
+# is scripts/sim.sh's choice, the same for every caller (so that the cargo
+# tests' flipped-bit replays reuse these builds): -O0 compiles the model in
+# half the CPU time of -O1 (about 7 s less per build) but replays about five
+# times slower (about 16 us more per cycle, coverage on), so a build whose
+# committed files add up to fewer than VERILATOR_O0_CYCLES cycles (default
+# 400000, the break-even) is made at -O0. Most of the ~120 parameter sets
+# replay one or two short files, so most builds are -O0. The same rule here
+# only estimates each run's cost.
 o0_cycles=${VERILATOR_O0_CYCLES:-400000}
 
 # The runs, longest first, so that no long replay starts last and keeps one
@@ -187,26 +190,24 @@ runs=()
 for e in "${entries[@]}"; do
     read -r cycles core group f <<< "$e"
     for sim in "${sims[@]}"; do
-        opt=1
         if [ "$sim" = icarus ]; then
             cost=$(( cycles * 25 ))
         elif [ "${group_cycles[$group]}" -lt "$o0_cycles" ]; then
-            opt=0
             cost=$(( cycles * 20 + 7000000 / ${group_files[$group]} ))
         else
             cost=$(( cycles * 4 + 14000000 / ${group_files[$group]} ))
         fi
-        runs+=("$cost $core $sim $opt $f")
+        runs+=("$cost $core $sim $f")
     done
 done
 running=0
-while read -r _ core sim opt f; do
+while read -r _ core sim f; do
     [ -n "$core" ] || continue
     if [ "$running" -ge "$jobs" ]; then
         wait -n || true
         running=$((running - 1))
     fi
-    replay "$core" "$sim" "$f" "$opt" &
+    replay "$core" "$sim" "$f" &
     running=$((running + 1))
 done < <(printf '%s\n' "${runs[@]}" | sort -rn -k1,1)
 wait || true

@@ -21,6 +21,17 @@
 #   SIM_BUILD_ONLY=1  build (or find in the cache) and stop before the replay
 #   SIM_PLUSARGS    more plusargs for the replay, space-separated
 #                   (scripts/mutate.py: +mutant_id=K picks a mutant of its schema)
+#   COVERAGE_FILE   with COVERAGE=1: where this run's counts go instead
+#                   (tests/hdl.rs's flipped-bit replays reuse the coverage
+#                   builds of make test's replays without adding to the report)
+#   VERILATOR_OPT   0 or 1: the -O level of the Verilator model's C++. Unset,
+#                   it is chosen per parameter set, the same for every caller
+#                   (make test's replays, the cargo tests, make sim), so that
+#                   they all share one build: -O0 when the committed vector
+#                   files of this core with this file's parameters and clock
+#                   add up to fewer than VERILATOR_O0_CYCLES cycles (default
+#                   400000, the measured break-even: -O0 compiles about 7 s
+#                   faster and replays about 16 us per cycle slower), else -O1.
 set -euo pipefail
 
 usage() { echo "usage: $0 <core> <icarus|verilator> <vectors.hex> [waves.vcd]" >&2; exit 2; }
@@ -73,7 +84,27 @@ cov_key=() cov_files=()
 # translation unit at -O1, a third of the default build's compile time and
 # a faster model); part of the key, so a build made otherwise is not reused.
 vflags=()
-[ "$sim" = verilator ] && read -ra vflags <<< "$("$root/scripts/verilator_make_flags.sh")"
+if [ "$sim" = verilator ]; then
+    if [ -z "${VERILATOR_OPT:-}" ]; then
+        # The cycles of the committed files that share this build (their
+        # headers only: the first lines of each file); a file of another
+        # parameter set (a custom scenario) counts alone.
+        hdr_of() { head -n 40 "$1" | awk -F': ' '
+            /^\/\/ params: / { p = $2; gsub(/ /, "_", p) } /^\/\/ f_sys_hz: / { h = $2 } /^\/\/ cycles: / { c = $2 }
+            END { printf "%s %s %s\n", (p == "" ? "-" : p), h, (c == "" ? 0 : c) }'; }
+        read -r my_p my_h my_c <<< "$(hdr_of "$vectors")"
+        group_cycles=0
+        for g in "$root/vectors/$core"/*.hex; do
+            [ -f "$g" ] || continue
+            read -r gp gh gc <<< "$(hdr_of "$g")"
+            [ "$gp" = "$my_p" ] && [ "$gh" = "$my_h" ] && group_cycles=$(( group_cycles + gc ))
+        done
+        [ "$group_cycles" -gt 0 ] || group_cycles=$my_c
+        export VERILATOR_OPT=1
+        [ "$group_cycles" -lt "${VERILATOR_O0_CYCLES:-400000}" ] && VERILATOR_OPT=0
+    fi
+    read -ra vflags <<< "$("$root/scripts/verilator_make_flags.sh")"
+fi
 key=$(printf '%s\n' "$params" "$half_fs" "$trace" "$max_words" "${cov_key[@]}" "${vflags[@]}" | cat - "$tb" "$root/hdl/tb/common/vector_player.vh" "${rtl[@]}" "${cov_files[@]}" | sha1sum | cut -c1-12)
 build="${SIM_BUILD_DIR:-$root/build/sim}/$core/$sim/$key"
 mkdir -p "$build"
@@ -86,7 +117,7 @@ plusargs=("+vectors=$vectors" "+records=$records")
 [ -n "$waves" ] && plusargs+=("+waves=$waves")
 if [ -n "${SIM_PLUSARGS:-}" ]; then read -ra extra <<< "$SIM_PLUSARGS"; plusargs+=("${extra[@]}"); fi
 if [ "$coverage" = 1 ]; then
-    cov_file="$root/build/coverage/$core/$(basename "$vectors" .hex).dat"
+    cov_file=${COVERAGE_FILE:-$root/build/coverage/$core/$(basename "$vectors" .hex).dat}
     mkdir -p "$(dirname "$cov_file")"
     rm -f "$cov_file"
     plusargs+=("+coverage_file=$cov_file")

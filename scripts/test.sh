@@ -7,26 +7,35 @@
 # tools are checked:
 #
 #   deps                               tools, .venv
-#   lane 1: build                      tbgen and the emulator library, release
-#           cargo-build                the test profile, compiled once
-#           cargo-test                 model, flow, HDL flip, sigrok, cosim tests
+#   lane 1: build                      one cargo profile (release, with
+#                                      overflow checks in the workspace's
+#                                      crates: Cargo.toml): the tests, tbgen,
+#                                      the emulator library and cosim-params,
+#                                      every crate compiled once
+#           cargo-test                 model, flow, HDL flip, sigrok, cosim
+#                                      tests (cargo test --release)
 #           cosim                      every core closed-loop against its
 #                                      emulator, 1000 transactions per core
 #                                      and simulator
 #           cocotb                     the cocotb examples in Icarus (the
 #                                      emulators from Python, PyO3)
-#   lane 2: lint, hdl, coverage,       Verilator lint, every vector file in
-#           vectors, gtkw              Icarus and Verilator (the Verilator
-#                                      replays on the coverage build), RTL
-#                                      coverage against its baseline,
+#   lane 2: lint, hdl, coverage        Verilator lint, every vector file in
+#                                      Icarus and Verilator (the Verilator
+#                                      replays on the coverage build, which
+#                                      the cargo tests' flipped-bit replays
+#                                      reuse), RTL coverage against its
+#                                      baseline
+#   either: gtkw, gtkw-window,         every .gtkw in GTKWave (signals, and
+#           fusesoc, wavedrom,         the window each opens on), the FuseSoC
+#           vectors                    core files, the timing diagrams,
 #                                      committed vectors == fresh ones (after
-#                                      lane 1's build), every .gtkw in GTKWave
-#                                      (signals, and the window each opens
-#                                      on), the FuseSoC core files (current;
-#                                      lint and sim targets run in fusesoc)
+#                                      lane 1's build): whichever lane is
+#                                      free first takes the next of these, so
+#                                      neither core idles while the other
+#                                      lane still has work
 #
 # The replays need nothing from cargo, so lane 2 starts with lane 1's
-# compiles: rustc's long single-threaded stretches (one crate, one link at
+# compile: rustc's long single-threaded stretches (one crate, one link at
 # a time) leave a core the simulators use.
 #
 # Each stage's output goes to build/test/<stage>.log and is printed whole
@@ -75,24 +84,68 @@ stage() {
     return $status
 }
 
+# The stages either lane may run, in this order: each lane, when its own
+# stages are done, takes the next one not yet taken (a counter under a lock).
+shared_stages=(gtkw gtkw-window fusesoc wavedrom vectors)
+echo 0 > "$logs/.next_shared"
+run_shared() {
+    case "$1" in
+    gtkw) stage gtkw scripts/check_gtkw.sh ;;
+    gtkw-window) stage gtkw-window scripts/check_gtkw_window.sh ;;
+    fusesoc) stage fusesoc scripts/check_fusesoc.sh ;;
+    wavedrom) stage wavedrom .venv/bin/python scripts/timing_diagrams.py --check ;;
+    vectors)
+        # Needs tbgen: wait for lane 1's build, and say so if it failed.
+        while [ ! -f "$logs/.build.status" ]; do sleep 2; done
+        if [ "$(cat "$logs/.build.status")" = 0 ]; then
+            stage vectors scripts/check_vectors.sh
+        else
+            stage vectors sh -c 'echo "vectors: not checked, the build stage (tbgen) failed" >&2; exit 1'
+        fi ;;
+    esac
+}
+# take_shared: print the next shared stage and claim it, or fail when none is left.
+take_shared() {
+    local i
+    {
+        flock 8
+        i=$(cat "$logs/.next_shared")
+        [ "$i" -lt ${#shared_stages[@]} ] || return 1
+        echo $((i + 1)) > "$logs/.next_shared"
+    } 8> "$logs/.next_shared.lock"
+    echo "${shared_stages[$i]}"
+}
+shared_lane() {
+    local next lane_fail=0
+    while next=$(take_shared); do
+        run_shared "$next" || lane_fail=1
+    done
+    return $lane_fail
+}
+
 fail=0
 stage deps scripts/deps.sh || fail=1
 if [ $fail = 0 ]; then
     (
         lane_fail=0
-        # --timings: target/cargo-timings/ shows which crate's compile costs.
-        stage build cargo build --release --locked --timings -p tbgen -p cosim || lane_fail=1
-        # Lane 2's vector check needs tbgen: tell it how the build went.
+        # One profile, one compile: the test binaries, then tbgen and the
+        # emulator library (the cdylib and cosim-params), which cargo test
+        # does not link, on the artifacts already built. --timings:
+        # target/cargo-timings/ shows which crate's compile costs.
+        stage build sh -c 'cargo test --release --workspace --locked --no-run --timings && cargo build --release --locked -p tbgen -p cosim' || lane_fail=1
+        # The shared vector check needs tbgen: tell it how the build went.
         echo "$lane_fail" > "$logs/.build.status"
-        [ $lane_fail = 0 ] || exit 1
-        stage cargo-build cargo test --workspace --locked --no-run --timings || exit 1
-        # The dev profile, so that arithmetic overflow panics in tests
-        # instead of wrapping silently as it would in release.
-        stage cargo-test cargo test --workspace --locked || lane_fail=1
-        # Icarus on each core's cheapest configuration, Verilator on every
-        # one (make soak: every configuration in Icarus too).
-        stage cosim scripts/cosim_regress.sh --transactions 1000 --quick --jobs 2 || lane_fail=1
-        stage cocotb scripts/cocotb.sh || lane_fail=1
+        if [ $lane_fail = 0 ]; then
+            # Release with overflow checks and debug assertions in the
+            # workspace's crates (Cargo.toml), so that arithmetic overflow
+            # panics in tests instead of wrapping.
+            stage cargo-test cargo test --release --workspace --locked || lane_fail=1
+            # Icarus on each core's cheapest configuration, Verilator on every
+            # one (make soak: every configuration in Icarus too).
+            stage cosim scripts/cosim_regress.sh --transactions 1000 --quick --jobs 2 || lane_fail=1
+            stage cocotb scripts/cocotb.sh || lane_fail=1
+        fi
+        shared_lane || lane_fail=1
         exit $lane_fail
     ) &
     lane1=$!
@@ -103,16 +156,7 @@ if [ $fail = 0 ]; then
         # the coverage-instrumented build and leave their counts behind.
         stage hdl env COVERAGE=1 scripts/regress.sh || lane_fail=1
         stage coverage scripts/coverage.sh --report-only || lane_fail=1
-        stage gtkw scripts/check_gtkw.sh || lane_fail=1
-        stage gtkw-window scripts/check_gtkw_window.sh || lane_fail=1
-        stage fusesoc scripts/check_fusesoc.sh || lane_fail=1
-        stage wavedrom .venv/bin/python scripts/timing_diagrams.py --check || lane_fail=1
-        while [ ! -f "$logs/.build.status" ] && kill -0 "$lane1" 2> /dev/null; do sleep 2; done
-        if [ "$(cat "$logs/.build.status" 2> /dev/null)" = 0 ]; then
-            stage vectors scripts/check_vectors.sh || lane_fail=1
-        else
-            stage vectors sh -c 'echo "vectors: not checked, the build stage (tbgen) failed" >&2; exit 1' || lane_fail=1
-        fi
+        shared_lane || lane_fail=1
         exit $lane_fail
     ) &
     lane2=$!

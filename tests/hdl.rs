@@ -13,10 +13,17 @@ fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).parent().unwrap().to_path_buf()
 }
 
-/// Runs scripts/sim.sh and returns (passed, output).
+/// Runs scripts/sim.sh and returns (passed, output). Verilator runs on the
+/// coverage build of the file's parameter set, the one `make test`'s
+/// replays (`COVERAGE=1 scripts/regress.sh`) build and reuse, so that these
+/// replays cost no build of their own; their counts go beside the vector
+/// file (every one here is a copy in a temporary folder), not into
+/// build/coverage/, so the coverage report stays that of the committed files.
 fn simulate(core: &str, sim: &str, vectors: &Path) -> (bool, String) {
     let out = Command::new(root().join("scripts/sim.sh"))
         .args([core, sim, vectors.to_str().unwrap()])
+        .env("COVERAGE", "1")
+        .env("COVERAGE_FILE", vectors.with_extension("dat"))
         .output()
         .expect("scripts/sim.sh runs (make deps installs the simulators)");
     let text = format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
