@@ -396,6 +396,7 @@ fn each_sar58k24_and_modbus_monitor_rule_fires_in_icarus() {
 #[test]
 fn each_sar58k24_and_modbus_monitor_rule_fires_in_verilator() {
     each_uart_rule_fires_once("verilator");
+}
 
 /// A CAN line as `tb_can_monitor_rules.v` plays it: one character per bit
 /// (`'0' + 2 × TXD + RXD`), `I`/`i` for 100/10 idle bits, `f`/`n` 3 % short / nominal bits.
