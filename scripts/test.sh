@@ -136,10 +136,11 @@ if [ $fail = 0 ]; then
         # The shared vector check needs tbgen: tell it how the build went.
         echo "$lane_fail" > "$logs/.build.status"
         if [ $lane_fail = 0 ]; then
-            # Release with overflow checks and debug assertions in the
+            # --no-fail-fast: every failing test binary is reported, not the
+            # first. Release with overflow checks and debug assertions in the
             # workspace's crates (Cargo.toml), so that arithmetic overflow
             # panics in tests instead of wrapping.
-            stage cargo-test cargo test --release --workspace --locked || lane_fail=1
+            stage cargo-test cargo test --release --workspace --locked --no-fail-fast || lane_fail=1
             # Icarus on each core's cheapest configuration, Verilator on every
             # one (make soak: every configuration in Icarus too).
             stage cosim scripts/cosim_regress.sh --transactions 1000 --quick --jobs 2 || lane_fail=1
