@@ -685,8 +685,14 @@ always @* begin
                         seg_cnt_next = seg_cnt_reg + 8'd1;
                     end
                 end
+                // RX_IDLE never meets rx_on_reg (every move to RX_IDLE
+                // clears rx_on: do_done or do_abort below), and codes 10
+                // to 15 are never entered; coverage counts reachable code
+                // only.
+                /* verilator coverage_off */
                 default: begin
                 end
+                /* verilator coverage_on */
             endcase
         end else begin
             rx_cnt_next = rx_cnt_reg - 16'd1;
@@ -941,9 +947,13 @@ always @* begin
                 cnt_next = cnt_reg - 1'b1;
             end
         end
+        // Codes 5 to 7 are never entered (every assignment above names a
+        // state); coverage counts reachable code only.
+        /* verilator coverage_off */
         default: begin
             state_next = IDLE;
         end
+        /* verilator coverage_on */
     endcase
 
     busy_next = (state_next != IDLE) || meas_on_next;
