@@ -144,6 +144,7 @@ fn the_property_tests_above_run_many_accepted_setups() {
     let (ssi, uart) = (SSI_RAN.load(Ordering::Relaxed), UART_RAN.load(Ordering::Relaxed));
     assert!(ssi >= 20 && uart >= 20, "accepted and run: ssi {ssi}, uart {uart}");
     let esl = ESL_RAN.load(Ordering::Relaxed);
+    println!("accepted and run: ssi {ssi}, uart {uart}, esl {esl}");
     assert!(esl >= 20, "accepted and run: esl {esl}");
 }
 
@@ -155,7 +156,7 @@ proptest! {
     #[test]
     fn any_biss_setup_is_accepted_or_refused_by_field(
         (f_sys, clock, max_delay, timeout) in (any_f64(&[80.0, 100.0]), any_f64(&[10_000.0, 2_500.0]), any_f64(&[2_000.0, 50.0]), any_f64(&[40.0, 1.0])),
-        (busy, slave_timeout, cable, jitter, step_ns) in (any_f64(&[250.0, 0.0]), any_f64(&[2.0, 16.0]), any_f64(&[0.0, 100.0]), any_f64(&[0.0, 12.0]), any_f64(&[150.0, 0.0])),
+        (busy, slave_timeout, cable, jitter, step_ns) in (proptest::option::of(any_f64(&[250.0, 1000.0])), any_f64(&[2.0, 16.0]), any_f64(&[0.0, 100.0]), any_f64(&[0.0, 12.0]), any_f64(&[150.0, 0.0])),
         tol in proptest::option::of(any_f64(&[10.0, 30.0])),
         (cal_frames, bits, crc_width, crc_poly) in (prop_oneof![4 => Just(4u64), 1 => any::<u64>()], prop_oneof![4 => Just(16u32), 1 => 0u32..70], prop_oneof![4 => Just(6u32), 1 => 0u32..10], prop_oneof![4 => Just(3u64), 1 => any::<u64>()]),
         frames in prop_oneof![4 => 1usize..3, 1 => any::<usize>()],
@@ -166,7 +167,7 @@ proptest! {
         let cfg = model::biss::BenchConfig {
             f_sys_mhz: f_sys,
             master: model::biss::MasterSettings { clock_khz: clock, max_delay_ns: max_delay, timeout_us: timeout, cal_frames, delay_tolerance_ns: tol, ..Default::default() },
-            slaves: vec![model::biss::SlaveSettings { bits, crc_width, crc_poly, busy_ns: Some(busy), timeout_us: slave_timeout, positions: vec![position], cds_crc_error: flags[0], ..Default::default() }],
+            slaves: vec![model::biss::SlaveSettings { bits, crc_width, crc_poly, busy_ns: busy, timeout_us: slave_timeout, positions: vec![position], cds_crc_error: flags[0], ..Default::default() }],
             cable: model::line::CableConfig { length_m: cable, jitter_ns: jitter, ..Default::default() },
             host: model::biss::HostSettings {
                 frames,
@@ -192,5 +193,8 @@ proptest! {
 fn the_biss_property_test_runs_many_accepted_setups() {
     any_biss_setup_is_accepted_or_refused_by_field();
     let biss = BISS_RAN.load(Ordering::Relaxed);
+    // t_busy is left out (the default, 2 x TMAS) or drawn: 250 ns is refused at
+    // 2.5 MHz (under 2 x TMAS), so most draws still build and run.
+    println!("accepted and run: biss {biss} of 300");
     assert!(biss >= 20, "accepted and run: biss {biss}");
 }
