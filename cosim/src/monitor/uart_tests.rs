@@ -205,6 +205,27 @@ fn the_sar_monitor_reads_every_frame_of_a_clean_host_and_reports_nothing() {
     assert_eq!(r.violations(), Vec::<String>::new());
 }
 
+/// Bus answers tagged `81` (`answer_tag = "fixed81"`, the manual's tables;
+/// a host with `TAG_ADDRESS = 0`): the monitor reads them as the host does.
+#[test]
+fn the_sar_monitor_reads_bus_answers_tagged_81_when_the_encoders_send_them() {
+    let toml = SAR_BUS.replace("address = 1\n", "address = 1\nanswer_tag = \"fixed81\"\n");
+    assert!(toml.contains("fixed81"));
+    let mut r = Rig::new("sar58k24", &toml, 250_000, 16, Parity::None);
+    r.idle(100, false);
+    for n in 0..5 {
+        r.send(&[0xBC, 0xAA, 0xB1], 0, 0);
+        r.quiet(400);
+        assert_eq!(r.mon.count(), n + 1);
+        assert_eq!(r.mon.last_value(0), r.emu.last_value(0), "read {n}");
+        assert!(r.mon.last_status(0, "frame_ok").unwrap(), "read {n}");
+    }
+    assert_eq!(r.violations(), Vec::<String>::new());
+    let t = r.mon.transcript();
+    let frame = &t["transactions"].as_array().unwrap()[1];
+    assert_eq!((frame["kind"].as_str(), frame["bytes"][1].as_u64()), (Some("frame"), Some(0x81)), "{frame}");
+}
+
 #[test]
 fn each_sar_rule_fires_once_with_its_time() {
     // A gap of 20 bits inside the command.
