@@ -114,7 +114,7 @@ impl SarMonitor {
         let bit_ps = 1e12 / cfg.baud;
         let limits = Limits { bit_ps, parity: cfg.parity, tolerance: tol / 100.0, max_gap_ps: cmd_gap * bit_ps, min_silence_ps: 0.0, release_ps: release * bit_ps, timeout_ps: timeout * 1e6 };
         let rules = Rules { character: RULE_CHARACTER, gap: RULE_GAP, silence: RULE_GAP, release: RULE_RELEASE, answer: RULE_ANSWER, wait: RULE_WAIT };
-        let options = Options { baud: cfg.baud, parity: cfg.parity, bits: enc.bits, gray: enc.code == model::sar58k24::OutputCode::Gray, gap_bits };
+        let options = Options { baud: cfg.baud, parity: cfg.parity, bits: enc.bits, gray: enc.code == model::sar58k24::OutputCode::Gray, gap_bits, answer_tag: enc.answer_tag };
         Ok(SarMonitor {
             base: Base::new(f_mon_hz),
             watch: Watch::new(limits, rules),

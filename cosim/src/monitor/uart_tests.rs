@@ -174,18 +174,25 @@ fn each_modbus_rule_fires_once_with_its_time() {
 const SAR_BUS: &str = "[sar]\nbaud = 15625.0\nmode = \"bus\"\n[sar.host]\ntimeout_us = 20000.0\n[[sar.encoders]]\naddress = 1\nbits = 32\nanswer_delay_us = 100.0\n[sar.random]\ncount = 100\nseed = 5\n[sar.cable]\nlength_m = 10\n";
 const SAR_HS: &str = "[sar]\nbaud = 31250.0\nparity = \"odd\"\nmode = \"handshake\"\n[sar.host]\ntimeout_us = 10000.0\n[[sar.encoders]]\nbits = 24\ncode = \"gray\"\n[sar.random]\ncount = 100\nseed = 6\n";
 
-#[test]
-fn the_sar_monitor_reads_every_frame_of_a_clean_host_and_reports_nothing() {
-    let mut r = Rig::new("sar58k24", SAR_BUS, 250_000, 16, Parity::None);
+/// A clean bus host sends `BC AA B1` `reads` times to the emulator of
+/// `toml`: the monitor reads each answer as the emulator sent it and reports nothing.
+fn sar_bus_reads(toml: &str, reads: u64) -> Rig {
+    let mut r = Rig::new("sar58k24", toml, 250_000, 16, Parity::None);
     r.idle(100, false);
-    for n in 0..10 {
+    for n in 0..reads {
         r.send(&[0xBC, 0xAA, 0xB1], 0, 0);
         r.quiet(400);
         assert_eq!(r.mon.count(), n + 1);
         assert_eq!(r.mon.last_value(0), r.emu.last_value(0), "read {n}");
-        assert!(r.mon.last_status(0, "frame_ok").unwrap());
+        assert!(r.mon.last_status(0, "frame_ok").unwrap(), "read {n}");
     }
     assert_eq!(r.violations(), Vec::<String>::new());
+    r
+}
+
+#[test]
+fn the_sar_monitor_reads_every_frame_of_a_clean_host_and_reports_nothing() {
+    let r = sar_bus_reads(SAR_BUS, 10);
     let t = r.mon.transcript();
     let list = t["transactions"].as_array().unwrap();
     assert_eq!(list.len(), 20, "ten commands and ten frames");
@@ -203,6 +210,18 @@ fn the_sar_monitor_reads_every_frame_of_a_clean_host_and_reports_nothing() {
         assert_eq!(r.mon.last_value(0), r.emu.last_value(0), "read {n}");
     }
     assert_eq!(r.violations(), Vec::<String>::new());
+}
+
+/// Bus answers tagged `81` (`answer_tag = "fixed81"`, the manual's tables;
+/// a host with `TAG_ADDRESS = 0`): the monitor reads them as the host does.
+#[test]
+fn the_sar_monitor_reads_bus_answers_tagged_81_when_the_encoders_send_them() {
+    let toml = SAR_BUS.replace("address = 1\n", "address = 1\nanswer_tag = \"fixed81\"\n");
+    assert!(toml.contains("fixed81"));
+    let r = sar_bus_reads(&toml, 5);
+    let t = r.mon.transcript();
+    let frame = &t["transactions"].as_array().unwrap()[1];
+    assert_eq!((frame["kind"].as_str(), frame["bytes"][1].as_u64()), (Some("frame"), Some(0x81)), "{frame}");
 }
 
 #[test]

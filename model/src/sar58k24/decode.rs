@@ -8,7 +8,8 @@
 //! characters go through the host's own frame finder (`Host`, `host.rs`): a
 //! window of the last `L` characters (`L` = 5, 6, 7 for 16, 24, 32 bits) is
 //! a frame when it starts `FF <tag>` (`81`, or `Bx` after a command to
-//! encoder x) and ends with the low byte of the sum; while synced (after a
+//! encoder x when the bus answers echo the address, [`Options::answer_tag`])
+//! and ends with the low byte of the sum; while synced (after a
 //! frame or an idle gap of `gap_bits`) the `L`-th character must close a
 //! frame, else it is flagged and the finder hunts byte by byte; a parity or
 //! framing error breaks the frame; a gap with fewer than `L` characters
@@ -24,7 +25,7 @@
 
 use serde::Serialize;
 
-use super::frames;
+use super::frames::{self, AnswerTag};
 use crate::uart::line::{self, values, Char};
 use crate::uart::Parity;
 use crate::wire::Signal;
@@ -42,6 +43,11 @@ pub struct Options {
     pub gray: bool,
     /// Idle bit times that end a burst (`[sar.host] gap_bits`).
     pub gap_bits: f64,
+    /// The second byte of a bus answer (the encoders' `answer_tag`, the
+    /// host's `TAG_ADDRESS`): `Address` expects `Bx` of the last command,
+    /// `Fixed81` expects `81` after a command as well (the manual's tables,
+    /// [`AnswerTag`]). Frames before any command are `81` either way.
+    pub answer_tag: AnswerTag,
 }
 
 /// One event on the line: a command, a frame, a flagged fault or a
@@ -198,7 +204,8 @@ impl Decoder {
                     None => (None, None),
                 };
                 if let Some(a) = address {
-                    f.tag = 0xB0 | a;
+                    // As the host: `TAG_ADDRESS ? {4'hB, i_address} : 8'h81`.
+                    f.tag = frames::tag_byte(options.answer_tag, true, a);
                 }
                 f.out.push(Burst { index: f.out.len(), start_ps: cmd[0].start_ps, kind: "command", bytes, command, address, position: None, angle_deg: None, errors: Vec::new() });
                 k += n;
@@ -221,4 +228,56 @@ impl Decoder {
 /// Decodes the whole line `line_sig` at the host, with the host's driver enable `tx_en`.
 pub fn decode(line_sig: &Signal, tx_en: &Signal, options: &Options) -> Vec<Burst> {
     Decoder::new(options.clone()).feed(line_sig, tx_en)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The line and driver enable of 8N1 characters at 115200 baud: the
+    /// host's `command`, then, 20 bit times later, the encoder's `answer`.
+    fn line(command: &[u8], answer: &[u8], bit_ps: u64) -> (Signal, Signal) {
+        let (mut line_sig, mut tx_en) = (Signal::named("line"), Signal::named("tx_en"));
+        line_sig.push(0, true);
+        tx_en.push(0, false);
+        let mut t = 10 * bit_ps;
+        for (i, bytes) in [command, answer].into_iter().enumerate() {
+            tx_en.push(t - bit_ps, i == 0);
+            for &b in bytes {
+                let bits = std::iter::once(false).chain((0..8).map(|k| b >> k & 1 == 1)).chain(std::iter::once(true));
+                for level in bits {
+                    line_sig.push(t, level);
+                    t += bit_ps;
+                }
+            }
+            tx_en.push(t, false);
+            t += 20 * bit_ps;
+        }
+        line_sig.push(t, true);
+        (line_sig, tx_en)
+    }
+
+    fn options(answer_tag: AnswerTag) -> Options {
+        Options { baud: 115_200.0, parity: Parity::None, bits: 16, gray: false, gap_bits: 15.0, answer_tag }
+    }
+
+    #[test]
+    fn a_bus_answer_tagged_81_is_a_frame_only_when_the_answer_tag_is_fixed81() {
+        // Seed 001, 3.1.5: BC AA B2 reads encoder 2; the tables show its answer
+        // as FF 81 <data> <sum>, the text as FF B2 <data> <sum> (frames::AnswerTag).
+        let bit_ps = (1e12f64 / 115_200.0).round() as u64;
+        let answer81 = frames::encode_tagged(8738, 16, 0x81);
+        assert_eq!(answer81, [0xFF, 0x81, 0x22, 0x22, 0xC4]);
+        let (l, de) = line(&frames::read_command(2), &answer81, bit_ps);
+        let fixed = decode(&l, &de, &options(AnswerTag::Fixed81));
+        assert_eq!(fixed.iter().map(|b| (b.kind, b.command, b.position, b.errors.clone())).collect::<Vec<_>>(), [("command", Some("read"), None, vec![]), ("frame", None, Some(8738), vec![])]);
+        assert_eq!(fixed[1].bytes, answer81);
+        // The text's reading expects FF B2: the same answer is a header fault.
+        let address = decode(&l, &de, &options(AnswerTag::Address));
+        assert_eq!(address.iter().map(|b| (b.kind, b.position, b.errors.clone())).collect::<Vec<_>>(), [("command", None, vec![]), ("fault", None, vec!["frame"])]);
+        // And FF B2 is a frame under the text's reading, a header fault under the tables'.
+        let (l, de) = line(&frames::read_command(2), &frames::encode_tagged(8738, 16, 0xB2), bit_ps);
+        assert_eq!(decode(&l, &de, &options(AnswerTag::Address))[1].position, Some(8738));
+        assert_eq!(decode(&l, &de, &options(AnswerTag::Fixed81))[1].errors, ["frame"]);
+    }
 }

@@ -44,7 +44,7 @@ pub fn tag_byte(tag: AnswerTag, bus: bool, address: u8) -> u8 {
 /// garbles its command row into `AA 81 CC DD`); the sentence is written
 /// for the bus modes alone, and only an echoed address lets a host on a
 /// shared line see that the wrong encoder answered. The default follows the
-/// text; `fixed_81` follows the tables.
+/// text; `fixed81` follows the tables.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum AnswerTag {

@@ -11,7 +11,7 @@
 //! characters go through the host's own frame finder (`model::sar58k24::Host`,
 //! `host.rs`): a window of the last `L` characters (`L` = 5, 6, 7 for 16,
 //! 24, 32 bits) is a frame when it starts `FF <tag>` (`81`, or `Bx` after a
-//! command to encoder x) and ends with the low byte of the sum; while synced
+//! command to encoder x unless `--answer-tag fixed81`) and ends with the low byte of the sum; while synced
 //! (after a frame or an idle gap of `--gap-bits`) the `L`-th character must
 //! close a frame, else it is flagged and the finder hunts byte by byte; a
 //! parity or framing error breaks the frame; a gap with fewer than `L`
@@ -25,6 +25,7 @@
 
 use std::path::Path;
 
+use model::sar58k24::AnswerTag;
 use model::uart::Parity;
 
 use crate::capture;
@@ -50,12 +51,15 @@ pub struct Options {
     pub gray: bool,
     /// Idle bit times that end a burst (`[sar.host] gap_bits`).
     pub gap_bits: f64,
+    /// The second byte of a bus answer (`--answer-tag`, the encoders'
+    /// `answer_tag`, the host's `TAG_ADDRESS`).
+    pub answer_tag: AnswerTag,
 }
 
 /// Decodes `path` with `options`.
 pub fn decode(path: &Path, options: &Options) -> Result<Vec<Burst>> {
     let signals = capture::read(path, &[(&options.line, "--line"), (&options.tx_en, "--tx-en")])?;
-    let o = model::sar58k24::decode::Options { baud: options.baud, parity: options.parity, bits: options.bits, gray: options.gray, gap_bits: options.gap_bits };
+    let o = model::sar58k24::decode::Options { baud: options.baud, parity: options.parity, bits: options.bits, gray: options.gray, gap_bits: options.gap_bits, answer_tag: options.answer_tag };
     Ok(model::sar58k24::decode::decode(&signals[0], &signals[1], &o))
 }
 
@@ -80,6 +84,7 @@ mod tests {
             bits: cfg.encoders[0].bits,
             gray: cfg.encoders[0].code == model::sar58k24::OutputCode::Gray,
             gap_bits: cfg.host.gap_bits,
+            answer_tag: cfg.encoders[0].answer_tag,
         }
     }
 
@@ -119,6 +124,24 @@ mod tests {
         let d = decode(&vcd, &options(cfg)).unwrap();
         assert_eq!(d[0].bytes, [0xFF, 0x81, 0x01, 0x7F, 0x00]);
         assert_eq!((d[0].position, d[0].angle_deg), (Some(383), Some(8.4155)));
+    }
+
+    #[test]
+    fn bus_answers_tagged_81_decode_with_answer_tag_fixed81_and_are_flagged_without() {
+        // Seed 001, 3.1.5/3.1.6 as the tables read it: BC AA B2 answered FF 81 ...
+        // (scenario sar_bus_fixed81, host built with TAG_ADDRESS = 0).
+        let dir = tempfile::tempdir().unwrap();
+        let (s, vcd, _) = generated("sar_bus_fixed81", dir.path());
+        let Setup::Sar(cfg) = &s.setup else { unreachable!() };
+        assert_eq!(cfg.encoders[0].answer_tag, AnswerTag::Fixed81);
+        let d = decode(&vcd, &options(cfg)).unwrap();
+        let frames: Vec<_> = d.iter().filter(|b| b.kind == "frame").map(|b| (b.bytes[..2].to_vec(), b.position)).collect();
+        assert_eq!(frames, [(vec![0xFF, 0x81], Some(8738)), (vec![0xFF, 0x81], Some(0)), (vec![0xFF, 0x81], Some(12))]);
+        assert!(d.iter().all(|b| b.errors.is_empty()), "{d:?}");
+        // Read as address-tagged answers (the default), every answer is a header fault.
+        let d = decode(&vcd, &Options { answer_tag: AnswerTag::Address, ..options(cfg) }).unwrap();
+        assert_eq!(d.iter().filter(|b| b.errors == ["frame"]).count(), 3, "{d:?}");
+        assert!(d.iter().all(|b| b.position.is_none()), "{d:?}");
     }
 
     #[test]

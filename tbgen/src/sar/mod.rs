@@ -10,7 +10,7 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 
 use clap::{ArgMatches, CommandFactory, Parser};
-use model::sar58k24::{timing, BenchConfig, Mode, OpKind, Operation};
+use model::sar58k24::{timing, AnswerTag, BenchConfig, Mode, OpKind, Operation};
 use model::testbench;
 use model::uart::Parity;
 use model::Setup;
@@ -20,7 +20,7 @@ use crate::{Error, Result};
 
 /// SAR58K24: the line and the host's driver enable.
 #[derive(Parser)]
-#[command(name = "sar", after_help = "Examples:\n  tbgen decode sar vectors/sar_async_host/sar_seed_timed_14bit.vcd --bits 14\n  tbgen decode sar capture.vcd --line top.ro --tx-en top.de --baud 9600 --bits 24 --gray")]
+#[command(name = "sar", after_help = "Examples:\n  tbgen decode sar vectors/sar_async_host/sar_seed_timed_14bit.vcd --bits 14\n  tbgen decode sar capture.vcd --line top.ro --tx-en top.de --baud 9600 --bits 24 --gray\n  tbgen decode sar vectors/sar_async_host/sar_bus_fixed81.vcd --answer-tag fixed81")]
 pub struct DecodeArgs {
     /// The VCD file.
     file: PathBuf,
@@ -45,6 +45,20 @@ pub struct DecodeArgs {
     /// Idle bit times that end a frame (`[sar.host] gap_bits`).
     #[arg(long, default_value_t = 15.0)]
     gap_bits: f64,
+    /// Second byte of a bus answer, as the encoders' `answer_tag` (RTL
+    /// `TAG_ADDRESS`): address (`FF Bx` after `BC AA Bx`, TAG_ADDRESS = 1) or
+    /// fixed81 (`FF 81` after a command too, TAG_ADDRESS = 0).
+    #[arg(long, default_value = "address", value_parser = parse_answer_tag)]
+    answer_tag: AnswerTag,
+}
+
+/// `--answer-tag`: the scenario field's spellings.
+fn parse_answer_tag(s: &str) -> std::result::Result<AnswerTag, String> {
+    match s {
+        "address" => Ok(AnswerTag::Address),
+        "fixed81" => Ok(AnswerTag::Fixed81),
+        _ => Err(format!("`{s}`: give address (bus answers FF Bx, TAG_ADDRESS = 1) or fixed81 (FF 81, TAG_ADDRESS = 0)")),
+    }
 }
 
 /// SAR58K24: the frame and latency budget of a scenario's set-up.
@@ -103,13 +117,13 @@ impl Protocol for BenchConfig {
     }
 
     fn decode(args: &ArgMatches) -> Result<String> {
-        let DecodeArgs { file, line, tx_en, baud, parity, bits, gray, gap_bits } = registry::parse_args(args)?;
+        let DecodeArgs { file, line, tx_en, baud, parity, bits, gray, gap_bits, answer_tag } = registry::parse_args(args)?;
         if !(300.0..=10e6).contains(&baud) || !(10..=32).contains(&bits) || !(1.0..=1e6).contains(&gap_bits) {
             return Err(Error::Decode(format!(
                 "decode sar: --baud {baud}, --bits {bits} or --gap-bits {gap_bits}: give a baud rate from 300 to 10000000, 10 to 32 bits and 1 to 1000000 idle bit times"
             )));
         }
-        let options = decode::Options { line, tx_en, baud, parity, bits, gray, gap_bits };
+        let options = decode::Options { line, tx_en, baud, parity, bits, gray, gap_bits, answer_tag };
         let bursts = decode::decode(&file, &options)?;
         decode::to_json(&file, &options, &bursts)
     }
@@ -137,5 +151,35 @@ impl Protocol for BenchConfig {
             annotation: "uart=rx-data",
             expected: crate::transcript::wire_bytes(transcript)?.into_iter().map(|b| Some(b as u128)).collect(),
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::registry::Protocol;
+
+    /// `tbgen decode sar FILE --answer-tag fixed81`, as a user types it.
+    fn decode_cli(args: &[&str]) -> Result<String> {
+        let m = DecodeArgs::command().try_get_matches_from(std::iter::once("sar").chain(args.iter().copied())).map_err(|e| Error::Decode(e.to_string()))?;
+        <BenchConfig as Protocol>::decode(&m)
+    }
+
+    #[test]
+    fn the_command_line_reads_bus_answers_tagged_81_with_answer_tag_fixed81() {
+        let dir = tempfile::tempdir().unwrap();
+        let (_, vcd, _) = crate::uart::line::generated("sar_bus_fixed81", dir.path());
+        let vcd = vcd.to_str().unwrap();
+        let read = |args: &[&str]| -> Vec<(Option<u64>, Vec<String>)> {
+            let json: serde_json::Value = serde_json::from_str(&decode_cli(args).unwrap()).unwrap();
+            let events = json["transactions"].as_array().unwrap().iter().filter(|e| e["kind"] != "command");
+            events.map(|e| (e["position"].as_u64(), e["errors"].as_array().unwrap().iter().map(|f| f.as_str().unwrap().to_string()).collect())).collect()
+        };
+        assert_eq!(read(&[vcd, "--answer-tag", "fixed81"]), [(Some(8738), vec![]), (Some(0), vec![]), (Some(12), vec![])]);
+        // The default (address) flags each answer; a misspelt tag names the choices.
+        assert_eq!(read(&[vcd]), vec![(None, vec!["frame".to_string()]); 3]);
+        let e = decode_cli(&[vcd, "--answer-tag", "fixed_81"]).unwrap_err().to_string();
+        assert!(e.contains("fixed_81") && e.contains("address") && e.contains("fixed81"), "{e}");
+        assert!(DecodeArgs::command().render_long_help().to_string().contains("--answer-tag"));
     }
 }
