@@ -263,6 +263,7 @@ impl EndatEmulator {
             self.encoder.absent = true;
         }
         self.encoder.ad_stale = f.stale_ad.contains(&k);
+        self.encoder.early_start = f.early_start.unwrap_or(0);
         if let Some((word, at)) = f.errors_at {
             if at == k {
                 self.encoder.set_errors(word);

@@ -261,6 +261,11 @@ pub struct FaultSettings {
     pub errors_at: Option<(u16, usize)>,
     /// Type 2.1 acknowledgements sent with other content and a correct CRC.
     pub ack_xor: Vec<AckXor>,
+    /// In every frame (power-on measurement included) the encoder sends its start bit this many rising edges
+    /// after `R_off` (1 or 2), ignoring `t_cal`: a conforming encoder waits `t_cal >= 10.5 / f_c` (seed 2.3.2),
+    /// so its start bit comes at `R_off + 3` at the earliest, after the `R10` from which the master's delay
+    /// counter runs (seed 2.1.2).
+    pub early_start: Option<u64>,
 }
 
 /// Everything a scenario says about an EnDat set-up (`[endat]`).
@@ -522,6 +527,13 @@ impl BenchConfig {
                 return Err(ConfigError::invalid(format!("faults.ack_xor[{j}]"), "address and data 0 change nothing", "give a nonzero address or data XOR"));
             }
         }
+        if let Some(k) = f.early_start.filter(|k| !(1..=2).contains(k)) {
+            return Err(ConfigError::invalid(
+                "faults.early_start",
+                format!("{k} rising edges after R_off"),
+                "give 1 or 2 (the start bit at R_off + 1 or R_off + 2; a conforming encoder's earliest is R_off + 3), or leave it out",
+            ));
+        }
         positive("host.first_start_us", self.host.first_start_us, "give µs")?;
         positive("host.gap_us", self.host.gap_us, "give µs")?;
         if let Some(v) = self.faults.line.drift_ns {
@@ -667,6 +679,7 @@ impl Bench {
         let mut encoder = Encoder::new(cfg.encoder_config()?)?;
         encoder.set_errors(cfg.encoder.errors);
         encoder.set_warnings(cfg.encoder.warnings);
+        encoder.early_start = cfg.faults.early_start.unwrap_or(0);
         if let Some(w) = cfg.encoder.write_protect {
             encoder.memory_mut().areas.get_mut(&0xB9).expect("status area")[2] = w;
         }

@@ -10,9 +10,12 @@
 //! rising edges (the master drives at falling edges; the level at the next
 //! rising edge is the bit). The encoder's bits arrive later by the round
 //! trip, which the capture shows: the encoder drives the line low at
-//! `R_off` (`R8`, `R37`), so the first low level after `R_off` gives the
-//! round trip, and each bit after the start bit is read in the middle of
-//! its cell, half a period after its arrival. Whether the master saw the
+//! `R_off` (`R8`, `R37`), so the first low level after `R_off` gives a first
+//! round trip. Each bit is then read as a master reads it: at the rising edge
+//! that launched it plus the frame's round trip (the mean over the frame's
+//! data edges of each edge's time after its launching rising edge) plus half
+//! a period, so that jitter on the cable moves no sample out of its cell
+//! (`FrameTiming`). Whether the master saw the
 //! start bit at all follows from the burst's length: the master stops the
 //! clock right after the frame's last bit, so a burst too short for the
 //! frame means it gave up polling (`no_start_bit`).
@@ -278,17 +281,17 @@ fn decode_burst(b: &Burst, period: u64, mode: u8, data: &Signal, judge: &mut Lin
     loop {
         // The start bit: launched at R_j, seen by the master at sample j + 1; the frame must fit the burst.
         let frame_bits = judge.frame_bits();
-        let start = data.next_level(from, true);
-        let j = start.map(|ts| (ts.saturating_sub(round_trip.saturating_add(b.rises[0])) as f64 / period.max(1) as f64).round() as usize + 1);
-        let seen = start.zip(j).filter(|&(_, j)| n >= j.saturating_add(1 + frame_bits as usize));
-        let Some((ts, _)) = seen else {
+        let start = data.next_level(from, true).map(|ts| (ts, FrameTiming::of(b, data, ts, round_trip, period, frame_bits)));
+        let seen = start.filter(|(_, ft)| n >= ft.j.saturating_add(1 + frame_bits as usize));
+        let Some((_, ft)) = seen else {
             if first {
                 finish(&mut t, judge.aborted(true), kind, extra_if_aborted);
                 out.push(t);
             }
             break;
         };
-        let bits: Vec<bool> = (0..frame_bits).map(|i| data.level_at(ts.saturating_add((i + 1).saturating_mul(period)).saturating_add(period / 2))).collect();
+        // Bit i after the start bit leaves at R_(j+1+i) and is read in the middle of its cell.
+        let bits: Vec<bool> = (0..frame_bits as usize).map(|i| data.level_at(ft.arrival(b, ft.j + i, period).saturating_add(period / 2))).collect();
         let o = judge.frame(&bits);
         let mut v = t.clone();
         if !first {
@@ -303,13 +306,92 @@ fn decode_burst(b: &Burst, period: u64, mode: u8, data: &Signal, judge: &mut Lin
         if mode != Command::Pos21.code() {
             break;
         }
-        let end = ts.saturating_add((frame_bits + 1).saturating_mul(period));
+        let end = ft.arrival(b, ft.j + frame_bits as usize, period);
         match data.next_level(end, false) {
             Some(tl) if tl <= last_rise => from = tl,
             _ => break,
         }
     }
     judge.end();
+}
+
+/// Where the master reads one frame: the rising edge that launched its start bit and the round trip of its bits.
+///
+/// The master samples each bit a fixed delay after the rising edge that launched it (its measured delay, or a
+/// fixed one), not from the start bit's own edge: with jitter on the cable each edge of the answer arrives a
+/// little early or late, and a bit read a set time after the start bit's edge drifts with that edge's jitter
+/// (with ±25 ns on each line at 8 MHz by more than half a cell). So the decoder reads like a master: the round
+/// trip is the mean, over the frame's data edges, of each edge's time minus the rising edge that launched it,
+/// and bit `i` is read at its launching edge plus that round trip plus half a period. An answer reads right
+/// as long as each of its edges stays less than half a period from that mean (the mean of many edges moves
+/// little with one late or early edge); an unjittered answer reads exactly (all its edges are one round trip
+/// after their rising edges, and the samples fall where the old reading from the start bit put them).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct FrameTiming {
+    /// The start bit leaves at `R_j` (1-based, so `b.rises[j - 1]`).
+    j: usize,
+    /// Mean arrival of the frame's edges after their launching rising edge, ps (negative only under jitter
+    /// larger than the cable's delay).
+    round_trip: i64,
+}
+
+impl FrameTiming {
+    /// The timing of the frame whose start bit rises at `ts`, `frame_bits` bits after it; `rt0` is a first
+    /// estimate of the round trip (the first low after `R_off`), only used for its whole periods.
+    fn of(b: &Burst, data: &Signal, ts: u64, rt0: u64, period: u64, frame_bits: u64) -> FrameTiming {
+        let p = ps(period.max(1));
+        let r1 = ps(b.rises.first().copied().unwrap_or(0));
+        // The frame's edges: the start bit's and those between its bits, not the one after its last bit (what
+        // follows the frame need not be launched by the clock), nor any after the clock stopped.
+        let last = b.rises.last().copied().unwrap_or(0).saturating_add(rt0).saturating_add(period / 2);
+        let until = ts.saturating_add(frame_bits.saturating_mul(period)).saturating_add(period / 2).min(last.max(ts));
+        let lo = data.changes.partition_point(|&(t, _)| t < ts);
+        let hi = data.changes.partition_point(|&(t, _)| t <= until);
+        let mut edges: Vec<i64> =
+            (lo..hi).filter(|&i| data.changes[i].1 != (i == 0 || data.changes[i - 1].1)).map(|i| ps(data.changes[i].0)).collect();
+        if edges.is_empty() {
+            edges.push(ps(ts));
+        }
+        // The round trip modulo the period: the circular mean of the edges' phases after R1, which needs no
+        // first guess (a guess from one jittered edge can be off by more than half a period from another).
+        let (sin, cos) = edges.iter().fold((0.0f64, 0.0f64), |(s, c), &t| {
+            let angle = (t - r1).rem_euclid(p) as f64 / p as f64 * std::f64::consts::TAU;
+            (s + angle.sin(), c + angle.cos())
+        });
+        let phase = sin.atan2(cos).rem_euclid(std::f64::consts::TAU) / std::f64::consts::TAU * p as f64;
+        let guess = phase + ((rt0 as f64 - phase) / p as f64).round() * p as f64;
+        // Each edge against its launching rising edge (the one nearest the edge less the guess), then the mean.
+        let sum: i128 = edges.iter().map(|&t| launch(b, t, guess).1 as i128).sum();
+        let round_trip = (sum as f64 / edges.len() as f64).round() as i64;
+        FrameTiming { j: launch(b, ps(ts), round_trip as f64).0 + 1, round_trip }
+    }
+
+    /// When the bit launched at rising edge `b.rises[k]` (0-based; extrapolated past the burst) reaches the master.
+    fn arrival(&self, b: &Burst, k: usize, period: u64) -> u64 {
+        let rise = match (b.rises.get(k), b.rises.last()) {
+            (Some(&r), _) => r,
+            (None, Some(&last)) => last.saturating_add(((k + 1 - b.rises.len()) as u64).saturating_mul(period)),
+            (None, None) => 0,
+        };
+        ps(rise).saturating_add(self.round_trip).max(0) as u64
+    }
+}
+
+/// A time in ps as a signed number (captures end long before 2^62 ps, about 53 days).
+fn ps(t: u64) -> i64 {
+    t.min(1 << 62) as i64
+}
+
+/// The rising edge (0-based index into `b.rises`) that launched an edge arriving at `t` after about `round_trip`
+/// ps, and the edge's time after it.
+fn launch(b: &Burst, t: i64, round_trip: f64) -> (usize, i64) {
+    let k = b.rises.partition_point(|&r| (ps(r) as f64) < t as f64 - round_trip);
+    [k.checked_sub(1), (k < b.rises.len()).then_some(k)]
+        .into_iter()
+        .flatten()
+        .map(|k| (k, t - ps(b.rises[k])))
+        .min_by(|x, y| (x.1 as f64 - round_trip).abs().total_cmp(&(y.1 as f64 - round_trip).abs()))
+        .unwrap_or((0, t))
 }
 
 /// The fields `gen` fills from the master's outputs at `o_done`.
@@ -329,4 +411,66 @@ fn finish(t: &mut Transaction, o: Out, kind: FrameKind, extra: Vec<String>) {
     let mut errors = error_names(&o);
     errors.extend(extra);
     t.errors = Some(errors);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::endat::{crc_pos, crc_wire};
+
+    const P: u64 = 125_000; // 8 MHz
+    const RT: u64 = 180_000; // a round trip of more than a period
+
+    /// A type 2.1 position request (`000111`, 25 position bits) answered with `pos`; the answer's edge `k`
+    /// (the start bit's is 0) arrives `jitter(k)` ps off its place one round trip after its rising edge.
+    fn pos21_line(pos: u64, jitter: impl Fn(usize) -> i64) -> (Signal, Signal) {
+        let (n, j) = (44usize, 10usize); // clock periods; the start bit leaves at R_j
+        let f1 = 1_000_000u64;
+        let rise = |k: usize| f1 + 2 * P + (k as u64 - 1) * P; // R_k, t_ST = 2 periods
+        let (mut clk, mut data) = (Signal::named("clk"), Signal::named("data"));
+        for k in 1..=n {
+            clk.push(if k == 1 { f1 } else { rise(k - 1) + P / 2 }, false);
+            clk.push(rise(k), true);
+        }
+        for (k, bit) in [false, false, false, true, true, true].into_iter().enumerate() {
+            data.push(rise(k + 2) - P / 2, bit); // the master drives the mode bits at F2..F7
+        }
+        data.push(rise(8) + RT, false); // the encoder drives low from R8
+        let mut cells = vec![true, false]; // start bit, F1
+        cells.extend((0..25).map(|i| pos >> i & 1 == 1));
+        cells.extend(crc_wire(crc_pos(false, None, pos, 25)));
+        cells.push(false); // the line low after the frame
+        let mut edge = 0;
+        let mut last = false;
+        for (c, &bit) in cells.iter().enumerate() {
+            if bit != last {
+                data.push((rise(j + c) + RT).checked_add_signed(jitter(edge)).unwrap(), bit);
+                edge += 1;
+                last = bit;
+            }
+        }
+        data.push(rise(n) + 10 * P, true); // recovered
+        (clk, data)
+    }
+
+    fn position_read(clk: &Signal, data: &Signal) -> (Option<u64>, Option<Vec<String>>) {
+        let t = decode(clk, data, &Options { pos_bits: 25, meas_khz: None }).unwrap();
+        assert_eq!(t.len(), 1, "{t:#?}");
+        (t[0].position, t[0].errors.clone())
+    }
+
+    #[test]
+    fn an_answer_jittered_by_less_than_half_a_cell_reads_right() {
+        let pos = 0x1A5_C3E7;
+        // Unjittered: the exact position, no error.
+        let (clk, data) = pos21_line(pos, |_| 0);
+        assert_eq!(position_read(&clk, &data), (Some(pos), Some(vec![])));
+        // The start bit 0.3 period late and the third edge after it 0.25 period early, the others in place: each
+        // edge stays inside its cell, as a master sampling at its measured delay sees it, but read from the start
+        // bit's own edge the cell ending at the early edge is read 0.8 period after its start, past its end (0.75),
+        // so that edge's bit is read twice and every bit after it one place late.
+        let (late, early) = ((3 * P / 10) as i64, -((P / 4) as i64));
+        let (clk, data) = pos21_line(pos, |k| [late, 0, 0, early].get(k).copied().unwrap_or(0));
+        assert_eq!(position_read(&clk, &data), (Some(pos), Some(vec![])));
+    }
 }

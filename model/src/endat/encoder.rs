@@ -299,6 +299,9 @@ pub struct Encoder {
     pub dead: bool,
     /// Never drive the line (encoder absent).
     pub absent: bool,
+    /// Fault: the start bit goes this many rising edges after `R_off` (1 or 2), before `t_cal` and the earliest
+    /// edge `R_off + 3` of a conforming encoder; 0 for none.
+    pub early_start: u64,
     /// The frame bits sent last (after the start bit), for the transcript.
     pub sent: Vec<bool>,
     /// The position latched for the last frame.
@@ -368,6 +371,7 @@ impl Encoder {
             ad_stale: false,
             dead: false,
             absent: false,
+            early_start: 0,
             sent: Vec::new(),
             latched_position: 0,
             violations: 0,
@@ -561,7 +565,7 @@ impl Encoder {
                     if self.rise == self.k_off() {
                         self.drive = Drive { enable: !self.absent, level: false };
                     }
-                    if self.rise >= self.earliest && self.now >= self.ready_at && !self.dead {
+                    if self.rise >= self.earliest && (self.now >= self.ready_at || self.early_start > 0) && !self.dead {
                         self.build_frame();
                         self.drive.level = true; // the start bit
                         self.phase = Phase::Send;
@@ -698,7 +702,7 @@ impl Encoder {
             self.phase = Phase::TypeOne;
             return;
         }
-        self.earliest = self.k_off() + 3;
+        self.earliest = self.k_off() + if self.early_start > 0 { self.early_start } else { 3 };
         if self.kind == FrameKind::Param21 {
             self.block = 0;
             self.block_bits = 0;

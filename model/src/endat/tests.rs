@@ -519,3 +519,37 @@ fn odd_dividers_beyond_the_on_off_ratio_error_and_dividers_below_eight_are_refus
     assert_eq!(e.field(), "master.clock_khz");
     assert!(e.to_string().contains("at least 8"), "{e}");
 }
+
+#[test]
+fn an_early_start_bit_ends_the_read_sooner_and_fools_the_delay_counter_into_saturation() {
+    // Fault `early_start`: the encoder ignores t_cal (seed 2.3.2: at least 10.5 clock periods) and sends its
+    // start bit 1 or 2 rising edges after R_off instead of R_off + 3 at the earliest.
+    let mut cfg = BenchConfig::example();
+    cfg.encoder.t_cal_us = 0.0;
+    let plain = run(&cfg);
+    cfg.faults.early_start = Some(2);
+    let early = run(&cfg);
+    // A polling master reads the same position, one clock period (64 cycles at 1 MHz) sooner.
+    assert_eq!((early[0].position, &early[0].errors), (plain[0].position, &plain[0].errors));
+    assert_eq!(plain[0].done_cycle - early[0].done_cycle, 64);
+    // Its power-on measurement: the start bit (at R9) reaches the master before R10 restarts the delay counter,
+    // which after t_b (more than 1 ms at 257 MHz) and after reset holds its saturated 65535: four equal
+    // captures, accepted as a delay of 65535 cycles. The read after it samples at that delay and fails.
+    let cfg = BenchConfig {
+        f_sys_mhz: 257.0,
+        block_gap_clocks: 26,
+        master: MasterSettings { clock_khz: 100.0, delay_comp: true, meas_retries: 2, ..MasterSettings::default() },
+        faults: FaultSettings { early_start: Some(1), ..FaultSettings::default() },
+        ..BenchConfig::default()
+    };
+    let t = run(&cfg);
+    assert_eq!((t[0].kind.as_str(), t[0].delay_cycles, t[0].errors.len()), ("delay_measurement", Some(65535), 0));
+    assert!(t[1].errors.contains(&"crc".to_string()), "{:?}", t[1]);
+    // Only 1 and 2 are early starts.
+    for bad in [0, 3] {
+        let cfg = BenchConfig { faults: FaultSettings { early_start: Some(bad), ..FaultSettings::default() }, ..BenchConfig::example() };
+        let e = Bench::new(&cfg).err().expect("refused");
+        assert_eq!(e.field(), "faults.early_start");
+        assert!(e.to_string().contains("give 1 or 2"), "{e}");
+    }
+}
