@@ -174,7 +174,9 @@ localparam [7:0]  POS_LEN = POS_BITS_32[7:0];
 localparam [15:0] TIMEOUT = TIMEOUT_32[15:0];
 localparam [15:0] HIGH16 = HIGH_32[15:0];
 localparam [15:0] TOL16 = TOL_32[15:0];
-localparam [15:0] DMAX16 = DMAX_32[15:0];
+// The delay counter has 16 bits: a larger DELAY_MAX is clamped to 65535,
+// as the model's MasterConfig::delay_limit does (never truncated).
+localparam [15:0] DMAX16 = (DMAX_32 > 32'd65535) ? 16'hFFFF : DMAX_32[15:0];
 localparam [15:0] GAP16 = GAP_32[15:0];
 localparam [7:0]  MEAS_N = MEAS_COUNT_32[7:0];
 localparam [7:0]  RETRIES = RETRIES_32[7:0];

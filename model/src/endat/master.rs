@@ -89,13 +89,17 @@ impl MasterConfig {
 
     /// The largest sample delay `D` the schedules allow: the stop index must
     /// be known before the clock passes it, and a type 2.2 parameter block
-    /// may only start after the encoder's frame has arrived.
+    /// may only start after the encoder's frame has arrived. At most
+    /// [`DELAY_COUNTER_MAX`]: the core's delay counter has 16 bits, so a
+    /// slow clock from a fast system clock (100 kHz from 257 MHz: 2570
+    /// cycles a bit) cannot use a larger bound, and the core clamps its
+    /// `DELAY_MAX` parameter to the same value.
     pub fn delay_limit(clocks_per_bit: u64, pos_bits: u32, block_gap: u64) -> u64 {
         let shortest = (1 + pos_bits as u64 + 5).min(24 + 5);
         let by_stop = (shortest + 1) * clocks_per_bit - 2;
         // The longer phase of an odd period (its high phase) keeps the bound safe.
         let by_gap = (block_gap * clocks_per_bit).saturating_sub(clocks_per_bit - clocks_per_bit / 2);
-        by_stop.min(by_gap)
+        by_stop.min(by_gap).min(DELAY_COUNTER_MAX)
     }
 
     /// Checks the configuration; field names are those of a scenario's `[endat.master]` table.
@@ -1312,6 +1316,25 @@ impl LineJudge {
     pub fn end(&mut self) {
         let c = self.checker.master.r;
         remember_request(&c, &mut self.checker.master.r);
+    }
+}
+
+/// The largest delay, in cycles, the core's 16-bit delay counter holds
+/// (`endat_master.v`: `meas_cnt_reg` saturates there).
+pub const DELAY_COUNTER_MAX: u64 = 0xFFFF;
+
+#[cfg(test)]
+mod delay_limit_tests {
+    use super::*;
+
+    #[test]
+    fn the_delay_limit_never_exceeds_the_16_bit_delay_counter() {
+        // 100 kHz from 257 MHz: by_gap is 26 x 2570 - 1285 = 65535 exactly.
+        assert_eq!(MasterConfig::delay_limit(2570, 25, 26), 65535);
+        // 100 kHz from 300 MHz: by_stop 89 998 and by_gap 76 500 would not fit 16 bits.
+        assert_eq!(MasterConfig::delay_limit(3000, 25, 26), DELAY_COUNTER_MAX);
+        // 8 MHz from 64 MHz: the schedule's bound, far below the counter's.
+        assert_eq!(MasterConfig::delay_limit(8, 25, 2), 12);
     }
 }
 
