@@ -100,9 +100,13 @@ soak:
 coverage:
 	@scripts/coverage.sh
 
-# Mutants of each core replayed against its vectors (long: not in make test).
+# Mutants of each core replayed against its vectors (long: not in make test):
+# 30 scored per core, seed 1, the figures in the README. modbus_master's
+# draw holds one mutant that does not build (a generate loop counting down
+# forever), so 31 are drawn there for 30 scored.
 mutate:
-	@status=0; for d in vectors/*/; do python3 scripts/mutate.py "$$(basename "$$d")" || status=1; done; exit $$status
+	@status=0; for d in vectors/*/; do core=$$(basename "$$d"); n=30; [ "$$core" = modbus_master ] && n=31; \
+	    python3 scripts/mutate.py "$$core" --count $$n --seed 1 || status=1; done; exit $$status
 
 synth:
 	@scripts/synth.sh

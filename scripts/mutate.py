@@ -43,8 +43,8 @@ Prints every killed mutant (and the file that killed it), every survivor
 with its diff, and the mutation score killed / (killed + survived).
 Survivors listed in the accepted file (default
 hdl/mutation/accepted_survivors.txt) are shown as accepted with their
-reason; the exit status is 1 when a survivor is not accepted, 2 for bad
-input. Entries of the accepted file:
+reason; the exit status is 1 when a survivor is not accepted or the score
+is below --min-score (default 90 %), 2 for bad input. Entries of the accepted file:
 
     core: esl_host
     - <the original line, stripped>
@@ -532,6 +532,8 @@ def main():
     ap.add_argument("--list", action="store_true", help="list the selected mutants and stop")
     ap.add_argument("--only", help="comma-separated mutant ids to run (M03,M17)")
     ap.add_argument("--accepted", default=os.path.join(ROOT, "hdl", "mutation", "accepted_survivors.txt"))
+    ap.add_argument("--min-score", type=float, default=90.0,
+                    help="fail below this score in percent, survivors accepted or not (default 90)")
     ap.add_argument("--timeout", type=int, default=600, help="seconds per replay, build included (default 600)")
     ap.add_argument("--separate", action="store_true",
                     help="build every mutant on its own (no schema; slow, the reference the schema is checked against)")
@@ -633,7 +635,9 @@ def main():
     score = 100.0 * len(killed) / scored if scored else 0.0
     print(f"mutate: {args.core}: score {score:.1f} % ({len(killed)} killed of {scored}; "
           f"{len(survived)} survived, {len(survived) - unaccepted} of them accepted; {len(stillborn)} stillborn)")
-    return 1 if unaccepted else 0
+    if score < args.min_score:
+        print(f"mutate: {args.core}: FAIL: the score is below --min-score {args.min_score:g} % (issue 16's target)")
+    return 1 if unaccepted or score < args.min_score else 0
 
 
 if __name__ == "__main__":
