@@ -45,6 +45,7 @@ done
 #   endat_master    pos22_1mhz_20m 0.043, pos22_500khz_50m 0.068, pos22_4mhz_100m_short 0.135
 #   esl_host        readout_0m 0.043, readout_50m_fast 0.050, readout_100m_slow 0.137
 #   modbus_master   read16_31250_fixed_t35 0.083, read32_15625_even_100m 0.114
+#   sar58k24_can    factory_250k 0.184, mixed_500k 0.215, node7f_1000k 0.278
 #   sar_async_host  handshake_gray_31250_100m 0.027, bus_32bit_15625_10m 0.053, timed_16bit_115200 0.135
 #   ssi_master      fast_1mhz_50m 0.038, gray_100khz_100m 0.044, seed_250khz_10m 0.099
 #   tformat_host    readout_50m_fast 0.019, readout_0m 0.032, readout_100m_slow 0.064
@@ -57,6 +58,7 @@ quick_config() {
     endat_master) echo pos22_1mhz_20m ;;
     esl_host) echo readout_0m ;;
     modbus_master) echo read16_31250_fixed_t35 ;;
+    sar58k24_can) echo factory_250k ;;
     sar_async_host) echo handshake_gray_31250_100m ;;
     ssi_master) echo fast_1mhz_50m ;;
     tformat_host) echo readout_50m_fast ;;
