@@ -6,6 +6,13 @@
 //! listen-only receiver at the core's `i_can_rx` pin decodes it (the view
 //! sigrok's `can` decoder has of the `can_rx` line), with the core's pulses
 //! during that frame.
+//!
+//! Fast-forward ([`Testbench::quiet_cycles`]): quiet only while the bus is
+//! idle (every delay line recessive, every controller in `IDLE` with nothing
+//! to send, [`Controller::quiet`]): sample points then read recessive and do
+//! nothing, so only the bit clocks run ([`super::BitClock::skip`]). A skip
+//! ends before the next scripted frame, fault window or the run's end, and,
+//! as the samples show the core's `tq_cnt`, at the end of the time quantum.
 
 use serde::{Deserialize, Serialize};
 

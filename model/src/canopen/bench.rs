@@ -14,6 +14,14 @@
 //! `emcy_valid`, `sync_sent`), each with the frames that ended at the
 //! master's pin since the previous pulse, read as CANopen; frames after the
 //! last pulse go with the last transaction.
+//!
+//! Fast-forward ([`Testbench::quiet_cycles`]): quiet while the bus is idle
+//! as in the CAN bench and no part has anything due: the master's boot,
+//! SDO and PDO timeouts and SYNC period ([`super::master::Master::quiet`]),
+//! each device's cyclic, heartbeat, guarding or SAR58K24 cycle timer and
+//! queued answers ([`super::node::DeviceNode::quiet`]), and the script's
+//! start pulses, power-ons, alarms and fault windows. A SYNC gap or a
+//! cyclic TPDO period then goes in one skip (`docs/timing/canopen.md`).
 
 use serde::{Deserialize, Serialize};
 
