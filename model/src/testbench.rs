@@ -121,3 +121,41 @@ pub fn run_every_cycle<B: Testbench>(mut bench: B) -> Run<B::Transaction> {
     }
     Run { cycles: bench.cycle(), transactions: bench.into_transactions() }
 }
+
+/// Runs `skipping` (fast-forwarded) and `stepped` (every cycle) in lockstep,
+/// as `tests/fast_forward.rs` does for the scenario files: every cycle's
+/// sample must be the same (a skipped cycle's the last stepped one's), both
+/// must end on the same cycle with the same transcript. Returns the cycles
+/// run and the cycles skipped.
+#[cfg(test)]
+pub(crate) fn lockstep<B: Testbench>(mut skipping: B, mut stepped: B) -> (u64, u64)
+where
+    B::Transaction: std::fmt::Debug + PartialEq,
+{
+    let mut want = Sample::for_layout(stepped.layout());
+    let mut got = Sample::for_layout(skipping.layout());
+    let mut skipped = 0;
+    while !skipping.finished() {
+        assert!(!stepped.finished(), "the fast-forwarded bench runs past the end, cycle {}", stepped.cycle());
+        let quiet = skipping.quiet_cycles();
+        if quiet == 0 {
+            skipping.step(Some(&mut got));
+            stepped.step(Some(&mut want));
+            assert_eq!(got, want, "cycle {} differs after fast-forwards", stepped.cycle() - 1);
+            continue;
+        }
+        assert!(skipping.cycle() > 0, "the first cycle is stepped");
+        let start = skipping.cycle();
+        skipping.skip(quiet);
+        skipped += quiet;
+        for _ in 0..quiet {
+            assert!(!stepped.finished(), "the skip from cycle {start} by {quiet} runs past the end");
+            stepped.step(Some(&mut want));
+            assert_eq!(got, want, "cycle {} changes within the {quiet} cycles skipped from cycle {start}", stepped.cycle() - 1);
+        }
+    }
+    assert!(stepped.finished(), "stepping did not finish where the fast-forwarded bench did, cycle {}", skipping.cycle());
+    let cycles = stepped.cycle();
+    assert_eq!(skipping.into_transactions(), stepped.into_transactions(), "transcripts differ");
+    (cycles, skipped)
+}

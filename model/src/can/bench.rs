@@ -6,6 +6,13 @@
 //! listen-only receiver at the core's `i_can_rx` pin decodes it (the view
 //! sigrok's `can` decoder has of the `can_rx` line), with the core's pulses
 //! during that frame.
+//!
+//! Fast-forward ([`Testbench::quiet_cycles`]): quiet only while the bus is
+//! idle (every delay line recessive, every controller in `IDLE` with nothing
+//! to send, [`Controller::quiet`]): sample points then read recessive and do
+//! nothing, so only the bit clocks run ([`super::BitClock::skip`]). A skip
+//! ends before the next scripted frame, fault window or the run's end, and,
+//! as the samples show the core's `tq_cnt`, at the end of the time quantum.
 
 use serde::{Deserialize, Serialize};
 
@@ -333,6 +340,11 @@ impl PinMonitor {
         &self.monitor
     }
 
+    /// Advances `n` cycles of an idle receiver ([`Controller::quiet`]).
+    pub(crate) fn skip(&mut self, n: u64) {
+        self.monitor.skip(n);
+    }
+
     /// One cycle at `rx` (cycle `cycle`): a SOF begins a new frame (the one
     /// it replaces is returned), the CRC delimiter completes it, the end of
     /// the ACK slot records the acknowledgement, and the receiver's errors
@@ -421,6 +433,38 @@ impl Disturber {
         let off = cycle - self.sof;
         let flip = self.flips.iter().any(|&(f, n, bit)| k >= f && k < f + n && off / cpb == bit as u64);
         level ^ flip
+    }
+}
+
+impl Disturber {
+    /// How many of the next cycles, starting at `cycle` on a recessive line,
+    /// this target reads recessive too: all of them unless a flip window of
+    /// the frame being counted is still ahead (a flip aimed past the frame's
+    /// end falls in the idle after it).
+    pub(crate) fn quiet(&self, cycle: u64, cpb: u64) -> u64 {
+        if self.frames < 0 {
+            return u64::MAX;
+        }
+        let k = self.frames as u32;
+        self.flips
+            .iter()
+            .filter(|&&(f, n, _)| k >= f && k < f + n)
+            .map(|&(_, _, bit)| {
+                let (from, to) = (self.sof + bit as u64 * cpb, self.sof + (bit as u64 + 1) * cpb);
+                if cycle >= to {
+                    u64::MAX
+                } else {
+                    from.saturating_sub(cycle)
+                }
+            })
+            .min()
+            .unwrap_or(u64::MAX)
+    }
+
+    /// Advances `n` cycles of a recessive line, at most [`Disturber::quiet`].
+    pub(crate) fn skip(&mut self, n: u64) {
+        self.recessive_run += n;
+        self.prev = true;
     }
 }
 
@@ -602,6 +646,68 @@ impl Testbench for Bench {
         out.write_values(&mut sample.outputs);
         sample.line.copy_from_slice(&[rx0 as u64, out.o_can_tx as u64, nodes_tx as u64]);
         sample.decoded.copy_from_slice(&[self.dut.state() as u64, self.dut.pos() as u64 & 0x7F, self.dut.clock().tq_cnt as u64, self.monitor.controller().state() as u64]);
+    }
+
+    /// Quiet when the bus is idle: every delay line recessive, the core,
+    /// the listen-only monitor and every node idle with nothing to send
+    /// before then ([`Controller::quiet`], [`Emulator::quiet`]), no scripted
+    /// frame, flip or stuck window ahead before then; and, as the samples
+    /// show the core's `tq_cnt`, no further than the end of the current
+    /// time quantum (see the module docs).
+    fn quiet_cycles(&self) -> u64 {
+        let c = self.cycle;
+        let mut q = self.dut.quiet(true).min(self.dut.clock().quantum_left(&self.dut.config().timing));
+        if q == 0 || self.monitor.controller().quiet(true) == 0 || !self.bus.recessive() {
+            return 0;
+        }
+        if let Some(e) = self.end {
+            q = q.min(e - c);
+        }
+        if let Some((at, _)) = self.script.get(self.next) {
+            q = q.min(at.saturating_sub(c));
+        }
+        for &(a, b) in &self.stuck {
+            if c < b {
+                q = q.min(a.saturating_sub(c));
+            }
+        }
+        for d in &self.disturbers {
+            q = q.min(d.quiet(c, self.cpb));
+        }
+        for n in &self.nodes {
+            q = q.min(n.quiet(true));
+        }
+        q
+    }
+
+    fn skip(&mut self, n: u64) {
+        if n == 0 {
+            return;
+        }
+        for d in &mut self.disturbers {
+            d.skip(n);
+        }
+        self.dut.skip(n);
+        self.monitor.skip(n);
+        for node in &mut self.nodes {
+            node.skip(n);
+        }
+        self.bus.skip(n);
+        self.rx_dut = true;
+        // The end as `step` decides it, its conditions being the same on every skipped cycle.
+        let c = self.cycle;
+        let quiet = self.next == self.script.len() && !self.last_out.o_tx_busy && self.nodes.iter().all(Emulator::done) && self.dut.state() == State::Idle;
+        let idle0 = self.idle_cycles;
+        self.idle_cycles = if quiet { idle0 + n } else { 0 };
+        if self.end.is_none() {
+            let by_idle = if quiet { (2 * self.cpb).saturating_sub(idle0).max(1) } else { u64::MAX };
+            let by_max = self.max_cycles.saturating_sub(c).max(1);
+            let s = by_idle.min(by_max);
+            if s <= n {
+                self.end = Some(c + s + self.cpb);
+            }
+        }
+        self.cycle += n;
     }
 
     fn finished(&self) -> bool {

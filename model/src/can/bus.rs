@@ -75,6 +75,19 @@ impl Bus {
         (0..self.hist.len()).all(|i| self.hist[i][(self.cycle + self.len - self.delay[i][j]) % self.len])
     }
 
+    /// Whether the delay lines hold nothing but recessive levels: then, as
+    /// long as every node keeps sending recessive, every RXD reads
+    /// recessive and [`Bus::skip`] may replace the pushes.
+    pub fn recessive(&self) -> bool {
+        self.hist.iter().all(|h| h.iter().all(|&l| l))
+    }
+
+    /// Moves `n` cycles on with every node recessive, on a
+    /// [`Bus::recessive`] bus (the lines stay all recessive).
+    pub fn skip(&mut self, n: u64) {
+        self.cycle += n as usize;
+    }
+
     /// Records this cycle's TXD levels and moves to the next cycle.
     pub fn push(&mut self, tx: &[bool]) {
         for (h, &t) in self.hist.iter_mut().zip(tx) {

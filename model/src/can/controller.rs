@@ -440,6 +440,29 @@ impl Controller {
         self.out
     }
 
+    /// How many of the next cycles, with `i_can_rx` at `rx` and no
+    /// `i_tx_start`, change nothing but the bit clock's counters: any number
+    /// in bus idle with nothing to send, a recessive line through the
+    /// synchroniser and no pulse standing (each sample point then reads
+    /// recessive and does nothing, no edge can synchronise, and the
+    /// transmitter keeps sending recessive); otherwise 0. Frames, flags,
+    /// intermission and bus integration count bits, so they are stepped.
+    pub fn quiet(&self, rx: bool) -> u64 {
+        let n = self.cfg.sync_stages as usize;
+        let o = &self.out;
+        let pulse = o.o_tx_done || o.o_arb_lost || o.o_rx_valid || o.o_err_bit || o.o_err_stuff || o.o_err_crc || o.o_err_form || o.o_err_ack || o.o_overload;
+        if self.state == State::Idle && rx && self.rx_prev && self.sync[..n].iter().all(|&s| s) && !self.tx_pending && self.tx_bit && o.o_can_tx && !o.o_tx_busy && !pulse {
+            u64::MAX
+        } else {
+            0
+        }
+    }
+
+    /// Advances `n` cycles, at most [`Controller::quiet`]: only the bit clock runs.
+    pub fn skip(&mut self, n: u64) {
+        self.clock.skip(&self.cfg.timing, n);
+    }
+
     /// One f_sys cycle.
     pub fn step(&mut self, i: &In) -> Out {
         let n = self.cfg.sync_stages as usize;

@@ -174,6 +174,48 @@ impl Emulator {
         self.tx
     }
 
+    /// How many of the next f_sys cycles of the bench, with `rx` held,
+    /// leave this node's transmit level and everything it records unchanged:
+    /// its controller idle ([`Controller::quiet`]) and no scripted frame due
+    /// before then on its own clock (a node with a ppm offset runs
+    /// `rate` own cycles per bench cycle; the count is rounded down and one
+    /// cycle of phase kept in hand).
+    pub fn quiet(&self, rx: bool) -> u64 {
+        if self.ctrl.quiet(rx) == 0 || self.tx != self.ctrl.out().o_can_tx {
+            return 0;
+        }
+        let own = match self.script.get(self.next) {
+            Some((at, _)) => at.saturating_sub(self.own_cycle),
+            None => u64::MAX,
+        };
+        if self.rate == 1.0 || own == u64::MAX {
+            own
+        } else {
+            ((own.saturating_sub(1)) as f64 / self.rate).floor().max(1.0) as u64 - 1
+        }
+    }
+
+    /// Advances `n` bench cycles, at most [`Emulator::quiet`]: the own clock's
+    /// phase cycle by cycle (the same additions as stepping), the controller
+    /// by the own cycles that makes.
+    pub fn skip(&mut self, n: u64) {
+        let own = if self.rate == 1.0 {
+            n
+        } else {
+            let mut k = 0;
+            for _ in 0..n {
+                self.phase += self.rate;
+                while self.phase >= 1.0 {
+                    self.phase -= 1.0;
+                    k += 1;
+                }
+            }
+            k
+        };
+        self.ctrl.skip(own);
+        self.own_cycle += own;
+    }
+
     /// Whether the node has nothing left to send.
     pub fn done(&self) -> bool {
         self.next == self.script.len() && !self.ctrl.out().o_tx_busy

@@ -324,3 +324,77 @@ fn stuff_shifting_double_inversions_escape_at_the_rate_published() {
     // shifts the stuffing, so the two agree in kind; docs/timing/can.md.
     assert_eq!(campaign::shift_pairs(6000, 2), (1_267_603, 1));
 }
+
+/// The bit clock's skip is its steps without an edge, from a plain bit, a
+/// bit lengthened or shortened by a resynchronisation, and a restart.
+#[test]
+fn bit_clock_skip_equals_stepping_without_edges() {
+    let t = BitTiming::for_rate(40_000_000, 125_000.0, 16, 0.875, 1).unwrap();
+    let starts = [
+        BitClock::default(),
+        BitClock { pre_cnt: 7, tq_cnt: 5, ext: 1, short: false, synced: true },
+        BitClock { pre_cnt: 3, tq_cnt: 14, ext: 0, short: true, synced: true },
+        BitClock { pre_cnt: 19, tq_cnt: 15, ext: 0, short: false, synced: false },
+    ];
+    for start in starts {
+        for n in [0, 1, 2, 19, 20, 21, 319, 320, 321, 1000, 12_345] {
+            let mut stepped = start;
+            for _ in 0..n {
+                stepped.step(&t, false, true, true);
+            }
+            let mut skipped = start;
+            skipped.skip(&t, n);
+            assert_eq!(skipped, stepped, "from {start:?} by {n}");
+        }
+    }
+}
+
+/// A controller in bus idle is quiet for ever on a recessive line, and its
+/// skip leaves it as stepping does; a dominant line or a frame to send ends it.
+#[test]
+fn idle_controller_skips_exactly() {
+    let cc = ControllerConfig { timing: BitTiming::for_rate(40_000_000, 500_000.0, 16, 0.875, 1).unwrap(), sync_stages: 2 };
+    let mut c = Controller::new(cc).unwrap();
+    let idle = In::default();
+    // 11 recessive bits of bus integration, then idle.
+    for _ in 0..12 * cc.timing.clocks_per_bit() {
+        c.step(&idle);
+    }
+    assert_eq!(c.state(), State::Idle);
+    assert_eq!(c.quiet(true), u64::MAX);
+    assert_eq!(c.quiet(false), 0);
+    let mut stepped = c.clone();
+    let n = 1_000_003;
+    for _ in 0..n {
+        stepped.step(&idle);
+    }
+    c.skip(n);
+    assert_eq!(c.clock(), stepped.clock());
+    assert_eq!(c.state(), stepped.state());
+    assert_eq!(c.out(), stepped.out());
+    // The two go on alike: a frame loaded into both is sent cycle for cycle the same.
+    let start = In { i_tx_start: true, i_tx_id: 0x123, i_tx_dlc: 1, i_tx_data: 0xA5 << 56, ..In::default() };
+    assert_eq!(c.step(&start), stepped.step(&start));
+    assert_eq!(c.quiet(true), 0, "a frame waits");
+    for _ in 0..40 * cc.timing.clocks_per_bit() {
+        assert_eq!(c.step(&idle), stepped.step(&idle));
+    }
+}
+
+/// A bench with long idle gaps (frames of about half a millisecond 2 ms
+/// apart at 125 kbit/s, a node 3000 ppm slow) skips most of them and matches stepping sample for sample;
+/// the samples show the core's `tq_cnt`, so each skip ends with a quantum.
+#[test]
+fn bench_fast_forward_matches_stepping_through_idle_gaps() {
+    let f = Frame::data(0x155, &[1, 2, 3]);
+    let mut slow = node("slow", 30.0, vec![(2000.0, Frame::data(0x0F0, &[9])), (6000.0, Frame { id: 0x0F1, ide: false, rtr: true, dlc: 2, data: vec![] })]);
+    slow.ppm = -3000.0;
+    let mut c = cfg(vec![(20.0, f.clone()), (4000.0, f.clone()), (8000.0, f)], vec![slow]);
+    c.timing = TimingSettings { bit_rate_kbps: 125.0, tq_per_bit: 16, sample_point: 0.875, sjw: 1 };
+    c.max_us = 12_000.0;
+    let (cycles, skipped) = crate::testbench::lockstep(c.bench().unwrap(), c.bench().unwrap());
+    // 5 frames of 50 to 90 bits (8 µs each) in some 8.6 ms: over two
+    // thirds idle, of which BRP − 1 = 19 cycles in 20 are skipped.
+    assert!(skipped * 2 > cycles, "only {skipped} of {cycles} cycles skipped");
+    assert_eq!(crate::testbench::run_to_end(c.bench().unwrap()), crate::testbench::run_every_cycle(c.bench().unwrap()));
+}

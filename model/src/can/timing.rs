@@ -217,4 +217,27 @@ impl BitClock {
         }
         Tick { sample, load_tx: bit_end }
     }
+
+    /// Advances `n` cycles without an edge, exactly as `n` calls of
+    /// [`BitClock::step`] with `edge = false` would (the sample points and
+    /// bit ends they pass are the caller's to know uneventful). A bit
+    /// lengthened or shortened by a resynchronisation, or one with a
+    /// synchronisation still recorded, is stepped to its end; from there
+    /// the clock is periodic, `TQ × BRP` cycles a bit, and is advanced in
+    /// one go.
+    pub fn skip(&mut self, t: &BitTiming, mut n: u64) {
+        while n > 0 && (self.ext != 0 || self.short || self.synced) {
+            self.step(t, false, false, false);
+            n -= 1;
+        }
+        let brp = t.brp as u64;
+        let at = (self.tq_cnt as u64 * brp + self.pre_cnt as u64 + n) % (t.ntq() as u64 * brp);
+        self.tq_cnt = (at / brp) as u32;
+        self.pre_cnt = (at % brp) as u32;
+    }
+
+    /// Cycles from now in which `tq_cnt` keeps its value (no edge).
+    pub fn quantum_left(&self, t: &BitTiming) -> u64 {
+        (t.brp - 1 - self.pre_cnt) as u64
+    }
 }

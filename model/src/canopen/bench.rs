@@ -14,6 +14,14 @@
 //! `emcy_valid`, `sync_sent`), each with the frames that ended at the
 //! master's pin since the previous pulse, read as CANopen; frames after the
 //! last pulse go with the last transaction.
+//!
+//! Fast-forward ([`Testbench::quiet_cycles`]): quiet while the bus is idle
+//! as in the CAN bench and no part has anything due: the master's boot,
+//! SDO and PDO timeouts and SYNC period ([`super::master::Master::quiet`]),
+//! each device's cyclic, heartbeat, guarding or SAR58K24 cycle timer and
+//! queued answers ([`super::node::DeviceNode::quiet`]), and the script's
+//! start pulses, power-ons, alarms and fault windows. A SYNC gap or a
+//! cyclic TPDO period then goes in one skip (`docs/timing/canopen.md`).
 
 use serde::{Deserialize, Serialize};
 
@@ -579,6 +587,78 @@ impl Testbench for Bench {
             self.master.controller().state() as u64,
             self.monitor.controller().state() as u64,
         ]);
+    }
+
+    /// Quiet when the whole bus is idle: every delay line recessive, every
+    /// node (master, listen-only monitor, encoders, SAR58K24s, tool) idle
+    /// with nothing due before then, no flip window, stuck window, start
+    /// pulse, alarm or power-on ahead before then, and the run's end not
+    /// decided within it (see the module docs).
+    fn quiet_cycles(&self) -> u64 {
+        let c = self.cycle;
+        let mut q = self.master.quiet(true);
+        if q == 0 || self.monitor.controller().quiet(true) == 0 || !self.bus.recessive() {
+            return 0;
+        }
+        q = match self.end {
+            Some(e) => q.min(e - c),
+            None => q.min(self.run_cycles.saturating_sub(c + 1)),
+        };
+        for &s in &self.starts {
+            // The cycle after a start shows its pulse falling.
+            if s + 1 == c {
+                return 0;
+            }
+            if s >= c {
+                q = q.min(s - c);
+            }
+        }
+        for &(a, b) in &self.stuck {
+            if c < b {
+                q = q.min(a.saturating_sub(c));
+            }
+        }
+        for d in &self.disturbers {
+            q = q.min(d.quiet(c, self.cpb));
+        }
+        for (e, power_on, alarm) in &self.encoders {
+            if c < *power_on {
+                q = q.min(power_on - c);
+            } else {
+                q = q.min(e.quiet(true));
+            }
+            if let Some(a) = *alarm {
+                if a >= c {
+                    q = q.min(a - c);
+                }
+            }
+        }
+        for s in &self.sars {
+            q = q.min(s.quiet(true));
+        }
+        if let Some(t) = &self.tool {
+            q = q.min(t.quiet(true));
+        }
+        q
+    }
+
+    fn skip(&mut self, n: u64) {
+        for d in &mut self.disturbers {
+            d.skip(n);
+        }
+        self.master.skip(n);
+        self.monitor.skip(n);
+        for (e, _, _) in &mut self.encoders {
+            e.skip(n);
+        }
+        for s in &mut self.sars {
+            s.skip(n);
+        }
+        if let Some(t) = self.tool.as_mut() {
+            t.skip(n);
+        }
+        self.bus.skip(n);
+        self.cycle += n;
     }
 
     fn finished(&self) -> bool {

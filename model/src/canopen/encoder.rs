@@ -345,6 +345,12 @@ impl Encoder {
         (id & 0x8000_0000 == 0).then(|| Frame::data(id & 0x7FF, &self.position(self.now_ns).to_le_bytes()))
     }
 
+    /// The earliest of the cyclic timer, the heartbeat and the life
+    /// guarding deadline: before then [`Encoder::poll`] only records the time.
+    pub fn next_due_ns(&self) -> Option<u64> {
+        [self.next_cyclic, self.next_heartbeat, self.life_deadline].into_iter().flatten().min()
+    }
+
     /// Frames due by `now_ns` (TPDOs of the cyclic timer, heartbeat, life guarding).
     pub fn poll(&mut self, now_ns: u64) -> Vec<Frame> {
         self.now_ns = now_ns;

@@ -391,6 +391,56 @@ impl Master {
 }
 
 impl Master {
+    /// How many of the next cycles, with `i_can_rx` at `rx` and no
+    /// `i_start`, change no output, state, parameter index or try count:
+    /// the controller idle with nothing in its buffer and nothing on its
+    /// way to it ([`Controller::quiet`]), no pulse standing, and none of
+    /// the timers due: the boot or SDO timeout (`timer` reaching it), the
+    /// PDO timeout (`timer` equal to it, in `RUN`) and, in `RUN`, the SYNC
+    /// period (`sync_cnt` wrapping, which requests the SYNC at once).
+    /// `SDO_SEND` and `NMT_SEND` request a frame as soon as the buffer is
+    /// free, so they are never quiet.
+    pub fn quiet(&self, rx: bool) -> u64 {
+        let o = &self.out;
+        let pulse = o.o_booted || o.o_config_done || o.o_sdo_abort || o.o_node_lost || o.o_pos_valid || o.o_pos_timeout || o.o_emcy_valid || o.o_sync_sent;
+        if pulse || self.tx_start || self.tx_sync || self.c_out != self.ctrl.out() || self.ctrl.quiet(rx) == 0 || o.o_can_tx != self.c_out.o_can_tx {
+            return 0;
+        }
+        // Steps before `timer` (incremented first) reaches `limit`.
+        let before = |limit: u64| limit.saturating_sub(self.timer + 1);
+        let sync = if self.cfg.sync_period == 0 { u64::MAX } else { self.cfg.sync_period - self.sync_cnt - 1 };
+        match self.state {
+            State::WaitBoot => before(self.cfg.boot_timeout),
+            State::SdoWait => before(self.cfg.sdo_timeout),
+            State::SdoSend | State::NmtSend => 0,
+            State::Run => {
+                if self.sync_pending {
+                    return 0;
+                }
+                let pdo = if self.timer < self.cfg.pdo_timeout { before(self.cfg.pdo_timeout) } else { u64::MAX };
+                pdo.min(sync)
+            }
+            State::Failed => u64::MAX,
+        }
+    }
+
+    /// Advances `n` cycles, at most [`Master::quiet`]: the controller's bit
+    /// clock, the SYNC counter (a wrap outside `RUN` leaves a SYNC pending,
+    /// as stepping does) and the saturating timer.
+    pub fn skip(&mut self, n: u64) {
+        self.ctrl.skip(n);
+        let p = self.cfg.sync_period;
+        if p != 0 {
+            if self.sync_cnt + n >= p {
+                self.sync_pending = true;
+            }
+            self.sync_cnt = (self.sync_cnt + n) % p;
+        }
+        self.timer = (self.timer + n).min(u32::MAX as u64);
+    }
+}
+
+impl Master {
     /// The input ports, in vector order (the Verilog port names).
     pub fn input_ports() -> Vec<crate::ports::Port> {
         use crate::ports::Port;

@@ -60,6 +60,10 @@ pub trait Device {
     fn on_frame(&mut self, f: &Frame, now_ns: u64) -> Vec<Frame>;
     /// Frames due by `now_ns`.
     fn poll(&mut self, now_ns: u64) -> Vec<Frame>;
+    /// The earliest time [`Device::poll`] has a frame to give (its timers:
+    /// cyclic period, heartbeat, life guarding), `None` without a timer
+    /// running. Until then a poll only records the time.
+    fn next_due_ns(&self) -> Option<u64>;
     /// The bit rate in use, kbit/s.
     fn bit_rate_kbps(&self) -> u32;
     /// Time from a request to its answer, µs.
@@ -75,6 +79,9 @@ impl Device for Encoder {
     }
     fn poll(&mut self, now_ns: u64) -> Vec<Frame> {
         Encoder::poll(self, now_ns)
+    }
+    fn next_due_ns(&self) -> Option<u64> {
+        Encoder::next_due_ns(self)
     }
     fn bit_rate_kbps(&self) -> u32 {
         BIT_RATES_KBPS[self.bit_code() as usize]
@@ -166,6 +173,59 @@ impl<D: Device> DeviceNode<D> {
         }
         self.cycle += 1;
         self.emu.step(rx)
+    }
+
+    /// How many of the next cycles, with `rx` held, leave the node's
+    /// transmit level and everything it records unchanged: no received
+    /// frame unread, nothing queued to send before then (an answer waits
+    /// out the response delay), no device timer due before then (the first
+    /// cycle whose time reaches [`Device::next_due_ns`]) and its CAN node
+    /// quiet ([`Emulator::quiet`]).
+    pub fn quiet(&self, rx: bool) -> u64 {
+        if self.emu.received().len() != self.seen || self.enc.bit_rate_kbps() != self.rate {
+            return 0;
+        }
+        let mut q = self.emu.quiet(rx);
+        if let Some((t, _)) = self.queue.front() {
+            q = q.min(t.saturating_sub(self.cycle));
+        }
+        if let Some(due) = self.enc.next_due_ns() {
+            q = q.min(self.cycles_before_ns(due));
+        }
+        q
+    }
+
+    /// Cycles from now before the first one whose time (in whole ns, as
+    /// `step` reads it) reaches `due`.
+    fn cycles_before_ns(&self, due: u64) -> u64 {
+        let at_ns = |c: u64| self.tb.ps_at(c) / 1000;
+        if at_ns(self.cycle) >= due {
+            return 0;
+        }
+        let f = self.tb.f_sys_hz() as u128;
+        let mut x = ((due as u128 * 1000 * f) / 1_000_000_000_000).max(self.cycle as u128 + 1) as u64;
+        while x > self.cycle + 1 && at_ns(x - 1) >= due {
+            x -= 1;
+        }
+        while at_ns(x) < due {
+            x += 1;
+        }
+        x - self.cycle
+    }
+
+    /// Advances `n` cycles, at most [`DeviceNode::quiet`]: the device is
+    /// polled once at the last of them (nothing is due, so the poll only
+    /// records the time, as the `n` polls of stepping leave it), the CAN
+    /// node is skipped.
+    pub fn skip(&mut self, n: u64) {
+        if n == 0 {
+            return;
+        }
+        let now = self.tb.ps_at(self.cycle + n - 1) / 1000;
+        let due = self.enc.poll(now);
+        debug_assert!(due.is_empty(), "a skip passed a device timer");
+        self.cycle += n;
+        self.emu.skip(n);
     }
 
     /// The device.

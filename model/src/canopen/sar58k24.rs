@@ -284,6 +284,10 @@ impl Device for SarCan {
         }
     }
 
+    fn next_due_ns(&self) -> Option<u64> {
+        self.period_ns.map(|_| self.next_at)
+    }
+
     fn bit_rate_kbps(&self) -> u32 {
         self.rate
     }

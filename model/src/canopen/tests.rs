@@ -603,3 +603,45 @@ fn bit_rate_and_node_change_on_the_bus() {
     assert_eq!(fast.received(), &[Frame::data(0x89, &[])]);
     assert_eq!((e.encoder().node(), e.encoder().bit_code()), (9, 5));
 }
+
+/// Fast-forward through a SYNC gap: SYNC every 1 ms (40 000 cycles at
+/// 40 MHz), TPDO2 after every SYNC at 500 kbit/s. Once the bus is idle in
+/// RUN the bench skips to the cycle before the SYNC is requested, in one
+/// go; the first stepped cycle after the skip requests it; and the run
+/// matches stepping sample for sample.
+#[test]
+fn sync_gap_is_skipped_in_one_go() {
+    use super::bench::{BenchConfig, EncoderSettings, MasterSettings};
+    use super::master::{Param, State};
+    use crate::testbench::{lockstep, Testbench};
+    use crate::Setup;
+    let c = BenchConfig {
+        bit_rate_kbps: 500,
+        run_us: 6000.0,
+        master: MasterSettings { node: 7, sync_period_us: 1000.0, params: vec![Param { index: 0x1801, sub: 2, size: 1, value: 1 }], ..MasterSettings::default() },
+        encoders: vec![EncoderSettings { encoder: EncoderConfig { node_switch: 7, bit_rate_switch: 5, ..Default::default() }, ..EncoderSettings::default() }],
+        ..BenchConfig::default()
+    };
+    let mut b = c.bench().unwrap();
+    let mut gaps = 0;
+    while !b.finished() {
+        let q = b.quiet_cycles();
+        if q == 0 || b.master().state() != State::Run {
+            b.step(None);
+            continue;
+        }
+        // In RUN nothing but the SYNC ends a gap (no cyclic TPDO, the PDO
+        // timeout 25 ms away): it is requested on the first stepped cycle
+        // and loaded into the buffer on the next.
+        b.skip(q);
+        assert!(!b.master().controller().out().o_tx_busy);
+        b.step(None);
+        b.step(None);
+        assert!(b.master().controller().out().o_tx_busy, "the SYNC is requested right after the gap");
+        // A SYNC and its TPDO2 take about 150 bits (300 µs): the rest of the 1 ms goes in one skip.
+        gaps += (q > 20_000 && q < 40_000) as u32;
+    }
+    assert!(gaps >= 4, "{gaps} SYNC gaps skipped whole");
+    let (cycles, skipped) = lockstep(c.bench().unwrap(), c.bench().unwrap());
+    assert!(skipped * 2 > cycles, "only {skipped} of {cycles} cycles skipped");
+}
