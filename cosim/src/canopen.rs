@@ -138,6 +138,9 @@ impl Device for Recorded {
         self.record(&out, true);
         out
     }
+    fn next_due_ns(&self) -> Option<u64> {
+        self.sar.next_due_ns()
+    }
     fn bit_rate_kbps(&self) -> u32 {
         self.sar.bit_rate_kbps()
     }
