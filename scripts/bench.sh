@@ -47,8 +47,8 @@
 #
 # Part 3, campaigns (model/examples/campaign_speed.rs, 20 000 frames, best
 # of three): frames per second stepping every cycle and with fast-forward,
-# and their ratio; `-` where a campaign has no such run (SAR58K24 and Modbus
-# step their cycle models, ESL and CAN are bit-level).
+# and their ratio; `-` where a campaign has no such run (ESL and CAN are
+# bit-level: no cycle model in the loop, so no stepped run).
 #
 # All figures of a run come from one machine at one time: quote the ratios,
 # not the absolute numbers, which depend on the machine and its load.

@@ -40,6 +40,7 @@ endfunction
 localparam integer DATA_W = max_bits(SLAVE_BITS, SLAVES);
 localparam N_IN = 10;
 localparam N_OUT = 23;
+localparam OUT_BITS = 60 + DATA_W;
 
 `include "vector_player.vh"
 
@@ -92,6 +93,34 @@ task apply_inputs;
         i_cmd_code = `IN_WORD(9) & 2'h3;
     end
 endtask
+
+// Every output in one vector, in check_outputs' order: the player runs
+// check_outputs again only when this or the expected record changes.
+wire [OUT_BITS-1:0] all_outputs = {
+    o_ma,
+    o_busy,
+    o_done,
+    o_err_line,
+    o_err_ack,
+    o_err_delay,
+    o_err_start,
+    o_err_timeout,
+    o_delay,
+    o_slave_valid,
+    o_slave_index,
+    o_data,
+    o_crc_err,
+    o_error,
+    o_warning,
+    o_cds,
+    o_reg_busy,
+    o_reg_done,
+    o_reg_err,
+    o_reg_rdata,
+    o_reg_crc_err,
+    o_delay_mean,
+    o_err_drift
+};
 
 task check_outputs;
     begin

@@ -19,6 +19,7 @@ parameter MAX_WORDS = 1 << 22;
 
 localparam N_IN = 8;
 localparam N_OUT = 19;
+localparam OUT_BITS = 129;
 
 `include "vector_player.vh"
 
@@ -52,6 +53,30 @@ task apply_inputs;
         i_can_rx = `IN_WORD(7) & 1'b1;
     end
 endtask
+
+// Every output in one vector, in check_outputs' order: the player runs
+// check_outputs again only when this or the expected record changes.
+wire [OUT_BITS-1:0] all_outputs = {
+    o_can_tx,
+    o_tx_busy,
+    o_tx_done,
+    o_arb_lost,
+    o_rx_valid,
+    o_rx_id,
+    o_rx_ide,
+    o_rx_rtr,
+    o_rx_dlc,
+    o_rx_data,
+    o_tec,
+    o_rec,
+    o_err_state,
+    o_err_bit,
+    o_err_stuff,
+    o_err_crc,
+    o_err_form,
+    o_err_ack,
+    o_overload
+};
 
 task check_outputs;
     begin

@@ -41,6 +41,7 @@ parameter MAX_WORDS = 1 << 22;
 
 localparam N_IN = 2;
 localparam N_OUT = 17;
+localparam OUT_BITS = 125;
 
 `include "vector_player.vh"
 
@@ -71,6 +72,28 @@ task apply_inputs;
         i_can_rx = `IN_WORD(1) & 1'b1;
     end
 endtask
+
+// Every output in one vector, in check_outputs' order: the player runs
+// check_outputs again only when this or the expected record changes.
+wire [OUT_BITS-1:0] all_outputs = {
+    o_can_tx,
+    o_state,
+    o_booted,
+    o_config_done,
+    o_sdo_abort,
+    o_abort_code,
+    o_abort_index,
+    o_abort_sub,
+    o_node_lost,
+    o_pos_valid,
+    o_position,
+    o_pos_timeout,
+    o_pos_stale,
+    o_emcy_valid,
+    o_emcy_code,
+    o_emcy_reg,
+    o_sync_sent
+};
 
 task check_outputs;
     begin

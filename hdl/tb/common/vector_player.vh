@@ -2,10 +2,12 @@
 //
 // The including module defines, before the `include:
 //   localparam N_IN, N_OUT       number of input and output ports in the vector file
+//   localparam OUT_BITS          total width of the outputs
 //   parameter  HALF_PERIOD_FS    half the system-clock period in femtoseconds
 //   parameter  MAX_WORDS         size of the vector memory in 64-bit words
 //   task apply_inputs;           drives the DUT inputs from record `rec` (use `IN_WORD(k))
 //   task check_outputs;          compares every output with `CHECK (below)
+//   wire [OUT_BITS-1:0] all_outputs   every output checked, concatenated
 // and instantiates the DUT on clk / rst.
 //
 // Vector format (docs/vectors.md): each record is 1 + N_IN + 2*N_OUT words:
@@ -31,6 +33,10 @@ integer rec;
 integer last_cycle;
 integer cycle;
 integer compared;
+// The outputs as check_outputs last saw them, and whether a record has
+// started since: see the replay loop.
+reg [OUT_BITS-1:0] outputs_checked;
+reg record_started;
 reg [8*1024-1:0] vector_file;
 reg [8*1024-1:0] wave_file;
 
@@ -109,10 +115,24 @@ initial begin
     @(negedge clk);
     apply_inputs;
     load_expected;
+    record_started = 1'b1;
     rst = 1'b0;
     forever begin
         @(negedge clk);
-        check_outputs;
+        // Each cycle's outcome is that of comparing every output with its
+        // expected value under its mask. When no output has changed (!==:
+        // an X or Z that comes or goes is a change) and the record, hence
+        // the expectation, is the same as at the last check, that outcome is
+        // the last check's, a pass: check_outputs runs only when one of them
+        // changed. Most cycles of a replay change nothing (a core counting
+        // down a wait), and the 64-bit compare of each output was a third of
+        // an Icarus replay's time (esl_eeprom_page_write_read: 97 s -> 69 s
+        // with the compare left out).
+        if (record_started || all_outputs !== outputs_checked) begin
+            check_outputs;
+            outputs_checked = all_outputs;
+            record_started = 1'b0;
+        end
         compared = compared + 1;
         if (cycle == last_cycle) begin
             $display("PASS: %0s: %0d cycles, %0d records, every output compared every cycle",
@@ -124,6 +144,7 @@ initial begin
             rec = rec + 1;
             apply_inputs;
             load_expected;
+            record_started = 1'b1;
         end
     end
 end

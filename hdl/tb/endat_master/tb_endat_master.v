@@ -36,6 +36,7 @@ parameter MAX_WORDS = 1 << 22;
 
 localparam N_IN = 7;
 localparam N_OUT = 29;
+localparam OUT_BITS = 159;
 
 `include "vector_player.vh"
 
@@ -88,6 +89,40 @@ task apply_inputs;
         i_endat_data_in = `IN_WORD(6);
     end
 endtask
+
+// Every output in one vector, in check_outputs' order: the player runs
+// check_outputs again only when this or the expected record changes.
+wire [OUT_BITS-1:0] all_outputs = {
+    o_endat_clk,
+    o_endat_data_out,
+    o_endat_data_oe,
+    o_busy,
+    o_done,
+    o_position,
+    o_f1,
+    o_f2,
+    o_err_crc,
+    o_ad1,
+    o_ad1_valid,
+    o_err_ad1_crc,
+    o_ad2,
+    o_ad2_valid,
+    o_err_ad2_crc,
+    o_ack_addr,
+    o_ack_data,
+    o_err_type2,
+    o_err_type3,
+    o_err_type4,
+    o_err_ack,
+    o_err_timeout,
+    o_err_absent,
+    o_err_idle,
+    o_err_delay,
+    o_meas_done,
+    o_err_meas,
+    o_delay_valid,
+    o_delay
+};
 
 task check_outputs;
     begin

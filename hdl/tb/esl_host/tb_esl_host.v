@@ -22,6 +22,7 @@ parameter MAX_WORDS = 1 << 22;
 
 localparam N_IN = 7;
 localparam N_OUT = 27;
+localparam OUT_BITS = 156;
 
 `include "vector_player.vh"
 
@@ -72,6 +73,38 @@ task apply_inputs;
         i_rx = `IN_WORD(6) & 1'h1;
     end
 endtask
+
+// Every output in one vector, in check_outputs' order: the player runs
+// check_outputs again only when this or the expected record changes.
+wire [OUT_BITS-1:0] all_outputs = {
+    o_tx,
+    o_tx_en,
+    o_busy,
+    o_done,
+    o_cf,
+    o_sf,
+    o_sf2,
+    o_alm1,
+    o_alm2,
+    o_abs,
+    o_abm,
+    o_rs,
+    o_sc1,
+    o_sc2,
+    o_enid,
+    o_temp,
+    o_adf,
+    o_edf,
+    o_err_crc1,
+    o_err_crc2,
+    o_err_timeout,
+    o_err_frame,
+    o_err_cf,
+    o_err_comm,
+    o_err_seq,
+    o_err_rs,
+    o_err_busy
+};
 
 task check_outputs;
     begin

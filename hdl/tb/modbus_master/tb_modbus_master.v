@@ -18,6 +18,7 @@ parameter MAX_WORDS = 1 << 22;
 
 localparam N_IN = 7;
 localparam N_OUT = 18;
+localparam OUT_BITS = 63;
 
 `include "vector_player.vh"
 
@@ -45,6 +46,29 @@ task apply_inputs;
         i_rx = `IN_WORD(6) & 1'b1;
     end
 endtask
+
+// Every output in one vector, in check_outputs' order: the player runs
+// check_outputs again only when this or the expected record changes.
+wire [OUT_BITS-1:0] all_outputs = {
+    o_tx,
+    o_tx_en,
+    o_busy,
+    o_done,
+    o_valid,
+    o_value,
+    o_station,
+    o_exception,
+    o_err_parity,
+    o_err_framing,
+    o_err_gap,
+    o_err_length,
+    o_err_crc,
+    o_err_address,
+    o_err_exception,
+    o_err_function,
+    o_err_count,
+    o_err_timeout
+};
 
 task check_outputs;
     begin

@@ -25,6 +25,7 @@ parameter MAX_WORDS = 1 << 22;
 
 localparam N_IN = 4;
 localparam N_OUT = 14;
+localparam OUT_BITS = 45;
 
 `include "vector_player.vh"
 
@@ -45,6 +46,25 @@ task apply_inputs;
         i_rx = `IN_WORD(3) & 1'b1;
     end
 endtask
+
+// Every output in one vector, in check_outputs' order: the player runs
+// check_outputs again only when this or the expected record changes.
+wire [OUT_BITS-1:0] all_outputs = {
+    o_tx,
+    o_tx_en,
+    o_trigger,
+    o_clr,
+    o_busy,
+    o_done,
+    o_valid,
+    o_position,
+    o_err_checksum,
+    o_err_parity,
+    o_err_frame,
+    o_err_address,
+    o_err_timeout,
+    o_err_stale
+};
 
 task check_outputs;
     begin

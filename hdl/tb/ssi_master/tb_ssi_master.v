@@ -23,6 +23,7 @@ parameter MAX_WORDS = 1 << 22;
 
 localparam N_IN = 2;
 localparam N_OUT = 7;
+localparam OUT_BITS = 6 + BITS;
 
 `include "vector_player.vh"
 
@@ -43,6 +44,18 @@ task apply_inputs;
         i_ssi_data = `IN_WORD(1) & 1'b1;
     end
 endtask
+
+// Every output in one vector, in check_outputs' order: the player runs
+// check_outputs again only when this or the expected record changes.
+wire [OUT_BITS-1:0] all_outputs = {
+    o_ssi_clk,
+    o_busy,
+    o_done,
+    o_position,
+    o_err_idle,
+    o_err_double,
+    o_err_wire
+};
 
 task check_outputs;
     begin

@@ -16,6 +16,7 @@ parameter MAX_WORDS = 1 << 22;
 
 localparam N_IN = 5;
 localparam N_OUT = 17;
+localparam OUT_BITS = 90;
 
 `include "vector_player.vh"
 
@@ -40,6 +41,28 @@ task apply_inputs;
         i_rx = `IN_WORD(4) & 1'b1;
     end
 endtask
+
+// Every output in one vector, in check_outputs' order: the player runs
+// check_outputs again only when this or the expected record changes.
+wire [OUT_BITS-1:0] all_outputs = {
+    o_tx,
+    o_tx_en,
+    o_busy,
+    o_done,
+    o_cf,
+    o_sf,
+    o_abs,
+    o_abm,
+    o_enid,
+    o_almc,
+    o_adf,
+    o_edf,
+    o_err_crc,
+    o_err_timeout,
+    o_err_frame,
+    o_err_cf,
+    o_err_comm
+};
 
 task check_outputs;
     begin

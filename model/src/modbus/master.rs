@@ -346,9 +346,10 @@ impl Master {
     /// How many of the next steps with `input` only run counters
     /// (fast-forward): no output or state changes, no pulse comes and no
     /// character ends. The receiver waits between two samples (or idles),
-    /// the sender is idle, and the silence, timeout, gap and limit counters
-    /// are short of their ends. 0 while a pulse is up, a request is being
-    /// sent, or `input` starts an operation.
+    /// the sender is idle or in the middle of a bit, and the silence,
+    /// timeout, gap and limit counters are short of their ends. 0 while a
+    /// pulse is up, a character is being handed to the sender, or `input`
+    /// starts an operation.
     pub fn quiet(&self, input: &In) -> u64 {
         let o = &self.out;
         let pulse = o.o_done
@@ -364,8 +365,14 @@ impl Master {
             || o.o_err_count
             || o.o_err_timeout;
         let rx = self.rx_out;
-        if pulse || rx.o_valid || rx.o_parity_err || rx.o_frame_err || self.tx_pending || self.tx_in.i_valid || self.tx.state() != TxState::Idle {
+        if pulse || rx.o_valid || rx.o_parity_err || rx.o_frame_err || self.tx_pending || self.tx_in.i_valid {
             return 0;
+        }
+        // Mid-bit of a request character: only the sender's bit timer runs
+        // (the Send state waits for its busy to fall; the receiver listens
+        // to a high line while the driver is on).
+        if self.tx.state() != TxState::Idle {
+            return if self.state == State::Send { self.tx.quiet().min(self.rx.quiet(&uart::In { i_rx: input.i_rx || o.o_tx_en })) } else { 0 };
         }
         let t35 = self.cfg.t35_clocks;
         let fsm = match self.state {
@@ -406,6 +413,7 @@ impl Master {
             self.line_idle = (self.line_idle + n).min(self.cfg.t35_clocks);
         }
         self.rx.skip(n);
+        self.tx.skip(n);
     }
 
     /// One rising edge.

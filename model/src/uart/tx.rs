@@ -121,6 +121,24 @@ impl Tx {
         self.out
     }
 
+    /// How many of the next steps with `i_valid` low only count down the
+    /// bit timer (fast-forward): mid-bit while sending, no output changes
+    /// until the bit ends; `u64::MAX` when idle (the caller caps it where
+    /// `i_valid` may rise).
+    pub fn quiet(&self) -> u64 {
+        match self.state {
+            TxState::Idle => u64::MAX,
+            TxState::Send => self.cnt,
+        }
+    }
+
+    /// The same as `n` steps with `i_valid` low, for `n` up to [`Tx::quiet`].
+    pub fn skip(&mut self, n: u64) {
+        if self.state == TxState::Send {
+            self.cnt -= n;
+        }
+    }
+
     /// One rising edge.
     pub fn step(&mut self, input: &TxIn) -> TxOut {
         let mut next = self.out;
@@ -153,5 +171,43 @@ impl Tx {
         }
         self.out = next;
         next
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Skipping [`Tx::quiet`] steps leaves the sender where stepping does:
+    /// the same line, cycle for cycle, through a whole character (each
+    /// skipped cycle holds the last output), and the same state after it.
+    #[test]
+    fn skipping_the_quiet_steps_of_a_character_matches_stepping() {
+        let cfg = TxConfig { clocks_per_bit: 7, parity: Parity::Even };
+        let go = TxIn { i_valid: true, i_data: 0xA5 };
+        let idle = TxIn { i_valid: false, i_data: 0 };
+        let cycles = 7 * 11 + 3;
+        let mut stepped = Tx::new(cfg).unwrap();
+        let mut line = vec![stepped.step(&go)];
+        while line.len() < cycles {
+            line.push(stepped.step(&idle));
+        }
+        let mut skipping = Tx::new(cfg).unwrap();
+        let mut line_ff = vec![skipping.step(&go)];
+        let mut skips = 0;
+        while line_ff.len() < cycles {
+            let q = skipping.quiet().min((cycles - line_ff.len()) as u64);
+            if skipping.state() == TxState::Send && q > 0 {
+                let held = skipping.out();
+                skipping.skip(q);
+                line_ff.extend(std::iter::repeat_n(held, q as usize));
+                skips += 1;
+            } else {
+                line_ff.push(skipping.step(&idle));
+            }
+        }
+        assert_eq!(line, line_ff);
+        assert!(skips >= 11, "a skip in each of the 11 bits: {skips}");
+        assert_eq!((stepped.state(), stepped.out()), (skipping.state(), skipping.out()));
     }
 }
