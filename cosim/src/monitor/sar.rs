@@ -83,15 +83,15 @@ pub struct SarMonitor {
     decoder: Decoder,
     /// Bit time and the idle after a character's start that cuts the line, ps.
     cut_after_ps: u64,
-    /// A character's length, ps: a command may cut the line once the last
-    /// character on it has ended.
+    /// A character and half a bit, ps: the line is cut between two of the
+    /// encoder's characters once the last has ended and the line is idle.
     char_ps: u64,
     last_fall: Option<u64>,
     wire: bool,
     /// The host's driver enable at the last step.
     de: bool,
-    /// The encoder has sent a character since the host last drove the line.
-    answered: bool,
+    /// The last character on the line is the encoder's and not yet cut after.
+    uncut_answer: bool,
     handshake: bool,
     zero_answered: bool,
     t2_ps: u64,
@@ -128,11 +128,11 @@ impl SarMonitor {
             line: Line::new(),
             decoder: Decoder::new(options),
             cut_after_ps: ((fb + gap_bits + 1.0) * bit_ps).ceil() as u64,
-            char_ps: (fb * bit_ps).ceil() as u64,
+            char_ps: ((fb + 0.5) * bit_ps).ceil() as u64,
             last_fall: None,
             wire: true,
             de: false,
-            answered: false,
+            uncut_answer: false,
             handshake: matches!(cfg.mode, Mode::Handshake | Mode::HandshakeClear),
             zero_answered: enc.answer_zeroing,
             t2_ps: (t2 * 1e6).round() as u64,
@@ -156,13 +156,18 @@ impl SarMonitor {
     }
 
     /// Decodes the piece of line before `now` into `base.done` and starts
-    /// the next piece there; `at_command`: the host starts a command at `now`.
-    fn cut(&mut self, now: u64, at_command: bool) {
-        let events = if at_command { self.decoder.feed_to_command(&self.line.wire, &self.line.de) } else { self.decoder.feed(&self.line.wire, &self.line.de) };
+    /// the next piece there: after an idle gap (`carry` false: the piece
+    /// ends the frame finder's run, and the gap cut waits for the next
+    /// character), or between two of the encoder's characters (`carry`).
+    fn cut(&mut self, now: u64, carry: bool) {
+        let events = if carry { self.decoder.feed_carrying(&self.line.wire, &self.line.de) } else { self.decoder.feed(&self.line.wire, &self.line.de) };
         self.frames += events.iter().filter(|b| b.kind == "frame").count() as u64;
         self.base.done.extend(events.into_iter().map(|b| serde_json::to_value(b).unwrap_or(Value::Null)));
         self.line.cut(now);
-        self.last_fall = None;
+        self.uncut_answer = false;
+        if !carry {
+            self.last_fall = None;
+        }
     }
 
     fn pulse(&mut self, now: u64, level: bool, clr: bool) {
@@ -205,22 +210,18 @@ impl Emulator for SarMonitor {
         if self.last_fall.is_some_and(|f| wire && self.wire && now >= f + self.cut_after_ps) {
             // The line has been idle the host's gap after the last character: decode the piece.
             self.cut(now, false);
-        } else if de && !self.de && self.answered && self.wire && self.last_fall.is_none_or(|f| now >= f + self.char_ps) {
-            // The host starts a command after an answer, the line idle: cut
-            // there too (the decoder carries what crosses a command), so that
-            // reads closer together than the idle cut still decode one
-            // transaction at a time (`count` and `last_value` decode the
-            // piece since the last cut on every call).
+        } else if self.uncut_answer && !de && !self.de && wire && self.wire && self.last_fall.is_some_and(|f| now >= f + self.char_ps) {
+            // Between two of the encoder's characters, the line idle: cut
+            // here too, carrying the frame finder over (the events are those
+            // of one piece), so that `count` and `last_value`, which decode
+            // the piece since the last cut on every call, decode one
+            // transaction, not every read since the last idle gap (the
+            // testbench's reads may follow each other closer than that).
             self.cut(now, true);
         }
         if !wire && self.wire {
             self.last_fall = Some(now);
-            if !de {
-                self.answered = true;
-            }
-        }
-        if de {
-            self.answered = false;
+            self.uncut_answer = !de;
         }
         self.wire = wire;
         self.de = de;

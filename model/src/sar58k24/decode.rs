@@ -161,15 +161,25 @@ pub struct Decoder {
     options: Options,
     tag: u8,
     next_index: usize,
-    /// The finder's synchronisation at the end of a piece cut where the
-    /// host starts a command ([`Decoder::feed_to_command`]), for the next.
-    carried_sync: Option<bool>,
+    /// The finder as a piece cut between two characters left it
+    /// ([`Decoder::feed_carrying`]), for the next piece.
+    carried: Option<Carried>,
+}
+
+/// What a [`Finder`] holds from one character to the next.
+#[derive(Debug, Clone)]
+struct Carried {
+    window: Vec<u8>,
+    count: usize,
+    synced: bool,
+    pending: Vec<Char>,
+    last_end_ps: Option<u64>,
 }
 
 impl Decoder {
     /// A decoder with `options`, the tag `81` (no command seen yet).
     pub fn new(options: Options) -> Self {
-        Decoder { options, tag: frames::TAG_81, next_index: 0, carried_sync: None }
+        Decoder { options, tag: frames::TAG_81, next_index: 0, carried: None }
     }
 
     /// The bit time, ps.
@@ -181,29 +191,28 @@ impl Decoder {
     /// driver enable `tx_en`, both from the piece's start on; the piece ends
     /// with an idle gap, or the line's end).
     pub fn feed(&mut self, line_sig: &Signal, tx_en: &Signal) -> Vec<Burst> {
-        self.feed_piece(line_sig, tx_en).0
+        self.feed_piece(line_sig, tx_en, false)
     }
 
-    /// [`Decoder::feed`] for a piece that ends where the host starts a
-    /// command, with no idle gap before it. A command is a frame boundary
-    /// to the finder anyway; what else it keeps across one, whether it is
-    /// synchronised, is carried into the next piece. So cutting the line
-    /// there changes no event, and a monitor that is asked for its events
-    /// once per command decodes one transaction each time, not the whole
-    /// run since the last idle gap.
-    pub fn feed_to_command(&mut self, line_sig: &Signal, tx_en: &Signal) -> Vec<Burst> {
-        let (out, synced) = self.feed_piece(line_sig, tx_en);
-        self.carried_sync = Some(synced);
-        out
+    /// [`Decoder::feed`] for a piece cut between two of the encoder's
+    /// characters (the line idle, no character under way and none of the
+    /// host's before the next of the encoder's): the frame finder's state
+    /// carries into the next piece, so the events are those of decoding the
+    /// two pieces as one. A monitor asked for its events once per read then
+    /// decodes one transaction each time, not everything since the last
+    /// idle gap (reads may follow each other closer than that).
+    pub fn feed_carrying(&mut self, line_sig: &Signal, tx_en: &Signal) -> Vec<Burst> {
+        self.feed_piece(line_sig, tx_en, true)
     }
 
-    /// The events of a piece and the finder's synchronisation at its end.
-    fn feed_piece(&mut self, line_sig: &Signal, tx_en: &Signal) -> (Vec<Burst>, bool) {
+    /// The events of a piece; `carry`: keep the finder for the next piece
+    /// instead of ending the piece with a gap.
+    fn feed_piece(&mut self, line_sig: &Signal, tx_en: &Signal, carry: bool) -> Vec<Burst> {
         let options = self.options.clone();
         let bit_ps = self.bit_ps();
         let len = frames::frame_len(options.bits);
-        let synced = self.carried_sync.take().unwrap_or(true);
-        let mut f = Finder { options: options.clone(), len, window: vec![0; len], count: 0, synced, pending: Vec::new(), last_end_ps: None, tag: self.tag, out: Vec::new() };
+        let c = self.carried.take().unwrap_or(Carried { window: vec![0; len], count: 0, synced: true, pending: Vec::new(), last_end_ps: None });
+        let mut f = Finder { options: options.clone(), len, window: c.window, count: c.count, synced: c.synced, pending: c.pending, last_end_ps: c.last_end_ps, tag: self.tag, out: Vec::new() };
         let chars = line::chars(line_sig, Some(tx_en), bit_ps, options.parity);
         let mut k = 0;
         while k < chars.len() {
@@ -236,15 +245,18 @@ impl Decoder {
                 k += 1;
             }
         }
-        f.gap();
+        if carry {
+            self.carried = Some(Carried { window: std::mem::take(&mut f.window), count: f.count, synced: f.synced, pending: std::mem::take(&mut f.pending), last_end_ps: f.last_end_ps });
+        } else {
+            f.gap();
+        }
         self.tag = f.tag;
-        let synced = f.synced;
         let mut out = f.out;
         for b in &mut out {
             b.index += self.next_index;
         }
         self.next_index += out.len();
-        (out, synced)
+        out
     }
 }
 
@@ -305,8 +317,9 @@ mod tests {
     }
 
     /// A line of 8N1 characters at `bit_ps`: each part is (host drives,
-    /// bytes, idle bits after it); a byte in `bad_stop` has its stop bit low.
-    fn line_of(parts: &[(bool, &[u8], u64)], bad_stop: u8, bit_ps: u64) -> (Signal, Signal) {
+    /// bytes, idle bits after it); the encoder's byte `bad_stop` has its stop
+    /// bit low, and `spaced` puts one idle bit after each of its characters.
+    fn line_of(parts: &[(bool, &[u8], u64)], bad_stop: u8, spaced: bool, bit_ps: u64) -> (Signal, Signal) {
         let (mut line_sig, mut tx_en) = (Signal::named("line"), Signal::named("tx_en"));
         line_sig.push(0, true);
         tx_en.push(0, false);
@@ -321,6 +334,9 @@ mod tests {
                     t += bit_ps;
                 }
                 line_sig.push(t, true);
+                if spaced && !host {
+                    t += bit_ps;
+                }
             }
             tx_en.push(t, false);
             t += idle * bit_ps;
@@ -328,45 +344,59 @@ mod tests {
         (line_sig, tx_en)
     }
 
-    /// Cutting the line where the host starts a command
-    /// ([`Decoder::feed_to_command`]) gives the events of decoding it whole,
-    /// also when the finder is out of step across the command (an answer
-    /// ending in a character with a low stop bit; the next answer's bad
-    /// checksum is then noise, not a checksum fault). A plain [`Decoder::feed`]
-    /// there, which starts the finder afresh, does not.
+    /// Cutting the line after each of the encoder's characters
+    /// ([`Decoder::feed_carrying`]) gives the events of decoding it whole:
+    /// frames, a checksum fault, a character with a low stop bit, and the
+    /// finder out of step across a command (after that character the next
+    /// answer's bad checksum is noise, not a checksum fault). A plain
+    /// [`Decoder::feed`] at the same cuts, which ends each piece with a gap,
+    /// does not.
     #[test]
-    fn a_cut_where_the_host_starts_a_command_changes_no_event() {
+    fn cuts_between_the_encoder_s_characters_change_no_event() {
         let bit_ps = (1e12f64 / 115_200.0).round() as u64;
         let cmd = frames::read_command(2);
         let mut bad_sum = frames::encode_tagged(8738, 16, 0x81);
         bad_sum[4] ^= 1;
         let good = frames::encode_tagged(4660, 16, 0x81);
         // Two idle bits between an answer and the next command: less than the gap.
-        let parts: [(bool, &[u8], u64); 6] = [(true, &cmd, 4), (false, &[0xFF, 0x81, 0x5A], 2), (true, &cmd, 4), (false, &bad_sum, 2), (true, &cmd, 4), (false, &good, 20)];
-        let (l, de) = line_of(&parts, 0x5A, bit_ps);
-        let o = options(AnswerTag::Fixed81);
-        let whole = decode(&l, &de, &o);
-        let summary = |v: &[Burst]| v.iter().map(|b| (b.index, b.kind, b.start_ps, b.bytes.clone(), b.position, b.errors.clone())).collect::<Vec<_>>();
-        assert_eq!(whole.iter().filter(|b| b.kind == "command").count(), 3, "{:?}", summary(&whole));
-        assert_eq!(whole.last().map(|b| b.position), Some(Some(4660)));
-        // The commands' starts: where a monitor cuts (DE rises a bit before each).
-        let cuts: Vec<u64> = de.changes.iter().filter(|c| c.1).map(|c| c.0).skip(1).collect();
-        assert_eq!(cuts.len(), 2);
-        let piecewise = |carry: bool| {
-            let mut d = Decoder::new(o.clone());
-            let mut from = 0;
-            let mut out = Vec::new();
-            for &c in &cuts {
-                let (l_piece, de_piece) = (l.tail(from), de.tail(from));
-                let (l_piece, de_piece) = (cut_before(&l_piece, c), cut_before(&de_piece, c));
-                out.extend(if carry { d.feed_to_command(&l_piece, &de_piece) } else { d.feed(&l_piece, &de_piece) });
-                from = c;
-            }
-            out.extend(d.feed(&l.tail(from), &de.tail(from)));
-            out
-        };
-        assert_eq!(summary(&piecewise(true)), summary(&whole));
-        assert_ne!(summary(&piecewise(false)), summary(&whole), "the carried synchronisation made no difference: the test line does not test it");
+        let parts: [(bool, &[u8], u64); 8] =
+            [(true, &cmd, 4), (false, &good, 2), (true, &cmd, 4), (false, &[0xFF, 0x81, 0x5A], 2), (true, &cmd, 4), (false, &bad_sum, 2), (true, &cmd, 4), (false, &good, 20)];
+        for spaced in [false, true] {
+            let (l, de) = line_of(&parts, 0x5A, spaced, bit_ps);
+            let o = options(AnswerTag::Fixed81);
+            let whole = decode(&l, &de, &o);
+            let summary = |v: &[Burst]| v.iter().map(|b| (b.index, b.kind, b.start_ps, b.bytes.clone(), b.position, b.errors.clone())).collect::<Vec<_>>();
+            let kinds: Vec<_> = whole.iter().map(|b| (b.kind, b.errors.clone())).collect();
+            assert_eq!(kinds.iter().filter(|k| k.0 == "command").count(), 4, "{kinds:?}");
+            assert_eq!(kinds.iter().filter(|k| k.0 == "frame").count(), 2, "{kinds:?}");
+            assert!(kinds.contains(&("fault", vec!["frame"])), "{kinds:?}");
+            // Half a bit after each of the encoder's characters, where the line is idle.
+            let chars = line::chars(&l, Some(&de), bit_ps, Parity::None);
+            let cuts: Vec<u64> = chars
+                .iter()
+                .enumerate()
+                .filter(|(_, c)| !c.from_host)
+                .map(|(k, c)| (k, c.start_ps + 10 * bit_ps + bit_ps / 2))
+                .filter(|&(k, t)| chars.get(k + 1).is_none_or(|n| n.start_ps > t))
+                .map(|(_, t)| t)
+                .collect();
+            // After each answer only when its characters follow back to back; after each character when spaced.
+            assert_eq!(cuts.len(), if spaced { 5 + 3 + 5 + 5 } else { 4 }, "{cuts:?}");
+            let piecewise = |carry: bool| {
+                let mut d = Decoder::new(o.clone());
+                let mut from = 0;
+                let mut out = Vec::new();
+                for &c in &cuts {
+                    let (l_piece, de_piece) = (cut_before(&l.tail(from), c), cut_before(&de.tail(from), c));
+                    out.extend(if carry { d.feed_carrying(&l_piece, &de_piece) } else { d.feed(&l_piece, &de_piece) });
+                    from = c;
+                }
+                out.extend(d.feed(&l.tail(from), &de.tail(from)));
+                out
+            };
+            assert_eq!(summary(&piecewise(true)), summary(&whole));
+            assert_ne!(summary(&piecewise(false)), summary(&whole), "the carried finder made no difference: the test line does not test it");
+        }
     }
 
     /// `s` up to (not including) `t_ps`.
