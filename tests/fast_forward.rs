@@ -4,7 +4,9 @@
 //! stepped every cycle, and
 //! - every cycle's complete sample (inputs, expected outputs, care masks,
 //!   line and decoded signals) is the same, a skipped cycle's sample being
-//!   the last stepped one;
+//!   the last stepped one but for the free-running counters among the
+//!   decoded signals ([`Testbench::counters`]), which the next stepped
+//!   cycle's sample checks;
 //! - both finish on the same cycle with the same transcript.
 //!
 //! Recording runs step every cycle, so the vectors, waves and transcripts
@@ -42,6 +44,7 @@ impl Visitor for Lockstep<'_> {
             let start = skipping.cycle();
             skipping.skip(quiet);
             skipped += quiet;
+            let counters = skipping.counters();
             for _ in 0..quiet {
                 assert!(!stepped.finished(), "{name}: the skip from cycle {start} by {quiet} runs past the end");
                 stepped.step(Some(&mut want));
@@ -49,8 +52,8 @@ impl Visitor for Lockstep<'_> {
                 // the skipped cycles must then all show the first one.
                 let reference = got.get_or_insert_with(|| want.clone());
                 assert_eq!(
-                    *reference,
-                    want,
+                    reference.without_counters(counters),
+                    want.without_counters(counters),
                     "{name}: cycle {} changes within the {quiet} cycles skipped from cycle {start}",
                     stepped.cycle() - 1
                 );
@@ -88,7 +91,7 @@ fn fast_forward_matches_stepping_on_every_scenario() {
     }
     // The protocols with quiet stretches do skip them, so the comparison
     // above is not of two stepped runs.
-    for core in ["ssi_master", "biss_master", "endat_master", "esl_host", "tformat_host", "sar_async_host", "modbus_master", "uart_rx"] {
+    for core in ["ssi_master", "biss_master", "endat_master", "esl_host", "tformat_host", "sar_async_host", "modbus_master", "uart_rx", "can_controller", "canopen_master"] {
         let (cycles, skipped) = skipped_by_core[core];
         assert!(skipped * 2 > cycles, "{core}: only {skipped} of {cycles} cycles skipped");
     }

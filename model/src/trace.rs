@@ -35,6 +35,16 @@ pub struct Sample {
 }
 
 impl Sample {
+    /// This sample with the decoded columns `counters` zeroed: what a
+    /// quiet stretch holds ([`crate::testbench::Testbench::counters`]).
+    pub fn without_counters(&self, counters: &[usize]) -> Sample {
+        let mut s = self.clone();
+        for &k in counters {
+            s.decoded[k] = 0;
+        }
+        s
+    }
+
     /// A zeroed sample sized for `layout`.
     pub fn for_layout(layout: &Layout) -> Self {
         Sample {

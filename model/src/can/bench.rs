@@ -7,12 +7,17 @@
 //! sigrok's `can` decoder has of the `can_rx` line), with the core's pulses
 //! during that frame.
 //!
-//! Fast-forward ([`Testbench::quiet_cycles`]): quiet only while the bus is
-//! idle (every delay line recessive, every controller in `IDLE` with nothing
-//! to send, [`Controller::quiet`]): sample points then read recessive and do
-//! nothing, so only the bit clocks run ([`super::BitClock::skip`]). A skip
-//! ends before the next scripted frame, fault window or the run's end, and,
-//! as the samples show the core's `tq_cnt`, at the end of the time quantum.
+//! Fast-forward ([`Testbench::quiet_cycles`]): quiet while every receive
+//! level holds (no change on its way through the bus's delay lines, no
+//! stuck or flip window opening or closing) and every controller only
+//! counts its bit clock ([`Controller::quiet`]): in bus idle with nothing
+//! to send, sample points read recessive and do nothing; in a frame, up to
+//! the next sample point or bit end of any controller on the bus. Only the
+//! bit clocks run ([`super::BitClock::skip`]). A skip ends before the next
+//! scripted frame, fault window or the run's end. The samples' `tq_cnt`
+//! (the core's quantum count) is the one value that runs on through a skip
+//! ([`Testbench::counters`]); `tbgen gen` steps every cycle, so the waves
+//! show it counting.
 
 use serde::{Deserialize, Serialize};
 
@@ -461,12 +466,44 @@ impl Disturber {
             .unwrap_or(u64::MAX)
     }
 
-    /// Advances `n` cycles of a recessive line, at most [`Disturber::quiet`].
-    pub(crate) fn skip(&mut self, n: u64) {
-        self.recessive_run += n;
-        self.prev = true;
+    /// The level the target reads at `cycle` from the undisturbed `level`,
+    /// and for how many cycles from `cycle` on it keeps reading it while
+    /// `level` holds: `None` when `level` is an edge (`step` may count a
+    /// frame start on it), else until the next flip window of the frame
+    /// being counted opens or closes.
+    pub(crate) fn steady(&self, level: bool, cycle: u64, cpb: u64) -> Option<(bool, u64)> {
+        if level != self.prev {
+            return None;
+        }
+        if self.frames < 0 {
+            return Some((level, u64::MAX));
+        }
+        let k = self.frames as u32;
+        let mut flip = false;
+        let mut q = u64::MAX;
+        for &(_, _, bit) in self.flips.iter().filter(|&&(f, n, _)| k >= f && k < f + n) {
+            let (from, to) = (self.sof + bit as u64 * cpb, self.sof + (bit as u64 + 1) * cpb);
+            if cycle < from {
+                q = q.min(from - cycle);
+            } else if cycle < to {
+                flip = true;
+                q = q.min(to - cycle);
+            }
+        }
+        Some((level ^ flip, q))
+    }
+
+    /// Advances `n` cycles of a line held at the undisturbed `level`, at
+    /// most [`Disturber::quiet`] (a recessive line) or
+    /// [`Disturber::steady`]: what `n` calls of `step` would do.
+    pub(crate) fn skip(&mut self, n: u64, level: bool) {
+        self.recessive_run = if level { self.recessive_run + n } else { 0 };
+        self.prev = level;
     }
 }
+
+/// Where the core's `tq_cnt` sits among the decoded signals (the layout in [`Bench::new`]).
+const TQ_CNT_COLUMN: usize = 2;
 
 /// The core, emulated nodes and the bus.
 pub struct Bench {
@@ -480,6 +517,8 @@ pub struct Bench {
     script: Vec<(u64, super::frame::Frame)>,
     next: usize,
     last_out: Out,
+    /// The last step gave the core a start pulse (the next sample shows it fall).
+    started: bool,
     rx_dut: bool,
     cycle: u64,
     end: Option<u64>,
@@ -521,6 +560,7 @@ impl Bench {
             script: cfg.dut.frames.iter().map(|s| (tb.cycles_nearest_ns(s.at_us * 1e3), s.frame())).collect(),
             next: 0,
             last_out: Out::default(),
+            started: false,
             rx_dut: true,
             cycle: 0,
             end: None,
@@ -547,8 +587,45 @@ impl Bench {
     }
 
     fn rx_at(&mut self, j: usize) -> bool {
-        let level = self.bus.rx(j) && !self.stuck.iter().any(|&(a, b)| (a..b).contains(&self.cycle));
+        let level = self.undisturbed_rx(j);
         self.disturbers[j].step(level, self.cycle, self.cpb)
+    }
+
+    /// Nothing left to send and the core idle: `step` counts such cycles
+    /// towards the end of the run.
+    fn all_done(&self) -> bool {
+        self.next == self.script.len() && !self.last_out.o_tx_busy && self.nodes.iter().all(Emulator::done) && self.dut.state() == State::Idle
+    }
+
+    /// Cycles from this one to the one whose step decides the end of the
+    /// run (two idle bits, or `max_us`), while nothing changes: the end is
+    /// then one bit later.
+    fn cycles_to_end_decision(&self) -> u64 {
+        let by_idle = if self.all_done() { (2 * self.cpb).saturating_sub(self.idle_cycles).max(1) } else { u64::MAX };
+        by_idle.min(self.max_cycles.saturating_sub(self.cycle).max(1))
+    }
+
+    /// Node `j`'s receive level this cycle before its flips: the bus, held
+    /// dominant in a stuck window.
+    fn undisturbed_rx(&self, j: usize) -> bool {
+        self.bus.rx(j) && !self.stuck.iter().any(|&(a, b)| (a..b).contains(&self.cycle))
+    }
+
+    /// Node `j`'s receive level this cycle, and for how many cycles from
+    /// this one it holds while every node keeps its transmit level: `None`
+    /// on an edge its disturber may count as a frame start.
+    fn steady_rx(&self, j: usize) -> Option<(bool, u64)> {
+        let c = self.cycle;
+        let mut q = self.bus.steady(j);
+        for &(a, b) in &self.stuck {
+            if c < a {
+                q = q.min(a - c);
+            } else if c < b {
+                q = q.min(b - c);
+            }
+        }
+        let (level, flips) = self.disturbers[j].steady(self.undisturbed_rx(j), c, self.cpb)?;
+        Some((level, q.min(flips)))
     }
 
     fn outcome(&mut self, outcome: &'static str, out: &Out) {
@@ -605,6 +682,7 @@ impl Testbench for Bench {
             }
         }
         let out = self.dut.step(&input);
+        self.started = input.i_tx_start;
         let mut tx = std::mem::take(&mut self.tx_buf);
         tx.clear();
         tx.push(out.o_can_tx);
@@ -648,34 +726,45 @@ impl Testbench for Bench {
         sample.decoded.copy_from_slice(&[self.dut.state() as u64, self.dut.pos() as u64 & 0x7F, self.dut.clock().tq_cnt as u64, self.monitor.controller().state() as u64]);
     }
 
-    /// Quiet when the bus is idle: every delay line recessive, the core,
-    /// the listen-only monitor and every node idle with nothing to send
-    /// before then ([`Controller::quiet`], [`Emulator::quiet`]), no scripted
-    /// frame, flip or stuck window ahead before then; and, as the samples
-    /// show the core's `tq_cnt`, no further than the end of the current
-    /// time quantum (see the module docs).
+    /// Quiet while no line and no controller can change: each node's
+    /// receive level (the bus through its delay lines, the stuck windows
+    /// and its flip windows) holds ([`Bus::steady`], [`Disturber::steady`]),
+    /// and the core, the listen-only monitor and every node only count
+    /// their bit clocks ([`Controller::quiet`], [`Emulator::quiet`]): in
+    /// bus idle for as long as that lasts, in a frame up to the next sample
+    /// point or bit end of any of them. No scripted frame, flip or stuck
+    /// window ahead before then, the core's last input no start pulse and
+    /// its receive level the one the last sample shows. The core's `tq_cnt`
+    /// counts on through it ([`Testbench::counters`]; see the module docs).
     fn quiet_cycles(&self) -> u64 {
         let c = self.cycle;
-        let mut q = self.dut.quiet(true).min(self.dut.clock().quantum_left(&self.dut.config().timing));
-        if q == 0 || self.monitor.controller().quiet(true) == 0 || !self.bus.recessive() {
+        // Cycle 0 has no sample before it to repeat.
+        if c == 0 || self.started {
             return 0;
         }
-        if let Some(e) = self.end {
-            q = q.min(e - c);
+        let mut q = u64::MAX;
+        let Some((rx, steady)) = self.steady_rx(0) else { return 0 };
+        if rx != self.rx_dut {
+            return 0;
         }
-        if let Some((at, _)) = self.script.get(self.next) {
-            q = q.min(at.saturating_sub(c));
-        }
-        for &(a, b) in &self.stuck {
-            if c < b {
-                q = q.min(a.saturating_sub(c));
+        q = q.min(steady).min(self.dut.quiet(rx)).min(self.monitor.controller().quiet(rx));
+        for (k, node) in self.nodes.iter().enumerate() {
+            if q == 0 {
+                return 0;
             }
+            let Some((rx, steady)) = self.steady_rx(k + 1) else { return 0 };
+            q = q.min(steady).min(node.quiet(rx));
         }
-        for d in &self.disturbers {
-            q = q.min(d.quiet(c, self.cpb));
-        }
-        for n in &self.nodes {
-            q = q.min(n.quiet(true));
+        q = match self.end {
+            Some(e) => q.min(e - c),
+            // No further than where `skip` decides the end (as `step` would).
+            None => q.min(self.cycles_to_end_decision()),
+        };
+        match self.script.get(self.next) {
+            // One already due waits for the core's buffer, which frees only on a sample point.
+            Some((at, _)) if *at <= c && self.last_out.o_tx_busy => {}
+            Some((at, _)) => q = q.min(at.saturating_sub(c)),
+            None => {}
         }
         q
     }
@@ -684,8 +773,9 @@ impl Testbench for Bench {
         if n == 0 {
             return;
         }
-        for d in &mut self.disturbers {
-            d.skip(n);
+        for j in 0..self.disturbers.len() {
+            let level = self.undisturbed_rx(j);
+            self.disturbers[j].skip(n, level);
         }
         self.dut.skip(n);
         self.monitor.skip(n);
@@ -693,21 +783,21 @@ impl Testbench for Bench {
             node.skip(n);
         }
         self.bus.skip(n);
-        self.rx_dut = true;
         // The end as `step` decides it, its conditions being the same on every skipped cycle.
         let c = self.cycle;
-        let quiet = self.next == self.script.len() && !self.last_out.o_tx_busy && self.nodes.iter().all(Emulator::done) && self.dut.state() == State::Idle;
-        let idle0 = self.idle_cycles;
-        self.idle_cycles = if quiet { idle0 + n } else { 0 };
         if self.end.is_none() {
-            let by_idle = if quiet { (2 * self.cpb).saturating_sub(idle0).max(1) } else { u64::MAX };
-            let by_max = self.max_cycles.saturating_sub(c).max(1);
-            let s = by_idle.min(by_max);
+            let s = self.cycles_to_end_decision();
             if s <= n {
                 self.end = Some(c + s + self.cpb);
             }
         }
+        self.idle_cycles = if self.all_done() { self.idle_cycles + n } else { 0 };
         self.cycle += n;
+    }
+
+    /// The core's `tq_cnt` counts through a quiet stretch.
+    fn counters(&self) -> &'static [usize] {
+        &[TQ_CNT_COLUMN]
     }
 
     fn finished(&self) -> bool {

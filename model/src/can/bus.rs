@@ -9,6 +9,8 @@
 //! (`t_tx`) and its receiver (`t_rx`), so that a node hears itself after its
 //! loop delay, as a transceiver datasheet states it.
 
+use std::collections::VecDeque;
+
 use serde::{Deserialize, Serialize};
 
 use crate::{ConfigError, Result, Timebase};
@@ -43,6 +45,9 @@ pub struct Bus {
     hist: Vec<Vec<bool>>,
     len: usize,
     cycle: usize,
+    /// Per node, the cycles whose level differs from the cycle before's,
+    /// for as long as the change may still be on its way to a node.
+    changes: Vec<VecDeque<usize>>,
 }
 
 impl Bus {
@@ -62,7 +67,7 @@ impl Bus {
             })
             .collect();
         let len = delay.iter().flatten().copied().max().unwrap_or(1) + 1;
-        Bus { hist: vec![vec![true; len]; places.len()], delay, len, cycle: 0 }
+        Bus { hist: vec![vec![true; len]; places.len()], delay, len, cycle: 0, changes: vec![VecDeque::new(); places.len()] }
     }
 
     /// Delay from node `from`'s TXD to node `to`'s RXD, cycles.
@@ -77,22 +82,65 @@ impl Bus {
 
     /// Whether the delay lines hold nothing but recessive levels: then, as
     /// long as every node keeps sending recessive, every RXD reads
-    /// recessive and [`Bus::skip`] may replace the pushes.
+    /// recessive.
     pub fn recessive(&self) -> bool {
         self.hist.iter().all(|h| h.iter().all(|&l| l))
     }
 
-    /// Moves `n` cycles on with every node recessive, on a
-    /// [`Bus::recessive`] bus (the lines stay all recessive).
+    /// For how many cycles from this one node `j`'s RXD keeps its level
+    /// while every node keeps sending the level it sent last: until the
+    /// first change of a node's level still on its way reaches `j` (one
+    /// another node's dominant level masks is counted all the same), or
+    /// for ever.
+    pub fn steady(&self, j: usize) -> u64 {
+        let mut q = u64::MAX;
+        for (i, changes) in self.changes.iter().enumerate() {
+            // A change pushed at cycle t reaches j at cycle t + d.
+            let d = self.delay[i][j];
+            for &t in changes.iter().rev() {
+                if t + d <= self.cycle {
+                    break;
+                }
+                q = q.min((t + d - self.cycle) as u64);
+            }
+        }
+        q
+    }
+
+    /// Moves `n` cycles on with every node sending the level it sent last
+    /// (what `n` pushes of those levels would do).
     pub fn skip(&mut self, n: u64) {
+        let len = self.len;
+        let last = (self.cycle + len - 1) % len;
+        for h in &mut self.hist {
+            let level = h[last];
+            for k in 0..(n as usize).min(len) {
+                h[(self.cycle + k) % len] = level;
+            }
+        }
         self.cycle += n as usize;
+        self.forget();
     }
 
     /// Records this cycle's TXD levels and moves to the next cycle.
     pub fn push(&mut self, tx: &[bool]) {
-        for (h, &t) in self.hist.iter_mut().zip(tx) {
-            h[self.cycle % self.len] = t;
+        let (now, last) = (self.cycle % self.len, (self.cycle + self.len - 1) % self.len);
+        for ((h, &t), changes) in self.hist.iter_mut().zip(tx).zip(&mut self.changes) {
+            if h[last] != t {
+                changes.push_back(self.cycle);
+            }
+            h[now] = t;
         }
         self.cycle += 1;
+        self.forget();
+    }
+
+    /// Drops the changes that have reached every node.
+    fn forget(&mut self) {
+        for changes in &mut self.changes {
+            while changes.front().is_some_and(|&t| t + self.len <= self.cycle) {
+                changes.pop_front();
+            }
+        }
     }
 }

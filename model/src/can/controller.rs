@@ -440,21 +440,27 @@ impl Controller {
         self.out
     }
 
-    /// How many of the next cycles, with `i_can_rx` at `rx` and no
-    /// `i_tx_start`, change nothing but the bit clock's counters: any number
-    /// in bus idle with nothing to send, a recessive line through the
-    /// synchroniser and no pulse standing (each sample point then reads
-    /// recessive and does nothing, no edge can synchronise, and the
-    /// transmitter keeps sending recessive); otherwise 0. Frames, flags,
-    /// intermission and bus integration count bits, so they are stepped.
+    /// How many of the next cycles, with `i_can_rx` held at `rx` and no
+    /// `i_tx_start`, change nothing but the bit clock's counters. None while
+    /// `rx` is still on its way through the synchroniser (an edge may come)
+    /// or a pulse stands (it falls in the next cycle). Otherwise:
+    /// - any number in bus idle with nothing to send and a recessive line,
+    ///   the transmitter sending recessive: each sample point then reads
+    ///   recessive and does nothing;
+    /// - in any other state, the cycles before the bit clock's next sample
+    ///   point or bit end ([`BitClock::cycles_to_event`]): between the two
+    ///   only `pre_cnt`/`tq_cnt` count, as no edge can come.
     pub fn quiet(&self, rx: bool) -> u64 {
         let n = self.cfg.sync_stages as usize;
         let o = &self.out;
         let pulse = o.o_tx_done || o.o_arb_lost || o.o_rx_valid || o.o_err_bit || o.o_err_stuff || o.o_err_crc || o.o_err_form || o.o_err_ack || o.o_overload;
-        if self.state == State::Idle && rx && self.rx_prev && self.sync[..n].iter().all(|&s| s) && !self.tx_pending && self.tx_bit && o.o_can_tx && !o.o_tx_busy && !pulse {
+        if pulse || rx != self.rx_prev || self.sync[..n].iter().any(|&s| s != rx) {
+            return 0;
+        }
+        if self.state == State::Idle && rx && !self.tx_pending && self.tx_bit && o.o_can_tx && !o.o_tx_busy {
             u64::MAX
         } else {
-            0
+            self.clock.cycles_to_event(&self.cfg.timing)
         }
     }
 

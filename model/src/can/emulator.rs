@@ -176,17 +176,20 @@ impl Emulator {
 
     /// How many of the next f_sys cycles of the bench, with `rx` held,
     /// leave this node's transmit level and everything it records unchanged:
-    /// its controller idle ([`Controller::quiet`]) and no scripted frame due
-    /// before then on its own clock (a node with a ppm offset runs
-    /// `rate` own cycles per bench cycle; the count is rounded down and one
-    /// cycle of phase kept in hand).
+    /// its controller only counting ([`Controller::quiet`]) and no scripted
+    /// frame due before then on its own clock (one already due waits for
+    /// the controller's buffer, which frees only on a sample point). A node
+    /// with a ppm offset runs `rate` own cycles per bench cycle; the count
+    /// is rounded down and one cycle of phase kept in hand.
     pub fn quiet(&self, rx: bool) -> u64 {
-        if self.ctrl.quiet(rx) == 0 || self.tx != self.ctrl.out().o_can_tx {
+        let ctrl = self.ctrl.quiet(rx);
+        if ctrl == 0 || self.tx != self.ctrl.out().o_can_tx {
             return 0;
         }
         let own = match self.script.get(self.next) {
-            Some((at, _)) => at.saturating_sub(self.own_cycle),
-            None => u64::MAX,
+            Some((at, _)) if *at <= self.own_cycle && self.ctrl.out().o_tx_busy => ctrl,
+            Some((at, _)) => at.saturating_sub(self.own_cycle).min(ctrl),
+            None => ctrl,
         };
         if self.rate == 1.0 || own == u64::MAX {
             own

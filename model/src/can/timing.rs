@@ -220,20 +220,41 @@ impl BitClock {
 
     /// Advances `n` cycles without an edge, exactly as `n` calls of
     /// [`BitClock::step`] with `edge = false` would (the sample points and
-    /// bit ends they pass are the caller's to know uneventful). A bit
-    /// lengthened or shortened by a resynchronisation, or one with a
-    /// synchronisation still recorded, is stepped to its end; from there
-    /// the clock is periodic, `TQ × BRP` cycles a bit, and is advanced in
-    /// one go.
+    /// bit ends they pass are the caller's to know uneventful). Short of
+    /// the next sample point or bit end ([`BitClock::cycles_to_event`]) the
+    /// counters are advanced in one go. Past it, a bit lengthened or
+    /// shortened by a resynchronisation, or one with a synchronisation
+    /// still recorded, is stepped to its end; from there the clock is
+    /// periodic, `TQ × BRP` cycles a bit, and is advanced in one go.
     pub fn skip(&mut self, t: &BitTiming, mut n: u64) {
+        let brp = t.brp as u64;
+        if n <= self.cycles_to_event(t) {
+            // Within the bit and before its next sample point or end: the
+            // counters only count, whatever the bit's length.
+            let at = self.tq_cnt as u64 * brp + self.pre_cnt as u64 + n;
+            self.tq_cnt = (at / brp) as u32;
+            self.pre_cnt = (at % brp) as u32;
+            return;
+        }
         while n > 0 && (self.ext != 0 || self.short || self.synced) {
             self.step(t, false, false, false);
             n -= 1;
         }
-        let brp = t.brp as u64;
         let at = (self.tq_cnt as u64 * brp + self.pre_cnt as u64 + n) % (t.ntq() as u64 * brp);
         self.tq_cnt = (at / brp) as u32;
         self.pre_cnt = (at % brp) as u32;
+    }
+
+    /// Cycles from now before the next one whose step is a sample point or
+    /// the end of the bit (no edge): they only count `pre_cnt`/`tq_cnt`.
+    /// The bit's own length counts: PHASE_SEG1 as lengthened (`ext`),
+    /// PHASE_SEG2 as shortened (`short`).
+    pub fn cycles_to_event(&self, t: &BitTiming) -> u64 {
+        let brp = t.brp as u64;
+        let sample_tq = t.tseg1() + self.ext;
+        let end_tq = t.ntq() - 1 + self.ext - if self.short { t.sjw } else { 0 };
+        let next = if self.tq_cnt <= sample_tq { sample_tq } else { end_tq };
+        (next - self.tq_cnt) as u64 * brp + (brp - 1 - self.pre_cnt as u64)
     }
 
     /// Cycles from now in which `tq_cnt` keeps its value (no edge).

@@ -596,8 +596,8 @@ impl Testbench for Bench {
     /// decided within it (see the module docs).
     fn quiet_cycles(&self) -> u64 {
         let c = self.cycle;
-        let mut q = self.master.quiet(true);
-        if q == 0 || self.monitor.controller().quiet(true) == 0 || !self.bus.recessive() {
+        let mut q = self.master.quiet(true).min(self.monitor.controller().quiet(true));
+        if q == 0 || !self.bus.recessive() {
             return 0;
         }
         q = match self.end {
@@ -644,12 +644,15 @@ impl Testbench for Bench {
 
     fn skip(&mut self, n: u64) {
         for d in &mut self.disturbers {
-            d.skip(n);
+            d.skip(n, true);
         }
         self.master.skip(n);
         self.monitor.skip(n);
-        for (e, _, _) in &mut self.encoders {
-            e.skip(n);
+        for (e, power_on, _) in &mut self.encoders {
+            // Off until its power-on (a quiet stretch ends there): not stepped, not skipped.
+            if self.cycle >= *power_on {
+                e.skip(n);
+            }
         }
         for s in &mut self.sars {
             s.skip(n);

@@ -393,8 +393,9 @@ impl Master {
 impl Master {
     /// How many of the next cycles, with `i_can_rx` at `rx` and no
     /// `i_start`, change no output, state, parameter index or try count:
-    /// the controller idle with nothing in its buffer and nothing on its
-    /// way to it ([`Controller::quiet`]), no pulse standing, and none of
+    /// the controller's bit clock only counting ([`Controller::quiet`]:
+    /// idle with nothing to send, or short of its next sample point or bit
+    /// end), nothing on its way to it, no pulse standing, and none of
     /// the timers due: the boot or SDO timeout (`timer` reaching it), the
     /// PDO timeout (`timer` equal to it, in `RUN`) and, in `RUN`, the SYNC
     /// period (`sync_cnt` wrapping, which requests the SYNC at once).
@@ -403,9 +404,15 @@ impl Master {
     pub fn quiet(&self, rx: bool) -> u64 {
         let o = &self.out;
         let pulse = o.o_booted || o.o_config_done || o.o_sdo_abort || o.o_node_lost || o.o_pos_valid || o.o_pos_timeout || o.o_emcy_valid || o.o_sync_sent;
-        if pulse || self.tx_start || self.tx_sync || self.c_out != self.ctrl.out() || self.ctrl.quiet(rx) == 0 || o.o_can_tx != self.c_out.o_can_tx {
+        let ctrl = self.ctrl.quiet(rx);
+        if pulse || self.tx_start || self.tx_sync || self.c_out != self.ctrl.out() || ctrl == 0 || o.o_can_tx != self.c_out.o_can_tx {
             return 0;
         }
+        self.timers_quiet().min(ctrl)
+    }
+
+    /// Steps before the first of the master's own timers is due.
+    fn timers_quiet(&self) -> u64 {
         // Steps before `timer` (incremented first) reaches `limit`.
         let before = |limit: u64| limit.saturating_sub(self.timer + 1);
         let sync = if self.cfg.sync_period == 0 { u64::MAX } else { self.cfg.sync_period - self.sync_cnt - 1 };

@@ -626,7 +626,10 @@ fn sync_gap_is_skipped_in_one_go() {
     let mut gaps = 0;
     while !b.finished() {
         let q = b.quiet_cycles();
-        if q == 0 || b.master().state() != State::Run {
+        // Skips of less than a bit (80 cycles) end at a sample point or bit
+        // end of some controller (in a frame, or the monitor's last
+        // intermission bits): stepped here, the gaps are longer.
+        if q < 1000 || b.master().state() != State::Run {
             b.step(None);
             continue;
         }
