@@ -9,23 +9,31 @@
 #                                         `make cocotb`, examples/*/Makefile)
 #
 # Builds what they need when out of date, so it works on a fresh clone after
-# `make deps` (which installs cocotb and maturin into .venv/): the emulator
-# library and cosim-params (scripts/emu_lib.sh), and the Python module
-# encoder_emu from cosim-py/ (PyO3), installed into .venv/ by maturin.
+# `make deps` (which installs cocotb into .venv/): the emulator library and
+# cosim-params (scripts/emu_lib.sh), and the Python module encoder_emu (the
+# cdylib of cosim-py/, PyO3), which cargo builds with the rest of the
+# workspace, on the same features, so nothing is compiled twice.
 # Exit status 0 only when every test passed.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 venv="$root/.venv"
-[ -x "$venv/bin/maturin" ] && [ -x "$venv/bin/cocotb-config" ] || {
-    echo "cocotb.sh: .venv has no cocotb or maturin; run: make deps" >&2; exit 2; }
+[ -x "$venv/bin/cocotb-config" ] || {
+    echo "cocotb.sh: .venv has no cocotb; run: make deps" >&2; exit 2; }
 eval "$("$root/scripts/emu_lib.sh")"
 export EMU_LIB_DIR
-# The module, rebuilt when the crate or the cosim sources are newer than the stamp.
-stamp="$venv/.encoder_emu.stamp"
-if [ ! -f "$stamp" ] || [ -n "$(find "$root/cosim-py" "$root/cosim/src" "$root/model/src" -newer "$stamp" -name '*.rs' -o -newer "$stamp" -name 'Cargo.toml' | head -n 1)" ]; then
-    (cd "$root/cosim-py" && VIRTUAL_ENV="$venv" PATH="$venv/bin:$PATH" CARGO_TARGET_DIR="$root/target" \
-        "$venv/bin/maturin" develop --release --locked -q) >&2
-    touch "$stamp"
+# The module, as an editable install: build/python/ holds encoder_emu.abi3.so
+# (a link to the cdylib emu_lib.sh's build leaves beside libcosim.so), and a
+# .pth file puts that directory on the venv's path, for run.py and for the
+# Python the simulator embeds. (`maturin develop` in cosim-py/ would compile
+# the module's dependencies again: cargo resolves their features for
+# cosim-py alone. Users outside this tree install it with maturin or pip.)
+mkdir -p "$root/build/python"
+ln -sfn "$EMU_LIB_DIR/libencoder_emu.so" "$root/build/python/encoder_emu.abi3.so"
+site=$("$venv/bin/python" -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')
+echo "$root/build/python" > "$site/encoder_emu_tree.pth"
+# A copy installed by an earlier `maturin develop` would come first on the path.
+if [ -d "$site/encoder_emu" ]; then
+    rm -rf "$site/encoder_emu" "$site"/encoder_emu-*.dist-info
 fi
 cd "$root/hdl/cocotb"
 exec "$venv/bin/python" run.py "$@"

@@ -9,11 +9,12 @@
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 target=${CARGO_TARGET_DIR:-$root/target}
-# With tbgen: the package selection of make test's build stage (and of
-# `make build`), so that cargo resolves the same features (-p cosim alone
-# builds the proc-macros' syn without "full", then serde and everything
-# above it again) and finds everything already built.
-(cd "$root" && cargo build -q --release --locked -p tbgen -p cosim -j 2) >&2
+# With tbgen and cosim-py (the Python module, scripts/cocotb.sh): the
+# package selection of make test's build stage, so that cargo resolves the
+# same features (-p cosim alone builds the proc-macros' syn without "full",
+# then serde and everything above it again) and finds everything already
+# built.
+(cd "$root" && cargo build -q --release --locked -p tbgen -p cosim -p cosim-py -j 2) >&2
 lib_dir="$target/release"
 vpi_dir="$root/build/emu"
 mkdir -p "$vpi_dir"

@@ -10,8 +10,9 @@
 #   lane 1: build                      one cargo profile (release, with
 #                                      overflow checks in the workspace's
 #                                      crates: Cargo.toml): the tests, tbgen,
-#                                      the emulator library and cosim-params,
-#                                      every crate compiled once
+#                                      the emulator library, cosim-params and
+#                                      the Python module (cosim-py), every
+#                                      crate compiled once
 #           cargo-test                 model, flow, HDL flip, sigrok, cosim
 #                                      tests (cargo test --release)
 #           cosim                      every core closed-loop against its
@@ -128,11 +129,12 @@ stage deps scripts/deps.sh || fail=1
 if [ $fail = 0 ]; then
     (
         lane_fail=0
-        # One profile, one compile: the test binaries, then tbgen and the
-        # emulator library (the cdylib and cosim-params), which cargo test
-        # does not link, on the artifacts already built. --timings:
+        # One profile, one compile: the test binaries, then tbgen, the
+        # emulator library (the cdylib and cosim-params) and the Python
+        # module (cosim-py's cdylib), which cargo test does not link, on the
+        # artifacts already built. --timings:
         # target/cargo-timings/ shows which crate's compile costs.
-        stage build sh -c 'cargo test --release --workspace --locked --no-run --timings && cargo build --release --locked -p tbgen -p cosim' || lane_fail=1
+        stage build sh -c 'cargo test --release --workspace --locked --no-run --timings && cargo build --release --locked -p tbgen -p cosim -p cosim-py' || lane_fail=1
         # The shared vector check needs tbgen: tell it how the build went.
         echo "$lane_fail" > "$logs/.build.status"
         if [ $lane_fail = 0 ]; then
