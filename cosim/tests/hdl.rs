@@ -8,6 +8,8 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::Mutex;
 
+mod common;
+
 /// One Verilator build at a time (the machine is shared; builds are cached).
 static SERIAL: Mutex<()> = Mutex::new(());
 
@@ -189,6 +191,7 @@ fn errors_bench(sim: &str, f_emu: u64) -> Command {
                         "--top-module",
                         "tb_emu_errors",
                     ])
+                    .args(common::verilator_make_flags(&root()))
                     .arg(format!("-I{hdl}"))
                     .arg(format!("-GF_EMU_HZ={f_emu}"))
                     .args([
@@ -317,7 +320,9 @@ fn make_example(dir: &str, args: &[String], env: &[(&str, String)]) -> (bool, St
 fn the_independent_examples_pass_in_icarus_and_verilator() {
     for (example, reads, _) in EXAMPLES {
         for sim in ["icarus", "verilator"] {
-            let (ok, out) = make_example(example, &[format!("SIM={sim}"), format!("READS={reads}")], &[]);
+            // Verilator compiles as our own benches do (the Makefiles leave the options to the user).
+            let vflags = format!("VERILATOR_FLAGS={}", common::verilator_make_flags(&root()).join(" "));
+            let (ok, out) = make_example(example, &[format!("SIM={sim}"), format!("READS={reads}"), vflags], &[]);
             assert!(ok, "{example} in {sim}:\n{out}");
             assert!(
                 out.contains("PASS") && out.contains(&format!(": {reads} ")),

@@ -9,6 +9,8 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
+mod common;
+
 fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).parent().unwrap().to_path_buf()
 }
@@ -43,6 +45,7 @@ fn bench_of(sim: &str, top: &str) -> Command {
     }
     let (ok, out) = run(Command::new("verilator")
         .args(["--binary", "--timing", "-j", "2", "-Wno-fatal", "-Wno-lint", "-Wno-style", "--top-module", top])
+        .args(common::verilator_make_flags(&root()))
         .arg(format!("-I{hdl}"))
         .args(["-LDFLAGS", &format!("-L{lib} -lcosim -Wl,-rpath,{lib}"), "--Mdir"])
         .arg(build.join("obj"))
