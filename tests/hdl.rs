@@ -1,6 +1,7 @@
 //! The testbenches can fail: vectors with one expected bit flipped must stop
 //! the replay with a mismatch in Icarus and in Verilator, a masked bit must
-//! not, and a truncated vector file is refused. Needs the simulators that
+//! not, an output change the file does not expect stops it at its cycle,
+//! and a truncated vector file is refused. Needs the simulators that
 //! `make deps` installs.
 
 use std::fs;
@@ -91,6 +92,55 @@ fn golden_vectors_pass_and_one_flipped_expected_bit_fails_in_both_simulators() {
                 assert!(output.contains("MISMATCH at cycle"), "{sim}, {what}: no mismatch report:\n{output}");
                 assert!(output.contains("expected") && output.contains("actual"), "{output}");
             }
+        }
+    }
+}
+
+/// Removes record `record` (its cycle's expectation becomes the record
+/// before it) and returns the file, with its `records:` header one lower.
+fn drop_record(text: &str, record: usize) -> String {
+    let mut seen = 0;
+    let mut out = String::new();
+    for line in text.lines() {
+        if let Some(n) = line.strip_prefix("// records: ") {
+            out.push_str(&format!("// records: {}\n", n.trim().parse::<usize>().unwrap() - 1));
+            continue;
+        }
+        if !line.starts_with("//") {
+            seen += 1;
+            if seen - 1 == record {
+                continue;
+            }
+        }
+        out.push_str(line);
+        out.push('\n');
+    }
+    out
+}
+
+/// The player compares a cycle only when an output or the record changed
+/// (vector_player.vh; Icarus sleeps until then, Verilator looks at each
+/// falling edge). With a record removed whose inputs are the record
+/// before's, the core's output changes in a cycle where the file expects
+/// the old value: both simulators must stop at exactly that cycle.
+#[test]
+fn an_output_change_the_file_does_not_expect_fails_at_its_cycle_in_both_simulators() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = golden();
+    let v = VectorFile::parse(&text).unwrap();
+    const N_IN: usize = 2;
+    // Records well inside the file (the core counting through a frame)
+    // where only expected outputs change.
+    let dropped: Vec<usize> = (20..v.records.len() - 1).filter(|&r| v.records[r][1..=N_IN] == v.records[r - 1][1..=N_IN]).step_by(7).take(3).collect();
+    assert_eq!(dropped.len(), 3, "{SCENARIO} has records where only outputs change");
+    for sim in ["icarus", "verilator"] {
+        for &r in &dropped {
+            let path = dir.path().join(format!("{SCENARIO}_drop{r}.hex"));
+            fs::write(&path, drop_record(&text, r)).unwrap();
+            let (passed, output) = simulate(CORE, sim, &path);
+            assert!(!passed, "{sim} passed with record {r} removed:\n{output}");
+            let want = format!("MISMATCH at cycle {} ", v.records[r][0]);
+            assert!(output.contains(&want), "{sim}, record {r} removed: no '{want}':\n{output}");
         }
     }
 }
