@@ -13,58 +13,21 @@
 //! `tbgen gen` writes are the stepping ones; this test is what lets
 //! campaigns and `tbgen bench` use the fast-forward and still mean them.
 
-use model::testbench::Testbench;
-use model::trace::Sample;
+use model::testbench::lockstep;
 use tbgen::builtin;
 use tbgen::scenario::{Scenario, Visitor};
 
 /// Cycles run and cycles skipped.
-struct Lockstep<'a>(&'a str);
+struct LockstepRun<'a>(&'a str);
 
-impl Visitor for Lockstep<'_> {
+impl Visitor for LockstepRun<'_> {
     type Output = (u64, u64);
     fn visit<S: model::Setup>(self, cfg: &S) -> (u64, u64) {
         let name = self.0;
-        let mut stepped = cfg.bench().expect("a built-in scenario builds");
-        let mut skipping = cfg.bench().expect("a built-in scenario builds");
-        let mut want = Sample::for_layout(stepped.layout());
-        let mut got: Option<Sample> = None;
-        let mut skipped = 0;
-        while !skipping.finished() {
-            assert!(!stepped.finished(), "{name}: the fast-forwarded bench runs past the end, cycle {}", stepped.cycle());
-            let quiet = skipping.quiet_cycles();
-            if quiet == 0 {
-                let mut sample = got.take().unwrap_or_else(|| Sample::for_layout(skipping.layout()));
-                skipping.step(Some(&mut sample));
-                stepped.step(Some(&mut want));
-                assert_eq!(sample, want, "{name}: cycle {} differs after fast-forwards", stepped.cycle() - 1);
-                got = Some(sample);
-                continue;
-            }
-            let start = skipping.cycle();
-            skipping.skip(quiet);
-            skipped += quiet;
-            let counters = skipping.counters();
-            for _ in 0..quiet {
-                assert!(!stepped.finished(), "{name}: the skip from cycle {start} by {quiet} runs past the end");
-                stepped.step(Some(&mut want));
-                // Before the first step there is no sample to compare with:
-                // the skipped cycles must then all show the first one.
-                let reference = got.get_or_insert_with(|| want.clone());
-                assert_eq!(
-                    reference.without_counters(counters),
-                    want.without_counters(counters),
-                    "{name}: cycle {} changes within the {quiet} cycles skipped from cycle {start}",
-                    stepped.cycle() - 1
-                );
-            }
-            assert_eq!(skipping.cycle(), stepped.cycle(), "{name}: skip({quiet}) from cycle {start} lands on the wrong cycle");
-        }
-        assert!(stepped.finished(), "{name}: the fast-forwarded bench finished at cycle {}, stepping did not", skipping.cycle());
-        let cycles = stepped.cycle();
-        let to_json = |t: Vec<_>| serde_json::to_string(&t).expect("transactions serialise");
-        assert_eq!(to_json(skipping.into_transactions()), to_json(stepped.into_transactions()), "{name}: transcripts differ");
-        (cycles, skipped)
+        let run = lockstep(name, cfg.bench().expect("a built-in scenario builds"), cfg.bench().expect("a built-in scenario builds"));
+        let to_json = |t: &Vec<_>| serde_json::to_string(t).expect("transactions serialise");
+        assert_eq!(to_json(&run.skipping), to_json(&run.stepped), "{name}: transcripts differ");
+        (run.cycles, run.skipped)
     }
 }
 
@@ -81,7 +44,7 @@ fn fast_forward_matches_stepping_on_every_scenario() {
     scenarios.extend(bench_scenarios());
     let mut skipped_by_core = std::collections::BTreeMap::<&str, (u64, u64)>::new();
     for s in &scenarios {
-        let (cycles, skipped) = s.setup.accept(Lockstep(&s.name));
+        let (cycles, skipped) = s.setup.accept(LockstepRun(&s.name));
         let entry = skipped_by_core.entry(s.core()).or_default();
         entry.0 += cycles;
         entry.1 += skipped;

@@ -133,41 +133,62 @@ pub fn run_every_cycle<B: Testbench>(mut bench: B) -> Run<B::Transaction> {
     Run { cycles: bench.cycle(), transactions: bench.into_transactions() }
 }
 
-/// Runs `skipping` (fast-forwarded) and `stepped` (every cycle) in lockstep,
-/// as `tests/fast_forward.rs` does for the scenario files: every cycle's
-/// sample must be the same (a skipped cycle's the last stepped one's), both
-/// must end on the same cycle with the same transcript. Returns the cycles
-/// run and the cycles skipped.
-#[cfg(test)]
-pub(crate) fn lockstep<B: Testbench>(mut skipping: B, mut stepped: B) -> (u64, u64)
-where
-    B::Transaction: std::fmt::Debug + PartialEq,
-{
+/// What [`lockstep`] ran: the cycles, how many of them were skipped, and
+/// both transcripts for the caller to compare (a transaction type need not
+/// be `PartialEq`: the integration test compares them as JSON).
+pub struct Lockstep<T> {
+    pub cycles: u64,
+    pub skipped: u64,
+    pub skipping: Vec<T>,
+    pub stepped: Vec<T>,
+}
+
+/// Runs `skipping` (fast-forwarded) and `stepped` (every cycle) in lockstep
+/// and panics, naming `name` and the cycle, at the first difference:
+/// - every cycle's complete sample must be the same, a skipped cycle's
+///   sample being the last stepped one but for the free-running counters
+///   among the decoded signals ([`Testbench::counters`]), which the next
+///   stepped cycle's sample checks;
+/// - each skip lands on the cycle stepping reaches, and both finish on the
+///   same cycle.
+///
+/// The check that fast-forward is invisible: `tests/fast_forward.rs` runs
+/// it on every built-in and bench scenario, the protocols' unit tests on
+/// their own set-ups.
+pub fn lockstep<B: Testbench>(name: &str, mut skipping: B, mut stepped: B) -> Lockstep<B::Transaction> {
     let mut want = Sample::for_layout(stepped.layout());
-    let mut got = Sample::for_layout(skipping.layout());
+    let mut got: Option<Sample> = None;
     let mut skipped = 0;
     while !skipping.finished() {
-        assert!(!stepped.finished(), "the fast-forwarded bench runs past the end, cycle {}", stepped.cycle());
+        assert!(!stepped.finished(), "{name}: the fast-forwarded bench runs past the end, cycle {}", stepped.cycle());
         let quiet = skipping.quiet_cycles();
         if quiet == 0 {
-            skipping.step(Some(&mut got));
+            let mut sample = got.take().unwrap_or_else(|| Sample::for_layout(skipping.layout()));
+            skipping.step(Some(&mut sample));
             stepped.step(Some(&mut want));
-            assert_eq!(got, want, "cycle {} differs after fast-forwards", stepped.cycle() - 1);
+            assert_eq!(sample, want, "{name}: cycle {} differs after fast-forwards", stepped.cycle() - 1);
+            got = Some(sample);
             continue;
         }
-        assert!(skipping.cycle() > 0, "the first cycle is stepped");
         let start = skipping.cycle();
         skipping.skip(quiet);
         skipped += quiet;
         let counters = skipping.counters();
         for _ in 0..quiet {
-            assert!(!stepped.finished(), "the skip from cycle {start} by {quiet} runs past the end");
+            assert!(!stepped.finished(), "{name}: the skip from cycle {start} by {quiet} runs past the end");
             stepped.step(Some(&mut want));
-            assert_eq!(got.without_counters(counters), want.without_counters(counters), "cycle {} changes within the {quiet} cycles skipped from cycle {start}", stepped.cycle() - 1);
+            // Before the first step there is no sample to compare with:
+            // the skipped cycles must then all show the first one.
+            let reference = got.get_or_insert_with(|| want.clone());
+            assert_eq!(
+                reference.without_counters(counters),
+                want.without_counters(counters),
+                "{name}: cycle {} changes within the {quiet} cycles skipped from cycle {start}",
+                stepped.cycle() - 1
+            );
         }
+        assert_eq!(skipping.cycle(), stepped.cycle(), "{name}: skip({quiet}) from cycle {start} lands on the wrong cycle");
     }
-    assert!(stepped.finished(), "stepping did not finish where the fast-forwarded bench did, cycle {}", skipping.cycle());
-    let cycles = stepped.cycle();
-    assert_eq!(skipping.into_transactions(), stepped.into_transactions(), "transcripts differ");
-    (cycles, skipped)
+    assert!(stepped.finished(), "{name}: the fast-forwarded bench finished at cycle {}, stepping did not", skipping.cycle());
+    Lockstep { cycles: stepped.cycle(), skipped, skipping: skipping.into_transactions(), stepped: stepped.into_transactions() }
 }

@@ -447,23 +447,10 @@ impl Disturber {
     /// the frame being counted is still ahead (a flip aimed past the frame's
     /// end falls in the idle after it).
     pub(crate) fn quiet(&self, cycle: u64, cpb: u64) -> u64 {
-        if self.frames < 0 {
-            return u64::MAX;
+        match self.window(cycle, cpb) {
+            (true, _) => 0,
+            (false, q) => q,
         }
-        let k = self.frames as u32;
-        self.flips
-            .iter()
-            .filter(|&&(f, n, _)| k >= f && k < f + n)
-            .map(|&(_, _, bit)| {
-                let (from, to) = (self.sof + bit as u64 * cpb, self.sof + (bit as u64 + 1) * cpb);
-                if cycle >= to {
-                    u64::MAX
-                } else {
-                    from.saturating_sub(cycle)
-                }
-            })
-            .min()
-            .unwrap_or(u64::MAX)
     }
 
     /// The level the target reads at `cycle` from the undisturbed `level`,
@@ -475,8 +462,17 @@ impl Disturber {
         if level != self.prev {
             return None;
         }
+        let (flip, q) = self.window(cycle, cpb);
+        Some((level ^ flip, q))
+    }
+
+    /// Whether `cycle` falls in a flip window of the frame being counted,
+    /// and how many cycles from `cycle` on that stays so: until the window
+    /// it is in closes, or the next one opens (`u64::MAX` when none is
+    /// ahead).
+    fn window(&self, cycle: u64, cpb: u64) -> (bool, u64) {
         if self.frames < 0 {
-            return Some((level, u64::MAX));
+            return (false, u64::MAX);
         }
         let k = self.frames as u32;
         let mut flip = false;
@@ -490,7 +486,7 @@ impl Disturber {
                 q = q.min(to - cycle);
             }
         }
-        Some((level ^ flip, q))
+        (flip, q)
     }
 
     /// Advances `n` cycles of a line held at the undisturbed `level`, at

@@ -418,7 +418,9 @@ fn bench_fast_forward_matches_stepping_through_idle_gaps() {
     let mut c = cfg(vec![(20.0, f.clone()), (4000.0, f.clone()), (8000.0, f)], vec![slow]);
     c.timing = TimingSettings { bit_rate_kbps: 125.0, tq_per_bit: 16, sample_point: 0.875, sjw: 1 };
     c.max_us = 12_000.0;
-    let (cycles, skipped) = crate::testbench::lockstep(c.bench().unwrap(), c.bench().unwrap());
+    let run = crate::testbench::lockstep("125 kbit/s bench", c.bench().unwrap(), c.bench().unwrap());
+    assert_eq!(run.skipping, run.stepped, "transcripts differ");
+    let (cycles, skipped) = (run.cycles, run.skipped);
     // 5 frames of 50 to 90 bits (8 µs each) in some 8.6 ms: over two
     // thirds idle, skipped whole between frames and scheduled starts; in a
     // frame, a few cycles of each 320-cycle bit are stepped.

@@ -645,6 +645,8 @@ fn sync_gap_is_skipped_in_one_go() {
         gaps += (q > 20_000 && q < 40_000) as u32;
     }
     assert!(gaps >= 4, "{gaps} SYNC gaps skipped whole");
-    let (cycles, skipped) = lockstep(c.bench().unwrap(), c.bench().unwrap());
+    let run = lockstep("SYNC gaps", c.bench().unwrap(), c.bench().unwrap());
+    assert_eq!(run.skipping, run.stepped, "transcripts differ");
+    let (cycles, skipped) = (run.cycles, run.skipped);
     assert!(skipped * 2 > cycles, "only {skipped} of {cycles} cycles skipped");
 }
