@@ -47,6 +47,12 @@ set -uo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
 logs="$root/build/test"
+# Every Verilator build of every stage through ccache (make deps installs
+# it), not only those of sim.sh and cosim.sh: the cargo tests' own benches
+# (monitor rules, error benches), the examples and cocotb. Each build
+# compiles Verilator's runtime (verilated*.cpp) again, which ccache makes
+# one compile per run, and a rerun on the same machine reuses the rest.
+command -v ccache > /dev/null 2>&1 && export OBJCACHE=${OBJCACHE:-ccache}
 rm -rf "$logs"
 mkdir -p "$logs"
 : > "$logs/times.txt"

@@ -57,10 +57,21 @@ fn bench_of(sim: &str, top: &str) -> Command {
     cmd
 }
 
-/// `tbgen check` (the workspace's binary) on two transcripts.
+/// `tbgen check` (the workspace's binary) on two transcripts, built in this
+/// test's own profile: `make test` has built it already (a release
+/// `cargo run` only checks it is up to date), where the default profile
+/// compiled tbgen and its dependencies a second time, for debug.
 fn tbgen_check(proto: &str, expect: &Path, capture: &Path) -> (bool, String) {
     let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
-    run(Command::new(cargo).current_dir(root()).args(["run", "-q", "-j", "2", "-p", "tbgen", "--", "check", proto, "--expect"]).arg(expect).arg(capture))
+    // This test runs as target/<profile>/deps/monitor-<hash>.
+    let exe = std::env::current_exe().expect("the test knows its path");
+    let profile = exe.parent().and_then(Path::parent).and_then(Path::file_name).and_then(|p| p.to_str()).unwrap_or("debug").to_string();
+    let profile = if profile == "debug" { "dev".to_string() } else { profile };
+    run(Command::new(cargo)
+        .current_dir(root())
+        .args(["run", "-q", "-j", "2", "--locked", "--profile", &profile, "-p", "tbgen", "--", "check", proto, "--expect"])
+        .arg(expect)
+        .arg(capture))
 }
 
 fn each_rule_fires_once_and_the_clean_master_passes(sim: &str) {
