@@ -582,3 +582,32 @@ fn each_can_monitor_rule_fires_in_icarus() {
 fn each_can_monitor_rule_fires_in_verilator() {
     each_can_rule_fires_once("verilator");
 }
+
+/// X or Z on an input of a monitor or of a clock/data/enable emulator
+/// (`tb_wrapper_x`) stops the run with time, pin and cycle; with no X the
+/// run goes on. Icarus only: Verilator is two-state.
+#[test]
+fn x_on_a_monitor_or_data_pair_emulator_input_is_reported_in_icarus() {
+    let dir = root().join("build/cosim/monitor_rules/icarus/wrapper_x");
+    std::fs::create_dir_all(&dir).unwrap();
+    let ssi = dir.join("ssi.toml");
+    std::fs::write(&ssi, "[encoder]\nbits = 12\n").unwrap();
+    let endat = root().join("hdl/tb_cosim/endat_master/configs/pos22_1mhz_20m.toml");
+    let cmd = bench_of("icarus", "tb_wrapper_x");
+    // The X arrives at 500 ns and is seen at the next clock edge, 510 ns
+    // (in ps), after 25 cycles (edges at 10, 30, ..., 490 ns).
+    let cases = [
+        ("none", true, "no error"),
+        ("monitor", false, "X or Z on monitor input 1 of (i_ssi_clk, i_ssi_data) at time 510000, monitor cycle 25"),
+        ("pair", false, "X or Z on emulator input i_endat_data at time 510000, emulator cycle 25"),
+    ];
+    for (x_on, passes, want) in cases {
+        let (ok, out) = run(Command::new(cmd.get_program()).args(cmd.get_args()).envs(cmd.get_envs().filter_map(|(k, v)| Some((k, v?)))).args([
+            format!("+x_on={x_on}"),
+            format!("+ssi_monitor_config={}", ssi.display()),
+            format!("+endat_emu_config={}", endat.display()),
+        ]));
+        assert_eq!(ok, passes, "x on {x_on}:\n{out}");
+        assert!(out.contains(want), "x on {x_on}: no `{want}` in\n{out}");
+    }
+}

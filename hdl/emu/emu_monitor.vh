@@ -42,7 +42,14 @@ integer k;
 reg [63:0] mon_cycle = 0;
 
 always @(posedge i_mon_clk) begin
-    for (k = 0; k < 8; k = k + 1) begin
+    if ((^mon_pins_now) === 1'b0 || (^mon_pins_now) === 1'b1) begin
+        // Every pin 0 or 1, as on almost every cycle: all at once (the
+        // loop below, a bit at a time, was most of a closed loop's time in
+        // Icarus).
+        pin_level = mon_pins_now;
+        pin_known = 8'hff;
+        x_reported = 8'd0;
+    end else for (k = 0; k < 8; k = k + 1) begin
         if (mon_pins_now[k] === 1'b0 || mon_pins_now[k] === 1'b1) begin
             pin_level[k] = mon_pins_now[k];
             pin_known[k] = 1'b1;

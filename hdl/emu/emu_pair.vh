@@ -40,7 +40,13 @@ reg [63:0] emu_cycle = 0;
 wire [2:0] pins_now = {emu_oe_in, emu_data_in, emu_clk_in};
 
 always @(posedge i_emu_clk) begin
-    for (k = 0; k < 3; k = k + 1) begin
+    if ((^pins_now) === 1'b0 || (^pins_now) === 1'b1) begin
+        // Every pin 0 or 1, as on almost every cycle: all at once (Icarus
+        // runs the loop below a bit at a time).
+        pin_level = pins_now;
+        pin_known = 3'b111;
+        x_reported = 3'b000;
+    end else for (k = 0; k < 3; k = k + 1) begin
         if (pins_now[k] === 1'b0 || pins_now[k] === 1'b1) begin
             pin_level[k] = pins_now[k];
             pin_known[k] = 1'b1;
