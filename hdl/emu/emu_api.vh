@@ -46,15 +46,16 @@ task emu_fail(input [8*40-1:0] what);
     end
 endtask
 
-function integer emu_call_step(input integer pins);
-    begin
+// One step of the emulator: pins in, pins out (< 0 on failure). A macro,
+// not a function: a Verilog function call on every emulator cycle was a
+// tenth of an Icarus closed loop.
+`ifndef EMU_STEP
 `ifdef VERILATOR
-        emu_call_step = emu_step(emu_handle, pins);
+`define EMU_STEP(pins) emu_step(emu_handle, pins)
 `else
-        emu_call_step = $emu_step(emu_handle, pins);
+`define EMU_STEP(pins) $emu_step(emu_handle, pins)
 `endif
-    end
-endfunction
+`endif
 
 /* The testbench's controls, called hierarchically: u_emu.set_position(0, p) */
 

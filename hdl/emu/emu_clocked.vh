@@ -43,7 +43,7 @@ always @(posedge i_emu_clk) begin
         if (STOP_ON_X)
             $fatal(1, "emulator input %0s is X or Z", EMU_PIN);
     end
-    pins_out = emu_call_step({31'd0, line_level});
+    pins_out = `EMU_STEP({31'd0, line_level});
     if (pins_out < 0)
         emu_fail("step");
     emu_cycle = emu_cycle + 1;

@@ -54,7 +54,7 @@ always @(posedge i_emu_clk) begin
                 $fatal(1, "emulator input %0s is X or Z", EMU_PINS);
         end
     end
-    pins_out = emu_call_step({28'd0, pins_level});
+    pins_out = `EMU_STEP({28'd0, pins_level});
     if (pins_out < 0)
         emu_fail("step");
     emu_cycle = emu_cycle + 1;

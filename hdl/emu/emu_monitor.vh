@@ -62,7 +62,7 @@ always @(posedge i_mon_clk) begin
                 $fatal(1, "monitor input %0d of (%0s) is X or Z", k, MON_PIN_NAMES);
         end
     end
-    pins_out = emu_call_step({24'd0, pin_level});
+    pins_out = `EMU_STEP({24'd0, pin_level});
     if (pins_out < 0)
         emu_fail("step");
     mon_cycle = mon_cycle + 1;

@@ -59,7 +59,7 @@ always @(posedge i_emu_clk) begin
                 $fatal(1, "emulator input %0s is X or Z", k == 0 ? EMU_PIN0 : (k == 1 ? EMU_PIN1 : EMU_PIN2));
         end
     end
-    pins_out = emu_call_step({29'd0, pin_level});
+    pins_out = `EMU_STEP({29'd0, pin_level});
     if (pins_out < 0)
         emu_fail("step");
     emu_cycle = emu_cycle + 1;
