@@ -47,8 +47,8 @@ task emu_fail(input [8*40-1:0] what);
 endtask
 
 // One step of the emulator: pins in, pins out (< 0 on failure). A macro,
-// not a function: a Verilog function call on every emulator cycle was a
-// tenth of an Icarus closed loop.
+// not a function: an Icarus function call on every emulator cycle cost an
+// eighth of a closed loop (SSI with its monitor, 300 reads: 6.0 s -> 5.3 s).
 `ifndef EMU_STEP
 `ifdef VERILATOR
 `define EMU_STEP(pins) emu_step(emu_handle, pins)
