@@ -810,22 +810,31 @@ impl Testbench for Bench {
         if host == 0 || input != self.last_in || (out.o_tx_en && !self.cfg.request_flips.is_empty()) {
             return 0;
         }
-        // Not across the start or end of an intruder.
-        let intruders = self
-            .intruders
-            .iter()
-            .map(|&(a, b)| if self.cycle < a { a - self.cycle } else { b.saturating_sub(self.cycle) })
-            .filter(|&q| q > 0)
-            .min()
-            .unwrap_or(u64::MAX);
+        // The parts most often busy first: most calls in a frame end at
+        // the first 0, before the line and the encoders are looked at.
+        let mut q = host.min(self.host.quiet(&input));
+        if q == 0 {
+            return 0;
+        }
+        q = q.min(self.wire_tap.quiet(input.i_rx, out.o_tx_en));
         let host_drive = Drive { enable: out.o_tx_en, level: out.o_tx };
-        let at_encoder = self.line.sensed(host_drive, self.bus_drive()).1.level;
-        let encoders = self.encoders.iter().map(|e| e.quiet(at_encoder)).min().unwrap_or(u64::MAX);
-        host.min(intruders)
-            .min(self.host.quiet(&input))
-            .min(self.wire_tap.quiet(input.i_rx, out.o_tx_en))
-            .min(self.line.quiet(host_drive, self.bus_drive()))
-            .min(encoders)
+        let bus = self.bus_drive();
+        q = q.min(self.line.quiet(host_drive, bus));
+        if q == 0 {
+            return 0;
+        }
+        let at_encoder = self.line.sensed(host_drive, bus).1.level;
+        for e in &self.encoders {
+            q = q.min(e.quiet(at_encoder));
+        }
+        // Not across the start or end of an intruder.
+        for &(a, b) in &self.intruders {
+            let until = if self.cycle < a { a - self.cycle } else { b.saturating_sub(self.cycle) };
+            if until > 0 {
+                q = q.min(until);
+            }
+        }
+        q
     }
 
     fn skip(&mut self, n: u64) {

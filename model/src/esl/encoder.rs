@@ -186,6 +186,12 @@ pub struct Encoder {
     tx_bits: Vec<bool>,
     tx_index: usize,
     tx_start: u64,
+    /// The cycle the next answer bit (`tx_index`) goes out:
+    /// `tx_start + round(tx_index × bit_cycles)`, kept so that the float
+    /// rounding runs once a bit, not every cycle (a libm call on x86-64).
+    tx_next_at: u64,
+    /// High cycles that end a frame set: ceil(1.5 × bit_cycles) (the same float once, not per cycle).
+    gap_cycles: u64,
     answer_at: Option<(u64, Vec<u8>)>,
     driving: bool,
     level: bool,
@@ -249,6 +255,8 @@ impl Encoder {
             tx_bits: Vec::new(),
             tx_index: 0,
             tx_start: 0,
+            tx_next_at: 0,
+            gap_cycles: (1.5 * cfg.bit_cycles).ceil() as u64,
             answer_at: None,
             driving: false,
             level: true,
@@ -356,11 +364,11 @@ impl Encoder {
             _ if self.driving => u64::MAX,
             Rx::Hunt => u64::MAX,
             Rx::Gap { .. } if !line => u64::MAX,
-            Rx::Gap { high } => ((1.5 * self.cfg.bit_cycles).ceil() as u64).saturating_sub(high + 1),
+            Rx::Gap { high } => self.gap_cycles.saturating_sub(high + 1),
             Rx::Bit { at, .. } => until(at),
         };
         let transmit = if self.driving {
-            until(self.tx_start + (self.tx_index as f64 * self.cfg.bit_cycles).round() as u64)
+            until(self.tx_next_at)
         } else {
             self.answer_at.as_ref().map_or(u64::MAX, |(at, _)| until(*at))
         };
@@ -690,23 +698,21 @@ impl Encoder {
                     }
                     self.tx_index = 0;
                     self.tx_start = self.now;
+                    self.tx_next_at = self.now;
                     self.driving = true;
                     self.answered.push((self.now, fields));
                 }
             }
         }
-        if self.driving {
-            let next_at =
-                self.tx_start + (self.tx_index as f64 * self.cfg.bit_cycles).round() as u64;
-            if self.now >= next_at {
-                if self.tx_index == self.tx_bits.len() {
-                    self.driving = false;
-                    self.level = true;
-                    return;
-                }
-                self.level = self.tx_bits[self.tx_index];
-                self.tx_index += 1;
+        if self.driving && self.now >= self.tx_next_at {
+            if self.tx_index == self.tx_bits.len() {
+                self.driving = false;
+                self.level = true;
+                return;
             }
+            self.level = self.tx_bits[self.tx_index];
+            self.tx_index += 1;
+            self.tx_next_at = self.tx_start + (self.tx_index as f64 * self.cfg.bit_cycles).round() as u64;
         }
     }
 }
