@@ -147,15 +147,20 @@ impl<D: Device> DeviceNode<D> {
     pub fn step(&mut self, rx: bool) -> bool {
         let now = self.now_ns();
         let ready = self.cycle + self.delay;
-        let new: Vec<Frame> = self.emu.received()[self.seen..].to_vec();
-        self.seen += new.len();
-        for f in new {
-            self.received.push((self.cycle, f.clone()));
-            let out = self.enc.on_frame(&f, now);
-            self.queue.extend(out.into_iter().map(|f| (ready, f)));
+        // Most cycles bring no frame and nothing due: no copy, no extend.
+        if self.seen < self.emu.received().len() {
+            let new: Vec<Frame> = self.emu.received()[self.seen..].to_vec();
+            self.seen += new.len();
+            for f in new {
+                self.received.push((self.cycle, f.clone()));
+                let out = self.enc.on_frame(&f, now);
+                self.queue.extend(out.into_iter().map(|f| (ready, f)));
+            }
         }
         let due = self.enc.poll(now);
-        self.queue.extend(due.into_iter().map(|f| (self.cycle, f)));
+        if !due.is_empty() {
+            self.queue.extend(due.into_iter().map(|f| (self.cycle, f)));
+        }
         if self.enc.bit_rate_kbps() != self.rate {
             // A reset applied a new bit rate (5000h): the controller restarts at the new rate.
             self.rate = self.enc.bit_rate_kbps();
