@@ -95,13 +95,15 @@ fn biss_master_closed_loop_in_verilator() {
 
 /// A closed loop over `configs` configurations passes, and a planted
 /// misread (bit 2 flipped before the comparison) fails with `misread`.
-fn closed_loop_of(core: &str, sim: &str, configs: usize, misread: &str) {
-    let (ok, out) = cosim(core, sim, &[]);
-    assert!(ok, "{core} in {sim}:\n{out}");
-    assert_eq!(out.matches("PASS").count(), configs, "{out}");
+/// Returns the passing run's output.
+fn closed_loop_of(core: &str, sim: &str, configs: usize, misread: &str) -> String {
+    let (ok, passed) = cosim(core, sim, &[]);
+    assert!(ok, "{core} in {sim}:\n{passed}");
+    assert_eq!(passed.matches("PASS").count(), configs, "{passed}");
     let (ok, out) = cosim(core, sim, &["--flip-bit", "2"]);
     assert!(!ok, "a planted misread passed in {sim}:\n{out}");
     assert!(out.contains(misread), "{out}");
+    passed
 }
 
 #[test]
@@ -356,9 +358,8 @@ fn the_independent_examples_pass_from_cocotb_and_a_flipped_bit_fails() {
 /// seed, and a planted misread fails.
 fn closed_loop_with_monitor(core: &str) {
     for sim in ["verilator", "icarus"] {
-        closed_loop_of(core, sim, 3, "ABS host");
-        let (ok, out) = cosim(core, sim, &[]);
-        assert!(ok && out.matches("equal to the emulator's and to the monitor's").count() == 3, "{core} in {sim}:\n{out}");
+        let out = closed_loop_of(core, sim, 3, "ABS host");
+        assert_eq!(out.matches("equal to the emulator's and to the monitor's").count(), 3, "{core} in {sim}:\n{out}");
     }
 }
 
