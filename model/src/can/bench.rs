@@ -441,18 +441,32 @@ impl Disturber {
     }
 }
 
-impl Disturber {
-    /// How many of the next cycles, starting at `cycle` on a recessive line,
-    /// this target reads recessive too: all of them unless a flip window of
-    /// the frame being counted is still ahead (a flip aimed past the frame's
-    /// end falls in the idle after it).
-    pub(crate) fn quiet(&self, cycle: u64, cpb: u64) -> u64 {
-        match self.window(cycle, cpb) {
-            (true, _) => 0,
-            (false, q) => q,
+/// Node `j`'s receive level at `cycle` before its flips: the bus, held
+/// dominant in a stuck window (`stuck`, [`Disturber::stuck_windows`]).
+pub(crate) fn undisturbed_rx(bus: &Bus, stuck: &[(u64, u64)], j: usize, cycle: u64) -> bool {
+    bus.rx(j) && !stuck.iter().any(|&(a, b)| (a..b).contains(&cycle))
+}
+
+/// Node `j`'s receive level at `cycle` as its `disturber` delivers it, and
+/// for how many cycles from `cycle` on it holds while every node keeps its
+/// transmit level: until a change on its way through the bus arrives, a
+/// stuck window opens or closes, or a flip window does. `None` on an edge
+/// the disturber may count as a frame start. (The CAN and CANopen benches'
+/// fast-forward.)
+pub(crate) fn steady_rx(bus: &Bus, stuck: &[(u64, u64)], disturber: &Disturber, j: usize, cycle: u64, cpb: u64) -> Option<(bool, u64)> {
+    let mut q = bus.steady(j);
+    for &(a, b) in stuck {
+        if cycle < a {
+            q = q.min(a - cycle);
+        } else if cycle < b {
+            q = q.min(b - cycle);
         }
     }
+    let (level, flips) = disturber.steady(undisturbed_rx(bus, stuck, j, cycle), cycle, cpb)?;
+    Some((level, q.min(flips)))
+}
 
+impl Disturber {
     /// The level the target reads at `cycle` from the undisturbed `level`,
     /// and for how many cycles from `cycle` on it keeps reading it while
     /// `level` holds: `None` when `level` is an edge (`step` may count a
@@ -490,8 +504,7 @@ impl Disturber {
     }
 
     /// Advances `n` cycles of a line held at the undisturbed `level`, at
-    /// most [`Disturber::quiet`] (a recessive line) or
-    /// [`Disturber::steady`]: what `n` calls of `step` would do.
+    /// most [`Disturber::steady`]: what `n` calls of `step` would do.
     pub(crate) fn skip(&mut self, n: u64, level: bool) {
         self.recessive_run = if level { self.recessive_run + n } else { 0 };
         self.prev = level;
@@ -601,27 +614,12 @@ impl Bench {
         by_idle.min(self.max_cycles.saturating_sub(self.cycle).max(1))
     }
 
-    /// Node `j`'s receive level this cycle before its flips: the bus, held
-    /// dominant in a stuck window.
     fn undisturbed_rx(&self, j: usize) -> bool {
-        self.bus.rx(j) && !self.stuck.iter().any(|&(a, b)| (a..b).contains(&self.cycle))
+        undisturbed_rx(&self.bus, &self.stuck, j, self.cycle)
     }
 
-    /// Node `j`'s receive level this cycle, and for how many cycles from
-    /// this one it holds while every node keeps its transmit level: `None`
-    /// on an edge its disturber may count as a frame start.
     fn steady_rx(&self, j: usize) -> Option<(bool, u64)> {
-        let c = self.cycle;
-        let mut q = self.bus.steady(j);
-        for &(a, b) in &self.stuck {
-            if c < a {
-                q = q.min(a - c);
-            } else if c < b {
-                q = q.min(b - c);
-            }
-        }
-        let (level, flips) = self.disturbers[j].steady(self.undisturbed_rx(j), c, self.cpb)?;
-        Some((level, q.min(flips)))
+        steady_rx(&self.bus, &self.stuck, &self.disturbers[j], j, self.cycle, self.cpb)
     }
 
     fn outcome(&mut self, outcome: &'static str, out: &Out) {

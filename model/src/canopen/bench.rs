@@ -15,13 +15,16 @@
 //! master's pin since the previous pulse, read as CANopen; frames after the
 //! last pulse go with the last transaction.
 //!
-//! Fast-forward ([`Testbench::quiet_cycles`]): quiet while the bus is idle
-//! as in the CAN bench and no part has anything due: the master's boot,
-//! SDO and PDO timeouts and SYNC period ([`super::master::Master::quiet`]),
-//! each device's cyclic, heartbeat, guarding or SAR58K24 cycle timer and
-//! queued answers ([`super::node::DeviceNode::quiet`]), and the script's
-//! start pulses, power-ons, alarms and fault windows. A SYNC gap or a
-//! cyclic TPDO period then goes in one skip (`docs/timing/canopen.md`).
+//! Fast-forward ([`Testbench::quiet_cycles`]): quiet while every receive
+//! level holds and no part has anything due, as in the CAN bench: in bus
+//! idle and within a frame, up to the next sample point or bit end of any
+//! controller on the bus; the master's boot, SDO and PDO timeouts and SYNC
+//! period ([`super::master::Master::quiet`]), each device's cyclic,
+//! heartbeat, guarding or SAR58K24 cycle timer and queued answers
+//! ([`super::node::DeviceNode::quiet`]), and the script's start pulses,
+//! power-ons, alarms and fault windows. A SYNC gap or a cyclic TPDO period
+//! goes in one skip (`docs/timing/canopen.md`). No bit clock is in the
+//! samples, so nothing counts on through a skip.
 
 use serde::{Deserialize, Serialize};
 
@@ -30,7 +33,7 @@ use super::interpret::interpret;
 use super::master::{In, Master, MasterConfig, Out, Param};
 use super::node::{DeviceNode, EncoderNode, NodeTiming};
 use super::sar58k24::{SarCan, SarCanConfig};
-use crate::can::bench::{Disturber, Fault, OnBus, PinMonitor};
+use crate::can::bench::{steady_rx, undisturbed_rx, Disturber, Fault, OnBus, PinMonitor};
 use crate::can::bus::{Bus, Place};
 use crate::can::controller::State as CanState;
 use crate::can::emulator::{Emulator, NodeSettings};
@@ -394,6 +397,11 @@ pub struct Bench {
 }
 
 impl Bench {
+    /// Node `j`'s receive level this cycle and for how long it holds ([`steady_rx`]).
+    fn steady_rx(&self, j: usize) -> Option<(bool, u64)> {
+        steady_rx(&self.bus, &self.stuck, &self.disturbers[j], j, self.cycle, self.cpb)
+    }
+
     /// A bench in its reset state.
     pub fn new(cfg: &BenchConfig) -> Result<Self> {
         cfg.check()?;
@@ -589,17 +597,23 @@ impl Testbench for Bench {
         ]);
     }
 
-    /// Quiet when the whole bus is idle: every delay line recessive, every
-    /// node (master, listen-only monitor, encoders, SAR58K24s, tool) idle
-    /// with nothing due before then, no flip window, stuck window, start
-    /// pulse, alarm or power-on ahead before then, and the run's end not
-    /// decided within it (see the module docs).
+    /// Quiet while no line and no node can change, on an idle bus and in
+    /// a frame alike (as in the CAN bench): each node's receive level holds
+    /// (the bus through its delay lines, the stuck and flip windows:
+    /// [`steady_rx`]) and the master, the listen-only monitor and every
+    /// powered node are quiet at that level ([`Master::quiet`],
+    /// [`DeviceNode::quiet`], [`Emulator::quiet`]: in a frame, short of
+    /// their next sample point or bit end; their timers and queued frames
+    /// not due). No start pulse, power-on or alarm ahead before then, and
+    /// the run's end not decided within it (see the module docs).
     fn quiet_cycles(&self) -> u64 {
         let c = self.cycle;
-        let mut q = self.master.quiet(true).min(self.monitor.controller().quiet(true));
-        if q == 0 || !self.bus.recessive() {
+        let Some((rx, steady)) = self.steady_rx(0) else { return 0 };
+        let mut q = self.master.quiet(rx).min(self.monitor.controller().quiet(rx));
+        if q == 0 {
             return 0;
         }
+        q = q.min(steady);
         q = match self.end {
             Some(e) => q.min(e - c),
             None => q.min(self.run_cycles.saturating_sub(c + 1)),
@@ -613,38 +627,39 @@ impl Testbench for Bench {
                 q = q.min(s - c);
             }
         }
-        for &(a, b) in &self.stuck {
-            if c < b {
-                q = q.min(a.saturating_sub(c));
-            }
-        }
-        for d in &self.disturbers {
-            q = q.min(d.quiet(c, self.cpb));
-        }
+        // The nodes in bus order, as `step` reads their receive levels.
+        let mut j = 1;
         for (e, power_on, alarm) in &self.encoders {
+            let Some((rx, steady)) = self.steady_rx(j) else { return 0 };
+            q = q.min(steady);
             if c < *power_on {
                 q = q.min(power_on - c);
             } else {
-                q = q.min(e.quiet(true));
+                q = q.min(e.quiet(rx));
             }
             if let Some(a) = *alarm {
                 if a >= c {
                     q = q.min(a - c);
                 }
             }
+            j += 1;
         }
         for s in &self.sars {
-            q = q.min(s.quiet(true));
+            let Some((rx, steady)) = self.steady_rx(j) else { return 0 };
+            q = q.min(steady).min(s.quiet(rx));
+            j += 1;
         }
         if let Some(t) = &self.tool {
-            q = q.min(t.quiet(true));
+            let Some((rx, steady)) = self.steady_rx(j) else { return 0 };
+            q = q.min(steady).min(t.quiet(rx));
         }
         q
     }
 
     fn skip(&mut self, n: u64) {
-        for d in &mut self.disturbers {
-            d.skip(n, true);
+        for j in 0..self.disturbers.len() {
+            let level = undisturbed_rx(&self.bus, &self.stuck, j, self.cycle);
+            self.disturbers[j].skip(n, level);
         }
         self.master.skip(n);
         self.monitor.skip(n);
