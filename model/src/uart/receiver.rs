@@ -153,15 +153,19 @@ impl Receiver {
 
     /// How many of the next steps with `input` only run the bit counter
     /// (fast-forward): idle on a high line, between two samples of a
-    /// character, or waiting in recovery on a low one. 0 while a pulse is up
-    /// or the synchroniser has not settled.
+    /// character, or waiting in recovery on a low one. 0 while a pulse is
+    /// up or `input` is new (not the last step's). Between two samples an
+    /// edge may still be on its way through the synchroniser: nothing reads
+    /// it before the next sample, and [`Receiver::skip`] moves it on. Idle
+    /// and recovery read the synchroniser every cycle, so there it must
+    /// have settled.
     pub fn quiet(&self, input: &In) -> u64 {
         let o = &self.out;
-        if o.o_valid || o.o_frame_err || o.o_start_err || o.o_parity_err || self.rx_meta != input.i_rx || self.rx_sync != input.i_rx {
+        if o.o_valid || o.o_frame_err || o.o_start_err || o.o_parity_err || self.rx_meta != input.i_rx {
             return 0;
         }
         match self.state {
-            State::Idle | State::Recover if input.i_rx == (self.state == State::Idle) => u64::MAX,
+            State::Idle | State::Recover if self.rx_sync == input.i_rx && input.i_rx == (self.state == State::Idle) => u64::MAX,
             State::Idle | State::Recover => 0,
             State::Start | State::Data | State::ParityBit | State::Stop => self.cnt,
         }
@@ -171,6 +175,10 @@ impl Receiver {
     pub fn skip(&mut self, n: u64) {
         if matches!(self.state, State::Start | State::Data | State::ParityBit | State::Stop) {
             self.cnt -= n;
+        }
+        if n > 0 {
+            // The synchroniser's second stage takes the first's, which holds the input.
+            self.rx_sync = self.rx_meta;
         }
     }
 
