@@ -125,12 +125,19 @@ impl DelayLine {
 
     /// Advances one cycle: `input` is the level at the sending end now; the
     /// result is the level at the receiving end now.
+    #[inline]
     pub fn step(&mut self, input: bool) -> bool {
-        // Most cycles carry no edge and have none in flight.
+        // Most cycles carry no edge and have none in flight: inlined into
+        // the callers (a half-duplex pair steps four lines every cycle).
         if input == self.last_input && self.pending.is_empty() {
             self.now += 1;
             return self.output;
         }
+        self.step_edge(input)
+    }
+
+    /// [`DelayLine::step`] with an edge at the input or one in flight.
+    fn step_edge(&mut self, input: bool) -> bool {
         if input != self.last_input {
             self.last_input = input;
             let mut due = self.now + self.delay;
