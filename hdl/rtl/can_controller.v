@@ -281,9 +281,26 @@ reg  sample;
 reg  load_tx;
 reg  [5:0] left;
 reg  [5:0] end_tq;
+// The last cycle of a time quantum.
+wire tq_end = (pre_cnt_reg == BRP_LAST);
+
+// The prescaler counts in a block of its own: it changes every cycle, and a
+// simulator runs an always @* again whenever anything it reads changes, so
+// the block below sees only tq_end and runs once per time quantum, not every
+// cycle (Icarus spent most of a CAN replay re-running it).
+always @* begin
+    if (restart) begin
+        // This cycle is the first of SYNC_SEG.
+        if (BRP == 1) pre_cnt_next = 10'd0;
+        else pre_cnt_next = 10'd1;
+    end else if (tq_end) begin
+        pre_cnt_next = 10'd0;
+    end else begin
+        pre_cnt_next = pre_cnt_reg + 10'd1;
+    end
+end
 
 always @* begin
-    pre_cnt_next = pre_cnt_reg;
     tq_cnt_next = tq_cnt_reg;
     ext_next = ext_reg;
     short_next = short_reg;
@@ -313,19 +330,13 @@ always @* begin
         short_next = 1'b0;
         synced_next = 1'b1;
         load_tx = 1'b1;
-        if (BRP == 1) begin
-            pre_cnt_next = 10'd0;
-            tq_cnt_next = 6'd1;
-        end else begin
-            pre_cnt_next = 10'd1;
-            tq_cnt_next = 6'd0;
-        end
+        if (BRP == 1) tq_cnt_next = 6'd1;
+        else tq_cnt_next = 6'd0;
     end else begin
         end_tq = LAST_TQ_6 + ext_next - (short_next ? SJW_6 : 6'd0);
-        if (pre_cnt_reg == BRP_LAST) begin
+        if (tq_end) begin
             sample = (tq_cnt_reg == TSEG1_6 + ext_next);
             load_tx = (tq_cnt_reg == end_tq);
-            pre_cnt_next = 10'd0;
             if (load_tx) begin
                 tq_cnt_next = 6'd0;
                 ext_next = 6'd0;
@@ -333,8 +344,6 @@ always @* begin
             end else begin
                 tq_cnt_next = tq_cnt_reg + 6'd1;
             end
-        end else begin
-            pre_cnt_next = pre_cnt_reg + 10'd1;
         end
         if (sample) synced_next = 1'b0;
     end

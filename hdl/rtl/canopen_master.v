@@ -211,6 +211,12 @@ reg  [3:0]  k_reg = 4'd0, k_next;
 // One counter times the boot-up wait, the SDO answer and the position's
 // age; it saturates at 2^32 - 1 (model: Master::timer).
 reg  [31:0] timer_reg = 32'd0, timer_next;
+// The state machine's block below asks for the timer's restart at 0 with
+// timer_clear; timer_next, sync_cnt_next and the timeouts due are worked out
+// apart from it (after it): both counters change every cycle, and a simulator
+// runs an always @* again whenever anything it reads changes, so the state
+// machine's block reads only the flags, which change when a timeout falls due.
+reg         timer_clear;
 reg  [7:0]  tries_reg = 8'd0, tries_next;
 reg  [31:0] sync_cnt_reg = 32'd0, sync_cnt_next;
 // A SYNC is due and waits for the transmit buffer.
@@ -288,16 +294,29 @@ wire emcy = rx && c_rx_id == COB_EMCY && c_rx_dlc == 4'd8;
 // The transmit buffer is empty and no request is on its way to it.
 wire free = !c_tx_busy && !tx_start_reg;
 wire [31:0] timer_inc = (timer_reg == 32'hFFFF_FFFF) ? timer_reg : timer_reg + 32'd1;
+wire boot_timeout_due = timer_inc >= BOOT_TIMEOUT_32;
+wire sdo_timeout_due = timer_inc >= SDO_TIMEOUT_32;
+// The timer reaches PDO_TIMEOUT at this edge if it counts on (restarted, it
+// is 0, and PDO_TIMEOUT is at least 1).
+wire pdo_timeout_due = timer_inc == PDO_TIMEOUT_32;
 wire sync_due = SYNC_PERIOD_32 != 32'd0 && sync_cnt_reg + 32'd1 >= SYNC_PERIOD_32;
+always @* begin
+    timer_next = timer_clear ? 32'd0 : timer_inc;
+    // SYNC producer: counts in every state; the SYNC goes out in RUN when the buffer is free.
+    sync_cnt_next = sync_cnt_reg;
+    if (SYNC_PERIOD_32 != 32'd0) begin
+        if (sync_due) sync_cnt_next = 32'd0;
+        else sync_cnt_next = sync_cnt_reg + 32'd1;
+    end
+end
 wire [3:0] k_inc = k_reg + 4'd1;
 wire [2:0] after_boot = (N_PARAMS_32 == 32'd0) ? NMT_SEND : SDO_SEND;
 
 always @* begin
     state_next = state_reg;
     k_next = k_reg;
-    timer_next = timer_inc;
+    timer_clear = 1'b0;
     tries_next = tries_reg;
-    sync_cnt_next = sync_cnt_reg;
     sync_pending_next = sync_pending_reg;
     tx_start_next = 1'b0;
     tx_id_next = tx_id_reg;
@@ -324,19 +343,12 @@ always @* begin
         sync_sent_next = 1'b1;
         tx_sync_next = 1'b0;
     end
-    // SYNC producer: counts in every state; the SYNC goes out in RUN when the buffer is free.
-    if (SYNC_PERIOD_32 != 32'd0) begin
-        if (sync_due) begin
-            sync_cnt_next = 32'd0;
-            sync_pending_next = 1'b1;
-        end else begin
-            sync_cnt_next = sync_cnt_reg + 32'd1;
-        end
-    end
+    // The SYNC producer's period is over (its counter restarts above).
+    if (sync_due) sync_pending_next = 1'b1;
 
     if (i_start) begin
         state_next = WAIT_BOOT;
-        timer_next = 32'd0;
+        timer_clear = 1'b1;
         tries_next = 8'd0;
     end else begin
         case (state_reg)
@@ -346,8 +358,8 @@ always @* begin
                 k_next = 4'd0;
                 tries_next = 8'd0;
                 state_next = after_boot;
-            end else if (timer_inc >= BOOT_TIMEOUT_32) begin
-                timer_next = 32'd0;
+            end else if (boot_timeout_due) begin
+                timer_clear = 1'b1;
                 if (tries_reg >= RETRIES_8) begin
                     node_lost_next = 1'b1;
                     state_next = FAILED;
@@ -372,8 +384,8 @@ always @* begin
                 tx_data_next = p_request;
                 tx_sync_next = 1'b0;
                 state_next = SDO_WAIT;
-                timer_next = 32'd0;
-            end else if (timer_inc >= SDO_TIMEOUT_32) begin
+                timer_clear = 1'b1;
+            end else if (sdo_timeout_due) begin
                 node_lost_next = 1'b1;
                 state_next = FAILED;
             end
@@ -383,7 +395,7 @@ always @* begin
                 // The node started again: the table from entry 0, with all its retries.
                 booted_next = 1'b1;
                 k_next = 4'd0;
-                timer_next = 32'd0;
+                timer_clear = 1'b1;
                 tries_next = 8'd0;
                 state_next = SDO_SEND;
             end else if (sdo_ours && b0 == 8'h60) begin
@@ -396,13 +408,13 @@ always @* begin
                 abort_index_next = p_index;
                 abort_sub_next = p_sub;
                 state_next = FAILED;
-            end else if (timer_inc >= SDO_TIMEOUT_32) begin
+            end else if (sdo_timeout_due) begin
                 if (tries_reg >= RETRIES_8) begin
                     node_lost_next = 1'b1;
                     state_next = FAILED;
                 end else begin
                     tries_next = tries_reg + 8'd1;
-                    timer_next = 32'd0;
+                    timer_clear = 1'b1;
                     state_next = SDO_SEND;
                 end
             end
@@ -417,7 +429,7 @@ always @* begin
                 state_next = RUN;
                 config_done_next = 1'b1;
                 pos_stale_next = 1'b0;
-                timer_next = 32'd0;
+                timer_clear = 1'b1;
             end
         end
         RUN: begin
@@ -429,13 +441,14 @@ always @* begin
                 pos_valid_next = 1'b1;
                 position_next = {b3, b2, b1, b0};
                 pos_stale_next = 1'b0;
-                timer_next = 32'd0;
+                timer_clear = 1'b1;
             end else if (emcy) begin
                 emcy_valid_next = 1'b1;
                 emcy_code_next = {b1, b0};
                 emcy_reg_next = b2;
             end
-            if (timer_next == PDO_TIMEOUT_32) begin
+            // timer_next == PDO_TIMEOUT
+            if (!timer_clear && pdo_timeout_due) begin
                 pos_timeout_next = 1'b1;
                 pos_stale_next = 1'b1;
             end
