@@ -294,6 +294,8 @@ reg [6:0]       mem_address_reg = 7'd0, mem_address_next;
 reg [7:0]       wdata_reg = 8'd0, wdata_next;
 reg [1:0]       field_index_reg = 2'd0, field_index_next;
 reg [3:0]       bit_index_reg = 4'd0, bit_index_next;
+// cnt_next, cnt_zero_next and idle_next come from the counters' own blocks
+// just before the state machine's (which only requests a load or a step).
 reg [CNT_W-1:0] cnt_reg = 0, cnt_next;
 // cnt_reg is zero: kept beside the counter (every load is at least one), so
 // the state machine tests a flop instead of a 24-input AND.
@@ -557,6 +559,45 @@ reg             flawed;
 reg             retry;
 reg [CNT_W-1:0] settle;
 
+/* The two counters that change on most cycles (cnt_reg through every wait
+   and bit, idle_reg while the receiver is idle) are stepped here, outside
+   the state machine's block: Icarus re-runs an always @* whenever anything
+   it reads changes, and that block only sets a request and reads the
+   registered flags cnt_zero_reg, idle_end_reg and idle_quiet_reg. A load
+   names its value by a code (the value stays here), not a new 24-bit
+   signal whose top bits would never toggle. */
+localparam [2:0] LOAD_BIT = 3'd0, LOAD_TIMEOUT = 3'd1, LOAD_GAP = 3'd2, LOAD_RETRY = 3'd3,
+    LOAD_SETTLE = 3'd4;
+reg             cnt_load;      // load the value cnt_load_sel names (wins over a count)
+reg [2:0]       cnt_load_sel;
+reg             cnt_count;     // count down one
+reg             idle_clear;    // back to 0 (wins over a count)
+reg             idle_count;    // count up one
+
+always @* begin
+    cnt_next = cnt_reg;
+    cnt_zero_next = cnt_zero_reg;
+    if (cnt_load) begin
+        case (cnt_load_sel)
+            LOAD_BIT: cnt_next = BIT_LAST;
+            LOAD_TIMEOUT: cnt_next = TIMEOUT_LAST;
+            LOAD_GAP: cnt_next = GAP_LAST;
+            LOAD_RETRY: cnt_next = (id_reg == ID_F) ? WRITE_LAST : READ_LAST;
+            default: cnt_next = settle - 1'b1; // LOAD_SETTLE
+        endcase
+        cnt_zero_next = 1'b0;
+    end else if (cnt_count) begin
+        cnt_next = cnt_reg - 1'b1;
+        cnt_zero_next = cnt_reg == 1;
+    end
+end
+
+always @* begin
+    idle_next = idle_reg;
+    if (idle_clear) idle_next = 0;
+    else if (idle_count) idle_next = idle_reg + 1'b1;
+end
+
 always @* begin
     state_next = state_reg;
     id_next = id_reg;
@@ -566,9 +607,11 @@ always @* begin
     wdata_next = wdata_reg;
     field_index_next = field_index_reg;
     bit_index_next = bit_index_reg;
-    cnt_next = cnt_reg;
-    cnt_zero_next = cnt_zero_reg;
-    idle_next = idle_reg;
+    cnt_load = 1'b0;
+    cnt_load_sel = LOAD_BIT;
+    cnt_count = 1'b0;
+    idle_clear = 1'b0;
+    idle_count = 1'b0;
     repeats_left_next = repeats_left_reg;
     tries_left_next = tries_left_reg;
     count_next = count_reg;
@@ -762,8 +805,8 @@ always @* begin
                 state_next = SEND;
                 field_index_next = 2'd0;
                 bit_index_next = 4'd0;
-                cnt_next = BIT_LAST;
-                cnt_zero_next = 1'b0;
+                cnt_load = 1'b1;
+                cnt_load_sel = LOAD_BIT;
                 req_crc_next = 8'd0;
                 tx_en_next = 1'b1;
                 tx_next = 1'b0;
@@ -775,8 +818,8 @@ always @* begin
                     tx_en_next = 1'b0;
                     tx_next = 1'b1;
                     state_next = WAIT;
-                    cnt_next = TIMEOUT_LAST;
-                    cnt_zero_next = 1'b0;
+                    cnt_load = 1'b1;
+                    cnt_load_sel = LOAD_TIMEOUT;
                     count_next = 5'd0;
                     frame_err_next = 1'b0;
                     crc_next = 16'd0;
@@ -798,31 +841,29 @@ always @* begin
                     field_index_next = nfield;
                     tx_next = tx_bit;
                     if (n_data && !n_is_crc) req_crc_next = req_crc_step;
-                    cnt_next = BIT_LAST;
-                    cnt_zero_next = 1'b0;
+                    cnt_load = 1'b1;
+                    cnt_load_sel = LOAD_BIT;
                 end
             end else begin
-                cnt_next = cnt_reg - 1'b1;
-                cnt_zero_next = cnt_reg == 1;
+                cnt_count = 1'b1;
             end
         end
         WAIT: begin
             if (rx_busy) begin
                 state_next = RECV;
-                idle_next = 0;
+                idle_clear = 1'b1;
             end else if (cnt_zero_reg) begin
                 finish = 1'b1;
                 finish_timeout = 1'b1;
             end else begin
-                cnt_next = cnt_reg - 1'b1;
-                cnt_zero_next = cnt_reg == 1;
+                cnt_count = 1'b1;
             end
         end
         RECV: begin
             if (rx_valid || rx_frame_err) begin
                 count_next = (count_reg > 5'd18) ? 5'd19 : count_reg + 5'd1;
                 frame_err_next = frame_err_reg | rx_frame_err;
-                idle_next = 0;
+                idle_clear = 1'b1;
                 if (fld_reg) begin
                     if (idx == 5'd0) f0_next = rx_data;
                     if (idx == 5'd1) f1_next = rx_data[1:0];
@@ -850,10 +891,10 @@ always @* begin
                     end
                 end
             end else if (!rx_busy) begin
-                idle_next = idle_reg + 1'b1;
+                idle_count = 1'b1;
                 if (idle_end_reg) finish = 1'b1;
             end else begin
-                idle_next = 0;
+                idle_clear = 1'b1;
             end
         end
         GAP: begin
@@ -861,14 +902,13 @@ always @* begin
                 state_next = SEND;
                 field_index_next = 2'd0;
                 bit_index_next = 4'd0;
-                cnt_next = BIT_LAST;
-                cnt_zero_next = 1'b0;
+                cnt_load = 1'b1;
+                cnt_load_sel = LOAD_BIT;
                 req_crc_next = 8'd0;
                 tx_en_next = 1'b1;
                 tx_next = 1'b0;
             end else begin
-                cnt_next = cnt_reg - 1'b1;
-                cnt_zero_next = cnt_reg == 1;
+                cnt_count = 1'b1;
             end
         end
         SETTLE: begin
@@ -877,15 +917,14 @@ always @* begin
                 busy_next = 1'b0;
                 done_next = 1'b1;
             end else begin
-                cnt_next = cnt_reg - 1'b1;
-                cnt_zero_next = cnt_reg == 1;
+                cnt_count = 1'b1;
             end
         end
         QUIET: begin
             if (rx_busy) begin
-                idle_next = 0;
+                idle_clear = 1'b1;
             end else begin
-                idle_next = idle_reg + 1'b1;
+                idle_count = 1'b1;
                 if (idle_quiet_reg) begin
                     state_next = IDLE;
                     busy_next = 1'b0;
@@ -967,21 +1006,21 @@ always @* begin
         end
         if (retry) begin
             state_next = GAP;
-            cnt_next = (id_reg == ID_F) ? WRITE_LAST : READ_LAST;
-            cnt_zero_next = 1'b0;
+            cnt_load = 1'b1;
+            cnt_load_sel = LOAD_RETRY;
         end else begin
             repeats_left_next = repeats_after;
             if (repeats_after != 4'd0) begin
                 state_next = GAP;
-                cnt_next = GAP_LAST;
-                cnt_zero_next = 1'b0;
+                cnt_load = 1'b1;
+                cnt_load_sel = LOAD_GAP;
             end else if (flawed) begin
                 state_next = QUIET;
-                idle_next = 0;
+                idle_clear = 1'b1;
             end else if (settle != 0) begin
                 state_next = SETTLE;
-                cnt_next = settle - 1'b1;
-                cnt_zero_next = 1'b0;
+                cnt_load = 1'b1;
+                cnt_load_sel = LOAD_SETTLE;
             end else begin
                 state_next = IDLE;
                 busy_next = 1'b0;
