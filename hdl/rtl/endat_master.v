@@ -246,6 +246,17 @@ endfunction
 /* Registers: the model's Regs */
 reg [2:0]       state_reg = IDLE, state_next;
 reg [CNT_W-1:0] cnt_reg = 0, cnt_next;
+// The phase counter steps on every cycle of a clock phase or pause. Icarus re-runs an
+// always @* whenever anything it reads changes, so the state machine's block does not
+// read it (it would re-run every cycle): it asks for a load or a step and reads cnt_zero.
+reg             cnt_load, cnt_dec;
+reg [CNT_W-1:0] cnt_load_value;
+wire            cnt_zero = cnt_reg == 0;
+always @* begin
+    if (cnt_load) cnt_next = cnt_load_value;
+    else if (cnt_dec) cnt_next = cnt_reg - 1'b1;
+    else cnt_next = cnt_reg;
+end
 reg [15:0]      fall_idx_reg = 0, fall_idx_next;
 reg [15:0]      stop_idx_reg = NONE, stop_idx_next;
 reg [15:0]      blk_idx_reg = NONE, blk_idx_next;
@@ -262,6 +273,16 @@ reg             err_frame_reg = 1'b0, err_frame_next;
 
 reg             rx_on_reg = 1'b0, rx_on_next;
 reg [15:0]      rx_cnt_reg = 0, rx_cnt_next;
+// The receiver's sample counter steps on every cycle of a reception: outside the state
+// machine's block for the same reason as cnt.
+reg             rx_cnt_load, rx_cnt_dec;
+reg [15:0]      rx_cnt_load_value;
+wire            rx_cnt_zero = rx_cnt_reg == 16'd0;
+always @* begin
+    if (rx_cnt_load) rx_cnt_next = rx_cnt_load_value;
+    else if (rx_cnt_dec) rx_cnt_next = rx_cnt_reg - 16'd1;
+    else rx_cnt_next = rx_cnt_reg;
+end
 reg [15:0]      smp_idx_reg = 0, smp_idx_next;
 reg [3:0]       phase_reg = RX_IDLE, phase_next;
 reg [7:0]       seg_cnt_reg = 0, seg_cnt_next;
@@ -284,6 +305,8 @@ reg             data_meta_reg = 1'b1;
 reg             data_sync_reg = 1'b1;
 reg             data_prev_reg = 1'b1;
 // Cycles since the synchronised line last changed: where a start bit's edge really was.
+// It steps on every cycle, so it is computed outside the state machine's block (see cnt;
+// below, from edge_any), which reads only since_edge_off.
 reg [15:0]      since_edge_reg = 16'hFFFF, since_edge_next;
 
 // Delay measurement (seed 2.1.2): a counter restarted at each rising clock edge from R10 on,
@@ -292,6 +315,13 @@ reg             meas_on_reg = (DELAY_COMP != 0), meas_on_next;
 reg [15:0]      meas_cnt_reg = 16'hFFFF, meas_cnt_next;
 reg             meas_got_reg = 1'b0, meas_got_next;
 reg [15:0]      meas_cap_reg = 0, meas_cap_next;
+// meas_cnt steps on every cycle of a frame: it and its capture live outside the state
+// machine's block (see cnt), which only asks for the restart and the capture.
+reg             meas_cnt_restart, meas_cap_take;
+always @* begin
+    meas_cnt_next = meas_cnt_restart ? 16'd1 : ((meas_cnt_reg == 16'hFFFF) ? 16'hFFFF : meas_cnt_reg + 16'd1);
+    meas_cap_next = meas_cap_take ? meas_cnt_reg : meas_cap_reg;
+end
 reg [7:0]       meas_k_reg = 0, meas_k_next;
 reg [7:0]       meas_round_reg = 0, meas_round_next;
 reg [23:0]      meas_sum_reg = 0, meas_sum_next;
@@ -428,6 +458,11 @@ always @(posedge i_clk) begin
 end
 wire [15:0] d_use = (meas_frame_reg || !((DELAY_COMP != 0) && delay_valid_reg)) ? FIXED_D : delay_reg;
 wire        edge_any = data_sync_reg != data_prev_reg;
+always @* begin
+    since_edge_next = edge_any ? 16'd1 : ((since_edge_reg == 16'hFFFF) ? 16'hFFFF : since_edge_reg + 16'd1);
+end
+// The start bit's edge lies off its expected place, HIGH_CLOCKS +/- DELAY_TOL after the rising edge.
+wire        since_edge_off = (since_edge_reg > HIGH16 + TOL16) || (since_edge_reg + TOL16 < HIGH16);
 wire        edge_rise = data_sync_reg && !data_prev_reg;
 wire [15:0] k_next = fall_idx_reg + 16'd1;
 // The next falling edge k = fall_idx + 1 is compared through registered forms (timing closure):
@@ -472,7 +507,9 @@ reg        start_meas;
 
 always @* begin
     state_next = state_reg;
-    cnt_next = cnt_reg;
+    cnt_load = 1'b0;
+    cnt_dec = 1'b0;
+    cnt_load_value = 0;
     fall_idx_next = fall_idx_reg;
     stop_idx_next = stop_idx_reg;
     blk_idx_next = blk_idx_reg;
@@ -487,7 +524,9 @@ always @* begin
     is21_next = is21_reg;
     err_frame_next = err_frame_reg;
     rx_on_next = rx_on_reg;
-    rx_cnt_next = rx_cnt_reg;
+    rx_cnt_load = 1'b0;
+    rx_cnt_dec = 1'b0;
+    rx_cnt_load_value = 16'd0;
     smp_idx_next = smp_idx_reg;
     phase_next = phase_reg;
     seg_cnt_next = seg_cnt_reg;
@@ -506,7 +545,8 @@ always @* begin
     drift_next = drift_reg;
     meas_on_next = meas_on_reg;
     meas_got_next = meas_got_reg;
-    meas_cap_next = meas_cap_reg;
+    meas_cnt_restart = 1'b0;
+    meas_cap_take = 1'b0;
     meas_k_next = meas_k_reg;
     meas_round_next = meas_round_reg;
     meas_sum_next = meas_sum_reg;
@@ -579,17 +619,16 @@ always @* begin
     start_meas = 1'b0;
 
     /* ---- line timing ---- */
-    since_edge_next = edge_any ? 16'd1 : ((since_edge_reg == 16'hFFFF) ? 16'hFFFF : since_edge_reg + 16'd1);
-    meas_cnt_next = (meas_cnt_reg == 16'hFFFF) ? 16'hFFFF : meas_cnt_reg + 16'd1;
     if (meas_frame_reg && rx_on_reg && phase_reg == RX_POLL && edge_rise && !meas_got_reg) begin
-        meas_cap_next = meas_cnt_reg;
+        meas_cap_take = 1'b1;
         meas_got_next = 1'b1;
     end
 
     /* ---- receiver ---- */
     if (rx_on_reg) begin
-        if (rx_cnt_reg == 16'd0) begin
-            rx_cnt_next = cpb_last;
+        if (rx_cnt_zero) begin
+            rx_cnt_load = 1'b1;
+            rx_cnt_load_value = cpb_last;
             smp_idx_next = smp_idx_reg + 16'd1;
             case (phase_reg)
                 RX_TURN: begin
@@ -620,8 +659,7 @@ always @* begin
                         end else if (cont_left_reg <= 8'd1) begin
                             stop_idx_next = smp_idx_reg + frame_len_reg;
                         end
-                        drift_next = (DELAY_COMP != 0) && !meas_frame_reg && delay_valid_reg
-                                     && ((since_edge_reg > HIGH16 + TOL16) || (since_edge_reg + TOL16 < HIGH16));
+                        drift_next = (DELAY_COMP != 0) && !meas_frame_reg && delay_valid_reg && since_edge_off;
                     end else if (polls_reg == poll_limit_reg) begin
                         do_abort = 1'b1;
                         abort_timeout = 1'b1;
@@ -697,7 +735,7 @@ always @* begin
                 /* verilator coverage_on */
             endcase
         end else begin
-            rx_cnt_next = rx_cnt_reg - 16'd1;
+            rx_cnt_dec = 1'b1;
         end
     end
 
@@ -858,7 +896,8 @@ always @* begin
                 state_next = FIRST;
                 clk_out_next = 1'b0;
                 fall_idx_next = 16'd1;
-                cnt_next = start_meas ? MEAS_LOW_LAST : T_ST_LAST;
+                cnt_load = 1'b1;
+                cnt_load_value = start_meas ? MEAS_LOW_LAST : T_ST_LAST;
                 kind_next = start_meas ? KIND_POS21 : frame_kind(i_mode);
                 mode_next = start_meas ? 6'b000111 : i_mode;
                 mrs_next = start_meas ? 8'd0 : i_mrs;
@@ -878,21 +917,23 @@ always @* begin
         end
         FIRST: begin
             tx_bits_next = {tx_bits_reg[34:5], blk_crc};
-            if (cnt_reg == 0) begin
+            if (cnt_zero) begin
                 state_next = HIGH;
                 clk_out_next = 1'b1;
-                cnt_next = high_last;
+                cnt_load = 1'b1;
+                cnt_load_value = high_last;
             end else begin
-                cnt_next = cnt_reg - 1'b1;
+                cnt_dec = 1'b1;
             end
         end
         HIGH: begin
-            if (cnt_reg == 0) begin
+            if (cnt_zero) begin
                 if (fall_idx_reg >= stop_idx_reg) begin
                     state_next = PAUSE;
                     oe_next = 1'b0;
                     dout_next = 1'b0;
-                    cnt_next = is21_reg ? T_B_LAST : (err_frame_reg ? T_ERR_LAST : T_M_LAST);
+                    cnt_load = 1'b1;
+                    cnt_load_value = is21_reg ? T_B_LAST : (err_frame_reg ? T_ERR_LAST : T_M_LAST);
                     if (!err_frame_reg && mode_reg == 6'b001001 && mrs_reg[7:5] == 3'b010) begin
                         if (!mrs_reg[4]) begin
                             ad1_on_next = mrs_reg != 8'h4F;
@@ -916,7 +957,8 @@ always @* begin
                     state_next = LOW;
                     clk_out_next = 1'b0;
                     fall_idx_next = k_next;
-                    cnt_next = low_last;
+                    cnt_load = 1'b1;
+                    cnt_load_value = low_last;
                     if (drive_mode || in_block) begin
                         oe_next = 1'b1;
                         dout_next = tx_bits_reg[34];
@@ -927,30 +969,32 @@ always @* begin
                     end
                     if (rx_begin) begin
                         rx_on_next = 1'b1;
-                        rx_cnt_next = d_use - 16'd1;
+                        rx_cnt_load = 1'b1;
+                        rx_cnt_load_value = d_use - 16'd1;
                         smp_idx_next = k_next;
                         phase_next = RX_TURN;
                     end
                 end
             end else begin
-                cnt_next = cnt_reg - 1'b1;
+                cnt_dec = 1'b1;
             end
         end
         LOW: begin
-            if (cnt_reg == 0) begin
+            if (cnt_zero) begin
                 state_next = HIGH;
                 clk_out_next = 1'b1;
-                cnt_next = high_last;
-                if (fall_idx_reg >= 16'd10) meas_cnt_next = 16'd1;
+                cnt_load = 1'b1;
+                cnt_load_value = high_last;
+                if (fall_idx_reg >= 16'd10) meas_cnt_restart = 1'b1;
             end else begin
-                cnt_next = cnt_reg - 1'b1;
+                cnt_dec = 1'b1;
             end
         end
         PAUSE: begin
-            if (cnt_reg == 0) begin
+            if (cnt_zero) begin
                 state_next = IDLE;
             end else begin
-                cnt_next = cnt_reg - 1'b1;
+                cnt_dec = 1'b1;
             end
         end
         // Codes 5 to 7 are never entered (every assignment above names a
