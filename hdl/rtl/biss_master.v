@@ -214,6 +214,18 @@ wire [7:0] cur_mask = (8'hFF >> (4'd8 - cur_crc_w));
 
 reg [3:0]        state_reg = IDLE, state_next;
 reg [CNT_W-1:0]  cnt_reg = 0, cnt_next;
+// The timeout counter steps on every cycle of a wait (for the start bit, a late ack, SLO's
+// release). Icarus re-runs an always @* whenever anything it reads changes, so the state
+// machine's block does not read it (it would re-run every cycle): it asks for a clear or a
+// step and reads the two comparisons below.
+reg              cnt_clear, cnt_inc;
+wire             cnt_at_timeout = cnt_reg == TIMEOUT_CNT;
+wire             cnt_timed_out = cnt_reg >= TIMEOUT_CNT;
+always @* begin
+    if (cnt_clear) cnt_next = 0;
+    else if (cnt_inc) cnt_next = cnt_reg + 1'b1;
+    else cnt_next = cnt_reg;
+end
 reg [15:0]       delay_cnt_reg = 16'd0, delay_cnt_next;
 reg [SMP_W-1:0]  smp_cnt_reg = 0, smp_cnt_next;
 
@@ -221,6 +233,16 @@ reg [SMP_W-1:0]  smp_cnt_reg = 0, smp_cnt_next;
 // a stop request takes effect at the first phase boundary where MA equals its level.
 reg              ma_reg = 1'b1, ma_next;
 reg [SMP_W-1:0]  ma_cnt_reg = 0, ma_cnt_next;
+// ma_cnt steps on every cycle of a phase: outside the state machine's block for the same
+// reason as cnt. The block reads ma_cnt_zero and asks for a step or a load, naming the
+// phase to load (high or low) rather than a new value signal.
+reg              ma_cnt_load, ma_cnt_load_high, ma_cnt_dec;
+wire             ma_cnt_zero = ma_cnt_reg == 0;
+always @* begin
+    if (ma_cnt_load) ma_cnt_next = ma_cnt_load_high ? HIGH_LAST : LOW_LAST;
+    else if (ma_cnt_dec) ma_cnt_next = ma_cnt_reg - 1'b1;
+    else ma_cnt_next = ma_cnt_reg;
+end
 reg              ma_run_reg = 1'b0, ma_run_next;
 reg [1:0]        ma_edges_reg = 2'd0, ma_edges_next;
 reg              ma_stop_reg = 1'b0, ma_stop_next;
@@ -342,6 +364,16 @@ reg [SMP_W-1:0]  cal_smp_reg = 0, cal_smp_next;
 wire sampling = (state_reg == START) || (state_reg == CDS) || (state_reg == DATA) ||
                 (state_reg == ERR) || (state_reg == WARN) || (state_reg == CRC);
 wire sample = sampling && (smp_cnt_reg == 0);
+// Bit sampling: once per MA period, in the middle of each arriving cell. smp_cnt steps on
+// every cycle of a reception, so it is stepped here, outside the state machine's block
+// (see cnt), which reads only sample and asks for a load: the first sample after the ack
+// or, with smp_cnt_load_mean, the calibrated one.
+reg              smp_cnt_load, smp_cnt_load_mean;
+always @* begin
+    smp_cnt_next = smp_cnt_reg;
+    if (sampling) smp_cnt_next = (smp_cnt_reg == 0) ? PERIOD_LAST : smp_cnt_reg - 1'b1;
+    if (smp_cnt_load) smp_cnt_next = smp_cnt_load_mean ? cal_smp_reg : FIRST_SAMPLE;
+end
 wire b = slo_sync_reg;
 // The top stage of the current slave's CRC.
 wire [7:0] cur_top = 8'h80 >> (4'd8 - cur_crc_w);
@@ -401,11 +433,15 @@ reg       ctl_err;
 
 always @* begin
     state_next = state_reg;
-    cnt_next = cnt_reg;
+    cnt_clear = 1'b0;
+    cnt_inc = 1'b0;
     delay_cnt_next = delay_cnt_reg;
-    smp_cnt_next = smp_cnt_reg;
+    smp_cnt_load = 1'b0;
+    smp_cnt_load_mean = 1'b0;
     ma_next = ma_reg;
-    ma_cnt_next = ma_cnt_reg;
+    ma_cnt_load = 1'b0;
+    ma_cnt_load_high = 1'b0;
+    ma_cnt_dec = 1'b0;
     ma_run_next = ma_run_reg;
     ma_edges_next = ma_edges_reg;
     ma_stop_next = ma_stop_reg;
@@ -474,27 +510,25 @@ always @* begin
 
     // MA generator.
     if (ma_run_reg) begin
-        if (ma_cnt_reg == 0) begin
+        if (ma_cnt_zero) begin
             if (ma_stop_reg && (ma_reg == ma_stop_level_reg)) begin
                 ma_run_next = 1'b0;
             end else begin
                 ma_next = !ma_reg;
-                ma_cnt_next = ma_reg ? LOW_LAST : HIGH_LAST;
+                ma_cnt_load = 1'b1;
+                ma_cnt_load_high = !ma_reg;
                 if (!ma_reg) begin
                     ma_edges_next = (ma_edges_reg == 2'd2) ? 2'd2 : ma_edges_reg + 2'd1;
                     if (ma_edges_reg == 2'd1) delay_cnt_next = 16'd1;
                 end
             end
         end else begin
-            ma_cnt_next = ma_cnt_reg - 1'b1;
+            ma_cnt_dec = 1'b1;
         end
-    end else if (ma_cnt_reg != 0) begin
+    end else if (!ma_cnt_zero) begin
         // Stopped: counting out the high level that ends a frame.
-        ma_cnt_next = ma_cnt_reg - 1'b1;
+        ma_cnt_dec = 1'b1;
     end
-
-    // Bit sampling: once per MA period, in the middle of each arriving cell.
-    if (sampling) smp_cnt_next = (smp_cnt_reg == 0) ? PERIOD_LAST : smp_cnt_reg - 1'b1;
 
     // Calibrated frames, two cycles after the ack: sample by the mean when
     // the delay is within DELAY_TOL of it, else by the own ack and flag it.
@@ -506,7 +540,10 @@ always @* begin
         cal_smp_next = smp_mean_wide[SMP_W-1:0];
     end
     if (cal_apply_reg) begin
-        if (cal_ok_reg) smp_cnt_next = cal_smp_reg;
+        if (cal_ok_reg) begin
+            smp_cnt_load = 1'b1;
+            smp_cnt_load_mean = 1'b1;
+        end
         else e_drift_next = 1'b1;
     end
 
@@ -517,7 +554,8 @@ always @* begin
                 if (slo_sync_reg) begin
                     state_next = ACK;
                     ma_next = 1'b0;
-                    ma_cnt_next = LOW_LAST;
+                    ma_cnt_load = 1'b1;
+                    ma_cnt_load_high = 1'b0;
                     ma_run_next = 1'b1;
                     ma_edges_next = 2'd0;
                     ma_stop_next = 1'b0;
@@ -541,9 +579,10 @@ always @* begin
             if (ma_edges_reg == 2'd2) begin
                 if (!slo_sync_reg) begin
                     state_next = START;
-                    cnt_next = 0;
+                    cnt_clear = 1'b1;
                     delay_next = delay_cnt_reg;
-                    smp_cnt_next = FIRST_SAMPLE;
+                    smp_cnt_load = 1'b1;
+                    smp_cnt_load_mean = 1'b0;
                     if (cal_cnt_reg != CAL_FRAMES_5) begin
                         cal_sum_next = cal_sum_plus;
                         cal_cnt_next = cal_cnt_reg + 5'd1;
@@ -555,22 +594,22 @@ always @* begin
                     state_next = NOACK;
                     ma_stop_next = 1'b1;
                     ma_stop_level_next = 1'b1;
-                    cnt_next = 0;
+                    cnt_clear = 1'b1;
                 end else begin
                     delay_cnt_next = delay_cnt_reg + 16'd1;
                 end
             end
         end
         START: begin
-            cnt_next = cnt_reg + 1'b1;
+            cnt_inc = 1'b1;
             if (sample && b) begin
                 state_next = CDS;
-            end else if (cnt_reg == TIMEOUT_CNT) begin
+            end else if (cnt_at_timeout) begin
                 state_next = TIMEOUT;
                 e_start_next = 1'b1;
                 ma_stop_next = 1'b1;
                 ma_stop_level_next = 1'b1;
-                cnt_next = 0;
+                cnt_clear = 1'b1;
             end
         end
         CDS: begin
@@ -631,7 +670,7 @@ always @* begin
                         state_next = STOP;
                         ma_stop_next = 1'b1;
                         ma_stop_level_next = !cdm_reg;
-                        cnt_next = 0;
+                        cnt_clear = 1'b1;
                     end
                 end else begin
                     bit_cnt_next = bit_cnt_reg - 7'd1;
@@ -639,29 +678,29 @@ always @* begin
             end
         end
         STOP: begin
-            cnt_next = cnt_reg + 1'b1;
+            cnt_inc = 1'b1;
             if (!slo_sync_reg) begin
                 state_next = TIMEOUT;
-            end else if (cnt_reg >= TIMEOUT_CNT) begin
+            end else if (cnt_timed_out) begin
                 finish = 1'b1;
                 fin_timeout = 1'b1;
             end
         end
         TIMEOUT: begin
-            cnt_next = cnt_reg + 1'b1;
+            cnt_inc = 1'b1;
             if (slo_sync_reg && !ma_run_reg) begin
                 finish = 1'b1;
-            end else if (cnt_reg >= TIMEOUT_CNT) begin
+            end else if (cnt_timed_out) begin
                 finish = 1'b1;
                 fin_timeout = 1'b1;
             end
         end
         NOACK: begin
-            cnt_next = cnt_reg + 1'b1;
+            cnt_inc = 1'b1;
             if (!slo_sync_reg) begin
                 e_delay_next = 1'b1;
                 state_next = TIMEOUT;
-            end else if (cnt_reg >= TIMEOUT_CNT) begin
+            end else if (cnt_timed_out) begin
                 finish = 1'b1;
                 fin_ack = 1'b1;
             end
@@ -682,11 +721,12 @@ always @* begin
     // HIGH_CLOCKS cycles later (o_done then). (Held in its own variable rather than
     // by clearing finish: Verilator 5.006 counts no coverage in a branch that
     // clears the variable of its own condition.)
-    ma_hold = finish && (!ma_reg || ma_cnt_reg != 0);
+    ma_hold = finish && (!ma_reg || !ma_cnt_zero);
     frame_end = finish && !ma_hold;
     if (ma_hold && !ma_reg) begin
         ma_next = 1'b1;
-        ma_cnt_next = HIGH_LAST;
+        ma_cnt_load = 1'b1;
+        ma_cnt_load_high = 1'b1;
     end
 
     if (frame_end) begin
