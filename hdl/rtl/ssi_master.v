@@ -119,6 +119,30 @@ end
 
 reg [2:0]       state_reg = IDLE, state_next;
 reg [CNT_W-1:0] cnt_reg = 0, cnt_next;
+// The phase counter steps on every cycle of a read and of the pause. Icarus re-runs an
+// always @* whenever anything it reads changes, so the state machine's block does not
+// read it (it would re-run every cycle): it asks for a load or a step and reads cnt_zero
+// and cnt_capture. A load names its value by a code (the value stays here), not a new
+// counter-wide signal whose top bits would never toggle.
+localparam [1:0] LOAD_T_CS = 2'd0, LOAD_HIGH = 2'd1, LOAD_LOW = 2'd2, LOAD_PAUSE = 2'd3;
+reg             cnt_load, cnt_dec;
+reg [1:0]       cnt_load_sel;
+wire            cnt_zero = cnt_reg == 0;
+wire            cnt_capture = cnt_reg == CAPTURE_AT;
+always @* begin
+    if (cnt_load) begin
+        case (cnt_load_sel)
+            LOAD_T_CS: cnt_next = T_CS_LAST;
+            LOAD_HIGH: cnt_next = HIGH_LAST;
+            LOAD_LOW: cnt_next = LOW_LAST;
+            default: cnt_next = PAUSE_LAST; // LOAD_PAUSE
+        endcase
+    end else if (cnt_dec) begin
+        cnt_next = cnt_reg - 1'b1;
+    end else begin
+        cnt_next = cnt_reg;
+    end
+end
 reg [7:0]       bit_count_reg = 0, bit_count_next;
 
 // Two-flop synchroniser: i_ssi_data comes from the encoder's clock domain
@@ -161,7 +185,9 @@ wire [BITS:0] copy_shifted = {copy_reg, capture_binary};
 
 always @* begin
     state_next = state_reg;
-    cnt_next = cnt_reg;
+    cnt_load = 1'b0;
+    cnt_load_sel = LOAD_T_CS;
+    cnt_dec = 1'b0;
     bit_count_next = bit_count_reg;
     gray_last_next = gray_last_reg;
     data_next = data_reg;
@@ -180,7 +206,8 @@ always @* begin
             if (i_start) begin
                 if (data_sync_reg) begin
                     state_next = LATCH;
-                    cnt_next = T_CS_LAST;
+                    cnt_load = 1'b1;
+                    cnt_load_sel = LOAD_T_CS;
                     ssi_clk_next = 1'b0;
                     busy_next = 1'b1;
                     bit_count_next = 8'd0;
@@ -195,16 +222,17 @@ always @* begin
             end
         end
         LATCH, HIGH: begin
-            if (cnt_reg == 0) begin
+            if (cnt_zero) begin
                 state_next = (state_reg == LATCH) ? HIGH : LOW;
                 ssi_clk_next = (state_reg == LATCH);
-                cnt_next = (state_reg == LATCH) ? HIGH_LAST : LOW_LAST;
+                cnt_load = 1'b1;
+                cnt_load_sel = (state_reg == LATCH) ? LOAD_HIGH : LOAD_LOW;
             end else begin
-                cnt_next = cnt_reg - 1'b1;
+                cnt_dec = 1'b1;
             end
         end
         LOW: begin
-            if (cnt_reg == CAPTURE_AT) begin
+            if (cnt_capture) begin
                 if (bit_count_reg < VALUE_BITS) begin
                     data_next = data_shifted[BITS-1:0];
                     gray_last_next = capture_binary;
@@ -216,29 +244,31 @@ always @* begin
                 end
                 bit_count_next = bit_count_reg + 1'b1;
             end
-            if (cnt_reg == 0) begin
+            if (cnt_zero) begin
                 ssi_clk_next = 1'b1;
                 if (bit_count_next == SAMPLED_BITS) begin
                     state_next = PAUSE;
-                    cnt_next = PAUSE_LAST;
+                    cnt_load = 1'b1;
+                    cnt_load_sel = LOAD_PAUSE;
                     done_next = 1'b1;
                     position_next = data_next;
                     err_double_next = (DOUBLE_READ != 0) && (data_next != copy_next);
                     err_wire_next = wire_bad_next;
                 end else begin
                     state_next = HIGH;
-                    cnt_next = HIGH_LAST;
+                    cnt_load = 1'b1;
+                    cnt_load_sel = LOAD_HIGH;
                 end
             end else begin
-                cnt_next = cnt_reg - 1'b1;
+                cnt_dec = 1'b1;
             end
         end
         PAUSE: begin
-            if (cnt_reg == 0) begin
+            if (cnt_zero) begin
                 state_next = IDLE;
                 busy_next = 1'b0;
             end else begin
-                cnt_next = cnt_reg - 1'b1;
+                cnt_dec = 1'b1;
             end
         end
         // Codes 5 to 7 are never entered (every assignment above names a
