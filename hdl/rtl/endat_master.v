@@ -277,11 +277,21 @@ reg [15:0]      rx_cnt_reg = 0, rx_cnt_next;
 // machine's block for the same reason as cnt.
 reg             rx_cnt_load, rx_cnt_dec;
 reg [15:0]      rx_cnt_load_value;
-wire            rx_cnt_zero = rx_cnt_reg == 16'd0;
+// rx_cnt_reg == 0, kept in a flop beside the counter (timing closure: the
+// receiver's decisions start from it).
+reg             rx_cnt_zero_reg = 1'b1, rx_cnt_zero_next;
+wire            rx_cnt_zero = rx_cnt_zero_reg;
 always @* begin
-    if (rx_cnt_load) rx_cnt_next = rx_cnt_load_value;
-    else if (rx_cnt_dec) rx_cnt_next = rx_cnt_reg - 16'd1;
-    else rx_cnt_next = rx_cnt_reg;
+    if (rx_cnt_load) begin
+        rx_cnt_next = rx_cnt_load_value;
+        rx_cnt_zero_next = rx_cnt_load_value == 16'd0;
+    end else if (rx_cnt_dec) begin
+        rx_cnt_next = rx_cnt_reg - 16'd1;
+        rx_cnt_zero_next = rx_cnt_reg == 16'd1;
+    end else begin
+        rx_cnt_next = rx_cnt_reg;
+        rx_cnt_zero_next = rx_cnt_zero_reg;
+    end
 end
 reg [15:0]      smp_idx_reg = 0, smp_idx_next;
 reg [3:0]       phase_reg = RX_IDLE, phase_next;
@@ -1027,6 +1037,7 @@ always @(posedge i_clk) begin
     err_frame_reg <= err_frame_next;
     rx_on_reg <= rx_on_next;
     rx_cnt_reg <= rx_cnt_next;
+    rx_cnt_zero_reg <= rx_cnt_zero_next;
     smp_idx_reg <= smp_idx_next;
     phase_reg <= phase_next;
     seg_cnt_reg <= seg_cnt_next;
@@ -1120,6 +1131,7 @@ always @(posedge i_clk) begin
         err_frame_reg <= 1'b0;
         rx_on_reg <= 1'b0;
         rx_cnt_reg <= 16'd0;
+        rx_cnt_zero_reg <= 1'b1;
         smp_idx_reg <= 16'd0;
         phase_reg <= RX_IDLE;
         seg_cnt_reg <= 8'd0;
