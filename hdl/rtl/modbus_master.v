@@ -104,6 +104,8 @@ localparam [31:0] T35_32 = T35_CLOCKS;
 localparam [31:0] T15_32 = T15_CLOCKS;
 localparam [GAP_W-1:0] T35 = T35_32[GAP_W-1:0];
 localparam [GAP_W-1:0] T15 = T15_32[GAP_W-1:0];
+localparam [31:0] T35_LAST_32 = T35_CLOCKS - 1;
+localparam [GAP_W-1:0] T35_LAST = T35_LAST_32[GAP_W-1:0];
 
 // States: the same names and codes as model::modbus::State.
 localparam [2:0]
@@ -165,6 +167,17 @@ uart_tx #(
 
 reg [2:0]       state_reg = IDLE, state_next;
 reg [CNT_W-1:0] cnt_reg = 0, cnt_next;
+// The timeout counter steps on every cycle of WAIT and RECV. Icarus re-runs an always @*
+// whenever anything it reads changes, so the state machine's block does not read it (it
+// would re-run every cycle): it asks for a load or a step and reads cnt_zero.
+reg             cnt_load_timeout, cnt_load_recv, cnt_dec;
+wire            cnt_zero = cnt_reg == 0;
+always @* begin
+    if (cnt_load_timeout) cnt_next = TIMEOUT_LAST;
+    else if (cnt_load_recv) cnt_next = RECV_LAST;
+    else if (cnt_dec) cnt_next = cnt_reg - 1'b1;
+    else cnt_next = cnt_reg;
+end
 reg             tx_pending_reg = 1'b0, tx_pending_next;
 reg [1:0]       op_reg = OP_READ, op_next;
 reg [7:0]       address_reg = 8'd0, address_next;
@@ -178,6 +191,17 @@ reg             parity_seen_reg = 1'b0, parity_seen_next;
 reg             framing_seen_reg = 1'b0, framing_seen_next;
 reg             gap_seen_reg = 1'b0, gap_seen_next;
 reg [GAP_W-1:0] gap_reg = 0, gap_next;
+// The silence inside an answer steps on every cycle between characters: outside the state
+// machine's block for the same reason as cnt. The block asks for a clear or a step and
+// reads gap_long (over t1.5) and gap_step_t35 (a step now reaches t3.5).
+reg             gap_clear, gap_count;
+wire            gap_long = gap_reg > T15;
+wire            gap_step_t35 = gap_reg == T35_LAST;
+always @* begin
+    if (gap_clear) gap_next = 0;
+    else if (gap_count) gap_next = gap_reg + 1'b1;
+    else gap_next = gap_reg;
+end
 // The line counts as quiet for t3.5 at reset.
 reg [GAP_W-1:0] line_idle_reg = T35, line_idle_next;
 
@@ -273,9 +297,25 @@ wire       bad_length = (nbytes_reg < 4'd4) || (nbytes_reg > 4'd9);
 wire [3:0] two_count = {1'b0, count_reg, 1'b0};
 wire [3:0] expected_len = 4'd5 + two_count;
 
+// Silence on the line since the last character in either direction. It steps on most
+// idle cycles, so it is computed here, not in the state machine's block (Icarus re-runs
+// an always @* on any change of what it reads), which reads only line_quiet.
+wire       line_quiet = line_idle_reg >= T35;
+always @* begin
+    if (tx_en_reg || rx_busy || char_end) begin
+        line_idle_next = 0;
+    end else if (!line_quiet) begin
+        line_idle_next = line_idle_reg + 1'b1;
+    end else begin
+        line_idle_next = line_idle_reg;
+    end
+end
+
 always @* begin
     state_next = state_reg;
-    cnt_next = cnt_reg;
+    cnt_load_timeout = 1'b0;
+    cnt_load_recv = 1'b0;
+    cnt_dec = 1'b0;
     tx_en_next = tx_en_reg;
     tx_valid_next = 1'b0;
     tx_data_next = tx_data_reg;
@@ -292,7 +332,8 @@ always @* begin
     parity_seen_next = parity_seen_reg;
     framing_seen_next = framing_seen_reg;
     gap_seen_next = gap_seen_reg;
-    gap_next = gap_reg;
+    gap_clear = 1'b0;
+    gap_count = 1'b0;
     busy_next = busy_reg;
     done_next = 1'b0;
     valid_next = 1'b0;
@@ -325,7 +366,7 @@ always @* begin
             end
         end
         SILENCE: begin
-            if (line_idle_reg >= T35) begin
+            if (line_quiet) begin
                 state_next = SEND;
                 tx_en_next = 1'b1;
             end
@@ -339,7 +380,7 @@ always @* begin
                 if (req_index_reg == data_len + 4'd2) begin
                     tx_en_next = 1'b0;
                     state_next = WAIT;
-                    cnt_next = TIMEOUT_LAST;
+                    cnt_load_timeout = 1'b1;
                 end else begin
                     tx_valid_next = 1'b1;
                     if (req_index_reg < data_len) begin
@@ -363,16 +404,16 @@ always @* begin
                 parity_seen_next = 1'b0;
                 framing_seen_next = 1'b0;
                 gap_seen_next = 1'b0;
-                gap_next = 0;
+                gap_clear = 1'b1;
                 crc_next = 16'hFFFF;
-                cnt_next = RECV_LAST;
-            end else if (cnt_reg == 0) begin
+                cnt_load_recv = 1'b1;
+            end else if (cnt_zero) begin
                 err_timeout_next = 1'b1;
                 state_next = IDLE;
                 busy_next = 1'b0;
                 done_next = 1'b1;
             end else begin
-                cnt_next = cnt_reg - 1'b1;
+                cnt_dec = 1'b1;
             end
         end
         RECV: begin
@@ -384,25 +425,26 @@ always @* begin
                 parity_seen_next = parity_seen_reg | rx_parity_err;
                 framing_seen_next = framing_seen_reg | rx_frame_err;
                 crc_next = crc_chain[8];
-                gap_next = 0;
+                gap_clear = 1'b1;
             end else if (rx_busy) begin
                 // A start bit: the silence before it is complete.
-                if (nbytes_reg != 0 && gap_reg > T15) begin
+                if (nbytes_reg != 0 && gap_long) begin
                     gap_seen_next = 1'b1;
                 end
-                gap_next = 0;
+                gap_clear = 1'b1;
             end else begin
-                gap_next = gap_reg + 1'b1;
+                gap_count = 1'b1;
             end
-            if (cnt_reg == 0 || gap_next == T35) begin
+            // The silence reaches t3.5 (gap_next == T35) only by a step.
+            if (cnt_zero || (gap_count && gap_step_t35)) begin
                 state_next = IDLE;
                 busy_next = 1'b0;
                 done_next = 1'b1;
                 err_parity_next = parity_seen_reg;
                 err_framing_next = framing_seen_reg;
                 err_gap_next = gap_seen_reg;
-                err_length_next = (cnt_reg == 0) || bad_length;
-                if (parity_seen_reg || framing_seen_reg || gap_seen_reg || cnt_reg == 0 || bad_length) begin
+                err_length_next = cnt_zero || bad_length;
+                if (parity_seen_reg || framing_seen_reg || gap_seen_reg || cnt_zero || bad_length) begin
                     // A spoiled frame is not looked into further.
                 end else if (crc_reg != 16'd0) begin
                     err_crc_next = 1'b1;
@@ -439,7 +481,7 @@ always @* begin
                     valid_next = 1'b1;
                 end
             end else begin
-                cnt_next = cnt_reg - 1'b1;
+                cnt_dec = 1'b1;
             end
         end
         // Codes 5 to 7 are never entered (no state assigns them); coverage counts reachable code only.
@@ -449,15 +491,6 @@ always @* begin
         end
         /* verilator coverage_on */
     endcase
-
-    // Silence on the line since the last character in either direction.
-    if (tx_en_reg || rx_busy || char_end) begin
-        line_idle_next = 0;
-    end else if (line_idle_reg < T35) begin
-        line_idle_next = line_idle_reg + 1'b1;
-    end else begin
-        line_idle_next = line_idle_reg;
-    end
 end
 
 always @(posedge i_clk) begin

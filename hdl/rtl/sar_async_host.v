@@ -182,6 +182,24 @@ uart_tx #(
 
 reg [2:0]         state_reg = IDLE, state_next;
 reg [CNT_W-1:0]   cnt_reg = 0, cnt_next;
+// The down-counter steps on every cycle of TRIGGER, CLR and WAIT. Icarus re-runs an
+// always @* whenever anything it reads changes, so the state machine's block does not
+// read it (it would re-run every cycle): it asks for a load or a step and reads cnt_zero.
+// A load names its value by a code (one request line for the three loads).
+localparam [1:0]  LOAD_TIMEOUT = 2'd0, LOAD_TRIGGER = 2'd1, LOAD_CLR = 2'd2;
+reg               cnt_load, cnt_dec;
+reg [1:0]         cnt_load_sel;
+wire              cnt_zero = cnt_reg == 0;
+always @* begin
+    if (cnt_load) begin
+        case (cnt_load_sel)
+            LOAD_TRIGGER: cnt_next = TRIGGER_LAST;
+            LOAD_CLR: cnt_next = CLR_LAST;
+            default: cnt_next = TIMEOUT_LAST;
+        endcase
+    end else if (cnt_dec) cnt_next = cnt_reg - 1'b1;
+    else cnt_next = cnt_reg;
+end
 reg               tx_pending_reg = 1'b0, tx_pending_next;
 reg [23:0]        cmd_reg = 24'd0, cmd_next;
 reg [1:0]         cmd_index_reg = 2'd0, cmd_index_next;
@@ -195,6 +213,16 @@ reg [3:0]         count_reg = 4'd0, count_next;
 reg               synced_reg = 1'b1, synced_next;
 reg [IDLE_W-1:0]  idle_reg = 0, idle_next;
 reg [STALE_W-1:0] stale_reg = 0, stale_next;
+// With STALE_CLOCKS the stale counter steps on every cycle: outside the state machine's
+// block for the same reason as cnt. The block asks for a clear (an accepted frame) and
+// reads stale_last; without a clear the counter wraps from STALE_LAST to 0.
+reg               stale_clear;
+wire              stale_last = stale_reg == STALE_LAST;
+always @* begin
+    if (stale_clear) stale_next = 0;
+    else if (STALE_CLOCKS != 0) stale_next = stale_last ? 0 : stale_reg + 1'b1;
+    else stale_next = stale_reg;
+end
 
 reg        trigger_reg = 1'b1, trigger_next;
 reg        clr_reg = 1'b1, clr_next;
@@ -260,7 +288,9 @@ wire       other_address = IS_BUS && (TAG_ADDRESS != 0) && (win_b0 == 8'hFF) && 
 
 always @* begin
     state_next = state_reg;
-    cnt_next = cnt_reg;
+    cnt_load = 1'b0;
+    cnt_load_sel = LOAD_TIMEOUT;
+    cnt_dec = 1'b0;
     tx_en_next = tx_en_reg;
     tx_valid_next = 1'b0;
     tx_data_next = tx_data_reg;
@@ -273,7 +303,7 @@ always @* begin
     count_next = count_reg;
     synced_next = synced_reg;
     idle_next = idle_reg;
-    stale_next = stale_reg;
+    stale_clear = 1'b0;
     trigger_next = trigger_reg;
     clr_next = clr_reg;
     busy_next = busy_reg;
@@ -302,7 +332,7 @@ always @* begin
                 event_now = 1'b1;
                 count_next = 4'd0;
                 synced_next = 1'b1;
-                stale_next = 0;
+                stale_clear = 1'b1;
             end else begin
                 if (count_plus == L4 && synced_reg) begin
                     event_now = 1'b1;
@@ -339,11 +369,9 @@ always @* begin
             end
         end
         if (STALE_CLOCKS != 0 && !accepted) begin
-            if (stale_reg == STALE_LAST) begin
+            // At STALE_LAST the counter's own block wraps it to 0.
+            if (stale_last) begin
                 err_stale_next = 1'b1;
-                stale_next = 0;
-            end else begin
-                stale_next = stale_reg + 1'b1;
             end
         end
 
@@ -353,11 +381,13 @@ always @* begin
                 if (i_start && IS_TIMED) begin
                     // Timed modes: a read is "the next frame event".
                     state_next = WAIT;
-                    cnt_next = TIMEOUT_LAST;
+                    cnt_load = 1'b1;
+                    cnt_load_sel = LOAD_TIMEOUT;
                     busy_next = 1'b1;
                 end else if (i_start && IS_HANDSHAKE) begin
                     state_next = TRIGGER;
-                    cnt_next = TRIGGER_LAST;
+                    cnt_load = 1'b1;
+                    cnt_load_sel = LOAD_TRIGGER;
                     trigger_next = 1'b0;
                     busy_next = 1'b1;
                 end else if ((i_start && IS_BUS) || (i_zero && BUS_CLEAR)) begin
@@ -370,28 +400,30 @@ always @* begin
                     busy_next = 1'b1;
                 end else if (i_zero && HAS_CLR) begin
                     state_next = CLR;
-                    cnt_next = CLR_LAST;
+                    cnt_load = 1'b1;
+                    cnt_load_sel = LOAD_CLR;
                     clr_next = 1'b0;
                     busy_next = 1'b1;
                 end
             end
             TRIGGER: begin
-                if (cnt_reg == 0) begin
+                if (cnt_zero) begin
                     trigger_next = 1'b1;
                     state_next = WAIT;
-                    cnt_next = TIMEOUT_LAST;
+                    cnt_load = 1'b1;
+                    cnt_load_sel = LOAD_TIMEOUT;
                 end else begin
-                    cnt_next = cnt_reg - 1'b1;
+                    cnt_dec = 1'b1;
                 end
             end
             CLR: begin
-                if (cnt_reg == 0) begin
+                if (cnt_zero) begin
                     clr_next = 1'b1;
                     state_next = IDLE;
                     busy_next = 1'b0;
                     done_next = 1'b1;
                 end else begin
-                    cnt_next = cnt_reg - 1'b1;
+                    cnt_dec = 1'b1;
                 end
             end
             SEND: begin
@@ -404,7 +436,8 @@ always @* begin
                         tx_en_next = 1'b0;
                         if (expect_answer_reg) begin
                             state_next = WAIT;
-                            cnt_next = TIMEOUT_LAST;
+                            cnt_load = 1'b1;
+                            cnt_load_sel = LOAD_TIMEOUT;
                         end else begin
                             state_next = IDLE;
                             busy_next = 1'b0;
@@ -423,13 +456,13 @@ always @* begin
                     state_next = IDLE;
                     busy_next = 1'b0;
                     done_next = 1'b1;
-                end else if (cnt_reg == 0) begin
+                end else if (cnt_zero) begin
                     err_timeout_next = 1'b1;
                     state_next = IDLE;
                     busy_next = 1'b0;
                     done_next = 1'b1;
                 end else begin
-                    cnt_next = cnt_reg - 1'b1;
+                    cnt_dec = 1'b1;
                 end
             end
             // Codes 5 to 7 are never entered (no state assigns them); coverage counts reachable code only.

@@ -159,6 +159,22 @@ reg [5:0]        req_nbits_reg = 6'd0, req_nbits_next;
 reg [39:0]       shift_reg = 40'd0, shift_next;
 reg [5:0]        bits_left_reg = 6'd0, bits_left_next;
 reg [CNT_W-1:0]  cnt_reg = 0, cnt_next;
+// The counter steps on every cycle of a bit, a wait, an answer and a gap. Icarus re-runs
+// an always @* whenever anything it reads changes, so the state machine's block does not
+// read it (it would re-run every cycle): it asks for a load or a step and reads cnt_zero.
+// A load wins over a step (RECV steps on every cycle; an answer's end may load the limit
+// or the gap in the same cycle). One request per load value: a 2-bit code instead cost
+// 20 MHz on iCE40 HX8K.
+reg              cnt_load_bit, cnt_load_timeout, cnt_load_limit, cnt_load_gap, cnt_dec;
+wire             cnt_zero = cnt_reg == 0;
+always @* begin
+    if (cnt_load_bit) cnt_next = BIT_LAST;
+    else if (cnt_load_timeout) cnt_next = TIMEOUT_LAST;
+    else if (cnt_load_limit) cnt_next = LIMIT_LAST;
+    else if (cnt_load_gap) cnt_next = GAP_LAST;
+    else if (cnt_dec) cnt_next = cnt_reg - 1'b1;
+    else cnt_next = cnt_reg;
+end
 reg [3:0]        repeats_reg = 4'd0, repeats_next;
 reg [7:0]        count_reg = 8'd0, count_next;
 reg [7:0]        crc_reg = 8'd0, crc_next;
@@ -239,10 +255,10 @@ reg finish_timeout;
 
 // The checks of one answer, from the fields and running XOR as they stand.
 // `timeout_now` is the WAIT state's timeout, from registers only.
-wire timeout_now = (state_reg == WAIT) && !rx_busy && (cnt_reg == 0);
+wire timeout_now = (state_reg == WAIT) && !rx_busy && cnt_zero;
 wire crc_bad = !timeout_now && crc_reg != 8'd0;
 // RECV has run 120 bit times: the answer is over, whatever holds the line.
-wire too_long = (state_reg == RECV) && (cnt_reg == 0);
+wire too_long = (state_reg == RECV) && cnt_zero;
 wire frame_bad = !timeout_now && (frame_bad_reg || too_long || count_reg != expected_fields);
 wire cf_bad = !timeout_now && f0_reg != req_cf_reg;
 
@@ -254,7 +270,11 @@ always @* begin
     req_nbits_next = req_nbits_reg;
     shift_next = shift_reg;
     bits_left_next = bits_left_reg;
-    cnt_next = cnt_reg;
+    cnt_load_bit = 1'b0;
+    cnt_load_timeout = 1'b0;
+    cnt_load_limit = 1'b0;
+    cnt_load_gap = 1'b0;
+    cnt_dec = 1'b0;
     repeats_next = repeats_reg;
     count_next = count_reg;
     crc_next = crc_reg;
@@ -308,44 +328,44 @@ always @* begin
                 state_next = SEND;
                 shift_next = req_bits_next >> 1;
                 bits_left_next = req_nbits_next - 1'b1;
-                cnt_next = BIT_LAST;
+                cnt_load_bit = 1'b1;
                 tx_en_next = 1'b1;
                 tx_next = 1'b0;
             end
         end
         SEND: begin
-            if (cnt_reg == 0) begin
+            if (cnt_zero) begin
                 if (bits_left_reg == 6'd0) begin
                     tx_en_next = 1'b0;
                     tx_next = 1'b1;
                     state_next = WAIT;
-                    cnt_next = TIMEOUT_LAST;
+                    cnt_load_timeout = 1'b1;
                     count_next = 8'd0;
                     crc_next = 8'd0;
                 end else begin
                     tx_next = shift_reg[0];
                     shift_next = shift_reg >> 1;
                     bits_left_next = bits_left_reg - 1'b1;
-                    cnt_next = BIT_LAST;
+                    cnt_load_bit = 1'b1;
                 end
             end else begin
-                cnt_next = cnt_reg - 1'b1;
+                cnt_dec = 1'b1;
             end
         end
         WAIT: begin
             if (rx_busy) begin
                 state_next = RECV;
                 idle_next = 0;
-                cnt_next = LIMIT_LAST;
-            end else if (cnt_reg == 0) begin
+                cnt_load_limit = 1'b1;
+            end else if (cnt_zero) begin
                 finish = 1'b1;
                 finish_timeout = 1'b1;
             end else begin
-                cnt_next = cnt_reg - 1'b1;
+                cnt_dec = 1'b1;
             end
         end
         RECV: begin
-            cnt_next = cnt_reg - 1'b1;
+            cnt_dec = 1'b1;
             if (too_long) begin
                 finish = 1'b1;
             end else if (rx_valid || rx_frame_err) begin
@@ -364,15 +384,15 @@ always @* begin
             end
         end
         GAP: begin
-            if (cnt_reg == 0) begin
+            if (cnt_zero) begin
                 state_next = SEND;
                 shift_next = req_bits_reg >> 1;
                 bits_left_next = req_nbits_reg - 1'b1;
-                cnt_next = BIT_LAST;
+                cnt_load_bit = 1'b1;
                 tx_en_next = 1'b1;
                 tx_next = req_bits_reg[0];
             end else begin
-                cnt_next = cnt_reg - 1'b1;
+                cnt_dec = 1'b1;
             end
         end
         QUIET: begin
@@ -386,12 +406,12 @@ always @* begin
             end else begin
                 idle_next = idle_reg + 1'b1;
             end
-            if ((!rx_busy && idle_reg == QUIET_IDLE_LAST) || cnt_reg == 0) begin
+            if ((!rx_busy && idle_reg == QUIET_IDLE_LAST) || cnt_zero) begin
                 state_next = IDLE;
                 busy_next = 1'b0;
                 done_next = 1'b1;
             end else begin
-                cnt_next = cnt_reg - 1'b1;
+                cnt_dec = 1'b1;
             end
         end
         // Codes 6 and 7 are never entered (no state assigns them); coverage counts reachable code only.
@@ -433,14 +453,14 @@ always @* begin
         if (repeats_reg == 4'd1 && (finish_timeout || crc_bad || frame_bad || cf_bad)) begin
             state_next = QUIET;
             idle_next = 0;
-            cnt_next = LIMIT_LAST;
+            cnt_load_limit = 1'b1;
         end else if (repeats_reg == 4'd1) begin
             state_next = IDLE;
             busy_next = 1'b0;
             done_next = 1'b1;
         end else begin
             state_next = GAP;
-            cnt_next = GAP_LAST;
+            cnt_load_gap = 1'b1;
         end
     end
 end

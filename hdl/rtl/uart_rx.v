@@ -79,6 +79,17 @@ end
 
 reg [2:0]       state_reg = IDLE, state_next;
 reg [CNT_W-1:0] cnt_reg = 0, cnt_next;
+// The bit counter steps on every cycle of a character. Icarus re-runs an always @*
+// whenever anything it reads changes, so the state machine's block does not read it (it
+// would re-run every cycle): it asks for a load or a step and reads cnt_zero.
+reg             cnt_load_half, cnt_load_bit, cnt_dec;
+wire            cnt_zero = cnt_reg == 0;
+always @* begin
+    if (cnt_load_half) cnt_next = HALF_LAST;
+    else if (cnt_load_bit) cnt_next = BIT_LAST;
+    else if (cnt_dec) cnt_next = cnt_reg - 1'b1;
+    else cnt_next = cnt_reg;
+end
 reg [2:0]       bit_index_reg = 3'd0, bit_index_next;
 reg [7:0]       shift_reg = 8'd0, shift_next;
 
@@ -97,19 +108,20 @@ reg       parity_err_reg = 1'b0, parity_err_next;
 // The parity bit stage: what state PARITY_BIT does, built only with
 // PARITY != 0, so that a receiver without parity (ESL, T-format) has no
 // parity line that could never run. In PARITY_BIT the counter runs down one
-// bit; at mid parity bit the bit is checked and the machine goes to STOP.
+// bit (g_parity asks for the step or the reload, like the state machine); at
+// mid parity bit the bit is checked and the machine goes to STOP.
 // Toggle coverage counts g_parity's own registers, not these: without
 // parity they are constants and would count as bits that never toggle.
 /* verilator coverage_off */
 wire [2:0]       parity_state_next;
-wire [CNT_W-1:0] parity_cnt_next;
+wire             parity_cnt_load, parity_cnt_dec;
 wire             parity_ok_sampled;
 /* verilator coverage_on */
 
 generate
 if (PARITY != 0) begin : g_parity
     reg [2:0]       state_n;
-    reg [CNT_W-1:0] cnt_n;
+    reg             load_n, dec_n;
     reg             ok_n;
 
     // The parity bit expected after shift: odd parity makes the count of ones odd.
@@ -118,26 +130,29 @@ if (PARITY != 0) begin : g_parity
 
     always @* begin
         state_n = state_reg;
-        cnt_n = cnt_reg;
+        load_n = 1'b0;
+        dec_n = 1'b0;
         ok_n = parity_ok_reg;
         if (state_reg == PARITY_BIT) begin
-            if (cnt_reg == 0) begin
+            if (cnt_zero) begin
                 ok_n = (rx_sync_reg == parity_expected);
                 state_n = STOP;
-                cnt_n = BIT_LAST;
+                load_n = 1'b1;
             end else begin
-                cnt_n = cnt_reg - 1'b1;
+                dec_n = 1'b1;
             end
         end
     end
 
     assign parity_state_next = state_n;
-    assign parity_cnt_next = cnt_n;
+    assign parity_cnt_load = load_n;
+    assign parity_cnt_dec = dec_n;
     assign parity_ok_sampled = ok_n;
 end else begin : g_no_parity
     // Never read: without parity the state is never PARITY_BIT.
     assign parity_state_next = IDLE;
-    assign parity_cnt_next = {CNT_W{1'b0}};
+    assign parity_cnt_load = 1'b0;
+    assign parity_cnt_dec = 1'b0;
     assign parity_ok_sampled = 1'b1;
 end
 endgenerate
@@ -151,7 +166,9 @@ assign o_parity_err = parity_err_reg;
 
 always @* begin
     state_next = state_reg;
-    cnt_next = cnt_reg;
+    cnt_load_half = 1'b0;
+    cnt_load_bit = 1'b0;
+    cnt_dec = 1'b0;
     bit_index_next = bit_index_reg;
     shift_next = shift_reg;
     data_next = data_reg;
@@ -166,12 +183,12 @@ always @* begin
         IDLE: begin
             if (!rx_sync_reg) begin
                 state_next = START;
-                cnt_next = HALF_LAST;
+                cnt_load_half = 1'b1;
                 busy_next = 1'b1;
             end
         end
         START: begin
-            if (cnt_reg == 0) begin
+            if (cnt_zero) begin
                 if (rx_sync_reg) begin
                     // The line went back high before mid-bit: a glitch.
                     state_next = IDLE;
@@ -179,29 +196,29 @@ always @* begin
                     start_err_next = 1'b1;
                 end else begin
                     state_next = DATA;
-                    cnt_next = BIT_LAST;
+                    cnt_load_bit = 1'b1;
                     bit_index_next = 3'd0;
                     parity_ok_next = 1'b1;
                 end
             end else begin
-                cnt_next = cnt_reg - 1'b1;
+                cnt_dec = 1'b1;
             end
         end
         DATA: begin
-            if (cnt_reg == 0) begin
+            if (cnt_zero) begin
                 shift_next = {rx_sync_reg, shift_reg[7:1]};
-                cnt_next = BIT_LAST;
+                cnt_load_bit = 1'b1;
                 if (bit_index_reg == 3'd7) begin
                     state_next = (PARITY == 0) ? STOP : PARITY_BIT;
                 end else begin
                     bit_index_next = bit_index_reg + 1'b1;
                 end
             end else begin
-                cnt_next = cnt_reg - 1'b1;
+                cnt_dec = 1'b1;
             end
         end
         STOP: begin
-            if (cnt_reg == 0) begin
+            if (cnt_zero) begin
                 data_next = shift_reg;
                 if (rx_sync_reg) begin
                     state_next = IDLE;
@@ -213,7 +230,7 @@ always @* begin
                     frame_err_next = 1'b1;
                 end
             end else begin
-                cnt_next = cnt_reg - 1'b1;
+                cnt_dec = 1'b1;
             end
         end
         RECOVER: begin
@@ -229,7 +246,8 @@ always @* begin
         /* verilator coverage_off */
         PARITY_BIT: begin
             state_next = parity_state_next;
-            cnt_next = parity_cnt_next;
+            cnt_load_bit = parity_cnt_load;
+            cnt_dec = parity_cnt_dec;
             parity_ok_next = parity_ok_sampled;
         end
         default: begin
