@@ -83,6 +83,23 @@ mod tests {
     }
 
     #[test]
+    fn rec_127_is_still_error_active_and_128_is_not() {
+        // ISO 11898-1: error-passive above 127. Each stuff error costs the
+        // receiving core 1, the dominant bit after its flag 8: the 15th error
+        // reaches exactly 127 and still sends an active flag (the RTL replay
+        // compares the flag's bits on TXD); the 8 after it make it passive.
+        let (_, t) = run("can_err_rec_127");
+        // A transaction shows REC at its error, before the 8 of the next flag.
+        assert_eq!(t.len(), 16, "{:?}", outcomes(&t));
+        assert!(t[..15].iter().all(|t| t.outcome == "err_stuff"), "{:?}", outcomes(&t));
+        let recs: Vec<u32> = t[..15].iter().map(|t| t.rec as u32).collect();
+        assert_eq!(recs, (0..15).map(|k| 9 * k + 1).collect::<Vec<_>>(), "1 + 8 per error");
+        assert_eq!((t[14].rec, t[14].err_state), (127, 0), "REC 127 at the 15th error: error-active");
+        // 135 after that flag: passive; a frame received whole sets REC to 119 (CAN 2.0 fault confinement, rule 8).
+        assert_eq!((t[15].outcome, t[15].rec, t[15].err_state), ("rx_valid", 119, 0));
+    }
+
+    #[test]
     fn error_passive_bus_off_and_recovery() {
         let (_, t) = run("can_passive_suspend");
         let passive = t.iter().position(|t| t.err_state == 1).expect("error-passive");
