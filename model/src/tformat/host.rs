@@ -282,9 +282,10 @@ impl Host {
         self.state
     }
 
-    /// Fields received in the current answer.
+    /// Fields received in the current answer: the first `MAX_FIELDS` of
+    /// them (`count` goes on counting past them, as the core's does).
     pub fn fields(&self) -> &[u8] {
-        &self.fields[..self.count as usize]
+        &self.fields[..(self.count as usize).min(MAX_FIELDS)]
     }
 
     /// How many of the next steps with `input` only run counters
