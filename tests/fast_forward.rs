@@ -13,7 +13,7 @@
 //! `tbgen gen` writes are the stepping ones; this test is what lets
 //! campaigns and `tbgen bench` use the fast-forward and still mean them.
 
-use model::testbench::lockstep;
+use model::testbench::Testbench;
 use tbgen::builtin;
 use tbgen::scenario::{Scenario, Visitor};
 
@@ -24,7 +24,8 @@ impl Visitor for LockstepRun<'_> {
     type Output = (u64, u64);
     fn visit<S: model::Setup>(self, cfg: &S) -> (u64, u64) {
         let name = self.0;
-        let run = lockstep(name, cfg.bench().expect("a built-in scenario builds"), cfg.bench().expect("a built-in scenario builds"));
+        // lockstep compiled with the model: this test crate is not optimised (Cargo.toml).
+        let run = cfg.bench().expect("a built-in scenario builds").lockstep_compiled(name, cfg.bench().expect("a built-in scenario builds"));
         let to_json = |t: &Vec<_>| serde_json::to_string(t).expect("transactions serialise");
         assert_eq!(to_json(&run.skipping), to_json(&run.stepped), "{name}: transcripts differ");
         (run.cycles, run.skipped)

@@ -68,6 +68,45 @@ pub trait Testbench {
     fn counters(&self) -> &'static [usize] {
         &[]
     }
+
+    /// [`run_to_end`] of this bench. Each bench implements it with
+    /// [`compiled_here!`], so that the loop is compiled with the model
+    /// (optimised) rather than in the crate that calls it: tbgen is compiled
+    /// unoptimised (the workspace's Cargo.toml), and its bench figures time
+    /// these loops.
+    fn run_to_end_compiled(self) -> Run<Self::Transaction>
+    where
+        Self: Sized;
+
+    /// [`run_every_cycle`] of this bench, compiled with the model (see
+    /// [`Testbench::run_to_end_compiled`]).
+    fn run_every_cycle_compiled(self) -> Run<Self::Transaction>
+    where
+        Self: Sized;
+
+    /// [`lockstep`] of this bench (`self` fast-forwarded, `stepped` stepped),
+    /// compiled with the model (see [`Testbench::run_to_end_compiled`]).
+    fn lockstep_compiled(self, name: &str, stepped: Self) -> Lockstep<Self::Transaction>
+    where
+        Self: Sized;
+}
+
+/// The [`Testbench`] methods every bench writes the same way, inside its
+/// `impl Testbench` block: the run loops instantiated for the concrete bench
+/// in this crate, where they are compiled optimised.
+#[macro_export]
+macro_rules! compiled_here {
+    () => {
+        fn run_to_end_compiled(self) -> $crate::testbench::Run<Self::Transaction> {
+            $crate::testbench::run_to_end(self)
+        }
+        fn run_every_cycle_compiled(self) -> $crate::testbench::Run<Self::Transaction> {
+            $crate::testbench::run_every_cycle(self)
+        }
+        fn lockstep_compiled(self, name: &str, stepped: Self) -> $crate::testbench::Lockstep<Self::Transaction> {
+            $crate::testbench::lockstep(name, self, stepped)
+        }
+    };
 }
 
 /// A scenario's configuration of one protocol: what `tbgen` needs to run it

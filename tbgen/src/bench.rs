@@ -22,11 +22,11 @@ use std::io::BufWriter;
 use std::path::Path;
 use std::time::Instant;
 
-use model::testbench::{self, Testbench};
+use model::testbench::Testbench;
 use model::trace::Sample;
 
 use crate::scenario::{Scenario, Visitor};
-use crate::wave::Waves;
+use crate::wave;
 use crate::{builtin, Error, Result};
 
 /// Runs per figure at least.
@@ -109,12 +109,12 @@ impl Visitor for Measure<'_> {
 
         let stepped_seconds = best_of(|| {
             let b = bench()?;
-            std::hint::black_box(testbench::run_every_cycle(b));
+            std::hint::black_box(b.run_every_cycle_compiled());
             Ok(())
         })?;
         let model_seconds = best_of(|| {
             let b = bench()?;
-            std::hint::black_box(testbench::run_to_end(b));
+            std::hint::black_box(b.run_to_end_compiled());
             Ok(())
         })?;
 
@@ -125,15 +125,7 @@ impl Visitor for Measure<'_> {
         let comment = format!("tbgen {}: scenario {} for {}, f_sys {} Hz", env!("CARGO_PKG_VERSION"), self.scenario.name, S::CORE, tb.f_sys_hz());
         let vcd_seconds = best_of(|| {
             let file = File::create(&path).map_err(|e| Error::io(&path, e))?;
-            let mut waves = Waves::new(BufWriter::with_capacity(1 << 20, file), S::CORE, &layout, tb, &comment).map_err(|e| Error::io(&path, e))?;
-            let mut next = 0;
-            for cycle in 0..cycles {
-                while next + 1 < changes.len() && changes[next + 1].0 <= cycle {
-                    next += 1;
-                }
-                waves.at_cycle(cycle, &changes[next].1).map_err(|e| Error::io(&path, e))?;
-            }
-            waves.finish(cycles).map_err(|e| Error::io(&path, e))
+            wave::write_changes(BufWriter::with_capacity(1 << 20, file), S::CORE, &layout, tb, &comment, &changes, cycles).map_err(|e| Error::io(&path, e))
         })?;
         let vcd_bytes = fs::metadata(&path).map(|m| m.len()).map_err(|e| Error::io(&path, e))?;
         let _ = fs::remove_file(&path);

@@ -17,30 +17,6 @@ use crate::{Error, Result};
 
 pub use model::wire::{uart_bytes, Signal, UartByte};
 
-/// One unit of a VCD timescale as a fraction of a picosecond: `(mul, div)`,
-/// a timestamp `ts` being `ts × mul / div` ps. A femtosecond timescale (what
-/// Icarus and Verilator write by default with `timescale 1fs`) has `div =
-/// 1000`: its times are rounded to the nearest picosecond, the decoders'
-/// resolution (a line edge is never closer than a few ns to the next).
-fn timescale_ps(header: &vcd::Header) -> (u64, u64) {
-    let Some((n, unit)) = header.timescale else { return (1, 1) };
-    let n = n as u64;
-    match unit {
-        vcd::TimescaleUnit::S => (n * 1_000_000_000_000, 1),
-        vcd::TimescaleUnit::MS => (n * 1_000_000_000, 1),
-        vcd::TimescaleUnit::US => (n * 1_000_000, 1),
-        vcd::TimescaleUnit::NS => (n * 1_000, 1),
-        vcd::TimescaleUnit::PS => (n, 1),
-        vcd::TimescaleUnit::FS => (n, 1000),
-    }
-}
-
-/// A timestamp of the capture in picoseconds (rounded to the nearest).
-fn to_ps(path: &Path, ts: u64, (mul, div): (u64, u64)) -> Result<u64> {
-    let t = (ts as u128 * mul as u128 + div as u128 / 2) / div as u128;
-    u64::try_from(t).map_err(|_| Error::Decode(format!("{}: timestamp {ts} overflows 64-bit picoseconds", path.display())))
-}
-
 /// A VCD that cannot be parsed is bad input (exit status 2), named with the
 /// parser's words; a read error of the disk stays an I/O error.
 fn not_vcd(path: &Path, e: std::io::Error) -> Error {
@@ -84,7 +60,6 @@ pub fn read(path: &Path, names: &[(&str, &str)]) -> Result<Vec<Signal>> {
     })?;
     let mut parser = vcd::Parser::new(BufReader::new(file));
     let header = parser.parse_header().map_err(|e| not_vcd(path, e))?;
-    let scale = timescale_ps(&header);
     let mut ids = Vec::with_capacity(names.len());
     for &(name, option) in names {
         let parts: Vec<&str> = name.split('.').collect();
@@ -96,25 +71,12 @@ pub fn read(path: &Path, names: &[(&str, &str)]) -> Result<Vec<Signal>> {
         }
         ids.push(var.code);
     }
-    let mut signals: Vec<Signal> = names.iter().map(|&(n, _)| Signal { name: n.to_string(), changes: Vec::new() }).collect();
-    let mut t = 0u64;
-    for cmd in parser {
-        match cmd.map_err(|e| not_vcd(path, e))? {
-            vcd::Command::Timestamp(ts) => {
-                t = to_ps(path, ts, scale)?;
-            }
-            vcd::Command::ChangeScalar(code, v) => {
-                let level = v != vcd::Value::V0;
-                for (sig, &id) in signals.iter_mut().zip(&ids) {
-                    if id == code {
-                        sig.push(t, level);
-                    }
-                }
-            }
-            _ => {}
-        }
-    }
-    Ok(signals)
+    let scale = tracefile::capture::timescale_ps(&header);
+    let wanted: Vec<(&str, vcd::IdCode)> = names.iter().map(|&(n, _)| n).zip(ids).collect();
+    tracefile::capture::read_scalars(parser, &wanted, scale).map_err(|e| match e {
+        tracefile::capture::ScanError::Io(e) => not_vcd(path, e),
+        tracefile::capture::ScanError::TimestampOverflow(ts) => Error::Decode(format!("{}: timestamp {ts} overflows 64-bit picoseconds", path.display())),
+    })
 }
 
 #[cfg(test)]

@@ -107,12 +107,12 @@ impl Drop for Staged {
 }
 
 /// Feeds one sample to the vector writer and the waveform writer.
-struct Both<'a, W: Write> {
+struct Both<'a> {
     vectors: &'a mut VectorWriter,
-    waves: &'a mut Waves<W>,
+    waves: &'a mut Waves,
 }
 
-impl<W: Write> Sink for Both<'_, W> {
+impl Sink for Both<'_> {
     type Error = std::io::Error;
     fn sample(&mut self, cycle: u64, s: &Sample) -> std::io::Result<()> {
         self.vectors.sample(cycle, s)?;

@@ -18,9 +18,9 @@
 //! generate::generate(&scenario, std::path::Path::new("out")).unwrap();
 //! ```
 //!
-//! The generic modules (`scenario`, `builtin`, `generate`, `vectors`,
-//! `wave`, `gtkw`, `transcript`, `capture`, `crc_cmd`, `error`) know no
-//! protocol. Each protocol has its own folder, `tbgen/src/<table>/`, holding
+//! The generic modules (`scenario`, `builtin`, `generate`, `vectors` and
+//! `wave` (from the `tracefile` crate), `gtkw`, `transcript`, `capture`,
+//! `crc_cmd`, `error`) know no protocol. Each protocol has its own folder, `tbgen/src/<table>/`, holding
 //! what is only its own: the [`registry::Protocol`] implementation of its
 //! model's `BenchConfig` and, if it has them, its decoder (`tbgen decode
 //! <table>`) and cycle budget (`tbgen timing <table>`). The protocols are
@@ -38,8 +38,10 @@ pub mod gtkw;
 pub mod registry;
 pub mod scenario;
 pub mod transcript;
-pub mod vectors;
-pub mod wave;
+
+// The per-cycle writers and the capture reader, compiled optimised in a
+// crate of their own (tracefile/Cargo.toml), under their old names.
+pub use tracefile::{vectors, wave};
 
 pub use error::{Error, Result};
 

@@ -651,6 +651,8 @@ impl Bench {
 }
 
 impl Testbench for Bench {
+    crate::compiled_here!();
+
     type Transaction = Transaction;
 
     fn layout(&self) -> &Layout {

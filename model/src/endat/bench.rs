@@ -919,6 +919,8 @@ pub fn error_names(out: &Out) -> Vec<String> {
 }
 
 impl Testbench for Bench {
+    crate::compiled_here!();
+
     type Transaction = Transaction;
 
     fn layout(&self) -> &Layout {

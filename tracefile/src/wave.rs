@@ -8,7 +8,8 @@
 //! `top.<core>` holds the core's ports; `top.decoded` holds the model's view.
 //! The timescale is 1 ps: a whole-picosecond period is exact, any other `f_sys` has each cycle at its exact time rounded to the picosecond (`model::time`).
 
-use std::io::{self, Write};
+use std::fs::File;
+use std::io::{self, BufWriter};
 
 use model::trace::{Layout, Sample, Sink};
 use model::Port;
@@ -21,9 +22,11 @@ struct Signal {
     width: u32,
 }
 
-/// A VCD writer for one bench layout.
-pub struct Waves<W: Write> {
-    vcd: vcd::Writer<W>,
+/// A VCD writer for one bench layout, into a buffered file. Not generic over
+/// the writer, so that this crate (compiled optimised) holds its code rather
+/// than the crate that uses it (see the crate's Cargo.toml).
+pub struct Waves {
+    vcd: vcd::Writer<BufWriter<File>>,
     signals: Vec<Signal>,
     /// The values last written, in declaration order (line, ports, decoded).
     last: Vec<u64>,
@@ -52,10 +55,10 @@ pub fn signal_names(core: &str, layout: &Layout) -> Vec<(String, Vec<String>)> {
     ]
 }
 
-impl<W: Write> Waves<W> {
+impl Waves {
     /// Writes the header for `layout` of `core` on the system clock `timebase`
     /// (each cycle at its exact time rounded to the picosecond, [`model::time::Timebase::ps_at`]).
-    pub fn new(out: W, core: &str, layout: &Layout, timebase: model::time::Timebase, comment: &str) -> io::Result<Self> {
+    pub fn new(out: BufWriter<File>, core: &str, layout: &Layout, timebase: model::time::Timebase, comment: &str) -> io::Result<Self> {
         let mut vcd = vcd::Writer::new(out);
         vcd.comment(comment)?;
         vcd.timescale(1, TimescaleUnit::PS)?;
@@ -151,7 +154,33 @@ impl<W: Write> Waves<W> {
     }
 }
 
-impl<W: Write> Sink for Waves<W> {
+/// Writes a run's VCD from its samples held in memory: `changes` holds the
+/// first cycle's sample and each cycle whose sample differs from the cycle
+/// before, in cycle order; every cycle of `0..cycles` is handed to
+/// [`Waves::at_cycle`] as stepping would, then [`Waves::finish`]. The file is
+/// `tbgen gen`'s byte for byte; `tbgen bench` times this as the VCD writer
+/// alone.
+pub fn write_changes(
+    out: BufWriter<File>,
+    core: &str,
+    layout: &Layout,
+    timebase: model::time::Timebase,
+    comment: &str,
+    changes: &[(u64, Sample)],
+    cycles: u64,
+) -> io::Result<()> {
+    let mut waves = Waves::new(out, core, layout, timebase, comment)?;
+    let mut next = 0;
+    for cycle in 0..cycles {
+        while next + 1 < changes.len() && changes[next + 1].0 <= cycle {
+            next += 1;
+        }
+        waves.at_cycle(cycle, &changes[next].1)?;
+    }
+    waves.finish(cycles)
+}
+
+impl Sink for Waves {
     type Error = io::Error;
     fn sample(&mut self, cycle: u64, sample: &Sample) -> io::Result<()> {
         self.at_cycle(cycle, sample)
