@@ -46,8 +46,7 @@ struct Field {
 }
 
 /// The body of a one-line `fn name() -> T { literal }` in `text`.
-fn default_fn(text: &str, name: &str) -> Option<String> {
-    let lines: Vec<&str> = text.lines().collect();
+fn default_fn(lines: &[&str], name: &str) -> Option<String> {
     let at = lines.iter().position(|l| l.trim_start().starts_with(&format!("fn {name}() ->")))?;
     let body = lines.get(at + 1)?.trim();
     (lines.get(at + 2)?.trim() == "}").then(|| body.to_string())
@@ -82,13 +81,50 @@ fn folder_of(type_name: &str) -> &str {
     type_name.split("::").nth(1).unwrap_or("")
 }
 
-/// The model files, those in `folder` first (a type name is found there
-/// before it is looked for in the shared modules).
-fn sources(folder: &str) -> impl Iterator<Item = &'static (&'static str, &'static str)> {
+/// The model's source files split into lines once, and where each type is
+/// declared: `pub struct Name` and `pub enum Name` lines by name, as
+/// `(file, line)` in file order. tbgen is compiled unoptimised (Cargo.toml);
+/// looking types up here rather than walking every file for every field
+/// took the two reference tests from 11 s each to well under one.
+struct SourceIndex {
+    lines: Vec<Vec<&'static str>>,
+    declared: std::collections::HashMap<&'static str, Vec<(usize, usize)>>,
+}
+
+fn source_index() -> &'static SourceIndex {
+    static INDEX: std::sync::OnceLock<SourceIndex> = std::sync::OnceLock::new();
+    INDEX.get_or_init(|| {
+        let mut index = SourceIndex { lines: Vec::new(), declared: Default::default() };
+        for (file, (_, text)) in MODEL_SOURCES.iter().enumerate() {
+            let lines: Vec<&'static str> = text.lines().collect();
+            for (at, l) in lines.iter().enumerate() {
+                let t = l.trim_start();
+                if let Some(rest) = t.strip_prefix("pub struct ").or_else(|| t.strip_prefix("pub enum ")) {
+                    let name = rest.split(|c: char| !(c.is_alphanumeric() || c == '_')).next().unwrap_or("");
+                    index.declared.entry(name).or_default().push((file, at));
+                }
+            }
+            index.lines.push(lines);
+        }
+        index
+    })
+}
+
+/// The files declaring a type `name` (a line that `is_declaration`), those
+/// in `folder` first, each with its lines and the first such line: where a
+/// type name is found in its protocol's folder before the shared modules.
+fn declarations(name: &str, folder: &str, is_declaration: impl Fn(&str) -> bool) -> Vec<(&'static [&'static str], usize)> {
+    let index = source_index();
     let prefix = format!("{folder}/");
-    let own: Vec<_> = MODEL_SOURCES.iter().filter(|(p, _)| p.starts_with(&prefix)).collect();
-    let rest: Vec<_> = MODEL_SOURCES.iter().filter(|(p, _)| !p.starts_with(&prefix)).collect();
-    own.into_iter().chain(rest)
+    let mut found: Vec<(bool, usize, usize)> = Vec::new();
+    for &(file, at) in index.declared.get(name).map(Vec::as_slice).unwrap_or(&[]) {
+        if found.iter().any(|&(_, f, _)| f == file) || !is_declaration(index.lines[file][at].trim_start()) {
+            continue;
+        }
+        found.push((!MODEL_SOURCES[file].0.starts_with(&prefix), file, at));
+    }
+    found.sort();
+    found.into_iter().map(|(_, file, at)| (index.lines[file].as_slice(), at)).collect()
 }
 
 /// The doc comment and attribute lines just above line `at`.
@@ -129,14 +165,8 @@ fn serde_word(attrs: &[String], word: &str) -> bool {
 
 /// The struct `name`, looked for in `folder` first.
 fn find_struct(name: &str, folder: &str) -> Option<Struct> {
-    for (_, text) in sources(folder) {
-        let lines: Vec<&str> = text.lines().collect();
-        let Some(at) = lines.iter().position(|l| {
-            let t = l.trim_start();
-            t.strip_prefix("pub struct ").is_some_and(|r| r.starts_with(&format!("{name} {{")) || r == format!("{name} {{"))
-        }) else {
-            continue;
-        };
+    let declaration = format!("pub struct {name} {{");
+    for (lines, at) in declarations(name, folder, |t| t.starts_with(&declaration)) {
         let (doc, attrs) = preamble(&lines, at);
         if !attrs.iter().any(|a| a.contains("Deserialize")) {
             continue;
@@ -159,7 +189,7 @@ fn find_struct(name: &str, folder: &str) -> Option<Struct> {
                 let ty = ty.trim().trim_end_matches(',').trim().to_string();
                 let rename = field_attrs.iter().find_map(|a| serde_arg(a, "rename"));
                 let own_default = match field_attrs.iter().find_map(|a| serde_arg(a, "default")) {
-                    Some(f) => default_fn(text, &f),
+                    Some(f) => default_fn(lines, &f),
                     None if serde_word(&field_attrs, "default") => type_default(&ty),
                     None => None,
                 };
@@ -203,11 +233,8 @@ fn rename(variant: &str, rule: Option<&str>) -> String {
 
 /// The enum `name` that scenarios name by its variants, looked for in `folder` first.
 fn find_enum(name: &str, folder: &str) -> Option<Enum> {
-    for (_, text) in sources(folder) {
-        let lines: Vec<&str> = text.lines().collect();
-        let Some(at) = lines.iter().position(|l| l.trim_start().strip_prefix("pub enum ").is_some_and(|r| r == format!("{name} {{"))) else {
-            continue;
-        };
+    let declaration = format!("pub enum {name} {{");
+    for (lines, at) in declarations(name, folder, |t| t == declaration) {
         let (_, attrs) = preamble(&lines, at);
         if !attrs.iter().any(|a| a.contains("Deserialize")) {
             continue;
