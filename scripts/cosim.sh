@@ -31,9 +31,10 @@ while [ $# -gt 0 ]; do
     esac
 done
 root=$(cd "$(dirname "$0")/.." && pwd)
-# Every Verilator build compiles the same runtime (verilated*.cpp): with
-# ccache (make deps installs it) each build after the first reuses it.
-command -v ccache > /dev/null 2>&1 && export OBJCACHE=${OBJCACHE:-ccache}
+# ccache, and Verilator run on paths relative to $root (in_repo): the
+# same build in any clone is one ccache entry (verilator_ccache.sh).
+# shellcheck source=scripts/verilator_ccache.sh
+. "$root/scripts/verilator_ccache.sh"
 plusarg=""
 case "$core" in
 ssi_master) proto=ssi emu=ssi_encoder_emu ;;
@@ -101,11 +102,14 @@ for cfg in "${configs[@]}"; do
         if [ ! -x "$build/Vtb" ]; then
             gargs=()
             for p in $params; do gargs+=("-G$p"); done
-            verilator --binary --timing -j 2 -Wno-fatal -Wno-lint -Wno-style "${vflags[@]}" \
-                --top-module "tb_cosim_$core" -I"$root/hdl/emu" \
+            rel_rtl=()
+            for f in "${rtl[@]}"; do rel_rtl+=("$(in_repo "$f")"); done
+            # From $root, on names relative to it (verilator_ccache.sh: why).
+            (cd "$root" && verilator --binary --timing -j 2 -Wno-fatal -Wno-lint -Wno-style "${vflags[@]}" \
+                --top-module "tb_cosim_$core" -Ihdl/emu \
                 "${gargs[@]}" "-GHALF_PERIOD_FS=$half_fs" \
                 -LDFLAGS "-L$EMU_LIB_DIR -lcosim -Wl,-rpath,$EMU_LIB_DIR" \
-                --Mdir "$build/obj" -o Vtb "$tb" "$root/hdl/emu/$emu.v" "${rtl[@]}" > "$build/build.log" 2>&1 \
+                --Mdir "$build/obj" -o Vtb "$(in_repo "$tb")" "hdl/emu/$emu.v" "${rel_rtl[@]}") > "$build/build.log" 2>&1 \
                 || { cat "$build/build.log" >&2; exit 1; }
             mv "$build/obj/Vtb" "$build/Vtb"
         fi

@@ -81,7 +81,15 @@ def expand_lines(spec, first):
 
 
 def in_rtl(path, rtl_dir):
-    return os.path.realpath(path).startswith(rtl_dir + os.sep)
+    # Relative names are the repository's (sim.sh runs Verilator from its
+    # root, so that builds in any clone share ccache's entries).
+    return os.path.realpath(os.path.join(ROOT, path)).startswith(rtl_dir + os.sep)
+
+
+def repo_name(path):
+    """One name per file, whether Verilator was given it relative to the
+    repository (sim.sh) or absolute (counts of an older build)."""
+    return os.path.relpath(path, ROOT) if path.startswith(ROOT + os.sep) else path
 
 
 def pct(hit, total):
@@ -102,7 +110,7 @@ def points(dat, rtl_dir):
     dut = re.compile(r"(^|\.)dut$")
     for p, n in parse_dat(dat):
         page = p.get("page", "")
-        fname = p.get("f", "")
+        fname = repo_name(p.get("f", ""))
         if not in_rtl(fname, rtl_dir):
             continue
         kind = page.split("/", 1)[0]
@@ -142,7 +150,7 @@ def analyse(core, own, pool):
 def excluded_regions(fname):
     """(file, first, last, code lines, reason) of every coverage_off region."""
     try:
-        with open(fname, encoding="utf-8", errors="replace") as f:
+        with open(os.path.join(ROOT, fname), encoding="utf-8", errors="replace") as f:
             text = f.read().split("\n")
     except OSError:
         return []
@@ -166,7 +174,7 @@ def excluded_regions(fname):
 def source_line(cache, fname, ln):
     if fname not in cache:
         try:
-            with open(fname, encoding="utf-8", errors="replace") as f:
+            with open(os.path.join(ROOT, fname), encoding="utf-8", errors="replace") as f:
                 cache[fname] = f.read().split("\n")
         except OSError:
             cache[fname] = []
@@ -187,14 +195,12 @@ def report(r, rtl_dir):
     if r["uncovered"]:
         print(f"   uncovered lines ({len(r['uncovered'])}):")
         for fname, ln in r["uncovered"]:
-            rel = os.path.relpath(fname, ROOT) if fname.startswith(ROOT + os.sep) else fname
-            print(f"     {rel}:{ln}: {source_line(cache, fname, ln)}")
+            print(f"     {repo_name(fname)}:{ln}: {source_line(cache, fname, ln)}")
     if r["excluded"]:
         total = sum(x[3] for x in r["excluded"])
         print(f"   excluded (coverage_off, unreachable): {total} line(s) in {len(r['excluded'])} region(s)")
         for fname, first, last, _, reason in r["excluded"]:
-            rel = os.path.relpath(fname, ROOT) if fname.startswith(ROOT + os.sep) else fname
-            print(f"     {rel}:{first}-{last}: {reason or '(no reason given above coverage_off)'}")
+            print(f"     {repo_name(fname)}:{first}-{last}: {reason or '(no reason given above coverage_off)'}")
     never = sorted(p for p, bits in r["outputs"].items() if all(v == 0 for v in bits.values()))
     print(f"   outputs that never changed: {', '.join(never) if never else 'none'}")
     partial = []

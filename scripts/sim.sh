@@ -38,9 +38,10 @@ usage() { echo "usage: $0 <core> <icarus|verilator> <vectors.hex> [waves.vcd]" >
 [ $# -ge 3 ] || usage
 core=$1 sim=$2 vectors=$3 waves=${4:-}
 root=$(cd "$(dirname "$0")/.." && pwd)
-# Every Verilator build compiles the same runtime (verilated*.cpp): with
-# ccache (make deps installs it) each build after the first reuses it.
-command -v ccache > /dev/null 2>&1 && export OBJCACHE=${OBJCACHE:-ccache}
+# ccache, and Verilator run on paths relative to $root (in_repo): the
+# same build in any clone is one ccache entry (verilator_ccache.sh).
+# shellcheck source=scripts/verilator_ccache.sh
+. "$root/scripts/verilator_ccache.sh"
 tb="$root/hdl/tb/$core/tb_$core.v"
 if [ ! -f "$tb" ]; then
     echo "sim.sh: no testbench $tb for core '$core'; the cores are: $(cd "$root/hdl/tb" && for d in */; do d=${d%/}; [ -f "$d/tb_$d.v" ] && printf '%s ' "$d"; done)" >&2
@@ -151,10 +152,13 @@ verilator)
         # Verilator 5.006's --binary main never writes coverage: its own main does.
         [ "$coverage" = 1 ] && targs=(--cc --exe --build --coverage --prefix Vtb "$cov_main")
         [ "$coverage" = 1 ] && [ "$trace" = 1 ] && targs+=(--trace)
-        verilator --timing -j 2 -Wno-fatal -Wno-lint -Wno-style "${vflags[@]}" "${targs[@]}" \
-            --top-module "tb_$core" -I"$root/hdl/tb/common" \
+        # From $root, on names relative to it (verilator_ccache.sh: why).
+        rel_rtl=()
+        for f in "${rtl[@]}"; do rel_rtl+=("$(in_repo "$f")"); done
+        (cd "$root" && verilator --timing -j 2 -Wno-fatal -Wno-lint -Wno-style "${vflags[@]}" "${targs[@]}" \
+            --top-module "tb_$core" -Ihdl/tb/common \
             "${gargs[@]}" "-GHALF_PERIOD_FS=$half_fs" "-GMAX_WORDS=$max_words" \
-            --Mdir "$build/obj" -o Vtb "$tb" "${rtl[@]}" > "$build/build.log" 2>&1 \
+            --Mdir "$build/obj" -o Vtb "$(in_repo "$tb")" "${rel_rtl[@]}") > "$build/build.log" 2>&1 \
             || { cat "$build/build.log" >&2; exit 1; }
         mv "$build/obj/Vtb" "$build/Vtb"
     fi

@@ -181,7 +181,7 @@ fn errors_bench(sim: &str, f_emu: u64) -> Command {
             let (ok, out) = if built {
                 (true, String::new())
             } else {
-                run(Command::new("verilator")
+                run(common::verilator(&root())
                     .args([
                         "--binary",
                         "--timing",
@@ -194,7 +194,7 @@ fn errors_bench(sim: &str, f_emu: u64) -> Command {
                         "tb_emu_errors",
                     ])
                     .args(common::verilator_make_flags(&root()))
-                    .arg(format!("-I{hdl}"))
+                    .arg(format!("-I{}", common::in_repo(&root(), Path::new(&hdl)).display()))
                     .arg(format!("-GF_EMU_HZ={f_emu}"))
                     .args([
                         "-LDFLAGS",
@@ -203,8 +203,8 @@ fn errors_bench(sim: &str, f_emu: u64) -> Command {
                     ])
                     .arg(build.join("obj"))
                     .args(["-o", "Vtb"])
-                    .arg(&tb)
-                    .arg(&emu))
+                    .arg(common::in_repo(&root(), &tb))
+                    .arg(common::in_repo(&root(), Path::new(&emu))))
             };
             assert!(ok, "{out}");
             Command::new(build.join("obj/Vtb"))

@@ -43,14 +43,14 @@ fn bench_of(sim: &str, top: &str) -> Command {
         cmd.args(["-n", "-M", &vpi, "-m", "emu"]).arg(vvp).env("LD_LIBRARY_PATH", &lib);
         return cmd;
     }
-    let (ok, out) = run(Command::new("verilator")
+    let (ok, out) = run(common::verilator(&root())
         .args(["--binary", "--timing", "-j", "2", "-Wno-fatal", "-Wno-lint", "-Wno-style", "--top-module", top])
         .args(common::verilator_make_flags(&root()))
-        .arg(format!("-I{hdl}"))
+        .arg(format!("-I{}", common::in_repo(&root(), Path::new(&hdl)).display()))
         .args(["-LDFLAGS", &format!("-L{lib} -lcosim -Wl,-rpath,{lib}"), "--Mdir"])
         .arg(build.join("obj"))
         .args(["-o", "Vtb"])
-        .arg(&tb));
+        .arg(common::in_repo(&root(), &tb)));
     assert!(ok, "{out}");
     let mut cmd = Command::new(build.join("obj/Vtb"));
     cmd.env("LD_LIBRARY_PATH", &lib);
