@@ -176,10 +176,9 @@ done
 # half the CPU time of -O1 (about 7 s less per build) but replays about five
 # times slower (about 16 us more per cycle, coverage on), so a build whose
 # committed files add up to fewer than VERILATOR_O0_CYCLES cycles (default
-# 400000, the break-even) is made at -O0. Most of the ~120 parameter sets
-# replay one or two short files, so most builds are -O0. The same rule here
-# only estimates each run's cost.
-o0_cycles=${VERILATOR_O0_CYCLES:-400000}
+# 100000: sim.sh says why) is made at -O0: 52 of the 130 parameter sets.
+# The same rule here only estimates each run's cost.
+o0_cycles=${VERILATOR_O0_CYCLES:-100000}
 
 # The runs, longest first, so that no long replay starts last and keeps one
 # core busy while the other has nothing left to do. The cost is in

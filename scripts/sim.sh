@@ -30,8 +30,13 @@
 #                   they all share one build: -O0 when the committed vector
 #                   files of this core with this file's parameters and clock
 #                   add up to fewer than VERILATOR_O0_CYCLES cycles (default
-#                   400000, the measured break-even: -O0 compiles about 7 s
-#                   faster and replays about 16 us per cycle slower), else -O1.
+#                   100000), else -O1. With coverage on, -O0 compiles about
+#                   3 to 7 s faster and replays about 6 to 16 us per cycle
+#                   slower: one build against one replay breaks even near
+#                   400000 cycles, but ccache keeps a build for every later
+#                   run on the machine, in any clone (verilator_ccache.sh),
+#                   while the replays are paid on each run: at 100000 cycles
+#                   -O1 pays back its compile by the fourth run.
 set -euo pipefail
 
 usage() { echo "usage: $0 <core> <icarus|verilator> <vectors.hex> [waves.vcd]" >&2; exit 2; }
@@ -106,7 +111,7 @@ if [ "$sim" = verilator ]; then
             END { flush(); print my_c + 0, group + 0 }' "$vectors" "${committed[@]}")"
         [ "$group_cycles" -gt 0 ] || group_cycles=$my_c
         export VERILATOR_OPT=1
-        [ "$group_cycles" -lt "${VERILATOR_O0_CYCLES:-400000}" ] && VERILATOR_OPT=0
+        [ "$group_cycles" -lt "${VERILATOR_O0_CYCLES:-100000}" ] && VERILATOR_OPT=0
     fi
     read -ra vflags <<< "$("$root/scripts/verilator_make_flags.sh")"
 fi
