@@ -77,7 +77,10 @@ words=$(header words_per_record)
 max_words=$(( 1 << 22 ))
 [ "$sim" = icarus ] && max_words=$(( 1 << 12 ))
 while [ $(( records * words )) -gt "$max_words" ]; do max_words=$(( max_words * 2 )); done
-rtl=("${RTL_DIR:-$root/hdl/rtl}"/*.v)
+# Absolute, since Verilator runs from $root: a relative RTL_DIR is the caller's.
+rtl_dir=${RTL_DIR:-$root/hdl/rtl}
+[[ "$rtl_dir" = /* ]] || rtl_dir="$PWD/$rtl_dir"
+rtl=("$rtl_dir"/*.v)
 trace=0
 [ -n "$waves" ] && trace=1
 coverage=0 cov_main="$root/hdl/tb/common/coverage_main.cpp"
