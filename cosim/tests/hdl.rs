@@ -324,7 +324,13 @@ fn the_independent_examples_pass_in_icarus_and_verilator() {
         for sim in ["icarus", "verilator"] {
             // Verilator compiles as our own benches do (the Makefiles leave the options to the user).
             let vflags = format!("VERILATOR_FLAGS={}", common::verilator_make_flags(&root()).join(" "));
-            let (ok, out) = make_example(example, &[format!("SIM={sim}"), format!("READS={reads}"), vflags], &[]);
+            // The wrappers' folder (emu_lib.sh's EMU_HDL_DIR) named relative
+            // to the example, as any clone names it: Verilator writes the
+            // names into its C++, so ccache then finds the build another
+            // clone made (scripts/verilator_ccache.sh).
+            let hdl = "EMU_HDL_DIR=../../hdl/emu".to_string();
+            let base = ("CCACHE_BASEDIR", root().display().to_string());
+            let (ok, out) = make_example(example, &[format!("SIM={sim}"), format!("READS={reads}"), vflags, hdl], &[base]);
             assert!(ok, "{example} in {sim}:\n{out}");
             assert!(
                 out.contains("PASS") && out.contains(&format!(": {reads} ")),
