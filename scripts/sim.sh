@@ -120,6 +120,8 @@ if [ "$sim" = verilator ]; then
 fi
 key=$(printf '%s\n' "$params" "$half_fs" "$trace" "$max_words" "${cov_key[@]}" "${vflags[@]}" | cat - "$tb" "$root/hdl/tb/common/vector_player.vh" "${rtl[@]}" "${cov_files[@]}" | sha1sum | cut -c1-12)
 build="${SIM_BUILD_DIR:-$root/build/sim}/$core/$sim/$key"
+# Absolute, since Verilator runs from $root: a relative SIM_BUILD_DIR is the caller's.
+[[ "$build" = /* ]] || build="$PWD/$build"
 mkdir -p "$build"
 # Parallel runs (cargo's test threads, make -j) may want the same build:
 # one builds while the others wait on the lock, then all reuse it.
