@@ -114,8 +114,8 @@ fn sar_async_host_closed_loop_in_icarus_and_verilator() {
 
 #[test]
 fn modbus_master_closed_loop_in_icarus_and_verilator() {
-    closed_loop_of("modbus_master", "icarus", 2, "core read");
-    closed_loop_of("modbus_master", "verilator", 2, "core read");
+    closed_loop_of("modbus_master", "icarus", 3, "core read");
+    closed_loop_of("modbus_master", "verilator", 3, "core read");
 }
 
 #[test]
