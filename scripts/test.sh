@@ -15,11 +15,6 @@
 #                                      crate compiled once
 #           cargo-test                 model, flow, HDL flip, sigrok, cosim
 #                                      tests (cargo test --release)
-#           cosim                      every core closed-loop against its
-#                                      emulator, 1000 transactions per core
-#                                      and simulator
-#           cocotb                     the cocotb examples in Icarus (the
-#                                      emulators from Python, PyO3)
 #   lane 2: lint, hdl, coverage        Verilator lint, every vector file in
 #                                      Icarus and Verilator (the Verilator
 #                                      replays on the coverage build, which
@@ -28,12 +23,19 @@
 #                                      baseline
 #   either: gtkw, gtkw-window,         every .gtkw in GTKWave (signals, and
 #           fusesoc, wavedrom,         the window each opens on), the FuseSoC
-#           vectors                    core files, the timing diagrams,
-#                                      committed vectors == fresh ones (after
-#                                      lane 1's build): whichever lane is
-#                                      free first takes the next of these, so
-#                                      neither core idles while the other
-#                                      lane still has work
+#           vectors, cosim, cocotb     core files, the timing diagrams,
+#                                      committed vectors == fresh ones, every
+#                                      core closed-loop against its emulator
+#                                      (1000 transactions per core and
+#                                      simulator), the cocotb examples in
+#                                      Icarus (the emulators from Python,
+#                                      PyO3); the last three after lane 1's
+#                                      build. Whichever lane is free first
+#                                      takes the next of these, so neither
+#                                      core idles while the other lane still
+#                                      has work: lane 2 is free first, and
+#                                      runs the closed loops beside the cargo
+#                                      tests, which keep about one core busy.
 #
 # The replays need nothing from cargo, so lane 2 starts with lane 1's
 # compile: rustc's long single-threaded stretches (one crate, one link at
@@ -91,36 +93,60 @@ stage() {
     return $status
 }
 
-# The stages either lane may run, in this order: each lane, when its own
-# stages are done, takes the next one not yet taken (a counter under a lock).
-shared_stages=(gtkw gtkw-window fusesoc wavedrom vectors)
-echo 0 > "$logs/.next_shared"
+# The stages either lane may run: each lane, when its own stages are done,
+# takes the first one in this order that nobody took yet and that can start
+# (cosim, vectors and cocotb need lane 1's build), waiting only when none can.
+# The closed loops come first: the longest, they then run beside the cargo
+# tests, and the short checks fill both lanes' ends.
+shared_stages=(cosim gtkw gtkw-window fusesoc wavedrom vectors cocotb)
+needs_build=" cosim vectors cocotb "
+# after_build NAME COMMAND...: stage NAME once lane 1's build is done (tbgen,
+# the emulator library, the Python module), or a failed NAME if it failed.
+after_build() {
+    local name=$1; shift
+    while [ ! -f "$logs/.build.status" ]; do sleep 2; done
+    if [ "$(cat "$logs/.build.status")" = 0 ]; then
+        stage "$name" "$@"
+    else
+        stage "$name" sh -c "echo \"$name: not run, the build stage failed\" >&2; exit 1"
+    fi
+}
 run_shared() {
     case "$1" in
     gtkw) stage gtkw scripts/check_gtkw.sh ;;
     gtkw-window) stage gtkw-window scripts/check_gtkw_window.sh ;;
     fusesoc) stage fusesoc scripts/check_fusesoc.sh ;;
     wavedrom) stage wavedrom .venv/bin/python scripts/timing_diagrams.py --check ;;
-    vectors)
-        # Needs tbgen: wait for lane 1's build, and say so if it failed.
-        while [ ! -f "$logs/.build.status" ]; do sleep 2; done
-        if [ "$(cat "$logs/.build.status")" = 0 ]; then
-            stage vectors scripts/check_vectors.sh
-        else
-            stage vectors sh -c 'echo "vectors: not checked, the build stage (tbgen) failed" >&2; exit 1'
-        fi ;;
+    vectors) after_build vectors scripts/check_vectors.sh ;;
+    # Icarus on each core's cheapest configuration, Verilator on every
+    # one (make soak: every configuration in Icarus too).
+    cosim) after_build cosim scripts/cosim_regress.sh --transactions 1000 --quick --jobs 2 ;;
+    cocotb) after_build cocotb scripts/cocotb.sh ;;
     esac
 }
-# take_shared: print the next shared stage and claim it, or fail when none is left.
+# take_shared: print the next shared stage that can start and claim it
+# (waiting while only stages that need the build are left and it is not
+# done), or fail when none is left.
 take_shared() {
-    local i
-    {
-        flock 8
-        i=$(cat "$logs/.next_shared")
-        [ "$i" -lt ${#shared_stages[@]} ] || return 1
-        echo $((i + 1)) > "$logs/.next_shared"
-    } 8> "$logs/.next_shared.lock"
-    echo "${shared_stages[$i]}"
+    local name left
+    while :; do
+        left=0
+        {
+            flock 8
+            for name in "${shared_stages[@]}"; do
+                [ -f "$logs/.taken.$name" ] && continue
+                left=1
+                if [[ "$needs_build" == *" $name "* ]] && [ ! -f "$logs/.build.status" ]; then
+                    continue
+                fi
+                : > "$logs/.taken.$name"
+                echo "$name"
+                return 0
+            done
+        } 8> "$logs/.shared.lock"
+        [ "$left" = 1 ] || return 1
+        sleep 2
+    done
 }
 shared_lane() {
     local next lane_fail=0
@@ -141,7 +167,8 @@ if [ $fail = 0 ]; then
         # artifacts already built. --timings:
         # target/cargo-timings/ shows which crate's compile costs.
         stage build sh -c 'cargo test --release --workspace --locked --no-run --timings && cargo build --release --locked -p tbgen -p cosim -p cosim-py' || lane_fail=1
-        # The shared vector check needs tbgen: tell it how the build went.
+        # The shared stages vectors, cosim and cocotb need the build: tell
+        # them how it went.
         echo "$lane_fail" > "$logs/.build.status"
         if [ $lane_fail = 0 ]; then
             # --no-fail-fast: every failing test binary is reported, not the
@@ -149,10 +176,6 @@ if [ $fail = 0 ]; then
             # workspace's crates (Cargo.toml), so that arithmetic overflow
             # panics in tests instead of wrapping.
             stage cargo-test cargo test --release --workspace --locked --no-fail-fast || lane_fail=1
-            # Icarus on each core's cheapest configuration, Verilator on every
-            # one (make soak: every configuration in Icarus too).
-            stage cosim scripts/cosim_regress.sh --transactions 1000 --quick --jobs 2 || lane_fail=1
-            stage cocotb scripts/cocotb.sh || lane_fail=1
         fi
         shared_lane || lane_fail=1
         exit $lane_fail
