@@ -24,6 +24,9 @@
 #   COVERAGE_FILE   with COVERAGE=1: where this run's counts go instead
 #                   (tests/hdl.rs's flipped-bit replays reuse the coverage
 #                   builds of make test's replays without adding to the report)
+#   ENCODER_TB_MODEL_CACHE  Verilator models built on this machine, in any
+#                   clone, are copied from there instead of built again
+#                   (scripts/model_cache.sh; empty: off)
 #   VERILATOR_OPT   0 or 1: the -O level of the Verilator model's C++. Unset,
 #                   it is chosen per parameter set, the same for every caller
 #                   (make test's replays, the cargo tests, make sim), so that
@@ -47,6 +50,8 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 # same build in any clone is one ccache entry (verilator_ccache.sh).
 # shellcheck source=scripts/verilator_ccache.sh
 . "$root/scripts/verilator_ccache.sh"
+# shellcheck source=scripts/model_cache.sh
+. "$root/scripts/model_cache.sh"
 tb="$root/hdl/tb/$core/tb_$core.v"
 if [ ! -f "$tb" ]; then
     echo "sim.sh: no testbench $tb for core '$core'; the cores are: $(cd "$root/hdl/tb" && for d in */; do d=${d%/}; [ -f "$d/tb_$d.v" ] && printf '%s ' "$d"; done)" >&2
@@ -165,12 +170,18 @@ verilator)
         # From $root, on names relative to it (verilator_ccache.sh: why).
         rel_rtl=()
         for f in "${rtl[@]}"; do rel_rtl+=("$(in_repo "$f")"); done
-        (cd "$root" && verilator --timing -j 2 -Wno-fatal -Wno-lint -Wno-style "${vflags[@]}" "${targs[@]}" \
-            --top-module "tb_$core" -Ihdl/tb/common \
-            "${gargs[@]}" "-GHALF_PERIOD_FS=$half_fs" "-GMAX_WORDS=$max_words" \
-            --Mdir "$build/obj" -o Vtb "$(in_repo "$tb")" "${rel_rtl[@]}") > "$build/build.log" 2>&1 \
-            || { cat "$build/build.log" >&2; exit 1; }
-        mv "$build/obj/Vtb" "$build/Vtb"
+        # Built on this machine before, in any clone (model_cache.sh: why):
+        # a copy. The names are part of the entry: Verilator writes them in.
+        mkey=$(model_cache_key "$core" "$key" "$(in_repo "$tb")" "${rel_rtl[@]}" "$(in_repo "$cov_main")")
+        if ! model_cache_get "$mkey" "$build/Vtb"; then
+            (cd "$root" && verilator --timing -j 2 -Wno-fatal -Wno-lint -Wno-style "${vflags[@]}" "${targs[@]}" \
+                --top-module "tb_$core" -Ihdl/tb/common \
+                "${gargs[@]}" "-GHALF_PERIOD_FS=$half_fs" "-GMAX_WORDS=$max_words" \
+                --Mdir "$build/obj" -o Vtb "$(in_repo "$tb")" "${rel_rtl[@]}") > "$build/build.log" 2>&1 \
+                || { cat "$build/build.log" >&2; exit 1; }
+            mv "$build/obj/Vtb" "$build/Vtb"
+            model_cache_put "$mkey" "$build/Vtb"
+        fi
     fi
     flock -u 9
     [ "${SIM_BUILD_ONLY:-0}" = 1 ] && exit 0
