@@ -57,19 +57,19 @@ use crate::pair::Pair;
 use crate::{Emulator, Pins, Result};
 
 /// Both drivers on the pair.
-const TURNAROUND: &str = "turnaround (seed 000: half duplex; the host releases the line after its request, the encoder answers 2 us later)";
+pub const TURNAROUND: &str = "turnaround (seed 000: half duplex; the host releases the line after its request, the encoder answers 2 us later)";
 /// An edge of the request off the bit grid.
-const CHARACTER: &str = "character timing (seed 000 Figure 1: 10-bit fields, start, 8 data LSB first, stop, at the bit rate)";
+pub const CHARACTER: &str = "character timing (seed 000 Figure 1: 10-bit fields, start, 8 data LSB first, stop, at the bit rate)";
 /// A request split by a pause.
-const BACK_TO_BACK: &str = "character timing (seed 000 Table 3: a request's fields back to back; a frame set ends when no start bit follows a stop bit)";
+pub const BACK_TO_BACK: &str = "character timing (seed 000 Table 3: a request's fields back to back; a frame set ends when no start bit follows a stop bit)";
 /// B, C, D not 8 times consecutively.
-const REPEAT: &str = "request spacing (seed 000 Table 4: B, C, D minimum 8 times consecutively at a typical interval of 40 us)";
+pub const REPEAT: &str = "request spacing (seed 000 Table 4: B, C, D minimum 8 times consecutively at a typical interval of 40 us)";
 /// EEPROM reads too close.
-const READ_SPACING: &str = "request spacing (seed 000: wait more than 200 us between each memory read operation)";
+pub const READ_SPACING: &str = "request spacing (seed 000: wait more than 200 us between each memory read operation)";
 /// EEPROM writes too close.
-const WRITE_SPACING: &str = "request spacing (seed 000: wait more than 6 ms between each memory write operation)";
+pub const WRITE_SPACING: &str = "request spacing (seed 000: wait more than 6 ms between each memory write operation)";
 /// Memory access during a page change.
-const PAGE_SPACING: &str = "request spacing (seed 000 Table 11: a page change takes 18 ms before the next memory access)";
+pub const PAGE_SPACING: &str = "request spacing (seed 000 Table 11: a page change takes 18 ms before the next memory access)";
 
 /// The emulator's own limits (`[checks]`).
 #[derive(Debug, Clone, PartialEq, Deserialize)]
@@ -593,120 +593,5 @@ impl Emulator for EslEmulator {
 
     fn checks(&mut self) -> &mut Checks {
         &mut self.checks
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use model::esl::frames::request;
-
-    const F: u64 = 80_000_000;
-
-    /// Sends a request's fields (8 cycles per bit at 80 MHz) with the
-    /// driver on, then listens for `listen` cycles; returns the outputs.
-    fn send(emu: &mut EslEmulator, fields: &[u8], bit: usize, listen: usize) -> Vec<Pins> {
-        for &f in fields {
-            for b in model::esl::frame_bits(f) {
-                for _ in 0..bit {
-                    emu.step(Pins((b as u32) << 1 | 4));
-                }
-            }
-        }
-        (0..listen).map(|_| emu.step(Pins(2))).collect()
-    }
-
-    fn rules(emu: &mut EslEmulator) -> Vec<String> {
-        emu.violations().iter().map(|v| v.rule.split(" (").next().unwrap().to_string()).collect()
-    }
-
-    #[test]
-    fn a_safety_readout_carries_the_position_and_alarms_set() {
-        let mut emu = EslEmulator::from_toml("[cable]\nlength_m = 0\n", "e.toml", F).unwrap();
-        emu.set_position(0, (0xBEEFu64 << 24) | 0x12_3456).unwrap();
-        emu.set_status(0, "overspeed", true).unwrap();
-        emu.set_status(0, "uv", true).unwrap();
-        emu.set_status(0, "temp_warning", true).unwrap();
-        let out = send(&mut emu, &request(0, 1, 0, 0), 8, 3000);
-        assert_eq!(emu.count(), 1);
-        assert_eq!(emu.last_value(0), Some((0xBEEFu64 << 24) | 0x12_3456));
-        assert!(emu.last_status(0, "overspeed").unwrap());
-        assert!(emu.last_status(0, "uv").unwrap());
-        assert!(!emu.last_status(0, "st").unwrap());
-        // EA0 from UV, EA1 from OVSP (seed 000 Table 5), DD0 forced.
-        assert!(emu.last_status(0, "ea0").unwrap() && emu.last_status(0, "ea1").unwrap());
-        assert!(emu.last_status(0, "temp_warning").unwrap());
-        assert_eq!(emu.entries()[0].fields.len(), 18, "Data ID 1: 18 fields (Table 12)");
-        assert!(out.iter().any(|p| p.enable()));
-        assert!(emu.violations().is_empty(), "{:?}", emu.violations());
-    }
-
-    #[test]
-    fn a_scheduled_flip_changes_the_line_but_not_the_entry() {
-        let mut emu = EslEmulator::from_toml("[cable]\nlength_m = 0\n", "e.toml", F).unwrap();
-        emu.schedule_fault("flips = [{ answer = 0, field = 3, bit = 1 }]").unwrap();
-        let out = send(&mut emu, &request(0, 5, 0, 0), 8, 1200);
-        let clean = {
-            let mut e = EslEmulator::from_toml("[cable]\nlength_m = 0\n", "e.toml", F).unwrap();
-            send(&mut e, &request(0, 5, 0, 0), 8, 1200)
-        };
-        assert_ne!(out, clean);
-        assert_eq!(emu.entries()[0].abs, Some(0x12_3456));
-    }
-
-    #[test]
-    fn an_emulator_clock_below_four_times_the_bit_rate_is_refused_with_the_minimum() {
-        let err = EslEmulator::from_toml("", "e.toml", 20_000_000).err().unwrap().to_string();
-        assert!(err.contains("at least 40000000 Hz") && err.contains("e.toml"), "{err}");
-        let err = EslEmulator::from_toml("[[encoders]]\naddress = 9\n", "e.toml", F).err().unwrap().to_string();
-        assert!(err.contains("encoders[0]") && err.contains("e.toml"), "{err}");
-    }
-
-    #[test]
-    fn a_host_that_keeps_driving_into_the_answer_is_reported() {
-        let mut emu = EslEmulator::from_toml("[cable]\nlength_m = 0\n", "e.toml", F).unwrap();
-        send(&mut emu, &request(0, 1, 0, 0), 8, 0);
-        for _ in 0..3000 {
-            emu.step(Pins(2 | 4));
-        }
-        assert_eq!(rules(&mut emu), vec!["turnaround"]);
-    }
-
-    #[test]
-    fn a_slow_host_bit_and_a_split_request_are_character_timing_violations() {
-        // 9 cycles per bit instead of 8: 12.5 % slow.
-        let mut emu = EslEmulator::from_toml("[cable]\nlength_m = 0\n", "e.toml", F).unwrap();
-        send(&mut emu, &request(0, 1, 0, 0), 9, 3000);
-        assert!(rules(&mut emu).iter().any(|r| r == "character timing"), "{:?}", emu.violations());
-        // CF, a pause of 3 bits, then the CRC: two frame sets of one field.
-        let mut emu = EslEmulator::from_toml("[cable]\nlength_m = 0\n", "e.toml", F).unwrap();
-        let r = request(0, 1, 0, 0);
-        send(&mut emu, &r[..1], 8, 24);
-        send(&mut emu, &r[1..], 8, 3000);
-        let v = emu.violations().iter().filter(|v| v.rule == BACK_TO_BACK).count();
-        assert!(v >= 1, "{:?}", emu.violations());
-        assert_eq!(emu.count(), 0);
-    }
-
-    #[test]
-    fn clear_commands_must_come_8_times_within_the_repeat_window() {
-        let mut emu = EslEmulator::from_toml("[cable]\nlength_m = 0\n", "e.toml", F).unwrap();
-        let gap = 40 * 80; // 40 µs
-        for _ in 0..8 {
-            send(&mut emu, &request(0, 0xC, 0, 0), 8, gap);
-        }
-        assert!(emu.violations().is_empty(), "{:?}", emu.violations());
-        for _ in 0..3 {
-            send(&mut emu, &request(0, 0xC, 0, 0), 8, gap);
-        }
-        send(&mut emu, &request(0, 1, 0, 0), 8, gap);
-        assert_eq!(rules(&mut emu), vec!["request spacing"]);
-        // Two EEPROM reads 50 µs apart (page 0).
-        let mut emu = EslEmulator::from_toml("[cable]\nlength_m = 0\n", "e.toml", F).unwrap();
-        send(&mut emu, &request(0, 0xF, 0x7F, 0), 8, 18_100 * 80);
-        send(&mut emu, &request(0, 0xE, 0x10, 0), 8, 50 * 80);
-        send(&mut emu, &request(0, 0xE, 0x10, 0), 8, 50 * 80);
-        let r: Vec<&str> = emu.violations().iter().map(|v| v.rule).collect();
-        assert_eq!(r, vec![READ_SPACING]);
     }
 }

@@ -456,7 +456,3 @@ impl Emulator for CanMonitor {
         &mut self.watch.base.checks
     }
 }
-
-#[cfg(test)]
-#[path = "can_tests.rs"]
-mod tests;

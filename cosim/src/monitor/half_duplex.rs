@@ -407,7 +407,3 @@ impl<D: ExchangeDecoder> Side<D> {
         self.base.transcript(protocol, &["rx", "tx", "tx_en"], self.pending())
     }
 }
-
-#[cfg(test)]
-#[path = "half_duplex_tests.rs"]
-mod tests;

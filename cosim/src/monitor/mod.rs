@@ -138,6 +138,3 @@ pub fn sub(table: &toml::Table, key: &str, origin: &str) -> Result<toml::Table> 
         Some(_) => Err(Error::field(origin, key, "is not a table", format!("write [{key}] as a table header"))),
     }
 }
-
-#[cfg(test)]
-mod tests;

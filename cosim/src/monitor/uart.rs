@@ -368,7 +368,3 @@ impl Default for Line {
 pub fn pins(p: crate::Pins) -> (bool, bool, bool) {
     (p.0 & 1 != 0, p.0 & 2 != 0, p.0 & 4 != 0)
 }
-
-#[cfg(test)]
-#[path = "uart_tests.rs"]
-mod tests;

@@ -4,7 +4,7 @@
 
 use model::uart::Parity;
 
-use crate::{open, Emulator, Pins};
+use cosim::{open, Emulator, Pins};
 
 /// A host on the emulator clock, the emulator and the monitor beside it.
 struct Rig {
@@ -126,7 +126,7 @@ fn each_modbus_rule_fires_once_with_its_time() {
     r2.quiet(T35);
     let v = r2.violations();
     assert_eq!(v.len(), 1, "{v:?}");
-    assert!(v[0].starts_with(crate::monitor::modbus::RULE_T15), "{v:?}");
+    assert!(v[0].starts_with(cosim::monitor::modbus::RULE_T15), "{v:?}");
     // t3.5: the next request 200 cycles after the answer.
     let mut r = modbus();
     r.send(&READ2, 0, 0);
@@ -138,13 +138,13 @@ fn each_modbus_rule_fires_once_with_its_time() {
     r.quiet(T35);
     let v = r.violations();
     assert_eq!(v.len(), 1, "{v:?}");
-    assert!(v[0].starts_with(crate::monitor::modbus::RULE_T35), "{v:?}");
+    assert!(v[0].starts_with(cosim::monitor::modbus::RULE_T35), "{v:?}");
     // DE held 3 bits after the request.
     let mut r = modbus();
     r.send(&READ2, 0, 48);
     r.quiet(T35);
     let v = r.violations();
-    assert!(v.len() == 1 && v[0].starts_with(crate::monitor::modbus::RULE_RELEASE), "{v:?}");
+    assert!(v.len() == 1 && v[0].starts_with(cosim::monitor::modbus::RULE_RELEASE), "{v:?}");
     // A parity bit wrong, and a character 5 % slow.
     for (stretch, bad) in [(0, true), (1, false)] {
         let mut r = modbus();
@@ -155,7 +155,7 @@ fn each_modbus_rule_fires_once_with_its_time() {
         r.step(true, false);
         r.quiet(T35);
         let v = r.violations();
-        assert!(v.len() == 1 && v[0].starts_with(crate::monitor::modbus::RULE_CHARACTER), "{v:?}");
+        assert!(v.len() == 1 && v[0].starts_with(cosim::monitor::modbus::RULE_CHARACTER), "{v:?}");
     }
     // No answer (station 9 is absent): the next request 10 ms later, inside the 20 ms timeout.
     let mut r = modbus();
@@ -168,7 +168,7 @@ fn each_modbus_rule_fires_once_with_its_time() {
     r.send(&READ2, 0, 0);
     r.quiet(T35);
     let v = r.violations();
-    assert!(v.len() == 1 && v[0].starts_with(crate::monitor::modbus::RULE_TIMEOUT), "{v:?}");
+    assert!(v.len() == 1 && v[0].starts_with(cosim::monitor::modbus::RULE_TIMEOUT), "{v:?}");
 }
 
 const SAR_BUS: &str = "[sar]\nbaud = 15625.0\nmode = \"bus\"\n[sar.host]\ntimeout_us = 20000.0\n[[sar.encoders]]\naddress = 1\nbits = 32\nanswer_delay_us = 100.0\n[sar.random]\ncount = 100\nseed = 5\n[sar.cable]\nlength_m = 10\n";
@@ -237,7 +237,7 @@ fn each_sar_rule_fires_once_with_its_time() {
     r.step(true, false);
     r.quiet(400);
     let v = r.violations();
-    assert!(v.len() == 1 && v[0].starts_with(crate::monitor::sar::RULE_GAP), "{v:?}");
+    assert!(v.len() == 1 && v[0].starts_with(cosim::monitor::sar::RULE_GAP), "{v:?}");
     // A second command 2 ms after the first, before the answer (100 µs delay, 5.6 ms frame) ends: inside the answer.
     let mut r = Rig::new("sar58k24", SAR_BUS, 250_000, 16, Parity::None);
     r.idle(100, false);
@@ -246,7 +246,7 @@ fn each_sar_rule_fires_once_with_its_time() {
     r.send(&[0xBC, 0xAA, 0xB1], 0, 0);
     r.quiet(400);
     let v = r.violations();
-    assert!(!v.is_empty() && v.iter().all(|x| x.starts_with(crate::monitor::sar::RULE_ANSWER)), "{v:?}");
+    assert!(!v.is_empty() && v.iter().all(|x| x.starts_with(cosim::monitor::sar::RULE_ANSWER)), "{v:?}");
     // No answer from encoder 2: the next command 4 ms later, inside the 20 ms timeout.
     let mut r = Rig::new("sar58k24", SAR_BUS, 250_000, 16, Parity::None);
     r.idle(100, false);
@@ -256,7 +256,7 @@ fn each_sar_rule_fires_once_with_its_time() {
     r.send(&[0xBC, 0xAA, 0xB1], 0, 0);
     r.quiet(400);
     let v = r.violations();
-    assert!(v.len() == 1 && v[0].starts_with(crate::monitor::sar::RULE_WAIT), "{v:?}");
+    assert!(v.len() == 1 && v[0].starts_with(cosim::monitor::sar::RULE_WAIT), "{v:?}");
     let time = r.mon.violations()[0].time_ns;
     assert!((time - ((at + 16) * 4000) as f64).abs() <= 4000.0, "{time}");
     // A trigger of 6 µs (3 cycles at 500 kHz).
@@ -267,5 +267,5 @@ fn each_sar_rule_fires_once_with_its_time() {
     r.trigger = true;
     r.quiet(400);
     let v = r.violations();
-    assert!(v.len() == 1 && v[0].starts_with(crate::monitor::sar::RULE_T2), "{v:?}");
+    assert!(v.len() == 1 && v[0].starts_with(cosim::monitor::sar::RULE_T2), "{v:?}");
 }

@@ -3,7 +3,7 @@
 //! against a crafted host that breaks each rule once (the rule fires, with
 //! its time).
 
-use crate::{open, Emulator, Pins};
+use cosim::{open, Emulator, Pins};
 
 /// A crafted host: its driver input and enable, cycle by cycle.
 struct Host {

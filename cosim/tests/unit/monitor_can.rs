@@ -3,8 +3,9 @@
 
 use model::can::frame::Frame;
 
-use super::*;
-use crate::monitor::canopen::{self as co, CanopenMonitor};
+use cosim::monitor::can::*;
+use cosim::monitor::canopen::{self as co, CanopenMonitor};
+use cosim::{Emulator, Pins};
 
 /// 500 kbit/s, 16 quanta on an 8 MHz clock: 16 monitor cycles per bit.
 const CAN: &str = "[can]\nf_sys_mhz = 8\ntiming = { bit_rate_kbps = 500, tq_per_bit = 16, sample_point = 0.75, sjw = 1 }\n";
@@ -208,8 +209,8 @@ fn each_canopen_rule_fires_once() {
 fn beside_the_emulator_every_frame_is_read_as_sent() {
     use model::can::emulator::NodeSettings;
     let toml = "[can]\nf_sys_mhz = 8\ntiming = { bit_rate_kbps = 500, tq_per_bit = 16, sample_point = 0.75, sjw = 1 }\n[[can.nodes]]\nname = \"a\"\nposition_m = 20\nppm = 200\n";
-    let mut emu = crate::open("can", toml, "t.toml", F).unwrap();
-    let mut mon = crate::open("can_monitor", toml, "t.toml", F).unwrap();
+    let mut emu = cosim::open("can", toml, "t.toml", F).unwrap();
+    let mut mon = cosim::open("can_monitor", toml, "t.toml", F).unwrap();
     let tb = model::Timebase::new(F).unwrap();
     let bench: model::can::BenchConfig = toml::from_str::<toml::Table>(toml).unwrap()["can"].clone().try_into().unwrap();
     let cc = bench.controller_config().unwrap();

@@ -2,7 +2,7 @@
 //! what the emulator sent, and says nothing), and against crafted masters
 //! that break each rule once (the rule fires, with its time).
 
-use crate::{open, Emulator, Pins};
+use cosim::{open, Emulator, Pins};
 
 /// A line pattern: `(level, cycles)` segments of pin 0, in order.
 fn segments(list: &[(bool, u64)]) -> Vec<bool> {
@@ -329,7 +329,7 @@ fn endat_monitor_reads_what_the_emulator_sent_and_is_silent_on_a_clean_master() 
 /// A crafted line (no emulator): 2.2 position reads whose answer is a start bit at R12 and zeros, the encoder's
 /// recovery low `rec` cycles after the last edge; `phase` shapes the clock, `gap` is the idle between transfers
 /// (the line high again `rec` cycles into it).
-fn endat_rules(toml: &str, f_hz: u64, transfers: &[(u8, u64, u64, u64, u64)], phase: &dyn Fn(usize, u32, bool) -> Option<u64>, de_early: Option<usize>) -> (Vec<(f64, String)>, Vec<crate::check::Violation>) {
+fn endat_rules(toml: &str, f_hz: u64, transfers: &[(u8, u64, u64, u64, u64)], phase: &dyn Fn(usize, u32, bool) -> Option<u64>, de_early: Option<usize>) -> (Vec<(f64, String)>, Vec<cosim::check::Violation>) {
     let mut mon = open("endat_monitor", toml, "t.toml", f_hz).unwrap();
     let mut m = Master { emu: None, mon: mon.as_mut(), rx: true, cycle: 0 };
     m.hold(true, true, false, 50);
