@@ -1,72 +1,153 @@
 #!/usr/bin/env bash
-# check_gtkw.sh: open every committed .gtkw in GTKWave (headless, under Xvfb)
-# and require that GTKWave resolved every signal it names. GTKWave silently
-# drops a name it cannot find in the VCD, so a layout that drifted from the
-# waveform would otherwise go unnoticed until an engineer opens it.
+# check_gtkw.sh [gtkw...]: open each saved layout in GTKWave itself
+# (headless, under Xvfb) from the repository root, as the command `make demo`
+# prints it, and read back what GTKWave shows:
+#   - every signal the layout names resolved: GTKWave silently drops a name
+#     it cannot find in the VCD, so a layout that drifted from the waveform
+#     would otherwise go unnoticed until an engineer opens it;
+#   - the dump file resolved although the current folder is not the layout's
+#     (the `[savefile]` line, see tbgen/src/gtkw.rs);
+#   - the time window frames the first transaction that lasts (or the whole
+#     run if none does), from the transcript (.json) next to it: the transaction fills at least half of
+#     the window and lies inside it;
+#   - the state register shows a name (translate filter), not a number;
+#   - every trace of the `decoded` group is among the rows an 800-pixel-high
+#     window shows.
+# The window's end: under Xvfb, before the first expose, GTKWave's
+# getWindowEndTime counts a 4-pixel pane; the end is therefore computed from
+# what GTKWave reports as its zoom (getZoomFactor: 2^-zoom units per pixel)
+# and its waveform pane's width (getWaveWidth).
+# Default: every vectors/*/*.gtkw. Prints one line per failure and a summary.
 #
-# One Xvfb server serves every GTKWave start (xvfb-run per layout spent most
-# of its second starting a server), and two layouts are checked at a time.
+# Speed: GTKWave starts once per layout for all of these checks (two
+# scripts with a start each cost make test about a minute more), one Xvfb
+# serves every start (xvfb-run per layout started a server each time), two
+# layouts are open at a time, and Python starts twice in all (the
+# transcripts' spans before, the verdicts after), not twice per layout.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
+cd "$root"
+# One X server for the whole check: run again under xvfb-run.
+if [ -z "${CHECK_GTKW_X:-}" ]; then
+    CHECK_GTKW_X=1 exec xvfb-run -a -s "-screen 0 1600x1000x24" "$0" "$@"
+fi
+files=("$@")
+[ ${#files[@]} -gt 0 ] || files=(vectors/*/*.gtkw)
 work=$(mktemp -d)
-script="$work/list.tcl"
-cat > "$script" <<'TCL'
+trap 'rm -rf "$work"' EXIT
+
+# The first transaction that lasts (start ps, end ps) of each layout, from
+# the transcript (.json) next to it: "index t0 t1", one line per layout.
+python3 - "${files[@]}" > "$work/spans" <<'PY'
+import json, sys
+for i, gtkw in enumerate(sys.argv[1:]):
+    d = json.load(open(gtkw[: -len(".gtkw")] + ".json"))
+    ps = 10**12 // d["f_sys_hz"]
+    # A transaction's span, whatever the protocol calls its cycle fields
+    # (start_cycle/done_cycle, sent_cycle/cycle, sof_cycle/cycle): from the
+    # earliest to the latest of them.
+    spans = []
+    for t in d["transactions"]:
+        cycles = [v for k, v in t.items() if k.endswith("cycle") and isinstance(v, int)]
+        if cycles:
+            spans.append((min(cycles), max(cycles)))
+    lasting = [s for s in spans if s[1] > s[0]] or [(0, d["cycles"])]
+    print(i, lasting[0][0] * ps, lasting[0][1] * ps)
+PY
+
+# query INDEX GTKW T0 T1: what GTKWave shows of one layout, to $work/out.INDEX.
+query() {
+    local i=$1 gtkw=$2 t0=$3 t1=$4 state
+    state=$(grep -m1 '^top\.decoded\.state' "$gtkw" || true)
+    cat > "$work/q.$i.tcl" <<TCL
+puts "dump: [gtkwave::getDumpFileName]"
+puts "start: [gtkwave::getWindowStartTime]"
+puts "zoom: [gtkwave::getZoomFactor]"
+puts "width: [gtkwave::getWaveWidth]"
+puts "height: [gtkwave::getWaveHeight]"
 set n [gtkwave::getTotalNumTraces]
-for {set i 0} {$i < $n} {incr i} { puts "trace: [gtkwave::getTraceNameFromIndex $i]" }
-gtkwave::/File/Quit
+for {set i 0} {\$i < \$n} {incr i} { puts "trace \$i: [gtkwave::getTraceNameFromIndex \$i]" }
+gtkwave::setMarker $(( (t0 + t1) / 2 ))
 TCL
-
-# A display of our own: the first free number from 90 up.
-display=90
-while [ -e "/tmp/.X$display-lock" ] || [ -e "/tmp/.X11-unix/X$display" ]; do display=$((display + 1)); done
-Xvfb ":$display" -screen 0 1280x1024x24 -nolisten tcp > "$work/xvfb.log" 2>&1 &
-xvfb=$!
-trap 'kill $xvfb 2>/dev/null; wait $xvfb 2>/dev/null; rm -rf "$work"' EXIT
-for _ in $(seq 50); do [ -e "/tmp/.X11-unix/X$display" ] && break; sleep 0.1; done
-[ -e "/tmp/.X11-unix/X$display" ] || { echo "check_gtkw: Xvfb did not start:"; cat "$work/xvfb.log"; exit 1; }
-export DISPLAY=":$display"
-
-# check ONE.gtkw [ATTEMPT]: writes pass/fail, the difference and GTKWave's
-# own messages under $work.
-check() {
-    local gtkw=$1 attempt=${2:-1} dir base expected got status
-    dir=$(dirname "$gtkw") base=$(basename "$gtkw" .gtkw)
-    # Names as the save file gives them: top.scope.name[msb:lsb] -> name[msb:lsb].
-    expected=$(grep '^top\.' "$gtkw" | sed 's/.*\.//' | sort)
-    status=0
-    (cd "$dir" && timeout 120 gtkwave -S "$script" "$(basename "$gtkw")") \
-        > "$work/out.$base" 2> "$work/err.$base" || status=$?
-    got=$(sed -n 's/^trace: //p' "$work/out.$base" | grep -vxF -f <(sed -n 's/^-//p' "$gtkw") | sort || true)
-    if [ "$expected" = "$got" ]; then
-        touch "$work/pass.$base"
-        rm -f "$work/fail.$base"
-        [ "$attempt" = 1 ] || echo "gtkw: $base.gtkw passed on attempt $attempt (attempt 1 failed: $(head -c 300 "$work/first.$base"))"
-    else
-        { echo "gtkw FAIL $base.gtkw (attempt $attempt, GTKWave exit $status): GTKWave shows other signals than the layout names"
-          diff <(echo "$expected") <(echo "$got") | head -n 10 | sed 's/^/      /' || true
-          grep -v -e '^$' -e 'GTKWave Analyzer' -e 'start time' -e 'end time' -e 'Executing Tcl' "$work/err.$base" | head -n 5 | sed 's/^/      gtkwave: /' || true; } > "$work/fail.$base"
-        tr '\n' ' ' < "$work/fail.$base" > "$work/first.$base"
-    fi
+    [ -z "$state" ] || echo "puts \"state: [gtkwave::getTraceValueAtMarkerFromName {$state}]\"" >> "$work/q.$i.tcl"
+    # The last line says GTKWave answered every query: one that died under
+    # load said too little to judge the layout by.
+    echo 'puts "end: answered"' >> "$work/q.$i.tcl"
+    echo "gtkwave::/File/Quit" >> "$work/q.$i.tcl"
+    timeout 120 gtkwave -S "$work/q.$i.tcl" "$gtkw" > "$work/out.$i" 2>&1 || true
 }
 
-# Two at a time; `wait` names the checks so that it never waits for Xvfb.
+# Two at a time; `wait` names the queries.
 pids=()
-for gtkw in "$root"/vectors/*/*.gtkw; do
+while read -r i t0 t1; do
     if [ ${#pids[@]} -ge 2 ]; then wait "${pids[0]}" || true; pids=("${pids[@]:1}"); fi
-    check "$gtkw" &
+    query "$i" "${files[$i]}" "$t0" "$t1" &
     pids+=($!)
-done
+done < "$work/spans"
 for pid in "${pids[@]}"; do wait "$pid" || true; done
-# A GTKWave that dies under load (two at a time, on a busy machine) is not a
-# layout that drifted: check each failure once more, alone. A real drift
-# fails both times and is reported with both attempts' messages.
-for fail in "$work"/fail.*; do
-    [ -e "$fail" ] || continue
-    base=${fail##*/fail.}
-    for gtkw in "$root"/vectors/*/"$base".gtkw; do check "$gtkw" 2; done
-done
-cat "$work"/fail.* 2>/dev/null || true
-passed=$(find "$work" -name 'pass.*' | wc -l)
-failed=$(find "$work" -name 'fail.*' | wc -l)
-echo "gtkw: $passed passed, $failed failed"
-[ "$failed" -eq 0 ] && [ "$passed" -gt 0 ]
+# A GTKWave that died under load (two at a time on a busy machine) did not
+# answer every query: such a layout is queried once more, alone. A layout
+# that drifted fails on the answers, not for want of them.
+while read -r i t0 t1; do
+    grep -q '^end: answered' "$work/out.$i" || query "$i" "${files[$i]}" "$t0" "$t1"
+done < "$work/spans"
+
+# The verdicts: one line per failing layout, then the summary.
+python3 - "$work" "${files[@]}" <<'PY'
+import os, re, sys
+work, files = sys.argv[1], sys.argv[2:]
+spans = {int(i): (int(t0), int(t1)) for i, t0, t1 in (l.split() for l in open(os.path.join(work, "spans")))}
+passed = failed = 0
+for i, gtkw in enumerate(files):
+    t0, t1 = spans[i]
+    out = open(os.path.join(work, f"out.{i}"), errors="replace").read()
+    lines = open(gtkw).read().splitlines()
+    state = next((l for l in lines if l.startswith("top.decoded.state")), "")
+    val = lambda k: (re.search(rf"^{k}: (.*)$", out, re.M) or [None, None])[1]
+    problems = []
+    if not val("end"):
+        problems.append("GTKWave did not answer every query (twice): " + " ".join(out.split()[-12:]))
+    elif not val("dump"):
+        problems.append("GTKWave did not open the dump file from " + os.getcwd() + ": " + " ".join(out.split()[-12:]))
+    else:
+        start, zoom, width = int(val("start")), float(val("zoom")), float(val("width"))
+        px = 2 ** (-zoom)
+        end = start + width * px
+        # One pixel of slack: the save file gives the zoom to 6 decimals.
+        if not (start <= t0 and t1 <= end + px):
+            problems.append(f"window {start}..{end:.0f} ps does not hold the first transaction {t0}..{t1} ps")
+        elif (t1 - t0) < 0.5 * (end - start):
+            problems.append(f"the first transaction {t0}..{t1} ps fills less than half the window {start}..{end:.0f} ps")
+        if state:
+            s = val("state") or ""
+            if not re.fullmatch(r"[A-Z][A-Z0-9_]*", s):
+                problems.append(f"state shows `{s}`, not a state name")
+        traces = [n for _, n in re.findall(r"^trace (\d+): (.*)$", out, re.M)]
+        # The signals: those the layout names (top.scope.name[msb:lsb] ->
+        # name[msb:lsb]) are exactly those GTKWave shows, less the group
+        # labels (the layout's `-label` lines).
+        labels = {l[1:] for l in lines if l.startswith("-")}
+        named = sorted(l.rsplit(".", 1)[1] for l in lines if l.startswith("top."))
+        shown = sorted(t for t in traces if t not in labels)
+        if named != shown:
+            dropped = sorted(set(named) - set(shown))
+            extra = sorted(set(shown) - set(named))
+            problems.append(f"GTKWave shows other signals than the layout names (not resolved: {', '.join(dropped[:8]) or 'none'}; not named: {', '.join(extra[:8]) or 'none'})")
+        # Every decoded trace must be among the rows GTKWave shows in the
+        # layout's 800-pixel-high window: its waveform pane's height
+        # (getWaveHeight) over a row of at most 20 pixels (GTKWave's default
+        # font; getVisibleNumTraces counts every unfolded trace, shown or not).
+        visible = int(val("height")) // 20
+        decoded = [l.rsplit(".", 1)[1] for l in lines if l.startswith("top.decoded.")]
+        group = traces.index("decoded") if "decoded" in traces else -1
+        last = group + len(decoded)
+        if group < 0 or last >= visible:
+            problems.append(f"the decoded group (rows {group + 1} to {last}) is not within the {visible} rows the window shows")
+    if problems:
+        failed += 1
+        print(f"gtkw FAIL {gtkw}: " + "; ".join(problems))
+    else:
+        passed += 1
+print(f"gtkw: {passed} passed, {failed} failed")
+sys.exit(0 if failed == 0 and passed > 0 else 1)
+PY

@@ -63,7 +63,7 @@ pub fn write(out: &mut impl Write, layout: &Layout) -> io::Result<()> {
     let (start, end) = layout.window_ps;
     let span = (end.saturating_sub(start)).max(1) as f64;
     // GTKWave's zoom z shows 2^-z time units per pixel (checked under Xvfb
-    // by scripts/check_gtkw_window.sh).
+    // by scripts/check_gtkw.sh).
     let zoom = -(span / WAVE_PX).log2();
     writeln!(out, "[*] tbgen layout for scenario {}", layout.scenario)?;
     writeln!(out, "[dumpfile] \"{}\"", layout.dumpfile)?;
