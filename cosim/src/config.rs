@@ -85,6 +85,17 @@ pub fn tables(text: &str, origin: &str, proto: &str) -> Result<Tables, Error> {
         message: one_line(&e.to_string()),
     })?;
     let mut device = match root.get(proto) {
+        // In a scenario file the emulator's settings are the protocol's
+        // (`[<proto>.emulator]`); a top-level `[emulator]` beside `[<proto>]`
+        // would be silently ignored, so it is an error.
+        Some(toml::Value::Table(_)) if root.contains_key("emulator") => {
+            return Err(Error::field(
+                origin,
+                "emulator",
+                format!("is a top-level table in a scenario file with [{proto}], where it is not read"),
+                format!("write it as [{proto}.emulator]"),
+            ))
+        }
         Some(toml::Value::Table(t)) => t.clone(),
         Some(_) => {
             return Err(Error::field(

@@ -120,17 +120,17 @@ fn modbus_master_closed_loop_in_icarus_and_verilator() {
 
 #[test]
 fn can_controller_closed_loop_in_icarus_and_verilator() {
-    closed_loop_of("can_controller", "icarus", 2, "node 0 received");
-    closed_loop_of("can_controller", "verilator", 2, "node 0 received");
+    closed_loop_of("can_controller", "icarus", 3, "node 0 received");
+    closed_loop_of("can_controller", "verilator", 3, "node 0 received");
 }
 
 /// The SAR58K24 CAN mode: can_controller and the testbench's command
-/// sequencer against canopen_encoder_emu (three configurations); a flipped
+/// sequencer against canopen_encoder_emu (four configurations); a flipped
 /// bit of a received frame fails.
 #[test]
 fn sar58k24_can_closed_loop_in_icarus_and_verilator() {
-    closed_loop_of("sar58k24_can", "verilator", 3, "core read");
-    closed_loop_of("sar58k24_can", "icarus", 3, "core read");
+    closed_loop_of("sar58k24_can", "verilator", 4, "core read");
+    closed_loop_of("sar58k24_can", "icarus", 4, "core read");
 }
 
 /// Builds tb_emu_errors in `sim` with F_EMU_HZ = `f_emu`; returns a command that runs it.

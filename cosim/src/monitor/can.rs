@@ -249,7 +249,13 @@ impl CanWatch {
             Some(_) => d.bits.saturating_sub(1),
         };
         let sof = d.sof_ps;
-        let tx_at = |w: &CanWatch, k: usize| w.tx.level_at(w.at(sof, k));
+        // TXD is read on the master's own bit grid: a frame the master
+        // starts reaches its RXD late by the loop delay (its transceiver, the
+        // bus, a testbench's registers), and with few clock cycles after the
+        // sample point (10 quanta at BRP 1, 80 %: two) TXD read at RXD's
+        // sample point would already show the next bit.
+        let lead = self.lead(sof);
+        let tx_at = |w: &CanWatch, k: usize| w.tx.level_at(w.at(sof, k) - lead);
         let rx_at = |w: &CanWatch, k: usize| w.rx.level_at(w.at(sof, k));
         // Arbitration is lost only in the arbitration field (wire bits, stuff bits included).
         let arbitration = if d.error.is_none() { let a = model::can::frame::arbitration_end(d.ide) as usize; a + a / 4 + 1 } else { 40 };
@@ -271,7 +277,7 @@ impl CanWatch {
                 form.extend((n - 7..n).map(|k| (k, "EOF")));
             }
             Some("form") => form.push((d.bits - 1, "CRC delimiter, ACK delimiter or EOF")),
-            Some("stuff") if by_master && !self.error_flag(sof, d.bits - 1) => {
+            Some("stuff") if by_master && !self.error_flag(sof, lead, d.bits - 1) => {
                 let k = d.bits - 1;
                 let t = self.at(d.sof_ps, k);
                 let level = rx_at(self, k);
@@ -286,11 +292,20 @@ impl CanWatch {
         seen
     }
 
+    /// How far the master's TXD leads the bus at its receiver in the frame
+    /// whose SOF RXD shows at `sof`: from TXD's SOF when the master started
+    /// it (TXD fell at most a bit before), else 0 (a receiver's TXD, the ACK
+    /// slot alone, follows RXD).
+    fn lead(&self, sof: u64) -> u64 {
+        let bit = self.t.bit_ps as u64;
+        self.tx.edges().iter().rev().find(|&&(t, l)| !l && t <= sof).map_or(0, |&(t, _)| if sof - t < bit { sof - t } else { 0 })
+    }
+
     /// Six dominant bits ending at wire bit `k` that are the master's error
     /// flag (TXD then recessive for 7 bits: an error delimiter), not a
     /// missing stuff bit.
-    fn error_flag(&self, sof: u64, k: usize) -> bool {
-        let tx = |j: usize| self.tx.level_at(self.at(sof, j));
+    fn error_flag(&self, sof: u64, lead: u64, k: usize) -> bool {
+        let tx = |j: usize| self.tx.level_at(self.at(sof, j) - lead);
         !self.rx.level_at(self.at(sof, k)) && (k + 1..=k + 7).find(|&j| tx(j)).is_some_and(|j| (j..j + 7).all(tx))
     }
 

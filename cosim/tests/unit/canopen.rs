@@ -33,6 +33,21 @@ fn positions_and_bad_configurations() {
     assert!(err.starts_with("c.toml: ") && err.contains("encoders"), "{err}");
 }
 
+/// A scenario file's emulator settings are `[canopen.emulator]`; a
+/// top-level `[emulator]` beside `[canopen]` is refused, not ignored, and
+/// the one under `[canopen]` is read.
+#[test]
+fn a_top_level_emulator_table_beside_the_protocol_is_refused_with_its_fix() {
+    let slow = ONE.replace("bit_rate_kbps = 1000\n", "bit_rate_kbps = 250\n").replace("bit_rate_switch = 7", "bit_rate_switch = 4");
+    let top = format!("[emulator]\nmax_line_clock_khz = 250\n{slow}");
+    let err = CanopenEmulator::from_toml(&top, "top.toml", 2_500_000).err().unwrap().to_string();
+    assert!(err.starts_with("top.toml: ") && err.contains("emulator") && err.contains("[canopen.emulator]"), "{err}");
+    let under = format!("{slow}[canopen.emulator]\nmax_line_clock_khz = 250\n");
+    assert!(CanopenEmulator::from_toml(&under, "under.toml", 2_500_000).is_ok());
+    let err = CanopenEmulator::from_toml(&slow, "none.toml", 2_500_000).err().unwrap().to_string();
+    assert!(err.contains("too slow"), "{err}");
+}
+
 const SAR: &str = "[canopen]\nbit_rate_kbps = 250\n\
     [[canopen.sar]]\nname = \"sar\"\nposition_m = 10\n[canopen.sar.encoder]\nnode = 0x20\nbits = 14\nraw_position = 9799\n";
 
