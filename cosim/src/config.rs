@@ -60,7 +60,8 @@ pub const SCENARIO_ONLY: &[&str] = &[
     "monitor",
 ];
 
-/// The emulator's own table, `[emulator]` (or `[<proto>.emulator]`).
+/// The emulator's own table: `[emulator]` in a device file, `[<proto>.emulator]`
+/// in a scenario file.
 #[derive(Debug, Clone, PartialEq, serde::Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct EmulatorSettings {
