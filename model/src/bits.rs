@@ -10,13 +10,3 @@ pub fn string(bits: &[bool]) -> String {
 pub fn string_of(value: u128, width: u32) -> String {
     (0..width).rev().map(|i| if (value >> i) & 1 == 1 { '1' } else { '0' }).collect()
 }
-
-#[cfg(test)]
-mod tests {
-    #[test]
-    fn strings_are_in_wire_order_and_msb_first() {
-        assert_eq!(super::string(&[true, false, true, true]), "1011");
-        assert_eq!(super::string_of(5, 4), "0101");
-        assert_eq!(super::string_of(u128::MAX, 0), "");
-    }
-}

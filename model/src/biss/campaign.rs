@@ -135,13 +135,3 @@ fn frame_detected(master: &mut Master, chain: &mut Chain, position: u64, error: 
     }
     crc_err != Some(false)
 }
-
-#[cfg(test)]
-mod tests {
-    /// Fast-forward changes no frame's outcome: the same trials stepped
-    /// every cycle give the same counts.
-    #[test]
-    fn fast_forward_gives_the_stepped_campaign() {
-        assert_eq!(super::run_with(3_000, 16, 6, 7, true), super::run_with(3_000, 16, 6, 7, false));
-    }
-}

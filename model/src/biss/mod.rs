@@ -108,6 +108,3 @@ pub fn data_crc(width: u32, poly: u64) -> crate::crc::Algorithm {
     let all_ones = if width >= 64 { u64::MAX } else { (1u64 << width) - 1 };
     crate::crc::Algorithm { width, poly, wire_xor: all_ones, ..crate::crc::BISS_CRC6 }
 }
-
-#[cfg(test)]
-mod tests;

@@ -35,6 +35,3 @@ pub use bus::Bus;
 pub use controller::{Controller, ControllerConfig, ErrorKind, In, Out, State};
 pub use emulator::Emulator;
 pub use timing::{BitClock, BitTiming};
-
-#[cfg(test)]
-mod tests;

@@ -34,6 +34,3 @@ pub mod sdo;
 pub use bench::BenchConfig;
 pub use encoder::{Encoder, EncoderConfig, EncoderKind};
 pub use node::{Device, DeviceNode, EncoderNode, NodeTiming};
-
-#[cfg(test)]
-mod tests;

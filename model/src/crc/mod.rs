@@ -67,11 +67,6 @@
 mod catalogue;
 pub mod notation;
 
-#[cfg(test)]
-mod seed_reference;
-#[cfg(test)]
-mod tests;
-
 pub use catalogue::*;
 pub use notation::PolyNotation;
 
@@ -175,7 +170,7 @@ pub fn by_name(name: &str) -> Option<&'static Algorithm> {
 }
 
 /// All-ones mask of `width` bits (`width` in 1..=64).
-const fn mask(width: u32) -> u64 {
+pub const fn mask(width: u32) -> u64 {
     if width >= 64 {
         u64::MAX
     } else {

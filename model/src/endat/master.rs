@@ -9,7 +9,6 @@
 
 use super::{crc_norm, frame_kind, FrameKind, CONT_MAX_LOW_BITS, CRC_RESIDUE, TEST_VALUE_BITS};
 use crate::crc::ENDAT_CRC5;
-#[cfg(test)]
 use crate::crc::BitSerial;
 use crate::ports::{Port, Ports};
 use crate::{ConfigError, Result};
@@ -1323,28 +1322,15 @@ impl LineJudge {
 /// (`endat_master.v`: `meas_cnt_reg` saturates there).
 pub const DELAY_COUNTER_MAX: u64 = 0xFFFF;
 
-#[cfg(test)]
-mod delay_limit_tests {
-    use super::*;
-
-    #[test]
-    fn the_delay_limit_never_exceeds_the_16_bit_delay_counter() {
-        // 100 kHz from 257 MHz: by_gap is 26 x 2570 - 1285 = 65535 exactly.
-        assert_eq!(MasterConfig::delay_limit(2570, 25, 26), 65535);
-        // 100 kHz from 300 MHz: by_stop 89 998 and by_gap 76 500 would not fit 16 bits.
-        assert_eq!(MasterConfig::delay_limit(3000, 25, 26), DELAY_COUNTER_MAX);
-        // 8 MHz from 64 MHz: the schedule's bound, far below the counter's.
-        assert_eq!(MasterConfig::delay_limit(8, 25, 2), 12);
-    }
-}
-
-/// The catalogue engine, for the test that [`lfsr_push`] is the same LFSR.
-#[cfg(test)]
-pub(crate) fn lfsr_push_for_test(reg: u64, bit: bool) -> u64 {
+/// The master's own CRC step (`lfsr_push`), public for the test that it is
+/// the catalogue engine's LFSR (`catalogue_engine`).
+#[doc(hidden)]
+pub fn lfsr_push_for_test(reg: u64, bit: bool) -> u64 {
     lfsr_push(reg, bit)
 }
 
-#[cfg(test)]
-pub(crate) fn catalogue_engine() -> BitSerial {
+/// The catalogue's EnDat CRC engine, for that test.
+#[doc(hidden)]
+pub fn catalogue_engine() -> BitSerial {
     BitSerial::new(&ENDAT_CRC5)
 }

@@ -104,8 +104,10 @@ pub use bench::{
     error_names, AckXor, Bench, BenchConfig, CableFaults, EncoderSettings, FaultSettings, Flip, HostCommand, HostSettings,
     MasterSettings, Transaction,
 };
-pub use encoder::{AdSource, Encoder, EncoderConfig, EncoderKind, Memory};
-pub use master::{FrameChecker, FrameResult, In, LineJudge, Master, MasterConfig, Out, RxPhase, State, SYNC_STAGES};
+pub use encoder::{AdSource, Answer, Encoder, EncoderConfig, EncoderKind, Memory};
+pub use master::{FrameChecker, FrameResult, In, LineJudge, Master, MasterConfig, Out, RxPhase, State, DELAY_COUNTER_MAX, SYNC_STAGES};
+#[doc(hidden)]
+pub use master::{catalogue_engine, lfsr_push_for_test};
 
 use crate::crc::{BitSerial, ENDAT_CRC5};
 
@@ -308,11 +310,3 @@ pub fn crc_pos(f1: bool, f2: Option<bool>, value: u64, bits: u32) -> u8 {
 pub fn crc_wire(crc: u8) -> [bool; 5] {
     [crc & 16 != 0, crc & 8 != 0, crc & 4 != 0, crc & 2 != 0, crc & 1 != 0]
 }
-
-#[cfg(test)]
-#[path = "../crc/seed_reference.rs"]
-#[allow(dead_code)]
-mod seed_reference;
-
-#[cfg(test)]
-mod tests;

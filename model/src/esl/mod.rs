@@ -47,6 +47,3 @@ pub use encoder::{
     Truncation, frame_bits, PAGES,
 };
 pub use host::{Host, HostConfig, In, Out, State, MAX_FIELDS, QUIET_BITS, REPEATS};
-
-#[cfg(test)]
-mod tests;

@@ -36,6 +36,3 @@ pub mod timing;
 pub use bench::{Bench, BenchConfig, MasterSettings, OpKind, Operation, SecondDriver, Transaction};
 pub use device::{Device, DeviceConfig, DeviceSettings, Seen, Verdict};
 pub use master::{In, Master, MasterConfig, Out, State, MAX_CHARS, RECV_LIMIT_CHARS};
-
-#[cfg(test)]
-mod tests;

@@ -35,6 +35,3 @@ pub use encoder::{frame_seconds, max_refresh_hz, Encoder, EncoderConfig, Encoder
 pub use frames::{checksum, data_bytes, decode, encode, AnswerTag, FrameError, HEADER};
 pub use host::{Host, HostConfig, In, Out, State};
 pub use crate::uart::{FaultKind, FrameFault};
-
-#[cfg(test)]
-mod tests;

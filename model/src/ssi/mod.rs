@@ -79,6 +79,3 @@ pub enum Code {
     /// Reflected binary (Gray), MSB first.
     Gray,
 }
-
-#[cfg(test)]
-mod tests;

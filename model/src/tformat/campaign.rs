@@ -210,13 +210,3 @@ fn flagged(host: &mut Host, id: DataId, answer: &[u8], which: usize, flips: &[us
     }
     unreachable!("the host ends every operation within its timeout and quiet wait")
 }
-
-#[cfg(test)]
-mod tests {
-    /// Fast-forward changes no operation's outcome: the same trials stepped
-    /// every cycle give the same counts.
-    #[test]
-    fn fast_forward_gives_the_stepped_campaign() {
-        assert_eq!(super::run_with(3_000, 8, 7, true), super::run_with(3_000, 8, 7, false));
-    }
-}

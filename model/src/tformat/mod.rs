@@ -52,7 +52,6 @@ mod host;
 
 pub use bench::{Bench, BenchConfig, HostSettings, LineFault, LineFaultKind, Operation, Transaction};
 pub use encoder::{AnswerFlip, AnswerTruncation, Encoder, EncoderConfig, EncoderSettings, EEPROM_SIZE};
+#[doc(hidden)]
+pub use encoder::frame_bits;
 pub use host::{always_flagged, tolerance, Host, HostConfig, In, Out, State};
-
-#[cfg(test)]
-mod tests;

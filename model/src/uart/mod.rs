@@ -139,6 +139,3 @@ impl Parity {
         }
     }
 }
-
-#[cfg(test)]
-mod tests;

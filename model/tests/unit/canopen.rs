@@ -1,14 +1,14 @@
 //! Seed 003 (Leine & Linde CANopen gateway) examples and the DS 406 encoder's behaviour.
 
-use super::cob::{BootUp, NmtState};
-use super::encoder::{Encoder, EncoderConfig, EncoderKind};
-use super::node::{EncoderNode, NodeTiming};
-use super::scaling::{is_binary, NonCyclicLimit};
-use super::sdo::{self, abort, Response};
-use crate::can::emulator::{NodeSettings, Scripted};
-use crate::can::frame::Frame;
-use crate::can::{Bus, Emulator};
-use crate::Timebase;
+use model::canopen::cob::{BootUp, NmtState};
+use model::canopen::encoder::{Encoder, EncoderConfig, EncoderKind};
+use model::canopen::node::{EncoderNode, NodeTiming};
+use model::canopen::scaling::{is_binary, NonCyclicLimit};
+use model::canopen::sdo::{self, abort, Response};
+use model::can::emulator::{NodeSettings, Scripted};
+use model::can::frame::Frame;
+use model::can::{Bus, Emulator};
+use model::Timebase;
 
 const MS: u64 = 1_000_000;
 
@@ -231,7 +231,7 @@ fn sdo_abort_codes() {
 fn segmented_upload_of_the_device_name() {
     let mut e = enc(9);
     let d = sdo_req(&mut e, sdo::upload(0x1008, 0));
-    let name = super::od::DEVICE_NAME.as_bytes();
+    let name = model::canopen::od::DEVICE_NAME.as_bytes();
     assert_eq!(sdo::parse_response(&d, false), Response::UploadSegmented { index: 0x1008, sub: 0, size: name.len() as u32 });
     let (mut got, mut t) = (Vec::new(), false);
     loop {
@@ -379,7 +379,7 @@ fn bad_configuration_names_the_field() {
 
 /// Runs a host (scripted generic node) and encoder nodes on one bus.
 fn run_bus(encoders: &mut [EncoderNode], host: &mut Emulator, cycles: u64) -> Vec<(u64, Frame)> {
-    let places: Vec<_> = std::iter::once(crate::can::bus::Place { position_m: 0.0, loop_delay_ns: 150.0 }).chain((0..encoders.len()).map(|k| crate::can::bus::Place { position_m: 5.0 * (k + 1) as f64, loop_delay_ns: 150.0 })).collect();
+    let places: Vec<_> = std::iter::once(model::can::bus::Place { position_m: 0.0, loop_delay_ns: 150.0 }).chain((0..encoders.len()).map(|k| model::can::bus::Place { position_m: 5.0 * (k + 1) as f64, loop_delay_ns: 150.0 })).collect();
     let tb = Timebase::from_mhz(40.0).unwrap();
     let mut bus = Bus::new(&places, 5.0, &tb);
     let mut seen = 0;
@@ -444,7 +444,7 @@ fn three_encoders_boot_on_one_bus() {
 }
 
 mod master {
-    use super::super::master::{In, Master, MasterConfig, Out, Param, State};
+    use model::canopen::master::{In, Master, MasterConfig, Out, Param, State};
     use super::*;
 
     fn cfg(node: u8, params: Vec<Param>) -> MasterConfig {
@@ -455,8 +455,8 @@ mod master {
     /// Runs the master with `encoders` (and a mute acknowledging node if none) for `cycles`; every output.
     fn run(m: &mut Master, encoders: &mut [EncoderNode], cycles: u64) -> Vec<Out> {
         let tb = Timebase::from_mhz(40.0).unwrap();
-        let mut places = vec![crate::can::bus::Place { position_m: 0.0, loop_delay_ns: 150.0 }];
-        places.extend((0..encoders.len().max(1)).map(|k| crate::can::bus::Place { position_m: 10.0 * (k + 1) as f64, loop_delay_ns: 150.0 }));
+        let mut places = vec![model::can::bus::Place { position_m: 0.0, loop_delay_ns: 150.0 }];
+        places.extend((0..encoders.len().max(1)).map(|k| model::can::bus::Place { position_m: 10.0 * (k + 1) as f64, loop_delay_ns: 150.0 }));
         let mut bus = Bus::new(&places, 5.0, &tb);
         let mut mute = Emulator::new(&NodeSettings { name: "mute".into(), position_m: 10.0, loop_delay_ns: 150.0, ppm: 0.0, ack: true, frames: vec![] }, NodeTiming::default().controller(&tb, 250).unwrap(), &tb).unwrap();
         let mut outs = Vec::with_capacity(cycles as usize);
@@ -611,10 +611,10 @@ fn bit_rate_and_node_change_on_the_bus() {
 /// matches stepping sample for sample.
 #[test]
 fn sync_gap_is_skipped_in_one_go() {
-    use super::bench::{BenchConfig, EncoderSettings, MasterSettings};
-    use super::master::{Param, State};
-    use crate::testbench::{lockstep, Testbench};
-    use crate::Setup;
+    use model::canopen::bench::{BenchConfig, EncoderSettings, MasterSettings};
+    use model::canopen::master::{Param, State};
+    use model::testbench::{lockstep, Testbench};
+    use model::Setup;
     let c = BenchConfig {
         bit_rate_kbps: 500,
         run_us: 6000.0,

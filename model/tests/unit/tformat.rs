@@ -1,10 +1,10 @@
 //! The T-format host against the Smart Abs emulator: every Data ID, EEPROM,
 //! resets, and the abnormal-request answers of Tables 5 and 6.
 
-use super::frames::{Alarms, DataId};
-use super::*;
-use crate::testbench::run_to_end;
-use crate::Setup;
+use model::tformat::frames::{Alarms, DataId};
+use model::tformat::*;
+use model::testbench::run_to_end;
+use model::Setup;
 
 fn op(data_id: u8) -> Operation {
     Operation { data_id, address: 0, data: 0, gap_us: 5.0 }
@@ -18,11 +18,11 @@ fn run(cfg: &BenchConfig) -> (Vec<Transaction>, u64) {
 
 fn contention_free(cfg: &BenchConfig) -> Vec<Transaction> {
     let mut bench = cfg.bench().unwrap();
-    while !crate::testbench::Testbench::finished(&bench) {
-        crate::testbench::Testbench::step(&mut bench, None);
+    while !model::testbench::Testbench::finished(&bench) {
+        model::testbench::Testbench::step(&mut bench, None);
     }
     assert_eq!(bench.contention_cycles(), 0, "two drivers on the line");
-    crate::testbench::Testbench::into_transactions(bench)
+    model::testbench::Testbench::into_transactions(bench)
 }
 
 #[test]
@@ -46,11 +46,11 @@ fn readouts_0_1_2_3_decode_what_the_encoder_holds() {
 fn the_answer_begins_3_us_after_the_request() {
     // Seed 002, 7.1: "The Data frame is transmitted at 3 micro-seconds (typ.)
     // after receiving the Delimiter signal of Request frame."
-    let cfg = BenchConfig { cable: crate::line::CableConfig::default(), ..BenchConfig::default() };
+    let cfg = BenchConfig { cable: model::line::CableConfig::default(), ..BenchConfig::default() };
     let bench = cfg.bench().unwrap();
     let mut b = bench;
-    while !crate::testbench::Testbench::finished(&b) {
-        crate::testbench::Testbench::step(&mut b, None);
+    while !model::testbench::Testbench::finished(&b) {
+        model::testbench::Testbench::step(&mut b, None);
     }
     let start = b.encoder().answered()[0].0;
     // At 80 MHz: start bit from cycle 400 (5 µs), 10 bits of 32 cycles end
@@ -140,10 +140,10 @@ fn resets_sent_too_close_together_do_not_count() {
 fn no_encoder_on_the_line_times_out() {
     let cfg = BenchConfig { encoder: EncoderSettings { answer_delay_us: 50.0, ..EncoderSettings::default() }, ..BenchConfig::default() };
     let mut bench = cfg.bench().unwrap();
-    while !crate::testbench::Testbench::finished(&bench) {
-        crate::testbench::Testbench::step(&mut bench, None);
+    while !model::testbench::Testbench::finished(&bench) {
+        model::testbench::Testbench::step(&mut bench, None);
     }
-    let ts = crate::testbench::Testbench::into_transactions(bench);
+    let ts = model::testbench::Testbench::into_transactions(bench);
     assert_eq!(ts[0].errors, vec!["timeout"]);
 }
 
@@ -186,7 +186,7 @@ fn every_two_bit_corruption_escapes_exactly_when_it_is_a_crc_blind_pair() {
     // inverted wire bits of one answer of each layout (Data ID 0, 2, 3, D)
     // is flagged unless `crc_blind_pair` names it, and every pair it names
     // passes (the host has no further check that could see it).
-    use super::campaign::{crc_blind_pair, detected, random_answer};
+    use model::tformat::campaign::{crc_blind_pair, detected, random_answer};
     use rand::SeedableRng;
     let mut rng = rand_pcg::Pcg64Mcg::seed_from_u64(5);
     for id in [DataId::Id0, DataId::Id2, DataId::Id3, DataId::IdD] {
@@ -212,7 +212,7 @@ fn every_two_bit_corruption_escapes_exactly_when_it_is_a_crc_blind_pair() {
 
 #[test]
 fn a_campaign_of_100_000_random_corruptions_flags_every_one_bit_error_and_every_pair_a_check_can_see() {
-    use super::campaign::{self, crc_blind_pair};
+    use model::tformat::campaign::{self, crc_blind_pair};
     let report = campaign::run(100_000, 8, 2024);
     println!("T-format answers of every Data ID, one of them corrupted per operation, host at 6 clocks per bit:");
     println!("{report}");
@@ -261,12 +261,12 @@ fn off_rate_reads(error_percent: f64, jitter_ns: f64, seed: u64) -> (usize, usiz
         ..BenchConfig::default()
     };
     let mut bench = cfg.bench().unwrap();
-    while !crate::testbench::Testbench::finished(&bench) {
-        crate::testbench::Testbench::step(&mut bench, None);
+    while !model::testbench::Testbench::finished(&bench) {
+        model::testbench::Testbench::step(&mut bench, None);
     }
     assert_eq!(bench.contention_cycles(), 0, "two drivers at {error_percent} %");
     let answers: Vec<Vec<u8>> = bench.encoder().answered().iter().map(|a| a.1.clone()).collect();
-    let ts = crate::testbench::Testbench::into_transactions(bench);
+    let ts = model::testbench::Testbench::into_transactions(bench);
     let flagged = ts.iter().filter(|t| !t.errors.is_empty()).count();
     let wrong = ts.iter().zip(&answers).filter(|(t, a)| t.errors.is_empty() && &t.received != *a).count();
     (ts.len(), flagged, wrong)
@@ -277,10 +277,10 @@ fn an_off_rate_or_jittery_encoder_is_read_without_error_inside_the_tolerance_and
     // Seed 002, 6.1: 2.5 Mbps, "permissible jitter ±100 ns". The encoder's
     // answers run −8 % to +8 % off in 0.1 % steps, without jitter and with
     // ±100 ns (8 cycles at 80 MHz), ten reads a step.
-    let (clocks_per_bit, always) = (32, super::always_flagged(32));
+    let (clocks_per_bit, always) = (32, model::tformat::always_flagged(32));
     println!("always flagged below {:+.2} % and above {:+.2} %", always.0, always.1);
     for jitter_ns in [0.0, 100.0] {
-        let (low, high) = super::tolerance(clocks_per_bit, jitter_ns / 12.5);
+        let (low, high) = model::tformat::tolerance(clocks_per_bit, jitter_ns / 12.5);
         println!("jitter ±{jitter_ns} ns: no error from {low:+.2} % to {high:+.2} %; between the bounds (error %: flagged, wrong but passed, of 10):");
         let mut between = Vec::new();
         for step in -80..=80 {
@@ -310,7 +310,7 @@ fn every_truncation_of_an_answer_is_flagged_unless_the_cut_tail_is_all_ones() {
     for id in [0u8, 2, 3] {
         let clean = run(&BenchConfig { ops: vec![op(id)], ..BenchConfig::default() }).0;
         let answer = &clean[0].received;
-        let bits: Vec<bool> = answer.iter().flat_map(|&b| super::encoder::frame_bits(b)).collect();
+        let bits: Vec<bool> = answer.iter().flat_map(|&b| model::tformat::frame_bits(b)).collect();
         for cut in 1..bits.len() {
             let cfg = BenchConfig {
                 encoder: EncoderSettings { truncate: Some(AnswerTruncation { answer: 0, bits: cut }), ..EncoderSettings::default() },
@@ -354,11 +354,11 @@ fn a_line_stuck_high_times_out_and_a_second_driver_is_flagged() {
             ..BenchConfig::default()
         };
         let mut bench = cfg.bench().unwrap();
-        while !crate::testbench::Testbench::finished(&bench) {
-            crate::testbench::Testbench::step(&mut bench, None);
+        while !model::testbench::Testbench::finished(&bench) {
+            model::testbench::Testbench::step(&mut bench, None);
         }
         assert!(bench.fault_contention_cycles() > 0, "{at_us} µs: the second driver overlapped a driver");
-        let ts = crate::testbench::Testbench::into_transactions(bench);
+        let ts = model::testbench::Testbench::into_transactions(bench);
         assert!(!ts[0].errors.is_empty(), "{at_us} µs: {:?}", ts[0]);
     }
 }

@@ -1,10 +1,10 @@
 //! Modbus RTU end to end: the seed's requests, polling at 19200 and
 //! 115200, the address query and change, exceptions, and the faults.
 
-use super::*;
-use crate::testbench::run_to_end;
-use crate::uart::{FaultKind, FrameFault, Parity};
-use crate::Setup;
+use model::modbus::*;
+use model::testbench::run_to_end;
+use model::uart::{FaultKind, FrameFault, Parity};
+use model::Setup;
 
 fn run(cfg: &BenchConfig) -> Vec<Transaction> {
     run_to_end(cfg.bench().unwrap()).transactions
@@ -43,7 +43,7 @@ fn seed_001_read_two_registers_for_a_24_bit_encoder() {
     assert_eq!(t.request, [0x01, 0x03, 0x00, 0x00, 0x00, 0x02, 0xC4, 0x0B]);
     assert_eq!(t.received[..7], [0x01, 0x03, 0x04, 0x00, 0x12, 0x34, 0x56]);
     assert_eq!(t.value, Some(0x12_3456));
-    assert_eq!(t.angle_deg, Some(crate::angle::angle_deg(0x12_3456, 24)));
+    assert_eq!(t.angle_deg, Some(model::angle::angle_deg(0x12_3456, 24)));
 }
 
 #[test]
@@ -131,12 +131,12 @@ fn no_answer_to_a_broadcast_another_address_or_a_bad_crc() {
     cfg.ops = vec![read(0, 1), read(5, 1), read(1, 1)];
     let bench = cfg.bench().unwrap();
     let mut bench = bench;
-    while !crate::Testbench::finished(&bench) {
-        crate::Testbench::step(&mut bench, None);
+    while !model::Testbench::finished(&bench) {
+        model::Testbench::step(&mut bench, None);
     }
     let seen: Vec<Verdict> = bench.devices()[0].seen().iter().map(|s| s.verdict.clone()).collect();
     assert_eq!(seen, vec![Verdict::NotAddressed, Verdict::NotAddressed, Verdict::Answered]);
-    let t = crate::Testbench::into_transactions(bench);
+    let t = model::Testbench::into_transactions(bench);
     assert_eq!(t[0].errors, vec!["timeout"]);
     assert_eq!(t[1].errors, vec!["timeout"]);
     assert_eq!(t[2].value, Some(383));
@@ -187,7 +187,7 @@ fn a_request_with_a_gap_longer_than_t15_is_discarded_by_the_device() {
     let cfg = BenchConfig::default();
     let dc = cfg.device_config(0).unwrap();
     let mut d = Device::new(dc.clone()).unwrap();
-    let mut tx = crate::uart::Transmitter::new(dc.period_ps, 19_200.0, 0.0, 0.0, 1);
+    let mut tx = model::uart::Transmitter::new(dc.period_ps, 19_200.0, 0.0, 0.0, 1);
     let req = frames::read_request(1, 1);
     for (i, &b) in req.iter().enumerate() {
         tx.send(b, 0.0, if i == 4 { 20.0 } else { 0.0 });
@@ -219,11 +219,11 @@ fn a_second_driver_on_the_line_is_flagged() {
     // The answer starts about 4.2 + 1.8 + 0.1 ms after reset at 19200 baud.
     let cfg = BenchConfig { second_drivers: vec![SecondDriver { at_us: 6300.0, bytes: vec![0x00], ..SecondDriver::default() }], ..BenchConfig::default() };
     let mut bench = cfg.bench().unwrap();
-    while !crate::Testbench::finished(&bench) {
-        crate::Testbench::step(&mut bench, None);
+    while !model::Testbench::finished(&bench) {
+        model::Testbench::step(&mut bench, None);
     }
     assert!(bench.fault_contention_cycles() > 0);
-    let t = crate::Testbench::into_transactions(bench);
+    let t = model::Testbench::into_transactions(bench);
     assert!(!t[0].errors.is_empty() && t[0].value.is_none(), "{:?}", t[0]);
 }
 

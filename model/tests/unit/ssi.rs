@@ -2,9 +2,9 @@
 
 use proptest::prelude::*;
 
-use super::*;
-use crate::angle::angle_deg;
-use crate::line::CableConfig;
+use model::ssi::*;
+use model::angle::angle_deg;
+use model::line::CableConfig;
 
 fn read(cfg: &BenchConfig) -> Vec<Transaction> {
     Bench::new(cfg).expect("valid scenario").run_to_end().transactions
@@ -159,11 +159,11 @@ proptest! {
 
 /// Issue 14 item 2: 4 MHz from 100 MHz is f_sys / 25, an odd divider. The
 /// clock is 13 cycles high and 12 low (the high phase takes the extra cycle,
-/// `crate::time::BitClock`), the capture stays 2 cycles into each low phase,
+/// `model::time::BitClock`), the capture stays 2 cycles into each low phase,
 /// the header names the split, and every value reads back.
 #[test]
 fn an_odd_divider_is_13_cycles_high_and_12_low_and_reads_every_value() {
-    use crate::Setup;
+    use model::Setup;
     let mut cfg = BenchConfig::seed_example();
     cfg.f_sys_mhz = 100.0;
     cfg.master.clock_khz = 4000.0;
@@ -179,7 +179,7 @@ fn an_odd_divider_is_13_cycles_high_and_12_low_and_reads_every_value() {
     let ts = read(&cfg);
     assert_eq!(ts.iter().map(|t| t.position).collect::<Vec<_>>(), cfg.positions.iter().map(|&p| Some(p)).collect::<Vec<_>>());
     assert!(ts.iter().all(|t| t.errors.is_empty()), "{ts:#?}");
-    crate::time::phases::assert_split(Bench::new(&cfg).unwrap(), 0, 13, 12, "SSI 4 MHz from 100 MHz");
+    crate::phases::assert_split(Bench::new(&cfg).unwrap(), 0, 13, 12, "SSI 4 MHz from 100 MHz");
     // An even divider keeps its header as it was: no phase parameters.
     let even = BenchConfig::seed_example();
     assert!(even.verilog_parameters().unwrap().iter().all(|(n, _)| !n.ends_with("_CLOCKS") || n.starts_with("T_CS") || n.starts_with("PAUSE")));

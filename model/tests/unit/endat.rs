@@ -3,10 +3,9 @@
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64Mcg;
 
-use super::master::{catalogue_engine, lfsr_push_for_test};
-use super::seed_reference::{make_crc_norm, make_crc_pos};
-use super::*;
-use crate::line::CableConfig;
+use crate::seed_reference::{make_crc_norm, make_crc_pos};
+use model::endat::*;
+use model::line::CableConfig;
 
 fn run(cfg: &BenchConfig) -> Vec<Transaction> {
     Bench::new(cfg).expect("valid scenario").run_to_end().transactions
@@ -66,7 +65,7 @@ fn the_masters_lfsr_is_the_catalogue_engine() {
         }
         assert_eq!(reg, engine.register());
     }
-    assert_eq!(crate::crc::ENDAT_CRC5.wire_residue(), CRC_RESIDUE);
+    assert_eq!(model::crc::ENDAT_CRC5.wire_residue(), CRC_RESIDUE);
 }
 
 #[test]
@@ -411,7 +410,7 @@ fn a_selection_whose_frame_had_no_start_bit_is_not_taken_as_made() {
 
 #[test]
 fn a_fault_in_a_request_the_run_never_makes_is_refused_with_the_count() {
-    use crate::Setup as _;
+    use model::Setup as _;
     let mut cfg = BenchConfig::example();
     let n = cfg.requests().len();
     cfg.faults.flips = vec![Flip { request: n - 1, bits: vec![2] }];
@@ -427,7 +426,7 @@ fn a_fault_in_a_request_the_run_never_makes_is_refused_with_the_count() {
 
 #[test]
 fn recovery_short_alone_takes_a_short_t_m_instead_of_refusing_the_long_default() {
-    use crate::Setup as _;
+    use model::Setup as _;
     let mut cfg = BenchConfig::example();
     cfg.master.clock_khz = 2000.0;
     cfg.master.recovery_short = true;
@@ -454,7 +453,7 @@ fn after_a_type_i_error_the_line_is_high_again_t_m_after_the_last_clock_edge() {
         let half = 32; // 1 MHz at 64 MHz
         let mut clk = true;
         let mut now = 0u64;
-        let step = |enc: &mut Encoder, clk: bool, n: u64, now: &mut u64| -> Vec<(u64, crate::line::Drive)> {
+        let step = |enc: &mut Encoder, clk: bool, n: u64, now: &mut u64| -> Vec<(u64, model::line::Drive)> {
             (0..n).map(|_| { let d = enc.step(clk, false); *now += 1; (*now - 1, d) }).collect()
         };
         step(&mut enc, clk, 10, &mut now);
@@ -467,7 +466,7 @@ fn after_a_type_i_error_the_line_is_high_again_t_m_after_the_last_clock_edge() {
         }
         let last_edge = now - half;
         let after = step(&mut enc, true, 3 * t_m, &mut now);
-        assert_eq!(enc.answer, super::encoder::Answer::TypeI);
+        assert_eq!(enc.answer, model::endat::Answer::TypeI);
         assert!(after.iter().any(|(_, d)| d.enable && !d.level), "the line is held low in the recovery");
         let high = after.iter().find(|(_, d)| d.enable && d.level).map(|(c, _)| *c).expect("released");
         let low_for = high - last_edge;
@@ -483,7 +482,7 @@ fn after_a_type_i_error_the_line_is_high_again_t_m_after_the_last_clock_edge() {
 /// delay, the drift check centres on the high phase, and every position reads back.
 #[test]
 fn odd_dividers_split_high_first_and_read_every_position() {
-    use crate::Setup;
+    use model::Setup;
     for (mhz, khz, high, low, meas) in [(100.0, 4000.0, 13, 12, (250, 250)), (45.0, 3000.0, 8, 7, (113, 112))] {
         let mut cfg = fast(khz, mhz, 50.0);
         cfg.master.meas_clock_khz = 200.0;
@@ -500,7 +499,7 @@ fn odd_dividers_split_high_first_and_read_every_position() {
         let got: Vec<_> = commands(&ts).iter().map(|t| t.position.unwrap()).collect();
         assert_eq!(got, cfg.positions, "{mhz} MHz: {ts:#?}");
         assert!(commands(&ts).iter().all(|t| t.errors.is_empty()), "{mhz} MHz: {ts:#?}");
-        crate::time::phases::assert_split(Bench::new(&cfg).unwrap(), 0, high, low, &format!("EnDat {khz} kHz from {mhz} MHz"));
+        crate::phases::assert_split(Bench::new(&cfg).unwrap(), 0, high, low, &format!("EnDat {khz} kHz from {mhz} MHz"));
     }
 }
 

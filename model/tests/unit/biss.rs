@@ -2,11 +2,11 @@
 
 use proptest::prelude::*;
 
-use super::*;
-use crate::crc::BISS_CRC6;
-use crate::line::CableConfig;
-use crate::testbench::Testbench;
-use crate::Setup;
+use model::biss::*;
+use model::crc::BISS_CRC6;
+use model::line::CableConfig;
+use model::testbench::Testbench;
+use model::Setup;
 
 fn frames(cfg: &BenchConfig) -> Vec<Transaction> {
     Bench::new(cfg).expect("valid scenario").run_to_end().transactions
@@ -506,7 +506,7 @@ fn an_addressed_command_is_carried_out_by_the_selected_slaves_only_and_a_broadca
     assert_eq!(results.iter().map(|r| r.ok).collect::<Vec<_>>(), vec![true, true, true]);
     assert_eq!(executed, vec![vec![2, 1], vec![3, 1], vec![2, 1]]);
     // S, CTS = 0, IDS 00000010, CMD 11, the CRC-4 of those 11 bits inverted, 0, EX, 0.
-    let crc = &crate::crc::BISS_CTRL_CRC4;
+    let crc = &model::crc::BISS_CTRL_CRC4;
     let covered = bits("00000001011");
     let wire: String = crc.wire_bits(crc.checksum_bits(&covered)).iter().map(|&b| if b { '1' } else { '0' }).collect();
     assert_eq!(results[0].cdm, format!("100000001011{wire}010"));
@@ -608,7 +608,7 @@ fn odd_ma_dividers_split_high_first_keep_the_seed_timing_and_read_back() {
         assert_eq!((m.high_clocks, m.low_clocks), (high, low), "{khz} kHz from {mhz} MHz");
         let bad = seed_timing::check(&cfg).expect("valid scenario");
         assert!(bad.is_empty(), "{khz} kHz from {mhz} MHz: {} violations, first: {}", bad.len(), bad[0]);
-        crate::time::phases::assert_split(Bench::new(&cfg).unwrap(), 0, high, low, &format!("MA {khz} kHz from {mhz} MHz"));
+        crate::phases::assert_split(Bench::new(&cfg).unwrap(), 0, high, low, &format!("MA {khz} kHz from {mhz} MHz"));
         let ts = frames(&cfg);
         let reg = ts.iter().find_map(|t| t.register.as_ref()).expect("the register read ends");
         assert!(reg.ok && reg.rdata == 0xA5, "{reg:?}");

@@ -1,9 +1,9 @@
 //! Behaviour of the frame receiver: every byte, back-to-back frames, glitches,
 //! breaks, and the baud-error tolerance measured against the formula.
 
-use super::*;
-use crate::testbench::run_to_end;
-use crate::Setup;
+use model::uart::*;
+use model::testbench::run_to_end;
+use model::Setup;
 
 fn receive(cfg: &BenchConfig) -> Vec<Transaction> {
     run_to_end(cfg.bench().unwrap()).transactions

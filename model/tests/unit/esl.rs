@@ -2,10 +2,10 @@
 //! commands, memory with busy and page change, daisy chain, baud error and
 //! the faults of issue 5.
 
-use super::frames::{self, Alarms, DataId};
-use super::*;
-use crate::testbench::Testbench;
-use crate::Setup;
+use model::esl::frames::{self, Alarms, DataId};
+use model::esl::*;
+use model::testbench::Testbench;
+use model::Setup;
 
 fn op(data_id: u8) -> Operation {
     Operation {
@@ -39,15 +39,13 @@ fn run(cfg: &BenchConfig) -> (Vec<Transaction>, Bench) {
     (ts, bench)
 }
 
-impl Bench {
-    fn assert_no_contention(&self) {
-        assert_eq!(self.contention_cycles(), 0, "two drivers on the line");
-    }
+fn assert_no_contention(bench: &Bench) {
+    assert_eq!(bench.contention_cycles(), 0, "two drivers on the line");
 }
 
 fn clean(cfg: &BenchConfig) -> Vec<Transaction> {
     let (ts, bench) = run(cfg);
-    bench.assert_no_contention();
+    assert_no_contention(&bench);
     assert!(ts.iter().all(|t| t.errors.is_empty()), "{ts:#?}");
     ts
 }
@@ -102,7 +100,7 @@ fn every_data_id_of_table_12_is_answered_and_checked_clean() {
 fn the_answer_begins_2_us_after_the_request() {
     // Seed 000, Figure 2 text: "after 2.0 µs (typical), the encoder shall respond".
     let cfg = BenchConfig {
-        cable: crate::line::CableConfig::default(),
+        cable: model::line::CableConfig::default(),
         ..BenchConfig::default()
     };
     let (_, bench) = run(&cfg);
@@ -200,7 +198,7 @@ fn commands_b_c_d_are_sent_8_times_as_one_operation_and_take_effect() {
         ..BenchConfig::default()
     };
     let (ts, bench) = run(&cfg);
-    bench.assert_no_contention();
+    assert_no_contention(&bench);
     assert!(ts.iter().all(|t| t.errors.is_empty()), "{ts:#?}");
     assert!(ts[..3].iter().all(|t| t.requests == 8));
     assert_eq!(
@@ -435,7 +433,7 @@ fn bad_parity_and_bad_stop_bits_are_answered_with_ca0_and_ca1() {
         ..BenchConfig::default()
     };
     let (ts, bench) = run(&cfg);
-    bench.assert_no_contention();
+    assert_no_contention(&bench);
     assert_eq!(ts[0].errors, ["comm_alarm"]);
     assert_eq!(ts[0].received.len(), frames::COMM_ERROR_FIELDS);
     assert_eq!(ts[0].received[1] & 3, 1, "CA0");
@@ -463,7 +461,7 @@ fn every_single_bit_flip_of_a_safety_answer_is_flagged() {
                 ..BenchConfig::default()
             };
             let (ts, bench) = run(&cfg);
-            bench.assert_no_contention();
+            assert_no_contention(&bench);
             assert!(
                 !ts[0].errors.is_empty(),
                 "field {field} bit {bit} went through: {:?}",
@@ -514,7 +512,7 @@ fn a_second_driver_on_the_line_is_flagged() {
 
 #[test]
 fn baud_error_inside_the_tolerance_passes_and_far_outside_fails() {
-    let (lo, hi) = crate::uart::tolerance(8, 0.0);
+    let (lo, hi) = model::uart::tolerance(8, 0.0);
     for tenth in -30..=30 {
         let err = f64::from(tenth) / 10.0;
         let enc = EncoderSettings {
@@ -522,7 +520,7 @@ fn baud_error_inside_the_tolerance_passes_and_far_outside_fails() {
             ..EncoderSettings::default()
         };
         let cfg = BenchConfig {
-            cable: crate::line::CableConfig::default(),
+            cable: model::line::CableConfig::default(),
             encoders: vec![enc],
             ops: vec![op(1), op(4), op(0xA), op(8)],
             ..BenchConfig::default()

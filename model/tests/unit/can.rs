@@ -1,11 +1,11 @@
-use super::bench::{DutSettings, Fault, FaultKind, TimingSettings};
+use model::can::bench::{DutSettings, Fault, FaultKind, TimingSettings};
 
-use super::controller::{crc_step, BUS_OFF, ERROR_ACTIVE, ERROR_PASSIVE};
-use super::emulator::{NodeSettings, Scripted};
-use super::frame::{self, stuff, Frame, FrameError};
-use super::*;
-use crate::testbench::run_to_end;
-use crate::{Setup, Testbench};
+use model::can::controller::{crc_step, BUS_OFF, ERROR_ACTIVE, ERROR_PASSIVE};
+use model::can::emulator::{NodeSettings, Scripted};
+use model::can::frame::{self, stuff, Frame, FrameError};
+use model::can::*;
+use model::testbench::run_to_end;
+use model::{Setup, Testbench};
 
 fn node(name: &str, pos: f64, frames: Vec<(f64, Frame)>) -> NodeSettings {
     NodeSettings { name: name.into(), position_m: pos, loop_delay_ns: 150.0, ppm: 0.0, ack: true, frames: frames.into_iter().map(|(at_us, frame)| Scripted::new(at_us, frame)).collect() }
@@ -190,7 +190,7 @@ fn repeated_bit_errors_walk_the_transmitter_to_bus_off_and_128_x_11_recessive_bi
     // Step again and time bus-off at the core's outputs: 128 × 11 recessive
     // bits, counted from the first sample point after the last error flag.
     let mut b = c.bench().unwrap();
-    let mut s = crate::trace::Sample::for_layout(b.layout());
+    let mut s = model::trace::Sample::for_layout(b.layout());
     let (mut on, mut off) = (None, None);
     while !b.finished() {
         b.step(Some(&mut s));
@@ -418,12 +418,12 @@ fn bench_fast_forward_matches_stepping_through_idle_gaps() {
     let mut c = cfg(vec![(20.0, f.clone()), (4000.0, f.clone()), (8000.0, f)], vec![slow]);
     c.timing = TimingSettings { bit_rate_kbps: 125.0, tq_per_bit: 16, sample_point: 0.875, sjw: 1 };
     c.max_us = 12_000.0;
-    let run = crate::testbench::lockstep("125 kbit/s bench", c.bench().unwrap(), c.bench().unwrap());
+    let run = model::testbench::lockstep("125 kbit/s bench", c.bench().unwrap(), c.bench().unwrap());
     assert_eq!(run.skipping, run.stepped, "transcripts differ");
     let (cycles, skipped) = (run.cycles, run.skipped);
     // 5 frames of 50 to 90 bits (8 µs each) in some 8.6 ms: over two
     // thirds idle, skipped whole between frames and scheduled starts; in a
     // frame, a few cycles of each 320-cycle bit are stepped.
     assert!(skipped * 100 > cycles * 95, "only {skipped} of {cycles} cycles skipped");
-    assert_eq!(crate::testbench::run_to_end(c.bench().unwrap()), crate::testbench::run_every_cycle(c.bench().unwrap()));
+    assert_eq!(model::testbench::run_to_end(c.bench().unwrap()), model::testbench::run_every_cycle(c.bench().unwrap()));
 }

@@ -1,10 +1,10 @@
 //! The SAR58K24 asynchronous modes end to end: seed examples, every mode,
 //! every baud rate, resolutions, Gray, a three-encoder bus, and the faults.
 
-use super::*;
-use crate::testbench::run_to_end;
-use crate::uart::Parity;
-use crate::Setup;
+use model::sar58k24::*;
+use model::testbench::run_to_end;
+use model::uart::Parity;
+use model::Setup;
 
 fn run(cfg: &BenchConfig) -> (Vec<Transaction>, u64) {
     let bench = cfg.bench().unwrap();
@@ -307,11 +307,11 @@ fn a_second_driver_on_the_bus_is_seen_as_contention_and_flagged() {
     cfg.second_drivers = vec![SecondDriver { at_us: 700.0, bytes: vec![0x00, 0x00], ..SecondDriver::default() }];
     let bench = cfg.bench().unwrap();
     let mut bench = bench;
-    while !crate::Testbench::finished(&bench) {
-        crate::Testbench::step(&mut bench, None);
+    while !model::Testbench::finished(&bench) {
+        model::Testbench::step(&mut bench, None);
     }
     assert!(bench.fault_contention_cycles() > 0);
-    let t = crate::Testbench::into_transactions(bench);
+    let t = model::Testbench::into_transactions(bench);
     assert!(!t[0].errors.is_empty(), "{:?}", t[0]);
     assert!(t[0].positions.is_empty());
 }
