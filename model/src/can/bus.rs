@@ -42,7 +42,12 @@ impl Place {
 #[derive(Debug, Clone)]
 pub struct Bus {
     delay: Vec<Vec<usize>>,
+    /// Per node, its TXD levels of the last `hist.len()` cycles, a ring
+    /// indexed by cycle modulo its length (a power of two, so that `& mask`
+    /// indexes it: the bus is read several times a cycle).
     hist: Vec<Vec<bool>>,
+    mask: usize,
+    /// Cycles a change takes to reach every node: the longest delay, plus one.
     len: usize,
     cycle: usize,
     /// Per node, the cycles whose level differs from the cycle before's,
@@ -67,7 +72,8 @@ impl Bus {
             })
             .collect();
         let len = delay.iter().flatten().copied().max().unwrap_or(1) + 1;
-        Bus { hist: vec![vec![true; len]; places.len()], delay, len, cycle: 0, changes: vec![VecDeque::new(); places.len()] }
+        let ring = len.next_power_of_two();
+        Bus { hist: vec![vec![true; ring]; places.len()], mask: ring - 1, delay, len, cycle: 0, changes: vec![VecDeque::new(); places.len()] }
     }
 
     /// Delay from node `from`'s TXD to node `to`'s RXD, cycles.
@@ -77,14 +83,14 @@ impl Bus {
 
     /// The level at node `j`'s RXD this cycle.
     pub fn rx(&self, j: usize) -> bool {
-        (0..self.hist.len()).all(|i| self.hist[i][(self.cycle + self.len - self.delay[i][j]) % self.len])
+        (0..self.hist.len()).all(|i| self.hist[i][self.cycle.wrapping_sub(self.delay[i][j]) & self.mask])
     }
 
     /// Whether the delay lines hold nothing but recessive levels: then, as
     /// long as every node keeps sending recessive, every RXD reads
     /// recessive.
     pub fn recessive(&self) -> bool {
-        self.hist.iter().all(|h| h.iter().all(|&l| l))
+        (1..=self.len).all(|k| self.hist.iter().all(|h| h[self.cycle.wrapping_sub(k) & self.mask]))
     }
 
     /// For how many cycles from this one node `j`'s RXD keeps its level
@@ -110,13 +116,16 @@ impl Bus {
     /// Moves `n` cycles on with every node sending the level it sent last
     /// (what `n` pushes of those levels would do).
     pub fn skip(&mut self, n: u64) {
-        let len = self.len;
-        let last = (self.cycle + len - 1) % len;
+        let (mask, now) = (self.mask, self.cycle & self.mask);
+        let last = self.cycle.wrapping_sub(1) & mask;
+        // The cycles [now, now + n) of the ring, at most all of it: the
+        // part up to the ring's end, then the part from its start.
+        let fill = (n as usize).min(mask + 1);
+        let (first, wrapped) = (fill.min(mask + 1 - now), fill.saturating_sub(mask + 1 - now));
         for h in &mut self.hist {
             let level = h[last];
-            for k in 0..(n as usize).min(len) {
-                h[(self.cycle + k) % len] = level;
-            }
+            h[now..now + first].fill(level);
+            h[..wrapped].fill(level);
         }
         self.cycle += n as usize;
         self.forget();
@@ -124,7 +133,7 @@ impl Bus {
 
     /// Records this cycle's TXD levels and moves to the next cycle.
     pub fn push(&mut self, tx: &[bool]) {
-        let (now, last) = (self.cycle % self.len, (self.cycle + self.len - 1) % self.len);
+        let (now, last) = (self.cycle & self.mask, self.cycle.wrapping_sub(1) & self.mask);
         for ((h, &t), changes) in self.hist.iter_mut().zip(tx).zip(&mut self.changes) {
             if h[last] != t {
                 changes.push_back(self.cycle);

@@ -427,3 +427,38 @@ fn bench_fast_forward_matches_stepping_through_idle_gaps() {
     assert!(skipped * 100 > cycles * 95, "only {skipped} of {cycles} cycles skipped");
     assert_eq!(model::testbench::run_to_end(c.bench().unwrap()), model::testbench::run_every_cycle(c.bench().unwrap()));
 }
+
+proptest::proptest! {
+    /// `Bus::skip(n)` leaves the bus as `n` pushes of the levels last sent
+    /// would: every node's RXD and its `steady` count agree, cycle after
+    /// cycle, through skips shorter and longer than the delay ring (a power
+    /// of two, wrapping) and from cycle 0 (before the first delay has run).
+    #[test]
+    fn a_skipped_bus_reads_as_a_stepped_one(
+        positions in proptest::collection::vec(0.0f64..60.0, 2..4),
+        runs in proptest::collection::vec((proptest::collection::vec(proptest::bool::ANY, 3), 0u64..200, proptest::bool::ANY), 1..40),
+    ) {
+        let tb = model::Timebase::from_mhz(40.0).unwrap();
+        let places: Vec<bus::Place> = positions.iter().map(|&p| bus::Place { position_m: p, loop_delay_ns: 150.0 }).collect();
+        let (mut stepped, mut skipped) = (Bus::new(&places, 5.0, &tb), Bus::new(&places, 5.0, &tb));
+        let nodes = places.len();
+        for (levels, hold, by_skip) in runs {
+            // One cycle with new levels, then `hold` cycles of the same.
+            stepped.push(&levels[..nodes]);
+            skipped.push(&levels[..nodes]);
+            if by_skip {
+                skipped.skip(hold);
+            }
+            for _ in 0..hold {
+                stepped.push(&levels[..nodes]);
+                if !by_skip {
+                    skipped.push(&levels[..nodes]);
+                }
+            }
+            for j in 0..nodes {
+                proptest::prop_assert_eq!(stepped.rx(j), skipped.rx(j), "node {} after a hold of {}", j, hold);
+                proptest::prop_assert_eq!(stepped.steady(j), skipped.steady(j), "node {} after a hold of {}", j, hold);
+            }
+        }
+    }
+}
