@@ -430,9 +430,10 @@ fn bench_fast_forward_matches_stepping_through_idle_gaps() {
 
 proptest::proptest! {
     /// `Bus::skip(n)` leaves the bus as `n` pushes of the levels last sent
-    /// would: every node's RXD and its `steady` count agree, cycle after
-    /// cycle, through skips shorter and longer than the delay ring (a power
-    /// of two, wrapping) and from cycle 0 (before the first delay has run).
+    /// would: every node's RXD and its `steady` count agree at the end of
+    /// each hold, through holds shorter and longer than the delay ring (a
+    /// power of two, wrapping) and from cycle 0 (before the first delay has
+    /// run).
     #[test]
     fn a_skipped_bus_reads_as_a_stepped_one(
         positions in proptest::collection::vec(0.0f64..60.0, 2..4),
