@@ -14,6 +14,7 @@
 //! campaigns and `tbgen bench` use the fast-forward and still mean them.
 
 use model::testbench::Testbench;
+use model::Setup;
 use tbgen::builtin;
 use tbgen::scenario::{Scenario, Visitor};
 
@@ -28,6 +29,11 @@ impl Visitor for LockstepRun<'_> {
         let run = cfg.bench().expect("a built-in scenario builds").lockstep_compiled(name, cfg.bench().expect("a built-in scenario builds"));
         let to_json = |t: &Vec<_>| serde_json::to_string(t).expect("transactions serialise");
         assert_eq!(to_json(&run.skipping), to_json(&run.stepped), "{name}: transcripts differ");
+        // The run campaigns and `tbgen bench` use, which records nothing:
+        // a bench may then run its parts on their own events (CAN), which
+        // the lockstep above, stepping whenever it records, does not show.
+        let fast = cfg.bench().expect("a built-in scenario builds").run_to_end_compiled();
+        assert_eq!((fast.cycles, to_json(&fast.transactions)), (run.cycles, to_json(&run.stepped)), "{name}: the fast-forwarded run ends otherwise");
         (run.cycles, run.skipped)
     }
 }
@@ -59,4 +65,51 @@ fn fast_forward_matches_stepping_on_every_scenario() {
         let (cycles, skipped) = skipped_by_core[core];
         assert!(skipped * 2 > cycles, "{core}: only {skipped} of {cycles} cycles skipped");
     }
+}
+
+/// The CAN bench runs each of its parts (the core, the monitor at its pin,
+/// each emulated node) only on its own events when it records nothing
+/// (`Bench::quiet_cycles`); in between a part is left behind and catches
+/// up when it next steps. After every third step of such a run on every
+/// CAN scenario, each part, brought to the current cycle, is in the state
+/// stepping every part every cycle leaves it in: what `lockstep`, which
+/// steps every part whenever it records, cannot show.
+#[test]
+fn can_parts_stepped_on_their_own_events_match_stepping() {
+    let mut scenarios = builtin::all().expect("built-ins parse");
+    scenarios.extend(bench_scenarios());
+    let mut checked = 0;
+    for s in &scenarios {
+        let Some(cfg) = s.setup.get::<model::can::BenchConfig>() else { continue };
+        let name = &s.name;
+        let (mut lazy, mut stepped) = (cfg.bench().expect("builds"), cfg.bench().expect("builds"));
+        let mut steps = 0u64;
+        let parts = |b: &model::can::Bench| format!("{:?}", (b.dut(), b.monitor(), b.nodes()));
+        while !lazy.finished() {
+            match lazy.quiet_cycles() {
+                0 => lazy.step_due(),
+                n => {
+                    lazy.skip(n);
+                    continue;
+                }
+            }
+            steps += 1;
+            // Every third step, so that parts also stay behind across
+            // several steps of the others before they catch up.
+            if steps % 3 != 0 {
+                continue;
+            }
+            while stepped.cycle() < lazy.cycle() {
+                stepped.step(None);
+            }
+            lazy.catch_up();
+            assert_eq!(parts(&lazy), parts(&stepped), "{name}: a part differs after the step of cycle {}", lazy.cycle() - 1);
+            checked += 1;
+        }
+        while stepped.cycle() < lazy.cycle() {
+            stepped.step(None);
+        }
+        assert!(stepped.finished(), "{name}: stepping has not finished on cycle {}", lazy.cycle());
+    }
+    assert!(checked > 10_000, "only {checked} steps compared");
 }

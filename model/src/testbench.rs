@@ -70,7 +70,9 @@ pub trait Testbench {
     }
 
     /// [`run_to_end`] of this bench. Each bench implements it with
-    /// [`compiled_here!`], so that the loop is compiled with the model
+    /// [`compiled_here!`] (the CAN bench with its own loop, which steps
+    /// only the parts whose event a cycle is: `can::Bench::step_due`), so
+    /// that the loop is compiled with the model
     /// (optimised) rather than in the crate that calls it: tbgen is compiled
     /// unoptimised (the workspace's Cargo.toml), and its bench figures time
     /// these loops.

@@ -7,15 +7,19 @@
 //! sigrok's `can` decoder has of the `can_rx` line), with the core's pulses
 //! during that frame.
 //!
-//! Fast-forward ([`Testbench::quiet_cycles`]): quiet while every receive
-//! level holds (no change on its way through the bus's delay lines, no
-//! stuck or flip window opening or closing) and every controller only
-//! counts its bit clock ([`Controller::quiet`]): in bus idle with nothing
-//! to send, sample points read recessive and do nothing; in a frame, up to
-//! the next sample point or bit end of any controller on the bus. Only the
-//! bit clocks run ([`super::BitClock::skip`]). A skip ends before the next
-//! scripted frame, fault window or the run's end. The samples' `tq_cnt`
-//! (the core's quantum count) is the one value that runs on through a skip
+//! Fast-forward ([`Testbench::quiet_cycles`], `docs/timing/can.md`): the
+//! bench's parts (the core, the listen-only monitor at its pin, each
+//! emulated node, each receive line) have events of their own. A line's
+//! level may change when a change on its way through the bus arrives or a
+//! stuck or flip window opens or closes; a controller does more than count
+//! its bit clock at its sample points, at a bit end that loads a new level,
+//! where an edge leaves its synchroniser and while a pulse stands
+//! ([`Controller::quiet_crossing`]). A run that records nothing
+//! ([`Testbench::run_to_end_compiled`]) steps each part only on its own
+//! events ([`Bench::step_due`]) and skips the cycles between the earliest
+//! of them, every part left behind catching up when it next steps; a
+//! recording run steps every part every cycle. The samples' `tq_cnt` (the
+//! core's quantum count) is the one value that runs on through a skip
 //! ([`Testbench::counters`]); `tbgen gen` steps every cycle, so the waves
 //! show it counting.
 
@@ -350,6 +354,11 @@ impl PinMonitor {
         self.monitor.skip(n);
     }
 
+    /// Advances `n` cycles with `rx` held ([`Controller::skip_crossing`]).
+    pub(crate) fn skip_crossing(&mut self, n: u64, rx: bool) {
+        self.monitor.skip_crossing(n, rx);
+    }
+
     /// One cycle at `rx` (cycle `cycle`): a SOF begins a new frame (the one
     /// it replaces is returned), the CRC delimiter completes it, the end of
     /// the ACK slot records the acknowledgement, and the receiver's errors
@@ -454,16 +463,26 @@ pub(crate) fn undisturbed_rx(bus: &Bus, stuck: &[(u64, u64)], j: usize, cycle: u
 /// the disturber may count as a frame start. (The CAN and CANopen benches'
 /// fast-forward.)
 pub(crate) fn steady_rx(bus: &Bus, stuck: &[(u64, u64)], disturber: &Disturber, j: usize, cycle: u64, cpb: u64) -> Option<(bool, u64)> {
-    let mut q = bus.steady(j);
+    let (undisturbed, q) = undisturbed_steady(bus, stuck, j, cycle);
+    let (level, flips) = disturber.steady(undisturbed, cycle, cpb)?;
+    Some((level, q.min(flips)))
+}
+
+/// Node `j`'s receive level at `cycle` before its flips
+/// ([`undisturbed_rx`]), and for how many cycles from `cycle` on it holds
+/// while every node keeps its transmit level: until a change on its way
+/// through the bus arrives, or a stuck window opens or closes.
+pub(crate) fn undisturbed_steady(bus: &Bus, stuck: &[(u64, u64)], j: usize, cycle: u64) -> (bool, u64) {
+    let (mut level, mut q) = bus.rx_steady(j);
     for &(a, b) in stuck {
         if cycle < a {
             q = q.min(a - cycle);
         } else if cycle < b {
             q = q.min(b - cycle);
+            level = false;
         }
     }
-    let (level, flips) = disturber.steady(undisturbed_rx(bus, stuck, j, cycle), cycle, cpb)?;
-    Some((level, q.min(flips)))
+    (level, q)
 }
 
 impl Disturber {
@@ -509,10 +528,30 @@ impl Disturber {
         self.recessive_run = if level { self.recessive_run + n } else { 0 };
         self.prev = level;
     }
+
+    /// Advances `n` cycles of a line that kept the undisturbed level the
+    /// last `step` read: a line the CAN bench did not read in them.
+    pub(crate) fn hold(&mut self, n: u64) {
+        self.skip(n, self.prev);
+    }
 }
 
 /// Where the core's `tq_cnt` sits among the decoded signals (the layout in [`Bench::new`]).
 const TQ_CNT_COLUMN: usize = 2;
+
+/// The parts of the bench that run on their own events, by index: the
+/// core, the listen-only monitor at its pin, then the emulated nodes.
+const DUT: usize = 0;
+/// The monitor's part index.
+const MONITOR: usize = 1;
+/// Node `k`'s part index is `NODES + k`.
+const NODES: usize = 2;
+
+/// The receive line part `p` reads: the core's pin (line 0) for the core
+/// and the monitor, node `k`'s RXD (line `k + 1`) for node `k`.
+fn line_of(p: usize) -> usize {
+    p.saturating_sub(1)
+}
 
 /// The core, emulated nodes and the bus.
 pub struct Bench {
@@ -528,15 +567,40 @@ pub struct Bench {
     last_out: Out,
     /// The last step gave the core a start pulse (the next sample shows it fall).
     started: bool,
-    rx_dut: bool,
     cycle: u64,
     end: Option<u64>,
     max_cycles: u64,
     idle_cycles: u64,
     cpb: u64,
     overloads: u32,
-    rx_buf: Vec<bool>,
-    tx_buf: Vec<bool>,
+    /// Per line, the level it had on the cycle it was last read.
+    rx: Vec<bool>,
+    /// Per node (the core first), the TXD level it last sent.
+    tx: Vec<bool>,
+    /// Per part, the next cycle it has yet to run (see [`Bench::quiet_cycles`]).
+    part_at: Vec<u64>,
+    /// Per part, the first cycle it must be stepped on while its line holds
+    /// `part_rx`.
+    part_due: Vec<u64>,
+    /// Per part, the level of its line its due cycle was reckoned with.
+    part_rx: Vec<bool>,
+    /// Per line, the next cycle its disturber has yet to run.
+    line_at: Vec<u64>,
+    /// Per line, the first cycle its level may change.
+    line_due: Vec<u64>,
+    /// Per line, that level before its flips (until `line_due`).
+    line_level: Vec<bool>,
+    /// Per part, stepped by the step under way (kept to save allocating).
+    part_runs: Vec<bool>,
+    /// Per line, read by the step under way (likewise).
+    line_read: Vec<bool>,
+    /// The earliest of `part_due` and `line_due`.
+    next_event: u64,
+    /// `part_due`, `line_due` and `next_event` are reckoned for this cycle
+    /// (after a step of every part they are not until asked).
+    scheduled: bool,
+    /// The transmitters whose level the step under way changes (likewise).
+    tx_changed: Vec<usize>,
     transactions: Vec<Transaction>,
     layout: Layout,
 }
@@ -559,6 +623,7 @@ impl Bench {
             line: vec![Port::new("can_rx", 1), Port::new("can_tx", 1), Port::new("bus_tx_nodes", 1)],
             decoded: vec![Port::new("state", 4), Port::new("pos", 7), Port::new("tq_cnt", 5), Port::new("monitor_state", 4)],
         };
+        let (lines, parts) = (cfg.nodes.len() + 1, cfg.nodes.len() + NODES);
         Ok(Bench {
             dut: Controller::new(cc)?,
             monitor: PinMonitor::new(cc)?,
@@ -570,34 +635,93 @@ impl Bench {
             next: 0,
             last_out: Out::default(),
             started: false,
-            rx_dut: true,
             cycle: 0,
             end: None,
             max_cycles: tb.cycles_nearest_ns(cfg.max_us * 1e3),
             idle_cycles: 0,
             cpb: cc.timing.clocks_per_bit(),
             overloads: 0,
-            rx_buf: Vec::new(),
-            tx_buf: Vec::new(),
+            rx: vec![true; lines],
+            tx: vec![true; lines],
+            part_at: vec![0; parts],
+            part_due: vec![0; parts],
+            part_rx: vec![true; parts],
+            line_at: vec![0; lines],
+            line_due: vec![0; lines],
+            line_level: vec![true; lines],
+            part_runs: vec![false; parts],
+            line_read: vec![false; lines],
+            next_event: 0,
+            scheduled: true,
+            tx_changed: Vec::new(),
             transactions: Vec::new(),
             layout,
             cfg: cfg.clone(),
         })
     }
 
-    /// The emulated nodes.
+    /// The emulated nodes, each as of its last event (see [`Bench::catch_up`]).
     pub fn nodes(&self) -> &[Emulator] {
         &self.nodes
     }
 
-    /// The core's model.
+    /// The core's model, as of its last event (see [`Bench::catch_up`]).
     pub fn dut(&self) -> &Controller {
         &self.dut
     }
 
-    fn rx_at(&mut self, j: usize) -> bool {
-        let level = self.undisturbed_rx(j);
-        self.disturbers[j].step(level, self.cycle, self.cpb)
+    /// The listen-only receiver at the core's pin, as of its last event.
+    pub fn monitor(&self) -> &Controller {
+        self.monitor.controller()
+    }
+
+    /// Brings every part to the current cycle. A fast-forwarded run
+    /// ([`Testbench::quiet_cycles`]) steps each part only on its own events
+    /// and leaves it behind in between, where it would only have counted
+    /// its bit clock; this counts those clocks up, as stepping would have.
+    pub fn catch_up(&mut self) {
+        for p in 0..self.part_at.len() {
+            self.catch_up_part(p);
+        }
+        for j in 0..self.line_at.len() {
+            self.disturbers[j].hold(self.cycle - self.line_at[j]);
+            self.line_at[j] = self.cycle;
+        }
+        self.bus.skip(self.cycle - self.bus.cycle());
+    }
+
+    /// Part `p` counts up the cycles since it last ran, its line having
+    /// held the level its due cycle was reckoned with (`part_rx`).
+    #[inline]
+    fn catch_up_part(&mut self, p: usize) {
+        if self.part_at[p] != self.cycle {
+            self.catch_up_part_from(p);
+        }
+    }
+
+    fn catch_up_part_from(&mut self, p: usize) {
+        let (n, rx) = (self.cycle - self.part_at[p], self.part_rx[p]);
+        match p {
+            DUT => self.dut.skip_crossing(n, rx),
+            MONITOR => self.monitor.skip_crossing(n, rx),
+            _ => self.nodes[p - NODES].skip_crossing(n, rx),
+        }
+        self.part_at[p] = self.cycle;
+    }
+
+    /// Reads line `j` this cycle: its disturber counts up the cycles since
+    /// it last ran, then steps on the line's level now.
+    fn read_line(&mut self, j: usize) -> bool {
+        let c = self.cycle;
+        if self.line_at[j] != c {
+            self.disturbers[j].hold(c - self.line_at[j]);
+        }
+        self.line_at[j] = c + 1;
+        // Before its next event (reckoned: not after steps of every part)
+        // the line keeps the level it had.
+        let level = if self.scheduled && c < self.line_due[j] { self.line_level[j] } else { undisturbed_rx(&self.bus, &self.stuck, j, c) };
+        self.rx[j] = self.disturbers[j].step(level, c, self.cpb);
+        self.rx[j]
     }
 
     /// Nothing left to send and the core idle: `step` counts such cycles
@@ -614,12 +738,225 @@ impl Bench {
         by_idle.min(self.max_cycles.saturating_sub(self.cycle).max(1))
     }
 
-    fn undisturbed_rx(&self, j: usize) -> bool {
-        undisturbed_rx(&self.bus, &self.stuck, j, self.cycle)
+    /// Part `p`'s first cycle to be stepped on, counted from this one,
+    /// given its line's level `rx` from now on
+    /// ([`Controller::quiet_crossing`], [`Emulator::quiet_crossing`]); for
+    /// the core also its start pulse falling and its next scripted frame.
+    fn part_quiet(&self, p: usize, rx: bool) -> u64 {
+        match p {
+            DUT => {
+                if self.started {
+                    return 0;
+                }
+                let q = self.dut.quiet_crossing(rx);
+                match self.script.get(self.next) {
+                    // One already due waits for the core's buffer, which frees only on a sample point.
+                    Some((at, _)) if !self.last_out.o_tx_busy => q.min(at.saturating_sub(self.cycle)),
+                    _ => q,
+                }
+            }
+            MONITOR => self.monitor.controller().quiet_crossing(rx),
+            _ => self.nodes[p - NODES].quiet_crossing(rx),
+        }
     }
 
-    fn steady_rx(&self, j: usize) -> Option<(bool, u64)> {
-        steady_rx(&self.bus, &self.stuck, &self.disturbers[j], j, self.cycle, self.cpb)
+    /// After a step, the next events of what it touched: each line read
+    /// (`read`) holds from the next cycle on for as long as
+    /// [`undisturbed_steady`] and [`Disturber::steady`] say, if it keeps
+    /// the level it had, else it is read again then; a change sent this
+    /// cycle (`changed`, by transmitter) may reach each line after that
+    /// pair's delay; each part stepped is due at its next event, its line
+    /// holding the level it just read.
+    fn schedule(&mut self, read: &[bool], changed: &[usize]) {
+        let next = self.cycle;
+        for (j, _) in read.iter().enumerate().filter(|&(_, &r)| r) {
+            (self.line_level[j], self.line_due[j]) = self.line_event(j);
+        }
+        for &i in changed {
+            for (j, due) in self.line_due.iter_mut().enumerate() {
+                *due = (*due).min(next - 1 + self.bus.delay(i, j) as u64);
+            }
+        }
+        for p in 0..self.part_at.len() {
+            if self.part_at[p] == next {
+                self.part_rx[p] = self.rx[line_of(p)];
+                self.part_due[p] = self.part_event(p);
+            }
+        }
+        self.next_event = self.part_due.iter().chain(&self.line_due).copied().min().unwrap_or(next);
+        self.scheduled = true;
+    }
+
+    /// Line `j`, read on the cycle before this one: its level before its
+    /// flips from this cycle on, and the first cycle from this one its
+    /// level may differ from the one it was read at.
+    fn line_event(&self, j: usize) -> (bool, u64) {
+        let next = self.cycle;
+        let (undisturbed, steady) = undisturbed_steady(&self.bus, &self.stuck, j, next);
+        let due = match self.disturbers[j].steady(undisturbed, next, self.cpb) {
+            Some((level, q)) if level == self.rx[j] => next.saturating_add(q.min(steady)),
+            _ => next,
+        };
+        (undisturbed, due)
+    }
+
+    /// Part `p`, stepped on the cycle before this one (or caught up to
+    /// this one): the first cycle of its next event while its line holds
+    /// the level it last read.
+    fn part_event(&self, p: usize) -> u64 {
+        self.cycle.saturating_add(self.part_quiet(p, self.rx[line_of(p)]))
+    }
+
+    /// After steps of every part (which leave the next events unreckoned:
+    /// recording runs never ask), reckons them all.
+    fn reschedule(&mut self) {
+        if !self.scheduled {
+            let mut read = std::mem::take(&mut self.line_read);
+            read.fill(true);
+            self.schedule(&read, &[]);
+            self.line_read = read;
+        }
+    }
+
+    /// One cycle of a run that records nothing, in which only the parts
+    /// whose event this cycle is step ([`Bench::quiet_cycles`]), each
+    /// first counting up the cycles it was left behind: what `step(None)`
+    /// does, but for the state of the parts left behind (their bit
+    /// clocks and synchronisers, until they next step or
+    /// [`Bench::catch_up`]). [`Testbench::run_to_end_compiled`] runs on it.
+    pub fn step_due(&mut self) {
+        self.reschedule();
+        self.advance(false, None);
+    }
+
+    /// Reads this cycle's lines and says which parts step (`read`, `runs`:
+    /// per line, per part). With `all`, every one. Otherwise the lines
+    /// whose level may change and those of the parts due; a part whose
+    /// line now reads another level than the one its due cycle was
+    /// reckoned with is reckoned again (the level may only be entering its
+    /// synchroniser); then the parts due step.
+    fn read_lines(&mut self, all: bool, read: &mut [bool], runs: &mut [bool]) {
+        let c = self.cycle;
+        if all {
+            read.fill(true);
+            runs.fill(true);
+            for j in 0..read.len() {
+                self.read_line(j);
+            }
+            return;
+        }
+        for (j, r) in read.iter_mut().enumerate() {
+            let parts_due = if j == 0 { self.part_due[DUT].min(self.part_due[MONITOR]) } else { self.part_due[NODES + j - 1] };
+            *r = c >= self.line_due[j].min(parts_due);
+        }
+        for (p, r) in runs.iter_mut().enumerate() {
+            let j = line_of(p);
+            if read[j] && (p == DUT || p >= NODES) {
+                self.read_line(j);
+            }
+            if read[j] && self.part_due[p] > c && self.rx[j] != self.part_rx[p] {
+                self.catch_up_part(p);
+                self.part_rx[p] = self.rx[j];
+                self.part_due[p] = self.part_event(p);
+            }
+            *r = c >= self.part_due[p];
+        }
+    }
+
+    /// One cycle: every part stepped (`all`), or only those due.
+    fn advance(&mut self, all: bool, sample: Option<&mut Sample>) {
+        let c = self.cycle;
+        if self.bus.cycle() != c {
+            self.bus.skip(c - self.bus.cycle());
+        }
+        let mut read = std::mem::take(&mut self.line_read);
+        let mut runs = std::mem::take(&mut self.part_runs);
+        self.read_lines(all, &mut read, &mut runs);
+        let rx0 = self.rx[0];
+        let mut input = In { i_can_rx: rx0, i_filter_id: self.cfg.dut.filter_id, i_filter_mask: self.cfg.dut.filter_mask, ..In::default() };
+        let out = if runs[DUT] {
+            self.catch_up_part(DUT);
+            if let Some((at, f)) = self.script.get(self.next) {
+                if c >= *at && !self.last_out.o_tx_busy {
+                    input.i_tx_start = true;
+                    input.i_tx_id = f.id as u16;
+                    input.i_tx_rtr = f.rtr;
+                    input.i_tx_dlc = f.dlc;
+                    input.i_tx_data = pack(&f.data);
+                    self.next += 1;
+                }
+            }
+            self.part_at[DUT] = c + 1;
+            self.dut.step(&input)
+        } else {
+            // A core left behind only counts its bit clock: no pulse, the same outputs.
+            self.last_out
+        };
+        self.started = input.i_tx_start;
+        // The transmitters whose level changes this cycle (0: the core, k + 1: node k).
+        let mut changed = std::mem::take(&mut self.tx_changed);
+        changed.clear();
+        if out.o_can_tx != self.tx[0] {
+            changed.push(0);
+        }
+        self.tx[0] = out.o_can_tx;
+        for k in 0..self.nodes.len() {
+            if runs[NODES + k] {
+                self.catch_up_part(NODES + k);
+                self.part_at[NODES + k] = c + 1;
+                let t = self.nodes[k].step(self.rx[k + 1]);
+                if t != self.tx[k + 1] {
+                    changed.push(k + 1);
+                }
+                self.tx[k + 1] = t;
+            }
+        }
+        let nodes_tx = self.tx[1..].iter().all(|&t| t);
+        self.bus.push(&self.tx);
+        // The listen-only receiver at the core's pin.
+        if runs[MONITOR] {
+            self.catch_up_part(MONITOR);
+            self.part_at[MONITOR] = c + 1;
+            self.monitor.step(rx0, c, true);
+        }
+        self.monitor.frame.arb_lost |= out.o_arb_lost;
+        self.overloads += out.o_overload as u32;
+        if out.o_tx_done || out.o_rx_valid || out.o_err_bit || out.o_err_stuff || out.o_err_crc || out.o_err_form || out.o_err_ack {
+            for (flag, name) in [
+                (out.o_tx_done, "tx_done"),
+                (out.o_rx_valid, "rx_valid"),
+                (out.o_err_bit, "err_bit"),
+                (out.o_err_stuff, "err_stuff"),
+                (out.o_err_crc, "err_crc"),
+                (out.o_err_form, "err_form"),
+                (out.o_err_ack, "err_ack"),
+            ] {
+                if flag {
+                    self.outcome(name, &out);
+                }
+            }
+        }
+        self.last_out = out;
+        self.cycle += 1;
+        let quiet = self.next == self.script.len() && !out.o_tx_busy && self.nodes.iter().all(Emulator::done) && self.dut.state() == State::Idle;
+        self.idle_cycles = if quiet { self.idle_cycles + 1 } else { 0 };
+        if self.end.is_none() && (self.idle_cycles >= 2 * self.cpb || self.cycle >= self.max_cycles) {
+            self.end = Some(self.cycle + self.cpb);
+        }
+        if all {
+            // Every part stepped and every line read: reckoned when asked.
+            self.scheduled = false;
+        } else {
+            self.schedule(&read, &changed);
+        }
+        self.part_runs = runs;
+        self.line_read = read;
+        self.tx_changed = changed;
+        let Some(sample) = sample else { return };
+        input.write_values(&mut sample.inputs);
+        out.write_values(&mut sample.outputs);
+        sample.line.copy_from_slice(&[rx0 as u64, out.o_can_tx as u64, nodes_tx as u64]);
+        sample.decoded.copy_from_slice(&[self.dut.state() as u64, self.dut.pos() as u64 & 0x7F, self.dut.clock().tq_cnt as u64, self.monitor.controller().state() as u64]);
     }
 
     fn outcome(&mut self, outcome: &'static str, out: &Out) {
@@ -651,7 +988,24 @@ impl Bench {
 }
 
 impl Testbench for Bench {
-    crate::compiled_here!();
+    /// [`run_to_end`](crate::testbench::run_to_end) with
+    /// [`Bench::step_due`] for its steps.
+    fn run_to_end_compiled(self) -> crate::testbench::Run<Transaction> {
+        let mut bench = self;
+        while !bench.finished() {
+            match bench.quiet_cycles() {
+                0 => bench.step_due(),
+                n => bench.skip(n),
+            }
+        }
+        crate::testbench::Run { cycles: bench.cycle, transactions: bench.transactions }
+    }
+    fn run_every_cycle_compiled(self) -> crate::testbench::Run<Transaction> {
+        crate::testbench::run_every_cycle(self)
+    }
+    fn lockstep_compiled(self, name: &str, stepped: Self) -> crate::testbench::Lockstep<Transaction> {
+        crate::testbench::lockstep(name, self, stepped)
+    }
 
     type Transaction = Transaction;
 
@@ -659,126 +1013,50 @@ impl Testbench for Bench {
         &self.layout
     }
 
+    /// One cycle, every part stepped ([`Bench::step_due`] steps only the
+    /// parts whose event it is).
     fn step(&mut self, sample: Option<&mut Sample>) {
-        let mut rx = std::mem::take(&mut self.rx_buf);
-        rx.clear();
-        for j in 0..=self.nodes.len() {
-            let level = self.rx_at(j);
-            rx.push(level);
-        }
-        let mut input = In { i_can_rx: rx[0], i_filter_id: self.cfg.dut.filter_id, i_filter_mask: self.cfg.dut.filter_mask, ..In::default() };
-        if let Some((at, f)) = self.script.get(self.next) {
-            if self.cycle >= *at && !self.last_out.o_tx_busy {
-                input.i_tx_start = true;
-                input.i_tx_id = f.id as u16;
-                input.i_tx_rtr = f.rtr;
-                input.i_tx_dlc = f.dlc;
-                input.i_tx_data = pack(&f.data);
-                self.next += 1;
-            }
-        }
-        let out = self.dut.step(&input);
-        self.started = input.i_tx_start;
-        let mut tx = std::mem::take(&mut self.tx_buf);
-        tx.clear();
-        tx.push(out.o_can_tx);
-        for (k, n) in self.nodes.iter_mut().enumerate() {
-            tx.push(n.step(rx[k + 1]));
-        }
-        let nodes_tx = tx[1..].iter().all(|&t| t);
-        self.bus.push(&tx);
-        self.tx_buf = tx;
-        // The listen-only receiver at the core's pin.
-        self.monitor.step(rx[0], self.cycle, true);
-        self.monitor.frame.arb_lost |= out.o_arb_lost;
-        self.overloads += out.o_overload as u32;
-        for (flag, name) in [
-            (out.o_tx_done, "tx_done"),
-            (out.o_rx_valid, "rx_valid"),
-            (out.o_err_bit, "err_bit"),
-            (out.o_err_stuff, "err_stuff"),
-            (out.o_err_crc, "err_crc"),
-            (out.o_err_form, "err_form"),
-            (out.o_err_ack, "err_ack"),
-        ] {
-            if flag {
-                self.outcome(name, &out);
-            }
-        }
-        self.rx_dut = rx[0];
-        let rx0 = rx[0];
-        self.rx_buf = rx;
-        self.last_out = out;
-        self.cycle += 1;
-        let quiet = self.next == self.script.len() && !out.o_tx_busy && self.nodes.iter().all(Emulator::done) && self.dut.state() == State::Idle;
-        self.idle_cycles = if quiet { self.idle_cycles + 1 } else { 0 };
-        if self.end.is_none() && (self.idle_cycles >= 2 * self.cpb || self.cycle >= self.max_cycles) {
-            self.end = Some(self.cycle + self.cpb);
-        }
-        let Some(sample) = sample else { return };
-        input.write_values(&mut sample.inputs);
-        out.write_values(&mut sample.outputs);
-        sample.line.copy_from_slice(&[rx0 as u64, out.o_can_tx as u64, nodes_tx as u64]);
-        sample.decoded.copy_from_slice(&[self.dut.state() as u64, self.dut.pos() as u64 & 0x7F, self.dut.clock().tq_cnt as u64, self.monitor.controller().state() as u64]);
+        self.advance(true, sample);
     }
 
-    /// Quiet while no line and no controller can change: each node's
-    /// receive level (the bus through its delay lines, the stuck windows
-    /// and its flip windows) holds ([`Bus::steady`], [`Disturber::steady`]),
-    /// and the core, the listen-only monitor and every node only count
-    /// their bit clocks ([`Controller::quiet`], [`Emulator::quiet`]): in
-    /// bus idle for as long as that lasts, in a frame up to the next sample
-    /// point or bit end of any of them. No scripted frame, flip or stuck
-    /// window ahead before then, the core's last input no start pulse and
-    /// its receive level the one the last sample shows. The core's `tq_cnt`
-    /// counts on through it ([`Testbench::counters`]; see the module docs).
+    /// Quiet up to the earliest next event of any part (and where `step`
+    /// decides the run's end). Each part keeps the first cycle of its
+    /// next event: the core, the monitor and each node when they would do
+    /// more than count their bit clocks ([`Controller::quiet_crossing`],
+    /// [`Emulator::quiet_crossing`]: a sample point, a bit end that loads a
+    /// new level, a pulse ending, an edge leaving the synchroniser, a
+    /// scripted frame, the core's start pulse falling), reckoned with the
+    /// level their line had when they last stepped; each line when its
+    /// level may change (a change on its way through the bus's delay lines
+    /// arriving, a stuck or flip window opening or closing:
+    /// [`Bus::rx_steady`], `Disturber::steady`). After a step, the parts
+    /// it stepped and the lines it read are reckoned again. The core's
+    /// `tq_cnt` counts on through a quiet stretch ([`Testbench::counters`];
+    /// see the module docs).
     fn quiet_cycles(&self) -> u64 {
         let c = self.cycle;
-        // Cycle 0 has no sample before it to repeat.
-        if c == 0 || self.started {
-            return 0;
-        }
-        let mut q = u64::MAX;
-        let Some((rx, steady)) = self.steady_rx(0) else { return 0 };
-        if rx != self.rx_dut {
-            return 0;
-        }
-        q = q.min(steady).min(self.dut.quiet(rx)).min(self.monitor.controller().quiet(rx));
-        for (k, node) in self.nodes.iter().enumerate() {
-            if q == 0 {
-                return 0;
-            }
-            let Some((rx, steady)) = self.steady_rx(k + 1) else { return 0 };
-            q = q.min(steady).min(node.quiet(rx));
-        }
-        q = match self.end {
-            Some(e) => q.min(e - c),
-            // No further than where `skip` decides the end (as `step` would).
-            None => q.min(self.cycles_to_end_decision()),
+        let next_event = if self.scheduled {
+            self.next_event
+        } else {
+            // After a step of every part: each line was read, each part stepped.
+            let lines = (0..self.line_due.len()).map(|j| self.line_event(j).1);
+            lines.chain((0..self.part_due.len()).map(|p| self.part_event(p))).min().unwrap_or(c)
         };
-        match self.script.get(self.next) {
-            // One already due waits for the core's buffer, which frees only on a sample point.
-            Some((at, _)) if *at <= c && self.last_out.o_tx_busy => {}
-            Some((at, _)) => q = q.min(at.saturating_sub(c)),
-            None => {}
-        }
-        q
+        let due = match self.end {
+            Some(e) => next_event.min(e),
+            // No further than where `skip` decides the end (as `step` would).
+            None => next_event.min(c.saturating_add(self.cycles_to_end_decision())),
+        };
+        due.saturating_sub(c)
     }
 
+    /// Advances the bench's own count only: every part catches up when it
+    /// next steps (or on [`Bench::catch_up`]).
     fn skip(&mut self, n: u64) {
         if n == 0 {
             return;
         }
-        for j in 0..self.disturbers.len() {
-            let level = self.undisturbed_rx(j);
-            self.disturbers[j].skip(n, level);
-        }
-        self.dut.skip(n);
-        self.monitor.skip(n);
-        for node in &mut self.nodes {
-            node.skip(n);
-        }
-        self.bus.skip(n);
+        self.reschedule();
         // The end as `step` decides it, its conditions being the same on every skipped cycle.
         let c = self.cycle;
         if self.end.is_none() {

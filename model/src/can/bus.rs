@@ -38,21 +38,24 @@ impl Place {
     }
 }
 
-/// The wired-AND with its delay lines.
+/// The wired-AND with its delay lines, kept as each node's level changes:
+/// a node's level at an earlier cycle is its level now with every change
+/// since undone, so that holding a level costs nothing (the benches'
+/// fast-forward skips long stretches of it) and a read looks at the few
+/// changes still on their way.
 #[derive(Debug, Clone)]
 pub struct Bus {
     delay: Vec<Vec<usize>>,
-    /// Per node, its TXD levels of the last `hist.len()` cycles, a ring
-    /// indexed by cycle modulo its length (a power of two, so that `& mask`
-    /// indexes it: the bus is read several times a cycle).
-    hist: Vec<Vec<bool>>,
-    mask: usize,
+    /// Per node, the level it sent last.
+    level: Vec<bool>,
+    /// Per node, the cycles whose level differs from the cycle before's,
+    /// oldest first, for as long as the change may still be on its way to
+    /// a node.
+    changes: Vec<VecDeque<usize>>,
     /// Cycles a change takes to reach every node: the longest delay, plus one.
     len: usize,
+    /// The cycle the next `push` records.
     cycle: usize,
-    /// Per node, the cycles whose level differs from the cycle before's,
-    /// for as long as the change may still be on its way to a node.
-    changes: Vec<VecDeque<usize>>,
 }
 
 impl Bus {
@@ -72,8 +75,7 @@ impl Bus {
             })
             .collect();
         let len = delay.iter().flatten().copied().max().unwrap_or(1) + 1;
-        let ring = len.next_power_of_two();
-        Bus { hist: vec![vec![true; ring]; places.len()], mask: ring - 1, delay, len, cycle: 0, changes: vec![VecDeque::new(); places.len()] }
+        Bus { level: vec![true; places.len()], delay, len, cycle: 0, changes: vec![VecDeque::new(); places.len()] }
     }
 
     /// Delay from node `from`'s TXD to node `to`'s RXD, cycles.
@@ -81,16 +83,44 @@ impl Bus {
         self.delay[from][to]
     }
 
-    /// The level at node `j`'s RXD this cycle.
-    pub fn rx(&self, j: usize) -> bool {
-        (0..self.hist.len()).all(|i| self.hist[i][self.cycle.wrapping_sub(self.delay[i][j]) & self.mask])
+    /// The cycle the next `push` records.
+    pub fn cycle(&self) -> u64 {
+        self.cycle as u64
     }
 
-    /// Whether the delay lines hold nothing but recessive levels: then, as
-    /// long as every node keeps sending recessive, every RXD reads
-    /// recessive.
-    pub fn recessive(&self) -> bool {
-        (1..=self.len).all(|k| self.hist.iter().all(|h| h[self.cycle.wrapping_sub(k) & self.mask]))
+    /// The level at node `j`'s RXD this cycle: every node's level of its
+    /// delay to `j` ago (recessive before the first cycle).
+    pub fn rx(&self, j: usize) -> bool {
+        self.level.iter().zip(&self.changes).zip(&self.delay).all(|((&level, changes), d)| {
+            // A change made at cycle t reaches j at t + d: undo those still on
+            // their way (mostly none: the last change has arrived).
+            match changes.back() {
+                Some(&t) if t + d[j] > self.cycle => {
+                    let on_the_way = changes.iter().rev().take_while(|&&t| t + d[j] > self.cycle).count();
+                    level ^ (on_the_way % 2 == 1)
+                }
+                _ => level,
+            }
+        })
+    }
+
+    /// [`Bus::rx`] and [`Bus::steady`] of node `j` in one pass over the
+    /// changes on their way.
+    pub fn rx_steady(&self, j: usize) -> (bool, u64) {
+        let (mut rx, mut q) = (true, u64::MAX);
+        for ((&level, changes), d) in self.level.iter().zip(&self.changes).zip(&self.delay) {
+            let d = d[j];
+            let mut sent = level;
+            for &t in changes.iter().rev() {
+                if t + d <= self.cycle {
+                    break;
+                }
+                sent = !sent;
+                q = q.min((t + d - self.cycle) as u64);
+            }
+            rx &= sent;
+        }
+        (rx, q)
     }
 
     /// For how many cycles from this one node `j`'s RXD keeps its level
@@ -116,29 +146,17 @@ impl Bus {
     /// Moves `n` cycles on with every node sending the level it sent last
     /// (what `n` pushes of those levels would do).
     pub fn skip(&mut self, n: u64) {
-        let (mask, now) = (self.mask, self.cycle & self.mask);
-        let last = self.cycle.wrapping_sub(1) & mask;
-        // The cycles [now, now + n) of the ring, at most all of it: the
-        // part up to the ring's end, then the part from its start.
-        let fill = (n as usize).min(mask + 1);
-        let (first, wrapped) = (fill.min(mask + 1 - now), fill.saturating_sub(mask + 1 - now));
-        for h in &mut self.hist {
-            let level = h[last];
-            h[now..now + first].fill(level);
-            h[..wrapped].fill(level);
-        }
         self.cycle += n as usize;
         self.forget();
     }
 
     /// Records this cycle's TXD levels and moves to the next cycle.
     pub fn push(&mut self, tx: &[bool]) {
-        let (now, last) = (self.cycle & self.mask, self.cycle.wrapping_sub(1) & self.mask);
-        for ((h, &t), changes) in self.hist.iter_mut().zip(tx).zip(&mut self.changes) {
-            if h[last] != t {
+        for ((level, &t), changes) in self.level.iter_mut().zip(tx).zip(&mut self.changes) {
+            if *level != t {
                 changes.push_back(self.cycle);
+                *level = t;
             }
-            h[now] = t;
         }
         self.cycle += 1;
         self.forget();

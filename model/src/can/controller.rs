@@ -448,25 +448,61 @@ impl Controller {
     ///   the transmitter sending recessive: each sample point then reads
     ///   recessive and does nothing;
     /// - in any other state, the cycles before the bit clock's next sample
-    ///   point or bit end ([`BitClock::cycles_to_event`]): between the two
-    ///   only `pre_cnt`/`tq_cnt` count, as no edge can come.
+    ///   point ([`BitClock::cycles_to_sample`]), or before the bit end if
+    ///   that comes first and loads a level other than the one sent
+    ///   ([`BitClock::cycles_to_event`]): in between only `pre_cnt`/`tq_cnt`
+    ///   count (and restart at a bit end), as no edge can come.
     pub fn quiet(&self, rx: bool) -> u64 {
+        let n = self.cfg.sync_stages as usize;
+        if rx != self.rx_prev || self.sync[..n].iter().any(|&s| s != rx) {
+            return 0;
+        }
+        self.quiet_crossing(rx)
+    }
+
+    /// [`Controller::quiet`], but a level on its way through the
+    /// synchroniser counts as quiet too, up to the cycle it leaves it: the
+    /// cycles before one whose step reads at the synchroniser's output a
+    /// level other than the last (where an edge may come). Each cycle
+    /// before it only shifts the synchroniser and counts the bit clock
+    /// ([`Controller::skip_crossing`]).
+    pub fn quiet_crossing(&self, rx: bool) -> u64 {
         let n = self.cfg.sync_stages as usize;
         let o = &self.out;
         let pulse = o.o_tx_done || o.o_arb_lost || o.o_rx_valid || o.o_err_bit || o.o_err_stuff || o.o_err_crc || o.o_err_form || o.o_err_ack || o.o_overload;
-        if pulse || rx != self.rx_prev || self.sync[..n].iter().any(|&s| s != rx) {
+        if pulse {
             return 0;
         }
-        if self.state == State::Idle && rx && !self.tx_pending && self.tx_bit && o.o_can_tx && !o.o_tx_busy {
+        // The step k cycles from now reads sync[n - 1 - k] (k < n), then `rx`.
+        let crossing = match (0..n).find(|&k| self.sync[n - 1 - k] != self.rx_prev) {
+            Some(k) => k as u64,
+            None if rx != self.rx_prev => n as u64,
+            None => u64::MAX,
+        };
+        if crossing == u64::MAX && self.state == State::Idle && rx && !self.tx_pending && self.tx_bit && o.o_can_tx && !o.o_tx_busy {
             u64::MAX
+        } else if self.tx_bit == o.o_can_tx {
+            // The bit end loads the level already sent: only the counters restart.
+            crossing.min(self.clock.cycles_to_sample(&self.cfg.timing))
         } else {
-            self.clock.cycles_to_event(&self.cfg.timing)
+            crossing.min(self.clock.cycles_to_event(&self.cfg.timing))
         }
     }
 
     /// Advances `n` cycles, at most [`Controller::quiet`]: only the bit clock runs.
     pub fn skip(&mut self, n: u64) {
         self.clock.skip(&self.cfg.timing, n);
+    }
+
+    /// Advances `n` cycles with `i_can_rx` held at `rx`, at most
+    /// [`Controller::quiet_crossing`]: the bit clock runs and `rx` moves
+    /// `n` flops into the synchroniser.
+    pub fn skip_crossing(&mut self, n: u64, rx: bool) {
+        self.clock.skip(&self.cfg.timing, n);
+        let stages = self.cfg.sync_stages as usize;
+        let k = (n as usize).min(stages);
+        self.sync.copy_within(0..stages - k, k);
+        self.sync[..k].fill(rx);
     }
 
     /// One f_sys cycle.

@@ -182,7 +182,18 @@ impl Emulator {
     /// with a ppm offset runs `rate` own cycles per bench cycle; the count
     /// is rounded down and one cycle of phase kept in hand.
     pub fn quiet(&self, rx: bool) -> u64 {
-        let ctrl = self.ctrl.quiet(rx);
+        self.quiet_given(self.ctrl.quiet(rx))
+    }
+
+    /// [`Emulator::quiet`] with a level on its way through the controller's
+    /// synchroniser counted as quiet up to where it leaves it
+    /// ([`Controller::quiet_crossing`]).
+    pub fn quiet_crossing(&self, rx: bool) -> u64 {
+        self.quiet_given(self.ctrl.quiet_crossing(rx))
+    }
+
+    /// The bench cycles quiet when the controller is quiet for `ctrl` of its own.
+    fn quiet_given(&self, ctrl: u64) -> u64 {
         if ctrl == 0 || self.tx != self.ctrl.out().o_can_tx {
             return 0;
         }
@@ -202,6 +213,19 @@ impl Emulator {
     /// phase cycle by cycle (the same additions as stepping), the controller
     /// by the own cycles that makes.
     pub fn skip(&mut self, n: u64) {
+        let own = self.own_cycles(n);
+        self.ctrl.skip(own);
+    }
+
+    /// [`Emulator::skip`] with `rx` held, at most [`Emulator::quiet_crossing`]
+    /// ([`Controller::skip_crossing`]).
+    pub fn skip_crossing(&mut self, n: u64, rx: bool) {
+        let own = self.own_cycles(n);
+        self.ctrl.skip_crossing(own, rx);
+    }
+
+    /// Runs the own clock's phase `n` bench cycles on: the own cycles it makes.
+    fn own_cycles(&mut self, n: u64) -> u64 {
         let own = if self.rate == 1.0 {
             n
         } else {
@@ -215,8 +239,8 @@ impl Emulator {
             }
             k
         };
-        self.ctrl.skip(own);
         self.own_cycle += own;
+        own
     }
 
     /// Whether the node has nothing left to send.

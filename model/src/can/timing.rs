@@ -257,6 +257,20 @@ impl BitClock {
         (next - self.tq_cnt) as u64 * brp + (brp - 1 - self.pre_cnt as u64)
     }
 
+    /// Cycles from now before the next one whose step is a sample point
+    /// (no edge), past the end of this bit if that comes first: the next
+    /// bit then starts unlengthened, its sample point TSEG1 quanta in.
+    pub fn cycles_to_sample(&self, t: &BitTiming) -> u64 {
+        let brp = t.brp as u64;
+        let sample_tq = t.tseg1() + self.ext;
+        if self.tq_cnt <= sample_tq {
+            return (sample_tq - self.tq_cnt) as u64 * brp + (brp - 1 - self.pre_cnt as u64);
+        }
+        let end_tq = t.ntq() - 1 + self.ext - if self.short { t.sjw } else { 0 };
+        let to_end = (end_tq - self.tq_cnt) as u64 * brp + (brp - 1 - self.pre_cnt as u64);
+        to_end + 1 + (t.tseg1() as u64 + 1) * brp - 1
+    }
+
     /// Cycles from now in which `tq_cnt` keeps its value (no edge).
     pub fn quantum_left(&self, t: &BitTiming) -> u64 {
         (t.brp - 1 - self.pre_cnt) as u64

@@ -17,8 +17,8 @@
 //!
 //! Fast-forward ([`Testbench::quiet_cycles`]): quiet while every receive
 //! level holds and no part has anything due, as in the CAN bench: in bus
-//! idle and within a frame, up to the next sample point or bit end of any
-//! controller on the bus; the master's boot, SDO and PDO timeouts and SYNC
+//! idle and within a frame, up to the next sample point, or bit end that
+//! loads a new level, of any controller on the bus; the master's boot, SDO and PDO timeouts and SYNC
 //! period ([`super::master::Master::quiet`]), each device's cyclic,
 //! heartbeat, guarding or SAR58K24 cycle timer and queued answers
 //! ([`super::node::DeviceNode::quiet`]), and the script's start pulses,
@@ -605,8 +605,9 @@ impl Testbench for Bench {
     /// [`steady_rx`]) and the master, the listen-only monitor and every
     /// powered node are quiet at that level ([`Master::quiet`],
     /// [`DeviceNode::quiet`], [`Emulator::quiet`]: in a frame, short of
-    /// their next sample point or bit end; their timers and queued frames
-    /// not due). No start pulse, power-on or alarm ahead before then, and
+    /// their next sample point, or bit end that loads a new level; their
+    /// timers and queued frames not due). No start pulse, power-on or alarm
+    /// ahead before then, and
     /// the run's end not decided within it (see the module docs).
     fn quiet_cycles(&self) -> u64 {
         let c = self.cycle;

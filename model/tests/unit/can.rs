@@ -349,6 +349,36 @@ fn bit_clock_skip_equals_stepping_without_edges() {
     }
 }
 
+/// `cycles_to_sample` counts the cycles before the next sample point as
+/// stepping meets it, across the end of a plain, lengthened or shortened
+/// bit.
+#[test]
+fn bit_clock_cycles_to_sample_is_where_stepping_samples() {
+    let t = BitTiming::for_rate(40_000_000, 125_000.0, 16, 0.875, 2).unwrap();
+    let starts = [
+        BitClock::default(),
+        BitClock { pre_cnt: 7, tq_cnt: 5, ext: 1, short: false, synced: true },
+        // Shortened by SJW: its last quantum is 13.
+        BitClock { pre_cnt: 3, tq_cnt: 13, ext: 0, short: true, synced: false },
+        BitClock { pre_cnt: 19, tq_cnt: 15, ext: 0, short: false, synced: false },
+        // Lengthened by SJW: its last quantum is 17.
+        BitClock { pre_cnt: 19, tq_cnt: 16, ext: 2, short: false, synced: false },
+    ];
+    for start in starts {
+        let mut clock = start;
+        // Walk two bits on from each start, checking at every cycle.
+        for _ in 0..2 * t.clocks_per_bit() {
+            let q = clock.cycles_to_sample(&t);
+            let mut stepped = clock;
+            for k in 0..q {
+                assert!(!stepped.step(&t, false, false, false).sample, "from {clock:?}: a sample point {k} cycles on, not {q}");
+            }
+            assert!(stepped.step(&t, false, false, false).sample, "from {clock:?}: no sample point {q} cycles on");
+            clock.step(&t, false, false, false);
+        }
+    }
+}
+
 /// A controller in bus idle is quiet for ever on a recessive line, and its
 /// skip leaves it as stepping does; a dominant line or a frame to send ends it.
 #[test]
@@ -387,7 +417,7 @@ fn idle_controller_skips_exactly() {
     assert_eq!(o, stepped.step(&idle));
     assert!(o.o_tx_busy && c.state() != State::Idle, "the sample point after the skip starts the frame");
     // Through the frame, each cycle stepped and skipped alike: every skip
-    // ends before a sample point or bit end.
+    // ends before a sample point, or a bit end that changes the level sent.
     let mut skipped = 0;
     for _ in 0..40 * cc.timing.clocks_per_bit() {
         let rx = c.out().o_can_tx;
@@ -426,24 +456,43 @@ fn bench_fast_forward_matches_stepping_through_idle_gaps() {
     // frame, a few cycles of each 320-cycle bit are stepped.
     assert!(skipped * 100 > cycles * 95, "only {skipped} of {cycles} cycles skipped");
     assert_eq!(model::testbench::run_to_end(c.bench().unwrap()), model::testbench::run_every_cycle(c.bench().unwrap()));
+    // The same with each part stepped on its own events only.
+    assert_eq!(c.bench().unwrap().run_to_end_compiled(), model::testbench::run_every_cycle(c.bench().unwrap()));
+}
+
+/// The bus's delay from `i` to `j` in cycles, as `Bus::new` reckons it.
+fn stepped_delay(places: &[bus::Place], tb: &model::Timebase, i: usize, j: usize) -> usize {
+    let ns = places[i].loop_delay_ns / 2.0 + (places[i].position_m - places[j].position_m).abs() * 5.0 + places[j].loop_delay_ns / 2.0;
+    ((ns * 1e3 / tb.period_ps() as f64).round() as usize).max(1)
 }
 
 proptest::proptest! {
-    /// `Bus::skip(n)` leaves the bus as `n` pushes of the levels last sent
-    /// would: every node's RXD and its `steady` count agree at the end of
-    /// each hold, through holds shorter and longer than the delay ring (a
-    /// power of two, wrapping) and from cycle 0 (before the first delay has
-    /// run).
+    /// The bus reads as its definition (each RXD the AND of every TXD its
+    /// delay ago, recessive before cycle 0), and `Bus::skip(n)` leaves it
+    /// as `n` pushes of the levels last sent would: at the end of each
+    /// hold (half of them shorter than any delay, so that changes queue on
+    /// their way; the others longer than the longest, and from cycle 0),
+    /// every node's RXD and its `steady` count agree, `rx_steady` is the
+    /// two, and the level holds for `steady` cycles of held levels.
     #[test]
     fn a_skipped_bus_reads_as_a_stepped_one(
         positions in proptest::collection::vec(0.0f64..60.0, 2..4),
-        runs in proptest::collection::vec((proptest::collection::vec(proptest::bool::ANY, 3), 0u64..200, proptest::bool::ANY), 1..40),
+        runs in proptest::collection::vec((proptest::collection::vec(proptest::bool::ANY, 3), proptest::prop_oneof![0u64..8, 0u64..200], proptest::bool::ANY), 1..40),
     ) {
         let tb = model::Timebase::from_mhz(40.0).unwrap();
         let places: Vec<bus::Place> = positions.iter().map(|&p| bus::Place { position_m: p, loop_delay_ns: 150.0 }).collect();
         let (mut stepped, mut skipped) = (Bus::new(&places, 5.0, &tb), Bus::new(&places, 5.0, &tb));
         let nodes = places.len();
+        // The definition: rx_j(t) = AND over i of tx_i(t - d_ij), recessive before cycle 0.
+        let mut sent: Vec<Vec<bool>> = vec![Vec::new(); nodes];
+        let reference = |sent: &Vec<Vec<bool>>, j: usize| {
+            let now = sent[0].len();
+            (0..nodes).all(|i| now < stepped_delay(&places, &tb, i, j) || sent[i][now - stepped_delay(&places, &tb, i, j)])
+        };
         for (levels, hold, by_skip) in runs {
+            for (i, s) in sent.iter_mut().enumerate() {
+                s.extend(std::iter::repeat_n(levels[i], hold as usize + 1));
+            }
             // One cycle with new levels, then `hold` cycles of the same.
             stepped.push(&levels[..nodes]);
             skipped.push(&levels[..nodes]);
@@ -457,8 +506,23 @@ proptest::proptest! {
                 }
             }
             for j in 0..nodes {
+                proptest::prop_assert_eq!(stepped.rx(j), reference(&sent, j), "node {} after a hold of {}", j, hold);
                 proptest::prop_assert_eq!(stepped.rx(j), skipped.rx(j), "node {} after a hold of {}", j, hold);
                 proptest::prop_assert_eq!(stepped.steady(j), skipped.steady(j), "node {} after a hold of {}", j, hold);
+                proptest::prop_assert_eq!(skipped.rx_steady(j), (skipped.rx(j), skipped.steady(j)), "node {} after a hold of {}", j, hold);
+                // The level holds that long with every level held (and, arriving
+                // or masked, a change of a node's level is due to reach j then).
+                let steady = stepped.steady(j).min(300);
+                let mut held = stepped.clone();
+                let mut more = sent.clone();
+                for k in 0..steady {
+                    proptest::prop_assert_eq!(held.rx(j), stepped.rx(j), "node {}: level changed {} cycles into a steady {}", j, k, steady);
+                    held.push(&levels[..nodes]);
+                    for (i, s) in more.iter_mut().enumerate() {
+                        s.push(levels[i]);
+                    }
+                    proptest::prop_assert_eq!(held.rx(j), reference(&more, j));
+                }
             }
         }
     }
