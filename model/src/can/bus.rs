@@ -129,18 +129,7 @@ impl Bus {
     /// another node's dominant level masks is counted all the same), or
     /// for ever.
     pub fn steady(&self, j: usize) -> u64 {
-        let mut q = u64::MAX;
-        for (i, changes) in self.changes.iter().enumerate() {
-            // A change pushed at cycle t reaches j at cycle t + d.
-            let d = self.delay[i][j];
-            for &t in changes.iter().rev() {
-                if t + d <= self.cycle {
-                    break;
-                }
-                q = q.min((t + d - self.cycle) as u64);
-            }
-        }
-        q
+        self.rx_steady(j).1
     }
 
     /// Moves `n` cycles on with every node sending the level it sent last

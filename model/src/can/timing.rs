@@ -196,7 +196,7 @@ impl BitClock {
             }
             return Tick { sample: false, load_tx: true };
         }
-        let end_tq = last_tq + self.ext - if self.short { t.sjw } else { 0 };
+        let end_tq = self.end_tq(t);
         let tq_last_cycle = self.pre_cnt == t.brp - 1;
         let sample = tq_last_cycle && self.tq_cnt == tseg1 + self.ext;
         let bit_end = tq_last_cycle && self.tq_cnt == end_tq;
@@ -252,7 +252,7 @@ impl BitClock {
     pub fn cycles_to_event(&self, t: &BitTiming) -> u64 {
         let brp = t.brp as u64;
         let sample_tq = t.tseg1() + self.ext;
-        let end_tq = t.ntq() - 1 + self.ext - if self.short { t.sjw } else { 0 };
+        let end_tq = self.end_tq(t);
         let next = if self.tq_cnt <= sample_tq { sample_tq } else { end_tq };
         (next - self.tq_cnt) as u64 * brp + (brp - 1 - self.pre_cnt as u64)
     }
@@ -266,9 +266,15 @@ impl BitClock {
         if self.tq_cnt <= sample_tq {
             return (sample_tq - self.tq_cnt) as u64 * brp + (brp - 1 - self.pre_cnt as u64);
         }
-        let end_tq = t.ntq() - 1 + self.ext - if self.short { t.sjw } else { 0 };
+        let end_tq = self.end_tq(t);
         let to_end = (end_tq - self.tq_cnt) as u64 * brp + (brp - 1 - self.pre_cnt as u64);
         to_end + 1 + (t.tseg1() as u64 + 1) * brp - 1
+    }
+
+    /// The bit's last quantum: PHASE_SEG2 ends TSEG1 + PHASE_SEG2 quanta in,
+    /// lengthened by `ext`, shortened by SJW when `short`.
+    fn end_tq(&self, t: &BitTiming) -> u32 {
+        t.ntq() - 1 + self.ext - if self.short { t.sjw } else { 0 }
     }
 
     /// Cycles from now in which `tq_cnt` keeps its value (no edge).
