@@ -3,7 +3,7 @@
 #   make demo        vectors, waves and transcript of the seed SSI scenario in out/
 #   make test        everything: cargo tests, every core's vectors in Icarus and
 #                    Verilator, committed vectors == fresh ones, Verilator lint,
-#                    every .gtkw layout opened in GTKWave (headless)
+#                    clippy, every .gtkw layout opened in GTKWave (headless)
 #   make vectors     regenerate vectors/<core>/ from the built-in scenarios
 #   make sim CORE=ssi_master SIM=icarus|verilator [SCENARIO=ssi_seed_12bit] [WAVES=1]
 #                    SCENARIO may also be a scenario file (my_ssi.toml: generated
@@ -26,7 +26,7 @@ SCENARIO ?=
 CARGO ?= cargo
 TBGEN := target/release/tbgen
 
-.PHONY: all demo vectors test deps build cargo-test hdl-test check-vectors check-gtkw lint sim waves synth bench cosim soak coverage mutate clean
+.PHONY: all demo vectors test deps build cargo-test hdl-test check-vectors check-gtkw lint clippy sim waves synth bench cosim soak coverage mutate clean
 
 all: vectors
 
@@ -56,6 +56,9 @@ cargo-test:
 
 lint:
 	@scripts/lint.sh
+
+clippy:
+	@scripts/clippy.sh
 
 hdl-test:
 	@scripts/regress.sh

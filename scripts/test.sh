@@ -21,9 +21,11 @@
 #                                      the cargo tests' flipped-bit replays
 #                                      reuse), RTL coverage against its
 #                                      baseline
-#   either: gtkw,                      every .gtkw in GTKWave (signals, and
-#           fusesoc, wavedrom,         the window each opens on), the FuseSoC
-#           vectors, cosim, cocotb     core files, the timing diagrams,
+#   either: gtkw, clippy,              every .gtkw in GTKWave (signals, and
+#           fusesoc, wavedrom,         the window each opens on), clippy
+#           vectors, cosim, cocotb     on every crate (any warning fails;
+#                                      its own target directory), the FuseSoC
+#                                      core files, the timing diagrams,
 #                                      committed vectors == fresh ones, every
 #                                      core closed-loop against its emulator
 #                                      (1000 transactions per core and
@@ -98,7 +100,7 @@ stage() {
 # (cosim, vectors and cocotb need lane 1's build), waiting only when none can.
 # The closed loops come first: the longest, they then run beside the cargo
 # tests, and the short checks fill both lanes' ends.
-shared_stages=(cosim gtkw fusesoc wavedrom vectors cocotb)
+shared_stages=(cosim gtkw clippy fusesoc wavedrom vectors cocotb)
 needs_build=" cosim vectors cocotb "
 # after_build NAME COMMAND...: stage NAME once lane 1's build is done (tbgen,
 # the emulator library, the Python module), or a failed NAME if it failed.
@@ -114,6 +116,7 @@ after_build() {
 run_shared() {
     case "$1" in
     gtkw) stage gtkw scripts/check_gtkw.sh ;;
+    clippy) stage clippy scripts/clippy.sh ;;
     fusesoc) stage fusesoc scripts/check_fusesoc.sh ;;
     wavedrom) stage wavedrom .venv/bin/python scripts/timing_diagrams.py --check ;;
     vectors) after_build vectors scripts/check_vectors.sh ;;

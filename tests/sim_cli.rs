@@ -146,7 +146,7 @@ fn fabric_clocks_without_a_whole_picosecond_period_generate_and_replay() {
         let vcd = fs::read_to_string(root().join(format!("build/custom/{name}/{name}.vcd"))).unwrap();
         let hex = fs::read_to_string(root().join(format!("build/custom/{name}/{name}.hex"))).unwrap();
         let cycles: u128 = hex.lines().find_map(|l| l.strip_prefix("// cycles: ")).unwrap().parse().unwrap();
-        let last: u128 = vcd.lines().filter_map(|l| l.strip_prefix('#')).last().unwrap().parse().unwrap();
+        let last: u128 = vcd.lines().filter_map(|l| l.strip_prefix('#')).next_back().unwrap().parse().unwrap();
         let f = mhz as u128 * 1_000_000;
         assert_eq!(last, (cycles * 1_000_000_000_000 + f / 2) / f, "{mhz} MHz: the closing timestamp is the run's exact end, rounded");
     }

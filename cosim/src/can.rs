@@ -142,7 +142,7 @@ impl CanEmulator {
             n.validate(&format!("nodes[{k}]"))
                 .map_err(|e| Error::config(origin, e))?;
             places.push(n.place());
-            nodes.push(Node::new(n, cfg.clone(), &tb).map_err(|e| Error::config(origin, e))?);
+            nodes.push(Node::new(n, cfg, &tb).map_err(|e| Error::config(origin, e))?);
         }
         let n = nodes.len();
         Ok(CanEmulator {

@@ -186,7 +186,7 @@ struct SarSlot {
 }
 
 enum Slot {
-    Ds406 { node: EncoderNode, power_on: u64 },
+    Ds406 { node: Box<EncoderNode>, power_on: u64 },
     Sar(Box<SarSlot>),
 }
 
@@ -242,7 +242,7 @@ impl CanopenEmulator {
             places.push(s.place());
             let node = EncoderNode::new(&e.encoder, &s, timing, &tb).map_err(|e| Error::config(origin, e))?;
             ids.extend(cob_ids(node.encoder().node()).map(|id| (id, format!("encoders[{k}] (DS 406 node {})", node.encoder().node()))));
-            slots.push(Slot::Ds406 { node, power_on: tb.cycles_nearest_ns(e.power_on_us * 1e3) });
+            slots.push(Slot::Ds406 { node: Box::new(node), power_on: tb.cycles_nearest_ns(e.power_on_us * 1e3) });
             names.push(e.name.clone());
         }
         for (k, s) in bench.sar.iter().enumerate() {

@@ -9,6 +9,10 @@
 //! (each body runs under `catch_unwind`, and a caught panic becomes an
 //! error message). Simulators call from one thread; the table is behind a
 //! mutex all the same.
+//!
+//! The functions that take C strings or buffers are `unsafe`: Rust cannot
+//! check the pointers a simulator passes, so each states its contract under
+//! "Safety", and every `unsafe { text(..) }` in them rests on it.
 
 use std::ffi::{c_char, CStr, CString};
 use std::panic::{catch_unwind, AssertUnwindSafe};
@@ -47,11 +51,16 @@ fn guard<T>(fail: T, f: impl FnOnce() -> Result<T, Error>) -> T {
     }
 }
 
-fn text(p: *const c_char, what: &str) -> Result<String, Error> {
+/// A C string argument as trimmed text; null or non-UTF-8 is a usage error.
+///
+/// # Safety
+/// `p` is null or points to a NUL-terminated string that stays valid for
+/// the call (DPI-C and VPI both pass such strings).
+unsafe fn text(p: *const c_char, what: &str) -> Result<String, Error> {
     if p.is_null() {
         return Err(Error::Usage(format!("{what} is a null pointer")));
     }
-    // SAFETY: the caller passes a NUL-terminated string (DPI-C and VPI both do).
+    // SAFETY: not null, and NUL-terminated by the caller's contract.
     let s = unsafe { CStr::from_ptr(p) };
     // A wide Verilog reg carries leading spaces (or NULs) before its characters.
     s.to_str()
@@ -96,11 +105,13 @@ fn frequency(f_emu_hz: i64) -> Result<u64, Error> {
 
 /// Opens an emulator of `kind` (`"ssi"`, `"biss"`) from the TOML file at
 /// `path`, clocked at `f_emu_hz`. Returns a handle (1, 2, ...) or -1.
+/// # Safety
+/// Each string argument is null or NUL-terminated and valid for the call.
 #[no_mangle]
-pub extern "C" fn emu_open(kind: *const c_char, path: *const c_char, f_emu_hz: i64) -> i32 {
+pub unsafe extern "C" fn emu_open(kind: *const c_char, path: *const c_char, f_emu_hz: i64) -> i32 {
     guard(-1, || {
-        let kind = text(kind, "kind")?;
-        let path = text(path, "path")?;
+        let kind = unsafe { text(kind, "kind") }?;
+        let path = unsafe { text(path, "path") }?;
         if path.is_empty() {
             return Err(Error::Usage(format!("no configuration file for the {kind} emulator: set the wrapper's CONFIG parameter or its plusarg to a TOML file")));
         }
@@ -116,8 +127,10 @@ pub extern "C" fn emu_open(kind: *const c_char, path: *const c_char, f_emu_hz: i
 /// Creates an emulator from TOML text. On failure returns -1 and, when
 /// `err_buf` is not null, writes the message there (NUL-terminated,
 /// truncated to `err_len` bytes).
+/// # Safety
+/// Each string argument is null or NUL-terminated and valid for the call; `err_buf` is null or points to at least `err_len` writable bytes.
 #[no_mangle]
-pub extern "C" fn emu_create(
+pub unsafe extern "C" fn emu_create(
     kind: *const c_char,
     toml: *const c_char,
     f_emu_hz: i64,
@@ -125,8 +138,8 @@ pub extern "C" fn emu_create(
     err_len: usize,
 ) -> i32 {
     let h = guard(-1, || {
-        let kind = text(kind, "kind")?;
-        let toml = text(toml, "toml")?;
+        let kind = unsafe { text(kind, "kind") }?;
+        let toml = unsafe { text(toml, "toml") }?;
         Ok(register(open(
             &kind,
             &toml,
@@ -173,10 +186,12 @@ pub extern "C" fn emu_set_position(handle: i32, device: i32, position: i64) -> i
 }
 
 /// Sets one status (`"error"`, `"warning"`, ...) of device `device` to `value` (0 or 1).
+/// # Safety
+/// Each string argument is null or NUL-terminated and valid for the call.
 #[no_mangle]
-pub extern "C" fn emu_set_status(handle: i32, device: i32, name: *const c_char, value: i32) -> i32 {
+pub unsafe extern "C" fn emu_set_status(handle: i32, device: i32, name: *const c_char, value: i32) -> i32 {
     guard(-1, || {
-        let name = text(name, "status name")?;
+        let name = unsafe { text(name, "status name") }?;
         with(handle, |e| {
             e.set_status(device.max(0) as usize, &name, value != 0)
                 .map(|_| 0)
@@ -185,19 +200,23 @@ pub extern "C" fn emu_set_status(handle: i32, device: i32, name: *const c_char, 
 }
 
 /// Moves device `device` along a motion profile (a `[motion]` table in TOML text) from now on.
+/// # Safety
+/// Each string argument is null or NUL-terminated and valid for the call.
 #[no_mangle]
-pub extern "C" fn emu_set_motion(handle: i32, device: i32, toml: *const c_char) -> i32 {
+pub unsafe extern "C" fn emu_set_motion(handle: i32, device: i32, toml: *const c_char) -> i32 {
     guard(-1, || {
-        let toml = text(toml, "motion")?;
+        let toml = unsafe { text(toml, "motion") }?;
         with(handle, |e| e.set_motion(device.max(0) as usize, &toml).map(|_| 0))
     })
 }
 
 /// Schedules faults given as the scenario's fault tables in TOML text.
+/// # Safety
+/// Each string argument is null or NUL-terminated and valid for the call.
 #[no_mangle]
-pub extern "C" fn emu_schedule_fault(handle: i32, toml: *const c_char) -> i32 {
+pub unsafe extern "C" fn emu_schedule_fault(handle: i32, toml: *const c_char) -> i32 {
     guard(-1, || {
-        let toml = text(toml, "fault")?;
+        let toml = unsafe { text(toml, "fault") }?;
         with(handle, |e| e.schedule_fault(&toml).map(|_| 0))
     })
 }
@@ -222,10 +241,12 @@ pub extern "C" fn emu_last_value(handle: i32, device: i32) -> i64 {
 }
 
 /// A status (0 or 1) device `device` reported in the last transaction, or -1.
+/// # Safety
+/// Each string argument is null or NUL-terminated and valid for the call.
 #[no_mangle]
-pub extern "C" fn emu_last_status(handle: i32, device: i32, name: *const c_char) -> i32 {
+pub unsafe extern "C" fn emu_last_status(handle: i32, device: i32, name: *const c_char) -> i32 {
     guard(-1, || {
-        let name = text(name, "status name")?;
+        let name = unsafe { text(name, "status name") }?;
         with(handle, |e| {
             e.last_status(device.max(0) as usize, &name)
                 .map(|b| b as i32)
@@ -254,10 +275,12 @@ pub extern "C" fn emu_take_violation(handle: i32) -> *const c_char {
 }
 
 /// Writes the transcript (JSON) to `path`. Returns 0 or -1.
+/// # Safety
+/// Each string argument is null or NUL-terminated and valid for the call.
 #[no_mangle]
-pub extern "C" fn emu_write_transcript(handle: i32, path: *const c_char) -> i32 {
+pub unsafe extern "C" fn emu_write_transcript(handle: i32, path: *const c_char) -> i32 {
     guard(-1, || {
-        let path = text(path, "path")?;
+        let path = unsafe { text(path, "path") }?;
         let json = with(handle, |e| Ok(e.transcript()))?;
         let body = serde_json::to_string_pretty(&json).map_err(|e| Error::Usage(e.to_string()))?;
         std::fs::write(&path, body + "\n")

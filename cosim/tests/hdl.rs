@@ -348,7 +348,7 @@ fn the_independent_examples_pass_in_icarus_and_verilator() {
 fn the_independent_examples_pass_from_cocotb_and_a_flipped_bit_fails() {
     for (example, _, reads) in EXAMPLES {
         let n = ("COSIM_TRANSACTIONS", reads.to_string());
-        let (ok, out) = make_example(example, &["cocotb".into()], &[n.clone()]);
+        let (ok, out) = make_example(example, &["cocotb".into()], std::slice::from_ref(&n));
         assert!(ok, "{example} from cocotb:\n{out}");
         // Every cocotb module of the example reports "1 of 1 passed".
         assert!(out.contains("1 of 1 passed") && !out.contains(" 0 of 1 passed"), "{example} from cocotb:\n{out}");

@@ -147,7 +147,7 @@ fn tbgen_check_takes_a_monitor_transcript_and_finds_a_flipped_position_bit() {
     for read in 0..20u64 {
         emu.set_position(0, read * 3001 % 65536).unwrap();
         // 120 idle cycles, T_cs 18, 16 bits of 8 + 8 cycles, high after.
-        let clk: Vec<bool> = (0..120 + 18 + 16 * 16 + 40).map(|c| c < 120 || c >= 138 + 16 * 16 || (c >= 138 && (c - 138) % 16 < 8)).collect();
+        let clk: Vec<bool> = (0..120 + 18 + 16 * 16 + 40).map(|c| !(120..138 + 16 * 16).contains(&c) || (c >= 138 && (c - 138) % 16 < 8)).collect();
         for l in clk {
             mon.step(Pins(l as u32 | (data as u32) << 1));
             data = emu.step(Pins::line(l)).data();

@@ -39,7 +39,7 @@ impl Timebase {
     /// A system clock given in MHz, as scenario files give it.
     pub fn from_mhz(f_sys_mhz: f64) -> Result<Self> {
         let hz = (f_sys_mhz * 1e6).round();
-        if !(f_sys_mhz > 0.0) || hz < 1.0 {
+        if !f_sys_mhz.is_finite() || f_sys_mhz <= 0.0 || hz < 1.0 {
             return Err(ConfigError::invalid(
                 "f_sys_mhz",
                 format!("{f_sys_mhz} MHz: the system clock must be above 0"),

@@ -167,7 +167,7 @@ fn serde_word(attrs: &[String], word: &str) -> bool {
 fn find_struct(name: &str, folder: &str) -> Option<Struct> {
     let declaration = format!("pub struct {name} {{");
     for (lines, at) in declarations(name, folder, |t| t.starts_with(&declaration)) {
-        let (doc, attrs) = preamble(&lines, at);
+        let (doc, attrs) = preamble(lines, at);
         if !attrs.iter().any(|a| a.contains("Deserialize")) {
             continue;
         }
@@ -235,7 +235,7 @@ fn rename(variant: &str, rule: Option<&str>) -> String {
 fn find_enum(name: &str, folder: &str) -> Option<Enum> {
     let declaration = format!("pub enum {name} {{");
     for (lines, at) in declarations(name, folder, |t| t == declaration) {
-        let (_, attrs) = preamble(&lines, at);
+        let (_, attrs) = preamble(lines, at);
         if !attrs.iter().any(|a| a.contains("Deserialize")) {
             continue;
         }

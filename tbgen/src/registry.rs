@@ -64,7 +64,7 @@ pub trait Protocol: model::Setup + serde::Serialize + 'static {
     /// `decoded` scope (the state register), as the RTL names them:
     /// `(signal, [(value, NAME)])`. `tbgen gen` writes a GTKWave translate
     /// filter per signal so the waveform shows `IDLE`, not `0`.
-    fn wave_names() -> Vec<(&'static str, Vec<(u64, String)>)> {
+    fn wave_names() -> WaveNames {
         Vec::new()
     }
 
@@ -75,6 +75,10 @@ pub trait Protocol: model::Setup + serde::Serialize + 'static {
         None
     }
 }
+
+/// The state names of a waveform's enumerated signals: `(signal, [(value,
+/// NAME)])`, as [`Protocol::wave_names`] gives them.
+pub type WaveNames = Vec<(&'static str, Vec<(u64, String)>)>;
 
 /// `(value, NAME)` of each of `variants` of a model enum: its discriminant
 /// and its Rust name upper-cased, as the RTL spells its states (`NoAck` ->
@@ -152,7 +156,7 @@ pub struct Entry {
     /// See [`Protocol::timing`].
     pub timing: fn(&ArgMatches) -> Result<String>,
     /// See [`Protocol::wave_names`].
-    pub wave_names: fn() -> Vec<(&'static str, Vec<(u64, String)>)>,
+    pub wave_names: fn() -> WaveNames,
     /// The configuration's type path (`model::ssi::bench::BenchConfig`): `tbgen fields` reads its struct.
     pub config_type: fn() -> &'static str,
 }
@@ -460,7 +464,7 @@ mod tests {
                     let decl = rtl.lines().find(|l| l.trim_start().starts_with(&format!("{name} ")) && l.contains('='));
                     let decl = decl.unwrap_or_else(|| panic!("{}: no state {name} in the RTL", e.core));
                     let rhs = decl.split('=').nth(1).unwrap().trim().trim_end_matches([',', ';']);
-                    let rtl_value = u64::from_str_radix(rhs.rsplit('d').next().unwrap(), 10).unwrap();
+                    let rtl_value = rhs.rsplit('d').next().unwrap().parse::<u64>().unwrap();
                     assert_eq!(rtl_value, value, "{}: {name}", e.core);
                     named += 1;
                 }

@@ -259,7 +259,7 @@ impl CanWatch {
         let rx_at = |w: &CanWatch, k: usize| w.rx.level_at(w.at(sof, k));
         // Arbitration is lost only in the arbitration field (wire bits, stuff bits included).
         let arbitration = if d.error.is_none() { let a = model::can::frame::arbitration_end(d.ide) as usize; a + a / 4 + 1 } else { 40 };
-        let by_master = !tx_at(self, 0) && (0..stuffed.min(arbitration).max(1)).all(|k| !(tx_at(self, k) && !rx_at(self, k)));
+        let by_master = !tx_at(self, 0) && (0..stuffed.min(arbitration).max(1)).all(|k| !tx_at(self, k) || rx_at(self, k));
         let seen = Seen { frame: d, by_master, end_ps };
         if by_master && !self.grid(&seen, stuffed) {
             return seen;

@@ -176,7 +176,7 @@ impl CanopenMonitor {
                 Service::Emcy(n) if d.is_empty() && !f.rtr => self.booted(n),
                 _ => {}
             }
-            if f.id == CONFIG_ID as u32 {
+            if f.id == CONFIG_ID {
                 self.config_cmd = None;
             }
             for &b in &self.sar_bases {
@@ -255,7 +255,7 @@ impl CanopenMonitor {
             _ => {}
         }
         if !self.sar_bases.is_empty() && !f.rtr {
-            if f.id == CONFIG_ID as u32 && matches!(d.first(), Some(0x11 | 0x13)) {
+            if f.id == CONFIG_ID && matches!(d.first(), Some(0x11 | 0x13)) {
                 if let Some(prev) = self.config_cmd.filter(|&p| sof < p + self.sar_timeout) {
                     found.push((sof, RULE_SAR, format!("configuration command {:02X} on 0x7E5 {:.3} us after the previous one, not answered yet", d[0], us(sof - prev))));
                 }
@@ -289,7 +289,7 @@ impl CanopenMonitor {
         let mut v = s.json();
         if s.frame.error.is_none() {
             let m = model::canopen::interpret::interpret(&s.frame.frame());
-            v["service"] = serde_json::to_value(&m.service).unwrap_or(Value::Null);
+            v["service"] = serde_json::to_value(m.service).unwrap_or(Value::Null);
             v["meaning"] = Value::from(m.text);
         } else {
             v["service"] = Value::Null;

@@ -40,7 +40,7 @@ fn a_master_holding_the_bus_dominant_is_reported() {
     let mut emu = CanEmulator::from_toml(TWO, "two.toml", 10_000_000).unwrap();
     for k in 0..3000 {
         // A dominant pulse every 30 bits: a form or stuff error at the nodes.
-        let tx = !(k % 300 < 70);
+        let tx = k % 300 >= 70;
         emu.step(Pins((tx as u32) << 1));
     }
     assert!(!emu.violations().is_empty());

@@ -39,8 +39,8 @@ fn a_position_read_returns_the_position_set_and_f2_differs_from_f1_when_told() {
     assert_eq!(emu.count(), 1);
     assert_eq!(emu.last_value(0), Some(0x1AB_CDEF));
     // F1 = 0 (no error word), F2 = 0 (low active: the separate unit reports an error).
-    assert_eq!(emu.last_status(0, "f1").unwrap(), false);
-    assert_eq!(emu.last_status(0, "f2").unwrap(), false);
+    assert!(!emu.last_status(0, "f1").unwrap());
+    assert!(!emu.last_status(0, "f2").unwrap());
     let e = &emu.entries()[0];
     assert_eq!(e.mode, "111000");
     assert_eq!(&e.sent_bits[..2], "00");

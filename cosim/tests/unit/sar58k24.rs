@@ -56,8 +56,8 @@ fn a_bus_command_is_answered_and_a_talking_host_is_a_violation() {
     assert!(emu.violations().is_empty());
     // The host talks over the answer: reported once, with the rule.
     let cmd2 = levels(&[0xBC, 0xAA, 0xB1], 87);
-    for k in 0..cmd2.len() {
-        emu.step(Pins(0b1001 | 4 | (cmd2[k] as u32) << 1));
+    for &l in &cmd2 {
+        emu.step(Pins(0b1001 | 4 | (l as u32) << 1));
     }
     for k in 0..1500 {
         let l = k % 87 < 40;

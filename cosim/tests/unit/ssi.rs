@@ -47,18 +47,12 @@ fn read(emu: &mut SsiEmulator, bits: u32, t_cs: u64, half: u64, rest: u64) {
     for _ in 0..t_cs {
         emu.step(Pins::line(false));
     }
-    for k in 0..bits {
+    for _ in 0..bits {
         for _ in 0..half {
             emu.step(Pins::line(true));
         }
-        if k + 1 < bits {
-            for _ in 0..half {
-                emu.step(Pins::line(false));
-            }
-        } else {
-            for _ in 0..half {
-                emu.step(Pins::line(false));
-            }
+        for _ in 0..half {
+            emu.step(Pins::line(false));
         }
     }
     for _ in 0..rest {

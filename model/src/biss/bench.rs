@@ -252,7 +252,7 @@ impl Default for BenchConfig {
 }
 
 fn check_time(field: &str, value: f64) -> Result<()> {
-    if !(value >= 0.0 && value < 1e7) {
+    if !(0.0..1e7).contains(&value) {
         return Err(ConfigError::invalid(field, format!("{value}"), "give a non-negative time"));
     }
     Ok(())

@@ -879,16 +879,8 @@ impl Master {
                 }
             } else {
                 match k {
-                    control::K_W => {
-                        if cds != !a.write {
-                            end = Some(true);
-                        }
-                    }
-                    control::K_S2 => {
-                        if cds != a.write {
-                            end = Some(true);
-                        }
-                    }
+                    control::K_W if cds == a.write => end = Some(true),
+                    control::K_S2 if cds != a.write => end = Some(true),
                     control::K_DATA => {
                         if !cds {
                             end = Some(true);

@@ -662,7 +662,7 @@ impl Controller {
     }
 
     /// End of a frame or error frame: intermission from the next bit.
-    fn to_intermission(&mut self) {
+    fn enter_intermission(&mut self) {
         self.suspend_needed = self.tx_active && self.passive();
         self.tx_active = false;
         self.state = State::Intermission;
@@ -671,7 +671,7 @@ impl Controller {
     }
 
     /// After intermission or suspend: send SOF next if a frame waits.
-    fn to_idle(&mut self) {
+    fn enter_idle(&mut self) {
         if self.tx_pending {
             self.start_tx();
             self.tx_bit = false;
@@ -697,7 +697,7 @@ impl Controller {
                     self.bit_cnt = 0;
                 } else if self.bit_cnt == 10 {
                     self.bit_cnt = 0;
-                    self.to_idle();
+                    self.enter_idle();
                 } else {
                     self.bit_cnt += 1;
                 }
@@ -711,7 +711,7 @@ impl Controller {
                         self.bo_seq = 0;
                         self.tec = 0;
                         self.rec = 0;
-                        self.to_idle();
+                        self.enter_idle();
                     } else {
                         self.bo_seq += 1;
                     }
@@ -723,14 +723,14 @@ impl Controller {
                 if !b {
                     self.sof_received(true);
                 } else if self.tx_pending {
-                    self.to_idle();
+                    self.enter_idle();
                 }
             }
             State::Suspend => {
                 if !b {
                     self.sof_received(false);
                 } else if self.bit_cnt == 7 {
-                    self.to_idle();
+                    self.enter_idle();
                 } else {
                     self.bit_cnt += 1;
                 }
@@ -748,7 +748,7 @@ impl Controller {
                         self.bit_cnt = 0;
                         self.tx_bit = true;
                     } else {
-                        self.to_idle();
+                        self.enter_idle();
                     }
                 } else {
                     self.bit_cnt += 1;
@@ -787,7 +787,7 @@ impl Controller {
             }
             State::Eof => {
                 let last = self.bit_cnt == 6;
-                if !b && !(last && !self.tx_active) {
+                if !b && (!last || self.tx_active) {
                     self.error(ErrorKind::Form, false);
                     return;
                 }
@@ -816,10 +816,10 @@ impl Controller {
                     }
                     if !b {
                         // A receiver's last EOF bit dominant: overload.
-                        self.to_intermission();
+                        self.enter_intermission();
                         self.start_overload();
                     } else {
-                        self.to_intermission();
+                        self.enter_intermission();
                     }
                 } else {
                     self.bit_cnt += 1;
@@ -894,7 +894,7 @@ impl Controller {
                 } else if !b {
                     self.error(ErrorKind::Form, false);
                 } else if self.bit_cnt == 6 {
-                    self.to_intermission();
+                    self.enter_intermission();
                 } else {
                     self.bit_cnt += 1;
                 }

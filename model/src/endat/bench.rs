@@ -312,7 +312,7 @@ impl Default for BenchConfig {
 }
 
 fn positive(field: &str, v: f64, fix: &str) -> Result<f64> {
-    if v.is_finite() && v >= 0.0 && v < 1e7 {
+    if (0.0..1e7).contains(&v) {
         Ok(v)
     } else {
         Err(ConfigError::invalid(field, format!("{v}"), fix))

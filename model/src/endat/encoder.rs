@@ -139,7 +139,7 @@ impl Memory {
         status[3] = 0x10A8 | if cfg.recovery_short { 0x0001 } else { 0x0002 }; // 3.4.4
         areas.insert(mrs::STATUS, status);
         // Manufacturer parameters, words 4..47 (3.5); word w lives in A1 at w (4..15), A3 at w-16, A5 at w-32.
-        let mut m = vec![0u16; 48];
+        let mut m = [0u16; 48];
         m[8] = 0x8002;
         m[9] = 0x2020; // OEM areas A9 and AB: words 0..63
         m[10] = 0xFFFF; // AD, AF not available
@@ -534,7 +534,7 @@ impl Encoder {
                         self.decode_mode();
                     }
                 } else if quiet > self.t_m() {
-                    self.to_recovery();
+                    self.enter_recovery();
                 }
             }
             Phase::Block21 => {
@@ -546,7 +546,7 @@ impl Encoder {
                         self.process_block21();
                     }
                 } else if quiet > self.t_m() {
-                    self.to_recovery();
+                    self.enter_recovery();
                 }
             }
             Phase::TypeOne => {
@@ -556,7 +556,7 @@ impl Encoder {
                         self.drive = Drive { enable: !self.absent, level: false };
                     }
                 } else if quiet > self.t_m() {
-                    self.to_recovery();
+                    self.enter_recovery();
                 }
             }
             Phase::Wait => {
@@ -571,7 +571,7 @@ impl Encoder {
                         self.phase = Phase::Send;
                     }
                 } else if quiet > self.t_m() {
-                    self.to_recovery();
+                    self.enter_recovery();
                 }
             }
             Phase::Send => {
@@ -587,12 +587,12 @@ impl Encoder {
                                 self.block_bits = 0;
                                 self.rise = 0;
                             } else {
-                                self.to_recovery();
+                                self.enter_recovery();
                             }
                         }
                     }
                 } else if quiet > self.t_m() {
-                    self.to_recovery();
+                    self.enter_recovery();
                 }
             }
             Phase::Release => {
@@ -603,12 +603,12 @@ impl Encoder {
                         self.block_bits += 1;
                         if self.block_bits == super::BLOCK_BITS {
                             self.process_block22();
-                            self.to_recovery();
+                            self.enter_recovery();
                             self.drive.enable = false;
                         }
                     }
                 } else if quiet > self.t_m() {
-                    self.to_recovery();
+                    self.enter_recovery();
                 }
             }
             Phase::Recovery => {
@@ -676,7 +676,7 @@ impl Encoder {
     /// stopped is the recovery time itself, so the line is released as soon
     /// as it is detected and not `t_m` later (which held it low for about
     /// `2 t_m`, past the 30 µs the appendix tells the control to wait).
-    fn to_recovery(&mut self) {
+    fn enter_recovery(&mut self) {
         self.phase = Phase::Recovery;
         self.drive = Drive { enable: !self.absent, level: false };
         self.recovery_until = self.last_edge + self.t_m();

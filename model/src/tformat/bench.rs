@@ -301,7 +301,7 @@ pub struct Bench {
     encoder: Encoder,
     line: HalfDuplexLine,
     /// The faults as cycle windows: (first cycle, end cycle, kind, levels of a second driver per cycle offset).
-    faults: Vec<(u64, u64, LineFaultKind, Vec<bool>)>,
+    faults: Vec<FaultWindow>,
     fault_contention: u64,
     /// A receiver on the line at the host's pins that listens all the time
     /// (the host's own is deaf while it drives): the wire bytes of the
@@ -549,8 +549,13 @@ impl Testbench for Bench {
     }
 }
 
-/// The line faults as cycle windows; a second driver's levels cycle by cycle.
-fn fault_windows(cfg: &BenchConfig, tb: &Timebase) -> Result<Vec<(u64, u64, LineFaultKind, Vec<bool>)>> {
+/// A line fault as a cycle window: its first cycle, the cycle after its
+/// last, its kind, and a second driver's levels cycle by cycle (read only
+/// for a second driver).
+type FaultWindow = (u64, u64, LineFaultKind, Vec<bool>);
+
+/// The line faults as cycle windows.
+fn fault_windows(cfg: &BenchConfig, tb: &Timebase) -> Result<Vec<FaultWindow>> {
     let c = cfg.clocks_per_bit()?;
     Ok(cfg
         .line_faults

@@ -9,6 +9,9 @@
 use super::{In, Parity, Receiver, ReceiverConfig, State};
 use crate::Result;
 
+/// One host operation's `(wire_requests, wire_answers)`, as [`WireTap::step`] fills them.
+pub type WireLog<'a> = (&'a mut Vec<Vec<u8>>, &'a mut Vec<Vec<u8>>);
+
 /// The tap: a model receiver plus who drove when each character began.
 #[derive(Debug, Clone)]
 pub struct WireTap {
@@ -53,7 +56,7 @@ impl WireTap {
     /// finished character, good or with a low stop bit, goes to the last list
     /// of its direction. With no `log` (no operation yet) the tap still
     /// follows the line.
-    pub fn step(&mut self, line: bool, tx_en: bool, log: Option<(&mut Vec<Vec<u8>>, &mut Vec<Vec<u8>>)>) {
+    pub fn step(&mut self, line: bool, tx_en: bool, log: Option<WireLog>) {
         let was_busy = self.rx.state() != State::Idle;
         let rx = self.rx.step(&In { i_rx: line });
         if rx.o_busy && !was_busy {

@@ -599,7 +599,7 @@ fn the_transcript_carries_every_character_on_the_wire_at_the_host() {
     let flipped = BenchConfig { request_flips: vec![RequestFlip { request: 0, field: 0, bit: 8 }], ops: vec![op(1)], ..BenchConfig::default() };
     let t = &run(&flipped).0[0];
     assert_eq!(t.wire_requests, [vec![t.sent[0] ^ 0x80, t.sent[1]]]);
-    assert_eq!(t.wire_answers, [t.received.clone()], "the CA0 answer");
+    assert_eq!(t.wire_answers, std::slice::from_ref(&t.received), "the CA0 answer");
     // A second driver holds the line low from the stop bit of answer
     // character 1 into character 2 (0x00): the host stops at the framing
     // error; the wire keeps the rest of the answer, one character short (the

@@ -347,9 +347,11 @@ fn noise_between_frames_is_no_answer_and_the_next_request_waits_for_t3_5_after_i
     // Two polls 20 ms apart at 19200 baud; a second driver sends 01 03 at
     // 20 ms, while the line is idle: not an answer (the master is idle),
     // and the next request starts t3.5 after the noise, never inside it.
-    let mut cfg = BenchConfig::default();
-    cfg.ops = vec![read(1, 1), Operation { gap_us: 20_000.0, ..read(1, 1) }];
-    cfg.second_drivers = vec![SecondDriver { at_us: 20_000.0, bytes: vec![0x01, 0x03], ..SecondDriver::default() }];
+    let cfg = BenchConfig {
+        ops: vec![read(1, 1), Operation { gap_us: 20_000.0, ..read(1, 1) }],
+        second_drivers: vec![SecondDriver { at_us: 20_000.0, bytes: vec![0x01, 0x03], ..SecondDriver::default() }],
+        ..BenchConfig::default()
+    };
     let t = run(&cfg);
     assert_eq!(t.iter().map(|t| (t.value, t.errors.clone())).collect::<Vec<_>>(), vec![(Some(383), vec![]), (Some(383), vec![])]);
 }

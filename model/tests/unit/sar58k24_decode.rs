@@ -62,7 +62,7 @@ fn line_of(parts: &[(bool, &[u8], u64)], bad_stop: u8, spaced: bool, bit_ps: u64
     for &(host, bytes, idle) in parts {
         tx_en.push(t - bit_ps, host);
         for &b in bytes {
-            let stop = !(b == bad_stop && !host);
+            let stop = b != bad_stop || host;
             let bits = std::iter::once(false).chain((0..8).map(|k| b >> k & 1 == 1)).chain(std::iter::once(stop));
             for level in bits {
                 line_sig.push(t, level);

@@ -7,7 +7,7 @@ use std::path::PathBuf;
 use clap::{ArgMatches, CommandFactory, Parser};
 use model::biss::BenchConfig;
 
-use crate::registry::{self, Protocol, TransactionSignals};
+use crate::registry::{self, Protocol, TransactionSignals, WaveNames};
 use crate::{Error, Result};
 
 /// BiSS-C: MA and SLO at the master.
@@ -46,7 +46,7 @@ impl Protocol for BenchConfig {
     const TRANSACTION_SIGNALS: TransactionSignals = (&["o_done"], "o_delay", "delay_cycles");
 
     /// The state register's values by the model's [`model::biss::State`] (the RTL's state names).
-    fn wave_names() -> Vec<(&'static str, Vec<(u64, String)>)> {
+    fn wave_names() -> WaveNames {
         use model::biss::State as S;
         let names = vec![("state", crate::registry::enum_names(&[S::Idle, S::Ack, S::Start, S::Cds, S::Data, S::Err, S::Warn, S::Crc, S::Stop, S::Timeout, S::NoAck], |s| s as u64))];
         names

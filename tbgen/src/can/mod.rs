@@ -12,7 +12,7 @@ use std::path::PathBuf;
 use clap::{ArgMatches, CommandFactory, Parser};
 use model::can::BenchConfig;
 
-use crate::registry::{self, Protocol, SigrokCheck, TransactionSignals};
+use crate::registry::{self, Protocol, SigrokCheck, TransactionSignals, WaveNames};
 use crate::{Error, Result};
 
 /// CAN: one line, the transceiver's RXD.
@@ -79,7 +79,7 @@ impl Protocol for BenchConfig {
 
     /// The controller's state (and the listen-only monitor's) by the RTL's
     /// `localparam` names, which keep the underscores (`CRC_DELIM`).
-    fn wave_names() -> Vec<(&'static str, Vec<(u64, String)>)> {
+    fn wave_names() -> WaveNames {
         use model::can::State as S;
         let names: Vec<(u64, String)> = [
             (S::Integrate, "INTEGRATE"),
@@ -122,7 +122,7 @@ impl Protocol for BenchConfig {
 
     fn timing(args: &ArgMatches) -> Result<String> {
         let TimingArgs { scenario, dlc, frames_per_s } = registry::parse_args(args)?;
-        if dlc > 8 || !(frames_per_s >= 0.0 && frames_per_s < 1e7) {
+        if dlc > 8 || !(0.0..1e7).contains(&frames_per_s) {
             return Err(Error::Decode(format!("timing can: --dlc {dlc} or --frames-per-s {frames_per_s}: give 0 to 8 bytes and a rate ≥ 0")));
         }
         let (s, cfg) = registry::scenario_of::<BenchConfig>(&scenario, "timing can", "a CAN")?;

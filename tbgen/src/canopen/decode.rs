@@ -35,7 +35,7 @@ pub fn decode(file: &Path, line: &str, bit_rate: u64, sample_point: f64) -> Resu
             }
             let frame = model::can::frame::Frame { id: f.id, ide: f.ide, rtr: f.rtr, dlc: f.dlc, data: f.data.clone() };
             let m = model::canopen::interpret::interpret(&frame);
-            Decoded { service: serde_json::to_value(&m.service).ok(), meaning: m.text, frame: f }
+            Decoded { service: serde_json::to_value(m.service).ok(), meaning: m.text, frame: f }
         })
         .collect())
 }

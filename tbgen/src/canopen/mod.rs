@@ -13,7 +13,7 @@ use std::path::PathBuf;
 use clap::{ArgMatches, CommandFactory, Parser};
 use model::canopen::BenchConfig;
 
-use crate::registry::{self, Protocol, SigrokCheck, TransactionSignals};
+use crate::registry::{self, Protocol, SigrokCheck, TransactionSignals, WaveNames};
 use crate::{Error, Result};
 
 /// CANopen: the CAN line read as CANopen frames.
@@ -60,7 +60,7 @@ impl Protocol for BenchConfig {
 
     /// The master's state by the RTL's names (`can_state` and
     /// `monitor_state` are can_controller's codes: `docs/timing/can.md`).
-    fn wave_names() -> Vec<(&'static str, Vec<(u64, String)>)> {
+    fn wave_names() -> WaveNames {
         use model::canopen::master::State as M;
         let names = ["WAIT_BOOT", "SDO_SEND", "SDO_WAIT", "NMT_SEND", "RUN", "FAILED"];
         vec![("state", [M::WaitBoot, M::SdoSend, M::SdoWait, M::NmtSend, M::Run, M::Failed].iter().map(|&s| (s as u64, names[s as usize].to_string())).collect())]
@@ -85,7 +85,7 @@ impl Protocol for BenchConfig {
 
     fn timing(args: &ArgMatches) -> Result<String> {
         let TimingArgs { period_ms, cycle_us } = registry::parse_args(args)?;
-        if !(period_ms > 0.0 && period_ms <= 65_535.0) || !(cycle_us > 0.0 && cycle_us <= 1e7) {
+        if !(period_ms > 0.0 && period_ms <= 65_535.0 && cycle_us > 0.0 && cycle_us <= 1e7) {
             return Err(Error::Decode(format!("timing canopen: --period-ms {period_ms} or --cycle-us {cycle_us}: give a cyclic timer of 1 to 65535 ms (6200h) and a SYNC cycle above 0 µs")));
         }
         Ok(timing::report(period_ms, cycle_us))

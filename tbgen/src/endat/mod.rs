@@ -9,7 +9,7 @@ use std::path::PathBuf;
 use clap::{ArgMatches, CommandFactory, Parser};
 use model::endat::BenchConfig;
 
-use crate::registry::{self, Protocol, TransactionSignals};
+use crate::registry::{self, Protocol, TransactionSignals, WaveNames};
 use crate::{builtin, Error, Result};
 
 /// EnDat 2.1 / 2.2: clock and data at the master.
@@ -54,7 +54,7 @@ impl Protocol for BenchConfig {
     const TRANSACTION_SIGNALS: TransactionSignals = (&["o_done", "o_meas_done"], "o_position", "position");
 
     /// The state register's values by the model's [`model::endat::State`] (the RTL's state names).
-    fn wave_names() -> Vec<(&'static str, Vec<(u64, String)>)> {
+    fn wave_names() -> WaveNames {
         use model::endat::State as S;
         let mut names = vec![("state", crate::registry::enum_names(&[S::Idle, S::First, S::High, S::Low, S::Pause], |s| s as u64))];
         use model::endat::RxPhase as P;

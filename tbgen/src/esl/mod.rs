@@ -8,7 +8,7 @@ use std::path::PathBuf;
 use clap::{ArgMatches, CommandFactory, Parser};
 use model::esl::BenchConfig;
 
-use crate::registry::{self, Protocol, SigrokCheck, TransactionSignals};
+use crate::registry::{self, Protocol, SigrokCheck, TransactionSignals, WaveNames};
 use crate::{Error, Result};
 
 /// ESL: the host's driver enable and the line at the host.
@@ -53,7 +53,7 @@ impl Protocol for BenchConfig {
     const TRANSACTION_SIGNALS: TransactionSignals = (&["o_done"], "o_abs", "abs");
 
     /// The state register's values by the model's [`model::esl::State`] (the RTL's state names).
-    fn wave_names() -> Vec<(&'static str, Vec<(u64, String)>)> {
+    fn wave_names() -> WaveNames {
         use model::esl::State as S;
         let names = vec![("state", crate::registry::enum_names(&[S::Idle, S::Send, S::Wait, S::Recv, S::Gap, S::Settle, S::Quiet], |s| s as u64))];
         names

@@ -16,7 +16,7 @@ use model::testbench;
 use model::uart::Parity;
 use model::Setup;
 
-use crate::registry::{self, Protocol, SigrokCheck, TransactionSignals};
+use crate::registry::{self, Protocol, SigrokCheck, TransactionSignals, WaveNames};
 use crate::{Error, Result};
 
 /// Modbus: the line and the driver enable at the master.
@@ -94,7 +94,7 @@ impl Protocol for BenchConfig {
     const SIGROK_DECODER: Option<&'static str> = Some("uart");
     const SIGROK_MINIMUM: (usize, usize) = (2, 100);
 
-    fn wave_names() -> Vec<(&'static str, Vec<(u64, String)>)> {
+    fn wave_names() -> WaveNames {
         use model::modbus::State as S;
         vec![("state", crate::registry::enum_names(&[S::Idle, S::Silence, S::Send, S::Wait, S::Recv], |s| s as u64))]
     }
@@ -105,7 +105,7 @@ impl Protocol for BenchConfig {
 
     fn decode(args: &ArgMatches) -> Result<String> {
         let DecodeArgs { file, line, tx_en, baud, parity, timeout_us, gray } = registry::parse_args(args)?;
-        if !(300.0..=10e6).contains(&baud) || !(timeout_us > 0.0 && timeout_us < 1e7) {
+        if !((300.0..=10e6).contains(&baud) && timeout_us > 0.0 && timeout_us < 1e7) {
             return Err(Error::Decode(format!("decode modbus: --baud {baud} or --timeout-us {timeout_us}: give a baud rate from 300 to 10000000 and a positive timeout in µs")));
         }
         let options = decode::Options { line, tx_en, baud, parity, timeout_us, gray };

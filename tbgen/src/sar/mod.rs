@@ -15,7 +15,7 @@ use model::testbench;
 use model::uart::Parity;
 use model::Setup;
 
-use crate::registry::{self, Protocol, SigrokCheck, TransactionSignals};
+use crate::registry::{self, Protocol, SigrokCheck, TransactionSignals, WaveNames};
 use crate::{Error, Result};
 
 /// SAR58K24: the line and the host's driver enable.
@@ -107,7 +107,7 @@ impl Protocol for BenchConfig {
     const SIGROK_DECODER: Option<&'static str> = Some("uart");
     const SIGROK_MINIMUM: (usize, usize) = (4, 100);
 
-    fn wave_names() -> Vec<(&'static str, Vec<(u64, String)>)> {
+    fn wave_names() -> WaveNames {
         use model::sar58k24::State as S;
         vec![("state", crate::registry::enum_names(&[S::Idle, S::Trigger, S::Clr, S::Send, S::Wait], |s| s as u64))]
     }

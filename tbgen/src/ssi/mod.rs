@@ -10,7 +10,7 @@ use std::path::PathBuf;
 use clap::{ArgMatches, CommandFactory, Parser};
 use model::ssi::BenchConfig;
 
-use crate::registry::{self, Protocol, SigrokCheck, TransactionSignals};
+use crate::registry::{self, Protocol, SigrokCheck, TransactionSignals, WaveNames};
 use crate::{Error, Result};
 
 /// SSI: the reads on clock and data at the master.
@@ -55,7 +55,7 @@ impl Protocol for BenchConfig {
     const TRANSACTION_SIGNALS: TransactionSignals = (&["o_done"], "o_position", "position");
 
     /// The state register's values by the model's [`model::ssi::State`] (the RTL's state names).
-    fn wave_names() -> Vec<(&'static str, Vec<(u64, String)>)> {
+    fn wave_names() -> WaveNames {
         use model::ssi::State as S;
         let names = vec![("state", crate::registry::enum_names(&[S::Idle, S::Latch, S::High, S::Low, S::Pause], |s| s as u64))];
         names

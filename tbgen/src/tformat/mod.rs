@@ -10,7 +10,7 @@ use std::path::PathBuf;
 use clap::{ArgMatches, CommandFactory, Parser};
 use model::tformat::BenchConfig;
 
-use crate::registry::{self, Protocol, SigrokCheck, TransactionSignals};
+use crate::registry::{self, Protocol, SigrokCheck, TransactionSignals, WaveNames};
 use crate::{Error, Result};
 
 /// T-format: the line and the driver enable at the host (the bytes alone
@@ -50,7 +50,7 @@ impl Protocol for BenchConfig {
     const TRANSACTION_SIGNALS: TransactionSignals = (&["o_done"], "o_abs", "abs");
 
     /// The state register's values by the model's [`model::tformat::State`] (the RTL's state names).
-    fn wave_names() -> Vec<(&'static str, Vec<(u64, String)>)> {
+    fn wave_names() -> WaveNames {
         use model::tformat::State as S;
         let names = vec![("state", crate::registry::enum_names(&[S::Idle, S::Send, S::Wait, S::Recv, S::Gap, S::Quiet], |s| s as u64))];
         names
@@ -64,7 +64,7 @@ impl Protocol for BenchConfig {
 
     fn decode(args: &ArgMatches) -> Result<String> {
         let DecodeArgs { file, line, tx_en, baud, timeout_us } = registry::parse_args(args)?;
-        if !(1_000..=100_000_000).contains(&baud) || !(timeout_us > 0.0 && timeout_us < 1e7) {
+        if !((1_000..=100_000_000).contains(&baud) && timeout_us > 0.0 && timeout_us < 1e7) {
             return Err(Error::Decode(format!("decode tformat: --baud {baud} or --timeout-us {timeout_us}: give a bit rate from 1000 to 100000000 bit/s and a positive timeout in µs")));
         }
         let options = decode::Options { line, tx_en, baud, timeout_us };

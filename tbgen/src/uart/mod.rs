@@ -6,13 +6,13 @@ pub mod line;
 
 use model::uart::BenchConfig;
 
-use crate::registry::{Protocol, SigrokCheck, TransactionSignals};
+use crate::registry::{Protocol, SigrokCheck, TransactionSignals, WaveNames};
 
 impl Protocol for BenchConfig {
     const TRANSACTION_SIGNALS: TransactionSignals = (&["o_valid", "o_frame_err", "o_start_err", "o_parity_err"], "o_data", "received");
 
     /// The state register's values by the model's [`model::uart::State`] (the RTL's state names).
-    fn wave_names() -> Vec<(&'static str, Vec<(u64, String)>)> {
+    fn wave_names() -> WaveNames {
         use model::uart::State as S;
         let names = vec![("state", crate::registry::enum_names(&[S::Idle, S::Start, S::Data, S::Stop, S::Recover], |s| s as u64))];
         names
