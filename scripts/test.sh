@@ -23,16 +23,15 @@
 #                                      baseline
 #   either: gtkw, clippy,              every .gtkw in GTKWave (signals, and
 #           fusesoc, wavedrom,         the window each opens on), clippy
-#           vectors, cosim, cocotb     on every crate (any warning fails;
-#                                      its own target directory), the FuseSoC
-#                                      core files, the timing diagrams,
-#                                      committed vectors == fresh ones, every
-#                                      core closed-loop against its emulator
-#                                      (1000 transactions per core and
-#                                      simulator), the cocotb examples in
-#                                      Icarus (the emulators from Python,
-#                                      PyO3); the last three after lane 1's
-#                                      build. Whichever lane is free first
+#           vectors, cosim, cocotb     on every crate (any warning fails),
+#                                      the FuseSoC core files, the timing
+#                                      diagrams, committed vectors == fresh
+#                                      ones, every core closed-loop against
+#                                      its emulator (1000 transactions per
+#                                      core and simulator), the cocotb
+#                                      examples in Icarus (the emulators
+#                                      from Python, PyO3); clippy and the
+#                                      last three after lane 1's build. Whichever lane is free first
 #                                      takes the next of these, so neither
 #                                      core idles while the other lane still
 #                                      has work: lane 2 is free first, and
@@ -97,11 +96,11 @@ stage() {
 
 # The stages either lane may run: each lane, when its own stages are done,
 # takes the first one in this order that nobody took yet and that can start
-# (cosim, vectors and cocotb need lane 1's build), waiting only when none can.
+# (cosim, clippy, vectors and cocotb need lane 1's build), waiting only when none can.
 # The closed loops come first: the longest, they then run beside the cargo
 # tests, and the short checks fill both lanes' ends.
 shared_stages=(cosim gtkw clippy fusesoc wavedrom vectors cocotb)
-needs_build=" cosim vectors cocotb "
+needs_build=" cosim clippy vectors cocotb "
 # after_build NAME COMMAND...: stage NAME once lane 1's build is done (tbgen,
 # the emulator library, the Python module), or a failed NAME if it failed.
 after_build() {
@@ -116,7 +115,7 @@ after_build() {
 run_shared() {
     case "$1" in
     gtkw) stage gtkw scripts/check_gtkw.sh ;;
-    clippy) stage clippy scripts/clippy.sh ;;
+    clippy) after_build clippy scripts/clippy.sh ;;
     fusesoc) stage fusesoc scripts/check_fusesoc.sh ;;
     wavedrom) stage wavedrom .venv/bin/python scripts/timing_diagrams.py --check ;;
     vectors) after_build vectors scripts/check_vectors.sh ;;

@@ -42,7 +42,7 @@ impl Timebase {
         if !f_sys_mhz.is_finite() || f_sys_mhz <= 0.0 || hz < 1.0 {
             return Err(ConfigError::invalid(
                 "f_sys_mhz",
-                format!("{f_sys_mhz} MHz: the system clock must be above 0"),
+                format!("{f_sys_mhz} MHz: the system clock must be above 0 and finite"),
                 "give the FPGA's system clock in MHz, e.g. 50, 64, 80 or 100",
             ));
         }

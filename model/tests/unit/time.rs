@@ -10,8 +10,8 @@ fn fifty_megahertz_has_a_twenty_nanosecond_period() {
 }
 
 #[test]
-fn a_zero_or_negative_clock_is_refused_as_such_not_as_a_fraction() {
-    for mhz in [0.0, -5.0, 1e-9] {
+fn a_zero_negative_or_non_finite_clock_is_refused_as_such_not_as_a_fraction() {
+    for mhz in [0.0, -5.0, 1e-9, f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
         let err = Timebase::from_mhz(mhz).unwrap_err().to_string();
         assert!(err.contains("must be above 0") && !err.contains("whole number"), "{mhz}: {err}");
     }
