@@ -127,6 +127,11 @@ where
         .get("baud")
         .and_then(|v| v.as_float().or(v.as_integer().map(|i| i as f64)))
         .unwrap_or(default_baud);
+    // The models' range (their `clocks_per_bit`): the monitors, which do not
+    // build a model host, would otherwise take any rate, down to zero.
+    if !(300.0..=10e6).contains(&baud) {
+        return Err(Error::field(origin, "baud", format!("{baud}"), "give a baud rate from 300 to 10e6, such as 9600, 19200 or 115200"));
+    }
     let mut settings = tables.emulator.clone();
     settings.max_line_clock_khz = settings.max_line_clock_khz.or(Some(2.0 * baud / 1e3));
     let tb = config::emulator_clock(f_emu_hz, &settings, MAX_LINE_KHZ, name, origin)?;

@@ -75,8 +75,32 @@ pub fn read(path: &Path, names: &[(&str, &str)]) -> Result<Vec<Signal>> {
     let wanted: Vec<(&str, vcd::IdCode)> = names.iter().map(|&(n, _)| n).zip(ids).collect();
     tracefile::capture::read_scalars(parser, &wanted, scale).map_err(|e| match e {
         tracefile::capture::ScanError::Io(e) => not_vcd(path, e),
-        tracefile::capture::ScanError::TimestampOverflow(ts) => Error::Decode(format!("{}: timestamp {ts} overflows 64-bit picoseconds", path.display())),
+        tracefile::capture::ScanError::TimestampOverflow(ts) => Error::Decode(format!(
+            "{}: timestamp #{ts} is beyond 2^62 ps (about 53 days), the longest capture the decoders read; cut the capture before it",
+            path.display()
+        )),
+        tracefile::capture::ScanError::TimeGoesBack { later, earlier } => Error::Decode(format!(
+            "{}:{}: timestamp #{earlier} after #{later}: a VCD's times only increase; the file is damaged or two captures were joined: cut it at that line or capture again",
+            path.display(),
+            backward_line(path, later, earlier).map_or_else(|| "?".into(), |l| l.to_string())
+        )),
     })
+}
+
+/// The 1-based line of the first timestamp `#earlier` that follows `#later`
+/// (the parser counts no lines; this runs only on that error).
+fn backward_line(path: &Path, later: u64, earlier: u64) -> Option<usize> {
+    let text = std::fs::read(path).ok()?;
+    let mut seen_later = false;
+    for (i, line) in text.split(|&b| b == b'\n').enumerate() {
+        let Some(ts) = line.trim_ascii().strip_prefix(b"#").and_then(|d| std::str::from_utf8(d).ok()).and_then(|d| d.parse::<u64>().ok()) else { continue };
+        if ts == later {
+            seen_later = true;
+        } else if seen_later && ts == earlier {
+            return Some(i + 1);
+        }
+    }
+    None
 }
 
 #[cfg(test)]
@@ -141,6 +165,20 @@ mod tests {
         std::fs::write(&bad, "garbage\n").unwrap();
         let e = read(&bad, &[("top.x", "--clk")]).unwrap_err();
         assert!(e.to_string().contains("g.vcd: not a readable VCD file"), "{e}");
+        assert_eq!(e.exit_code(), 2);
+    }
+
+    /// Found by mutating committed captures: a timestamp smaller than the
+    /// one before it (two captures joined, lines repeated) put edges out of
+    /// order, and the decoders subtracted past zero. It is refused, with
+    /// the line.
+    #[test]
+    fn a_timestamp_that_goes_back_is_refused_with_its_line() {
+        let dir = tempfile::tempdir().unwrap();
+        let vcd = dir.path().join("back.vcd");
+        std::fs::write(&vcd, "$timescale 1ns $end\n$scope module top $end\n$var wire 1 ! clk $end\n$upscope $end\n$enddefinitions $end\n#0\n1!\n#100\n0!\n#100\n1!\n#50\n0!\n").unwrap();
+        let e = read(&vcd, &[("top.clk", "--clk")]).unwrap_err();
+        assert!(e.to_string().contains("back.vcd:12: timestamp #50 after #100: a VCD's times only increase"), "{e}");
         assert_eq!(e.exit_code(), 2);
     }
 

@@ -55,10 +55,16 @@ impl Scenario {
     /// Parses and checks a scenario; `origin` is named in every message.
     pub fn parse(text: &str, origin: &str) -> Result<Scenario> {
         let file: ScenarioFile = toml::from_str(text).map_err(|e| {
-            let offset = e.span().map(|s| s.start);
-            let (line, column) = offset.map(|o| line_column(text, o)).unwrap_or((1, 1));
+            let mut offset = e.span().map(|s| s.start);
             let mut message = e.message().trim().to_string();
-            if let Some(field) = offset.and_then(|o| path_at(text, o)).or_else(|| field_on_line(text, line)) {
+            let mut field = offset.and_then(|o| path_at(text, o));
+            if field.is_none() {
+                if let Some((f, at)) = offset.and_then(|o| field_by_quoted_value(text, o, &message)) {
+                    (field, offset) = (Some(f), Some(at));
+                }
+            }
+            let (line, column) = offset.map(|o| line_column(text, o)).unwrap_or((1, 1));
+            if let Some(field) = field.or_else(|| field_on_line(text, line)) {
                 if !message.contains(&field) {
                     message = format!("field `{field}`: {message}");
                 }
@@ -222,6 +228,59 @@ fn path_at(text: &str, offset: usize) -> Option<String> {
     out
 }
 
+/// The field holding the value a message quotes (``invalid value: integer
+/// `-1`, expected usize``) among the plain values of the table at byte
+/// `offset`, and the offset of its key: serde places an error in a table
+/// whose struct takes another's fields (`#[serde(flatten)]`, as
+/// `[endat.faults]` takes the cable's fault fields) at the table, not at
+/// the key. Only a value that one field alone holds is taken.
+fn field_by_quoted_value(text: &str, offset: usize, message: &str) -> Option<(String, usize)> {
+    use toml::de::{DeTable, DeValue};
+    let quoted = message.split('`').nth(1)?;
+    let same = |raw: &str| {
+        let raw = raw.trim().trim_matches('"');
+        let number = |t: &str| t.replace('_', "").parse::<f64>().ok();
+        match (number(raw), number(quoted)) {
+            (Some(a), Some(b)) => a == b || (a.is_nan() && b.is_nan()),
+            _ => raw == quoted,
+        }
+    };
+    // Every table with its dotted path and span. A `[a.b]` table's span
+    // need not lie inside `[a]`'s, so all are searched, not one branch.
+    fn tables<'a>(t: &'a DeTable<'a>, path: &str, out: &mut Vec<(String, std::ops::Range<usize>, &'a DeTable<'a>)>) {
+        for (k, v) in t {
+            let p = if path.is_empty() { k.get_ref().to_string() } else { format!("{path}.{}", k.get_ref()) };
+            match v.get_ref() {
+                DeValue::Table(inner) => {
+                    out.push((p.clone(), v.span(), inner));
+                    tables(inner, &p, out);
+                }
+                DeValue::Array(a) => {
+                    for (i, e) in a.iter().enumerate() {
+                        if let DeValue::Table(inner) = e.get_ref() {
+                            let pi = format!("{p}[{i}]");
+                            out.push((pi.clone(), e.span(), inner));
+                            tables(inner, &pi, out);
+                        }
+                    }
+                }
+                _ => {}
+            }
+        }
+    }
+    let doc = DeTable::parse(text).ok()?;
+    let mut all = Vec::new();
+    tables(doc.get_ref(), "", &mut all);
+    // The table that starts at `offset`, else the innermost one holding it.
+    let (path, _, table) = all.iter().find(|(_, span, _)| span.start == offset).or_else(|| all.iter().filter(|(_, span, _)| span.contains(&offset)).max_by_key(|(_, span, _)| span.start))?;
+    let mut hits = table.iter().filter(|(_, v)| !matches!(v.get_ref(), DeValue::Table(_) | DeValue::Array(_)) && same(&text[v.span()]));
+    let (key, _) = hits.next()?;
+    if hits.next().is_some() {
+        return None;
+    }
+    Some((format!("{path}.{}", key.get_ref()), key.span().start))
+}
+
 /// The dotted name (`ssi.master.bits`) of the key set on 1-based `line`, if
 /// any: the fallback where the file does not parse as TOML.
 fn field_on_line(text: &str, line: usize) -> Option<String> {
@@ -286,6 +345,18 @@ mod tests {
         let text = "name = \"t\"\n[endat]\n[[endat.commands]]\ncommand = \"pos22\"\nrepeat = 3\n[endat.faults]\nflips = [\n  { request = 1, bits = [2] },\n  { request = 44, bits = [3] },\n]\n";
         let msg = Scenario::parse(text, "f.toml").unwrap_err().to_string();
         assert!(msg.starts_with("f.toml:9: field `faults.flips[1].request`"), "{msg}");
+    }
+
+    #[test]
+    fn a_bad_value_in_a_flattened_table_is_named_and_placed_on_its_own_line() {
+        // `stuck_from` is the cable's field, which [endat.faults] takes in
+        // (serde's flatten): serde alone places the error at the table.
+        let text = "name = \"t\"\n[endat]\n[[endat.commands]]\ncommand = \"pos22\"\n[endat.faults]\nabsent_from = 1\nstuck_from = -1\n";
+        let msg = Scenario::parse(text, "f.toml").unwrap_err().to_string();
+        assert!(msg.starts_with("f.toml:7:1: field `endat.faults.stuck_from`"), "{msg}");
+        let text = text.replace("-1", "nan");
+        let msg = Scenario::parse(&text, "f.toml").unwrap_err().to_string();
+        assert!(msg.starts_with("f.toml:7:1: field `endat.faults.stuck_from`"), "{msg}");
     }
 
     #[test]

@@ -30,13 +30,27 @@ pub fn timescale_ps(header: &vcd::Header) -> (u64, u64) {
     }
 }
 
+/// The latest time a capture may reach, ps: 2^62 ps, about 53 days. The
+/// decoders reckon times as signed 64-bit picoseconds with room for sums
+/// (a time plus a period); a later time is refused here, not clamped there.
+pub const MAX_PS: u64 = 1 << 62;
+
 /// Why the body of a capture could not be read.
 #[derive(Debug)]
 pub enum ScanError {
     /// The parser's error (a malformed command, or the disk).
     Io(std::io::Error),
-    /// A timestamp whose picoseconds do not fit 64 bits.
+    /// A timestamp beyond [`MAX_PS`].
     TimestampOverflow(u64),
+    /// A timestamp below the one before it (`#later`, then `#earlier`):
+    /// a VCD's times never go back, so the file is damaged or two were
+    /// joined, and no decoder can read its edges in order.
+    TimeGoesBack {
+        /// The timestamp before.
+        later: u64,
+        /// The smaller one after it.
+        earlier: u64,
+    },
 }
 
 /// Reads the rest of `parser`'s file (its header already read) and returns
@@ -48,11 +62,16 @@ pub fn read_scalars(parser: Parser, signals: &[(&str, vcd::IdCode)], scale: (u64
     let (mul, div) = scale;
     let mut out: Vec<Signal> = signals.iter().map(|&(name, _)| Signal { name: name.to_string(), changes: Vec::new() }).collect();
     let mut t = 0u64;
+    let mut last_ts = 0u64;
     for cmd in parser {
         match cmd.map_err(ScanError::Io)? {
             vcd::Command::Timestamp(ts) => {
+                if ts < last_ts {
+                    return Err(ScanError::TimeGoesBack { later: last_ts, earlier: ts });
+                }
+                last_ts = ts;
                 let ps = (ts as u128 * mul as u128 + div as u128 / 2) / div as u128;
-                t = u64::try_from(ps).map_err(|_| ScanError::TimestampOverflow(ts))?;
+                t = u64::try_from(ps).ok().filter(|&t| t <= MAX_PS).ok_or(ScanError::TimestampOverflow(ts))?;
             }
             vcd::Command::ChangeScalar(code, v) => {
                 let level = v != vcd::Value::V0;

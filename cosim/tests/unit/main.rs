@@ -9,6 +9,7 @@
 //! (about 100 s of CPU on the 2-core machine, issue 15). They reach the
 //! library through its public API only.
 
+mod bad_values;
 mod biss;
 mod can;
 mod canopen;

@@ -266,7 +266,7 @@ fn read_sections(f: &mut FrameSeen, ack: u64, period: u64, rises: u64, slo: &Sig
         return;
     };
     let need: u64 = layout.bits.iter().zip(&layout.crc_width).map(|(n, w)| (1 + n + 2 + w) as u64).sum();
-    f.cells = Some((rises.saturating_sub(2 + TRAILING_CELLS) - start, need));
+    f.cells = Some((rises.saturating_sub(2 + TRAILING_CELLS).saturating_sub(start), need));
     let mut m = start;
     let mut received = vec![true];
     for s in 0..layout.bits.len() {

@@ -210,6 +210,10 @@ impl BenchConfig {
         self.dut.place().validate("dut")?;
         for (k, s) in self.dut.frames.iter().enumerate() {
             s.frame().validate(&format!("dut.frames[{k}]"))?;
+            // The emulated nodes' rule (`Node::validate`), for the core's script.
+            if !(0.0..1e8).contains(&s.at_us) {
+                return Err(ConfigError::invalid(format!("dut.frames[{k}].at_us"), format!("{}", s.at_us), "give a time ≥ 0 µs"));
+            }
             if s.ide {
                 return Err(ConfigError::invalid(format!("dut.frames[{k}].ide"), "the core sends standard frames only", "send extended frames from an emulated node"));
             }
@@ -427,7 +431,8 @@ impl Disturber {
             .filter(|f| f.kind == FaultKind::StuckDominant)
             .map(|f| {
                 let a = tb.cycles_nearest_ns(f.at_us * 1e3);
-                (a, a + tb.cycles_nearest_ns(f.width_us * 1e3).max(1))
+                // A fault at or beyond the end of time is one that never comes.
+                (a, a.saturating_add(tb.cycles_nearest_ns(f.width_us * 1e3).max(1)))
             })
             .collect()
     }

@@ -109,6 +109,9 @@ impl BitTiming {
     /// the sample point nearest `sample_point`, and `sjw` quanta (clipped to
     /// the phase segments).
     pub fn for_rate(f_sys_hz: u64, bit_rate: f64, ntq: u32, sample_point: f64, sjw: u32) -> Result<BitTiming> {
+        if !(8..=25).contains(&ntq) {
+            return Err(ConfigError::invalid("timing.tq_per_bit", format!("{ntq}"), "give 8 to 25 quanta per bit (ISO 11898-1)"));
+        }
         let brp_f = f_sys_hz as f64 / bit_rate / ntq as f64;
         if !(brp_f.is_finite() && (brp_f - brp_f.round()).abs() < 1e-6 && brp_f >= 1.0) {
             return Err(ConfigError::invalid("bit_rate_kbps", format!("f_sys / (bit rate × {ntq} quanta) = {brp_f:.4}"), "choose a bit rate and tq_per_bit whose product divides f_sys"));

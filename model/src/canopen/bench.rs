@@ -203,6 +203,9 @@ impl BenchConfig {
         if !super::encoder::BIT_RATES_KBPS.contains(&self.bit_rate_kbps) {
             return Err(ConfigError::invalid("bit_rate_kbps", format!("{}", self.bit_rate_kbps), "give one of the gateway's rates: 10, 20, 50, 125, 250, 500, 800, 1000 kbit/s (seed 003 §5.5)"));
         }
+        if !(8..=25).contains(&self.tq_per_bit) {
+            return Err(ConfigError::invalid("tq_per_bit", format!("{}", self.tq_per_bit), "give 8 to 25 quanta per bit (ISO 11898-1)"));
+        }
         if !(0.5..0.95).contains(&self.sample_point) {
             return Err(ConfigError::invalid("sample_point", format!("{}", self.sample_point), "give a sample point between 0.5 and 0.95"));
         }

@@ -101,6 +101,9 @@ impl SarCanConfig {
         if self.cycle_ms == 0 {
             return Err(ConfigError::invalid(format!("{field}.cycle_ms"), "0", "give the cycle time in ms, at least 1"));
         }
+        if !self.speed_cps.is_finite() || self.speed_cps.abs() > 1e9 {
+            return Err(ConfigError::invalid(format!("{field}.speed_cps"), format!("{}", self.speed_cps), "give at most 1e9 counts per second"));
+        }
         if self.raw_position >> self.bits != 0 {
             return Err(ConfigError::invalid(format!("{field}.raw_position"), format!("{}", self.raw_position), format!("give a position below 2^{}", self.bits)));
         }

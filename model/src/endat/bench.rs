@@ -470,13 +470,15 @@ impl BenchConfig {
         self.cable.validate("cable")?;
         let m = self.master_config()?;
         let e = self.encoder_config()?;
-        let reqs = self.requests();
-        if reqs.is_empty() {
+        // Counted before they are expanded: a huge `repeat` is refused, not allocated.
+        let count = self.commands.iter().fold(0usize, |n, c| n.saturating_add(c.repeat));
+        if count == 0 {
             return Err(ConfigError::invalid("commands", "no requests", "add at least one [[endat.commands]]"));
         }
-        if reqs.len() > 100_000 {
-            return Err(ConfigError::invalid("commands", format!("{} requests", reqs.len()), "ask for at most 100000"));
+        if count > 100_000 {
+            return Err(ConfigError::invalid("commands", format!("{count} requests"), "ask for at most 100000"));
         }
+        let reqs = self.requests();
         let d = self.expected_delay()?;
         if m.delay_comp && d + m.delay_tol > m.delay_max {
             return Err(ConfigError::invalid(

@@ -308,7 +308,8 @@ fn decode_burst(b: &Burst, period: u64, mode: u8, data: &Signal, judge: &mut Lin
         }
         let end = ft.arrival(b, ft.j + frame_bits as usize, period);
         match data.next_level(end, false) {
-            Some(tl) if tl <= last_rise => from = tl,
+            // Only forward: each value starts after the last one's start.
+            Some(tl) if tl <= last_rise && tl > from => from = tl,
             _ => break,
         }
     }

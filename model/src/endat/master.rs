@@ -97,7 +97,7 @@ impl MasterConfig {
         let shortest = (1 + pos_bits as u64 + 5).min(24 + 5);
         let by_stop = (shortest + 1) * clocks_per_bit - 2;
         // The longer phase of an odd period (its high phase) keeps the bound safe.
-        let by_gap = (block_gap * clocks_per_bit).saturating_sub(clocks_per_bit - clocks_per_bit / 2);
+        let by_gap = block_gap.saturating_mul(clocks_per_bit).saturating_sub(clocks_per_bit - clocks_per_bit / 2);
         by_stop.min(by_gap).min(DELAY_COUNTER_MAX)
     }
 

@@ -187,7 +187,7 @@ fn judge(t: &mut Transaction, answers: &[Char], bit_ps: u64, bits: u64, t15_ps: 
         }
     } else {
         let count = t.count.unwrap_or(0);
-        if b[2] != 2 * count || n != 5 + 2 * count as usize {
+        if count == 0 || b[2] as usize != 2 * count as usize || n != 5 + 2 * count as usize {
             t.errors.push("count");
         } else {
             let len = if count == 1 { 2 } else { 4 };

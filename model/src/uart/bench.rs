@@ -95,7 +95,10 @@ impl BenchConfig {
 
     fn check(&self) -> Result<()> {
         let cfg = self.receiver_config()?;
-        let frames = self.bytes.len() * self.repeat;
+        let frames = self.bytes.len().saturating_mul(self.repeat);
+        if frames > 1_000_000 {
+            return Err(ConfigError::invalid("repeat", format!("{frames} frames ({} bytes × {})", self.bytes.len(), self.repeat), "send at most 1000000 frames"));
+        }
         if let Some(&f) = self.parity_flips.iter().find(|&&f| self.parity == Parity::None || f >= frames) {
             return Err(ConfigError::invalid(
                 "parity_flips",

@@ -14,6 +14,7 @@
 mod angle;
 mod biss;
 mod biss_campaign;
+mod biss_decode;
 mod bits;
 mod can;
 mod canopen;
