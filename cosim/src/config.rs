@@ -8,19 +8,24 @@ use model::{ConfigError, Timebase};
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum Error {
     /// A field of the configuration is out of range or inconsistent.
-    #[error("{origin}: {error}")]
+    #[error("{origin}{}: {error}", line.map_or(String::new(), |l| format!(":{l}")))]
     Config {
         /// The file (or text) the configuration came from.
         origin: String,
+        /// The 1-based line the field is written on, once [`Error::placed`].
+        line: Option<usize>,
         /// The model's verdict, naming the field and the fix.
         error: ConfigError,
     },
     /// The TOML itself is malformed or has a field of the wrong type.
-    #[error("{origin}: {message}")]
+    #[error("{origin}{}: {message}", line.map_or(String::new(), |l| format!(":{l}")))]
     Toml {
         /// The file (or text) the configuration came from.
         origin: String,
-        /// The parser's message (with line and column).
+        /// The 1-based line of the field of the wrong type, once
+        /// [`Error::placed`] (a malformed text: the parser's message says it).
+        line: Option<usize>,
+        /// The parser's message.
         message: String,
     },
     /// A call the emulator cannot honour (bad handle, unknown status name...).
@@ -33,7 +38,33 @@ impl Error {
     pub fn config(origin: &str, error: ConfigError) -> Self {
         Error::Config {
             origin: origin.to_string(),
+            line: None,
             error,
+        }
+    }
+
+    /// The error with the line of `text` its field is written on, the
+    /// field being under the protocol table `table` (`ssi`: `encoder.bits`
+    /// is `[ssi.encoder]`'s `bits`), as `tbgen` places a scenario's errors.
+    /// A field of the wrong type is found from the path the parser's
+    /// message ends with (``in `encoder.bits```). The text may also be an
+    /// emulator's own configuration, its fields at the top level.
+    pub fn placed(self, text: &str, table: &str) -> Self {
+        let line_of = |field: &str| {
+            let at = |path: &str| model::toml_place::find(text, path);
+            at(&format!("{table}.{field}")).or_else(|| at(field)).or_else(|| model::toml_place::locate(text, &format!("{table}.{field}"))).map(|o| model::toml_place::line_column(text, o).0)
+        };
+        match self {
+            Error::Config { origin, line: None, error } => {
+                let line = line_of(error.field());
+                Error::Config { origin, line, error }
+            }
+            Error::Toml { origin, line: None, message } if !message.contains(" line ") => {
+                let field = message.rsplit_once(" in `").map(|(_, path)| path.trim_end_matches('`').to_string());
+                let line = field.and_then(|f| line_of(&f));
+                Error::Toml { origin, line, message }
+            }
+            other => other,
         }
     }
 
@@ -83,6 +114,7 @@ pub struct Tables {
 pub fn tables(text: &str, origin: &str, proto: &str) -> Result<Tables, Error> {
     let root: toml::Table = text.parse().map_err(|e: toml::de::Error| Error::Toml {
         origin: origin.to_string(),
+        line: None,
         message: one_line(&e.to_string()),
     })?;
     let mut device = match root.get(proto) {
@@ -119,7 +151,8 @@ pub fn tables(text: &str, origin: &str, proto: &str) -> Result<Tables, Error> {
     let emulator = match device.remove("emulator") {
         Some(v) => v.try_into().map_err(|e: toml::de::Error| Error::Toml {
             origin: origin.to_string(),
-            message: format!("table `emulator`: {}", one_line(&e.to_string())),
+            line: None,
+            message: format!("{} in `emulator`", one_line(&e.to_string())),
         })?,
         None => EmulatorSettings {
             max_line_clock_khz: None,
@@ -137,8 +170,34 @@ pub fn decode<T: serde::de::DeserializeOwned>(
         .try_into()
         .map_err(|e: toml::de::Error| Error::Toml {
             origin: origin.to_string(),
+            line: None,
             message: one_line(&e.to_string()),
         })
+}
+
+/// A sub-table (`monitor`, `master`, `checks`, `encoder`), empty when absent.
+pub fn sub(table: &toml::Table, key: &str, origin: &str) -> Result<toml::Table, Error> {
+    match table.get(key) {
+        None => Ok(toml::Table::new()),
+        Some(toml::Value::Table(t)) => Ok(t.clone()),
+        Some(_) => Err(Error::field(origin, key, "is not a table", format!("write [{key}] as a table header"))),
+    }
+}
+
+/// Deserialises `table`'s sub-table `key` (empty when absent) into `T`; a
+/// field of the wrong type is named from the protocol table on (`in
+/// `encoder.bits``, not `in `bits``), so that [`Error::placed`] finds it.
+pub fn decode_in<T: serde::de::DeserializeOwned>(table: &toml::Table, key: &str, origin: &str) -> Result<T, Error> {
+    decode(sub(table, key, origin)?, origin).map_err(|e| match e {
+        Error::Toml { origin, line, message } => {
+            let message = match message.rsplit_once(" in `") {
+                Some((what, path)) => format!("{what} in `{key}.{path}"),
+                None => format!("{message} in `{key}`"),
+            };
+            Error::Toml { origin, line, message }
+        }
+        other => other,
+    })
 }
 
 fn one_line(s: &str) -> String {

@@ -135,8 +135,19 @@ pub trait Emulator: Send {
 }
 
 /// Makes an emulator of protocol `kind` from TOML text (`origin` names the
-/// text in errors, normally its file), clocked at `f_emu_hz`.
+/// text in errors, normally its file, and a field's error its line),
+/// clocked at `f_emu_hz`.
 pub fn open(kind: &str, toml: &str, origin: &str, f_emu_hz: u64) -> Result<Box<dyn Emulator>> {
+    // The protocol table each kind reads its fields from.
+    let table = match kind.trim_end_matches("_monitor") {
+        "canopen" | "sar58k24_can" => "canopen",
+        "sar58k24" => "sar",
+        other => other,
+    };
+    open_unplaced(kind, toml, origin, f_emu_hz).map_err(|e| e.placed(toml, table))
+}
+
+fn open_unplaced(kind: &str, toml: &str, origin: &str, f_emu_hz: u64) -> Result<Box<dyn Emulator>> {
     match kind {
         "ssi" => Ok(Box::new(ssi::SsiEmulator::from_toml(
             toml, origin, f_emu_hz,

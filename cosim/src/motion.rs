@@ -64,6 +64,7 @@ impl Motion {
     pub fn from_toml(text: &str, origin: &str) -> Result<Motion> {
         let t: Table = toml::from_str(text).map_err(|e| Error::Toml {
             origin: origin.to_string(),
+            line: None,
             message: e.to_string().split_whitespace().collect::<Vec<_>>().join(" "),
         })?;
         t.motion.validate(origin)?;

@@ -223,7 +223,7 @@ fn bad_configuration_stops_at_time_zero(sim: &str) {
     assert!(!ok, "{out}");
     assert!(
         out.contains(&format!(
-            "{}: field `encoder.bits`: 65 bits; give 1 to 64 bits",
+            "{}:2: field `encoder.bits`: 65 bits; give 1 to 64 bits",
             bad.display()
         )),
         "{out}"

@@ -36,6 +36,7 @@ pub mod ssi;
 pub mod testbench;
 pub mod tformat;
 pub mod time;
+pub mod toml_place;
 pub mod trace;
 pub mod uart;
 pub mod wire;

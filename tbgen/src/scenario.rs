@@ -15,6 +15,7 @@
 use std::path::Path;
 
 use crate::{Error, Result};
+use model::toml_place::line_column;
 
 pub use crate::registry::Visitor;
 pub use crate::Setup;
@@ -141,57 +142,8 @@ impl Scenario {
     /// `endat.commands[2].command`) is set, or else where the deepest part
     /// of it that the file writes is (its table, its array entry), or else 1.
     pub fn line_of(&self, dotted: &str) -> usize {
-        locate(&self.text, dotted).map(|offset| line_column(&self.text, offset).0).unwrap_or(1)
+        model::toml_place::line_of(&self.text, dotted).unwrap_or(1)
     }
-}
-
-/// One step of a field path: a key or an array index.
-enum Step<'a> {
-    Key(&'a str),
-    Index(usize),
-}
-
-/// `endat.commands[2].command` as steps.
-fn steps(dotted: &str) -> Vec<Step<'_>> {
-    let mut out = Vec::new();
-    for part in dotted.split('.') {
-        let mut pieces = part.split('[');
-        if let Some(key) = pieces.next().filter(|k| !k.is_empty()) {
-            out.push(Step::Key(key));
-        }
-        for index in pieces {
-            match index.trim_end_matches(']').parse() {
-                Ok(i) => out.push(Step::Index(i)),
-                Err(_) => return out,
-            }
-        }
-    }
-    out
-}
-
-/// The byte offset of the deepest part of field path `dotted` written in
-/// `text`: the key itself, or the array entry or table holding it.
-fn locate(text: &str, dotted: &str) -> Option<usize> {
-    use toml::de::DeValue;
-    let doc = toml::de::DeTable::parse(text).ok()?;
-    let mut table = Some(doc.get_ref());
-    let mut value: Option<&DeValue> = None;
-    let mut best = None;
-    for step in steps(dotted) {
-        let found = match (step, table, value) {
-            (Step::Key(k), Some(t), _) => t.iter().find(|(key, _)| key.get_ref() == k).map(|(key, v)| (key.span().start, v)),
-            (Step::Index(i), _, Some(DeValue::Array(a))) => a.get(i).map(|v| (v.span().start, v)),
-            _ => None,
-        };
-        let Some((offset, v)) = found else { break };
-        best = Some(offset);
-        value = Some(v.get_ref());
-        table = match v.get_ref() {
-            DeValue::Table(t) => Some(t),
-            _ => None,
-        };
-    }
-    best
 }
 
 /// The field path (`endat.commands[2].command`) of the key or value at byte
@@ -297,12 +249,6 @@ fn field_on_line(text: &str, line: usize) -> Option<String> {
     None
 }
 
-fn line_column(text: &str, offset: usize) -> (usize, usize) {
-    let before = &text[..offset.min(text.len())];
-    let line = before.matches('\n').count() + 1;
-    let column = before.rsplit('\n').next().map(|l| l.chars().count()).unwrap_or(0) + 1;
-    (line, column)
-}
 
 #[cfg(test)]
 mod tests {

@@ -31,7 +31,7 @@ use model::biss::decode::{Decoder, Layout};
 use model::biss::SlaveSettings;
 use model::wire::Signal;
 
-use super::{limit, listens_only, proto_table, sub, us, Base};
+use super::{limit, listens_only, proto_table, us, Base};
 use crate::biss::{BissChecks, MAX_CLOCK_KHZ};
 use crate::config::{self, Error};
 use crate::{Emulator, Pins, Result};
@@ -87,10 +87,10 @@ impl BissMonitor {
         let tables = config::tables(text, origin, "biss")?;
         config::emulator_clock(f_mon_hz, &tables.emulator, MAX_CLOCK_KHZ, "the BiSS-C monitor", origin)?;
         let whole = proto_table(text, origin, "biss")?;
-        let checks: BissChecks = config::decode(sub(&whole, "checks", origin)?, origin)?;
-        let mon: MonitorTable = config::decode(sub(&whole, "monitor", origin)?, origin)?;
+        let checks: BissChecks = config::decode_in(&whole, "checks", origin)?;
+        let mon: MonitorTable = config::decode_in(&whole, "monitor", origin)?;
         let slaves: Vec<SlaveSettings> = match whole.get("slaves") {
-            Some(v) => v.clone().try_into().map_err(|e: toml::de::Error| Error::Toml { origin: origin.to_string(), message: format!("table `slaves`: {}", e.to_string().split_whitespace().collect::<Vec<_>>().join(" ")) })?,
+            Some(v) => v.clone().try_into().map_err(|e: toml::de::Error| Error::Toml { origin: origin.to_string(), line: None, message: format!("table `slaves`: {}", e.to_string().split_whitespace().collect::<Vec<_>>().join(" ")) })?,
             None => vec![SlaveSettings::default()],
         };
         if slaves.is_empty() || slaves.len() > model::biss::MAX_SLAVES {

@@ -47,7 +47,7 @@ use model::can::decode::{self, Decoded};
 use model::can::BitTiming;
 use model::wire::Signal;
 
-use super::{limit, listens_only, proto_table, sub, us, Base};
+use super::{limit, listens_only, proto_table, us, Base};
 use crate::config::{self, Error};
 use crate::{Emulator, Pins, Result};
 
@@ -414,7 +414,7 @@ impl CanMonitor {
         let tables = config::tables(text, origin, "can")?;
         config::emulator_clock(f_mon_hz, &tables.emulator, crate::can::MAX_BIT_RATE_KHZ, "the CAN monitor", origin)?;
         let whole = proto_table(text, origin, "can")?;
-        let limits: CanLimits = config::decode(sub(&whole, "monitor", origin)?, origin)?;
+        let limits: CanLimits = config::decode_in(&whole, "monitor", origin)?;
         let mut device = model_table(&whole, f_mon_hz);
         device.remove("nodes");
         device.remove("dut");

@@ -46,7 +46,7 @@ use model::canopen::cob::{classify, Service};
 use model::canopen::sar58k24::CONFIG_ID;
 
 use super::can::{model_table, CanLimits, CanWatch, Seen, Timing};
-use super::{limit, listens_only, proto_table, sub, us, Base};
+use super::{limit, listens_only, proto_table, us, Base};
 use crate::config::{self, Error};
 use crate::{Emulator, Pins, Result};
 
@@ -117,7 +117,7 @@ impl CanopenMonitor {
         let tables = config::tables(text, origin, "canopen")?;
         config::emulator_clock(f_mon_hz, &tables.emulator, crate::canopen::MAX_BIT_RATE_KHZ, "the CANopen monitor", origin)?;
         let whole = proto_table(text, origin, "canopen")?;
-        let mon: MonitorTable = config::decode(sub(&whole, "monitor", origin)?, origin)?;
+        let mon: MonitorTable = config::decode_in(&whole, "monitor", origin)?;
         let mut device = model_table(&whole, f_mon_hz);
         device.remove("tool");
         device.remove("faults");

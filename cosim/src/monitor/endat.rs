@@ -72,7 +72,7 @@ use model::endat::{frame_kind, Command, EncoderSettings, FrameKind, MasterSettin
 use model::line::CableConfig;
 use model::wire::Signal;
 
-use super::{limit, listens_only, proto_table, sub, us, Base};
+use super::{first_given, limit, listens_only, proto_table, us, Base};
 use crate::config::{self, Error};
 use crate::endat::{EndatChecks, MAX_CLOCK_KHZ};
 use crate::{Emulator, Pins, Result};
@@ -180,11 +180,11 @@ impl EndatMonitor {
         let tables = config::tables(text, origin, "endat")?;
         config::emulator_clock(f_mon_hz, &tables.emulator, MAX_CLOCK_KHZ, "the EnDat monitor", origin)?;
         let whole = proto_table(text, origin, "endat")?;
-        let checks: EndatChecks = config::decode(sub(&whole, "checks", origin)?, origin)?;
-        let encoder: EncoderSettings = config::decode(sub(&whole, "encoder", origin)?, origin)?;
-        let master: MasterSettings = config::decode(sub(&whole, "master", origin)?, origin)?;
-        let cable: CableConfig = config::decode(sub(&whole, "cable", origin)?, origin)?;
-        let mon: MonitorTable = config::decode(sub(&whole, "monitor", origin)?, origin)?;
+        let checks: EndatChecks = config::decode_in(&whole, "checks", origin)?;
+        let encoder: EncoderSettings = config::decode_in(&whole, "encoder", origin)?;
+        let master: MasterSettings = config::decode_in(&whole, "master", origin)?;
+        let cable: CableConfig = config::decode_in(&whole, "cable", origin)?;
+        let mon: MonitorTable = config::decode_in(&whole, "monitor", origin)?;
         let pos_bits = mon.pos_bits.unwrap_or(encoder.singleturn_bits + encoder.multiturn_bits);
         if !(1..=48).contains(&pos_bits) {
             return Err(Error::field(origin, "monitor.pos_bits", format!("{pos_bits} bits"), "give 1 to 48 position bits (default: encoder.singleturn_bits + multiturn_bits)"));
@@ -198,8 +198,10 @@ impl EndatMonitor {
         let on_off = limit(origin, "monitor.on_off_percent", mon.on_off_percent.unwrap_or(10.0), "give the on-off ratio error in percent (seed: 10)")?;
         let t_st_us = mon.t_st_us.map(|v| limit(origin, "monitor.t_st_us", v, "give the least first low phase in µs (seed: 2 from 2 to 8 MHz)")).transpose()?;
         let short = encoder.recovery_short;
-        let t_m22 = limit(origin, "monitor.t_m_us", mon.t_m_us.or(encoder.t_m_us).unwrap_or(if short { 2.0 } else { 15.0 }), "give the encoder's recovery time I of type 2.2 frames in µs (seed: 10 to 30, or 1.25 to 3.75)")?;
-        let t_m21 = limit(origin, "monitor.t_m21_us", mon.t_m21_us.unwrap_or(encoder.t_m21_us), "give the encoder's recovery time I of type 2.1 frames in µs (seed: 10 to 30)")?;
+        let (t_m22, t_m22_field) = first_given([("monitor.t_m_us", mon.t_m_us), ("encoder.t_m_us", encoder.t_m_us)], if short { 2.0 } else { 15.0 });
+        let t_m22 = limit(origin, t_m22_field, t_m22, "give the encoder's recovery time I of type 2.2 frames in µs (seed: 10 to 30, or 1.25 to 3.75)")?;
+        let (t_m21, t_m21_field) = first_given([("monitor.t_m21_us", mon.t_m21_us), ("encoder.t_m21_us", Some(encoder.t_m21_us))], 0.0);
+        let t_m21 = limit(origin, t_m21_field, t_m21, "give the encoder's recovery time I of type 2.1 frames in µs (seed: 10 to 30)")?;
         let t_r = limit(origin, "monitor.t_r_us", mon.t_r_us.unwrap_or(0.5), "give recovery time II in µs (seed: at least 0.5)")?;
         let round_trip = mon.round_trip_ns.unwrap_or(2.0 * cable.length_m * cable.ns_per_m + encoder.output_delay_ns);
         let round_trip = limit(origin, "monitor.round_trip_ns", round_trip, "give the round trip (cable both ways and the encoder's output delay) in ns")?;

@@ -146,7 +146,7 @@ impl EslMonitor {
         let mut settings = tables.emulator.clone();
         settings.max_line_clock_khz = settings.max_line_clock_khz.or(Some(baud / 1e3));
         config::emulator_clock(f_mon_hz, &settings, baud / 1e3, "the ESL monitor (its line clock is the bit rate)", origin)?;
-        let mon: MonitorTable = config::decode(sub(&whole, "monitor", origin)?, origin)?;
+        let mon: MonitorTable = config::decode_in(&whole, "monitor", origin)?;
         let host = sub(&whole, "host", origin)?;
         let checks = sub(&whole, "checks", origin)?;
         let tolerance = mon.bit_tolerance_percent.or(field(&checks, "bit_tolerance_percent", origin, "checks.bit_tolerance_percent")?).unwrap_or(3.0);

@@ -102,9 +102,19 @@ pub fn field<T: serde::de::DeserializeOwned>(table: &toml::Table, key: &str, ori
         None => Ok(None),
         Some(v) => v.clone().try_into().map(Some).map_err(|e: toml::de::Error| Error::Toml {
             origin: origin.to_string(),
-            message: format!("field `{path}`: {}", e.to_string().split_whitespace().collect::<Vec<_>>().join(" ")),
+            line: None,
+            message: format!("{} in `{path}`", e.to_string().split_whitespace().collect::<Vec<_>>().join(" ")),
         }),
     }
+}
+
+/// The first of `sources` that is given, in order of precedence, with the
+/// field it came from (`("monitor.t_m_us", ..)`, `("encoder.monoflop_us",
+/// ..)`), else `default` under the first field: an error then names the
+/// field the user wrote, not the monitor's own when it was not set.
+pub fn first_given<T, const N: usize>(sources: [(&'static str, Option<T>); N], default: T) -> (T, &'static str) {
+    let first = sources[0].0;
+    sources.into_iter().find_map(|(field, v)| v.map(|v| (v, field))).unwrap_or((default, first))
 }
 
 /// A limit given in a monitor table must be a finite non-negative number.
@@ -122,6 +132,7 @@ pub fn limit(origin: &str, path: &str, v: f64, fix: &str) -> Result<f64> {
 pub fn proto_table(text: &str, origin: &str, proto: &str) -> Result<toml::Table> {
     let root: toml::Table = text.parse().map_err(|e: toml::de::Error| Error::Toml {
         origin: origin.to_string(),
+        line: None,
         message: e.to_string().split_whitespace().collect::<Vec<_>>().join(" "),
     })?;
     Ok(match root.get(proto) {
@@ -130,11 +141,4 @@ pub fn proto_table(text: &str, origin: &str, proto: &str) -> Result<toml::Table>
     })
 }
 
-/// A sub-table (`monitor`, `master`, `checks`, `encoder`), empty when absent.
-pub fn sub(table: &toml::Table, key: &str, origin: &str) -> Result<toml::Table> {
-    match table.get(key) {
-        None => Ok(toml::Table::new()),
-        Some(toml::Value::Table(t)) => Ok(t.clone()),
-        Some(_) => Err(Error::field(origin, key, "is not a table", format!("write [{key}] as a table header"))),
-    }
-}
+pub use crate::config::sub;

@@ -37,7 +37,7 @@ use model::modbus::decode::{self, Options};
 use model::modbus::{frames, BenchConfig};
 
 use super::uart::{self, Limits, Line, Rules, Watch};
-use super::{field, limit, listens_only, proto_table, sub, Base};
+use super::{field, first_given, limit, listens_only, proto_table, sub, Base};
 use crate::config;
 use crate::config::Error;
 use crate::{Emulator, Pins, Result};
@@ -92,9 +92,10 @@ impl ModbusMonitor {
     pub fn from_toml(text: &str, origin: &str, f_mon_hz: u64) -> Result<Self> {
         let (_, _, cfg): (_, EmulatorOwn, BenchConfig) = crate::sar58k24::uart_bench(text, origin, f_mon_hz, "modbus", "the Modbus monitor", 19_200.0)?;
         let whole = proto_table(text, origin, "modbus")?;
-        let mon: MonitorTable = config::decode(sub(&whole, "monitor", origin)?, origin)?;
+        let mon: MonitorTable = config::decode_in(&whole, "monitor", origin)?;
         let master = sub(&whole, "master", origin)?;
-        let timeout = limit(origin, "monitor.timeout_us", mon.timeout_us.or(field(&master, "timeout_us", origin, "master.timeout_us")?).unwrap_or(5000.0), "give the master's answer timeout in µs")?;
+        let (timeout, timeout_field) = first_given([("monitor.timeout_us", mon.timeout_us), ("master.timeout_us", field(&master, "timeout_us", origin, "master.timeout_us")?)], 5000.0);
+        let timeout = limit(origin, timeout_field, timeout, "give the master's answer timeout in µs")?;
         let tol = limit(origin, "monitor.baud_tolerance_percent", mon.baud_tolerance_percent.unwrap_or(2.0), "give the baud rate tolerance of the master's characters in percent (2)")?;
         let release = limit(origin, "monitor.release_bits", mon.release_bits.unwrap_or(1.0), "give the longest time from the request's last stop bit to DE off, in bit times (1)")?;
         let fb = cfg.parity.frame_bits();

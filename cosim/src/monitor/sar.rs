@@ -42,7 +42,7 @@ use model::sar58k24::{BenchConfig, Mode};
 
 use super::modbus::EmulatorOwn;
 use super::uart::{self, Limits, Line, Rules, Watch};
-use super::{field, limit, listens_only, proto_table, sub, Base};
+use super::{field, first_given, limit, listens_only, proto_table, sub, Base};
 use crate::config::{self, Error};
 use crate::{Emulator, Pins, Result};
 
@@ -107,16 +107,20 @@ impl SarMonitor {
     pub fn from_toml(text: &str, origin: &str, f_mon_hz: u64) -> Result<Self> {
         let (_, _, cfg): (_, EmulatorOwn, BenchConfig) = crate::sar58k24::uart_bench(text, origin, f_mon_hz, "sar", "the SAR58K24 monitor", 115_200.0)?;
         let whole = proto_table(text, origin, "sar")?;
-        let mon: MonitorTable = config::decode(sub(&whole, "monitor", origin)?, origin)?;
+        let mon: MonitorTable = config::decode_in(&whole, "monitor", origin)?;
         let host = sub(&whole, "host", origin)?;
         let enc = cfg.encoders.first().cloned().unwrap_or_default();
-        let timeout = limit(origin, "monitor.timeout_us", mon.timeout_us.or(field(&host, "timeout_us", origin, "host.timeout_us")?).unwrap_or(5000.0), "give the host's answer timeout in µs")?;
+        let (timeout, timeout_field) = first_given([("monitor.timeout_us", mon.timeout_us), ("host.timeout_us", field(&host, "timeout_us", origin, "host.timeout_us")?)], 5000.0);
+        let timeout = limit(origin, timeout_field, timeout, "give the host's answer timeout in µs")?;
         let gap_bits: f64 = field(&host, "gap_bits", origin, "host.gap_bits")?.unwrap_or(15.0);
         let tol = limit(origin, "monitor.baud_tolerance_percent", mon.baud_tolerance_percent.unwrap_or(2.0), "give the baud rate tolerance of the host's characters in percent (2)")?;
         let release = limit(origin, "monitor.release_bits", mon.release_bits.unwrap_or(1.0), "give the longest time from the command's last stop bit to DE off, in bit times (1)")?;
-        let t2 = limit(origin, "monitor.t2_us", mon.t2_us.unwrap_or(enc.trigger_min_low_us), "give the shortest trigger pulse in µs (seed 001: T2 >= 10)")?;
-        let clr = limit(origin, "monitor.clr_min_low_us", mon.clr_min_low_us.unwrap_or(enc.clr_min_low_us), "give the shortest CLR pulse in µs (10)")?;
-        let cmd_gap = limit(origin, "monitor.command_gap_bits", mon.command_gap_bits.unwrap_or(enc.command_gap_bits), "give the longest silence between two characters of a command in bit times (15)")?;
+        let (t2, t2_field) = first_given([("monitor.t2_us", mon.t2_us), ("encoders[0].trigger_min_low_us", Some(enc.trigger_min_low_us))], 0.0);
+        let t2 = limit(origin, t2_field, t2, "give the shortest trigger pulse in µs (seed 001: T2 >= 10)")?;
+        let (clr, clr_field) = first_given([("monitor.clr_min_low_us", mon.clr_min_low_us), ("encoders[0].clr_min_low_us", Some(enc.clr_min_low_us))], 0.0);
+        let clr = limit(origin, clr_field, clr, "give the shortest CLR pulse in µs (10)")?;
+        let (cmd_gap, cmd_gap_field) = first_given([("monitor.command_gap_bits", mon.command_gap_bits), ("encoders[0].command_gap_bits", Some(enc.command_gap_bits))], 0.0);
+        let cmd_gap = limit(origin, cmd_gap_field, cmd_gap, "give the longest silence between two characters of a command in bit times (15)")?;
         let fb = cfg.parity.frame_bits() as f64;
         let bit_ps = 1e12 / cfg.baud;
         let limits = Limits { bit_ps, parity: cfg.parity, tolerance: tol / 100.0, max_gap_ps: cmd_gap * bit_ps, min_silence_ps: 0.0, release_ps: release * bit_ps, timeout_ps: timeout * 1e6 };

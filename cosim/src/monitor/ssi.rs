@@ -31,7 +31,7 @@ use model::ssi::decode::{self, Layout};
 use model::ssi::{Code, EncoderSettings};
 use model::wire::Signal;
 
-use super::{field, limit, listens_only, proto_table, sub, us, Base};
+use super::{field, first_given, limit, listens_only, proto_table, sub, us, Base};
 use crate::config::{self, Error};
 use crate::ssi::{SsiChecks, MAX_CLOCK_KHZ};
 use crate::{Emulator, Pins, Result};
@@ -83,21 +83,22 @@ impl SsiMonitor {
     pub fn from_toml(text: &str, origin: &str, f_mon_hz: u64) -> Result<Self> {
         let tables = config::tables(text, origin, "ssi")?;
         let whole = proto_table(text, origin, "ssi")?;
-        let checks: SsiChecks = config::decode(sub(&whole, "checks", origin)?, origin)?;
+        let checks: SsiChecks = config::decode_in(&whole, "checks", origin)?;
         let mut settings = tables.emulator.clone();
         settings.max_line_clock_khz = settings.max_line_clock_khz.or(Some(checks.max_clock_khz.max(MAX_CLOCK_KHZ)));
         config::emulator_clock(f_mon_hz, &settings, MAX_CLOCK_KHZ, "the SSI monitor", origin)?;
-        let encoder: EncoderSettings = config::decode(sub(&whole, "encoder", origin)?, origin)?;
+        let encoder: EncoderSettings = config::decode_in(&whole, "encoder", origin)?;
         let master = sub(&whole, "master", origin)?;
-        let mon: MonitorTable = config::decode(sub(&whole, "monitor", origin)?, origin)?;
-        let bits = mon.bits.or(field(&master, "bits", origin, "master.bits")?).unwrap_or(encoder.bits);
+        let mon: MonitorTable = config::decode_in(&whole, "monitor", origin)?;
+        let (bits, bits_field) = first_given([("monitor.bits", mon.bits), ("master.bits", field(&master, "bits", origin, "master.bits")?), ("encoder.bits", Some(encoder.bits))], 0);
         if !(1..=64).contains(&bits) {
-            return Err(Error::field(origin, "monitor.bits", format!("{bits} bits"), "give 1 to 64 bits"));
+            return Err(Error::field(origin, bits_field, format!("{bits} bits"), "give 1 to 64 bits"));
         }
         let code = mon.code.or(field(&master, "code", origin, "master.code")?).unwrap_or(encoder.code);
         let double_read = mon.double_read.or(field(&master, "double_read", origin, "master.double_read")?).unwrap_or(false);
         let wire_check = mon.wire_check.or(field(&master, "wire_check", origin, "master.wire_check")?).unwrap_or(false);
-        let t_m_us = limit(origin, "monitor.t_m_us", mon.t_m_us.unwrap_or(encoder.monoflop_us), "give the encoder's monoflop time in µs (seed: 500)")?;
+        let (t_m_us, t_m_field) = first_given([("monitor.t_m_us", mon.t_m_us), ("encoder.monoflop_us", Some(encoder.monoflop_us))], 0.0);
+        let t_m_us = limit(origin, t_m_field, t_m_us, "give the encoder's monoflop time in µs (seed: 500)")?;
         if !(checks.min_clock_khz > 0.0 && checks.min_clock_khz <= checks.max_clock_khz) {
             return Err(Error::field(origin, "checks.min_clock_khz", format!("{} to {} kHz", checks.min_clock_khz, checks.max_clock_khz), "give 0 < min_clock_khz <= max_clock_khz (seed: 100 and 250)"));
         }

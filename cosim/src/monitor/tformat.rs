@@ -43,7 +43,7 @@ use model::tformat::frames::{self, DataId};
 use model::wire::uart_bytes;
 
 use super::half_duplex::{ExchangeDecoder, Exchanges, Limits, Request, Rules, Side, Window};
-use super::{field, limit, listens_only, proto_table, sub, Base};
+use super::{field, first_given, limit, listens_only, proto_table, sub, Base};
 use crate::config::{self, Error};
 use crate::{Emulator, Pins, Result};
 
@@ -121,10 +121,11 @@ impl TformatMonitor {
         let mut settings = tables.emulator.clone();
         settings.max_line_clock_khz = settings.max_line_clock_khz.or(Some(baud / 1e3));
         config::emulator_clock(f_mon_hz, &settings, baud / 1e3, "the T-format monitor (its line clock is the bit rate)", origin)?;
-        let mon: MonitorTable = config::decode(sub(&whole, "monitor", origin)?, origin)?;
+        let mon: MonitorTable = config::decode_in(&whole, "monitor", origin)?;
         let host = sub(&whole, "host", origin)?;
         let encoder = sub(&whole, "encoder", origin)?;
-        let timeout = limit(origin, "monitor.timeout_us", mon.timeout_us.or(field(&host, "timeout_us", origin, "host.timeout_us")?).unwrap_or(10.0), "give the host's answer timeout in µs")?;
+        let (timeout, timeout_field) = first_given([("monitor.timeout_us", mon.timeout_us), ("host.timeout_us", field(&host, "timeout_us", origin, "host.timeout_us")?)], 10.0);
+        let timeout = limit(origin, timeout_field, timeout, "give the host's answer timeout in µs")?;
         let jitter = limit(origin, "monitor.jitter_ns", mon.jitter_ns.unwrap_or(100.0), "give the jitter allowed on a request's edges in ns (seed 002: 100)")?;
         let gap = limit(origin, "monitor.max_gap_bits", mon.max_gap_bits.unwrap_or(0.5), "give the longest idle line between two fields of a request, in bits")?;
         let release = limit(origin, "monitor.release_us", mon.release_us.unwrap_or(1.5), "give the longest time from the request's last delimiter to DE off, in µs")?;

@@ -7,8 +7,8 @@
 //! From each closed-loop configuration of `hdl/tb_cosim/*/configs/`, for the
 //! core's emulator and its monitor:
 //! - every number, one at a time, set to each of a list of awkward values
-//!   (the list of `tests/bad_values.rs`); an error names the file and a
-//!   field, an accepted one is stepped on random pins (a NaN may be taken
+//!   (the list of `tests/bad_values.rs`); an error names the file, the
+//!   line and the field, an accepted one is stepped on random pins (a NaN may be taken
 //!   here: the configuration is a whole scenario, and each of emulator and
 //!   monitor reads only its own part of it);
 //! - awkward emulator clocks;
@@ -82,8 +82,9 @@ struct Tally {
 }
 
 impl Tally {
-    /// Opens `kind` on `text` at `f_emu_hz`; an error must name `origin`
-    /// and a field (or the clock), an accepted emulator is stepped a while.
+    /// Opens `kind` on `text` at `f_emu_hz`; an error must name `origin`,
+    /// the line and the field (or the clock), an accepted emulator is
+    /// stepped a while.
     fn try_open(&mut self, kind: &str, text: &str, origin: &str, f_emu_hz: u64, nan: bool, rng: &mut Rng) {
         self.tried += 1;
         let run = caught(|| match open(kind, text, origin, f_emu_hz) {
@@ -97,8 +98,12 @@ impl Tally {
             Err(p) => self.panics.push(format!("{kind} {origin} f_emu {f_emu_hz} Hz: {p}")),
             Ok(Err(message)) => {
                 self.refused += 1;
-                // A field is named in backticks (`field `x``, `in `x``); the clock by name.
-                if !message.starts_with(origin) || !(message.contains('`') || message.contains("clock")) {
+                // The file, then the line (`<origin>:<line>:`, or the TOML
+                // parser's `at line <n>`) and the field in backticks; an
+                // emulator clock, which no file holds, by name.
+                let clock = message.contains("emulator clock");
+                let line = message.strip_prefix(&format!("{origin}:")).is_some_and(|rest| rest.starts_with(|c: char| c.is_ascii_digit())) || message.contains(" line ");
+                if !message.starts_with(origin) || !(clock || line && message.contains('`')) {
                     self.unnamed.push(format!("{kind}: {message}"));
                 }
             }
@@ -179,6 +184,19 @@ fn emulators_and_monitors_answer_any_configuration_clock_and_pins_without_a_pani
     }
     println!("{} opens tried: {} refused, {} accepted and stepped on random pins ({} with a NaN in a field)", tally.tried, tally.refused, tally.stepped, tally.took_nan.len());
     assert!(tally.panics.is_empty(), "{} panics:\n{}", tally.panics.len(), tally.panics.join("\n"));
-    assert!(tally.unnamed.is_empty(), "{} errors without the file and a field:\n{}", tally.unnamed.len(), tally.unnamed.join("\n"));
+    assert!(tally.unnamed.is_empty(), "{} errors without the file, the line and the field:\n{}", tally.unnamed.len(), tally.unnamed.join("\n"));
     assert!(tally.refused > tally.tried / 4 && tally.stepped > tally.tried / 10, "the sweep reaches both sides");
+}
+
+/// An emulator's or a monitor's error places its field on its line, as
+/// `tbgen`'s do: a value the model refuses, and one of the wrong type.
+#[test]
+fn a_bad_field_is_named_on_its_line_by_emulator_and_monitor() {
+    let text = "name = \"t\"\n[ssi]\nf_sys_mhz = 4\n\n[ssi.encoder]\ncode = \"gray\"\nbits = 70\n";
+    for kind in ["ssi", "ssi_monitor"] {
+        let e = open(kind, text, "t.toml", 4_000_000).err().expect("70 bits are refused").to_string();
+        assert!(e.starts_with("t.toml:7: ") && e.contains("bits"), "{kind}: {e}");
+        let e = open(kind, &text.replace("70", "-1"), "t.toml", 4_000_000).err().expect("-1 bits are refused").to_string();
+        assert!(e.starts_with("t.toml:7: ") && e.contains("encoder.bits`"), "{kind}: {e}");
+    }
 }
