@@ -71,6 +71,40 @@ header_core=$(header core)
 [ -n "$records" ] && [ -n "$f_sys_hz" ] || { echo "sim.sh: $vectors has no tbgen header (records:, f_sys_hz:)" >&2; exit 2; }
 [ "$header_core" = "$core" ] || { echo "sim.sh: $vectors is for core '$header_core', not '$core'" >&2; exit 2; }
 
+# The header sizes the simulator's memory and clock and sets the core's
+# parameters: a damaged one is refused here, naming its line and the fix,
+# before a simulator sizes an array by it (Icarus aborts on a huge one) or
+# bash divides by it.
+bad_header() {
+    local line
+    line=$(grep -n "^// $1: " "$vectors" | head -n 1 | cut -d: -f1)
+    echo "sim.sh: $vectors:${line:-1}: $1: $2; $3" >&2
+    exit 2
+}
+fix_regen="regenerate the file with tbgen gen (or make vectors), which writes the header"
+[[ "$f_sys_hz" =~ ^[1-9][0-9]{0,9}$ ]] && [ "$f_sys_hz" -le 1000000000 ] \
+    || bad_header f_sys_hz "'$f_sys_hz' is not a clock from 1 Hz to 1 GHz" "$fix_regen"
+words_hdr=$(header words_per_record)
+[[ "$words_hdr" =~ ^[1-9][0-9]{0,3}$ ]] \
+    || bad_header words_per_record "'$words_hdr' is not a word count" "$fix_regen"
+# One pass over the records (26 MB for every committed file: a fraction of
+# a second): how many, and the first whose word count is not the header's
+# (a file cut inside its last record reads as zeros in Verilator, which
+# would compare nothing there).
+read -r held bad_line bad_words < <(awk -v w="$words_hdr" '
+    /^[0-9a-fA-F]/ { n++; if (NF != w && !bad) { bad = NR; nf = NF } }
+    END { print n + 0, bad + 0, nf + 0 }' "$vectors")
+[[ "$records" =~ ^[1-9][0-9]{0,9}$ ]] && [ "$records" -le "$held" ] \
+    || bad_header records "'$records', but the file holds $held records" "$fix_regen"
+if [ "$bad_line" -gt 0 ]; then
+    echo "sim.sh: $vectors:$bad_line: a record of $bad_words words, where words_per_record is $words_hdr; the file is cut or damaged: $fix_regen" >&2
+    exit 2
+fi
+for p in $params; do
+    [[ "$p" =~ ^[A-Z][A-Z0-9_]*=[0-9]{1,19}$ ]] \
+        || bad_header params "'$p' is not NAME=number" "give each of the core's parameters as NAME=decimal (tbgen gen writes them)"
+done
+
 # Half a system-clock period in femtoseconds (the testbench timescale is 1 fs).
 half_fs=$(( 500000000000000 / f_sys_hz ))
 # The vector memory, in 64-bit words. Verilator: 4 Mi words, doubled until
@@ -78,7 +112,7 @@ half_fs=$(( 500000000000000 / f_sys_hz ))
 # benches still fit. Icarus builds in a second but allocates the whole
 # memory at every start (4 Mi words: 170 MB, about 1 s of a short replay on
 # a loaded machine): the smallest power of two from 4 Ki words that fits.
-words=$(header words_per_record)
+words=$words_hdr
 max_words=$(( 1 << 22 ))
 [ "$sim" = icarus ] && max_words=$(( 1 << 12 ))
 while [ $(( records * words )) -gt "$max_words" ]; do max_words=$(( max_words * 2 )); done

@@ -145,17 +145,66 @@ fn an_output_change_the_file_does_not_expect_fails_at_its_cycle_in_both_simulato
     }
 }
 
+/// A file cut short or out of order is refused: five records gone, by
+/// sim.sh against the header's count; the last record's last words gone
+/// (Verilator would read them as 0, a mask comparing nothing), by sim.sh
+/// with the record's line; a record repeated in place of the last (the
+/// count still right), by the player, whose cycle stamps must increase.
 #[test]
 fn a_vector_file_shorter_than_its_record_count_is_refused() {
     let dir = tempfile::tempdir().unwrap();
     let text = golden();
-    let cut: String = text.lines().take(text.lines().count() - 5).map(|l| format!("{l}\n")).collect();
-    let path = dir.path().join("short.hex");
-    fs::write(&path, cut).unwrap();
-    for sim in ["icarus", "verilator"] {
-        let (passed, output) = simulate(CORE, sim, &path);
-        assert!(!passed, "{sim} accepted a truncated file:\n{output}");
-        assert!(output.contains("fewer than"), "{sim}: {output}");
+    let lines: Vec<&str> = text.lines().collect();
+    let joined = |ls: &[&str]| ls.iter().map(|l| format!("{l}\n")).collect::<String>();
+    let records_cut = joined(&lines[..lines.len() - 5]);
+    let (last, rest) = lines.split_last().unwrap();
+    let words_cut = joined(rest) + &last.split(' ').take(10).collect::<Vec<_>>().join(" ") + "\n";
+    let first_record = lines.iter().position(|l| !l.starts_with("//")).unwrap();
+    let repeated = joined(&[&lines[..first_record + 3], &lines[first_record + 2..lines.len() - 1]].concat());
+    let cases = [
+        ("records_cut", records_cut, "but the file holds".to_string()),
+        ("words_cut", words_cut, format!("words_cut.hex:{}: a record of 10 words", lines.len())),
+        ("repeated", repeated, "do not increase at record 3".to_string()),
+    ];
+    for (name, cut, says) in cases {
+        let path = dir.path().join(format!("{name}.hex"));
+        fs::write(&path, cut).unwrap();
+        for sim in ["icarus", "verilator"] {
+            let (passed, output) = simulate(CORE, sim, &path);
+            assert!(!passed, "{sim} accepted a truncated file ({name}):\n{output}");
+            assert!(output.contains(&says), "{sim} ({name}): no '{says}':\n{output}");
+        }
+    }
+}
+
+/// Found by damaging a vector file's header: a huge `records:` made Icarus
+/// abort on an array it could not size, a zero `f_sys_hz:` made sim.sh
+/// divide by zero, and a parameter `BITS=x` reached the simulator. A damaged
+/// header is refused before any simulator starts, naming the file, the
+/// line and the fix.
+#[test]
+fn a_damaged_vector_header_is_refused_with_its_line_before_a_simulator_starts() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = golden();
+    let header = |key: &str| text.lines().position(|l| l.starts_with(&format!("// {key}: "))).unwrap() + 1;
+    let with = |key: &str, value: &str| {
+        text.lines().map(|l| if l.starts_with(&format!("// {key}: ")) { format!("// {key}: {value}\n") } else { format!("{l}\n") }).collect::<String>()
+    };
+    let cases = [
+        ("records", with("records", "4000000000"), "the file holds"),
+        ("f_sys_hz", with("f_sys_hz", "0"), "is not a clock"),
+        ("words_per_record", with("words_per_record", "x"), "is not a word count"),
+        ("params", text.replace("BITS=12 ", "BITS=x "), "is not NAME=number"),
+    ];
+    for (key, damaged, says) in cases {
+        let path = dir.path().join(format!("{key}.hex"));
+        fs::write(&path, damaged).unwrap();
+        for sim in ["icarus", "verilator"] {
+            let (passed, output) = simulate(CORE, sim, &path);
+            assert!(!passed, "{sim} ran a file with a damaged `{key}:`:\n{output}");
+            let want = format!("{}:{}: {key}: ", path.display(), header(key));
+            assert!(output.contains(&want) && output.contains(says), "{sim}: no '{want}...{says}':\n{output}");
+        }
     }
 }
 
