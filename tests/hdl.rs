@@ -167,12 +167,20 @@ fn a_vector_file_shorter_than_its_record_count_is_refused() {
         ("repeated", repeated, "do not increase at record 3".to_string()),
     ];
     for (name, cut, says) in cases {
-        let path = dir.path().join(format!("{name}.hex"));
-        fs::write(&path, cut).unwrap();
-        for sim in ["icarus", "verilator"] {
-            let (passed, output) = simulate(CORE, sim, &path);
-            assert!(!passed, "{sim} accepted a truncated file ({name}):\n{output}");
-            assert!(output.contains(&says), "{sim} ({name}): no '{says}':\n{output}");
+        refused_in_both_simulators(dir.path(), name, &cut, &[&says]);
+    }
+}
+
+/// Writes `text` as `<name>.hex` in `dir` and replays it in Icarus and in
+/// Verilator: each must fail with every one of `says` in its output.
+fn refused_in_both_simulators(dir: &Path, name: &str, text: &str, says: &[&str]) {
+    let path = dir.join(format!("{name}.hex"));
+    fs::write(&path, text).unwrap();
+    for sim in ["icarus", "verilator"] {
+        let (passed, output) = simulate(CORE, sim, &path);
+        assert!(!passed, "{sim} accepted {name}.hex:\n{output}");
+        for s in says {
+            assert!(output.contains(s), "{sim} ({name}.hex): no '{s}':\n{output}");
         }
     }
 }
@@ -197,14 +205,8 @@ fn a_damaged_vector_header_is_refused_with_its_line_before_a_simulator_starts() 
         ("params", text.replace("BITS=12 ", "BITS=x "), "is not NAME=number"),
     ];
     for (key, damaged, says) in cases {
-        let path = dir.path().join(format!("{key}.hex"));
-        fs::write(&path, damaged).unwrap();
-        for sim in ["icarus", "verilator"] {
-            let (passed, output) = simulate(CORE, sim, &path);
-            assert!(!passed, "{sim} ran a file with a damaged `{key}:`:\n{output}");
-            let want = format!("{}:{}: {key}: ", path.display(), header(key));
-            assert!(output.contains(&want) && output.contains(says), "{sim}: no '{want}...{says}':\n{output}");
-        }
+        let want = format!("{}:{}: {key}: ", dir.path().join(format!("{key}.hex")).display(), header(key));
+        refused_in_both_simulators(dir.path(), key, &damaged, &[&want, says]);
     }
 }
 
