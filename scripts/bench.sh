@@ -25,7 +25,7 @@
 #               loading the vector file included, build not)
 #   icarus c/s  the same for Icarus (vvp)
 #   mod/veril   model c/s / Verilator c/s (mod/icar, ver/icar likewise);
-#               issue 15 aims at mod/veril >= 50 on every row
+#               the aim is mod/veril >= 50 on every row
 #   VCD MB/s    the VCD writer alone: MB (10^6 bytes) of the scenario's VCD
 #               over the time to write it from samples held in memory, no
 #               model running (the file is byte for byte `tbgen gen`'s)
@@ -41,7 +41,7 @@
 #   I trans/s, I c/s   the same in Icarus
 #   cl/replay   Verilator replay c/s of the core's bench row / closed-loop
 #               c/s: how many times longer a closed-loop cycle takes than a
-#               vector-replay cycle of the same core (issue 10 aims <= 2;
+#               vector-replay cycle of the same core (the aim is <= 2;
 #               below 1 the closed loop is the faster; `-` when part 1 did
 #               not run)
 #

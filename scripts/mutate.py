@@ -636,7 +636,7 @@ def main():
     print(f"mutate: {args.core}: score {score:.1f} % ({len(killed)} killed of {scored}; "
           f"{len(survived)} survived, {len(survived) - unaccepted} of them accepted; {len(stillborn)} stillborn)")
     if score < args.min_score:
-        print(f"mutate: {args.core}: FAIL: the score is below --min-score {args.min_score:g} % (issue 16's target)")
+        print(f"mutate: {args.core}: FAIL: the score is below --min-score {args.min_score:g} %")
     return 1 if unaccepted or score < args.min_score else 0
 
 

@@ -3,6 +3,7 @@
 # and Verilator and print one line per run, then "N passed, M failed".
 #
 #   scripts/regress.sh [--core CORE] [--sim icarus|verilator] [--scenario S] [--waves] [--jobs N]
+#                      [--icarus-budget CYCLES]
 #
 # --scenario S is one of:
 #   - a scenario name: the committed vectors/<core>/S.hex;
@@ -17,11 +18,17 @@
 # share a simulator build wait for it on sim.sh's lock, so each build is
 # still made once. Runs start longest first; lines come in the order runs
 # finish.
+# --icarus-budget CYCLES replays every file in Verilator but, in Icarus, a
+# representative set per core (make test): the cheapest file of each of the
+# core's parameter sets, cheapest set first, while the core's Icarus cycles
+# stay within CYCLES (at least one file per core). Every parameter set's
+# generate branches are thus read by a second simulator as far as the budget
+# allows, and every file by Verilator.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 supported_sims=(icarus verilator)
-cores=() sims=("${supported_sims[@]}") scenario="" waves=0 jobs=$(nproc 2>/dev/null || echo 2)
-usage() { echo "usage: $0 [--core CORE] [--sim icarus|verilator] [--scenario NAME|FILE.toml|FILE.hex] [--waves] [--jobs N]" >&2; exit 2; }
+cores=() sims=("${supported_sims[@]}") scenario="" waves=0 jobs=$(nproc 2>/dev/null || echo 2) icarus_budget=""
+usage() { echo "usage: $0 [--core CORE] [--sim icarus|verilator] [--scenario NAME|FILE.toml|FILE.hex] [--waves] [--jobs N] [--icarus-budget CYCLES]" >&2; exit 2; }
 die() { echo "regress: $*" >&2; exit 2; }
 while [ $# -gt 0 ]; do
     case "$1" in
@@ -30,10 +37,13 @@ while [ $# -gt 0 ]; do
     --scenario) [ $# -ge 2 ] || usage; scenario=$2; shift 2 ;;
     --waves) waves=1; shift ;;
     --jobs) [ $# -ge 2 ] || usage; jobs=$2; shift 2 ;;
+    --icarus-budget) [ $# -ge 2 ] || usage; icarus_budget=$2; shift 2 ;;
     *) usage ;;
     esac
 done
 [[ "$jobs" =~ ^[1-9][0-9]*$ ]] || die "--jobs takes a whole number of at least 1, not '$jobs'"
+[ -z "$icarus_budget" ] || [[ "$icarus_budget" =~ ^[1-9][0-9]*$ ]] \
+    || die "--icarus-budget takes a whole number of cycles of at least 1, not '$icarus_budget'"
 
 # The cores: every core with a testbench (hdl/tb/<core>/tb_<core>.v).
 known_cores=()
@@ -149,7 +159,7 @@ replay() {
 # The files to replay, with their cycle counts and build groups (the files
 # of a core that share parameters and clock share one simulator build).
 entries=()
-declare -A group_cycles=() group_files=()
+declare -A group_cycles=() group_files=() icarus_files=()
 for core in "${cores[@]}"; do
     if [ -n "$file" ]; then
         files=("$file")
@@ -168,6 +178,20 @@ for core in "${cores[@]}"; do
         group_files[$group]=$(( ${group_files[$group]:-0} + 1 ))
         entries+=("$cycles $core $group $f")
     done
+    # The core's representative Icarus set (--icarus-budget): the cheapest
+    # file of each parameter set, cheapest set first, within the budget.
+    if [ -n "$icarus_budget" ]; then
+        spent=0
+        while read -r _ cycles f; do
+            [ -n "$f" ] || continue
+            if [ "$spent" -gt 0 ] && [ $((spent + cycles)) -gt "$icarus_budget" ]; then break; fi
+            icarus_files[$f]=1
+            spent=$((spent + cycles))
+        done < <(for f in "${files[@]}"; do
+                     printf '%s %s %s\n' "$(sed -n 's#^// params: ##p' "$f" | head -n 1 | tr ' ' '_')" \
+                         "$(sed -n 's#^// cycles: ##p' "$f" | head -n 1)" "$f"
+                 done | sort -k1,1 -k2,2n | awk '!seen[$1]++' | sort -n -k2,2)
+    fi
 done
 
 # How each Verilator build is optimised (scripts/verilator_make_flags.sh)
@@ -189,6 +213,9 @@ runs=()
 for e in "${entries[@]}"; do
     read -r cycles core group f <<< "$e"
     for sim in "${sims[@]}"; do
+        if [ "$sim" = icarus ] && [ -n "$icarus_budget" ] && [ -z "${icarus_files[$f]:-}" ]; then
+            continue
+        fi
         if [ "$sim" = icarus ]; then
             cost=$(( cycles * 25 ))
         elif [ "${group_cycles[$group]}" -lt "$o0_cycles" ]; then
@@ -222,5 +249,8 @@ cat "$results"/* | sort -rn -k2,2 \
     | awk 'NR <= 10 { printf "      %7.1f s  %-10s %-14s %s\n", $2, $3, $4, $5 }'
 cat "$results"/* \
     | awk '{ r[$3] += $1; b[$3] += $2 } END { for (s in r) printf "hdl: %s: replays %.1f s, builds and waits %.1f s (sums of wall times)\n", s, r[s], b[s] }' | sort
+if [ -n "$icarus_budget" ]; then
+    echo "hdl: icarus: ${#icarus_files[@]} of ${#entries[@]} files, the representative set of each core within $icarus_budget cycles (--icarus-budget); verilator: every file"
+fi
 echo "hdl: $passed passed, $failed failed"
 [ "$failed" -eq 0 ]

@@ -187,7 +187,7 @@ if [ $fail = 0 ]; then
         stage lint scripts/lint.sh || lane_fail=1
         # Coverage costs no second replay: the Verilator replays run on
         # the coverage-instrumented build and leave their counts behind.
-        stage hdl env COVERAGE=1 scripts/regress.sh || lane_fail=1
+        stage hdl env COVERAGE=1 scripts/regress.sh --icarus-budget 1000000 || lane_fail=1
         stage coverage scripts/coverage.sh --report-only || lane_fail=1
         shared_lane || lane_fail=1
         exit $lane_fail

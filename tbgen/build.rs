@@ -22,7 +22,11 @@ fn main() {
     dirs.sort();
     let mut out = String::from("&[\n");
     for dir in dirs {
-        let folder = dir.file_name().unwrap().to_str().expect("a UTF-8 folder name");
+        let folder = dir
+            .file_name()
+            .unwrap()
+            .to_str()
+            .expect("a UTF-8 folder name");
         println!("cargo:rerun-if-changed=../scenarios/{folder}");
         let mut files: Vec<_> = std::fs::read_dir(&dir)
             .expect("a readable scenarios/<table>/")
@@ -31,13 +35,23 @@ fn main() {
             .collect();
         files.sort();
         for file in files {
-            let name = file.file_name().unwrap().to_str().expect("a UTF-8 file name");
+            let name = file
+                .file_name()
+                .unwrap()
+                .to_str()
+                .expect("a UTF-8 file name");
             let rel = format!("{folder}/{name}");
-            writeln!(out, "    ({rel:?}, include_str!(concat!(env!(\"CARGO_MANIFEST_DIR\"), {:?}))),", format!("/../scenarios/{rel}")).unwrap();
+            writeln!(
+                out,
+                "    ({rel:?}, include_str!(concat!(env!(\"CARGO_MANIFEST_DIR\"), {:?}))),",
+                format!("/../scenarios/{rel}")
+            )
+            .unwrap();
         }
     }
     out.push(']');
-    let dest = Path::new(&std::env::var("OUT_DIR").expect("cargo sets OUT_DIR")).join("builtin_files.rs");
+    let dest =
+        Path::new(&std::env::var("OUT_DIR").expect("cargo sets OUT_DIR")).join("builtin_files.rs");
     std::fs::write(dest, out).expect("OUT_DIR is writable");
     model_sources(&manifest);
 }
@@ -57,16 +71,28 @@ fn model_sources(manifest: &str) {
                 println!("cargo:rerun-if-changed={}", path.display());
                 dirs.push(path);
             } else if path.extension().is_some_and(|x| x == "rs") {
-                files.push(path.strip_prefix(&src).unwrap().to_str().expect("a UTF-8 path").to_string());
+                files.push(
+                    path.strip_prefix(&src)
+                        .unwrap()
+                        .to_str()
+                        .expect("a UTF-8 path")
+                        .to_string(),
+                );
             }
         }
     }
     files.sort();
     let mut out = String::from("&[\n");
     for rel in files {
-        writeln!(out, "    ({rel:?}, include_str!(concat!(env!(\"CARGO_MANIFEST_DIR\"), {:?}))),", format!("/../model/src/{rel}")).unwrap();
+        writeln!(
+            out,
+            "    ({rel:?}, include_str!(concat!(env!(\"CARGO_MANIFEST_DIR\"), {:?}))),",
+            format!("/../model/src/{rel}")
+        )
+        .unwrap();
     }
     out.push(']');
-    let dest = Path::new(&std::env::var("OUT_DIR").expect("cargo sets OUT_DIR")).join("model_sources.rs");
+    let dest =
+        Path::new(&std::env::var("OUT_DIR").expect("cargo sets OUT_DIR")).join("model_sources.rs");
     std::fs::write(dest, out).expect("OUT_DIR is writable");
 }

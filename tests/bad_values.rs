@@ -71,7 +71,9 @@ fn try_value(tally: &mut Tally, scenario: &Scenario, doc: &Value, path: &[Key], 
         Ok(Err(message)) => {
             tally.refused += 1;
             // The file and a line, `<origin>:<line>:`, then the field.
-            let placed = message.strip_prefix(&format!("{origin}:")).is_some_and(|rest| rest.starts_with(|c: char| c.is_ascii_digit()));
+            let placed = message
+                .strip_prefix(&format!("{origin}:"))
+                .is_some_and(|rest| rest.starts_with(|c: char| c.is_ascii_digit()));
             if !placed || !message.contains("field") {
                 tally.unplaced.push(format!("{origin}: {message}"));
             }
@@ -92,7 +94,11 @@ fn every_number_in_a_scenario_is_accepted_or_refused_by_file_line_and_field() {
     let mut tally = Tally::default();
     let mut left_out = Vec::new();
     for scenario in builtin::all().expect("built-ins parse") {
-        let text = builtin::FILES.iter().find(|(file, _)| scenario.origin == format!("scenarios/{file}")).expect("a built-in's text").1;
+        let text = builtin::FILES
+            .iter()
+            .find(|(file, _)| scenario.origin == format!("scenarios/{file}"))
+            .expect("a built-in's text")
+            .1;
         // toml's Value holds i64: a scenario with a u64 above it (a 64-bit
         // position) is left out; its fields are in other scenarios too.
         let Ok(doc) = toml::from_str::<Value>(text) else {
@@ -101,7 +107,11 @@ fn every_number_in_a_scenario_is_accepted_or_refused_by_file_line_and_field() {
         };
         let table = scenario.table();
         let mut leaves = Vec::new();
-        numeric_leaves(&doc[table], &mut vec![Key::Field(table.into())], &mut leaves);
+        numeric_leaves(
+            &doc[table],
+            &mut vec![Key::Field(table.into())],
+            &mut leaves,
+        );
         for (path, integer) in leaves {
             // A float where an integer belongs must be refused by name too.
             for new in awkward_values(integer) {
@@ -115,9 +125,30 @@ fn every_number_in_a_scenario_is_accepted_or_refused_by_file_line_and_field() {
     );
     println!("left out (numbers beyond i64): {left_out:?}");
     assert!(left_out.len() <= 3, "most built-ins are swept");
-    assert!(tally.panics.is_empty(), "{} panics:\n{}", tally.panics.len(), tally.panics.join("\n"));
-    assert!(tally.unplaced.is_empty(), "{} errors without the file and a line:\n{}", tally.unplaced.len(), tally.unplaced.join("\n"));
-    assert!(tally.took_nan.is_empty(), "{} set-ups took NaN:\n{}", tally.took_nan.len(), tally.took_nan.join("\n"));
-    assert_eq!(tally.built_refused, 0, "a set-up the checks accept must build");
-    assert!(tally.refused > tally.tried / 4 && tally.stepped > tally.tried / 10, "the sweep reaches both sides");
+    assert!(
+        tally.panics.is_empty(),
+        "{} panics:\n{}",
+        tally.panics.len(),
+        tally.panics.join("\n")
+    );
+    assert!(
+        tally.unplaced.is_empty(),
+        "{} errors without the file and a line:\n{}",
+        tally.unplaced.len(),
+        tally.unplaced.join("\n")
+    );
+    assert!(
+        tally.took_nan.is_empty(),
+        "{} set-ups took NaN:\n{}",
+        tally.took_nan.len(),
+        tally.took_nan.join("\n")
+    );
+    assert_eq!(
+        tally.built_refused, 0,
+        "a set-up the checks accept must build"
+    );
+    assert!(
+        tally.refused > tally.tried / 4 && tally.stepped > tally.tried / 10,
+        "the sweep reaches both sides"
+    );
 }

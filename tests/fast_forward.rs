@@ -26,23 +26,43 @@ impl Visitor for LockstepRun<'_> {
     fn visit<S: model::Setup>(self, cfg: &S) -> (u64, u64) {
         let name = self.0;
         // lockstep compiled with the model: this test crate is not optimised (Cargo.toml).
-        let run = cfg.bench().expect("a built-in scenario builds").lockstep_compiled(name, cfg.bench().expect("a built-in scenario builds"));
+        let run = cfg
+            .bench()
+            .expect("a built-in scenario builds")
+            .lockstep_compiled(name, cfg.bench().expect("a built-in scenario builds"));
         let to_json = |t: &Vec<_>| serde_json::to_string(t).expect("transactions serialise");
-        assert_eq!(to_json(&run.skipping), to_json(&run.stepped), "{name}: transcripts differ");
+        assert_eq!(
+            to_json(&run.skipping),
+            to_json(&run.stepped),
+            "{name}: transcripts differ"
+        );
         // The run campaigns and `tbgen bench` use, which records nothing:
         // a bench may then run its parts on their own events (CAN), which
         // the lockstep above, stepping whenever it records, does not show.
-        let fast = cfg.bench().expect("a built-in scenario builds").run_to_end_compiled();
-        assert_eq!((fast.cycles, to_json(&fast.transactions)), (run.cycles, to_json(&run.stepped)), "{name}: the fast-forwarded run ends otherwise");
+        let fast = cfg
+            .bench()
+            .expect("a built-in scenario builds")
+            .run_to_end_compiled();
+        assert_eq!(
+            (fast.cycles, to_json(&fast.transactions)),
+            (run.cycles, to_json(&run.stepped)),
+            "{name}: the fast-forwarded run ends otherwise"
+        );
         (run.cycles, run.skipped)
     }
 }
 
 fn bench_scenarios() -> Vec<Scenario> {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenarios/bench");
-    let mut paths: Vec<_> = std::fs::read_dir(&dir).expect("scenarios/bench exists").map(|e| e.unwrap().path()).collect();
+    let mut paths: Vec<_> = std::fs::read_dir(&dir)
+        .expect("scenarios/bench exists")
+        .map(|e| e.unwrap().path())
+        .collect();
     paths.sort();
-    paths.iter().map(|p| Scenario::load(p).expect("a bench scenario parses")).collect()
+    paths
+        .iter()
+        .map(|p| Scenario::load(p).expect("a bench scenario parses"))
+        .collect()
 }
 
 #[test]
@@ -57,13 +77,30 @@ fn fast_forward_matches_stepping_on_every_scenario() {
         entry.1 += skipped;
     }
     for (core, (cycles, skipped)) in &skipped_by_core {
-        println!("{core:>14}: {skipped} of {cycles} cycles skipped ({:.1} %)", 100.0 * *skipped as f64 / *cycles as f64);
+        println!(
+            "{core:>14}: {skipped} of {cycles} cycles skipped ({:.1} %)",
+            100.0 * *skipped as f64 / *cycles as f64
+        );
     }
     // The protocols with quiet stretches do skip them, so the comparison
     // above is not of two stepped runs.
-    for core in ["ssi_master", "biss_master", "endat_master", "esl_host", "tformat_host", "sar_async_host", "modbus_master", "uart_rx", "can_controller", "canopen_master"] {
+    for core in [
+        "ssi_master",
+        "biss_master",
+        "endat_master",
+        "esl_host",
+        "tformat_host",
+        "sar_async_host",
+        "modbus_master",
+        "uart_rx",
+        "can_controller",
+        "canopen_master",
+    ] {
         let (cycles, skipped) = skipped_by_core[core];
-        assert!(skipped * 2 > cycles, "{core}: only {skipped} of {cycles} cycles skipped");
+        assert!(
+            skipped * 2 > cycles,
+            "{core}: only {skipped} of {cycles} cycles skipped"
+        );
     }
 }
 
@@ -80,7 +117,9 @@ fn can_parts_stepped_on_their_own_events_match_stepping() {
     scenarios.extend(bench_scenarios());
     let mut checked = 0;
     for s in &scenarios {
-        let Some(cfg) = s.setup.get::<model::can::BenchConfig>() else { continue };
+        let Some(cfg) = s.setup.get::<model::can::BenchConfig>() else {
+            continue;
+        };
         let name = &s.name;
         let (mut lazy, mut stepped) = (cfg.bench().expect("builds"), cfg.bench().expect("builds"));
         let mut steps = 0u64;
@@ -103,13 +142,22 @@ fn can_parts_stepped_on_their_own_events_match_stepping() {
                 stepped.step(None);
             }
             lazy.catch_up();
-            assert_eq!(parts(&lazy), parts(&stepped), "{name}: a part differs after the step of cycle {}", lazy.cycle() - 1);
+            assert_eq!(
+                parts(&lazy),
+                parts(&stepped),
+                "{name}: a part differs after the step of cycle {}",
+                lazy.cycle() - 1
+            );
             checked += 1;
         }
         while stepped.cycle() < lazy.cycle() {
             stepped.step(None);
         }
-        assert!(stepped.finished(), "{name}: stepping has not finished on cycle {}", lazy.cycle());
+        assert!(
+            stepped.finished(),
+            "{name}: stepping has not finished on cycle {}",
+            lazy.cycle()
+        );
     }
     assert!(checked > 10_000, "only {checked} steps compared");
 }

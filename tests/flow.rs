@@ -24,14 +24,33 @@ fn check_with_vcd_crate(path: &Path) -> HashMap<String, u32> {
     let header = parser.parse_header().expect("VCD header parses");
     let mut widths = HashMap::new();
     let mut names = HashMap::new();
-    fn walk(items: &[vcd::ScopeItem], prefix: &str, widths: &mut HashMap<vcd::IdCode, u32>, names: &mut HashMap<String, u32>) {
+    fn walk(
+        items: &[vcd::ScopeItem],
+        prefix: &str,
+        widths: &mut HashMap<vcd::IdCode, u32>,
+        names: &mut HashMap<String, u32>,
+    ) {
         for item in items {
             match item {
-                vcd::ScopeItem::Scope(s) => walk(&s.items, &format!("{prefix}{}.", s.identifier), widths, names),
+                vcd::ScopeItem::Scope(s) => walk(
+                    &s.items,
+                    &format!("{prefix}{}.", s.identifier),
+                    widths,
+                    names,
+                ),
                 vcd::ScopeItem::Var(v) => {
-                    assert!(widths.insert(v.code, v.size).is_none(), "id {} declared twice", v.code);
+                    assert!(
+                        widths.insert(v.code, v.size).is_none(),
+                        "id {} declared twice",
+                        v.code
+                    );
                     if v.size > 1 {
-                        assert_eq!(v.index, Some(vcd::ReferenceIndex::Range(v.size as i32 - 1, 0)), "{} needs [msb:lsb]", v.reference);
+                        assert_eq!(
+                            v.index,
+                            Some(vcd::ReferenceIndex::Range(v.size as i32 - 1, 0)),
+                            "{} needs [msb:lsb]",
+                            v.reference
+                        );
                     }
                     names.insert(format!("{prefix}{}", v.reference), v.size);
                 }
@@ -45,15 +64,26 @@ fn check_with_vcd_crate(path: &Path) -> HashMap<String, u32> {
     for command in parser {
         match command.expect("VCD body parses") {
             vcd::Command::Timestamp(t) => {
-                assert!(last_time.is_none_or(|l| t > l), "time {t} after {last_time:?}");
+                assert!(
+                    last_time.is_none_or(|l| t > l),
+                    "time {t} after {last_time:?}"
+                );
                 last_time = Some(t);
             }
             vcd::Command::ChangeScalar(id, _) => {
-                assert_eq!(widths.get(&id), Some(&1), "scalar change of undeclared or vector id {id}");
+                assert_eq!(
+                    widths.get(&id),
+                    Some(&1),
+                    "scalar change of undeclared or vector id {id}"
+                );
                 changes += 1;
             }
             vcd::Command::ChangeVector(id, v) => {
-                assert_eq!(widths.get(&id).copied(), Some(v.len() as u32), "vector change of id {id} with the wrong width");
+                assert_eq!(
+                    widths.get(&id).copied(),
+                    Some(v.len() as u32),
+                    "vector change of id {id} with the wrong width"
+                );
                 changes += 1;
             }
             _ => {}
@@ -76,13 +106,23 @@ fn every_builtin_scenario_writes_four_files_that_independent_readers_accept() {
         // Vectors: the header agrees with the body.
         let text = fs::read_to_string(&summary.files[0]).unwrap();
         let v = VectorFile::parse(&text).unwrap();
-        assert_eq!(v.get("records").unwrap().parse::<usize>().unwrap(), v.records.len());
+        assert_eq!(
+            v.get("records").unwrap().parse::<usize>().unwrap(),
+            v.records.len()
+        );
         let words: usize = v.get("words_per_record").unwrap().parse().unwrap();
         assert!(v.records.iter().all(|r| r.len() == words));
         assert_eq!(v.records[0][0], 0, "first record at cycle 0");
         let cycles: u64 = v.get("cycles").unwrap().parse().unwrap();
-        assert_eq!(v.records.last().unwrap()[0], cycles - 1, "last record at the last cycle");
-        assert!(v.records.windows(2).all(|w| w[0][0] < w[1][0]), "cycle stamps increase");
+        assert_eq!(
+            v.records.last().unwrap()[0],
+            cycles - 1,
+            "last record at the last cycle"
+        );
+        assert!(
+            v.records.windows(2).all(|w| w[0][0] < w[1][0]),
+            "cycle stamps increase"
+        );
 
         // Waveform, reader 1: the vcd crate.
         let declared = check_with_vcd_crate(&summary.files[1]);
@@ -91,19 +131,28 @@ fn every_builtin_scenario_writes_four_files_that_independent_readers_accept() {
         let mut wave = wellen::simple::read(&summary.files[1]).expect("wellen reads the VCD");
         let h = wave.hierarchy();
         let mut seen = 0;
-        let (pulse_names, value_name, value_field) = tbgen::registry::by_core(scenario.core()).expect("a registered core").transaction_signals;
+        let (pulse_names, value_name, value_field) = tbgen::registry::by_core(scenario.core())
+            .expect("a registered core")
+            .transaction_signals;
         let mut pulse_refs = Vec::new();
         let mut value_ref = None;
         for var_ref in h.all_vars() {
             let var = &h[var_ref];
             let name = var.full_name(h);
             let width = var.length(h).expect("bit vector");
-            assert_eq!(declared.get(&name), Some(&width), "{name}: wellen and vcd disagree on width");
+            assert_eq!(
+                declared.get(&name),
+                Some(&width),
+                "{name}: wellen and vcd disagree on width"
+            );
             if width > 1 {
                 let index = var.index().expect("vectors carry [msb:lsb]");
                 assert_eq!((index.msb(), index.lsb()), (width as i64 - 1, 0), "{name}");
             }
-            if pulse_names.iter().any(|p| name == format!("top.{}.{p}", scenario.core())) {
+            if pulse_names
+                .iter()
+                .any(|p| name == format!("top.{}.{p}", scenario.core()))
+            {
                 pulse_refs.push(var.signal_ref());
             }
             if name == format!("top.{}.{value_name}", scenario.core()) {
@@ -112,14 +161,23 @@ fn every_builtin_scenario_writes_four_files_that_independent_readers_accept() {
             seen += 1;
         }
         assert_eq!(seen, declared.len());
-        assert!(wave.time_table().windows(2).all(|w| w[0] < w[1]), "wellen: time strictly increasing");
+        assert!(
+            wave.time_table().windows(2).all(|w| w[0] < w[1]),
+            "wellen: time strictly increasing"
+        );
 
         // The transcript and the waveform tell the same story: one result
         // pulse per transaction, and the result port at each pulse holds the
         // transcript's value.
-        let transcript: serde_json::Value = serde_json::from_str(&fs::read_to_string(&summary.files[2]).unwrap()).unwrap();
+        let transcript: serde_json::Value =
+            serde_json::from_str(&fs::read_to_string(&summary.files[2]).unwrap()).unwrap();
         let transactions = transcript["transactions"].as_array().unwrap();
-        assert_eq!(pulse_refs.len(), pulse_names.len(), "{}: result pulses not all in the VCD", scenario.name);
+        assert_eq!(
+            pulse_refs.len(),
+            pulse_names.len(),
+            "{}: result pulses not all in the VCD",
+            scenario.name
+        );
         let value_ref = value_ref.expect("result port in the VCD");
         let mut load = pulse_refs.clone();
         load.push(value_ref);
@@ -128,17 +186,31 @@ fn every_builtin_scenario_writes_four_files_that_independent_readers_accept() {
             .iter()
             .flat_map(|r| {
                 let signal = wave.get_signal(*r).unwrap();
-                signal.iter_changes().filter(|(_, v)| v.to_bit_string().as_deref() == Some("1")).map(|(t, _)| t).collect::<Vec<_>>()
+                signal
+                    .iter_changes()
+                    .filter(|(_, v)| v.to_bit_string().as_deref() == Some("1"))
+                    .map(|(t, _)| t)
+                    .collect::<Vec<_>>()
             })
             .collect();
         rises.sort();
-        assert_eq!(rises.len(), transactions.len(), "{}: result pulses vs transactions", scenario.name);
+        assert_eq!(
+            rises.len(),
+            transactions.len(),
+            "{}: result pulses vs transactions",
+            scenario.name
+        );
         let value = wave.get_signal(value_ref).unwrap();
         for (t, tr) in rises.iter().zip(transactions) {
             if let Some(expected) = tr[value_field].as_u64() {
                 let offset = value.get_offset(*t).unwrap();
                 let bits = value.get_value_at(&offset, 0).to_bit_string().unwrap();
-                assert_eq!(u64::from_str_radix(&bits, 2).unwrap(), expected, "{}", scenario.name);
+                assert_eq!(
+                    u64::from_str_radix(&bits, 2).unwrap(),
+                    expected,
+                    "{}",
+                    scenario.name
+                );
             }
         }
     }
@@ -151,12 +223,22 @@ fn a_small_scenarios_vectors_transcript_and_layout_are_pinned() {
     let dir = tempfile::tempdir().unwrap();
     let scenario = builtin::find("ssi_monoflop_violation").unwrap();
     let summary = generate::generate(&scenario, dir.path()).unwrap();
-    insta::assert_snapshot!("ssi_monoflop_violation.hex", fs::read_to_string(&summary.files[0]).unwrap());
-    insta::assert_snapshot!("ssi_monoflop_violation.json", fs::read_to_string(&summary.files[2]).unwrap());
-    insta::assert_snapshot!("ssi_monoflop_violation.gtkw", fs::read_to_string(&summary.files[3]).unwrap());
+    insta::assert_snapshot!(
+        "ssi_monoflop_violation.hex",
+        fs::read_to_string(&summary.files[0]).unwrap()
+    );
+    insta::assert_snapshot!(
+        "ssi_monoflop_violation.json",
+        fs::read_to_string(&summary.files[2]).unwrap()
+    );
+    insta::assert_snapshot!(
+        "ssi_monoflop_violation.gtkw",
+        fs::read_to_string(&summary.files[3]).unwrap()
+    );
 }
 
-const GOOD: &str = "name = \"bad\"\n[ssi]\npositions = [1]\n[ssi.master]\nbits = 12\nclock_khz = 250\n";
+const GOOD: &str =
+    "name = \"bad\"\n[ssi]\npositions = [1]\n[ssi.master]\nbits = 12\nclock_khz = 250\n";
 
 fn gen_file(text: &str) -> (std::process::Output, tempfile::TempDir) {
     let dir = tempfile::tempdir().unwrap();
@@ -166,7 +248,15 @@ fn gen_file(text: &str) -> (std::process::Output, tempfile::TempDir) {
     fs::create_dir(&out).unwrap();
     // A file from an earlier run that a failed run must not touch.
     fs::write(out.join("bad.hex"), "earlier run\n").unwrap();
-    let result = tbgen().args(["gen", file.to_str().unwrap(), "--out", out.to_str().unwrap()]).output().unwrap();
+    let result = tbgen()
+        .args([
+            "gen",
+            file.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
     (result, dir)
 }
 
@@ -176,36 +266,62 @@ fn a_bad_scenario_file_is_refused_with_file_line_and_field_exit_2_and_nothing_wr
         (GOOD.replace("250", "300"), 6, "master.clock_khz"),
         (GOOD.replace("clock_khz", "clock_hz"), 6, "clock_hz"),
         (GOOD.replace("bits = 12", "bits = \"twelve\""), 5, "bits"),
-        (GOOD.replace("positions = [1]", "positions = [9999]"), 3, "positions[0]"),
+        (
+            GOOD.replace("positions = [1]", "positions = [9999]"),
+            3,
+            "positions[0]",
+        ),
     ] {
         let (result, dir) = gen_file(&broken);
         let stderr = String::from_utf8_lossy(&result.stderr);
         assert_eq!(result.status.code(), Some(2), "{stderr}");
-        assert!(stderr.contains(&format!("bad.toml:{line}")), "no line {line} in: {stderr}");
+        assert!(
+            stderr.contains(&format!("bad.toml:{line}")),
+            "no line {line} in: {stderr}"
+        );
         assert!(stderr.contains(field), "no field {field} in: {stderr}");
         let out = dir.path().join("out");
-        let left: Vec<_> = fs::read_dir(&out).unwrap().map(|e| e.unwrap().file_name()).collect();
+        let left: Vec<_> = fs::read_dir(&out)
+            .unwrap()
+            .map(|e| e.unwrap().file_name())
+            .collect();
         assert_eq!(left, vec![std::ffi::OsString::from("bad.hex")], "{stderr}");
-        assert_eq!(fs::read_to_string(out.join("bad.hex")).unwrap(), "earlier run\n");
+        assert_eq!(
+            fs::read_to_string(out.join("bad.hex")).unwrap(),
+            "earlier run\n"
+        );
     }
 }
 
 #[test]
 fn a_good_scenario_file_replaces_earlier_outputs() {
     let (result, dir) = gen_file(GOOD);
-    assert!(result.status.success(), "{}", String::from_utf8_lossy(&result.stderr));
+    assert!(
+        result.status.success(),
+        "{}",
+        String::from_utf8_lossy(&result.stderr)
+    );
     let out = dir.path().join("out");
-    assert!(fs::read_to_string(out.join("bad.hex")).unwrap().starts_with("// tbgen-vectors 1"));
+    assert!(fs::read_to_string(out.join("bad.hex"))
+        .unwrap()
+        .starts_with("// tbgen-vectors 1"));
     for ext in ["vcd", "json", "gtkw"] {
         assert!(out.join(format!("bad.{ext}")).exists());
     }
-    assert!(fs::read_dir(&out).unwrap().all(|e| !e.unwrap().file_name().to_string_lossy().ends_with(".partial")));
+    assert!(fs::read_dir(&out).unwrap().all(|e| !e
+        .unwrap()
+        .file_name()
+        .to_string_lossy()
+        .ends_with(".partial")));
 }
 
 #[test]
 fn tbgen_crc_prints_the_seed_biss_example_and_its_wire_bits() {
     // Seed 001, BiSS-C: data 1000101011100011, nE 1, nW 0 -> CRC 110101, sent inverted 001010.
-    let out = tbgen().args(["crc", "biss-crc6", "100010101110001110"]).output().unwrap();
+    let out = tbgen()
+        .args(["crc", "biss-crc6", "100010101110001110"])
+        .output()
+        .unwrap();
     let text = String::from_utf8(out.stdout).unwrap();
     assert!(out.status.success());
     assert!(text.contains("crc:       0x35 (110101)"), "{text}");
@@ -214,7 +330,11 @@ fn tbgen_crc_prints_the_seed_biss_example_and_its_wire_bits() {
 
 #[test]
 fn tbgen_refuses_unknown_names_with_status_2() {
-    for args in [vec!["crc", "crc-99", "0101"], vec!["crc", "biss-crc6", "01x1"], vec!["gen", "no_such_scenario", "--out", "x"]] {
+    for args in [
+        vec!["crc", "crc-99", "0101"],
+        vec!["crc", "biss-crc6", "01x1"],
+        vec!["gen", "no_such_scenario", "--out", "x"],
+    ] {
         let out = tbgen().args(&args).output().unwrap();
         assert_eq!(out.status.code(), Some(2), "{args:?}");
         assert!(!String::from_utf8_lossy(&out.stderr).is_empty());
@@ -236,7 +356,14 @@ fn output_into_a_closed_pipe_ends_quietly_without_a_panic() {
     // The reader closes its end before tbgen writes: every write fails with
     // a broken pipe, as it does under `tbgen decode ... | head -1`.
     let mut child = tbgen()
-        .args(["decode", "endat", concat!(env!("CARGO_MANIFEST_DIR"), "/../vectors/endat_master/endat_pos22_ad_8mhz_100m.vcd")])
+        .args([
+            "decode",
+            "endat",
+            concat!(
+                env!("CARGO_MANIFEST_DIR"),
+                "/../vectors/endat_master/endat_pos22_ad_8mhz_100m.vcd"
+            ),
+        ])
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
         .spawn()
@@ -244,6 +371,13 @@ fn output_into_a_closed_pipe_ends_quietly_without_a_panic() {
     drop(child.stdout.take());
     let out = child.wait_with_output().unwrap();
     let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(!stderr.contains("panicked"), "tbgen panicked on a closed pipe: {stderr}");
-    assert!(out.status.success(), "status {:?}, stderr {stderr}", out.status);
+    assert!(
+        !stderr.contains("panicked"),
+        "tbgen panicked on a closed pipe: {stderr}"
+    );
+    assert!(
+        out.status.success(),
+        "status {:?}, stderr {stderr}",
+        out.status
+    );
 }

@@ -11,7 +11,10 @@ use std::process::Command;
 use tbgen::vectors::VectorFile;
 
 fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).parent().unwrap().to_path_buf()
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .unwrap()
+        .to_path_buf()
 }
 
 /// Runs scripts/sim.sh and returns (passed, output). Verilator runs on the
@@ -27,7 +30,11 @@ fn simulate(core: &str, sim: &str, vectors: &Path) -> (bool, String) {
         .env("COVERAGE_FILE", vectors.with_extension("dat"))
         .output()
         .expect("scripts/sim.sh runs (make deps installs the simulators)");
-    let text = format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+    let text = format!(
+        "{}{}",
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
     (out.status.success(), text)
 }
 
@@ -68,7 +75,10 @@ fn golden() -> String {
 /// The first record with o_done set: the one whose o_position is checked.
 fn done_record(text: &str) -> usize {
     let v = VectorFile::parse(text).unwrap();
-    v.records.iter().position(|r| r[3 + 2 * 2] == 1).expect("a done record")
+    v.records
+        .iter()
+        .position(|r| r[3 + 2 * 2] == 1)
+        .expect("a done record")
 }
 
 #[test]
@@ -78,9 +88,26 @@ fn golden_vectors_pass_and_one_flipped_expected_bit_fails_in_both_simulators() {
     let done = done_record(&text);
     let cases = [
         ("golden", text.clone(), true),
-        ("o_ssi_clk flipped", edit(&text, 40, O_SSI_CLK, |v| v ^ 1), false),
-        ("o_position bit 0 flipped", edit(&text, done, O_POSITION, |v| v ^ 1), false),
-        ("o_position bit 0 flipped but masked", edit(&edit(&text, done, O_POSITION, |v| v ^ 1), done, O_POSITION + 1, |m| m & !1), true),
+        (
+            "o_ssi_clk flipped",
+            edit(&text, 40, O_SSI_CLK, |v| v ^ 1),
+            false,
+        ),
+        (
+            "o_position bit 0 flipped",
+            edit(&text, done, O_POSITION, |v| v ^ 1),
+            false,
+        ),
+        (
+            "o_position bit 0 flipped but masked",
+            edit(
+                &edit(&text, done, O_POSITION, |v| v ^ 1),
+                done,
+                O_POSITION + 1,
+                |m| m & !1,
+            ),
+            true,
+        ),
     ];
     for sim in ["icarus", "verilator"] {
         for (i, (what, vectors, should_pass)) in cases.iter().enumerate() {
@@ -89,8 +116,14 @@ fn golden_vectors_pass_and_one_flipped_expected_bit_fails_in_both_simulators() {
             let (passed, output) = simulate(CORE, sim, &path);
             assert_eq!(passed, *should_pass, "{sim}, {what}:\n{output}");
             if !should_pass {
-                assert!(output.contains("MISMATCH at cycle"), "{sim}, {what}: no mismatch report:\n{output}");
-                assert!(output.contains("expected") && output.contains("actual"), "{output}");
+                assert!(
+                    output.contains("MISMATCH at cycle"),
+                    "{sim}, {what}: no mismatch report:\n{output}"
+                );
+                assert!(
+                    output.contains("expected") && output.contains("actual"),
+                    "{output}"
+                );
             }
         }
     }
@@ -103,7 +136,10 @@ fn drop_record(text: &str, record: usize) -> String {
     let mut out = String::new();
     for line in text.lines() {
         if let Some(n) = line.strip_prefix("// records: ") {
-            out.push_str(&format!("// records: {}\n", n.trim().parse::<usize>().unwrap() - 1));
+            out.push_str(&format!(
+                "// records: {}\n",
+                n.trim().parse::<usize>().unwrap() - 1
+            ));
             continue;
         }
         if !line.starts_with("//") {
@@ -131,8 +167,16 @@ fn an_output_change_the_file_does_not_expect_fails_at_its_cycle_in_both_simulato
     const N_IN: usize = 2;
     // Records well inside the file (the core counting through a frame)
     // where only expected outputs change.
-    let dropped: Vec<usize> = (20..v.records.len() - 1).filter(|&r| v.records[r][1..=N_IN] == v.records[r - 1][1..=N_IN]).step_by(7).take(3).collect();
-    assert_eq!(dropped.len(), 3, "{SCENARIO} has records where only outputs change");
+    let dropped: Vec<usize> = (20..v.records.len() - 1)
+        .filter(|&r| v.records[r][1..=N_IN] == v.records[r - 1][1..=N_IN])
+        .step_by(7)
+        .take(3)
+        .collect();
+    assert_eq!(
+        dropped.len(),
+        3,
+        "{SCENARIO} has records where only outputs change"
+    );
     for sim in ["icarus", "verilator"] {
         for &r in &dropped {
             let path = dir.path().join(format!("{SCENARIO}_drop{r}.hex"));
@@ -140,7 +184,10 @@ fn an_output_change_the_file_does_not_expect_fails_at_its_cycle_in_both_simulato
             let (passed, output) = simulate(CORE, sim, &path);
             assert!(!passed, "{sim} passed with record {r} removed:\n{output}");
             let want = format!("MISMATCH at cycle {} ", v.records[r][0]);
-            assert!(output.contains(&want), "{sim}, record {r} removed: no '{want}':\n{output}");
+            assert!(
+                output.contains(&want),
+                "{sim}, record {r} removed: no '{want}':\n{output}"
+            );
         }
     }
 }
@@ -160,11 +207,25 @@ fn a_vector_file_shorter_than_its_record_count_is_refused() {
     let (last, rest) = lines.split_last().unwrap();
     let words_cut = joined(rest) + &last.split(' ').take(10).collect::<Vec<_>>().join(" ") + "\n";
     let first_record = lines.iter().position(|l| !l.starts_with("//")).unwrap();
-    let repeated = joined(&[&lines[..first_record + 3], &lines[first_record + 2..lines.len() - 1]].concat());
+    let repeated = joined(
+        &[
+            &lines[..first_record + 3],
+            &lines[first_record + 2..lines.len() - 1],
+        ]
+        .concat(),
+    );
     let cases = [
         ("records_cut", records_cut, "but the file holds".to_string()),
-        ("words_cut", words_cut, format!("words_cut.hex:{}: a record of 10 words", lines.len())),
-        ("repeated", repeated, "do not increase at record 3".to_string()),
+        (
+            "words_cut",
+            words_cut,
+            format!("words_cut.hex:{}: a record of 10 words", lines.len()),
+        ),
+        (
+            "repeated",
+            repeated,
+            "do not increase at record 3".to_string(),
+        ),
     ];
     for (name, cut, says) in cases {
         refused_in_both_simulators(dir.path(), name, &cut, &[&says]);
@@ -180,7 +241,10 @@ fn refused_in_both_simulators(dir: &Path, name: &str, text: &str, says: &[&str])
         let (passed, output) = simulate(CORE, sim, &path);
         assert!(!passed, "{sim} accepted {name}.hex:\n{output}");
         for s in says {
-            assert!(output.contains(s), "{sim} ({name}.hex): no '{s}':\n{output}");
+            assert!(
+                output.contains(s),
+                "{sim} ({name}.hex): no '{s}':\n{output}"
+            );
         }
     }
 }
@@ -194,18 +258,43 @@ fn refused_in_both_simulators(dir: &Path, name: &str, text: &str, says: &[&str])
 fn a_damaged_vector_header_is_refused_with_its_line_before_a_simulator_starts() {
     let dir = tempfile::tempdir().unwrap();
     let text = golden();
-    let header = |key: &str| text.lines().position(|l| l.starts_with(&format!("// {key}: "))).unwrap() + 1;
+    let header = |key: &str| {
+        text.lines()
+            .position(|l| l.starts_with(&format!("// {key}: ")))
+            .unwrap()
+            + 1
+    };
     let with = |key: &str, value: &str| {
-        text.lines().map(|l| if l.starts_with(&format!("// {key}: ")) { format!("// {key}: {value}\n") } else { format!("{l}\n") }).collect::<String>()
+        text.lines()
+            .map(|l| {
+                if l.starts_with(&format!("// {key}: ")) {
+                    format!("// {key}: {value}\n")
+                } else {
+                    format!("{l}\n")
+                }
+            })
+            .collect::<String>()
     };
     let cases = [
         ("records", with("records", "4000000000"), "the file holds"),
         ("f_sys_hz", with("f_sys_hz", "0"), "is not a clock"),
-        ("words_per_record", with("words_per_record", "x"), "is not a word count"),
-        ("params", text.replace("BITS=12 ", "BITS=x "), "is not NAME=number"),
+        (
+            "words_per_record",
+            with("words_per_record", "x"),
+            "is not a word count",
+        ),
+        (
+            "params",
+            text.replace("BITS=12 ", "BITS=x "),
+            "is not NAME=number",
+        ),
     ];
     for (key, damaged, says) in cases {
-        let want = format!("{}:{}: {key}: ", dir.path().join(format!("{key}.hex")).display(), header(key));
+        let want = format!(
+            "{}:{}: {key}: ",
+            dir.path().join(format!("{key}.hex")).display(),
+            header(key)
+        );
         refused_in_both_simulators(dir.path(), key, &damaged, &[&want, says]);
     }
 }
@@ -213,7 +302,12 @@ fn a_damaged_vector_header_is_refused_with_its_line_before_a_simulator_starts() 
 /// The output columns of a vector file: (name, word index of its expected
 /// value), read from the `record:` header (each output is followed by `mask`).
 fn output_columns(v: &VectorFile) -> Vec<(String, usize)> {
-    let layout: Vec<&str> = v.get("record").unwrap().split_whitespace().filter(|w| *w != "|").collect();
+    let layout: Vec<&str> = v
+        .get("record")
+        .unwrap()
+        .split_whitespace()
+        .filter(|w| *w != "|")
+        .collect();
     layout
         .windows(2)
         .enumerate()
@@ -234,7 +328,11 @@ fn every_testbench_checks_every_output_port_in_both_simulators() {
     // file is 160 000 cycles in.)
     let dir = tempfile::tempdir().unwrap();
     let (mut cores, mut flips) = (0, 0);
-    let mut core_dirs: Vec<PathBuf> = fs::read_dir(root().join("vectors")).unwrap().map(|e| e.unwrap().path()).filter(|p| p.is_dir()).collect();
+    let mut core_dirs: Vec<PathBuf> = fs::read_dir(root().join("vectors"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.is_dir())
+        .collect();
     core_dirs.sort();
     for core_dir in core_dirs {
         let core = core_dir.file_name().unwrap().to_str().unwrap().to_string();
@@ -247,17 +345,32 @@ fn every_testbench_checks_every_output_port_in_both_simulators() {
         let text = fs::read_to_string(&smallest).unwrap();
         let v = VectorFile::parse(&text).unwrap();
         let outputs = output_columns(&v);
-        assert!(!outputs.is_empty(), "{core}: no outputs in {}", smallest.display());
+        assert!(
+            !outputs.is_empty(),
+            "{core}: no outputs in {}",
+            smallest.display()
+        );
         for (name, word) in &outputs {
             let record = (1..v.records.len())
                 .find(|&r| v.records[r][word + 1] & 1 == 1)
-                .unwrap_or_else(|| panic!("{core}: {name} is masked in every record of {}", smallest.display()));
+                .unwrap_or_else(|| {
+                    panic!(
+                        "{core}: {name} is masked in every record of {}",
+                        smallest.display()
+                    )
+                });
             let path = dir.path().join(format!("{core}_{name}.hex"));
             fs::write(&path, edit(&text, record, *word, |x| x ^ 1)).unwrap();
             for sim in ["icarus", "verilator"] {
                 let (passed, output) = simulate(&core, sim, &path);
-                assert!(!passed, "{core} in {sim} passed with {name} flipped:\n{output}");
-                assert!(output.contains(&format!("signal {name} ")), "{core} in {sim}: the mismatch does not name {name}:\n{output}");
+                assert!(
+                    !passed,
+                    "{core} in {sim} passed with {name} flipped:\n{output}"
+                );
+                assert!(
+                    output.contains(&format!("signal {name} ")),
+                    "{core} in {sim}: the mismatch does not name {name}:\n{output}"
+                );
                 flips += 1;
             }
         }

@@ -43,7 +43,9 @@ impl Emulator {
     #[new]
     #[pyo3(signature = (kind, toml, f_emu_hz, origin = "<toml>"))]
     fn new(kind: &str, toml: &str, f_emu_hz: u64, origin: &str) -> PyResult<Self> {
-        Ok(Emulator { inner: cosim::open(kind, toml, origin, f_emu_hz).map_err(err)? })
+        Ok(Emulator {
+            inner: cosim::open(kind, toml, origin, f_emu_hz).map_err(err)?,
+        })
     }
 
     /// The protocol.
@@ -95,7 +97,12 @@ impl Emulator {
         self.inner
             .violations()
             .iter()
-            .map(|v| format!("at {} ns (emulator cycle {}): {}: {}", v.time_ns, v.cycle, v.rule, v.detail))
+            .map(|v| {
+                format!(
+                    "at {} ns (emulator cycle {}): {}: {}",
+                    v.time_ns, v.cycle, v.rule, v.detail
+                )
+            })
             .collect()
     }
 
@@ -124,7 +131,9 @@ impl Monitor {
     #[pyo3(signature = (protocol, toml, f_mon_hz, origin = "<toml>"))]
     fn new(protocol: &str, toml: &str, f_mon_hz: u64, origin: &str) -> PyResult<Self> {
         let kind = format!("{}_monitor", protocol.trim_end_matches("_monitor"));
-        Ok(Monitor { inner: cosim::open(&kind, toml, origin, f_mon_hz).map_err(err)? })
+        Ok(Monitor {
+            inner: cosim::open(&kind, toml, origin, f_mon_hz).map_err(err)?,
+        })
     }
 
     /// The monitor's kind (`<protocol>_monitor`).
@@ -159,7 +168,12 @@ impl Monitor {
         self.inner
             .violations()
             .iter()
-            .map(|v| format!("at {} ns (monitor cycle {}): {}: {}", v.time_ns, v.cycle, v.rule, v.detail))
+            .map(|v| {
+                format!(
+                    "at {} ns (monitor cycle {}): {}: {}",
+                    v.time_ns, v.cycle, v.rule, v.detail
+                )
+            })
             .collect()
     }
 

@@ -406,7 +406,10 @@ impl Emulator for BissEmulator {
         self.check(pins.data());
         if self.motions.any() {
             for i in 0..self.cfg.slaves.len() {
-                if let Some(p) = self.motions.position_on(i, self.cycle, &self.tb, self.cfg.slaves[i].bits) {
+                if let Some(p) =
+                    self.motions
+                        .position_on(i, self.cycle, &self.tb, self.cfg.slaves[i].bits)
+                {
                     self.chain.slaves_mut()[i].set_position(p);
                 }
             }

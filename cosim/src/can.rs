@@ -110,7 +110,8 @@ impl CanEmulator {
     /// An emulator from TOML text (`origin` names it in errors) at `f_emu_hz`.
     pub fn from_toml(text: &str, origin: &str, f_emu_hz: u64) -> Result<Self> {
         let tables = config::tables(text, origin, "can")?;
-        let tb = config::emulator_clock(f_emu_hz, &tables.emulator, MAX_BIT_RATE_KHZ, "CAN", origin)?;
+        let tb =
+            config::emulator_clock(f_emu_hz, &tables.emulator, MAX_BIT_RATE_KHZ, "CAN", origin)?;
         let mut device = tables.device;
         device.insert(
             "f_sys_mhz".into(),
@@ -191,10 +192,12 @@ impl Emulator for CanEmulator {
             self.tx[i + 1] = node.step(self.bus.rx(i + 1));
             let (r, s, e) = self.seen[i];
             for f in &node.received()[r..] {
-                self.entries.push(entry(&self.names[i], "received", self.cycle, f));
+                self.entries
+                    .push(entry(&self.names[i], "received", self.cycle, f));
             }
             for f in &node.sent()[s..] {
-                self.entries.push(entry(&self.names[i], "sent", self.cycle, f));
+                self.entries
+                    .push(entry(&self.names[i], "sent", self.cycle, f));
             }
             if node.errors() > e {
                 self.checks.push(
@@ -236,7 +239,12 @@ impl Emulator for CanEmulator {
         let s: SendTables = config::decode(tables.device, "send")?;
         for (k, f) in s.send.iter().enumerate() {
             self.node(f.node).map_err(|e| {
-                Error::field("send", format!("send[{k}].node"), e.to_string(), "give a node index of [[can.nodes]]")
+                Error::field(
+                    "send",
+                    format!("send[{k}].node"),
+                    e.to_string(),
+                    "give a node index of [[can.nodes]]",
+                )
             })?;
             let frame = Scripted {
                 at_us: 0.0,

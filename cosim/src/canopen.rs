@@ -99,7 +99,11 @@ struct Recorded {
 impl Recorded {
     fn position_of(&self, f: &Frame) -> u64 {
         let n = self.sar.config().bits.div_ceil(8).max(2) as usize;
-        f.data.iter().take(n).rev().fold(0u64, |v, &b| v << 8 | b as u64)
+        f.data
+            .iter()
+            .take(n)
+            .rev()
+            .fold(0u64, |v, &b| v << 8 | b as u64)
     }
 
     fn record(&mut self, frames: &[Frame], positions: bool) {
@@ -154,22 +158,41 @@ impl Device for Recorded {
 fn sar_meaning(f: &Frame, sent: bool, node: u8, position: Option<u64>) -> String {
     let b = |i: usize| f.data.get(i).copied().unwrap_or(0);
     match (sent, f.id == CONFIG_ID, b(0)) {
-        (true, _, _) if position.is_some() => format!("SAR58K24 node {node:#04x}: position {}", position.unwrap_or(0)),
+        (true, _, _) if position.is_some() => format!(
+            "SAR58K24 node {node:#04x}: position {}",
+            position.unwrap_or(0)
+        ),
         (true, true, c) => format!("SAR58K24 configuration: {c:02X} 00 success"),
         (true, false, 0x20) => "SAR58K24 answer: zeroed (20 00)".into(),
         (true, false, c @ (0x22 | 0x23)) => format!("SAR58K24 answer: direction ({c:02X} 00)"),
         (true, false, 0x31) => "SAR58K24 answer: timed send started or stopped (31 00)".into(),
         (true, false, _) => "SAR58K24 answer".into(),
         (false, true, 0x04) => "SAR58K24 configuration: enter configuration mode (04 01)".into(),
-        (false, true, 0x11) => format!("SAR58K24 configuration: node {:#04x} from the next power-on", b(1)),
-        (false, true, 0x13) => format!("SAR58K24 configuration: bit rate code {:02X} from the next power-on", b(2)),
+        (false, true, 0x11) => format!(
+            "SAR58K24 configuration: node {:#04x} from the next power-on",
+            b(1)
+        ),
+        (false, true, 0x13) => format!(
+            "SAR58K24 configuration: bit rate code {:02X} from the next power-on",
+            b(2)
+        ),
         (false, true, _) => "SAR58K24 configuration channel: unknown command".into(),
         (false, false, c) if f.id == 0x200 + node as u32 && !f.ide => match c {
             0x01 => format!("SAR58K24 command to node {:#04x}: start", b(1)),
-            0x80 => format!("SAR58K24 command to node {:#04x}: click (one position)", b(1)),
+            0x80 => format!(
+                "SAR58K24 command to node {:#04x}: click (one position)",
+                b(1)
+            ),
             0x20 => format!("SAR58K24 command to node {:#04x}: zero", b(1)),
-            0x22 | 0x23 => format!("SAR58K24 command to node {:#04x}: direction ({c:02X})", b(1)),
-            0x31 => format!("SAR58K24 command to node {:#04x}: timed send {} times a second, or stop", b(1), b(2)),
+            0x22 | 0x23 => format!(
+                "SAR58K24 command to node {:#04x}: direction ({c:02X})",
+                b(1)
+            ),
+            0x31 => format!(
+                "SAR58K24 command to node {:#04x}: timed send {} times a second, or stop",
+                b(1),
+                b(2)
+            ),
             _ => format!("SAR58K24 command to node {:#04x}: unknown ({c:02X})", b(1)),
         },
         (false, false, _) => model::canopen::interpret::interpret(f).text,
@@ -186,7 +209,10 @@ struct SarSlot {
 }
 
 enum Slot {
-    Ds406 { node: Box<EncoderNode>, power_on: u64 },
+    Ds406 {
+        node: Box<EncoderNode>,
+        power_on: u64,
+    },
     Sar(Box<SarSlot>),
 }
 
@@ -209,21 +235,36 @@ pub struct CanopenEmulator {
 }
 
 fn is_pdo(f: &Frame) -> bool {
-    !f.ide && matches!(classify(f.id as u16), Service::Tpdo1(_) | Service::Tpdo2(_)) && f.data.len() >= 4
+    !f.ide
+        && matches!(classify(f.id as u16), Service::Tpdo1(_) | Service::Tpdo2(_))
+        && f.data.len() >= 4
 }
 
 /// The COB-IDs of DS 301 node `n` (NMT error control, EMCY, the four PDO pairs, SDO).
 fn cob_ids(n: u8) -> impl Iterator<Item = u32> {
-    [0x080u32, 0x180, 0x200, 0x280, 0x300, 0x380, 0x400, 0x480, 0x500, 0x580, 0x600, 0x700].into_iter().map(move |f| f + n as u32)
+    [
+        0x080u32, 0x180, 0x200, 0x280, 0x300, 0x380, 0x400, 0x480, 0x500, 0x580, 0x600, 0x700,
+    ]
+    .into_iter()
+    .map(move |f| f + n as u32)
 }
 
 impl CanopenEmulator {
     /// An emulator from TOML text (`origin` names it in errors) at `f_emu_hz`.
     pub fn from_toml(text: &str, origin: &str, f_emu_hz: u64) -> Result<Self> {
         let tables = config::tables(text, origin, "canopen")?;
-        let tb = config::emulator_clock(f_emu_hz, &tables.emulator, MAX_BIT_RATE_KHZ, "CANopen", origin)?;
+        let tb = config::emulator_clock(
+            f_emu_hz,
+            &tables.emulator,
+            MAX_BIT_RATE_KHZ,
+            "CANopen",
+            origin,
+        )?;
         let mut device = tables.device;
-        device.insert("f_sys_mhz".into(), toml::Value::Float(f_emu_hz as f64 / 1e6));
+        device.insert(
+            "f_sys_mhz".into(),
+            toml::Value::Float(f_emu_hz as f64 / 1e6),
+        );
         let bench: BenchConfig = config::decode(device, origin)?;
         if bench.tool.is_some() {
             return Err(Error::field(origin, "tool", "the service tool node is not emulated in co-simulation: the master under test plays its part", "remove [canopen.tool] (the vector bench runs it) and send its frames from your master"));
@@ -233,16 +274,35 @@ impl CanopenEmulator {
         }
         model::Setup::validate(&bench).map_err(|e| Error::config(origin, e))?;
         let timing = bench.node_timing();
-        let mut places = vec![Place { position_m: bench.master.position_m, loop_delay_ns: bench.master.loop_delay_ns }];
+        let mut places = vec![Place {
+            position_m: bench.master.position_m,
+            loop_delay_ns: bench.master.loop_delay_ns,
+        }];
         let mut slots = Vec::new();
         let mut names = Vec::new();
         let mut ids: Vec<(u32, String)> = Vec::new();
         for (k, e) in bench.encoders.iter().enumerate() {
-            let s = NodeSettings { name: e.name.clone(), position_m: e.position_m, loop_delay_ns: e.loop_delay_ns, ppm: e.ppm, ack: true, frames: Vec::new() };
+            let s = NodeSettings {
+                name: e.name.clone(),
+                position_m: e.position_m,
+                loop_delay_ns: e.loop_delay_ns,
+                ppm: e.ppm,
+                ack: true,
+                frames: Vec::new(),
+            };
             places.push(s.place());
-            let node = EncoderNode::new(&e.encoder, &s, timing, &tb).map_err(|e| Error::config(origin, e))?;
-            ids.extend(cob_ids(node.encoder().node()).map(|id| (id, format!("encoders[{k}] (DS 406 node {})", node.encoder().node()))));
-            slots.push(Slot::Ds406 { node: Box::new(node), power_on: tb.cycles_nearest_ns(e.power_on_us * 1e3) });
+            let node = EncoderNode::new(&e.encoder, &s, timing, &tb)
+                .map_err(|e| Error::config(origin, e))?;
+            ids.extend(cob_ids(node.encoder().node()).map(|id| {
+                (
+                    id,
+                    format!("encoders[{k}] (DS 406 node {})", node.encoder().node()),
+                )
+            }));
+            slots.push(Slot::Ds406 {
+                node: Box::new(node),
+                power_on: tb.cycles_nearest_ns(e.power_on_us * 1e3),
+            });
             names.push(e.name.clone());
         }
         for (k, s) in bench.sar.iter().enumerate() {
@@ -256,7 +316,10 @@ impl CanopenEmulator {
                     "give the SAR58K24 the bus's bit rate (it would hear nobody at another); change it at run time on 0x7E5 (13 00 <code>) and a power cycle",
                 ));
             }
-            for (id, what) in [(0x200 + c.node as u32, "command"), (c.answer_base as u32 + c.node as u32, "answer")] {
+            for (id, what) in [
+                (0x200 + c.node as u32, "command"),
+                (c.answer_base as u32 + c.node as u32, "answer"),
+            ] {
                 if let Some((_, other)) = ids.iter().find(|(i, _)| *i == id) {
                     return Err(Error::field(
                         origin,
@@ -266,13 +329,40 @@ impl CanopenEmulator {
                     ));
                 }
             }
-            ids.push((0x200 + c.node as u32, format!("{field} (SAR58K24 node {:#04x})", c.node)));
-            ids.push((c.answer_base as u32 + c.node as u32, format!("{field} (SAR58K24 node {:#04x})", c.node)));
-            let settings = NodeSettings { name: s.name.clone(), position_m: s.position_m, loop_delay_ns: s.loop_delay_ns, ppm: 0.0, ack: true, frames: Vec::new() };
+            ids.push((
+                0x200 + c.node as u32,
+                format!("{field} (SAR58K24 node {:#04x})", c.node),
+            ));
+            ids.push((
+                c.answer_base as u32 + c.node as u32,
+                format!("{field} (SAR58K24 node {:#04x})", c.node),
+            ));
+            let settings = NodeSettings {
+                name: s.name.clone(),
+                position_m: s.position_m,
+                loop_delay_ns: s.loop_delay_ns,
+                ppm: 0.0,
+                ack: true,
+                frames: Vec::new(),
+            };
             places.push(settings.place());
             let sar = SarCan::new(c).map_err(|e| Error::config(origin, e))?;
-            let node = DeviceNode::with(Recorded { sar, produced: VecDeque::new() }, &settings, timing, &tb).map_err(|e| Error::config(origin, e))?;
-            slots.push(Slot::Sar(Box::new(SarSlot { node, settings, powered: true, sent_before: 0 })));
+            let node = DeviceNode::with(
+                Recorded {
+                    sar,
+                    produced: VecDeque::new(),
+                },
+                &settings,
+                timing,
+                &tb,
+            )
+            .map_err(|e| Error::config(origin, e))?;
+            slots.push(Slot::Sar(Box::new(SarSlot {
+                node,
+                settings,
+                powered: true,
+                sent_before: 0,
+            })));
             names.push(s.name.clone());
         }
         let n = slots.len();
@@ -316,7 +406,10 @@ impl CanopenEmulator {
                     Err(Error::Usage(format!("device {device}: a motion profile wraps at a power of two; this encoder has {top} counts (set positions instead)")))
                 }
             }
-            None => Err(Error::Usage(format!("the CANopen emulator has {} device(s), not device {device}", self.slots.len()))),
+            None => Err(Error::Usage(format!(
+                "the CANopen emulator has {} device(s), not device {device}",
+                self.slots.len()
+            ))),
         }
     }
 
@@ -365,17 +458,36 @@ impl Emulator for CanopenEmulator {
                     // A reset at a new bit rate (5000h) rebuilds the node's controller and its list of frames sent.
                     let s = if s > node.sent().len() { 0 } else { s };
                     for (_, f) in &node.received()[r..] {
-                        self.entries.push(entry(name, "received", self.cycle, f, model::canopen::interpret::interpret(f).text, None));
+                        self.entries.push(entry(
+                            name,
+                            "received",
+                            self.cycle,
+                            f,
+                            model::canopen::interpret::interpret(f).text,
+                            None,
+                        ));
                     }
                     for f in &node.sent()[s..] {
-                        self.entries.push(entry(name, "sent", self.cycle, f, model::canopen::interpret::interpret(f).text, None));
+                        self.entries.push(entry(
+                            name,
+                            "sent",
+                            self.cycle,
+                            f,
+                            model::canopen::interpret::interpret(f).text,
+                            None,
+                        ));
                         if is_pdo(f) {
-                            let p = u32::from_le_bytes([f.data[0], f.data[1], f.data[2], f.data[3]]) as u64;
+                            let p = u32::from_le_bytes([f.data[0], f.data[1], f.data[2], f.data[3]])
+                                as u64;
                             self.positions[i] = (self.positions[i].0 + 1, Some(p));
                         }
                         self.last_sent[i] = Some(f.clone());
                     }
-                    self.seen[i] = (node.received().len(), node.sent().len(), node.can().errors());
+                    self.seen[i] = (
+                        node.received().len(),
+                        node.sent().len(),
+                        node.can().errors(),
+                    );
                     (level, node.can().errors())
                 }
                 Slot::Sar(slot) => {
@@ -386,29 +498,58 @@ impl Emulator for CanopenEmulator {
                     let level = slot.node.step(rx);
                     let node_no = slot.node.encoder().sar.node();
                     for (_, f) in &slot.node.received()[r..] {
-                        self.entries.push(entry(name, "received", self.cycle, f, sar_meaning(f, false, node_no, None), None));
+                        self.entries.push(entry(
+                            name,
+                            "received",
+                            self.cycle,
+                            f,
+                            sar_meaning(f, false, node_no, None),
+                            None,
+                        ));
                     }
                     let sent: Vec<Frame> = slot.node.sent()[s..].to_vec();
                     for f in sent {
                         let p = slot.node.encoder_mut().sent(&f);
-                        self.entries.push(entry(name, "sent", self.cycle, &f, sar_meaning(&f, true, node_no, p), p));
+                        self.entries.push(entry(
+                            name,
+                            "sent",
+                            self.cycle,
+                            &f,
+                            sar_meaning(&f, true, node_no, p),
+                            p,
+                        ));
                         if p.is_some() {
                             self.positions[i] = (self.positions[i].0 + 1, p);
                         }
                         self.last_sent[i] = Some(f);
                     }
-                    self.seen[i] = (slot.node.received().len(), slot.node.sent().len(), slot.node.can().errors());
+                    self.seen[i] = (
+                        slot.node.received().len(),
+                        slot.node.sent().len(),
+                        slot.node.can().errors(),
+                    );
                     (level, slot.node.can().errors())
                 }
             };
             self.tx[i + 1] = level;
             if errors > e {
-                self.checks.push(self.cycle, "CAN frame coding (ISO 11898-1: bit, stuff, CRC, form and ACK rules)", format!("device `{}` detected an error ({errors} so far)", self.names[i]));
+                self.checks.push(
+                    self.cycle,
+                    "CAN frame coding (ISO 11898-1: bit, stuff, CRC, form and ACK rules)",
+                    format!(
+                        "device `{}` detected an error ({errors} so far)",
+                        self.names[i]
+                    ),
+                );
             }
         }
         self.bus.push(&self.tx);
         self.cycle += 1;
-        let flag = if self.checks.pending() { VIOLATION_PENDING } else { 0 };
+        let flag = if self.checks.pending() {
+            VIOLATION_PENDING
+        } else {
+            0
+        };
         Pins(rx_master as u32 | flag)
     }
 
@@ -490,7 +631,10 @@ impl Emulator for CanopenEmulator {
     }
 
     fn last_status(&self, device: usize, name: &str) -> Result<bool> {
-        let slot = self.slots.get(device).ok_or_else(|| Error::Usage(format!("no device {device}")))?;
+        let slot = self
+            .slots
+            .get(device)
+            .ok_or_else(|| Error::Usage(format!("no device {device}")))?;
         match (slot, name) {
             (Slot::Ds406 { node, .. }, "operational") => Ok(node.encoder().state() == model::canopen::cob::NmtState::Operational),
             (Slot::Ds406 { .. }, other) => Err(Error::Usage(format!("a CANopen encoder reports `operational`, not `{other}`"))),
@@ -520,6 +664,21 @@ impl Emulator for CanopenEmulator {
     }
 }
 
-fn entry(node: &str, what: &'static str, cycle: u64, f: &Frame, meaning: String, position: Option<u64>) -> Entry {
-    Entry { node: node.to_string(), what, cycle, id: f.id, data: crate::sar58k24::hex(&f.data), meaning, position }
+fn entry(
+    node: &str,
+    what: &'static str,
+    cycle: u64,
+    f: &Frame,
+    meaning: String,
+    position: Option<u64>,
+) -> Entry {
+    Entry {
+        node: node.to_string(),
+        what,
+        cycle,
+        id: f.id,
+        data: crate::sar58k24::hex(&f.data),
+        meaning,
+        position,
+    }
 }

@@ -52,17 +52,38 @@ impl Error {
     pub fn placed(self, text: &str, table: &str) -> Self {
         let line_of = |field: &str| {
             let at = |path: &str| model::toml_place::find(text, path);
-            at(&format!("{table}.{field}")).or_else(|| at(field)).or_else(|| model::toml_place::locate(text, &format!("{table}.{field}"))).map(|o| model::toml_place::line_column(text, o).0)
+            at(&format!("{table}.{field}"))
+                .or_else(|| at(field))
+                .or_else(|| model::toml_place::locate(text, &format!("{table}.{field}")))
+                .map(|o| model::toml_place::line_column(text, o).0)
         };
         match self {
-            Error::Config { origin, line: None, error } => {
+            Error::Config {
+                origin,
+                line: None,
+                error,
+            } => {
                 let line = line_of(error.field());
-                Error::Config { origin, line, error }
+                Error::Config {
+                    origin,
+                    line,
+                    error,
+                }
             }
-            Error::Toml { origin, line: None, message } if !message.contains(" line ") => {
-                let field = message.rsplit_once(" in `").map(|(_, path)| path.trim_end_matches('`').to_string());
+            Error::Toml {
+                origin,
+                line: None,
+                message,
+            } if !message.contains(" line ") => {
+                let field = message
+                    .rsplit_once(" in `")
+                    .map(|(_, path)| path.trim_end_matches('`').to_string());
                 let line = field.and_then(|f| line_of(&f));
-                Error::Toml { origin, line, message }
+                Error::Toml {
+                    origin,
+                    line,
+                    message,
+                }
             }
             other => other,
         }
@@ -125,7 +146,9 @@ pub fn tables(text: &str, origin: &str, proto: &str) -> Result<Tables, Error> {
             return Err(Error::field(
                 origin,
                 "emulator",
-                format!("is a top-level table in a scenario file with [{proto}], where it is not read"),
+                format!(
+                    "is a top-level table in a scenario file with [{proto}], where it is not read"
+                ),
                 format!("write it as [{proto}.emulator]"),
             ))
         }
@@ -180,21 +203,38 @@ pub fn sub(table: &toml::Table, key: &str, origin: &str) -> Result<toml::Table, 
     match table.get(key) {
         None => Ok(toml::Table::new()),
         Some(toml::Value::Table(t)) => Ok(t.clone()),
-        Some(_) => Err(Error::field(origin, key, "is not a table", format!("write [{key}] as a table header"))),
+        Some(_) => Err(Error::field(
+            origin,
+            key,
+            "is not a table",
+            format!("write [{key}] as a table header"),
+        )),
     }
 }
 
 /// Deserialises `table`'s sub-table `key` (empty when absent) into `T`; a
 /// field of the wrong type is named from the protocol table on (`in
 /// `encoder.bits``, not `in `bits``), so that [`Error::placed`] finds it.
-pub fn decode_in<T: serde::de::DeserializeOwned>(table: &toml::Table, key: &str, origin: &str) -> Result<T, Error> {
+pub fn decode_in<T: serde::de::DeserializeOwned>(
+    table: &toml::Table,
+    key: &str,
+    origin: &str,
+) -> Result<T, Error> {
     decode(sub(table, key, origin)?, origin).map_err(|e| match e {
-        Error::Toml { origin, line, message } => {
+        Error::Toml {
+            origin,
+            line,
+            message,
+        } => {
             let message = match message.rsplit_once(" in `") {
                 Some((what, path)) => format!("{what} in `{key}.{path}"),
                 None => format!("{message} in `{key}`"),
             };
-            Error::Toml { origin, line, message }
+            Error::Toml {
+                origin,
+                line,
+                message,
+            }
         }
         other => other,
     })
@@ -231,7 +271,7 @@ pub fn emulator_clock(
              give a faster emulator clock, or set emulator.max_line_clock_khz to the fastest clock your master uses"
         )));
     }
-    // Any clock up to 1 GHz, as the model's system clock (issue 14 item 2):
+    // Any clock up to 1 GHz, as the model's system clock:
     // the emulator counts cycles, and times (checks, motion profiles) come
     // from the exact n x 10^12 / f_emu through the shared Timebase.
     Timebase::new(f_emu_hz).map_err(|e| {

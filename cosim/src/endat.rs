@@ -81,7 +81,10 @@ pub struct EndatChecks {
 
 impl Default for EndatChecks {
     fn default() -> Self {
-        EndatChecks { t_b_us: 1000.0, max_clock_khz: 8000.0 }
+        EndatChecks {
+            t_b_us: 1000.0,
+            max_clock_khz: 8000.0,
+        }
     }
 }
 
@@ -159,9 +162,12 @@ impl EndatEmulator {
     pub fn from_toml(text: &str, origin: &str, f_emu_hz: u64) -> Result<Self> {
         let mut tables = config::tables(text, origin, "endat")?;
         tables.device.remove("commands");
-        let tb = config::emulator_clock(f_emu_hz, &tables.emulator, MAX_CLOCK_KHZ, "EnDat", origin)?;
+        let tb =
+            config::emulator_clock(f_emu_hz, &tables.emulator, MAX_CLOCK_KHZ, "EnDat", origin)?;
         let cfg: EndatConfig = config::decode(tables.device, origin)?;
-        cfg.cable.validate("cable").map_err(|e| Error::config(origin, e))?;
+        cfg.cable
+            .validate("cable")
+            .map_err(|e| Error::config(origin, e))?;
         if let Some(m) = &cfg.motion {
             m.validate(origin)?;
         }
@@ -171,7 +177,9 @@ impl EndatEmulator {
             block_gap_clocks: cfg.block_gap_clocks,
             ..BenchConfig::default()
         };
-        let enc_cfg = bench.encoder_config().map_err(|e| Error::config(origin, e))?;
+        let enc_cfg = bench
+            .encoder_config()
+            .map_err(|e| Error::config(origin, e))?;
         let bits = enc_cfg.pos_bits();
         let limit = (1u64 << bits) - 1;
         if let Some((i, p)) = cfg.positions.iter().enumerate().find(|(_, p)| **p > limit) {
@@ -186,11 +194,18 @@ impl EndatEmulator {
         encoder.set_errors(cfg.encoder.errors);
         encoder.set_warnings(cfg.encoder.warnings);
         if let Some(w) = cfg.encoder.write_protect {
-            encoder.memory_mut().areas.get_mut(&0xB9).expect("status area")[2] = w;
+            encoder
+                .memory_mut()
+                .areas
+                .get_mut(&0xB9)
+                .expect("status area")[2] = w;
         }
         let (clk_line, _) = cfg.cable.lines(&tb, true);
         let delay = cfg.cable.delay_cycles(&tb);
-        let motion = cfg.motion.clone().map(|motion| Running { motion, since: 0 });
+        let motion = cfg
+            .motion
+            .clone()
+            .map(|motion| Running { motion, since: 0 });
         let c = &cfg.checks;
         if !(c.t_b_us >= 0.0 && c.t_b_us < 1e7 && c.max_clock_khz > 0.0 && c.max_clock_khz < 1e6) {
             return Err(Error::field(
@@ -215,7 +230,10 @@ impl EndatEmulator {
             encoder,
             clk_line,
             pair: Pair::new(delay),
-            enc_drive: Drive { enable: true, level: true },
+            enc_drive: Drive {
+                enable: true,
+                level: true,
+            },
             owned: None,
             motion,
             stuck: None,
@@ -246,8 +264,13 @@ impl EndatEmulator {
             return;
         }
         let list = &self.cfg.positions;
-        let listed = if list.is_empty() { 0 } else { list[(k % list.len() as u64) as usize] };
-        self.encoder.set_position(listed.wrapping_add(k.wrapping_mul(self.cfg.step)));
+        let listed = if list.is_empty() {
+            0
+        } else {
+            list[(k % list.len() as u64) as usize]
+        };
+        self.encoder
+            .set_position(listed.wrapping_add(k.wrapping_mul(self.cfg.step)));
     }
 
     /// The faults of transfer `k`, applied right after its latch (before its frame is built).
@@ -304,7 +327,9 @@ impl EndatEmulator {
 
     fn on_frame(&mut self, sent: &[bool]) {
         let mode = self.encoder.mode();
-        let Some(e) = self.entries.last_mut() else { return };
+        let Some(e) = self.entries.last_mut() else {
+            return;
+        };
         e.mode = bits::string_of(mode as u128, 6);
         e.sent_bits = sent.iter().map(|&b| if b { '1' } else { '0' }).collect();
         match frame_kind(mode) {
@@ -326,14 +351,21 @@ impl EndatEmulator {
                 self.checks.push(
                     self.cycle,
                     "t_b (seed 004, 2.3.2: t_b > 1 ms between EnDat 2.1 commands)",
-                    format!("next transfer {:.3} us after the last clock edge of a type 2.1 transfer", self.checks.us(gap)),
+                    format!(
+                        "next transfer {:.3} us after the last clock edge of a type 2.1 transfer",
+                        self.checks.us(gap)
+                    ),
                 );
             }
         } else if (gap as f64) < half_min {
             self.checks.push(
                 self.cycle,
                 "f_c (seed 004, 2.3.2: clock frequency up to 8 MHz with delay compensation)",
-                format!("clock {} for {:.3} us within a transfer", if clk { "low" } else { "high" }, self.checks.us(gap)),
+                format!(
+                    "clock {} for {:.3} us within a transfer",
+                    if clk { "low" } else { "high" },
+                    self.checks.us(gap)
+                ),
             );
         }
         if latched {
@@ -348,7 +380,9 @@ impl EndatEmulator {
             self.seen_violations = self.encoder.violations;
         }
         // One report per recovery time, however many edges fell into it.
-        if self.seen_violations != self.reported_violations && self.encoder.latches != self.reported_at_latch {
+        if self.seen_violations != self.reported_violations
+            && self.encoder.latches != self.reported_at_latch
+        {
             self.reported_violations = self.seen_violations;
             self.reported_at_latch = self.encoder.latches;
             self.checks.push(
@@ -373,7 +407,13 @@ impl Emulator for EndatEmulator {
         }
         let clk = self.clk_line.step(pins.data());
         let edge = (clk != self.last_clk).then(|| self.cycle - self.last_clk_edge);
-        let at_encoder = self.pair.step(master, self.enc_drive, self.cycle, &mut self.checks, CONTENTION);
+        let at_encoder = self.pair.step(
+            master,
+            self.enc_drive,
+            self.cycle,
+            &mut self.checks,
+            CONTENTION,
+        );
         let latches = self.encoder.latches;
         self.enc_drive = self.encoder.step(clk, at_encoder);
         let latched = self.encoder.latches != latches;
@@ -387,11 +427,14 @@ impl Emulator for EndatEmulator {
             self.on_frame(&sent);
             self.encoder.frames.clear();
         }
-        if self.encoder.decodes != self.seen_decodes || self.encoder.answer_name() != self.seen_answer {
+        if self.encoder.decodes != self.seen_decodes
+            || self.encoder.answer_name() != self.seen_answer
+        {
             self.seen_decodes = self.encoder.decodes;
             self.seen_answer = self.encoder.answer_name();
             let mode = bits::string_of(self.encoder.mode() as u128, 6);
-            self.after_21 = model::endat::Command::from_code(self.encoder.mode()).is_some_and(|c| !c.is_type22());
+            self.after_21 = model::endat::Command::from_code(self.encoder.mode())
+                .is_some_and(|c| !c.is_type22());
             if let Some(e) = self.entries.last_mut() {
                 e.mode = mode;
                 e.answer = self.seen_answer;
@@ -404,7 +447,9 @@ impl Emulator for EndatEmulator {
 
     fn set_position(&mut self, device: usize, position: u64) -> Result<()> {
         if device != 0 {
-            return Err(Error::Usage(format!("EnDat has one encoder (device 0), not device {device}")));
+            return Err(Error::Usage(format!(
+                "EnDat has one encoder (device 0), not device {device}"
+            )));
         }
         let limit = (1u64 << self.bits()) - 1;
         if position > limit {
@@ -421,7 +466,9 @@ impl Emulator for EndatEmulator {
 
     fn set_status(&mut self, device: usize, name: &str, value: bool) -> Result<()> {
         if device != 0 {
-            return Err(Error::Usage(format!("EnDat has one encoder (device 0), not device {device}")));
+            return Err(Error::Usage(format!(
+                "EnDat has one encoder (device 0), not device {device}"
+            )));
         }
         match name {
             "f1" | "error" => self.encoder.set_errors(if value { 0x0001 } else { 0 }),
@@ -436,8 +483,8 @@ impl Emulator for EndatEmulator {
             }
             other => {
                 return Err(Error::Usage(format!(
-                    "an EnDat encoder has no status `{other}`; give f1 (or error), f2, warning or busy"
-                )))
+                "an EnDat encoder has no status `{other}`; give f1 (or error), f2, warning or busy"
+            )))
             }
         }
         Ok(())
@@ -445,10 +492,15 @@ impl Emulator for EndatEmulator {
 
     fn set_motion(&mut self, device: usize, toml: &str) -> Result<()> {
         if device != 0 {
-            return Err(Error::Usage(format!("EnDat has one encoder (device 0), not device {device}")));
+            return Err(Error::Usage(format!(
+                "EnDat has one encoder (device 0), not device {device}"
+            )));
         }
         let motion = Motion::from_toml(toml, "set_motion")?;
-        self.motion = Some(Running { motion, since: self.cycle });
+        self.motion = Some(Running {
+            motion,
+            since: self.cycle,
+        });
         self.owned = None;
         Ok(())
     }
@@ -470,7 +522,9 @@ impl Emulator for EndatEmulator {
     }
 
     fn last_value(&self, device: usize) -> Option<u64> {
-        (device == 0).then(|| self.entries.last().map(|e| e.position)).flatten()
+        (device == 0)
+            .then(|| self.entries.last().map(|e| e.position))
+            .flatten()
     }
 
     fn last_status(&self, device: usize, name: &str) -> Result<bool> {
@@ -480,7 +534,12 @@ impl Emulator for EndatEmulator {
             .filter(|_| device == 0)
             .ok_or_else(|| Error::Usage(format!("no EnDat transfer of device {device} yet")))?;
         let sent = |v: Option<bool>, what: &str| {
-            v.ok_or_else(|| Error::Usage(format!("the last EnDat frame (mode {}) carried no {what}", e.mode)))
+            v.ok_or_else(|| {
+                Error::Usage(format!(
+                    "the last EnDat frame (mode {}) carried no {what}",
+                    e.mode
+                ))
+            })
         };
         match name {
             "f1" | "error" => sent(e.f1, "F1"),

@@ -65,11 +65,14 @@ pub const BACK_TO_BACK: &str = "character timing (seed 000 Table 3: a request's 
 /// B, C, D not 8 times consecutively.
 pub const REPEAT: &str = "request spacing (seed 000 Table 4: B, C, D minimum 8 times consecutively at a typical interval of 40 us)";
 /// EEPROM reads too close.
-pub const READ_SPACING: &str = "request spacing (seed 000: wait more than 200 us between each memory read operation)";
+pub const READ_SPACING: &str =
+    "request spacing (seed 000: wait more than 200 us between each memory read operation)";
 /// EEPROM writes too close.
-pub const WRITE_SPACING: &str = "request spacing (seed 000: wait more than 6 ms between each memory write operation)";
+pub const WRITE_SPACING: &str =
+    "request spacing (seed 000: wait more than 6 ms between each memory write operation)";
 /// Memory access during a page change.
-pub const PAGE_SPACING: &str = "request spacing (seed 000 Table 11: a page change takes 18 ms before the next memory access)";
+pub const PAGE_SPACING: &str =
+    "request spacing (seed 000 Table 11: a page change takes 18 ms before the next memory access)";
 
 /// The emulator's own limits (`[checks]`).
 #[derive(Debug, Clone, PartialEq, Deserialize)]
@@ -83,7 +86,9 @@ pub struct EslChecks {
 
 impl Default for EslChecks {
     fn default() -> Self {
-        EslChecks { bit_tolerance_percent: 3.0 }
+        EslChecks {
+            bit_tolerance_percent: 3.0,
+        }
     }
 }
 
@@ -226,27 +231,57 @@ impl EslEmulator {
             _ => 10e6,
         };
         if !(1e3..=50e6).contains(&baud) {
-            return Err(Error::field(origin, "baud", format!("{baud} bit/s"), "give the bit rate in bit/s (seed 000: 10e6)"));
+            return Err(Error::field(
+                origin,
+                "baud",
+                format!("{baud} bit/s"),
+                "give the bit rate in bit/s (seed 000: 10e6)",
+            ));
         }
         if tables.emulator.max_line_clock_khz.is_none() {
             tables.emulator.max_line_clock_khz = Some(baud / 1e3);
         }
-        let tb = config::emulator_clock(f_emu_hz, &tables.emulator, baud / 1e3, "ESL (its line clock is the bit rate)", origin)?;
+        let tb = config::emulator_clock(
+            f_emu_hz,
+            &tables.emulator,
+            baud / 1e3,
+            "ESL (its line clock is the bit rate)",
+            origin,
+        )?;
         let cfg: EslConfig = config::decode(tables.device, origin)?;
-        cfg.cable.validate("cable").map_err(|e| Error::config(origin, e))?;
+        cfg.cable
+            .validate("cable")
+            .map_err(|e| Error::config(origin, e))?;
         if cfg.encoders.is_empty() || cfg.encoders.len() > 8 {
-            return Err(Error::field(origin, "encoders", format!("{} encoders", cfg.encoders.len()), "list 1 to 8 [[encoders]]"));
+            return Err(Error::field(
+                origin,
+                "encoders",
+                format!("{} encoders", cfg.encoders.len()),
+                "list 1 to 8 [[encoders]]",
+            ));
         }
         for (i, e) in cfg.encoders.iter().enumerate() {
-            if cfg.encoders[..i].iter().any(|o| o.address == e.address) || Some(e.address) == cfg.broadcast_address {
+            if cfg.encoders[..i].iter().any(|o| o.address == e.address)
+                || Some(e.address) == cfg.broadcast_address
+            {
                 return Err(Error::field(origin, format!("encoders[{i}].address"), "used twice (or the broadcast address)", "give every encoder on the bus its own address, and keep broadcast_address free"));
             }
         }
         if cfg.broadcast_address.is_some_and(|a| a > 7) {
-            return Err(Error::field(origin, "broadcast_address", "above 7", "give an address 0..7"));
+            return Err(Error::field(
+                origin,
+                "broadcast_address",
+                "above 7",
+                "give an address 0..7",
+            ));
         }
         if !(0.0..=20.0).contains(&cfg.checks.bit_tolerance_percent) {
-            return Err(Error::field(origin, "checks.bit_tolerance_percent", format!("{}", cfg.checks.bit_tolerance_percent), "give 0 to 20 %"));
+            return Err(Error::field(
+                origin,
+                "checks.bit_tolerance_percent",
+                format!("{}", cfg.checks.bit_tolerance_percent),
+                "give 0 to 20 %",
+            ));
         }
         let bench = BenchConfig {
             f_sys_mhz: tb.f_sys_hz() as f64 / 1e6,
@@ -257,9 +292,16 @@ impl EslEmulator {
         let mut encoders = Vec::new();
         let mut windows = Vec::new();
         for i in 0..cfg.encoders.len() {
-            let mut c = bench.encoder_config(i).map_err(|e| Error::config(origin, e))?;
+            let mut c = bench
+                .encoder_config(i)
+                .map_err(|e| Error::config(origin, e))?;
             c.broadcast_address = cfg.broadcast_address;
-            windows.push((c.repeat_window, c.eeprom_read, c.eeprom_write, c.page_change));
+            windows.push((
+                c.repeat_window,
+                c.eeprom_read,
+                c.eeprom_write,
+                c.page_change,
+            ));
             encoders.push(Encoder::new(c));
         }
         let delay = cfg.cable.delay_cycles(&tb);
@@ -273,10 +315,16 @@ impl EslEmulator {
             windows,
             spacing: vec![Spacing::default(); n],
             pair: Pair::new(delay),
-            bus: Drive { enable: false, level: true },
+            bus: Drive {
+                enable: false,
+                level: true,
+            },
             motions: Motions::default(),
             cycle: 0,
-            chars: CharTimer { start: None, last: true },
+            chars: CharTimer {
+                start: None,
+                last: true,
+            },
             entries: Vec::new(),
             last: vec![None; n],
             checks: Checks::new(tb.period_ps()),
@@ -301,11 +349,18 @@ impl EslEmulator {
     }
 
     fn on_answer(&mut self, device: usize) {
-        let Some((at, fields)) = self.encoders[device].answered().last() else { return };
+        let Some((at, fields)) = self.encoders[device].answered().last() else {
+            return;
+        };
         let code = frames::parse_control_field(fields[0]).code;
         let memory = DataId::from_code(code).is_some_and(|d| d.is_memory());
-        let sf = if memory { 0 } else { fields.get(1).copied().unwrap_or(0) };
-        let comm_error = fields.len() == frames::COMM_ERROR_FIELDS && sf & frames::STATUS_CA_MASK != 0;
+        let sf = if memory {
+            0
+        } else {
+            fields.get(1).copied().unwrap_or(0)
+        };
+        let comm_error =
+            fields.len() == frames::COMM_ERROR_FIELDS && sf & frames::STATUS_CA_MASK != 0;
         let id = DataId::from_code(code).filter(|_| !comm_error);
         let d = id.map(|id| frames::decode(id, fields)).unwrap_or_default();
         let has = |f: fn(&Field) -> bool| id.is_some_and(|id| id.channel1().fields.iter().any(f));
@@ -368,7 +423,9 @@ impl EslEmulator {
 
     /// Request field count and spacing, once per frame set an encoder received.
     fn on_request(&mut self, device: usize) {
-        let Some(r) = self.encoders[device].last_request().cloned() else { return };
+        let Some(r) = self.encoders[device].last_request().cloned() else {
+            return;
+        };
         let s = &mut self.spacing[device];
         s.seen = self.encoders[device].requests();
         // Field count: once per request on the bus (from encoder 0's receiver).
@@ -382,7 +439,15 @@ impl EslEmulator {
                     _ => 2,
                 };
                 if r.fields.len() != want && cf.parity_ok && !r.stop_error {
-                    self.checks.push(r.end, BACK_TO_BACK, format!("a frame set of {} field(s) for Data ID {:X}, which takes {want}", r.fields.len(), cf.code));
+                    self.checks.push(
+                        r.end,
+                        BACK_TO_BACK,
+                        format!(
+                            "a frame set of {} field(s) for Data ID {:X}, which takes {want}",
+                            r.fields.len(),
+                            cf.code
+                        ),
+                    );
                 }
             }
         }
@@ -400,7 +465,11 @@ impl EslEmulator {
                     self.checks.push(r.end, REPEAT, format!("request {} of Data ID {:X} came {:.1} us after the one before, beyond the encoder's repeat window of {:.1} us (the count starts again)", k + 1, cf.code, us(r.end - at), us(window)));
                     s.repeat = Some((rid, 1, r.end));
                 } else {
-                    s.repeat = if k + 1 >= 8 { None } else { Some((rid, k + 1, r.end)) };
+                    s.repeat = if k + 1 >= 8 {
+                        None
+                    } else {
+                        Some((rid, k + 1, r.end))
+                    };
                 }
             }
             (prev, now_id) => {
@@ -418,7 +487,15 @@ impl EslEmulator {
             let eeprom = address != frames::PAGE_REGISTER && r.page != frames::REGISTER_PAGE;
             if id == DataId::IdE && eeprom {
                 if let Some(c) = since(s.last_read).filter(|&c| c + 1 < read) {
-                    self.checks.push(r.end, READ_SPACING, format!("an EEPROM read {:.1} us after the one before (read time {:.1} us)", us(c), us(read)));
+                    self.checks.push(
+                        r.end,
+                        READ_SPACING,
+                        format!(
+                            "an EEPROM read {:.1} us after the one before (read time {:.1} us)",
+                            us(c),
+                            us(read)
+                        ),
+                    );
                 }
                 s.last_read = Some(r.end);
             }
@@ -451,7 +528,9 @@ impl Emulator for EslEmulator {
             }
         }
         self.time_characters(host);
-        let at_encoder = self.pair.step(host, self.bus, self.cycle, &mut self.checks, TURNAROUND);
+        let at_encoder = self
+            .pair
+            .step(host, self.bus, self.cycle, &mut self.checks, TURNAROUND);
         // Two drivers on the bus: a low wins (as the model's bench).
         let (mut enable, mut level) = (false, true);
         for i in 0..self.encoders.len() {
@@ -499,7 +578,9 @@ impl Emulator for EslEmulator {
         }
         let mut a = e.alarms();
         if !set_alarm(&mut a, name, value) {
-            return Err(Error::Usage(format!("ESL encoder has no status `{name}`; give one of {STATUS_NAMES}")));
+            return Err(Error::Usage(format!(
+                "ESL encoder has no status `{name}`; give one of {STATUS_NAMES}"
+            )));
         }
         e.set_alarms(a);
         Ok(())
@@ -526,12 +607,22 @@ impl Emulator for EslEmulator {
         self.device(t.device)?;
         for (i, f) in t.flips.iter().enumerate() {
             if f.bit > 9 || f.field >= 18 {
-                return Err(Error::field("fault", format!("flips[{i}]"), "field above 17 or bit above 9", "give field 0..17 and bit 0..9 (0 start, 1..8 data, 9 stop)"));
+                return Err(Error::field(
+                    "fault",
+                    format!("flips[{i}]"),
+                    "field above 17 or bit above 9",
+                    "give field 0..17 and bit 0..9 (0 start, 1..8 data, 9 stop)",
+                ));
             }
         }
         for (i, j) in t.sequence_jumps.iter().enumerate() {
             if !(1..=2).contains(&j.channel) {
-                return Err(Error::field("fault", format!("sequence_jumps[{i}].channel"), format!("{}", j.channel), "give channel 1 or 2"));
+                return Err(Error::field(
+                    "fault",
+                    format!("sequence_jumps[{i}].channel"),
+                    format!("{}", j.channel),
+                    "give channel 1 or 2",
+                ));
             }
         }
         let faults = EncoderSettings {
@@ -576,8 +667,17 @@ impl Emulator for EslEmulator {
             .iter()
             .find(|(n, _)| *n == name)
             .map(|(_, b)| *b)
-            .ok_or_else(|| Error::Usage(format!("ESL has no status `{name}`; give one of {STATUS_NAMES}, ea0, ea1, ready")))?;
-        let alm = e.alm.ok_or_else(|| Error::Usage(format!("the last answer (Data ID {:X}) carried no ALM", e.data_id)))?;
+            .ok_or_else(|| {
+                Error::Usage(format!(
+                    "ESL has no status `{name}`; give one of {STATUS_NAMES}, ea0, ea1, ready"
+                ))
+            })?;
+        let alm = e.alm.ok_or_else(|| {
+            Error::Usage(format!(
+                "the last answer (Data ID {:X}) carried no ALM",
+                e.data_id
+            ))
+        })?;
         Ok(alm >> bit & 1 == 1)
     }
 

@@ -189,7 +189,12 @@ pub extern "C" fn emu_set_position(handle: i32, device: i32, position: i64) -> i
 /// # Safety
 /// Each string argument is null or NUL-terminated and valid for the call.
 #[no_mangle]
-pub unsafe extern "C" fn emu_set_status(handle: i32, device: i32, name: *const c_char, value: i32) -> i32 {
+pub unsafe extern "C" fn emu_set_status(
+    handle: i32,
+    device: i32,
+    name: *const c_char,
+    value: i32,
+) -> i32 {
     guard(-1, || {
         let name = unsafe { text(name, "status name") }?;
         with(handle, |e| {
@@ -206,7 +211,9 @@ pub unsafe extern "C" fn emu_set_status(handle: i32, device: i32, name: *const c
 pub unsafe extern "C" fn emu_set_motion(handle: i32, device: i32, toml: *const c_char) -> i32 {
     guard(-1, || {
         let toml = unsafe { text(toml, "motion") }?;
-        with(handle, |e| e.set_motion(device.max(0) as usize, &toml).map(|_| 0))
+        with(handle, |e| {
+            e.set_motion(device.max(0) as usize, &toml).map(|_| 0)
+        })
     })
 }
 

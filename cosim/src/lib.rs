@@ -39,9 +39,9 @@ pub mod esl;
 pub mod ffi;
 pub mod modbus;
 pub mod monitor;
-pub mod sar58k24;
 pub mod motion;
 pub mod pair;
+pub mod sar58k24;
 pub mod ssi;
 pub mod tformat;
 
@@ -101,7 +101,10 @@ pub trait Emulator: Send {
     /// TOML text, see [`motion`]) from now on, instead of set positions.
     fn set_motion(&mut self, device: usize, toml: &str) -> Result<()> {
         let _ = (device, toml);
-        Err(Error::Usage(format!("the {} emulator takes no motion profile", self.kind())))
+        Err(Error::Usage(format!(
+            "the {} emulator takes no motion profile",
+            self.kind()
+        )))
     }
 
     /// Schedules faults given as the scenario's fault tables in TOML text.

@@ -27,7 +27,9 @@ use model::modbus::{BenchConfig, Device, Verdict};
 
 use crate::check::{Checks, VIOLATION_PENDING};
 use crate::config::Error;
-use crate::sar58k24::{half_duplex_pins, hex, random_lists, uart_bench, HalfDuplex, RandomPositions, Shafts};
+use crate::sar58k24::{
+    half_duplex_pins, hex, random_lists, uart_bench, HalfDuplex, RandomPositions, Shafts,
+};
 use crate::{Emulator, Pins, Result};
 
 /// 8 samples per bit at 115200 baud, as the SAR58K24 emulator.
@@ -107,7 +109,14 @@ pub struct ModbusEmulator {
 impl ModbusEmulator {
     /// An emulator from TOML text (`origin` names it in errors) at `f_emu_hz`.
     pub fn from_toml(text: &str, origin: &str, f_emu_hz: u64) -> Result<Self> {
-        let (tb, own, mut bench) = uart_bench::<Own, BenchConfig>(text, origin, f_emu_hz, "modbus", "Modbus RTU", 19_200.0)?;
+        let (tb, own, mut bench) = uart_bench::<Own, BenchConfig>(
+            text,
+            origin,
+            f_emu_hz,
+            "modbus",
+            "Modbus RTU",
+            19_200.0,
+        )?;
         let bits: Vec<u32> = bench.devices.iter().map(|d| d.bits).collect();
         let lists = random_lists(&own.random, &bits, origin, "devices", "[[devices]]")?;
         for (d, list) in bench.devices.iter_mut().zip(lists) {
@@ -235,7 +244,9 @@ impl Emulator for ModbusEmulator {
 
     fn set_position(&mut self, device: usize, position: u64) -> Result<()> {
         self.shafts.set_position(device, position)?;
-        self.devices[device].set_position(position).map_err(|e| Error::Usage(e.to_string()))
+        self.devices[device]
+            .set_position(position)
+            .map_err(|e| Error::Usage(e.to_string()))
     }
 
     fn set_motion(&mut self, device: usize, toml: &str) -> Result<()> {

@@ -65,7 +65,11 @@ impl Motion {
         let t: Table = toml::from_str(text).map_err(|e| Error::Toml {
             origin: origin.to_string(),
             line: None,
-            message: e.to_string().split_whitespace().collect::<Vec<_>>().join(" "),
+            message: e
+                .to_string()
+                .split_whitespace()
+                .collect::<Vec<_>>()
+                .join(" "),
         })?;
         t.motion.validate(origin)?;
         Ok(t.motion)
@@ -77,19 +81,30 @@ impl Motion {
             if v.is_finite() && v.abs() < 1e15 {
                 Ok(())
             } else {
-                Err(Error::field(origin, field, format!("{v}"), "give a finite number"))
+                Err(Error::field(
+                    origin,
+                    field,
+                    format!("{v}"),
+                    "give a finite number",
+                ))
             }
         };
         match *self {
             Motion::Constant { counts_per_ms, .. } => finite("motion.counts_per_ms", counts_per_ms),
-            Motion::Steps { every_us, .. } if !(every_us > 0.0 && every_us.is_finite()) => Err(Error::field(
-                origin,
-                "motion.every_us",
-                format!("{every_us}"),
-                "give the time between steps in µs, more than 0",
-            )),
+            Motion::Steps { every_us, .. } if !(every_us > 0.0 && every_us.is_finite()) => {
+                Err(Error::field(
+                    origin,
+                    "motion.every_us",
+                    format!("{every_us}"),
+                    "give the time between steps in µs, more than 0",
+                ))
+            }
             Motion::Steps { .. } => Ok(()),
-            Motion::Reversal { counts_per_ms, half_period_ms, .. } => {
+            Motion::Reversal {
+                counts_per_ms,
+                half_period_ms,
+                ..
+            } => {
                 finite("motion.counts_per_ms", counts_per_ms)?;
                 if half_period_ms > 0.0 && half_period_ms.is_finite() {
                     Ok(())
@@ -109,20 +124,36 @@ impl Motion {
     pub fn position_at(&self, t_ns: f64, bits: u32) -> u64 {
         let offset: i128 = match *self {
             Motion::Constant { counts_per_ms, .. } => (counts_per_ms * t_ns / 1e6).floor() as i128,
-            Motion::Steps { step, every_us, .. } => (t_ns / (every_us * 1e3)).floor() as i128 * step as i128,
-            Motion::Reversal { counts_per_ms, half_period_ms, .. } => {
+            Motion::Steps { step, every_us, .. } => {
+                (t_ns / (every_us * 1e3)).floor() as i128 * step as i128
+            }
+            Motion::Reversal {
+                counts_per_ms,
+                half_period_ms,
+                ..
+            } => {
                 let leg = half_period_ms * 1e6;
                 let k = (t_ns / leg).floor();
                 let into = t_ns - k * leg;
                 // Even legs go out from the start, odd ones come back.
-                let along = if (k as i64) % 2 == 0 { into } else { leg - into };
+                let along = if (k as i64) % 2 == 0 {
+                    into
+                } else {
+                    leg - into
+                };
                 (counts_per_ms * along / 1e6).floor() as i128
             }
         };
         let start = match *self {
-            Motion::Constant { start, .. } | Motion::Steps { start, .. } | Motion::Reversal { start, .. } => start,
+            Motion::Constant { start, .. }
+            | Motion::Steps { start, .. }
+            | Motion::Reversal { start, .. } => start,
         };
-        let modulus: i128 = if bits >= 64 { 1i128 << 64 } else { 1i128 << bits };
+        let modulus: i128 = if bits >= 64 {
+            1i128 << 64
+        } else {
+            1i128 << bits
+        };
         (start as i128 + offset).rem_euclid(modulus) as u64
     }
 }
@@ -166,7 +197,10 @@ impl Motions {
         if self.running.len() <= device {
             self.running.resize(device + 1, None);
         }
-        self.running[device] = Some(Running { motion, since: cycle });
+        self.running[device] = Some(Running {
+            motion,
+            since: cycle,
+        });
         Ok(())
     }
 
@@ -184,11 +218,23 @@ impl Motions {
 
     /// The position device `device` holds at `cycle`, if it moves.
     pub fn position(&self, device: usize, cycle: u64, period_ps: u64, bits: u32) -> Option<u64> {
-        self.running.get(device)?.as_ref().map(|r| r.position(cycle, period_ps, bits))
+        self.running
+            .get(device)?
+            .as_ref()
+            .map(|r| r.position(cycle, period_ps, bits))
     }
 
     /// [`Motions::position`] on the clock `tb` ([`Running::position_on`]).
-    pub fn position_on(&self, device: usize, cycle: u64, tb: &model::Timebase, bits: u32) -> Option<u64> {
-        self.running.get(device)?.as_ref().map(|r| r.position_on(cycle, tb, bits))
+    pub fn position_on(
+        &self,
+        device: usize,
+        cycle: u64,
+        tb: &model::Timebase,
+        bits: u32,
+    ) -> Option<u64> {
+        self.running
+            .get(device)?
+            .as_ref()
+            .map(|r| r.position_on(cycle, tb, bits))
     }
 }

@@ -87,7 +87,11 @@ pub(crate) fn splitmix(state: &mut u64) -> u64 {
 /// tests can predict a scenario's `[sar.random]` positions).
 pub fn random_list(count: usize, seed: u64, bits: u32) -> Vec<u64> {
     let mut s = seed;
-    let mask = if bits >= 64 { u64::MAX } else { (1u64 << bits) - 1 };
+    let mask = if bits >= 64 {
+        u64::MAX
+    } else {
+        (1u64 << bits) - 1
+    };
     (0..count).map(|_| splitmix(&mut s) & mask).collect()
 }
 
@@ -112,7 +116,14 @@ pub(crate) fn own_tables<T: serde::de::DeserializeOwned + Default>(
 /// configured baud rate (the rule of [`config::emulator_clock`] is 4 x a
 /// line clock, here 2 x the baud rate), and the model's set-up `B` on the
 /// emulator clock.
-pub(crate) fn uart_bench<O, B>(text: &str, origin: &str, f_emu_hz: u64, proto: &str, name: &str, default_baud: f64) -> Result<(Timebase, O, B)>
+pub(crate) fn uart_bench<O, B>(
+    text: &str,
+    origin: &str,
+    f_emu_hz: u64,
+    proto: &str,
+    name: &str,
+    default_baud: f64,
+) -> Result<(Timebase, O, B)>
 where
     O: serde::de::DeserializeOwned + Default,
     B: serde::de::DeserializeOwned,
@@ -130,28 +141,54 @@ where
     // The models' range (their `clocks_per_bit`): the monitors, which do not
     // build a model host, would otherwise take any rate, down to zero.
     if !(300.0..=10e6).contains(&baud) {
-        return Err(Error::field(origin, "baud", format!("{baud}"), "give a baud rate from 300 to 10e6, such as 9600, 19200 or 115200"));
+        return Err(Error::field(
+            origin,
+            "baud",
+            format!("{baud}"),
+            "give a baud rate from 300 to 10e6, such as 9600, 19200 or 115200",
+        ));
     }
     let mut settings = tables.emulator.clone();
     settings.max_line_clock_khz = settings.max_line_clock_khz.or(Some(2.0 * baud / 1e3));
     let tb = config::emulator_clock(f_emu_hz, &settings, MAX_LINE_KHZ, name, origin)?;
-    device.insert("f_sys_mhz".into(), toml::Value::Float(f_emu_hz as f64 / 1e6));
+    device.insert(
+        "f_sys_mhz".into(),
+        toml::Value::Float(f_emu_hz as f64 / 1e6),
+    );
     Ok((tb, own, config::decode(device, origin)?))
 }
 
 /// The random position list of each device (`None`: keep its own), for
 /// devices of `bits`; `field` and `table` name the devices in errors.
-pub(crate) fn random_lists(r: &RandomPositions, bits: &[u32], origin: &str, field: &str, table: &str) -> Result<Vec<Option<Vec<u64>>>> {
+pub(crate) fn random_lists(
+    r: &RandomPositions,
+    bits: &[u32],
+    origin: &str,
+    field: &str,
+    table: &str,
+) -> Result<Vec<Option<Vec<u64>>>> {
     if bits.is_empty() || bits.len() > 3 {
-        return Err(Error::field(origin, field, format!("{} devices", bits.len()), format!("give one to three {table} tables")));
+        return Err(Error::field(
+            origin,
+            field,
+            format!("{} devices", bits.len()),
+            format!("give one to three {table} tables"),
+        ));
     }
     if r.count > 1_000_000 {
-        return Err(Error::field(origin, "random.count", format!("{}", r.count), "give at most 10^6 random positions"));
+        return Err(Error::field(
+            origin,
+            "random.count",
+            format!("{}", r.count),
+            "give at most 10^6 random positions",
+        ));
     }
     Ok(bits
         .iter()
         .enumerate()
-        .map(|(i, &b)| (r.count > 0).then(|| random_list(r.count, r.seed.wrapping_add(i as u64), b.min(32))))
+        .map(|(i, &b)| {
+            (r.count > 0).then(|| random_list(r.count, r.seed.wrapping_add(i as u64), b.min(32)))
+        })
         .collect())
 }
 
@@ -168,14 +205,23 @@ pub(crate) struct Shafts {
 impl Shafts {
     /// Devices of `bits` on the emulator clock `tb`; `what` names them in errors.
     pub(crate) fn new(tb: &Timebase, bits: Vec<u32>, what: &'static str) -> Self {
-        Shafts { motions: Motions::default(), period_ps: tb.period_ps(), bits, what }
+        Shafts {
+            motions: Motions::default(),
+            period_ps: tb.period_ps(),
+            bits,
+            what,
+        }
     }
 
     fn bits(&self, device: usize) -> Result<u32> {
-        self.bits
-            .get(device)
-            .copied()
-            .ok_or_else(|| Error::Usage(format!("the emulator has {} {}(s), not {} {device}", self.bits.len(), self.what, self.what)))
+        self.bits.get(device).copied().ok_or_else(|| {
+            Error::Usage(format!(
+                "the emulator has {} {}(s), not {} {device}",
+                self.bits.len(),
+                self.what,
+                self.what
+            ))
+        })
     }
 
     /// Checks `set_position(device, position)` and stops the device's motion.
@@ -199,7 +245,13 @@ impl Shafts {
         if !self.motions.any() {
             return Vec::new();
         }
-        (0..self.bits.len()).filter_map(|i| self.motions.position(i, cycle, self.period_ps, self.bits[i]).map(|p| (i, p))).collect()
+        (0..self.bits.len())
+            .filter_map(|i| {
+                self.motions
+                    .position(i, cycle, self.period_ps, self.bits[i])
+                    .map(|p| (i, p))
+            })
+            .collect()
     }
 }
 
@@ -329,7 +381,8 @@ pub struct SarEmulator {
 impl SarEmulator {
     /// An emulator from TOML text (`origin` names it in errors) at `f_emu_hz`.
     pub fn from_toml(text: &str, origin: &str, f_emu_hz: u64) -> Result<Self> {
-        let (tb, own, mut bench) = uart_bench::<Own, BenchConfig>(text, origin, f_emu_hz, "sar", "SAR58K24", 115_200.0)?;
+        let (tb, own, mut bench) =
+            uart_bench::<Own, BenchConfig>(text, origin, f_emu_hz, "sar", "SAR58K24", 115_200.0)?;
         let bits: Vec<u32> = bench.encoders.iter().map(|e| e.bits).collect();
         let lists = random_lists(&own.random, &bits, origin, "encoders", "[[encoders]]")?;
         for (e, list) in bench.encoders.iter_mut().zip(lists) {
@@ -437,7 +490,9 @@ impl Emulator for SarEmulator {
                 self.checks.push(
                     self.cycle,
                     "T2 (seed 001, 3.1.3: the trigger pulse is low for T2 >= 10 us)",
-                    format!("encoder {i} ignored a trigger pulse shorter than its trigger_min_low_us"),
+                    format!(
+                        "encoder {i} ignored a trigger pulse shorter than its trigger_min_low_us"
+                    ),
                 );
             }
         }
@@ -456,7 +511,9 @@ impl Emulator for SarEmulator {
 
     fn set_position(&mut self, device: usize, position: u64) -> Result<()> {
         self.shafts.set_position(device, position)?;
-        self.encoders[device].set_position(position).map_err(|e| Error::Usage(e.to_string()))
+        self.encoders[device]
+            .set_position(position)
+            .map_err(|e| Error::Usage(e.to_string()))
     }
 
     fn set_motion(&mut self, device: usize, toml: &str) -> Result<()> {

@@ -39,7 +39,8 @@ use crate::{Emulator, Pins, Result};
 pub const MAX_CLOCK_KHZ: f64 = 2500.0;
 
 /// Both drivers on the pair.
-const TURNAROUND: &str = "turnaround (seed 002: the host releases the line before the encoder answers)";
+const TURNAROUND: &str =
+    "turnaround (seed 002: the host releases the line before the encoder answers)";
 
 /// The emulator's configuration (the scenario's T-format device tables).
 #[derive(Debug, Clone, PartialEq, Deserialize)]
@@ -56,7 +57,11 @@ pub struct TformatConfig {
 impl Default for TformatConfig {
     fn default() -> Self {
         let b = BenchConfig::default();
-        TformatConfig { encoder: b.encoder, cable: b.cable, baud: b.baud }
+        TformatConfig {
+            encoder: b.encoder,
+            cable: b.cable,
+            baud: b.baud,
+        }
     }
 }
 
@@ -105,9 +110,17 @@ impl TformatEmulator {
         for key in ["ops", "line_faults"] {
             tables.device.remove(key);
         }
-        let tb = config::emulator_clock(f_emu_hz, &tables.emulator, MAX_CLOCK_KHZ, "T-format", origin)?;
+        let tb = config::emulator_clock(
+            f_emu_hz,
+            &tables.emulator,
+            MAX_CLOCK_KHZ,
+            "T-format",
+            origin,
+        )?;
         let cfg: TformatConfig = config::decode(tables.device, origin)?;
-        cfg.cable.validate("cable").map_err(|e| Error::config(origin, e))?;
+        cfg.cable
+            .validate("cable")
+            .map_err(|e| Error::config(origin, e))?;
         let bench = BenchConfig {
             f_sys_mhz: tb.f_sys_hz() as f64 / 1e6,
             baud: cfg.baud,
@@ -127,7 +140,10 @@ impl TformatEmulator {
             period_ps: tb.period_ps(),
             encoder: Encoder::new(enc_cfg),
             pair: Pair::new(delay),
-            enc_drive: Drive { enable: false, level: true },
+            enc_drive: Drive {
+                enable: false,
+                level: true,
+            },
             motions: Motions::default(),
             cycle: 0,
             entries: Vec::new(),
@@ -141,11 +157,15 @@ impl TformatEmulator {
     }
 
     fn on_answer(&mut self) {
-        let Some((at, fields)) = self.encoder.answered().last() else { return };
+        let Some((at, fields)) = self.encoder.answered().last() else {
+            return;
+        };
         let id = (fields[0] >> 3) & 0xF;
         let (mut abs, mut abm, mut almc) = (None, None, None);
         match DataId::from_code(id) {
-            Some(DataId::Id0 | DataId::Id7 | DataId::Id8 | DataId::IdC) => abs = Some(le(&fields[2..5])),
+            Some(DataId::Id0 | DataId::Id7 | DataId::Id8 | DataId::IdC) => {
+                abs = Some(le(&fields[2..5]))
+            }
             Some(DataId::Id1) => abm = Some(le(&fields[2..5]) as u16),
             Some(DataId::Id3) => {
                 abs = Some(le(&fields[2..5]));
@@ -165,7 +185,6 @@ impl TformatEmulator {
             almc,
         });
     }
-
 }
 
 /// The ALMC flags by name and bit (seed 002, Table 3).
@@ -207,10 +226,17 @@ impl Emulator for TformatEmulator {
         let host = Pair::master_drive(pins);
         if self.motions.any() {
             if let Some(p) = self.motions.position(0, self.cycle, self.period_ps, 33) {
-                self.encoder.set_position((p & 0x1_FFFF) as u32, (p >> 17) as u16);
+                self.encoder
+                    .set_position((p & 0x1_FFFF) as u32, (p >> 17) as u16);
             }
         }
-        let at_encoder = self.pair.step(host, self.enc_drive, self.cycle, &mut self.checks, TURNAROUND);
+        let at_encoder = self.pair.step(
+            host,
+            self.enc_drive,
+            self.cycle,
+            &mut self.checks,
+            TURNAROUND,
+        );
         let answers = self.encoder.answered().len();
         self.enc_drive = self.encoder.step(at_encoder);
         if self.encoder.answered().len() != answers {
@@ -227,13 +253,16 @@ impl Emulator for TformatEmulator {
             )));
         }
         self.motions.stop(0);
-        self.encoder.set_position((position & 0x1_FFFF) as u32, (position >> 17) as u16);
+        self.encoder
+            .set_position((position & 0x1_FFFF) as u32, (position >> 17) as u16);
         Ok(())
     }
 
     fn set_motion(&mut self, device: usize, toml: &str) -> Result<()> {
         if device != 0 {
-            return Err(Error::Usage(format!("T-format has one encoder (device 0), not device {device}")));
+            return Err(Error::Usage(format!(
+                "T-format has one encoder (device 0), not device {device}"
+            )));
         }
         self.motions.set(0, toml, self.cycle)
     }
@@ -261,7 +290,12 @@ impl Emulator for TformatEmulator {
         let t: T = config::decode(tables.device, "fault")?;
         for (i, f) in t.flips.iter().enumerate() {
             if f.bit > 9 || f.field >= 11 {
-                return Err(Error::field("fault", format!("flips[{i}]"), "field above 10 or bit above 9", "give field 0..10 and bit 0..9 (0 start, 1..8 data, 9 delimiter)"));
+                return Err(Error::field(
+                    "fault",
+                    format!("flips[{i}]"),
+                    "field above 10 or bit above 9",
+                    "give field 0..10 and bit 0..9 (0 start, 1..8 data, 9 delimiter)",
+                ));
             }
         }
         for f in t.flips {
@@ -285,15 +319,21 @@ impl Emulator for TformatEmulator {
     }
 
     fn last_status(&self, device: usize, name: &str) -> Result<bool> {
-        let e = self
-            .entries
-            .last()
-            .filter(|_| device == 0)
-            .ok_or_else(|| Error::Usage(format!("no T-format answer of device {device} yet")))?;
-        let almc = e.almc.ok_or_else(|| Error::Usage(format!("the last answer (Data ID {:X}) carried no ALMC", e.data_id)))?;
-        alarm_bit(name)
-            .map(|b| almc >> b & 1 == 1)
-            .ok_or_else(|| Error::Usage(format!("T-format has no status `{name}`; give one of {ALARM_NAMES}")))
+        let e =
+            self.entries.last().filter(|_| device == 0).ok_or_else(|| {
+                Error::Usage(format!("no T-format answer of device {device} yet"))
+            })?;
+        let almc = e.almc.ok_or_else(|| {
+            Error::Usage(format!(
+                "the last answer (Data ID {:X}) carried no ALMC",
+                e.data_id
+            ))
+        })?;
+        alarm_bit(name).map(|b| almc >> b & 1 == 1).ok_or_else(|| {
+            Error::Usage(format!(
+                "T-format has no status `{name}`; give one of {ALARM_NAMES}"
+            ))
+        })
     }
 
     fn transcript(&self) -> serde_json::Value {

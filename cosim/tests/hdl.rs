@@ -68,7 +68,7 @@ fn ssi_master_closed_loop_in_verilator() {
     closed_loop_passes_and_a_misread_fails("ssi_master", "verilator");
 }
 
-/// Issue 14 item 2: the loop closes on a fabric clock without a whole-
+/// The loop closes on a fabric clock without a whole-
 /// picosecond period (f_sys = f_emu = 60 MHz) with a line clock that needs
 /// an odd divider (160 kHz = 60 MHz / 375: HIGH_CLOCKS 188, LOW_CLOCKS 187),
 /// and a planted misread still fails.
@@ -78,9 +78,20 @@ fn ssi_master_closes_the_loop_at_a_60_mhz_emulator_clock_with_an_odd_divider_in_
     let cfg = cfg.to_str().expect("a UTF-8 path");
     let (ok, out) = cosim("ssi_master", "verilator", &["--config", cfg]);
     assert!(ok, "60 MHz in verilator:\n{out}");
-    assert!(out.contains("fabric_60mhz_160khz.toml: 90 transactions") && out.matches("PASS").count() == 1, "{out}");
-    let (ok, out) = cosim("ssi_master", "verilator", &["--config", cfg, "--flip-bit", "2"]);
-    assert!(!ok && out.contains("core read"), "a planted misread passed:\n{out}");
+    assert!(
+        out.contains("fabric_60mhz_160khz.toml: 90 transactions")
+            && out.matches("PASS").count() == 1,
+        "{out}"
+    );
+    let (ok, out) = cosim(
+        "ssi_master",
+        "verilator",
+        &["--config", cfg, "--flip-bit", "2"],
+    );
+    assert!(
+        !ok && out.contains("core read"),
+        "a planted misread passed:\n{out}"
+    );
 }
 
 #[test]
@@ -194,7 +205,10 @@ fn errors_bench(sim: &str, f_emu: u64) -> Command {
                         "tb_emu_errors",
                     ])
                     .args(common::verilator_make_flags(&root()))
-                    .arg(format!("-I{}", common::in_repo(&root(), Path::new(&hdl)).display()))
+                    .arg(format!(
+                        "-I{}",
+                        common::in_repo(&root(), Path::new(&hdl)).display()
+                    ))
                     .arg(format!("-GF_EMU_HZ={f_emu}"))
                     .args([
                         "-LDFLAGS",
@@ -310,7 +324,9 @@ const EXAMPLES: [(&str, u32, u32); 8] = [
 fn make_example(dir: &str, args: &[String], env: &[(&str, String)]) -> (bool, String) {
     let _one = SERIAL.lock().unwrap_or_else(|e| e.into_inner());
     let mut cmd = Command::new("make");
-    cmd.arg("-C").arg(root().join("examples").join(dir)).args(args);
+    cmd.arg("-C")
+        .arg(root().join("examples").join(dir))
+        .args(args);
     for (k, v) in env {
         cmd.env(k, v);
     }
@@ -323,14 +339,21 @@ fn the_independent_examples_pass_in_icarus_and_verilator() {
     for (example, reads, _) in EXAMPLES {
         for sim in ["icarus", "verilator"] {
             // Verilator compiles as our own benches do (the Makefiles leave the options to the user).
-            let vflags = format!("VERILATOR_FLAGS={}", common::verilator_make_flags(&root()).join(" "));
+            let vflags = format!(
+                "VERILATOR_FLAGS={}",
+                common::verilator_make_flags(&root()).join(" ")
+            );
             // The wrappers' folder (emu_lib.sh's EMU_HDL_DIR) named relative
             // to the example, as any clone names it: Verilator writes the
             // names into its C++, so ccache then finds the build another
             // clone made (scripts/verilator_ccache.sh).
             let hdl = "EMU_HDL_DIR=../../hdl/emu".to_string();
             let base = ("CCACHE_BASEDIR", root().display().to_string());
-            let (ok, out) = make_example(example, &[format!("SIM={sim}"), format!("READS={reads}"), vflags, hdl], &[base]);
+            let (ok, out) = make_example(
+                example,
+                &[format!("SIM={sim}"), format!("READS={reads}"), vflags, hdl],
+                &[base],
+            );
             assert!(ok, "{example} in {sim}:\n{out}");
             assert!(
                 out.contains("PASS") && out.contains(&format!(": {reads} ")),
@@ -351,8 +374,15 @@ fn the_independent_examples_pass_from_cocotb_and_a_flipped_bit_fails() {
         let (ok, out) = make_example(example, &["cocotb".into()], std::slice::from_ref(&n));
         assert!(ok, "{example} from cocotb:\n{out}");
         // Every cocotb module of the example reports "1 of 1 passed".
-        assert!(out.contains("1 of 1 passed") && !out.contains(" 0 of 1 passed"), "{example} from cocotb:\n{out}");
-        let (ok, out) = make_example(example, &["cocotb".into()], &[n, ("COSIM_FLIP_BIT", "2".into())]);
+        assert!(
+            out.contains("1 of 1 passed") && !out.contains(" 0 of 1 passed"),
+            "{example} from cocotb:\n{out}"
+        );
+        let (ok, out) = make_example(
+            example,
+            &["cocotb".into()],
+            &[n, ("COSIM_FLIP_BIT", "2".into())],
+        );
         assert!(!ok, "{example}: a planted misread passed cocotb:\n{out}");
         assert!(out.contains("0 of 1 passed"), "{example}:\n{out}");
     }
@@ -365,7 +395,12 @@ fn the_independent_examples_pass_from_cocotb_and_a_flipped_bit_fails() {
 fn closed_loop_with_monitor(core: &str) {
     for sim in ["verilator", "icarus"] {
         let out = closed_loop_of(core, sim, 3, "ABS host");
-        assert_eq!(out.matches("equal to the emulator's and to the monitor's").count(), 3, "{core} in {sim}:\n{out}");
+        assert_eq!(
+            out.matches("equal to the emulator's and to the monitor's")
+                .count(),
+            3,
+            "{core} in {sim}:\n{out}"
+        );
     }
 }
 

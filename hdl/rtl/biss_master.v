@@ -865,105 +865,71 @@ always @* begin
     end
 end
 
-// The register bank. In Icarus only, the clock edge writes it when a next
-// value differs from its register (bank_change): the same behaviour, since
-// writing a register its own value changes nothing, without the assignments
-// Icarus would execute on every quiet cycle (docs/rtl.md, "Register banks").
-// The registers after the bank change on most cycles and are always written.
-`ifdef __ICARUS__
-wire bank_change = {
-    state_next, delay_cnt_next, ma_run_next, ma_edges_next, ma_stop_next, ma_stop_level_next,
-    slave_next, bit_cnt_next, data_next, crc_next, crc_bad_next, nerr_next, nwarn_next, cds_next,
-    e_delay_next, e_start_next, e_drift_next, cal_cnt_next, cal_sum_next, delay_mean_next,
-    cal_chk_next, cal_ok_next, cal_smp_next, frame_cds_next, frame_crc_bad_next, frame_sel_next,
-    acc_cmd_next, acc_ids_next, acc_code_next, cdm_next, zeros_next, reg_pending_next,
-    ctl_active_next, ctl_k_next, acc_write_next, acc_id_next, acc_addr_next, acc_wdata_next,
-    reg_bad_next, rdata_next, crc4_tx_next, crc4_rx_next, busy_next, done_next, err_line_next,
-    err_ack_next, err_delay_next, err_start_next, err_timeout_next, err_drift_next, delay_next,
-    slave_valid_next, slave_index_next, out_data_next, crc_err_next, error_next, warning_next,
-    out_cds_next, reg_busy_next, reg_done_next, reg_err_next, reg_rdata_next, reg_crc_err_next
-} !== {
-    state_reg, delay_cnt_reg, ma_run_reg, ma_edges_reg, ma_stop_reg, ma_stop_level_reg, slave_reg,
-    bit_cnt_reg, data_reg, crc_reg, crc_bad_reg, nerr_reg, nwarn_reg, cds_reg, e_delay_reg,
-    e_start_reg, e_drift_reg, cal_cnt_reg, cal_sum_reg, delay_mean_reg, cal_chk_reg, cal_ok_reg,
-    cal_smp_reg, frame_cds_reg, frame_crc_bad_reg, frame_sel_reg, acc_cmd_reg, acc_ids_reg,
-    acc_code_reg, cdm_reg, zeros_reg, reg_pending_reg, ctl_active_reg, ctl_k_reg, acc_write_reg,
-    acc_id_reg, acc_addr_reg, acc_wdata_reg, reg_bad_reg, rdata_reg, crc4_tx_reg, crc4_rx_reg,
-    busy_reg, done_reg, err_line_reg, err_ack_reg, err_delay_reg, err_start_reg, err_timeout_reg,
-    err_drift_reg, delay_reg, slave_valid_reg, slave_index_reg, out_data_reg, crc_err_reg,
-    error_reg, warning_reg, out_cds_reg, reg_busy_reg, reg_done_reg, reg_err_reg, reg_rdata_reg,
-    reg_crc_err_reg
-};
-`endif
+// The register bank: every register takes its next value at each clock edge.
 always @(posedge i_clk) begin
-`ifdef __ICARUS__
-    if (bank_change)
-`endif
-    begin
-        state_reg <= state_next;
-        delay_cnt_reg <= delay_cnt_next;
-        ma_run_reg <= ma_run_next;
-        ma_edges_reg <= ma_edges_next;
-        ma_stop_reg <= ma_stop_next;
-        ma_stop_level_reg <= ma_stop_level_next;
-        slave_reg <= slave_next;
-        bit_cnt_reg <= bit_cnt_next;
-        data_reg <= data_next;
-        crc_reg <= crc_next;
-        crc_bad_reg <= crc_bad_next;
-        nerr_reg <= nerr_next;
-        nwarn_reg <= nwarn_next;
-        cds_reg <= cds_next;
-        e_delay_reg <= e_delay_next;
-        e_start_reg <= e_start_next;
-        e_drift_reg <= e_drift_next;
-        cal_cnt_reg <= cal_cnt_next;
-        cal_sum_reg <= cal_sum_next;
-        delay_mean_reg <= delay_mean_next;
-        cal_chk_reg <= cal_chk_next;
-        cal_ok_reg <= cal_ok_next;
-        cal_smp_reg <= cal_smp_next;
-        frame_cds_reg <= frame_cds_next;
-        frame_crc_bad_reg <= frame_crc_bad_next;
-        frame_sel_reg <= frame_sel_next;
-        acc_cmd_reg <= acc_cmd_next;
-        acc_ids_reg <= acc_ids_next;
-        acc_code_reg <= acc_code_next;
-        cdm_reg <= cdm_next;
-        zeros_reg <= zeros_next;
-        reg_pending_reg <= reg_pending_next;
-        ctl_active_reg <= ctl_active_next;
-        ctl_k_reg <= ctl_k_next;
-        acc_write_reg <= acc_write_next;
-        acc_id_reg <= acc_id_next;
-        acc_addr_reg <= acc_addr_next;
-        acc_wdata_reg <= acc_wdata_next;
-        reg_bad_reg <= reg_bad_next;
-        rdata_reg <= rdata_next;
-        crc4_tx_reg <= crc4_tx_next;
-        crc4_rx_reg <= crc4_rx_next;
-        busy_reg <= busy_next;
-        done_reg <= done_next;
-        err_line_reg <= err_line_next;
-        err_ack_reg <= err_ack_next;
-        err_delay_reg <= err_delay_next;
-        err_start_reg <= err_start_next;
-        err_timeout_reg <= err_timeout_next;
-        err_drift_reg <= err_drift_next;
-        delay_reg <= delay_next;
-        slave_valid_reg <= slave_valid_next;
-        slave_index_reg <= slave_index_next;
-        out_data_reg <= out_data_next;
-        crc_err_reg <= crc_err_next;
-        error_reg <= error_next;
-        warning_reg <= warning_next;
-        out_cds_reg <= out_cds_next;
-        reg_busy_reg <= reg_busy_next;
-        reg_done_reg <= reg_done_next;
-        reg_err_reg <= reg_err_next;
-        reg_rdata_reg <= reg_rdata_next;
-        reg_crc_err_reg <= reg_crc_err_next;
-    end
+    state_reg <= state_next;
+    delay_cnt_reg <= delay_cnt_next;
+    ma_run_reg <= ma_run_next;
+    ma_edges_reg <= ma_edges_next;
+    ma_stop_reg <= ma_stop_next;
+    ma_stop_level_reg <= ma_stop_level_next;
+    slave_reg <= slave_next;
+    bit_cnt_reg <= bit_cnt_next;
+    data_reg <= data_next;
+    crc_reg <= crc_next;
+    crc_bad_reg <= crc_bad_next;
+    nerr_reg <= nerr_next;
+    nwarn_reg <= nwarn_next;
+    cds_reg <= cds_next;
+    e_delay_reg <= e_delay_next;
+    e_start_reg <= e_start_next;
+    e_drift_reg <= e_drift_next;
+    cal_cnt_reg <= cal_cnt_next;
+    cal_sum_reg <= cal_sum_next;
+    delay_mean_reg <= delay_mean_next;
+    cal_chk_reg <= cal_chk_next;
+    cal_ok_reg <= cal_ok_next;
+    cal_smp_reg <= cal_smp_next;
+    frame_cds_reg <= frame_cds_next;
+    frame_crc_bad_reg <= frame_crc_bad_next;
+    frame_sel_reg <= frame_sel_next;
+    acc_cmd_reg <= acc_cmd_next;
+    acc_ids_reg <= acc_ids_next;
+    acc_code_reg <= acc_code_next;
+    cdm_reg <= cdm_next;
+    zeros_reg <= zeros_next;
+    reg_pending_reg <= reg_pending_next;
+    ctl_active_reg <= ctl_active_next;
+    ctl_k_reg <= ctl_k_next;
+    acc_write_reg <= acc_write_next;
+    acc_id_reg <= acc_id_next;
+    acc_addr_reg <= acc_addr_next;
+    acc_wdata_reg <= acc_wdata_next;
+    reg_bad_reg <= reg_bad_next;
+    rdata_reg <= rdata_next;
+    crc4_tx_reg <= crc4_tx_next;
+    crc4_rx_reg <= crc4_rx_next;
+    busy_reg <= busy_next;
+    done_reg <= done_next;
+    err_line_reg <= err_line_next;
+    err_ack_reg <= err_ack_next;
+    err_delay_reg <= err_delay_next;
+    err_start_reg <= err_start_next;
+    err_timeout_reg <= err_timeout_next;
+    err_drift_reg <= err_drift_next;
+    delay_reg <= delay_next;
+    slave_valid_reg <= slave_valid_next;
+    slave_index_reg <= slave_index_next;
+    out_data_reg <= out_data_next;
+    crc_err_reg <= crc_err_next;
+    error_reg <= error_next;
+    warning_reg <= warning_next;
+    out_cds_reg <= out_cds_next;
+    reg_busy_reg <= reg_busy_next;
+    reg_done_reg <= reg_done_next;
+    reg_err_reg <= reg_err_next;
+    reg_rdata_reg <= reg_rdata_next;
+    reg_crc_err_reg <= reg_crc_err_next;
     cnt_reg <= cnt_next;
     smp_cnt_reg <= smp_cnt_next;
     ma_reg <= ma_next;

@@ -756,83 +756,54 @@ always @* begin
     else err_state_next = 2'd0;
 end
 
-// The register bank. In Icarus only, the clock edge writes it when a next
-// value differs from its register (bank_change): the same behaviour, since
-// writing a register its own value changes nothing, without the assignments
-// Icarus would execute on every quiet cycle (docs/rtl.md, "Register banks").
-// The registers after the bank change on most cycles and are always written.
-`ifdef __ICARUS__
-wire bank_change = {
-    ext_next, short_next, synced_next, state_next, bit_cnt_next, bo_seq_next, pos_next,
-    stuff_cnt_next, last_bit_next, crc_next, crc_bad_next, rx_id_next, rx_ide_next, rx_rtr_next,
-    rx_dlc_next, rx_data_next, tx_id_next, tx_rtr_next, tx_dlc_next, tx_data_next, tx_pending_next,
-    tx_active_next, tx_bit_next, flag_passive_next, flag_ovl_next, ack_pass_next, dom_cnt_next,
-    suspend_needed_next, tec_next, rec_next, can_tx_next, tx_done_next, arb_lost_next,
-    rx_valid_next, o_rx_id_next, o_rx_ide_next, o_rx_rtr_next, o_rx_dlc_next, o_rx_data_next,
-    err_state_next, err_bit_next, err_stuff_next, err_crc_next, err_form_next, err_ack_next,
-    overload_next
-} !== {
-    ext_reg, short_reg, synced_reg, state_reg, bit_cnt_reg, bo_seq_reg, pos_reg, stuff_cnt_reg,
-    last_bit_reg, crc_reg, crc_bad_reg, rx_id_reg, rx_ide_reg, rx_rtr_reg, rx_dlc_reg, rx_data_reg,
-    tx_id_reg, tx_rtr_reg, tx_dlc_reg, tx_data_reg, tx_pending_reg, tx_active_reg, tx_bit_reg,
-    flag_passive_reg, flag_ovl_reg, ack_pass_reg, dom_cnt_reg, suspend_needed_reg, tec_reg, rec_reg,
-    can_tx_reg, tx_done_reg, arb_lost_reg, rx_valid_reg, o_rx_id_reg, o_rx_ide_reg, o_rx_rtr_reg,
-    o_rx_dlc_reg, o_rx_data_reg, err_state_reg, err_bit_reg, err_stuff_reg, err_crc_reg,
-    err_form_reg, err_ack_reg, overload_reg
-};
-`endif
+// The register bank: every register takes its next value at each clock edge.
 always @(posedge i_clk) begin
-`ifdef __ICARUS__
-    if (bank_change)
-`endif
-    begin
-        ext_reg <= ext_next;
-        short_reg <= short_next;
-        synced_reg <= synced_next;
-        state_reg <= state_next;
-        bit_cnt_reg <= bit_cnt_next;
-        bo_seq_reg <= bo_seq_next;
-        pos_reg <= pos_next;
-        stuff_cnt_reg <= stuff_cnt_next;
-        last_bit_reg <= last_bit_next;
-        crc_reg <= crc_next;
-        crc_bad_reg <= crc_bad_next;
-        rx_id_reg <= rx_id_next;
-        rx_ide_reg <= rx_ide_next;
-        rx_rtr_reg <= rx_rtr_next;
-        rx_dlc_reg <= rx_dlc_next;
-        rx_data_reg <= rx_data_next;
-        tx_id_reg <= tx_id_next;
-        tx_rtr_reg <= tx_rtr_next;
-        tx_dlc_reg <= tx_dlc_next;
-        tx_data_reg <= tx_data_next;
-        tx_pending_reg <= tx_pending_next;
-        tx_active_reg <= tx_active_next;
-        tx_bit_reg <= tx_bit_next;
-        flag_passive_reg <= flag_passive_next;
-        flag_ovl_reg <= flag_ovl_next;
-        ack_pass_reg <= ack_pass_next;
-        dom_cnt_reg <= dom_cnt_next;
-        suspend_needed_reg <= suspend_needed_next;
-        tec_reg <= tec_next;
-        rec_reg <= rec_next;
-        can_tx_reg <= can_tx_next;
-        tx_done_reg <= tx_done_next;
-        arb_lost_reg <= arb_lost_next;
-        rx_valid_reg <= rx_valid_next;
-        o_rx_id_reg <= o_rx_id_next;
-        o_rx_ide_reg <= o_rx_ide_next;
-        o_rx_rtr_reg <= o_rx_rtr_next;
-        o_rx_dlc_reg <= o_rx_dlc_next;
-        o_rx_data_reg <= o_rx_data_next;
-        err_state_reg <= err_state_next;
-        err_bit_reg <= err_bit_next;
-        err_stuff_reg <= err_stuff_next;
-        err_crc_reg <= err_crc_next;
-        err_form_reg <= err_form_next;
-        err_ack_reg <= err_ack_next;
-        overload_reg <= overload_next;
-    end
+    ext_reg <= ext_next;
+    short_reg <= short_next;
+    synced_reg <= synced_next;
+    state_reg <= state_next;
+    bit_cnt_reg <= bit_cnt_next;
+    bo_seq_reg <= bo_seq_next;
+    pos_reg <= pos_next;
+    stuff_cnt_reg <= stuff_cnt_next;
+    last_bit_reg <= last_bit_next;
+    crc_reg <= crc_next;
+    crc_bad_reg <= crc_bad_next;
+    rx_id_reg <= rx_id_next;
+    rx_ide_reg <= rx_ide_next;
+    rx_rtr_reg <= rx_rtr_next;
+    rx_dlc_reg <= rx_dlc_next;
+    rx_data_reg <= rx_data_next;
+    tx_id_reg <= tx_id_next;
+    tx_rtr_reg <= tx_rtr_next;
+    tx_dlc_reg <= tx_dlc_next;
+    tx_data_reg <= tx_data_next;
+    tx_pending_reg <= tx_pending_next;
+    tx_active_reg <= tx_active_next;
+    tx_bit_reg <= tx_bit_next;
+    flag_passive_reg <= flag_passive_next;
+    flag_ovl_reg <= flag_ovl_next;
+    ack_pass_reg <= ack_pass_next;
+    dom_cnt_reg <= dom_cnt_next;
+    suspend_needed_reg <= suspend_needed_next;
+    tec_reg <= tec_next;
+    rec_reg <= rec_next;
+    can_tx_reg <= can_tx_next;
+    tx_done_reg <= tx_done_next;
+    arb_lost_reg <= arb_lost_next;
+    rx_valid_reg <= rx_valid_next;
+    o_rx_id_reg <= o_rx_id_next;
+    o_rx_ide_reg <= o_rx_ide_next;
+    o_rx_rtr_reg <= o_rx_rtr_next;
+    o_rx_dlc_reg <= o_rx_dlc_next;
+    o_rx_data_reg <= o_rx_data_next;
+    err_state_reg <= err_state_next;
+    err_bit_reg <= err_bit_next;
+    err_stuff_reg <= err_stuff_next;
+    err_crc_reg <= err_crc_next;
+    err_form_reg <= err_form_next;
+    err_ack_reg <= err_ack_next;
+    overload_reg <= overload_next;
     sync_reg <= {sync_reg[1:0], i_can_rx};
     rx_prev_reg <= rx;
     if (sample) last_sample_reg <= rx;

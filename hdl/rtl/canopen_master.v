@@ -468,54 +468,32 @@ always @* begin
     end
 end
 
-// The register bank. In Icarus only, the clock edge writes it when a next
-// value differs from its register (bank_change): the same behaviour, since
-// writing a register its own value changes nothing, without the assignments
-// Icarus would execute on every quiet cycle (docs/rtl.md, "Register banks").
-// The registers after the bank change on most cycles and are always written.
-`ifdef __ICARUS__
-wire bank_change = {
-    state_next, k_next, tries_next, sync_pending_next, tx_start_next, tx_id_next, tx_dlc_next,
-    tx_data_next, tx_sync_next, booted_next, config_done_next, sdo_abort_next, abort_code_next,
-    abort_index_next, abort_sub_next, node_lost_next, pos_valid_next, position_next,
-    pos_timeout_next, pos_stale_next, emcy_valid_next, emcy_code_next, emcy_reg_next, sync_sent_next
-} !== {
-    state_reg, k_reg, tries_reg, sync_pending_reg, tx_start_reg, tx_id_reg, tx_dlc_reg, tx_data_reg,
-    tx_sync_reg, booted_reg, config_done_reg, sdo_abort_reg, abort_code_reg, abort_index_reg,
-    abort_sub_reg, node_lost_reg, pos_valid_reg, position_reg, pos_timeout_reg, pos_stale_reg,
-    emcy_valid_reg, emcy_code_reg, emcy_reg_reg, sync_sent_reg
-};
-`endif
+// The register bank: every register takes its next value at each clock edge.
 always @(posedge i_clk) begin
-`ifdef __ICARUS__
-    if (bank_change)
-`endif
-    begin
-        state_reg <= state_next;
-        k_reg <= k_next;
-        tries_reg <= tries_next;
-        sync_pending_reg <= sync_pending_next;
-        tx_start_reg <= tx_start_next;
-        tx_id_reg <= tx_id_next;
-        tx_dlc_reg <= tx_dlc_next;
-        tx_data_reg <= tx_data_next;
-        tx_sync_reg <= tx_sync_next;
-        booted_reg <= booted_next;
-        config_done_reg <= config_done_next;
-        sdo_abort_reg <= sdo_abort_next;
-        abort_code_reg <= abort_code_next;
-        abort_index_reg <= abort_index_next;
-        abort_sub_reg <= abort_sub_next;
-        node_lost_reg <= node_lost_next;
-        pos_valid_reg <= pos_valid_next;
-        position_reg <= position_next;
-        pos_timeout_reg <= pos_timeout_next;
-        pos_stale_reg <= pos_stale_next;
-        emcy_valid_reg <= emcy_valid_next;
-        emcy_code_reg <= emcy_code_next;
-        emcy_reg_reg <= emcy_reg_next;
-        sync_sent_reg <= sync_sent_next;
-    end
+    state_reg <= state_next;
+    k_reg <= k_next;
+    tries_reg <= tries_next;
+    sync_pending_reg <= sync_pending_next;
+    tx_start_reg <= tx_start_next;
+    tx_id_reg <= tx_id_next;
+    tx_dlc_reg <= tx_dlc_next;
+    tx_data_reg <= tx_data_next;
+    tx_sync_reg <= tx_sync_next;
+    booted_reg <= booted_next;
+    config_done_reg <= config_done_next;
+    sdo_abort_reg <= sdo_abort_next;
+    abort_code_reg <= abort_code_next;
+    abort_index_reg <= abort_index_next;
+    abort_sub_reg <= abort_sub_next;
+    node_lost_reg <= node_lost_next;
+    pos_valid_reg <= pos_valid_next;
+    position_reg <= position_next;
+    pos_timeout_reg <= pos_timeout_next;
+    pos_stale_reg <= pos_stale_next;
+    emcy_valid_reg <= emcy_valid_next;
+    emcy_code_reg <= emcy_code_next;
+    emcy_reg_reg <= emcy_reg_next;
+    sync_sent_reg <= sync_sent_next;
     timer_reg <= timer_next;
     sync_cnt_reg <= sync_cnt_next;
 

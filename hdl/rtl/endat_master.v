@@ -1019,134 +1019,93 @@ always @* begin
     busy_next = (state_next != IDLE) || meas_on_next;
 end
 
-// The register bank. In Icarus only, the clock edge writes it when a next
-// value differs from its register (bank_change): the same behaviour, since
-// writing a register its own value changes nothing, without the assignments
-// Icarus would execute on every quiet cycle (docs/rtl.md, "Register banks").
-// The registers after the bank change on most cycles and are always written.
-`ifdef __ICARUS__
-wire bank_change = {
-    state_next, fall_idx_next, stop_idx_next, blk_idx_next, blk_m1_next, kind_next, mode_next,
-    mrs_next, param_next, tx_bits_next, meas_frame_next, cont_left_next, is21_next, err_frame_next,
-    rx_on_next, rx_cnt_zero_next, smp_idx_next, phase_next, seg_cnt_next, polls_next,
-    poll_limit_next, lfsr_next, f1_next, f2_next, rx_data_next, ad_shift_next, ad1_val_next,
-    ad2_val_next, bad_head_next, bad_ad1_next, bad_ad2_next, drift_next, meas_on_next,
-    meas_got_next, meas_cap_next, meas_k_next, meas_round_next, meas_sum_next, meas_min_next,
-    meas_max_next, meas_bad_next, meas_evt_next, meas_evt_bad_next, meas_eval1_next,
-    meas_eval2_next, meas_mean_next, meas_max_less_tol_next, meas_min_plus_tol_next, delay_next,
-    delay_valid_next, ad1_on_next, ad2_on_next, ad1_sel_next, ad2_sel_next, mem_addr_next,
-    mem_known_next, mrs_sent_next, mrs_known_next, clk_out_next, dout_next, oe_next, busy_next,
-    done_next, position_next, of1_next, of2_next, err_crc_next, oad1_next, oad1_valid_next,
-    err_ad1_crc_next, oad2_next, oad2_valid_next, err_ad2_crc_next, ack_addr_next, ack_data_next,
-    err_type2_next, err_type3_next, err_type4_next, err_ack_next, err_timeout_next, err_absent_next,
-    err_idle_next, err_delay_next, meas_done_next, err_meas_next
-} !== {
-    state_reg, fall_idx_reg, stop_idx_reg, blk_idx_reg, blk_m1_reg, kind_reg, mode_reg, mrs_reg,
-    param_reg, tx_bits_reg, meas_frame_reg, cont_left_reg, is21_reg, err_frame_reg, rx_on_reg,
-    rx_cnt_zero_reg, smp_idx_reg, phase_reg, seg_cnt_reg, polls_reg, poll_limit_reg, lfsr_reg,
-    f1_reg, f2_reg, rx_data_reg, ad_shift_reg, ad1_val_reg, ad2_val_reg, bad_head_reg, bad_ad1_reg,
-    bad_ad2_reg, drift_reg, meas_on_reg, meas_got_reg, meas_cap_reg, meas_k_reg, meas_round_reg,
-    meas_sum_reg, meas_min_reg, meas_max_reg, meas_bad_reg, meas_evt_reg, meas_evt_bad_reg,
-    meas_eval1_reg, meas_eval2_reg, meas_mean_reg, meas_max_less_tol_reg, meas_min_plus_tol_reg,
-    delay_reg, delay_valid_reg, ad1_on_reg, ad2_on_reg, ad1_sel_reg, ad2_sel_reg, mem_addr_reg,
-    mem_known_reg, mrs_sent_reg, mrs_known_reg, clk_out_reg, dout_reg, oe_reg, busy_reg, done_reg,
-    position_reg, of1_reg, of2_reg, err_crc_reg, oad1_reg, oad1_valid_reg, err_ad1_crc_reg,
-    oad2_reg, oad2_valid_reg, err_ad2_crc_reg, ack_addr_reg, ack_data_reg, err_type2_reg,
-    err_type3_reg, err_type4_reg, err_ack_reg, err_timeout_reg, err_absent_reg, err_idle_reg,
-    err_delay_reg, meas_done_reg, err_meas_reg
-};
-`endif
+// The register bank: every register takes its next value at each clock edge.
 always @(posedge i_clk) begin
-`ifdef __ICARUS__
-    if (bank_change)
-`endif
-    begin
-        state_reg <= state_next;
-        fall_idx_reg <= fall_idx_next;
-        stop_idx_reg <= stop_idx_next;
-        blk_idx_reg <= blk_idx_next;
-        blk_m1_reg <= blk_m1_next;
-        kind_reg <= kind_next;
-        mode_reg <= mode_next;
-        mrs_reg <= mrs_next;
-        param_reg <= param_next;
-        tx_bits_reg <= tx_bits_next;
-        meas_frame_reg <= meas_frame_next;
-        cont_left_reg <= cont_left_next;
-        is21_reg <= is21_next;
-        err_frame_reg <= err_frame_next;
-        rx_on_reg <= rx_on_next;
-        rx_cnt_zero_reg <= rx_cnt_zero_next;
-        smp_idx_reg <= smp_idx_next;
-        phase_reg <= phase_next;
-        seg_cnt_reg <= seg_cnt_next;
-        polls_reg <= polls_next;
-        poll_limit_reg <= poll_limit_next;
-        lfsr_reg <= lfsr_next;
-        f1_reg <= f1_next;
-        f2_reg <= f2_next;
-        rx_data_reg <= rx_data_next;
-        ad_shift_reg <= ad_shift_next;
-        ad1_val_reg <= ad1_val_next;
-        ad2_val_reg <= ad2_val_next;
-        bad_head_reg <= bad_head_next;
-        bad_ad1_reg <= bad_ad1_next;
-        bad_ad2_reg <= bad_ad2_next;
-        drift_reg <= drift_next;
-        meas_on_reg <= meas_on_next;
-        meas_got_reg <= meas_got_next;
-        meas_cap_reg <= meas_cap_next;
-        meas_k_reg <= meas_k_next;
-        meas_round_reg <= meas_round_next;
-        meas_sum_reg <= meas_sum_next;
-        meas_min_reg <= meas_min_next;
-        meas_max_reg <= meas_max_next;
-        meas_bad_reg <= meas_bad_next;
-        meas_evt_reg <= meas_evt_next;
-        meas_evt_bad_reg <= meas_evt_bad_next;
-        meas_eval1_reg <= meas_eval1_next;
-        meas_eval2_reg <= meas_eval2_next;
-        meas_mean_reg <= meas_mean_next;
-        meas_max_less_tol_reg <= meas_max_less_tol_next;
-        meas_min_plus_tol_reg <= meas_min_plus_tol_next;
-        delay_reg <= delay_next;
-        delay_valid_reg <= delay_valid_next;
-        ad1_on_reg <= ad1_on_next;
-        ad2_on_reg <= ad2_on_next;
-        ad1_sel_reg <= ad1_sel_next;
-        ad2_sel_reg <= ad2_sel_next;
-        mem_addr_reg <= mem_addr_next;
-        mem_known_reg <= mem_known_next;
-        mrs_sent_reg <= mrs_sent_next;
-        mrs_known_reg <= mrs_known_next;
-        clk_out_reg <= clk_out_next;
-        dout_reg <= dout_next;
-        oe_reg <= oe_next;
-        busy_reg <= busy_next;
-        done_reg <= done_next;
-        position_reg <= position_next;
-        of1_reg <= of1_next;
-        of2_reg <= of2_next;
-        err_crc_reg <= err_crc_next;
-        oad1_reg <= oad1_next;
-        oad1_valid_reg <= oad1_valid_next;
-        err_ad1_crc_reg <= err_ad1_crc_next;
-        oad2_reg <= oad2_next;
-        oad2_valid_reg <= oad2_valid_next;
-        err_ad2_crc_reg <= err_ad2_crc_next;
-        ack_addr_reg <= ack_addr_next;
-        ack_data_reg <= ack_data_next;
-        err_type2_reg <= err_type2_next;
-        err_type3_reg <= err_type3_next;
-        err_type4_reg <= err_type4_next;
-        err_ack_reg <= err_ack_next;
-        err_timeout_reg <= err_timeout_next;
-        err_absent_reg <= err_absent_next;
-        err_idle_reg <= err_idle_next;
-        err_delay_reg <= err_delay_next;
-        meas_done_reg <= meas_done_next;
-        err_meas_reg <= err_meas_next;
-    end
+    state_reg <= state_next;
+    fall_idx_reg <= fall_idx_next;
+    stop_idx_reg <= stop_idx_next;
+    blk_idx_reg <= blk_idx_next;
+    blk_m1_reg <= blk_m1_next;
+    kind_reg <= kind_next;
+    mode_reg <= mode_next;
+    mrs_reg <= mrs_next;
+    param_reg <= param_next;
+    tx_bits_reg <= tx_bits_next;
+    meas_frame_reg <= meas_frame_next;
+    cont_left_reg <= cont_left_next;
+    is21_reg <= is21_next;
+    err_frame_reg <= err_frame_next;
+    rx_on_reg <= rx_on_next;
+    rx_cnt_zero_reg <= rx_cnt_zero_next;
+    smp_idx_reg <= smp_idx_next;
+    phase_reg <= phase_next;
+    seg_cnt_reg <= seg_cnt_next;
+    polls_reg <= polls_next;
+    poll_limit_reg <= poll_limit_next;
+    lfsr_reg <= lfsr_next;
+    f1_reg <= f1_next;
+    f2_reg <= f2_next;
+    rx_data_reg <= rx_data_next;
+    ad_shift_reg <= ad_shift_next;
+    ad1_val_reg <= ad1_val_next;
+    ad2_val_reg <= ad2_val_next;
+    bad_head_reg <= bad_head_next;
+    bad_ad1_reg <= bad_ad1_next;
+    bad_ad2_reg <= bad_ad2_next;
+    drift_reg <= drift_next;
+    meas_on_reg <= meas_on_next;
+    meas_got_reg <= meas_got_next;
+    meas_cap_reg <= meas_cap_next;
+    meas_k_reg <= meas_k_next;
+    meas_round_reg <= meas_round_next;
+    meas_sum_reg <= meas_sum_next;
+    meas_min_reg <= meas_min_next;
+    meas_max_reg <= meas_max_next;
+    meas_bad_reg <= meas_bad_next;
+    meas_evt_reg <= meas_evt_next;
+    meas_evt_bad_reg <= meas_evt_bad_next;
+    meas_eval1_reg <= meas_eval1_next;
+    meas_eval2_reg <= meas_eval2_next;
+    meas_mean_reg <= meas_mean_next;
+    meas_max_less_tol_reg <= meas_max_less_tol_next;
+    meas_min_plus_tol_reg <= meas_min_plus_tol_next;
+    delay_reg <= delay_next;
+    delay_valid_reg <= delay_valid_next;
+    ad1_on_reg <= ad1_on_next;
+    ad2_on_reg <= ad2_on_next;
+    ad1_sel_reg <= ad1_sel_next;
+    ad2_sel_reg <= ad2_sel_next;
+    mem_addr_reg <= mem_addr_next;
+    mem_known_reg <= mem_known_next;
+    mrs_sent_reg <= mrs_sent_next;
+    mrs_known_reg <= mrs_known_next;
+    clk_out_reg <= clk_out_next;
+    dout_reg <= dout_next;
+    oe_reg <= oe_next;
+    busy_reg <= busy_next;
+    done_reg <= done_next;
+    position_reg <= position_next;
+    of1_reg <= of1_next;
+    of2_reg <= of2_next;
+    err_crc_reg <= err_crc_next;
+    oad1_reg <= oad1_next;
+    oad1_valid_reg <= oad1_valid_next;
+    err_ad1_crc_reg <= err_ad1_crc_next;
+    oad2_reg <= oad2_next;
+    oad2_valid_reg <= oad2_valid_next;
+    err_ad2_crc_reg <= err_ad2_crc_next;
+    ack_addr_reg <= ack_addr_next;
+    ack_data_reg <= ack_data_next;
+    err_type2_reg <= err_type2_next;
+    err_type3_reg <= err_type3_next;
+    err_type4_reg <= err_type4_next;
+    err_ack_reg <= err_ack_next;
+    err_timeout_reg <= err_timeout_next;
+    err_absent_reg <= err_absent_next;
+    err_idle_reg <= err_idle_next;
+    err_delay_reg <= err_delay_next;
+    meas_done_reg <= meas_done_next;
+    err_meas_reg <= err_meas_next;
     cnt_reg <= cnt_next;
     rx_cnt_reg <= rx_cnt_next;
     since_edge_reg <= since_edge_next;

@@ -1030,161 +1030,117 @@ always @* begin
     end
 end
 
-// The register bank. In Icarus only, the clock edge writes it when a next
-// value differs from its register (bank_change): the same behaviour, since
-// writing a register its own value changes nothing, without the assignments
-// Icarus would execute on every quiet cycle (docs/rtl.md, "Register banks").
-// The registers after the bank change on most cycles and are always written.
-`ifdef __ICARUS__
-wire bank_change = {
-    state_next, id_next, address_next, broadcast_next, mem_address_next, wdata_next,
-    field_index_next, bit_index_next, cnt_zero_next, repeats_left_next, tries_left_next, count_next,
-    frame_err_next, page_next, req_crc_next, f0_next, f1_next, crc_next, crcc_next, pad_next,
-    ch1_done_next, ch1_bad_next, ch2_done_next, ch2_bad_next, cf2_bad_next, crcc_bad_next,
-    ch1_check_next, ch2_check_next, s_cf_next, s_sf_next, s_sf2_next, s_alm1_next, s_alm2_next,
-    s_abs_next, s_abm_next, s_rs_next, s_sc1_next, s_sc2_next, s_enid_next, s_temp_next, s_adf_next,
-    s_edf_next, seq_known_next, n1_next, l1_next, n2_next, l2_next, total_next, c16_next, has2_next,
-    has_rs_next, is_mem_next, known_next, in_ch2_next, cidx_next, kind_next, active_next,
-    decode_next, last_data_next, last_crc_next, first_ch2_next, dec_next, fld_next,
-    answer_clear_next, rs9_diff_next, rs16_diff_next, agree_next, exp_sc1_next, exp_sc2_next,
-    exp_known_next, k_crc1_next, k_crc2_next, k_frame_next, k_cf_next, k_comm_next, k_rs_next,
-    seq_bad_next, clean_next, flawed_next, mem_clean_next, mem_busy_next, busy_last_next, tx_next,
-    tx_en_next, busy_next, done_next, cf_next, sf_next, sf2_next, alm1_next, alm2_next, abs_next,
-    abm_next, rs_next, sc1_next, sc2_next, enid_next, temp_next, adf_next, edf_next, err_crc1_next,
-    err_crc2_next, err_timeout_next, err_frame_next, err_cf_next, err_comm_next, err_seq_next,
-    err_rs_next, err_busy_next
-} !== {
-    state_reg, id_reg, address_reg, broadcast_reg, mem_address_reg, wdata_reg, field_index_reg,
-    bit_index_reg, cnt_zero_reg, repeats_left_reg, tries_left_reg, count_reg, frame_err_reg,
-    page_reg, req_crc_reg, f0_reg, f1_reg, crc_reg, crcc_reg, pad_reg, ch1_done_reg, ch1_bad_reg,
-    ch2_done_reg, ch2_bad_reg, cf2_bad_reg, crcc_bad_reg, ch1_check_reg, ch2_check_reg, s_cf_reg,
-    s_sf_reg, s_sf2_reg, s_alm1_reg, s_alm2_reg, s_abs_reg, s_abm_reg, s_rs_reg, s_sc1_reg,
-    s_sc2_reg, s_enid_reg, s_temp_reg, s_adf_reg, s_edf_reg, seq_known_reg, n1_reg, l1_reg, n2_reg,
-    l2_reg, total_reg, c16_reg, has2_reg, has_rs_reg, is_mem_reg, known_reg, in_ch2_reg, cidx_reg,
-    kind_reg, active_reg, decode_reg, last_data_reg, last_crc_reg, first_ch2_reg, dec_reg, fld_reg,
-    answer_clear_reg, rs9_diff_reg, rs16_diff_reg, agree_reg, exp_sc1_reg, exp_sc2_reg,
-    exp_known_reg, k_crc1_reg, k_crc2_reg, k_frame_reg, k_cf_reg, k_comm_reg, k_rs_reg, seq_bad_reg,
-    clean_reg, flawed_reg, mem_clean_reg, mem_busy_reg, busy_last_reg, tx_reg, tx_en_reg, busy_reg,
-    done_reg, cf_reg, sf_reg, sf2_reg, alm1_reg, alm2_reg, abs_reg, abm_reg, rs_reg, sc1_reg,
-    sc2_reg, enid_reg, temp_reg, adf_reg, edf_reg, err_crc1_reg, err_crc2_reg, err_timeout_reg,
-    err_frame_reg, err_cf_reg, err_comm_reg, err_seq_reg, err_rs_reg, err_busy_reg
-};
-`endif
+// The register bank: every register takes its next value at each clock edge.
 always @(posedge i_clk) begin
-`ifdef __ICARUS__
-    if (bank_change)
-`endif
-    begin
-        state_reg <= state_next;
-        id_reg <= id_next;
-        address_reg <= address_next;
-        broadcast_reg <= broadcast_next;
-        mem_address_reg <= mem_address_next;
-        wdata_reg <= wdata_next;
-        field_index_reg <= field_index_next;
-        bit_index_reg <= bit_index_next;
-        cnt_zero_reg <= cnt_zero_next;
-        repeats_left_reg <= repeats_left_next;
-        tries_left_reg <= tries_left_next;
-        count_reg <= count_next;
-        frame_err_reg <= frame_err_next;
-        page_reg <= page_next;
-        req_crc_reg <= req_crc_next;
-        f0_reg <= f0_next;
-        f1_reg <= f1_next;
-        crc_reg <= crc_next;
-        crcc_reg <= crcc_next;
-        pad_reg <= pad_next;
-        ch1_done_reg <= ch1_done_next;
-        ch1_bad_reg <= ch1_bad_next;
-        ch2_done_reg <= ch2_done_next;
-        ch2_bad_reg <= ch2_bad_next;
-        cf2_bad_reg <= cf2_bad_next;
-        crcc_bad_reg <= crcc_bad_next;
-        ch1_check_reg <= ch1_check_next;
-        ch2_check_reg <= ch2_check_next;
-        s_cf_reg <= s_cf_next;
-        s_sf_reg <= s_sf_next;
-        s_sf2_reg <= s_sf2_next;
-        s_alm1_reg <= s_alm1_next;
-        s_alm2_reg <= s_alm2_next;
-        s_abs_reg <= s_abs_next;
-        s_abm_reg <= s_abm_next;
-        s_rs_reg <= s_rs_next;
-        s_sc1_reg <= s_sc1_next;
-        s_sc2_reg <= s_sc2_next;
-        s_enid_reg <= s_enid_next;
-        s_temp_reg <= s_temp_next;
-        s_adf_reg <= s_adf_next;
-        s_edf_reg <= s_edf_next;
-        seq_known_reg <= seq_known_next;
-        n1_reg <= n1_next;
-        l1_reg <= l1_next;
-        n2_reg <= n2_next;
-        l2_reg <= l2_next;
-        total_reg <= total_next;
-        c16_reg <= c16_next;
-        has2_reg <= has2_next;
-        has_rs_reg <= has_rs_next;
-        is_mem_reg <= is_mem_next;
-        known_reg <= known_next;
-        in_ch2_reg <= in_ch2_next;
-        cidx_reg <= cidx_next;
-        kind_reg <= kind_next;
-        active_reg <= active_next;
-        decode_reg <= decode_next;
-        last_data_reg <= last_data_next;
-        last_crc_reg <= last_crc_next;
-        first_ch2_reg <= first_ch2_next;
-        dec_reg <= dec_next;
-        fld_reg <= fld_next;
-        answer_clear_reg <= answer_clear_next;
-        rs9_diff_reg <= rs9_diff_next;
-        rs16_diff_reg <= rs16_diff_next;
-        agree_reg <= agree_next;
-        exp_sc1_reg <= exp_sc1_next;
-        exp_sc2_reg <= exp_sc2_next;
-        exp_known_reg <= exp_known_next;
-        k_crc1_reg <= k_crc1_next;
-        k_crc2_reg <= k_crc2_next;
-        k_frame_reg <= k_frame_next;
-        k_cf_reg <= k_cf_next;
-        k_comm_reg <= k_comm_next;
-        k_rs_reg <= k_rs_next;
-        seq_bad_reg <= seq_bad_next;
-        clean_reg <= clean_next;
-        flawed_reg <= flawed_next;
-        mem_clean_reg <= mem_clean_next;
-        mem_busy_reg <= mem_busy_next;
-        busy_last_reg <= busy_last_next;
-        tx_reg <= tx_next;
-        tx_en_reg <= tx_en_next;
-        busy_reg <= busy_next;
-        done_reg <= done_next;
-        cf_reg <= cf_next;
-        sf_reg <= sf_next;
-        sf2_reg <= sf2_next;
-        alm1_reg <= alm1_next;
-        alm2_reg <= alm2_next;
-        abs_reg <= abs_next;
-        abm_reg <= abm_next;
-        rs_reg <= rs_next;
-        sc1_reg <= sc1_next;
-        sc2_reg <= sc2_next;
-        enid_reg <= enid_next;
-        temp_reg <= temp_next;
-        adf_reg <= adf_next;
-        edf_reg <= edf_next;
-        err_crc1_reg <= err_crc1_next;
-        err_crc2_reg <= err_crc2_next;
-        err_timeout_reg <= err_timeout_next;
-        err_frame_reg <= err_frame_next;
-        err_cf_reg <= err_cf_next;
-        err_comm_reg <= err_comm_next;
-        err_seq_reg <= err_seq_next;
-        err_rs_reg <= err_rs_next;
-        err_busy_reg <= err_busy_next;
-    end
+    state_reg <= state_next;
+    id_reg <= id_next;
+    address_reg <= address_next;
+    broadcast_reg <= broadcast_next;
+    mem_address_reg <= mem_address_next;
+    wdata_reg <= wdata_next;
+    field_index_reg <= field_index_next;
+    bit_index_reg <= bit_index_next;
+    cnt_zero_reg <= cnt_zero_next;
+    repeats_left_reg <= repeats_left_next;
+    tries_left_reg <= tries_left_next;
+    count_reg <= count_next;
+    frame_err_reg <= frame_err_next;
+    page_reg <= page_next;
+    req_crc_reg <= req_crc_next;
+    f0_reg <= f0_next;
+    f1_reg <= f1_next;
+    crc_reg <= crc_next;
+    crcc_reg <= crcc_next;
+    pad_reg <= pad_next;
+    ch1_done_reg <= ch1_done_next;
+    ch1_bad_reg <= ch1_bad_next;
+    ch2_done_reg <= ch2_done_next;
+    ch2_bad_reg <= ch2_bad_next;
+    cf2_bad_reg <= cf2_bad_next;
+    crcc_bad_reg <= crcc_bad_next;
+    ch1_check_reg <= ch1_check_next;
+    ch2_check_reg <= ch2_check_next;
+    s_cf_reg <= s_cf_next;
+    s_sf_reg <= s_sf_next;
+    s_sf2_reg <= s_sf2_next;
+    s_alm1_reg <= s_alm1_next;
+    s_alm2_reg <= s_alm2_next;
+    s_abs_reg <= s_abs_next;
+    s_abm_reg <= s_abm_next;
+    s_rs_reg <= s_rs_next;
+    s_sc1_reg <= s_sc1_next;
+    s_sc2_reg <= s_sc2_next;
+    s_enid_reg <= s_enid_next;
+    s_temp_reg <= s_temp_next;
+    s_adf_reg <= s_adf_next;
+    s_edf_reg <= s_edf_next;
+    seq_known_reg <= seq_known_next;
+    n1_reg <= n1_next;
+    l1_reg <= l1_next;
+    n2_reg <= n2_next;
+    l2_reg <= l2_next;
+    total_reg <= total_next;
+    c16_reg <= c16_next;
+    has2_reg <= has2_next;
+    has_rs_reg <= has_rs_next;
+    is_mem_reg <= is_mem_next;
+    known_reg <= known_next;
+    in_ch2_reg <= in_ch2_next;
+    cidx_reg <= cidx_next;
+    kind_reg <= kind_next;
+    active_reg <= active_next;
+    decode_reg <= decode_next;
+    last_data_reg <= last_data_next;
+    last_crc_reg <= last_crc_next;
+    first_ch2_reg <= first_ch2_next;
+    dec_reg <= dec_next;
+    fld_reg <= fld_next;
+    answer_clear_reg <= answer_clear_next;
+    rs9_diff_reg <= rs9_diff_next;
+    rs16_diff_reg <= rs16_diff_next;
+    agree_reg <= agree_next;
+    exp_sc1_reg <= exp_sc1_next;
+    exp_sc2_reg <= exp_sc2_next;
+    exp_known_reg <= exp_known_next;
+    k_crc1_reg <= k_crc1_next;
+    k_crc2_reg <= k_crc2_next;
+    k_frame_reg <= k_frame_next;
+    k_cf_reg <= k_cf_next;
+    k_comm_reg <= k_comm_next;
+    k_rs_reg <= k_rs_next;
+    seq_bad_reg <= seq_bad_next;
+    clean_reg <= clean_next;
+    flawed_reg <= flawed_next;
+    mem_clean_reg <= mem_clean_next;
+    mem_busy_reg <= mem_busy_next;
+    busy_last_reg <= busy_last_next;
+    tx_reg <= tx_next;
+    tx_en_reg <= tx_en_next;
+    busy_reg <= busy_next;
+    done_reg <= done_next;
+    cf_reg <= cf_next;
+    sf_reg <= sf_next;
+    sf2_reg <= sf2_next;
+    alm1_reg <= alm1_next;
+    alm2_reg <= alm2_next;
+    abs_reg <= abs_next;
+    abm_reg <= abm_next;
+    rs_reg <= rs_next;
+    sc1_reg <= sc1_next;
+    sc2_reg <= sc2_next;
+    enid_reg <= enid_next;
+    temp_reg <= temp_next;
+    adf_reg <= adf_next;
+    edf_reg <= edf_next;
+    err_crc1_reg <= err_crc1_next;
+    err_crc2_reg <= err_crc2_next;
+    err_timeout_reg <= err_timeout_next;
+    err_frame_reg <= err_frame_next;
+    err_cf_reg <= err_cf_next;
+    err_comm_reg <= err_comm_next;
+    err_seq_reg <= err_seq_next;
+    err_rs_reg <= err_rs_next;
+    err_busy_reg <= err_busy_next;
     cnt_reg <= cnt_next;
     idle_reg <= idle_next;
     idle_end_reg <= idle_next == END_LAST;

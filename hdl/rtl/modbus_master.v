@@ -493,64 +493,40 @@ always @* begin
     endcase
 end
 
-// The register bank. In Icarus only, the clock edge writes it when a next
-// value differs from its register (bank_change): the same behaviour, since
-// writing a register its own value changes nothing, without the assignments
-// Icarus would execute on every quiet cycle (docs/rtl.md, "Register banks").
-// The registers after the bank change on most cycles and are always written.
-`ifdef __ICARUS__
-wire bank_change = {
-    state_next, tx_en_next, tx_valid_next, tx_data_next, tx_pending_next, op_next, address_next,
-    new_address_next, count_next, req_index_next, crc_next, buf_next, nbytes_next, parity_seen_next,
-    framing_seen_next, gap_seen_next, busy_next, done_next, valid_next, value_next, station_next,
-    exception_next, err_parity_next, err_framing_next, err_gap_next, err_length_next, err_crc_next,
-    err_address_next, err_exception_next, err_function_next, err_count_next, err_timeout_next
-} !== {
-    state_reg, tx_en_reg, tx_valid_reg, tx_data_reg, tx_pending_reg, op_reg, address_reg,
-    new_address_reg, count_reg, req_index_reg, crc_reg, buf_reg, nbytes_reg, parity_seen_reg,
-    framing_seen_reg, gap_seen_reg, busy_reg, done_reg, valid_reg, value_reg, station_reg,
-    exception_reg, err_parity_reg, err_framing_reg, err_gap_reg, err_length_reg, err_crc_reg,
-    err_address_reg, err_exception_reg, err_function_reg, err_count_reg, err_timeout_reg
-};
-`endif
+// The register bank: every register takes its next value at each clock edge.
 always @(posedge i_clk) begin
-`ifdef __ICARUS__
-    if (bank_change)
-`endif
-    begin
-        state_reg <= state_next;
-        tx_en_reg <= tx_en_next;
-        tx_valid_reg <= tx_valid_next;
-        tx_data_reg <= tx_data_next;
-        tx_pending_reg <= tx_pending_next;
-        op_reg <= op_next;
-        address_reg <= address_next;
-        new_address_reg <= new_address_next;
-        count_reg <= count_next;
-        req_index_reg <= req_index_next;
-        crc_reg <= crc_next;
-        buf_reg <= buf_next;
-        nbytes_reg <= nbytes_next;
-        parity_seen_reg <= parity_seen_next;
-        framing_seen_reg <= framing_seen_next;
-        gap_seen_reg <= gap_seen_next;
-        busy_reg <= busy_next;
-        done_reg <= done_next;
-        valid_reg <= valid_next;
-        value_reg <= value_next;
-        station_reg <= station_next;
-        exception_reg <= exception_next;
-        err_parity_reg <= err_parity_next;
-        err_framing_reg <= err_framing_next;
-        err_gap_reg <= err_gap_next;
-        err_length_reg <= err_length_next;
-        err_crc_reg <= err_crc_next;
-        err_address_reg <= err_address_next;
-        err_exception_reg <= err_exception_next;
-        err_function_reg <= err_function_next;
-        err_count_reg <= err_count_next;
-        err_timeout_reg <= err_timeout_next;
-    end
+    state_reg <= state_next;
+    tx_en_reg <= tx_en_next;
+    tx_valid_reg <= tx_valid_next;
+    tx_data_reg <= tx_data_next;
+    tx_pending_reg <= tx_pending_next;
+    op_reg <= op_next;
+    address_reg <= address_next;
+    new_address_reg <= new_address_next;
+    count_reg <= count_next;
+    req_index_reg <= req_index_next;
+    crc_reg <= crc_next;
+    buf_reg <= buf_next;
+    nbytes_reg <= nbytes_next;
+    parity_seen_reg <= parity_seen_next;
+    framing_seen_reg <= framing_seen_next;
+    gap_seen_reg <= gap_seen_next;
+    busy_reg <= busy_next;
+    done_reg <= done_next;
+    valid_reg <= valid_next;
+    value_reg <= value_next;
+    station_reg <= station_next;
+    exception_reg <= exception_next;
+    err_parity_reg <= err_parity_next;
+    err_framing_reg <= err_framing_next;
+    err_gap_reg <= err_gap_next;
+    err_length_reg <= err_length_next;
+    err_crc_reg <= err_crc_next;
+    err_address_reg <= err_address_next;
+    err_exception_reg <= err_exception_next;
+    err_function_reg <= err_function_next;
+    err_count_reg <= err_count_next;
+    err_timeout_reg <= err_timeout_next;
     cnt_reg <= cnt_next;
     gap_reg <= gap_next;
     line_idle_reg <= line_idle_next;

@@ -475,54 +475,32 @@ always @* begin
     end
 end
 
-// The register bank. In Icarus only, the clock edge writes it when a next
-// value differs from its register (bank_change): the same behaviour, since
-// writing a register its own value changes nothing, without the assignments
-// Icarus would execute on every quiet cycle (docs/rtl.md, "Register banks").
-// The registers after the bank change on most cycles and are always written.
-`ifdef __ICARUS__
-wire bank_change = {
-    state_next, tx_en_next, tx_valid_next, tx_data_next, tx_pending_next, cmd_next, cmd_index_next,
-    expect_answer_next, tag_next, window_next, count_next, synced_next, trigger_next, clr_next,
-    busy_next, done_next, valid_next, position_next, err_checksum_next, err_parity_next,
-    err_frame_next, err_address_next, err_timeout_next, err_stale_next
-} !== {
-    state_reg, tx_en_reg, tx_valid_reg, tx_data_reg, tx_pending_reg, cmd_reg, cmd_index_reg,
-    expect_answer_reg, tag_reg, window_reg, count_reg, synced_reg, trigger_reg, clr_reg, busy_reg,
-    done_reg, valid_reg, position_reg, err_checksum_reg, err_parity_reg, err_frame_reg,
-    err_address_reg, err_timeout_reg, err_stale_reg
-};
-`endif
+// The register bank: every register takes its next value at each clock edge.
 always @(posedge i_clk) begin
-`ifdef __ICARUS__
-    if (bank_change)
-`endif
-    begin
-        state_reg <= state_next;
-        tx_en_reg <= tx_en_next;
-        tx_valid_reg <= tx_valid_next;
-        tx_data_reg <= tx_data_next;
-        tx_pending_reg <= tx_pending_next;
-        cmd_reg <= cmd_next;
-        cmd_index_reg <= cmd_index_next;
-        expect_answer_reg <= expect_answer_next;
-        tag_reg <= tag_next;
-        window_reg <= window_next;
-        count_reg <= count_next;
-        synced_reg <= synced_next;
-        trigger_reg <= trigger_next;
-        clr_reg <= clr_next;
-        busy_reg <= busy_next;
-        done_reg <= done_next;
-        valid_reg <= valid_next;
-        position_reg <= position_next;
-        err_checksum_reg <= err_checksum_next;
-        err_parity_reg <= err_parity_next;
-        err_frame_reg <= err_frame_next;
-        err_address_reg <= err_address_next;
-        err_timeout_reg <= err_timeout_next;
-        err_stale_reg <= err_stale_next;
-    end
+    state_reg <= state_next;
+    tx_en_reg <= tx_en_next;
+    tx_valid_reg <= tx_valid_next;
+    tx_data_reg <= tx_data_next;
+    tx_pending_reg <= tx_pending_next;
+    cmd_reg <= cmd_next;
+    cmd_index_reg <= cmd_index_next;
+    expect_answer_reg <= expect_answer_next;
+    tag_reg <= tag_next;
+    window_reg <= window_next;
+    count_reg <= count_next;
+    synced_reg <= synced_next;
+    trigger_reg <= trigger_next;
+    clr_reg <= clr_next;
+    busy_reg <= busy_next;
+    done_reg <= done_next;
+    valid_reg <= valid_next;
+    position_reg <= position_next;
+    err_checksum_reg <= err_checksum_next;
+    err_parity_reg <= err_parity_next;
+    err_frame_reg <= err_frame_next;
+    err_address_reg <= err_address_next;
+    err_timeout_reg <= err_timeout_next;
+    err_stale_reg <= err_stale_next;
     cnt_reg <= cnt_next;
     idle_reg <= idle_next;
     stale_reg <= stale_next;

@@ -281,39 +281,21 @@ always @* begin
     endcase
 end
 
-// The register bank. In Icarus only, the clock edge writes it when a next
-// value differs from its register (bank_change): the same behaviour, since
-// writing a register its own value changes nothing, without the assignments
-// Icarus would execute on every quiet cycle (docs/rtl.md, "Register banks").
-// The registers after the bank change on most cycles and are always written.
-`ifdef __ICARUS__
-wire bank_change = {
-    state_next, bit_count_next, gray_last_next, data_next, copy_next, wire_bad_next, ssi_clk_next,
-    busy_next, done_next, position_next, err_idle_next, err_double_next, err_wire_next
-} !== {
-    state_reg, bit_count_reg, gray_last_reg, data_reg, copy_reg, wire_bad_reg, ssi_clk_reg,
-    busy_reg, done_reg, position_reg, err_idle_reg, err_double_reg, err_wire_reg
-};
-`endif
+// The register bank: every register takes its next value at each clock edge.
 always @(posedge i_clk) begin
-`ifdef __ICARUS__
-    if (bank_change)
-`endif
-    begin
-        state_reg <= state_next;
-        bit_count_reg <= bit_count_next;
-        gray_last_reg <= gray_last_next;
-        data_reg <= data_next;
-        copy_reg <= copy_next;
-        wire_bad_reg <= wire_bad_next;
-        ssi_clk_reg <= ssi_clk_next;
-        busy_reg <= busy_next;
-        done_reg <= done_next;
-        position_reg <= position_next;
-        err_idle_reg <= err_idle_next;
-        err_double_reg <= err_double_next;
-        err_wire_reg <= err_wire_next;
-    end
+    state_reg <= state_next;
+    bit_count_reg <= bit_count_next;
+    gray_last_reg <= gray_last_next;
+    data_reg <= data_next;
+    copy_reg <= copy_next;
+    wire_bad_reg <= wire_bad_next;
+    ssi_clk_reg <= ssi_clk_next;
+    busy_reg <= busy_next;
+    done_reg <= done_next;
+    position_reg <= position_next;
+    err_idle_reg <= err_idle_next;
+    err_double_reg <= err_double_next;
+    err_wire_reg <= err_wire_next;
     cnt_reg <= cnt_next;
     data_meta_reg <= i_ssi_data;
     data_sync_reg <= data_meta_reg;

@@ -465,58 +465,36 @@ always @* begin
     end
 end
 
-// The register bank. In Icarus only, the clock edge writes it when a next
-// value differs from its register (bank_change): the same behaviour, since
-// writing a register its own value changes nothing, without the assignments
-// Icarus would execute on every quiet cycle (docs/rtl.md, "Register banks").
-// The registers after the bank change on most cycles and are always written.
-`ifdef __ICARUS__
-wire bank_change = {
-    state_next, id_next, req_cf_next, req_bits_next, req_nbits_next, shift_next, bits_left_next,
-    repeats_next, count_next, crc_next, frame_bad_next, tx_next, tx_en_next, busy_next, done_next,
-    cf_next, sf_next, abs_next, abm_next, enid_next, almc_next, adf_next, edf_next, err_crc_next,
-    err_timeout_next, err_frame_next, err_cf_next, err_comm_next
-} !== {
-    state_reg, id_reg, req_cf_reg, req_bits_reg, req_nbits_reg, shift_reg, bits_left_reg,
-    repeats_reg, count_reg, crc_reg, frame_bad_reg, tx_reg, tx_en_reg, busy_reg, done_reg, cf_reg,
-    sf_reg, abs_reg, abm_reg, enid_reg, almc_reg, adf_reg, edf_reg, err_crc_reg, err_timeout_reg,
-    err_frame_reg, err_cf_reg, err_comm_reg
-};
-`endif
+// The register bank: every register takes its next value at each clock edge.
 always @(posedge i_clk) begin
-`ifdef __ICARUS__
-    if (bank_change)
-`endif
-    begin
-        state_reg <= state_next;
-        id_reg <= id_next;
-        req_cf_reg <= req_cf_next;
-        req_bits_reg <= req_bits_next;
-        req_nbits_reg <= req_nbits_next;
-        shift_reg <= shift_next;
-        bits_left_reg <= bits_left_next;
-        repeats_reg <= repeats_next;
-        count_reg <= count_next;
-        crc_reg <= crc_next;
-        frame_bad_reg <= frame_bad_next;
-        tx_reg <= tx_next;
-        tx_en_reg <= tx_en_next;
-        busy_reg <= busy_next;
-        done_reg <= done_next;
-        cf_reg <= cf_next;
-        sf_reg <= sf_next;
-        abs_reg <= abs_next;
-        abm_reg <= abm_next;
-        enid_reg <= enid_next;
-        almc_reg <= almc_next;
-        adf_reg <= adf_next;
-        edf_reg <= edf_next;
-        err_crc_reg <= err_crc_next;
-        err_timeout_reg <= err_timeout_next;
-        err_frame_reg <= err_frame_next;
-        err_cf_reg <= err_cf_next;
-        err_comm_reg <= err_comm_next;
-    end
+    state_reg <= state_next;
+    id_reg <= id_next;
+    req_cf_reg <= req_cf_next;
+    req_bits_reg <= req_bits_next;
+    req_nbits_reg <= req_nbits_next;
+    shift_reg <= shift_next;
+    bits_left_reg <= bits_left_next;
+    repeats_reg <= repeats_next;
+    count_reg <= count_next;
+    crc_reg <= crc_next;
+    frame_bad_reg <= frame_bad_next;
+    tx_reg <= tx_next;
+    tx_en_reg <= tx_en_next;
+    busy_reg <= busy_next;
+    done_reg <= done_next;
+    cf_reg <= cf_next;
+    sf_reg <= sf_next;
+    abs_reg <= abs_next;
+    abm_reg <= abm_next;
+    enid_reg <= enid_next;
+    almc_reg <= almc_next;
+    adf_reg <= adf_next;
+    edf_reg <= edf_next;
+    err_crc_reg <= err_crc_next;
+    err_timeout_reg <= err_timeout_next;
+    err_frame_reg <= err_frame_next;
+    err_cf_reg <= err_cf_next;
+    err_comm_reg <= err_comm_next;
     cnt_reg <= cnt_next;
     idle_reg <= idle_next;
     if (store) begin

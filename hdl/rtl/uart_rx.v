@@ -257,36 +257,18 @@ always @* begin
     endcase
 end
 
-// The register bank. In Icarus only, the clock edge writes it when a next
-// value differs from its register (bank_change): the same behaviour, since
-// writing a register its own value changes nothing, without the assignments
-// Icarus would execute on every quiet cycle (docs/rtl.md, "Register banks").
-// The registers after the bank change on most cycles and are always written.
-`ifdef __ICARUS__
-wire bank_change = {
-    state_next, bit_index_next, shift_next, data_next, valid_next, frame_err_next, start_err_next,
-    busy_next, parity_ok_next, parity_err_next
-} !== {
-    state_reg, bit_index_reg, shift_reg, data_reg, valid_reg, frame_err_reg, start_err_reg,
-    busy_reg, parity_ok_reg, parity_err_reg
-};
-`endif
+// The register bank: every register takes its next value at each clock edge.
 always @(posedge i_clk) begin
-`ifdef __ICARUS__
-    if (bank_change)
-`endif
-    begin
-        state_reg <= state_next;
-        bit_index_reg <= bit_index_next;
-        shift_reg <= shift_next;
-        data_reg <= data_next;
-        valid_reg <= valid_next;
-        frame_err_reg <= frame_err_next;
-        start_err_reg <= start_err_next;
-        busy_reg <= busy_next;
-        parity_ok_reg <= parity_ok_next;
-        parity_err_reg <= parity_err_next;
-    end
+    state_reg <= state_next;
+    bit_index_reg <= bit_index_next;
+    shift_reg <= shift_next;
+    data_reg <= data_next;
+    valid_reg <= valid_next;
+    frame_err_reg <= frame_err_next;
+    start_err_reg <= start_err_next;
+    busy_reg <= busy_next;
+    parity_ok_reg <= parity_ok_next;
+    parity_err_reg <= parity_err_next;
     cnt_reg <= cnt_next;
     rx_meta_reg <= i_rx;
     rx_sync_reg <= rx_meta_reg;

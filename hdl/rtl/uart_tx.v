@@ -114,29 +114,13 @@ always @* begin
     endcase
 end
 
-// The register bank. In Icarus only, the clock edge writes it when a next
-// value differs from its register (bank_change): the same behaviour, since
-// writing a register its own value changes nothing, without the assignments
-// Icarus would execute on every quiet cycle (docs/rtl.md, "Register banks").
-// The registers after the bank change on most cycles and are always written.
-`ifdef __ICARUS__
-wire bank_change = {
-    state_next, bits_left_next, shift_next, tx_next, busy_next
-} !== {
-    state_reg, bits_left_reg, shift_reg, tx_reg, busy_reg
-};
-`endif
+// The register bank: every register takes its next value at each clock edge.
 always @(posedge i_clk) begin
-`ifdef __ICARUS__
-    if (bank_change)
-`endif
-    begin
-        state_reg <= state_next;
-        bits_left_reg <= bits_left_next;
-        shift_reg <= shift_next;
-        tx_reg <= tx_next;
-        busy_reg <= busy_next;
-    end
+    state_reg <= state_next;
+    bits_left_reg <= bits_left_next;
+    shift_reg <= shift_next;
+    tx_reg <= tx_next;
+    busy_reg <= busy_next;
     cnt_reg <= cnt_next;
 
     if (i_rst) begin

@@ -1,5 +1,5 @@
-//! Frames per second of each corruption campaign (issue 15: campaign
-//! throughput before and after fast-forward), as `make bench` prints them.
+//! Frames per second of each corruption campaign (fast-forward
+//! against stepping), as `make bench` prints them.
 //! Each campaign runs with its test's seed and arguments; each figure is the
 //! best of three runs of `trials` frames.
 //!
@@ -29,38 +29,77 @@ fn best_of_three(f: &dyn Fn()) -> f64 {
 type Run = Box<dyn Fn()>;
 
 fn main() {
-    let trials: u64 = std::env::args().nth(1).and_then(|a| a.parse().ok()).unwrap_or(20_000);
+    let trials: u64 = std::env::args()
+        .nth(1)
+        .and_then(|a| a.parse().ok())
+        .unwrap_or(20_000);
     let t = trials;
     let runs: Vec<(&str, &str, Option<Run>, Option<Run>)> = vec![
         (
             "biss",
             "cycle-model",
-            Some(Box::new(move || drop(model::biss::campaign::run_with(t, 16, 6, 2024, false)))),
-            Some(Box::new(move || drop(model::biss::campaign::run_with(t, 16, 6, 2024, true)))),
+            Some(Box::new(move || {
+                drop(model::biss::campaign::run_with(t, 16, 6, 2024, false))
+            })),
+            Some(Box::new(move || {
+                drop(model::biss::campaign::run_with(t, 16, 6, 2024, true))
+            })),
         ),
         (
             "tformat",
             "cycle-model",
-            Some(Box::new(move || drop(model::tformat::campaign::run_with(t, 8, 2024, false)))),
-            Some(Box::new(move || drop(model::tformat::campaign::run_with(t, 8, 2024, true)))),
+            Some(Box::new(move || {
+                drop(model::tformat::campaign::run_with(t, 8, 2024, false))
+            })),
+            Some(Box::new(move || {
+                drop(model::tformat::campaign::run_with(t, 8, 2024, true))
+            })),
         ),
         (
             "sar58k24",
             "cycle-model",
-            Some(Box::new(move || drop(model::sar58k24::campaign::run_with(t, 8, 2026, false)))),
-            Some(Box::new(move || drop(model::sar58k24::campaign::run_with(t, 8, 2026, true)))),
+            Some(Box::new(move || {
+                drop(model::sar58k24::campaign::run_with(t, 8, 2026, false))
+            })),
+            Some(Box::new(move || {
+                drop(model::sar58k24::campaign::run_with(t, 8, 2026, true))
+            })),
         ),
         (
             "modbus",
             "cycle-model",
-            Some(Box::new(move || drop(model::modbus::campaign::run_with(t, 8, 2026, false)))),
-            Some(Box::new(move || drop(model::modbus::campaign::run_with(t, 8, 2026, true)))),
+            Some(Box::new(move || {
+                drop(model::modbus::campaign::run_with(t, 8, 2026, false))
+            })),
+            Some(Box::new(move || {
+                drop(model::modbus::campaign::run_with(t, 8, 2026, true))
+            })),
         ),
-        ("esl", "bit-level", None, Some(Box::new(move || drop(model::esl::campaign::run(t, 6, 2026))))),
-        ("can", "bit-level", None, Some(Box::new(move || drop(model::can::campaign::run(t, 1))))),
+        (
+            "esl",
+            "bit-level",
+            None,
+            Some(Box::new(move || {
+                drop(model::esl::campaign::run(t, 6, 2026))
+            })),
+        ),
+        (
+            "can",
+            "bit-level",
+            None,
+            Some(Box::new(move || drop(model::can::campaign::run(t, 1)))),
+        ),
     ];
-    let rate = |r: &Option<Run>| r.as_ref().map_or("-".to_string(), |f| format!("{:.0}", trials as f64 / best_of_three(f.as_ref())));
+    let rate = |r: &Option<Run>| {
+        r.as_ref().map_or("-".to_string(), |f| {
+            format!("{:.0}", trials as f64 / best_of_three(f.as_ref()))
+        })
+    };
     for (name, kind, stepped, fast) in &runs {
-        println!("campaign {name} {kind} {trials} {} {}", rate(stepped), rate(fast));
+        println!(
+            "campaign {name} {kind} {trials} {} {}",
+            rate(stepped),
+            rate(fast)
+        );
     }
 }

@@ -8,5 +8,8 @@ pub fn string(bits: &[bool]) -> String {
 
 /// The low `width` bits of `value`, MSB first (`string_of(5, 4)` → `"0101"`).
 pub fn string_of(value: u128, width: u32) -> String {
-    (0..width).rev().map(|i| if (value >> i) & 1 == 1 { '1' } else { '0' }).collect()
+    (0..width)
+        .rev()
+        .map(|i| if (value >> i) & 1 == 1 { '1' } else { '0' })
+        .collect()
 }

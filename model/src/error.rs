@@ -18,8 +18,16 @@ pub enum ConfigError {
 
 impl ConfigError {
     /// Shorthand for [`ConfigError::Invalid`].
-    pub fn invalid(field: impl Into<String>, problem: impl Into<String>, fix: impl Into<String>) -> Self {
-        ConfigError::Invalid { field: field.into(), problem: problem.into(), fix: fix.into() }
+    pub fn invalid(
+        field: impl Into<String>,
+        problem: impl Into<String>,
+        fix: impl Into<String>,
+    ) -> Self {
+        ConfigError::Invalid {
+            field: field.into(),
+            problem: problem.into(),
+            fix: fix.into(),
+        }
     }
 
     /// The field the error is about.

@@ -30,7 +30,12 @@ pub struct CableConfig {
 
 impl Default for CableConfig {
     fn default() -> Self {
-        CableConfig { length_m: 0.0, ns_per_m: 5.0, jitter_ns: 0.0, seed: 1 }
+        CableConfig {
+            length_m: 0.0,
+            ns_per_m: 5.0,
+            jitter_ns: 0.0,
+            seed: 1,
+        }
     }
 }
 
@@ -238,8 +243,14 @@ impl HalfDuplexLine {
     /// Advances one cycle with what each end drives now; returns what the
     /// receivers at A and at B see now.
     pub fn step(&mut self, a: Drive, b: Drive) -> (Sensed, Sensed) {
-        let far_a = Drive { enable: self.b_to_a_enable.step(b.enable), level: self.b_to_a_level.step(b.level) };
-        let far_b = Drive { enable: self.a_to_b_enable.step(a.enable), level: self.a_to_b_level.step(a.level) };
+        let far_a = Drive {
+            enable: self.b_to_a_enable.step(b.enable),
+            level: self.b_to_a_level.step(b.level),
+        };
+        let far_b = Drive {
+            enable: self.a_to_b_enable.step(a.enable),
+            level: self.a_to_b_level.step(a.level),
+        };
         let at_a = resolve(a, far_a, self.idle);
         let at_b = resolve(b, far_b, self.idle);
         if at_a.contention || at_b.contention {
@@ -261,7 +272,12 @@ impl HalfDuplexLine {
     /// The same as `n` steps with drives `a` and `b`, for `n` up to
     /// [`HalfDuplexLine::quiet`]; returns what the receivers see.
     pub fn skip(&mut self, n: u64, a: Drive, b: Drive) -> (Sensed, Sensed) {
-        for line in [&mut self.b_to_a_enable, &mut self.b_to_a_level, &mut self.a_to_b_enable, &mut self.a_to_b_level] {
+        for line in [
+            &mut self.b_to_a_enable,
+            &mut self.b_to_a_level,
+            &mut self.a_to_b_enable,
+            &mut self.a_to_b_level,
+        ] {
             line.skip(n);
         }
         let (at_a, at_b) = self.sensed(a, b);
@@ -274,8 +290,14 @@ impl HalfDuplexLine {
     /// What the receivers at A and B see now with drives `a` and `b`, the
     /// far ends' levels as they left the lines in the last step.
     pub fn sensed(&self, a: Drive, b: Drive) -> (Sensed, Sensed) {
-        let far_a = Drive { enable: self.b_to_a_enable.output, level: self.b_to_a_level.output };
-        let far_b = Drive { enable: self.a_to_b_enable.output, level: self.a_to_b_level.output };
+        let far_a = Drive {
+            enable: self.b_to_a_enable.output,
+            level: self.b_to_a_level.output,
+        };
+        let far_b = Drive {
+            enable: self.a_to_b_enable.output,
+            level: self.a_to_b_level.output,
+        };
         (resolve(a, far_a, self.idle), resolve(b, far_b, self.idle))
     }
 
@@ -287,9 +309,21 @@ impl HalfDuplexLine {
 
 fn resolve(near: Drive, far: Drive, idle: bool) -> Sensed {
     match (near.enable, far.enable) {
-        (true, true) => Sensed { level: near.level, contention: true },
-        (true, false) => Sensed { level: near.level, contention: false },
-        (false, true) => Sensed { level: far.level, contention: false },
-        (false, false) => Sensed { level: idle, contention: false },
+        (true, true) => Sensed {
+            level: near.level,
+            contention: true,
+        },
+        (true, false) => Sensed {
+            level: near.level,
+            contention: false,
+        },
+        (false, true) => Sensed {
+            level: far.level,
+            contention: false,
+        },
+        (false, false) => Sensed {
+            level: idle,
+            contention: false,
+        },
     }
 }

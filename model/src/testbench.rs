@@ -105,7 +105,11 @@ macro_rules! compiled_here {
         fn run_every_cycle_compiled(self) -> $crate::testbench::Run<Self::Transaction> {
             $crate::testbench::run_every_cycle(self)
         }
-        fn lockstep_compiled(self, name: &str, stepped: Self) -> $crate::testbench::Lockstep<Self::Transaction> {
+        fn lockstep_compiled(
+            self,
+            name: &str,
+            stepped: Self,
+        ) -> $crate::testbench::Lockstep<Self::Transaction> {
             $crate::testbench::lockstep(name, self, stepped)
         }
     };
@@ -140,14 +144,20 @@ pub struct Run<T> {
 }
 
 /// Runs `bench` to the end, handing every cycle's sample to `sink`.
-pub fn run<B: Testbench, S: Sink>(mut bench: B, sink: &mut S) -> std::result::Result<Run<B::Transaction>, S::Error> {
+pub fn run<B: Testbench, S: Sink>(
+    mut bench: B,
+    sink: &mut S,
+) -> std::result::Result<Run<B::Transaction>, S::Error> {
     let mut sample = Sample::for_layout(bench.layout());
     while !bench.finished() {
         bench.step(Some(&mut sample));
         sink.sample(bench.cycle() - 1, &sample)?;
     }
     let cycles = bench.cycle();
-    Ok(Run { cycles, transactions: bench.into_transactions() })
+    Ok(Run {
+        cycles,
+        transactions: bench.into_transactions(),
+    })
 }
 
 /// Runs `bench` to the end recording nothing (campaigns, benchmarks),
@@ -161,7 +171,10 @@ pub fn run_to_end<B: Testbench>(mut bench: B) -> Run<B::Transaction> {
             n => bench.skip(n),
         }
     }
-    Run { cycles: bench.cycle(), transactions: bench.into_transactions() }
+    Run {
+        cycles: bench.cycle(),
+        transactions: bench.into_transactions(),
+    }
 }
 
 /// Runs `bench` to the end recording nothing, one [`Testbench::step`] per
@@ -171,7 +184,10 @@ pub fn run_every_cycle<B: Testbench>(mut bench: B) -> Run<B::Transaction> {
     while !bench.finished() {
         bench.step(None);
     }
-    Run { cycles: bench.cycle(), transactions: bench.into_transactions() }
+    Run {
+        cycles: bench.cycle(),
+        transactions: bench.into_transactions(),
+    }
 }
 
 /// What [`lockstep`] ran: the cycles, how many of them were skipped, and
@@ -196,18 +212,33 @@ pub struct Lockstep<T> {
 /// The check that fast-forward is invisible: `tests/fast_forward.rs` runs
 /// it on every built-in and bench scenario, the protocols' unit tests on
 /// their own set-ups.
-pub fn lockstep<B: Testbench>(name: &str, mut skipping: B, mut stepped: B) -> Lockstep<B::Transaction> {
+pub fn lockstep<B: Testbench>(
+    name: &str,
+    mut skipping: B,
+    mut stepped: B,
+) -> Lockstep<B::Transaction> {
     let mut want = Sample::for_layout(stepped.layout());
     let mut got: Option<Sample> = None;
     let mut skipped = 0;
     while !skipping.finished() {
-        assert!(!stepped.finished(), "{name}: the fast-forwarded bench runs past the end, cycle {}", stepped.cycle());
+        assert!(
+            !stepped.finished(),
+            "{name}: the fast-forwarded bench runs past the end, cycle {}",
+            stepped.cycle()
+        );
         let quiet = skipping.quiet_cycles();
         if quiet == 0 {
-            let mut sample = got.take().unwrap_or_else(|| Sample::for_layout(skipping.layout()));
+            let mut sample = got
+                .take()
+                .unwrap_or_else(|| Sample::for_layout(skipping.layout()));
             skipping.step(Some(&mut sample));
             stepped.step(Some(&mut want));
-            assert_eq!(sample, want, "{name}: cycle {} differs after fast-forwards", stepped.cycle() - 1);
+            assert_eq!(
+                sample,
+                want,
+                "{name}: cycle {} differs after fast-forwards",
+                stepped.cycle() - 1
+            );
             got = Some(sample);
             continue;
         }
@@ -216,7 +247,10 @@ pub fn lockstep<B: Testbench>(name: &str, mut skipping: B, mut stepped: B) -> Lo
         skipped += quiet;
         let counters = skipping.counters();
         for _ in 0..quiet {
-            assert!(!stepped.finished(), "{name}: the skip from cycle {start} by {quiet} runs past the end");
+            assert!(
+                !stepped.finished(),
+                "{name}: the skip from cycle {start} by {quiet} runs past the end"
+            );
             stepped.step(Some(&mut want));
             // Before the first step there is no sample to compare with:
             // the skipped cycles must then all show the first one.
@@ -228,8 +262,21 @@ pub fn lockstep<B: Testbench>(name: &str, mut skipping: B, mut stepped: B) -> Lo
                 stepped.cycle() - 1
             );
         }
-        assert_eq!(skipping.cycle(), stepped.cycle(), "{name}: skip({quiet}) from cycle {start} lands on the wrong cycle");
+        assert_eq!(
+            skipping.cycle(),
+            stepped.cycle(),
+            "{name}: skip({quiet}) from cycle {start} lands on the wrong cycle"
+        );
     }
-    assert!(stepped.finished(), "{name}: the fast-forwarded bench finished at cycle {}, stepping did not", skipping.cycle());
-    Lockstep { cycles: stepped.cycle(), skipped, skipping: skipping.into_transactions(), stepped: stepped.into_transactions() }
+    assert!(
+        stepped.finished(),
+        "{name}: the fast-forwarded bench finished at cycle {}, stepping did not",
+        skipping.cycle()
+    );
+    Lockstep {
+        cycles: stepped.cycle(),
+        skipped,
+        skipping: skipping.into_transactions(),
+        stepped: stepped.into_transactions(),
+    }
 }

@@ -115,7 +115,11 @@ impl Timebase {
         let ratio = self.f_sys_hz as f64 / f_hz;
         let divider = ratio.round();
         if !(ratio.is_finite()) || (ratio - divider).abs() > 1e-6 || divider < min as f64 {
-            let suggestion = if ratio.is_finite() { ratio.clamp(min as f64, 1e12).round() as u64 } else { min };
+            let suggestion = if ratio.is_finite() {
+                ratio.clamp(min as f64, 1e12).round() as u64
+            } else {
+                min
+            };
             return Err(ConfigError::invalid(
                 field,
                 format!(
@@ -160,7 +164,11 @@ impl BitClock {
     /// The split of a period of `period` cycles: halves, or the high phase
     /// one cycle longer when `period` is odd.
     pub fn of(period: u64) -> Self {
-        BitClock { period, high: period - period / 2, low: period / 2 }
+        BitClock {
+            period,
+            high: period - period / 2,
+            low: period / 2,
+        }
     }
 
     /// The phase parameters a vector header lists: none when the phases are
@@ -175,4 +183,3 @@ impl BitClock {
         }
     }
 }
-

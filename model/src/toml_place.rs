@@ -38,7 +38,9 @@ pub fn locate(text: &str, dotted: &str) -> Option<usize> {
 /// The byte offset of field path `dotted` in `text` if the text writes
 /// every part of it, else `None`.
 pub fn find(text: &str, dotted: &str) -> Option<usize> {
-    deepest(text, dotted).filter(|&(_, whole)| whole).map(|(offset, _)| offset)
+    deepest(text, dotted)
+        .filter(|&(_, whole)| whole)
+        .map(|(offset, _)| offset)
 }
 
 /// The deepest part of `dotted` that `text` writes, and whether it is all of it.
@@ -51,7 +53,10 @@ fn deepest(text: &str, dotted: &str) -> Option<(usize, bool)> {
     let mut resolved = 0;
     for step in &steps {
         let found = match (step, table, value) {
-            (Step::Key(k), Some(t), _) => t.iter().find(|(key, _)| key.get_ref() == k).map(|(key, v)| (key.span().start, v)),
+            (Step::Key(k), Some(t), _) => t
+                .iter()
+                .find(|(key, _)| key.get_ref() == k)
+                .map(|(key, v)| (key.span().start, v)),
             (&Step::Index(i), _, Some(DeValue::Array(a))) => a.get(i).map(|v| (v.span().start, v)),
             _ => None,
         };
@@ -77,6 +82,11 @@ pub fn line_of(text: &str, dotted: &str) -> Option<usize> {
 pub fn line_column(text: &str, offset: usize) -> (usize, usize) {
     let before = &text[..offset.min(text.len())];
     let line = before.matches('\n').count() + 1;
-    let column = before.rsplit('\n').next().map(|l| l.chars().count()).unwrap_or(0) + 1;
+    let column = before
+        .rsplit('\n')
+        .next()
+        .map(|l| l.chars().count())
+        .unwrap_or(0)
+        + 1;
     (line, column)
 }

@@ -21,7 +21,10 @@ pub struct Signal {
 impl Signal {
     /// An empty signal named `name` (high until its first change).
     pub fn named(name: &str) -> Signal {
-        Signal { name: name.to_string(), changes: Vec::new() }
+        Signal {
+            name: name.to_string(),
+            changes: Vec::new(),
+        }
     }
 
     /// Appends a level at `t_ps` (not before the last change); a repeated
@@ -63,13 +66,21 @@ impl Signal {
             return Some(from_ps);
         }
         let i = self.changes.partition_point(|&(ct, _)| ct <= from_ps);
-        self.changes[i..].iter().find(|&&(_, v)| v == level).map(|&(t, _)| t)
+        self.changes[i..]
+            .iter()
+            .find(|&&(_, v)| v == level)
+            .map(|&(t, _)| t)
     }
 
     /// High whenever either signal is: what a receiver hears whose input is
     /// forced high while its own driver is on (`line.or(&tx_en)`).
     pub fn or(&self, other: &Signal) -> Signal {
-        let mut times: Vec<u64> = self.changes.iter().chain(&other.changes).map(|c| c.0).collect();
+        let mut times: Vec<u64> = self
+            .changes
+            .iter()
+            .chain(&other.changes)
+            .map(|c| c.0)
+            .collect();
         times.sort_unstable();
         times.dedup();
         let mut changes: Vec<(u64, bool)> = Vec::with_capacity(times.len());
@@ -79,7 +90,10 @@ impl Signal {
                 changes.push((t, level));
             }
         }
-        Signal { name: format!("{} | {}", self.name, other.name), changes }
+        Signal {
+            name: format!("{} | {}", self.name, other.name),
+            changes,
+        }
     }
 
     /// The part from `from_ps` on: the level at `from_ps` as its first
@@ -88,7 +102,10 @@ impl Signal {
         let i = self.changes.partition_point(|&(ct, _)| ct <= from_ps);
         let mut changes = vec![(from_ps, self.level_at(from_ps))];
         changes.extend_from_slice(&self.changes[i..]);
-        Signal { name: self.name.clone(), changes }
+        Signal {
+            name: self.name.clone(),
+            changes,
+        }
     }
 
     /// Drops every change before `t_ps`, keeping the level at `t_ps`.
@@ -138,8 +155,16 @@ pub fn uart_bytes(line: &Signal, bit_ps: u64) -> Vec<UartByte> {
         }
         let value = (0..8).fold(0u8, |acc, k| acc | ((line.level_at(mid(k + 1)) as u8) << k));
         let stop = line.level_at(mid(9));
-        bytes.push(UartByte { start_ps: fall, value, framing_error: !stop });
-        from = if stop { mid(9) } else { line.next_level(mid(9), true).unwrap_or(u64::MAX) };
+        bytes.push(UartByte {
+            start_ps: fall,
+            value,
+            framing_error: !stop,
+        });
+        from = if stop {
+            mid(9)
+        } else {
+            line.next_level(mid(9), true).unwrap_or(u64::MAX)
+        };
         if from == u64::MAX {
             break;
         }

@@ -141,8 +141,14 @@ fn the_property_tests_above_run_many_accepted_setups() {
     any_ssi_setup_is_accepted_or_refused_by_field();
     any_uart_setup_is_accepted_or_refused_by_field();
     any_esl_setup_is_accepted_or_refused_by_field();
-    let (ssi, uart) = (SSI_RAN.load(Ordering::Relaxed), UART_RAN.load(Ordering::Relaxed));
-    assert!(ssi >= 20 && uart >= 20, "accepted and run: ssi {ssi}, uart {uart}");
+    let (ssi, uart) = (
+        SSI_RAN.load(Ordering::Relaxed),
+        UART_RAN.load(Ordering::Relaxed),
+    );
+    assert!(
+        ssi >= 20 && uart >= 20,
+        "accepted and run: ssi {ssi}, uart {uart}"
+    );
     let esl = ESL_RAN.load(Ordering::Relaxed);
     println!("accepted and run: ssi {ssi}, uart {uart}, esl {esl}");
     assert!(esl >= 20, "accepted and run: esl {esl}");

@@ -119,17 +119,44 @@ impl Visitor for Measure<'_> {
         })?;
 
         fs::create_dir_all(self.scratch).map_err(|e| Error::io(self.scratch, e))?;
-        let path = self.scratch.join(format!("{}.bench.vcd", self.scenario.name));
+        let path = self
+            .scratch
+            .join(format!("{}.bench.vcd", self.scenario.name));
         let tb = cfg.timebase().map_err(value_error)?;
         // `gen`'s comment, so that the file is `gen`'s to the byte.
-        let comment = format!("tbgen {}: scenario {} for {}, f_sys {} Hz", env!("CARGO_PKG_VERSION"), self.scenario.name, S::CORE, tb.f_sys_hz());
+        let comment = format!(
+            "tbgen {}: scenario {} for {}, f_sys {} Hz",
+            env!("CARGO_PKG_VERSION"),
+            self.scenario.name,
+            S::CORE,
+            tb.f_sys_hz()
+        );
         let vcd_seconds = best_of(|| {
             let file = File::create(&path).map_err(|e| Error::io(&path, e))?;
-            wave::write_changes(BufWriter::with_capacity(1 << 20, file), S::CORE, &layout, tb, &comment, &changes, cycles).map_err(|e| Error::io(&path, e))
+            wave::write_changes(
+                BufWriter::with_capacity(1 << 20, file),
+                S::CORE,
+                &layout,
+                tb,
+                &comment,
+                &changes,
+                cycles,
+            )
+            .map_err(|e| Error::io(&path, e))
         })?;
-        let vcd_bytes = fs::metadata(&path).map(|m| m.len()).map_err(|e| Error::io(&path, e))?;
+        let vcd_bytes = fs::metadata(&path)
+            .map(|m| m.len())
+            .map_err(|e| Error::io(&path, e))?;
         let _ = fs::remove_file(&path);
-        Ok(Figures { scenario: self.scenario.name.clone(), cycles, quiet_cycles, stepped_seconds, model_seconds, vcd_bytes, vcd_seconds })
+        Ok(Figures {
+            scenario: self.scenario.name.clone(),
+            cycles,
+            quiet_cycles,
+            stepped_seconds,
+            model_seconds,
+            vcd_bytes,
+            vcd_seconds,
+        })
     }
 }
 
@@ -171,7 +198,12 @@ mod tests {
         assert_eq!(f.cycles, summary.cycles);
         // The writer alone writes the VCD `gen` writes.
         assert_eq!(f.vcd_bytes, fs::metadata(&summary.files[1]).unwrap().len());
-        assert!(f.quiet_cycles > f.cycles / 2, "the SSI seed scenario is mostly monoflop pause: {} of {}", f.quiet_cycles, f.cycles);
+        assert!(
+            f.quiet_cycles > f.cycles / 2,
+            "the SSI seed scenario is mostly monoflop pause: {} of {}",
+            f.quiet_cycles,
+            f.cycles
+        );
         assert!(f.model_seconds > 0.0 && f.stepped_seconds > 0.0 && f.vcd_seconds > 0.0);
     }
 }

@@ -13,7 +13,10 @@ pub const FILES: &[(&str, &str)] = include!(concat!(env!("OUT_DIR"), "/builtin_f
 /// Every built-in scenario, parsed, in listing order: registry order
 /// (`crate::PROTOCOLS`), then file name.
 pub fn all() -> Result<Vec<Scenario>> {
-    let mut all = FILES.iter().map(|(file, text)| Scenario::parse(text, &format!("scenarios/{file}"))).collect::<Result<Vec<_>>>()?;
+    let mut all = FILES
+        .iter()
+        .map(|(file, text)| Scenario::parse(text, &format!("scenarios/{file}")))
+        .collect::<Result<Vec<_>>>()?;
     all.sort_by_key(|s| crate::PROTOCOLS.iter().position(|p| p.table == s.table()));
     Ok(all)
 }
@@ -25,11 +28,22 @@ pub fn find(name: &str) -> Result<Scenario> {
     if let Some(i) = all.iter().position(|s| s.name == name) {
         return Ok(all.into_iter().nth(i).expect("position found"));
     }
-    let mut near: Vec<(usize, &str)> = all.iter().map(|s| (distance(name, &s.name), s.name.as_str())).collect();
+    let mut near: Vec<(usize, &str)> = all
+        .iter()
+        .map(|s| (distance(name, &s.name), s.name.as_str()))
+        .collect();
     near.sort();
     let best = near.first().map(|n| n.0).unwrap_or(usize::MAX);
-    let close: Vec<String> = near.iter().take_while(|n| n.0 == best && best <= name.len().max(4) / 3).map(|n| format!("`{}`", n.1)).collect();
-    let hint = if close.is_empty() { String::new() } else { format!(" (did you mean {}?)", close.join(" or ")) };
+    let close: Vec<String> = near
+        .iter()
+        .take_while(|n| n.0 == best && best <= name.len().max(4) / 3)
+        .map(|n| format!("`{}`", n.1))
+        .collect();
+    let hint = if close.is_empty() {
+        String::new()
+    } else {
+        format!(" (did you mean {}?)", close.join(" or "))
+    };
     Err(Error::UnknownScenario(name.to_string(), hint))
 }
 
@@ -41,7 +55,9 @@ fn distance(a: &str, b: &str) -> usize {
         let mut diag = row[0];
         row[0] = i + 1;
         for (j, cb) in b.iter().enumerate() {
-            let next = (diag + usize::from(ca != *cb)).min(row[j] + 1).min(row[j + 1] + 1);
+            let next = (diag + usize::from(ca != *cb))
+                .min(row[j] + 1)
+                .min(row[j + 1] + 1);
             diag = row[j + 1];
             row[j + 1] = next;
         }
@@ -60,7 +76,10 @@ pub fn resolve(arg: &str) -> Result<Scenario> {
 /// Every scenario of `args` (names or files); two that would write files of
 /// the same name into one folder are refused.
 pub fn resolve_all(args: &[String]) -> Result<Vec<Scenario>> {
-    let chosen = args.iter().map(|a| resolve(a)).collect::<Result<Vec<_>>>()?;
+    let chosen = args
+        .iter()
+        .map(|a| resolve(a))
+        .collect::<Result<Vec<_>>>()?;
     for (i, s) in chosen.iter().enumerate() {
         if let Some(t) = chosen[..i].iter().find(|t| t.name == s.name) {
             return Err(Error::Scenario {
@@ -89,7 +108,11 @@ mod tests {
         // protocol's folder would be listed and generated under the wrong name.
         for (file, text) in super::FILES {
             let s = crate::scenario::Scenario::parse(text, file).unwrap();
-            assert!(file.starts_with(&format!("{}/", s.table())), "{file} holds a [{}] scenario", s.table());
+            assert!(
+                file.starts_with(&format!("{}/", s.table())),
+                "{file} holds a [{}] scenario",
+                s.table()
+            );
         }
     }
 
@@ -108,7 +131,10 @@ mod tests {
         std::fs::write(&file, "name = \"ssi_seed_12bit\"\n[ssi]\npositions = [1]\n").unwrap();
         let args = vec!["ssi_seed_12bit".to_string(), file.display().to_string()];
         let msg = super::resolve_all(&args).unwrap_err().to_string();
-        assert!(msg.contains("name `ssi_seed_12bit` is also the name of scenarios/ssi/seed_12bit.toml"), "{msg}");
+        assert!(
+            msg.contains("name `ssi_seed_12bit` is also the name of scenarios/ssi/seed_12bit.toml"),
+            "{msg}"
+        );
     }
 
     #[test]
@@ -116,7 +142,11 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let missing = dir.path().join("nothere.toml");
         let e = super::resolve(&missing.display().to_string()).unwrap_err();
-        assert!(e.to_string().contains("nothere.toml: no such scenario file"), "{e}");
+        assert!(
+            e.to_string()
+                .contains("nothere.toml: no such scenario file"),
+            "{e}"
+        );
         assert_eq!(e.exit_code(), 2);
         let binary = dir.path().join("bin.toml");
         std::fs::write(&binary, [0u8, 159, 146, 150, 255]).unwrap();

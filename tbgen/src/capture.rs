@@ -34,8 +34,12 @@ fn scalars(header: &vcd::Header) -> String {
     fn walk(items: &[vcd::ScopeItem], prefix: &str, out: &mut Vec<String>) {
         for item in items {
             match item {
-                vcd::ScopeItem::Scope(s) => walk(&s.items, &format!("{prefix}{}.", s.identifier), out),
-                vcd::ScopeItem::Var(v) if v.size == 1 => out.push(format!("{prefix}{}", v.reference)),
+                vcd::ScopeItem::Scope(s) => {
+                    walk(&s.items, &format!("{prefix}{}.", s.identifier), out)
+                }
+                vcd::ScopeItem::Var(v) if v.size == 1 => {
+                    out.push(format!("{prefix}{}", v.reference))
+                }
                 _ => {}
             }
         }
@@ -67,7 +71,11 @@ pub fn read(path: &Path, names: &[(&str, &str)]) -> Result<Vec<Signal>> {
             Error::Decode(format!("{}: no signal `{name}`; give its dotted path with {option}; the capture's 1-bit signals: {}", path.display(), scalars(&header)))
         })?;
         if var.size != 1 {
-            return Err(Error::Decode(format!("{}: `{name}` is {} bits wide; {option} needs a 1-bit line signal", path.display(), var.size)));
+            return Err(Error::Decode(format!(
+                "{}: `{name}` is {} bits wide; {option} needs a 1-bit line signal",
+                path.display(),
+                var.size
+            )));
         }
         ids.push(var.code);
     }
@@ -93,7 +101,14 @@ fn backward_line(path: &Path, later: u64, earlier: u64) -> Option<usize> {
     let text = std::fs::read(path).ok()?;
     let mut seen_later = false;
     for (i, line) in text.split(|&b| b == b'\n').enumerate() {
-        let Some(ts) = line.trim_ascii().strip_prefix(b"#").and_then(|d| std::str::from_utf8(d).ok()).and_then(|d| d.parse::<u64>().ok()) else { continue };
+        let Some(ts) = line
+            .trim_ascii()
+            .strip_prefix(b"#")
+            .and_then(|d| std::str::from_utf8(d).ok())
+            .and_then(|d| d.parse::<u64>().ok())
+        else {
+            continue;
+        };
         if ts == later {
             seen_later = true;
         } else if seen_later && ts == earlier {
@@ -118,7 +133,10 @@ mod tests {
         if !changes.last().unwrap().1 {
             changes.push((idle_before + bits.len() as u64 * bit_ps, true));
         }
-        Signal { name: "line".into(), changes }
+        Signal {
+            name: "line".into(),
+            changes,
+        }
     }
 
     fn character(value: u8, stop: bool) -> Vec<bool> {
@@ -150,7 +168,12 @@ mod tests {
         bits.extend([true, true]);
         bits.extend(character(0xC3, true));
         let got = uart_bytes(&line_of(&bits, bit_ps, 0), bit_ps);
-        assert_eq!(got.iter().map(|b| (b.value, b.framing_error)).collect::<Vec<_>>(), vec![(0x5A, true), (0xC3, false)]);
+        assert_eq!(
+            got.iter()
+                .map(|b| (b.value, b.framing_error))
+                .collect::<Vec<_>>(),
+            vec![(0x5A, true), (0xC3, false)]
+        );
     }
 
     #[test]
@@ -158,13 +181,18 @@ mod tests {
         let s = crate::builtin::find("ssi_seed_12bit").unwrap();
         let dir = tempfile::tempdir().unwrap();
         let summary = crate::generate::generate(&s, dir.path()).unwrap();
-        let msg = read(&summary.files[1], &[("top.x", "--clk")]).unwrap_err().to_string();
+        let msg = read(&summary.files[1], &[("top.x", "--clk")])
+            .unwrap_err()
+            .to_string();
         assert!(msg.contains("ssi_seed_12bit.vcd: no signal `top.x`; give its dotted path with --clk; the capture's 1-bit signals: top."), "{msg}");
         assert!(msg.contains("top.line.ssi_clk_master"), "{msg}");
         let bad = dir.path().join("g.vcd");
         std::fs::write(&bad, "garbage\n").unwrap();
         let e = read(&bad, &[("top.x", "--clk")]).unwrap_err();
-        assert!(e.to_string().contains("g.vcd: not a readable VCD file"), "{e}");
+        assert!(
+            e.to_string().contains("g.vcd: not a readable VCD file"),
+            "{e}"
+        );
         assert_eq!(e.exit_code(), 2);
     }
 
@@ -178,23 +206,39 @@ mod tests {
         let vcd = dir.path().join("back.vcd");
         std::fs::write(&vcd, "$timescale 1ns $end\n$scope module top $end\n$var wire 1 ! clk $end\n$upscope $end\n$enddefinitions $end\n#0\n1!\n#100\n0!\n#100\n1!\n#50\n0!\n").unwrap();
         let e = read(&vcd, &[("top.clk", "--clk")]).unwrap_err();
-        assert!(e.to_string().contains("back.vcd:12: timestamp #50 after #100: a VCD's times only increase"), "{e}");
+        assert!(
+            e.to_string()
+                .contains("back.vcd:12: timestamp #50 after #100: a VCD's times only increase"),
+            "{e}"
+        );
         assert_eq!(e.exit_code(), 2);
     }
 
     #[test]
     fn or_is_high_whenever_either_signal_is() {
-        let line = Signal { name: "line".into(), changes: vec![(0, true), (100, false), (300, true), (500, false)] };
-        let en = Signal { name: "en".into(), changes: vec![(0, false), (50, true), (200, false)] };
+        let line = Signal {
+            name: "line".into(),
+            changes: vec![(0, true), (100, false), (300, true), (500, false)],
+        };
+        let en = Signal {
+            name: "en".into(),
+            changes: vec![(0, false), (50, true), (200, false)],
+        };
         let heard = line.or(&en);
-        assert_eq!(heard.changes, vec![(0, true), (200, false), (300, true), (500, false)]);
+        assert_eq!(
+            heard.changes,
+            vec![(0, true), (200, false), (300, true), (500, false)]
+        );
         assert_eq!(heard.name, "line | en");
     }
 
     #[test]
     fn a_short_glitch_is_not_a_start_bit() {
         let bit_ps = 100_000;
-        let line = Signal { name: "l".into(), changes: vec![(0, true), (500_000, false), (520_000, true)] };
+        let line = Signal {
+            name: "l".into(),
+            changes: vec![(0, true), (500_000, false), (520_000, true)],
+        };
         assert!(uart_bytes(&line, bit_ps).is_empty());
     }
 
@@ -207,7 +251,10 @@ mod tests {
                     #0\n1!\n#10000000\n0!\n#20000499\n1!\n#30000500\n0!\n";
         std::fs::write(&path, text).unwrap();
         let sig = read(&path, &[("tb.clk", "--clk")]).unwrap();
-        assert_eq!(sig[0].changes, vec![(0, true), (10_000, false), (20_000, true), (30_001, false)]);
+        assert_eq!(
+            sig[0].changes,
+            vec![(0, true), (10_000, false), (20_000, true), (30_001, false)]
+        );
         let path10 = dir.path().join("fs10.vcd");
         std::fs::write(&path10, text.replace("1fs", "10fs")).unwrap();
         let sig = read(&path10, &[("tb.clk", "--clk")]).unwrap();

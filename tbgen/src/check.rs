@@ -60,7 +60,10 @@ fn timing_key(k: &str) -> bool {
 fn read_json(path: &Path) -> Result<Value> {
     let text = std::fs::read_to_string(path).map_err(|e| match e.kind() {
         // Bad input (exit 2), as every missing file of tbgen's command line.
-        std::io::ErrorKind::NotFound => Error::Decode(format!("{}: no such file; give the path of a transcript (JSON) or a capture (VCD)", path.display())),
+        std::io::ErrorKind::NotFound => Error::Decode(format!(
+            "{}: no such file; give the path of a transcript (JSON) or a capture (VCD)",
+            path.display()
+        )),
         _ => Error::io(path, e),
     })?;
     serde_json::from_str(&text).map_err(|e| Error::Decode(format!("{}: not a JSON transcript ({e}); give a `tbgen gen`/`tbgen decode` transcript, an emulator transcript or a VCD", path.display())))
@@ -68,13 +71,24 @@ fn read_json(path: &Path) -> Result<Value> {
 
 fn side(path: &Path, v: Value) -> Result<Side> {
     let ps_per_cycle = v.get("f_emu_hz").and_then(Value::as_f64).map(|f| 1e12 / f);
-    for key in ["transactions", "frames", "reads", "requests", "transfers", "answers"] {
+    for key in [
+        "transactions",
+        "frames",
+        "reads",
+        "requests",
+        "transfers",
+        "answers",
+    ] {
         if let Some(Value::Array(list)) = v.get(key) {
             let list = match key {
                 "transfers" | "answers" => emulator_entries(key, list),
                 _ => list.clone(),
             };
-            return Ok(Side { what: path.display().to_string(), list, ps_per_cycle });
+            return Ok(Side {
+                what: path.display().to_string(),
+                list,
+                ps_per_cycle,
+            });
         }
     }
     Err(Error::Decode(format!(
@@ -153,9 +167,16 @@ fn emulator_entries(key: &str, list: &[Value]) -> Vec<Value> {
             }
         }
         // ESL runs of B (0x0B), C, D: one operation of 8 answers.
-        let id = o.get("data_id").and_then(Value::as_u64).filter(|d| o.contains_key("device") && (0x0B..=0x0D).contains(d));
+        let id = o
+            .get("data_id")
+            .and_then(Value::as_u64)
+            .filter(|d| o.contains_key("device") && (0x0B..=0x0D).contains(d));
         let continues = match (id, &run) {
-            (Some(id), Some((dev, rid, count))) => o.get("device") == Some(dev) && *rid == id && *count < u64::from(model::esl::REPEATS),
+            (Some(id), Some((dev, rid, count))) => {
+                o.get("device") == Some(dev)
+                    && *rid == id
+                    && *count < u64::from(model::esl::REPEATS)
+            }
             _ => false,
         };
         if continues {
@@ -180,17 +201,28 @@ fn emulator_entries(key: &str, list: &[Value]) -> Vec<Value> {
 
 /// Reads a capture: a JSON transcript, or a VCD decoded by `protocol`'s decoder with `decoder_args`.
 fn capture(protocol: &str, path: &Path, decoder_args: &[String]) -> Result<Value> {
-    let is_vcd = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("vcd"));
+    let is_vcd = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("vcd"));
     if !is_vcd {
         return read_json(path);
     }
-    let entry = registry::by_table(protocol).ok_or_else(|| Error::Decode(format!("check: no protocol `{protocol}`; `tbgen protocols` lists them")))?;
+    let entry = registry::by_table(protocol).ok_or_else(|| {
+        Error::Decode(format!(
+            "check: no protocol `{protocol}`; `tbgen protocols` lists them"
+        ))
+    })?;
     let cmd = (entry.decode_command)().ok_or_else(|| {
         Error::Decode(format!("check {protocol}: this protocol has no decoder yet, so a VCD cannot be read; give the monitor's or emulator's JSON transcript"))
     })?;
     let mut argv = vec![format!("decode {protocol}"), path.display().to_string()];
     argv.extend(decoder_args.iter().cloned());
-    let m = cmd.try_get_matches_from(argv).map_err(|e| Error::Decode(format!("check {protocol}: the decoder's options after `--`: {}", e.to_string().trim())))?;
+    let m = cmd.try_get_matches_from(argv).map_err(|e| {
+        Error::Decode(format!(
+            "check {protocol}: the decoder's options after `--`: {}",
+            e.to_string().trim()
+        ))
+    })?;
     let json = (entry.decode)(&m)?;
     serde_json::from_str(&json).map_err(|e| Error::Decode(e.to_string()))
 }
@@ -217,9 +249,21 @@ fn differ(path: &str, a: &Value, b: &Value) -> Option<(String, String, String)> 
                     return Some(d);
                 }
             }
-            (x.len() != y.len()).then(|| (format!("{path} (length)"), x.len().to_string(), y.len().to_string()))
+            (x.len() != y.len()).then(|| {
+                (
+                    format!("{path} (length)"),
+                    x.len().to_string(),
+                    y.len().to_string(),
+                )
+            })
         }
-        (Value::Number(x), Value::Number(y)) if x.as_f64().zip(y.as_f64()).is_some_and(|(p, q)| (p - q).abs() <= 1e-9 * p.abs().max(1.0)) => None,
+        (Value::Number(x), Value::Number(y))
+            if x.as_f64()
+                .zip(y.as_f64())
+                .is_some_and(|(p, q)| (p - q).abs() <= 1e-9 * p.abs().max(1.0)) =>
+        {
+            None
+        }
         _ => (a != b).then(|| (path.to_string(), a.to_string(), b.to_string())),
     }
 }
@@ -227,12 +271,20 @@ fn differ(path: &str, a: &Value, b: &Value) -> Option<(String, String, String)> 
 /// A transaction's start in picoseconds, if its transcript says.
 fn start_ps(t: &Value, ps_per_cycle: Option<f64>) -> Option<f64> {
     let o = t.as_object()?;
-    for (k, scale) in [("start_ps", 1.0), ("sof_ps", 1.0), ("time_ps", 1.0), ("time_ns", 1e3), ("start_ns", 1e3)] {
+    for (k, scale) in [
+        ("start_ps", 1.0),
+        ("sof_ps", 1.0),
+        ("time_ps", 1.0),
+        ("time_ns", 1e3),
+        ("start_ns", 1e3),
+    ] {
         if let Some(v) = o.get(k).and_then(Value::as_f64) {
             return Some(v * scale);
         }
     }
-    let cycle = ["cycle", "start_cycle", "sof_cycle"].iter().find_map(|k| o.get(*k).and_then(Value::as_f64))?;
+    let cycle = ["cycle", "start_cycle", "sof_cycle"]
+        .iter()
+        .find_map(|k| o.get(*k).and_then(Value::as_f64))?;
     ps_per_cycle.map(|p| cycle * p)
 }
 
@@ -244,10 +296,18 @@ fn at(t: &Value, side: &Side) -> String {
 }
 
 /// Compares `capture` against `expect`; `timeout_us` bounds the time between transactions.
-pub fn check(protocol: &str, expect: &Path, capture_path: &Path, decoder_args: &[String], timeout_us: Option<f64>) -> Result<Report> {
+pub fn check(
+    protocol: &str,
+    expect: &Path,
+    capture_path: &Path,
+    decoder_args: &[String],
+    timeout_us: Option<f64>,
+) -> Result<Report> {
     if let Some(t) = timeout_us {
         if !(t > 0.0 && t.is_finite()) {
-            return Err(Error::Decode(format!("--timeout-us {t}: give a positive time in microseconds")));
+            return Err(Error::Decode(format!(
+                "--timeout-us {t}: give a positive time in microseconds"
+            )));
         }
     }
     let want = side(expect, read_json(expect)?)?;
@@ -264,7 +324,10 @@ pub fn check(protocol: &str, expect: &Path, capture_path: &Path, decoder_args: &
             ));
         }
         if let (Some(limit), Some(prev)) = (timeout_us, k.checked_sub(1)) {
-            let (t0, t1) = (start_ps(&got.list[prev], got.ps_per_cycle), start_ps(b, got.ps_per_cycle));
+            let (t0, t1) = (
+                start_ps(&got.list[prev], got.ps_per_cycle),
+                start_ps(b, got.ps_per_cycle),
+            );
             if let (Some(t0), Some(t1)) = (t0, t1) {
                 let gap = (t1 - t0) / 1e6;
                 if gap > limit {
@@ -287,7 +350,15 @@ pub fn check(protocol: &str, expect: &Path, capture_path: &Path, decoder_args: &
             got.list.len()
         ));
     }
-    Ok(Report { ok: true, text: format!("PASS: {} transactions of {protocol} equal, in order ({} vs {})", got.list.len(), want.what, got.what) })
+    Ok(Report {
+        ok: true,
+        text: format!(
+            "PASS: {} transactions of {protocol} equal, in order ({} vs {})",
+            got.list.len(),
+            want.what,
+            got.what
+        ),
+    })
 }
 
 #[cfg(test)]
@@ -297,8 +368,18 @@ mod tests {
     fn decoded_seed(dir: &Path) -> (std::path::PathBuf, std::path::PathBuf) {
         let s = crate::builtin::find("biss_seed_16bit").unwrap();
         let summary = crate::generate::generate(&s, dir).unwrap();
-        let vcd = summary.files.iter().find(|f| f.extension().is_some_and(|e| e == "vcd")).unwrap().clone();
-        let json = summary.files.iter().find(|f| f.extension().is_some_and(|e| e == "json")).unwrap().clone();
+        let vcd = summary
+            .files
+            .iter()
+            .find(|f| f.extension().is_some_and(|e| e == "vcd"))
+            .unwrap()
+            .clone();
+        let json = summary
+            .files
+            .iter()
+            .find(|f| f.extension().is_some_and(|e| e == "json"))
+            .unwrap()
+            .clone();
         (vcd, json)
     }
 
@@ -335,7 +416,9 @@ mod tests {
         let (vcd, json) = decoded_seed(dir.path());
         let fs = dir.path().join("fs.vcd");
         femto(&vcd, &fs);
-        assert!(std::fs::read_to_string(&fs).unwrap().contains("$timescale 1 fs $end"));
+        assert!(std::fs::read_to_string(&fs)
+            .unwrap()
+            .contains("$timescale 1 fs $end"));
         let mut v: Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
         let p = &mut v["transactions"][1]["slaves"][0]["position"];
         *p = Value::from(p.as_u64().unwrap() ^ 4);
@@ -343,7 +426,13 @@ mod tests {
         std::fs::write(&planted, v.to_string()).unwrap();
         let r = check("biss", &planted, &fs, &args(), None).unwrap();
         assert!(!r.ok);
-        assert!(r.text.starts_with("DIFFERENCE in transaction 1 at 21.212 us: slaves[0].position expected"), "{}", r.text);
+        assert!(
+            r.text.starts_with(
+                "DIFFERENCE in transaction 1 at 21.212 us: slaves[0].position expected"
+            ),
+            "{}",
+            r.text
+        );
         // The same capture in fs passes against the untouched transcript.
         assert!(check("biss", &json, &fs, &args(), None).unwrap().ok);
     }
@@ -353,13 +442,18 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let (vcd, json) = decoded_seed(dir.path());
         let decoded = dir.path().join("decoded.json");
-        std::fs::write(&decoded, capture("biss", &vcd, &args()).unwrap().to_string()).unwrap();
+        std::fs::write(
+            &decoded,
+            capture("biss", &vcd, &args()).unwrap().to_string(),
+        )
+        .unwrap();
         // The seed's frames are 20.2 us apart: a 15 us timeout is broken by the second.
         let r = check("biss", &json, &decoded, &[], Some(15.0)).unwrap();
         assert!(!r.ok);
         assert!(r.text.starts_with("DIFFERENCE in transaction 1 at 21.212 us: it starts 20.212 us after transaction 0, beyond the timeout of 15 us"), "{}", r.text);
         assert!(check("biss", &json, &decoded, &[], Some(25.0)).unwrap().ok);
-        let mut v: Value = serde_json::from_str(&std::fs::read_to_string(&decoded).unwrap()).unwrap();
+        let mut v: Value =
+            serde_json::from_str(&std::fs::read_to_string(&decoded).unwrap()).unwrap();
         v["transactions"].as_array_mut().unwrap().pop();
         std::fs::write(&decoded, v.to_string()).unwrap();
         let r = check("biss", &json, &decoded, &[], None).unwrap();
@@ -371,13 +465,17 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let bad = dir.path().join("x.json");
         std::fs::write(&bad, "{\"a\": 1}").unwrap();
-        let e = check("biss", &bad, &bad, &[], None).unwrap_err().to_string();
+        let e = check("biss", &bad, &bad, &[], None)
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("x.json: no list of transactions"), "{e}");
         let e = check("biss", &dir.path().join("none.json"), &bad, &[], None).unwrap_err();
         assert!(e.to_string().contains("none.json: no such file"), "{e}");
         assert_eq!(e.exit_code(), 2);
         let (vcd, json) = decoded_seed(dir.path());
-        let e = check("biss", &json, &vcd, &["--nope".into()], None).unwrap_err().to_string();
+        let e = check("biss", &json, &vcd, &["--nope".into()], None)
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("the decoder's options after `--`"), "{e}");
     }
 
@@ -391,7 +489,10 @@ mod tests {
     fn closed_loop(proto: &str, dir: &Path) -> (std::path::PathBuf, std::path::PathBuf, Value) {
         let fixtures = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/check");
         let read = |f: &str| std::fs::read_to_string(fixtures.join(f)).unwrap();
-        let (emu, mon) = (dir.join(format!("{proto}_emulator.json")), dir.join(format!("{proto}_monitor.json")));
+        let (emu, mon) = (
+            dir.join(format!("{proto}_emulator.json")),
+            dir.join(format!("{proto}_monitor.json")),
+        );
         std::fs::write(&emu, read(&format!("{proto}_emulator.json"))).unwrap();
         let text = read(&format!("{proto}_monitor.json"));
         std::fs::write(&mon, &text).unwrap();
@@ -400,7 +501,11 @@ mod tests {
 
     /// The field a T-format or ESL monitor names the single-turn position, EnDat's `position`.
     fn position_field(proto: &str) -> &'static str {
-        if proto == "endat" { "position" } else { "abs" }
+        if proto == "endat" {
+            "position"
+        } else {
+            "abs"
+        }
     }
 
     #[test]
@@ -413,12 +518,25 @@ mod tests {
             for (a, b) in [(&emu, &mon), (&mon, &emu), (&emu, &emu), (&mon, &mon)] {
                 let r = check(proto, a, b, &[], None).unwrap();
                 assert!(r.ok, "{proto}: {}", r.text);
-                assert!(r.text.starts_with(&format!("PASS: {n} transactions of {proto} equal")), "{}", r.text);
+                assert!(
+                    r.text
+                        .starts_with(&format!("PASS: {n} transactions of {proto} equal")),
+                    "{}",
+                    r.text
+                );
             }
             // The emulator's entries under the decoders' names: the position is compared.
             let want = side(&emu, read_json(&emu).unwrap()).unwrap();
-            let carried = want.list.iter().filter(|t| t.get(position_field(proto)).is_some_and(Value::is_u64)).count();
-            assert!(carried * 2 > n && want.list[3].get(position_field(proto)).is_some(), "{proto}: {:?}", want.list);
+            let carried = want
+                .list
+                .iter()
+                .filter(|t| t.get(position_field(proto)).is_some_and(Value::is_u64))
+                .count();
+            assert!(
+                carried * 2 > n && want.list[3].get(position_field(proto)).is_some(),
+                "{proto}: {:?}",
+                want.list
+            );
         }
     }
 
@@ -433,13 +551,29 @@ mod tests {
             t[field] = Value::from(clean ^ 4);
             let when = t["start_ps"].as_f64().unwrap() / 1e6;
             std::fs::write(&mon, v.to_string()).unwrap();
-            for (a, b, want, got) in [(&emu, &mon, clean, clean ^ 4), (&mon, &emu, clean ^ 4, clean)] {
+            for (a, b, want, got) in [
+                (&emu, &mon, clean, clean ^ 4),
+                (&mon, &emu, clean ^ 4, clean),
+            ] {
                 let r = check(proto, a, b, &[], None).unwrap();
                 assert!(!r.ok, "{proto}: {}", r.text);
                 // The capture's time of the transaction: the monitor's start, or the emulator's cycle.
-                let head = if b == &mon { format!("DIFFERENCE in transaction 3 at {when:.3} us: ") } else { "DIFFERENCE in transaction 3 at ".to_string() };
-                assert!(r.text.starts_with(&head), "{proto}: {} (want {head})", r.text);
-                assert!(r.text.contains(&format!("{field} expected {want}, captured {got}")), "{proto}: {}", r.text);
+                let head = if b == &mon {
+                    format!("DIFFERENCE in transaction 3 at {when:.3} us: ")
+                } else {
+                    "DIFFERENCE in transaction 3 at ".to_string()
+                };
+                assert!(
+                    r.text.starts_with(&head),
+                    "{proto}: {} (want {head})",
+                    r.text
+                );
+                assert!(
+                    r.text
+                        .contains(&format!("{field} expected {want}, captured {got}")),
+                    "{proto}: {}",
+                    r.text
+                );
             }
         }
     }
@@ -450,10 +584,19 @@ mod tests {
             let dir = tempfile::tempdir().unwrap();
             let (emu, mon, mut v) = closed_loop(proto, dir.path());
             let list = v["transactions"].as_array_mut().unwrap();
-            let starts: Vec<f64> = list.iter().map(|t| t["start_ps"].as_f64().unwrap()).collect();
-            let gap = starts.windows(2).map(|w| (w[1] - w[0]) / 1e6).fold(0.0, f64::max);
+            let starts: Vec<f64> = list
+                .iter()
+                .map(|t| t["start_ps"].as_f64().unwrap())
+                .collect();
+            let gap = starts
+                .windows(2)
+                .map(|w| (w[1] - w[0]) / 1e6)
+                .fold(0.0, f64::max);
             let limit = (gap * 1.5).ceil();
-            assert!(check(proto, &emu, &mon, &[], Some(limit)).unwrap().ok, "{proto}: the clean run within {limit} us");
+            assert!(
+                check(proto, &emu, &mon, &[], Some(limit)).unwrap().ok,
+                "{proto}: the clean run within {limit} us"
+            );
             // Transaction 5 and every later one a whole timeout late.
             for t in list.iter_mut().skip(5) {
                 t["start_ps"] = Value::from(t["start_ps"].as_f64().unwrap() + limit * 1e6);
@@ -484,12 +627,32 @@ mod tests {
         let out = emulator_entries("answers", &list);
         assert_eq!(out.len(), 3, "{out:?}");
         // The first operation: its start (index, cycle) from the first answer, its results from the eighth.
-        assert_eq!((out[0]["index"].as_u64(), out[0]["cycle"].as_u64()), (Some(0), Some(0)));
-        assert_eq!((out[0]["abs"].as_u64(), out[0]["sc1"].as_u64(), out[0]["sc2"].as_u64()), (Some(17), Some(7), Some(8)));
+        assert_eq!(
+            (out[0]["index"].as_u64(), out[0]["cycle"].as_u64()),
+            (Some(0), Some(0))
+        );
+        assert_eq!(
+            (
+                out[0]["abs"].as_u64(),
+                out[0]["sc1"].as_u64(),
+                out[0]["sc2"].as_u64()
+            ),
+            (Some(17), Some(7), Some(8))
+        );
         assert_eq!(out[0]["alm1"].as_u64(), Some(1));
         assert_eq!(out[0]["received"], serde_json::json!([7]));
-        assert!(out[0].get("abm").is_none() && out[0].get("alm").is_none() && out[0].get("device").is_none());
-        assert_eq!((out[1]["index"].as_u64(), out[1]["abs"].as_u64()), (Some(8), Some(30)));
-        assert_eq!((out[2]["data_id"].as_u64(), out[2]["abs"].as_u64()), (Some(1), Some(40)));
+        assert!(
+            out[0].get("abm").is_none()
+                && out[0].get("alm").is_none()
+                && out[0].get("device").is_none()
+        );
+        assert_eq!(
+            (out[1]["index"].as_u64(), out[1]["abs"].as_u64()),
+            (Some(8), Some(30))
+        );
+        assert_eq!(
+            (out[2]["data_id"].as_u64(), out[2]["abs"].as_u64()),
+            (Some(1), Some(40))
+        );
     }
 }

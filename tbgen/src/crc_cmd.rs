@@ -28,13 +28,22 @@ pub fn parse_bits(text: &str) -> Result<Vec<bool>> {
 pub fn parse_bytes(words: &[String]) -> Result<Vec<u8>> {
     let bad = || Error::BadBytes(words.join(" "));
     let mut bytes = Vec::new();
-    for word in words.iter().flat_map(|w| w.split([',', ' '])).filter(|w| !w.is_empty()) {
-        let hex = word.strip_prefix("0x").or_else(|| word.strip_prefix("0X")).unwrap_or(word);
+    for word in words
+        .iter()
+        .flat_map(|w| w.split([',', ' ']))
+        .filter(|w| !w.is_empty())
+    {
+        let hex = word
+            .strip_prefix("0x")
+            .or_else(|| word.strip_prefix("0X"))
+            .unwrap_or(word);
         if hex.is_empty() || hex.len() % 2 != 0 {
             return Err(bad());
         }
         for i in (0..hex.len()).step_by(2) {
-            bytes.push(u8::from_str_radix(hex.get(i..i + 2).ok_or_else(bad)?, 16).map_err(|_| bad())?);
+            bytes.push(
+                u8::from_str_radix(hex.get(i..i + 2).ok_or_else(bad)?, 16).map_err(|_| bad())?,
+            );
         }
     }
     if bytes.is_empty() {
@@ -56,10 +65,34 @@ fn algorithm(name: &str) -> Result<&'static crc::Algorithm> {
 pub fn report_bytes(name: &str, words: &[String]) -> Result<String> {
     let alg = algorithm(name)?;
     let bytes = parse_bytes(words)?;
-    let bits: Vec<bool> = bytes.iter().flat_map(|&b| (0..8).map(move |i| if alg.refin { b >> i & 1 == 1 } else { b >> (7 - i) & 1 == 1 })).collect();
+    let bits: Vec<bool> = bytes
+        .iter()
+        .flat_map(|&b| {
+            (0..8).map(move |i| {
+                if alg.refin {
+                    b >> i & 1 == 1
+                } else {
+                    b >> (7 - i) & 1 == 1
+                }
+            })
+        })
+        .collect();
     let value = alg.checksum_bytes(&bytes);
     debug_assert_eq!(value, alg.checksum_bits(&bits));
-    Ok(format_report(alg, &format!("{} bytes ({} bits, each {})", bytes.len(), bits.len(), if alg.refin { "bit 0 first" } else { "bit 7 first" }), value))
+    Ok(format_report(
+        alg,
+        &format!(
+            "{} bytes ({} bits, each {})",
+            bytes.len(),
+            bits.len(),
+            if alg.refin {
+                "bit 0 first"
+            } else {
+                "bit 7 first"
+            }
+        ),
+        value,
+    ))
 }
 
 /// The report `tbgen crc` prints.
@@ -74,10 +107,21 @@ fn format_report(alg: &crc::Algorithm, input: &str, value: u64) -> String {
     let wire = model::bits::string(&alg.wire_bits(value));
     let digits = (alg.width as usize).div_ceil(4);
     let mut out = String::new();
-    let _ = writeln!(out, "algorithm: {} ({}-bit, poly 0x{:X}, init 0x{:X})", alg.name, alg.width, alg.poly, alg.init);
+    let _ = writeln!(
+        out,
+        "algorithm: {} ({}-bit, poly 0x{:X}, init 0x{:X})",
+        alg.name, alg.width, alg.poly, alg.init
+    );
     let _ = writeln!(out, "source:    {}", alg.source);
     let _ = writeln!(out, "input:     {input}");
-    let _ = writeln!(out, "crc:       0x{:0d$X} ({:0w$b})", value, value, d = digits, w = alg.width as usize);
+    let _ = writeln!(
+        out,
+        "crc:       0x{:0d$X} ({:0w$b})",
+        value,
+        value,
+        d = digits,
+        w = alg.width as usize
+    );
     let _ = writeln!(out, "wire:      {wire}");
     out
 }
@@ -93,13 +137,21 @@ mod tests {
         let r = report_bytes("modbus-crc16", &["01 03 00 00 00 01".into()]).unwrap();
         assert!(r.contains("crc:       0x0A84"), "{r}");
         assert!(r.contains("6 bytes (48 bits, each bit 0 first)"), "{r}");
-        assert_eq!(report_bytes("modbus-crc16", &["0x01,0x03".into(), "00000001".into()]).unwrap().lines().nth(3), r.lines().nth(3));
+        assert_eq!(
+            report_bytes("modbus-crc16", &["0x01,0x03".into(), "00000001".into()])
+                .unwrap()
+                .lines()
+                .nth(3),
+            r.lines().nth(3)
+        );
     }
 
     #[test]
     fn bad_bytes_say_how_to_write_them() {
         for bad in ["1", "0G", "", "0x"] {
-            let e = report_bytes("modbus-crc16", &[bad.into()]).unwrap_err().to_string();
+            let e = report_bytes("modbus-crc16", &[bad.into()])
+                .unwrap_err()
+                .to_string();
             assert!(e.contains("hex"), "{bad}: {e}");
         }
     }

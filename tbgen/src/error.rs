@@ -38,13 +38,17 @@ pub enum Error {
     },
     /// Neither a built-in scenario nor an existing file: the name, and a
     /// suggestion (` (did you mean ...?)`) or nothing.
-    #[error("no scenario `{0}`{1}: `tbgen list` shows the built-in ones; a file must end in .toml")]
+    #[error(
+        "no scenario `{0}`{1}: `tbgen list` shows the built-in ones; a file must end in .toml"
+    )]
     UnknownScenario(String, String),
     /// A CRC name not in the catalogue.
     #[error("no CRC algorithm `{0}`; known: {1}")]
     UnknownCrc(String, String),
     /// A bit string with something other than 0 and 1.
-    #[error("bits `{0}`: give the bits as a string of 0 and 1 in wire order, e.g. 1000101011100011")]
+    #[error(
+        "bits `{0}`: give the bits as a string of 0 and 1 in wire order, e.g. 1000101011100011"
+    )]
     BadBits(String),
     /// Bytes not given as pairs of hex digits.
     #[error("bytes `{0}`: give whole bytes in hex, e.g. --bytes 01 03 00 00 00 01 (or 0x01,0x03 or 010300)")]
@@ -76,7 +80,10 @@ impl Error {
 
     /// Wraps an I/O error with the path it concerns.
     pub fn io(path: impl Into<PathBuf>, source: std::io::Error) -> Self {
-        Error::Io { path: path.into(), source }
+        Error::Io {
+            path: path.into(),
+            source,
+        }
     }
 }
 

@@ -47,7 +47,9 @@ struct Field {
 
 /// The body of a one-line `fn name() -> T { literal }` in `text`.
 fn default_fn(lines: &[&str], name: &str) -> Option<String> {
-    let at = lines.iter().position(|l| l.trim_start().starts_with(&format!("fn {name}() ->")))?;
+    let at = lines
+        .iter()
+        .position(|l| l.trim_start().starts_with(&format!("fn {name}() ->")))?;
     let body = lines.get(at + 1)?.trim();
     (lines.get(at + 2)?.trim() == "}").then(|| body.to_string())
 }
@@ -94,13 +96,22 @@ struct SourceIndex {
 fn source_index() -> &'static SourceIndex {
     static INDEX: std::sync::OnceLock<SourceIndex> = std::sync::OnceLock::new();
     INDEX.get_or_init(|| {
-        let mut index = SourceIndex { lines: Vec::new(), declared: Default::default() };
+        let mut index = SourceIndex {
+            lines: Vec::new(),
+            declared: Default::default(),
+        };
         for (file, (_, text)) in MODEL_SOURCES.iter().enumerate() {
             let lines: Vec<&'static str> = text.lines().collect();
             for (at, l) in lines.iter().enumerate() {
                 let t = l.trim_start();
-                if let Some(rest) = t.strip_prefix("pub struct ").or_else(|| t.strip_prefix("pub enum ")) {
-                    let name = rest.split(|c: char| !(c.is_alphanumeric() || c == '_')).next().unwrap_or("");
+                if let Some(rest) = t
+                    .strip_prefix("pub struct ")
+                    .or_else(|| t.strip_prefix("pub enum "))
+                {
+                    let name = rest
+                        .split(|c: char| !(c.is_alphanumeric() || c == '_'))
+                        .next()
+                        .unwrap_or("");
                     index.declared.entry(name).or_default().push((file, at));
                 }
             }
@@ -113,18 +124,27 @@ fn source_index() -> &'static SourceIndex {
 /// The files declaring a type `name` (a line that `is_declaration`), those
 /// in `folder` first, each with its lines and the first such line: where a
 /// type name is found in its protocol's folder before the shared modules.
-fn declarations(name: &str, folder: &str, is_declaration: impl Fn(&str) -> bool) -> Vec<(&'static [&'static str], usize)> {
+fn declarations(
+    name: &str,
+    folder: &str,
+    is_declaration: impl Fn(&str) -> bool,
+) -> Vec<(&'static [&'static str], usize)> {
     let index = source_index();
     let prefix = format!("{folder}/");
     let mut found: Vec<(bool, usize, usize)> = Vec::new();
     for &(file, at) in index.declared.get(name).map(Vec::as_slice).unwrap_or(&[]) {
-        if found.iter().any(|&(_, f, _)| f == file) || !is_declaration(index.lines[file][at].trim_start()) {
+        if found.iter().any(|&(_, f, _)| f == file)
+            || !is_declaration(index.lines[file][at].trim_start())
+        {
             continue;
         }
         found.push((!MODEL_SOURCES[file].0.starts_with(&prefix), file, at));
     }
     found.sort();
-    found.into_iter().map(|(_, file, at)| (index.lines[file].as_slice(), at)).collect()
+    found
+        .into_iter()
+        .map(|(_, file, at)| (index.lines[file].as_slice(), at))
+        .collect()
 }
 
 /// The doc comment and attribute lines just above line `at`.
@@ -156,10 +176,13 @@ fn serde_arg(attr: &str, key: &str) -> Option<String> {
 /// A serde attribute list holds the bare word `word` (`default`, `flatten`).
 fn serde_word(attrs: &[String], word: &str) -> bool {
     attrs.iter().filter(|a| a.starts_with("#[serde(")).any(|a| {
-        a.trim_start_matches("#[serde(").trim_end_matches(")]").split(',').any(|p| {
-            let p = p.trim();
-            p == word || p.starts_with(&format!("{word} ="))
-        })
+        a.trim_start_matches("#[serde(")
+            .trim_end_matches(")]")
+            .split(',')
+            .any(|p| {
+                let p = p.trim();
+                p == word || p.starts_with(&format!("{word} ="))
+            })
     })
 }
 
@@ -195,7 +218,9 @@ fn find_struct(name: &str, folder: &str) -> Option<Struct> {
                 };
                 fields.push(Field {
                     name: rename.unwrap_or_else(|| fname.trim().to_string()),
-                    optional: struct_default || serde_word(&field_attrs, "default") || ty.starts_with("Option<"),
+                    optional: struct_default
+                        || serde_word(&field_attrs, "default")
+                        || ty.starts_with("Option<"),
                     flatten: serde_word(&field_attrs, "flatten"),
                     ty,
                     own_default,
@@ -257,8 +282,16 @@ fn find_enum(name: &str, folder: &str) -> Option<Enum> {
                         rename_one = Some(r);
                     }
                 } else if t.starts_with(|c: char| c.is_ascii_uppercase()) {
-                    let ident: String = t.chars().take_while(|c| c.is_ascii_alphanumeric() || *c == '_').collect();
-                    choices.push((rename_one.take().unwrap_or_else(|| rename(&ident, rule.as_deref())), doc.join(" ")));
+                    let ident: String = t
+                        .chars()
+                        .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
+                        .collect();
+                    choices.push((
+                        rename_one
+                            .take()
+                            .unwrap_or_else(|| rename(&ident, rule.as_deref())),
+                        doc.join(" "),
+                    ));
                     doc.clear();
                 }
             }
@@ -271,7 +304,10 @@ fn find_enum(name: &str, folder: &str) -> Option<Enum> {
 
 /// `Option<T>` → `T`, `Vec<T>` → `T` (with whether it was a list).
 fn inner(ty: &str) -> (&str, bool) {
-    let t = ty.strip_prefix("Option<").and_then(|r| r.strip_suffix('>')).unwrap_or(ty);
+    let t = ty
+        .strip_prefix("Option<")
+        .and_then(|r| r.strip_suffix('>'))
+        .unwrap_or(ty);
     match t.strip_prefix("Vec<").and_then(|r| r.strip_suffix('>')) {
         Some(r) => (r, true),
         None => (t, false),
@@ -306,17 +342,37 @@ fn unit(name: &str) -> &'static str {
     }
     // `ns_per_m`: a unit per unit.
     if let Some((a, b)) = name.split_once("per_") {
-        let (a, b) = (unit(&format!("_{}", a.trim_end_matches('_').rsplit('_').next().unwrap_or(""))), unit(&format!("_{b}")));
+        let (a, b) = (
+            unit(&format!(
+                "_{}",
+                a.trim_end_matches('_').rsplit('_').next().unwrap_or("")
+            )),
+            unit(&format!("_{b}")),
+        );
         if !a.is_empty() && !b.is_empty() {
-            return PER.iter().find(|(x, y, _)| *x == a && *y == b).map(|(_, _, u)| *u).unwrap_or("");
+            return PER
+                .iter()
+                .find(|(x, y, _)| *x == a && *y == b)
+                .map(|(_, _, u)| *u)
+                .unwrap_or("");
         }
     }
-    UNITS.iter().find(|(s, _)| name.ends_with(s)).map(|(_, u)| *u).unwrap_or("")
+    UNITS
+        .iter()
+        .find(|(s, _)| name.ends_with(s))
+        .map(|(_, u)| *u)
+        .unwrap_or("")
 }
 
 /// The values a scalar type takes.
 fn values_of(ty: &str) -> Option<String> {
-    let whole = |bits: u32| if bits <= 16 { format!("whole number, 0 to {}", (1u32 << bits) - 1) } else { format!("whole number, 0 to 2^{bits}−1") };
+    let whole = |bits: u32| {
+        if bits <= 16 {
+            format!("whole number, 0 to {}", (1u32 << bits) - 1)
+        } else {
+            format!("whole number, 0 to 2^{bits}−1")
+        }
+    };
     Some(match ty {
         "bool" => "`true` or `false`".into(),
         "u8" => whole(8),
@@ -342,7 +398,15 @@ struct Section {
 fn show(v: &toml::Value) -> String {
     let s = v.to_string();
     if s.len() > 60 {
-        format!("`{}…`", &s[..s.char_indices().take(57).last().map(|(i, c)| i + c.len_utf8()).unwrap_or(0)])
+        format!(
+            "`{}…`",
+            &s[..s
+                .char_indices()
+                .take(57)
+                .last()
+                .map(|(i, c)| i + c.len_utf8())
+                .unwrap_or(0)]
+        )
     } else {
         format!("`{s}`")
     }
@@ -356,7 +420,11 @@ fn show(v: &toml::Value) -> String {
 fn defaults(table: &str, chain: &[(String, bool)]) -> Option<toml::Value> {
     let mut text = format!("name = \"x\"\n[{table}]\n");
     for (path, array) in chain {
-        text.push_str(&if *array { format!("[[{path}]]\n") } else { format!("[{path}]\n") });
+        text.push_str(&if *array {
+            format!("[[{path}]]\n")
+        } else {
+            format!("[{path}]\n")
+        });
     }
     let file: crate::ScenarioFile = toml::from_str(&text).ok()?;
     let setup = file.setups().into_iter().next()?;
@@ -385,18 +453,40 @@ fn last(type_name: &str) -> &str {
 
 /// Walks struct `name` as the table at `path`, adding its section and those
 /// of the structs its fields name.
-fn walk(table: &str, folder: &str, name: &str, chain: &[(String, bool)], out: &mut Vec<Section>) -> Result<()> {
-    let (path, array) = chain.last().map(|(p, a)| (p.as_str(), *a)).unwrap_or((table, false));
+fn walk(
+    table: &str,
+    folder: &str,
+    name: &str,
+    chain: &[(String, bool)],
+    out: &mut Vec<Section>,
+) -> Result<()> {
+    let (path, array) = chain
+        .last()
+        .map(|(p, a)| (p.as_str(), *a))
+        .unwrap_or((table, false));
     let defaults_at = defaults(table, chain);
-    let s = find_struct(name, folder).ok_or_else(|| Error::Fields(format!("no configuration struct `{name}` deriving Deserialize in model/src (table `[{path}]`)")))?;
-    let mut section = Section { path: path.into(), array, doc: s.doc.clone(), rows: Vec::new() };
+    let s = find_struct(name, folder).ok_or_else(|| {
+        Error::Fields(format!(
+            "no configuration struct `{name}` deriving Deserialize in model/src (table `[{path}]`)"
+        ))
+    })?;
+    let mut section = Section {
+        path: path.into(),
+        array,
+        doc: s.doc.clone(),
+        rows: Vec::new(),
+    };
     let mut nested = Vec::new();
     let mut fields = s.fields.clone();
     // Flattened structs lend their fields to this table.
     while let Some(i) = fields.iter().position(|f| f.flatten) {
         let f = fields.remove(i);
         let (ty, _) = inner(&f.ty);
-        let sub = find_struct(ty, folder).ok_or_else(|| Error::Fields(format!("`[{path}]` flattens `{ty}`, which is not a configuration struct in model/src")))?;
+        let sub = find_struct(ty, folder).ok_or_else(|| {
+            Error::Fields(format!(
+                "`[{path}]` flattens `{ty}`, which is not a configuration struct in model/src"
+            ))
+        })?;
         for (k, g) in sub.fields.into_iter().enumerate() {
             fields.insert(i + k, g);
         }
@@ -411,7 +501,9 @@ fn walk(table: &str, folder: &str, name: &str, chain: &[(String, bool)], out: &m
         let shown = match default {
             Some(_) if is_table && !list => "see below".into(),
             Some(v) => show(v),
-            None if f.own_default.is_some() => format!("`{}`", f.own_default.as_deref().unwrap_or_default()),
+            None if f.own_default.is_some() => {
+                format!("`{}`", f.own_default.as_deref().unwrap_or_default())
+            }
             None if f.ty.starts_with("Option<") => "none".into(),
             None if !f.optional => "required".into(),
             None => "—".into(),
@@ -419,24 +511,47 @@ fn walk(table: &str, folder: &str, name: &str, chain: &[(String, bool)], out: &m
         let (values, sub) = if let Some(v) = values_of(ty) {
             (v, None)
         } else if let Some(e) = find_enum(ty, folder) {
-            let choices: Vec<String> = e.choices.iter().map(|(c, _)| format!("`\"{c}\"`")).collect();
+            let choices: Vec<String> = e
+                .choices
+                .iter()
+                .map(|(c, _)| format!("`\"{c}\"`"))
+                .collect();
             (format!("one of {}", choices.join(", ")), None)
         } else if find_struct(ty, folder).is_some() {
             let sub_path = format!("{path}.{}", f.name);
-            let shape = if list { format!("list of tables `[[{sub_path}]]`") } else { format!("table `[{sub_path}]`") };
+            let shape = if list {
+                format!("list of tables `[[{sub_path}]]`")
+            } else {
+                format!("table `[{sub_path}]`")
+            };
             (shape, Some((ty.to_string(), sub_path, list)))
         } else {
             (format!("`{ty}`"), None)
         };
-        let values = if list && sub.is_none() { format!("list of: {values}") } else { values };
+        let values = if list && sub.is_none() {
+            format!("list of: {values}")
+        } else {
+            values
+        };
         let meaning = match find_enum(ty, folder) {
             Some(e) if e.choices.iter().any(|(_, d)| !d.is_empty()) => {
-                let each: Vec<String> = e.choices.iter().filter(|(_, d)| !d.is_empty()).map(|(c, d)| format!("`{c}`: {}", d.trim_end_matches('.'))).collect();
+                let each: Vec<String> = e
+                    .choices
+                    .iter()
+                    .filter(|(_, d)| !d.is_empty())
+                    .map(|(c, d)| format!("`{c}`: {}", d.trim_end_matches('.')))
+                    .collect();
                 format!("{} ({})", f.doc, each.join("; "))
             }
             _ => f.doc.clone(),
         };
-        section.rows.push([format!("`{}`", f.name), values, unit(&f.name).to_string(), shown, meaning]);
+        section.rows.push([
+            format!("`{}`", f.name),
+            values,
+            unit(&f.name).to_string(),
+            shown,
+            meaning,
+        ]);
         if let Some(n) = sub {
             nested.push(n);
         }
@@ -454,15 +569,28 @@ fn walk(table: &str, folder: &str, name: &str, chain: &[(String, bool)], out: &m
 pub fn protocol(table: &str) -> Result<String> {
     let entry = crate::registry::by_table(table).ok_or_else(|| {
         let tables: Vec<&str> = crate::PROTOCOLS.iter().map(|p| p.table).collect();
-        Error::Fields(format!("no protocol `{table}`: the protocols are {}", tables.join(", ")))
+        Error::Fields(format!(
+            "no protocol `{table}`: the protocols are {}",
+            tables.join(", ")
+        ))
     })?;
     let type_name = (entry.config_type)();
     let mut sections = Vec::new();
-    walk(table, folder_of(type_name), last(type_name), &[], &mut sections)?;
+    walk(
+        table,
+        folder_of(type_name),
+        last(type_name),
+        &[],
+        &mut sections,
+    )?;
     let mut out = String::new();
     writeln!(out, "## `[{table}]`: core `{}`\n", entry.core).unwrap();
     for s in sections {
-        let head = if s.array { format!("[[{}]]", s.path) } else { format!("[{}]", s.path) };
+        let head = if s.array {
+            format!("[[{}]]", s.path)
+        } else {
+            format!("[{}]", s.path)
+        };
         writeln!(out, "### `{head}`\n").unwrap();
         if !s.doc.is_empty() {
             writeln!(out, "{}\n", s.doc).unwrap();
@@ -492,7 +620,16 @@ given. The unit is the field name's suffix. Limits a seed sets beyond the type's
 `tbgen gen` checks every one with a message that names the field.\n\n",
     );
     let tables: Vec<&str> = crate::PROTOCOLS.iter().map(|p| p.table).collect();
-    writeln!(out, "Protocols: {}.\n", tables.iter().map(|t| format!("`[{t}]`")).collect::<Vec<_>>().join(", ")).unwrap();
+    writeln!(
+        out,
+        "Protocols: {}.\n",
+        tables
+            .iter()
+            .map(|t| format!("`[{t}]`"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    )
+    .unwrap();
     for t in tables {
         out.push_str(&protocol(t)?);
     }
@@ -504,7 +641,10 @@ mod tests {
     use super::*;
 
     fn repo_root() -> std::path::PathBuf {
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).parent().unwrap().to_path_buf()
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .parent()
+            .unwrap()
+            .to_path_buf()
     }
 
     #[test]
@@ -539,9 +679,16 @@ mod tests {
             keys(&d, p.table.to_string(), &mut all);
             assert!(all.len() >= 3, "{}: defaults read", p.table);
             for (path, k) in all {
-                let section = text.split(&format!("### `[{path}]`")).nth(1).unwrap_or_else(|| panic!("{}: section [{path}] listed", p.table));
+                let section = text
+                    .split(&format!("### `[{path}]`"))
+                    .nth(1)
+                    .unwrap_or_else(|| panic!("{}: section [{path}] listed", p.table));
                 let section = section.split("\n### ").next().unwrap();
-                assert!(section.contains(&format!("| `{k}` |")), "{}: field {k} of [{path}] listed", p.table);
+                assert!(
+                    section.contains(&format!("| `{k}` |")),
+                    "{}: field {k} of [{path}] listed",
+                    p.table
+                );
             }
         }
     }
@@ -551,18 +698,33 @@ mod tests {
     #[test]
     fn ssi_rows_come_from_the_structs() {
         let text = protocol("ssi").unwrap();
-        assert!(text.contains("| `f_sys_mhz` | number | MHz | `50.0` | System clock in MHz. |"), "{text}");
+        assert!(
+            text.contains("| `f_sys_mhz` | number | MHz | `50.0` | System clock in MHz. |"),
+            "{text}"
+        );
         assert!(text.contains("| `clock_khz` | number | kHz |"), "{text}");
-        assert!(text.contains("| `code` | one of `\"binary\"`, `\"gray\"` |"), "{text}");
+        assert!(
+            text.contains("| `code` | one of `\"binary\"`, `\"gray\"` |"),
+            "{text}"
+        );
         assert!(text.contains("### `[ssi.cable]`"), "{text}");
-        assert!(text.contains("| `level` | `true` or `false` |  | required |"), "{text}");
-        assert!(text.contains("| `fault` | table `[ssi.fault]` |  | none |"), "{text}");
+        assert!(
+            text.contains("| `level` | `true` or `false` |  | required |"),
+            "{text}"
+        );
+        assert!(
+            text.contains("| `fault` | table `[ssi.fault]` |  | none |"),
+            "{text}"
+        );
     }
 
     #[test]
     fn an_unknown_protocol_lists_the_protocols() {
         let e = protocol("endat_master").unwrap_err().to_string();
-        assert!(e.contains("no protocol `endat_master`") && e.contains("ssi") && e.contains("endat"), "{e}");
+        assert!(
+            e.contains("no protocol `endat_master`") && e.contains("ssi") && e.contains("endat"),
+            "{e}"
+        );
     }
 
     #[test]

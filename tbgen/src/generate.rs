@@ -44,9 +44,17 @@ impl Staged {
 
     /// The four files of scenario `name`, then the `extra` files (filters).
     fn with_extra(dir: &Path, name: &str, extra: &[String]) -> Staged {
-        let files = ["hex", "vcd", "json", "gtkw"].iter().map(|ext| format!("{name}.{ext}")).chain(extra.iter().cloned());
-        let pairs = files.map(|f| (dir.join(format!(".{f}.partial")), dir.join(f))).collect();
-        Staged { pairs, committed: false }
+        let files = ["hex", "vcd", "json", "gtkw"]
+            .iter()
+            .map(|ext| format!("{name}.{ext}"))
+            .chain(extra.iter().cloned());
+        let pairs = files
+            .map(|f| (dir.join(format!(".{f}.partial")), dir.join(f)))
+            .collect();
+        Staged {
+            pairs,
+            committed: false,
+        }
     }
 
     fn temp(&self, i: usize) -> &Path {
@@ -55,7 +63,9 @@ impl Staged {
 
     fn create(&self, i: usize) -> Result<BufWriter<File>> {
         let path = self.temp(i);
-        File::create(path).map(|f| BufWriter::with_capacity(1 << 20, f)).map_err(|e| Error::io(path, e))
+        File::create(path)
+            .map(|f| BufWriter::with_capacity(1 << 20, f))
+            .map_err(|e| Error::io(path, e))
     }
 
     /// Renames the four files into place, all or none: a destination taken
@@ -69,7 +79,12 @@ impl Staged {
         }
         let mut done: Vec<(&Path, Option<PathBuf>)> = Vec::new();
         for (temp, dest) in &self.pairs {
-            let backup = dest.exists().then(|| dest.with_file_name(format!(".{}.old", dest.file_name().unwrap_or_default().to_string_lossy())));
+            let backup = dest.exists().then(|| {
+                dest.with_file_name(format!(
+                    ".{}.old",
+                    dest.file_name().unwrap_or_default().to_string_lossy()
+                ))
+            });
             let moved = match &backup {
                 Some(b) => fs::rename(dest, b),
                 None => Ok(()),
@@ -137,13 +152,22 @@ impl Visitor for Generate<'_> {
     }
 }
 
-fn write_outputs<S: crate::registry::Protocol>(scenario: &Scenario, cfg: &S, out_dir: &Path) -> Result<Summary> {
+fn write_outputs<S: crate::registry::Protocol>(
+    scenario: &Scenario,
+    cfg: &S,
+    out_dir: &Path,
+) -> Result<Summary> {
     let value_error = |source| scenario.value_error(source);
     let tb = cfg.timebase().map_err(value_error)?;
     let params = cfg.verilog_parameters().map_err(value_error)?;
     let bench = cfg.bench().map_err(value_error)?;
     if out_dir.exists() && !out_dir.is_dir() {
-        return Err(Error::io(out_dir, std::io::Error::other("--out names a file, not a folder: give a folder (it is created if missing)")));
+        return Err(Error::io(
+            out_dir,
+            std::io::Error::other(
+                "--out names a file, not a folder: give a folder (it is created if missing)",
+            ),
+        ));
     }
     fs::create_dir_all(out_dir).map_err(|e| Error::io(out_dir, e))?;
     let layout = bench.layout().clone();
@@ -153,18 +177,45 @@ fn write_outputs<S: crate::registry::Protocol>(scenario: &Scenario, cfg: &S, out
         .into_iter()
         .filter_map(|(signal, names)| {
             let port = layout.decoded.iter().find(|p| p.name == signal)?;
-            let full = if port.width == 1 { format!("top.decoded.{signal}") } else { format!("top.decoded.{signal}[{}:0]", port.width - 1) };
-            Some((full, gtkw::filter_name(core, signal), gtkw::filter_file(&names)))
+            let full = if port.width == 1 {
+                format!("top.decoded.{signal}")
+            } else {
+                format!("top.decoded.{signal}[{}:0]", port.width - 1)
+            };
+            Some((
+                full,
+                gtkw::filter_name(core, signal),
+                gtkw::filter_file(&names),
+            ))
         })
         .collect();
-    let staged = Staged::with_extra(out_dir, &scenario.name, &filters.iter().map(|f| f.1.clone()).collect::<Vec<_>>());
+    let staged = Staged::with_extra(
+        out_dir,
+        &scenario.name,
+        &filters.iter().map(|f| f.1.clone()).collect::<Vec<_>>(),
+    );
 
     let mut vectors = VectorWriter::new(&layout.inputs, &layout.outputs);
-    let comment = format!("tbgen {}: scenario {} for {core}, f_sys {} Hz", env!("CARGO_PKG_VERSION"), scenario.name, tb.f_sys_hz());
+    let comment = format!(
+        "tbgen {}: scenario {} for {core}, f_sys {} Hz",
+        env!("CARGO_PKG_VERSION"),
+        scenario.name,
+        tb.f_sys_hz()
+    );
     let vcd_path = staged.temp(1).to_path_buf();
-    let mut waves = Waves::new(staged.create(1)?, core, &layout, tb, &comment).map_err(|e| Error::io(&vcd_path, e))?;
-    let run = testbench::run(bench, &mut Both { vectors: &mut vectors, waves: &mut waves }).map_err(|e| Error::io(&vcd_path, e))?;
-    waves.finish(run.cycles).map_err(|e| Error::io(&vcd_path, e))?;
+    let mut waves = Waves::new(staged.create(1)?, core, &layout, tb, &comment)
+        .map_err(|e| Error::io(&vcd_path, e))?;
+    let run = testbench::run(
+        bench,
+        &mut Both {
+            vectors: &mut vectors,
+            waves: &mut waves,
+        },
+    )
+    .map_err(|e| Error::io(&vcd_path, e))?;
+    waves
+        .finish(run.cycles)
+        .map_err(|e| Error::io(&vcd_path, e))?;
 
     let header = Header {
         core: core.to_string(),
@@ -173,7 +224,10 @@ fn write_outputs<S: crate::registry::Protocol>(scenario: &Scenario, cfg: &S, out
         params: params.iter().map(|(k, v)| (k.to_string(), *v)).collect(),
     };
     let mut hex = staged.create(0)?;
-    let records = vectors.finish(&header, &mut hex).and_then(|r| hex.flush().map(|_| r)).map_err(|e| Error::io(staged.temp(0), e))?;
+    let records = vectors
+        .finish(&header, &mut hex)
+        .and_then(|r| hex.flush().map(|_| r))
+        .map_err(|e| Error::io(staged.temp(0), e))?;
 
     let doc = transcript::Transcript {
         format: transcript::FORMAT,
@@ -194,7 +248,12 @@ fn write_outputs<S: crate::registry::Protocol>(scenario: &Scenario, cfg: &S, out
     // Frame the first transaction that lasts (not a zero-length one such as
     // EnDat's delay measurement), with a little idle line on either side; a
     // run without one is shown whole.
-    let window = match run.transactions.iter().map(|t| t.span()).find(|(start, end)| end > start) {
+    let window = match run
+        .transactions
+        .iter()
+        .map(|t| t.span())
+        .find(|(start, end)| end > start)
+    {
         Some((start, end)) => {
             let lead = (end - start) / 20 + 10;
             (tb.ps_at(start.saturating_sub(lead)), tb.ps_at(end + lead))
@@ -204,17 +263,34 @@ fn write_outputs<S: crate::registry::Protocol>(scenario: &Scenario, cfg: &S, out
     let groups = signal_names(core, &layout);
     let mut gtkw_out = staged.create(3)?;
     let dumpfile = format!("{}.vcd", scenario.name);
-    let shown: Vec<(String, String)> = filters.iter().map(|(signal, file, _)| (signal.clone(), file.clone())).collect();
-    gtkw::write(&mut gtkw_out, &gtkw::Layout { dumpfile: &dumpfile, groups: &groups, window_ps: window, scenario: &scenario.name, filters: &shown })
-        .and_then(|_| gtkw_out.flush())
-        .map_err(|e| Error::io(staged.temp(3), e))?;
+    let shown: Vec<(String, String)> = filters
+        .iter()
+        .map(|(signal, file, _)| (signal.clone(), file.clone()))
+        .collect();
+    gtkw::write(
+        &mut gtkw_out,
+        &gtkw::Layout {
+            dumpfile: &dumpfile,
+            groups: &groups,
+            window_ps: window,
+            scenario: &scenario.name,
+            filters: &shown,
+        },
+    )
+    .and_then(|_| gtkw_out.flush())
+    .map_err(|e| Error::io(staged.temp(3), e))?;
     for (i, (_, _, text)) in filters.iter().enumerate() {
         fs::write(staged.temp(4 + i), text).map_err(|e| Error::io(staged.temp(4 + i), e))?;
     }
 
     drop((hex, json, gtkw_out));
     let files = staged.commit()?;
-    Ok(Summary { cycles: run.cycles, records, transactions: run.transactions.len(), files })
+    Ok(Summary {
+        cycles: run.cycles,
+        records,
+        transactions: run.transactions.len(),
+        files,
+    })
 }
 
 #[cfg(test)]
@@ -231,7 +307,10 @@ mod tests {
         fs::create_dir(dir.path().join("ssi_seed_12bit.vcd")).unwrap();
         let msg = generate(&seed(), dir.path()).unwrap_err().to_string();
         assert!(msg.contains("ssi_seed_12bit.vcd: is a folder"), "{msg}");
-        let mut left: Vec<_> = fs::read_dir(dir.path()).unwrap().map(|e| e.unwrap().file_name().into_string().unwrap()).collect();
+        let mut left: Vec<_> = fs::read_dir(dir.path())
+            .unwrap()
+            .map(|e| e.unwrap().file_name().into_string().unwrap())
+            .collect();
         left.sort();
         assert_eq!(left, vec!["ssi_seed_12bit.vcd"]);
     }
@@ -247,9 +326,19 @@ mod tests {
         fs::write(staged.temp(0), "new hex").unwrap();
         fs::write(staged.temp(1), "new vcd").unwrap();
         assert!(staged.commit().is_err());
-        assert_eq!(fs::read(dir.path().join("ssi_seed_12bit.hex")).unwrap(), old_hex);
-        let names: Vec<_> = fs::read_dir(dir.path()).unwrap().map(|e| e.unwrap().file_name().into_string().unwrap()).collect();
-        assert_eq!(names.len(), 5, "the four files and the state filter: {names:?}");
+        assert_eq!(
+            fs::read(dir.path().join("ssi_seed_12bit.hex")).unwrap(),
+            old_hex
+        );
+        let names: Vec<_> = fs::read_dir(dir.path())
+            .unwrap()
+            .map(|e| e.unwrap().file_name().into_string().unwrap())
+            .collect();
+        assert_eq!(
+            names.len(),
+            5,
+            "the four files and the state filter: {names:?}"
+        );
     }
 
     #[test]

@@ -85,7 +85,15 @@ pub fn write(out: &mut impl Write, layout: &Layout) -> io::Result<()> {
                     writeln!(out, "{FLAG_HEX_TRANSLATED}")?;
                     writeln!(out, "^1 {file}")?;
                 }
-                None => writeln!(out, "{}", if name.ends_with(']') { FLAG_HEX } else { FLAG_BINARY })?,
+                None => writeln!(
+                    out,
+                    "{}",
+                    if name.ends_with(']') {
+                        FLAG_HEX
+                    } else {
+                        FLAG_BINARY
+                    }
+                )?,
             }
             writeln!(out, "{name}")?;
         }

@@ -43,7 +43,9 @@ enum Command {
     #[command(after_help = "Example:\n  tbgen list")]
     List,
     /// Generate <name>.hex, .vcd, .json and .gtkw for scenarios.
-    #[command(after_help = "Examples:\n  tbgen gen ssi_seed_12bit --out build/out\n  tbgen gen my_scenario.toml --out build/out\n  tbgen gen --all --out vectors        # every built-in, into vectors/<core>/")]
+    #[command(
+        after_help = "Examples:\n  tbgen gen ssi_seed_12bit --out build/out\n  tbgen gen my_scenario.toml --out build/out\n  tbgen gen --all --out vectors        # every built-in, into vectors/<core>/"
+    )]
     Gen {
         /// Built-in scenario names or paths to scenario .toml files.
         scenarios: Vec<String>,
@@ -55,7 +57,9 @@ enum Command {
         out: PathBuf,
     },
     /// Compute a CRC of the catalogue over a bit string given in wire order.
-    #[command(after_help = "Examples:\n  tbgen crc biss-crc6 100010101110001110     # the seed's BiSS-C example: CRC 110101, wire 001010\n  tbgen crc modbus-crc16 --bytes 01 03 00 00 00 01   # byte-oriented: CRC 0x0A84, sent 84 0A\n  tbgen crc --list")]
+    #[command(
+        after_help = "Examples:\n  tbgen crc biss-crc6 100010101110001110     # the seed's BiSS-C example: CRC 110101, wire 001010\n  tbgen crc modbus-crc16 --bytes 01 03 00 00 00 01   # byte-oriented: CRC 0x0A84, sent 84 0A\n  tbgen crc --list"
+    )]
     Crc {
         /// Algorithm name (see --list).
         #[arg(required_unless_present = "list")]
@@ -71,10 +75,16 @@ enum Command {
         list: bool,
     },
     /// Print a protocol's cycle budget, phase by phase, and its position-read rate.
-    #[command(subcommand, after_help = "Each protocol has its own options and examples: tbgen timing <protocol> --help.\nThe protocols: tbgen protocols.")]
+    #[command(
+        subcommand,
+        after_help = "Each protocol has its own options and examples: tbgen timing <protocol> --help.\nThe protocols: tbgen protocols."
+    )]
     Timing(registry::Timing),
     /// Decode a captured waveform (VCD) into a JSON transcript on stdout.
-    #[command(subcommand, after_help = "Each protocol has its own options and examples: tbgen decode <protocol> --help.\nThe protocols: tbgen protocols.")]
+    #[command(
+        subcommand,
+        after_help = "Each protocol has its own options and examples: tbgen decode <protocol> --help.\nThe protocols: tbgen protocols."
+    )]
     Decode(registry::Decode),
     /// Time the model alone on a scenario (used by `make bench`).
     #[command(after_help = "Example:\n  tbgen bench scenarios/bench/ssi_bench.toml")]
@@ -83,7 +93,9 @@ enum Command {
         scenario: String,
     },
     /// Write the electronic data sheet (CiA 306 EDS) of the emulated CANopen DS 406 encoder.
-    #[command(after_help = "Examples:\n  tbgen eds                          # multiturn 25-bit, to stdout\n  tbgen eds --kind singleturn13 --out enc.eds")]
+    #[command(
+        after_help = "Examples:\n  tbgen eds                          # multiturn 25-bit, to stdout\n  tbgen eds --kind singleturn13 --out enc.eds"
+    )]
     Eds {
         /// Encoder type (seed 003 §7): multiturn25, singleturn13, angle20, angle23, linear.
         #[arg(long, default_value = "multiturn25")]
@@ -96,7 +108,9 @@ enum Command {
         out: Option<PathBuf>,
     },
     /// Print the reference of a protocol's scenario fields: unit, default, values, meaning.
-    #[command(after_help = "Examples:\n  tbgen fields ssi\n  tbgen fields --all > docs/scenarios.md   # the committed reference")]
+    #[command(
+        after_help = "Examples:\n  tbgen fields ssi\n  tbgen fields --all > docs/scenarios.md   # the committed reference"
+    )]
     Fields {
         /// The protocol's table (tbgen protocols).
         #[arg(required_unless_present = "all")]
@@ -109,7 +123,9 @@ enum Command {
     #[command(after_help = "Example:\n  tbgen protocols")]
     Protocols,
     /// Compare what a master did (a VCD of any timescale, or a transcript) with what was expected, transaction by transaction; exit 1 at the first difference.
-    #[command(after_help = "Timing fields (index, *_ps, *_ns, *_us, cycles, delays) are left out: another latency or clock rate passes.\n\nExamples:\n  tbgen check biss --expect vectors/biss_master/biss_seed_16bit.json capture.vcd -- --bits 16 --ma tb.ma --slo tb.slo\n  tbgen check ssi --expect expected.json emulator_transcript.json --timeout-us 600")]
+    #[command(
+        after_help = "Timing fields (index, *_ps, *_ns, *_us, cycles, delays) are left out: another latency or clock rate passes.\n\nExamples:\n  tbgen check biss --expect vectors/biss_master/biss_seed_16bit.json capture.vcd -- --bits 16 --ma tb.ma --slo tb.slo\n  tbgen check ssi --expect expected.json emulator_transcript.json --timeout-us 600"
+    )]
     Check {
         /// The protocol (its table name, as `tbgen protocols` lists it).
         protocol: String,
@@ -133,7 +149,9 @@ fn main() -> ExitCode {
         Ok(()) => ExitCode::SUCCESS,
         // The reader of our output went away (`| head`): nothing is lost
         // that anyone will read, so end the way Unix tools do, quietly.
-        Err(Error::Io { source, .. }) if source.kind() == std::io::ErrorKind::BrokenPipe => ExitCode::SUCCESS,
+        Err(Error::Io { source, .. }) if source.kind() == std::io::ErrorKind::BrokenPipe => {
+            ExitCode::SUCCESS
+        }
         Err(e) => {
             eprintln!("tbgen: error: {e}");
             ExitCode::from(e.exit_code() as u8)
@@ -148,11 +166,18 @@ fn run(command: Command) -> Result<(), Error> {
                 outln!("{:<28} {:<12} {}", s.name, s.core(), s.description);
             }
         }
-        Command::Gen { scenarios, all, out } => {
+        Command::Gen {
+            scenarios,
+            all,
+            out,
+        } => {
             let chosen = if all {
                 builtin::all()?
             } else if scenarios.is_empty() {
-                return Err(Error::UnknownScenario("(none given: name one, or pass --all)".into(), String::new()));
+                return Err(Error::UnknownScenario(
+                    "(none given: name one, or pass --all)".into(),
+                    String::new(),
+                ));
             } else {
                 builtin::resolve_all(&scenarios)?
             };
@@ -169,15 +194,29 @@ fn run(command: Command) -> Result<(), Error> {
                 );
             }
         }
-        Command::Crc { algorithm, bits, bytes, list } => {
+        Command::Crc {
+            algorithm,
+            bits,
+            bytes,
+            list,
+        } => {
             if !bytes.is_empty() {
-                out!("{}", crc_cmd::report_bytes(algorithm.as_deref().unwrap_or(""), &bytes)?);
+                out!(
+                    "{}",
+                    crc_cmd::report_bytes(algorithm.as_deref().unwrap_or(""), &bytes)?
+                );
             } else if list {
                 for a in model::crc::CATALOGUE {
                     outln!("{:<16} {:>2}-bit  {}", a.name, a.width, a.source);
                 }
             } else {
-                out!("{}", crc_cmd::report(algorithm.as_deref().unwrap_or(""), bits.as_deref().unwrap_or(""))?);
+                out!(
+                    "{}",
+                    crc_cmd::report(
+                        algorithm.as_deref().unwrap_or(""),
+                        bits.as_deref().unwrap_or("")
+                    )?
+                );
             }
         }
         Command::Bench { scenario } => bench(&scenario)?,
@@ -189,15 +228,31 @@ fn run(command: Command) -> Result<(), Error> {
         },
         Command::Protocols => out!("{}", registry::table()),
         Command::Eds { kind, serial, out } => {
-            let kind: model::canopen::EncoderKind = serde_json::from_value(serde_json::Value::String(kind.clone()))
-                .map_err(|_| Error::Decode(format!("--kind {kind}: give multiturn25, singleturn13, angle20, angle23 or linear")))?;
-            let text = tbgen::canopen::eds::write(&model::canopen::EncoderConfig { kind, serial_number: serial, ..Default::default() });
+            let kind: model::canopen::EncoderKind =
+                serde_json::from_value(serde_json::Value::String(kind.clone())).map_err(|_| {
+                    Error::Decode(format!(
+                        "--kind {kind}: give multiturn25, singleturn13, angle20, angle23 or linear"
+                    ))
+                })?;
+            let text = tbgen::canopen::eds::write(&model::canopen::EncoderConfig {
+                kind,
+                serial_number: serial,
+                ..Default::default()
+            });
             match out {
-                Some(p) => std::fs::write(&p, text).map_err(|e| Error::io(p.display().to_string(), e))?,
+                Some(p) => {
+                    std::fs::write(&p, text).map_err(|e| Error::io(p.display().to_string(), e))?
+                }
                 None => out!("{text}"),
             }
         }
-        Command::Check { protocol, expect, capture, timeout_us, decoder_args } => {
+        Command::Check {
+            protocol,
+            expect,
+            capture,
+            timeout_us,
+            decoder_args,
+        } => {
             let r = tbgen::check::check(&protocol, &expect, &capture, &decoder_args, timeout_us)?;
             outln!("{}", r.text);
             if !r.ok {

@@ -46,7 +46,10 @@ pub trait Protocol: model::Setup + serde::Serialize + 'static {
     /// Runs `tbgen decode <table>` on its parsed command line; returns the
     /// JSON to print.
     fn decode(_args: &ArgMatches) -> Result<String> {
-        Err(Error::Decode(format!("decode {}: this protocol has no decoder yet", Self::TABLE)))
+        Err(Error::Decode(format!(
+            "decode {}: this protocol has no decoder yet",
+            Self::TABLE
+        )))
     }
 
     /// `tbgen timing <table>`: the budget's command line, if it has one.
@@ -57,7 +60,10 @@ pub trait Protocol: model::Setup + serde::Serialize + 'static {
     /// Runs `tbgen timing <table>` on its parsed command line; returns the
     /// report to print.
     fn timing(_args: &ArgMatches) -> Result<String> {
-        Err(Error::Decode(format!("timing {}: this protocol has no cycle budget yet", Self::TABLE)))
+        Err(Error::Decode(format!(
+            "timing {}: this protocol has no cycle budget yet",
+            Self::TABLE
+        )))
     }
 
     /// The names of the values of enumerated signals of the waveform's
@@ -83,8 +89,14 @@ pub type WaveNames = Vec<(&'static str, Vec<(u64, String)>)>;
 /// `(value, NAME)` of each of `variants` of a model enum: its discriminant
 /// and its Rust name upper-cased, as the RTL spells its states (`NoAck` ->
 /// `NOACK`, `hdl/rtl/biss_master.v`).
-pub fn enum_names<E: std::fmt::Debug + Copy>(variants: &[E], code: fn(E) -> u64) -> Vec<(u64, String)> {
-    variants.iter().map(|&v| (code(v), format!("{v:?}").to_uppercase())).collect()
+pub fn enum_names<E: std::fmt::Debug + Copy>(
+    variants: &[E],
+    code: fn(E) -> u64,
+) -> Vec<(u64, String)> {
+    variants
+        .iter()
+        .map(|&v| (code(v), format!("{v:?}").to_uppercase()))
+        .collect()
 }
 
 /// The output pulses that end a transaction, the output holding its result,
@@ -212,8 +224,13 @@ pub struct ToolCall {
 
 impl ToolCall {
     fn from_matches(m: &ArgMatches) -> std::result::Result<ToolCall, clap::Error> {
-        let (name, sub) = m.subcommand().ok_or_else(|| clap::Error::new(clap::error::ErrorKind::MissingSubcommand))?;
-        Ok(ToolCall { protocol: name.to_string(), args: sub.clone() })
+        let (name, sub) = m
+            .subcommand()
+            .ok_or_else(|| clap::Error::new(clap::error::ErrorKind::MissingSubcommand))?;
+        Ok(ToolCall {
+            protocol: name.to_string(),
+            args: sub.clone(),
+        })
     }
 }
 
@@ -227,7 +244,8 @@ macro_rules! tool_family {
         impl $name {
             /// Runs the protocol's tool and returns what it prints.
             pub fn run(&self) -> Result<String> {
-                let entry = by_table(&self.0.protocol).expect("clap only accepts registered protocols");
+                let entry =
+                    by_table(&self.0.protocol).expect("clap only accepts registered protocols");
                 (entry.$run)(&self.0.args)
             }
         }
@@ -236,7 +254,10 @@ macro_rules! tool_family {
             fn from_arg_matches(m: &ArgMatches) -> std::result::Result<Self, clap::Error> {
                 ToolCall::from_matches(m).map($name)
             }
-            fn update_from_arg_matches(&mut self, m: &ArgMatches) -> std::result::Result<(), clap::Error> {
+            fn update_from_arg_matches(
+                &mut self,
+                m: &ArgMatches,
+            ) -> std::result::Result<(), clap::Error> {
                 *self = Self::from_arg_matches(m)?;
                 Ok(())
             }
@@ -250,14 +271,26 @@ macro_rules! tool_family {
                 Self::augment_subcommands(cmd)
             }
             fn has_subcommand(name: &str) -> bool {
-                crate::PROTOCOLS.iter().any(|e| e.table == name && (e.$command)().is_some())
+                crate::PROTOCOLS
+                    .iter()
+                    .any(|e| e.table == name && (e.$command)().is_some())
             }
         }
     };
 }
 
-tool_family!(Decode, decode_command, decode, "`tbgen decode <protocol>`: one decoder per protocol that has one.");
-tool_family!(Timing, timing_command, timing, "`tbgen timing <protocol>`: one cycle budget per protocol that has one.");
+tool_family!(
+    Decode,
+    decode_command,
+    decode,
+    "`tbgen decode <protocol>`: one decoder per protocol that has one."
+);
+tool_family!(
+    Timing,
+    timing_command,
+    timing,
+    "`tbgen timing <protocol>`: one cycle budget per protocol that has one."
+);
 
 /// One line per registered protocol, for `tbgen protocols` (and scripts):
 /// table, core, whether it has a decoder and a budget, its sigrok decoder.
@@ -356,7 +389,10 @@ pub fn parse_data_id(text: &str) -> std::result::Result<u8, String> {
         Some(hex) => u8::from_str_radix(hex, 16),
         None => text.parse::<u8>(),
     };
-    value.ok().filter(|v| *v <= 0xF).ok_or_else(|| format!("`{text}`: give a Data ID from 0 to 15 (e.g. 3 or 0xD)"))
+    value
+        .ok()
+        .filter(|v| *v <= 0xF)
+        .ok_or_else(|| format!("`{text}`: give a Data ID from 0 to 15 (e.g. 3 or 0xD)"))
 }
 
 /// The command line of a protocol's tool, parsed by its own parser.
@@ -367,14 +403,21 @@ pub fn parse_args<A: clap::FromArgMatches>(args: &ArgMatches) -> Result<A> {
 /// The built-in scenario or scenario file `arg` for `tool` (`timing esl`),
 /// which must be one of protocol `P` (`kind`: "an ESL"): the scenario and
 /// its configuration.
-pub fn scenario_of<P: Protocol>(arg: &str, tool: &str, kind: &str) -> Result<(crate::scenario::Scenario, P)> {
+pub fn scenario_of<P: Protocol>(
+    arg: &str,
+    tool: &str,
+    kind: &str,
+) -> Result<(crate::scenario::Scenario, P)> {
     let s = crate::builtin::resolve(arg)?;
     match s.setup.get::<P>() {
         Some(cfg) => {
             let cfg = cfg.clone();
             Ok((s, cfg))
         }
-        None => Err(Error::Decode(format!("{tool}: scenario `{}` is not {kind} scenario", s.name))),
+        None => Err(Error::Decode(format!(
+            "{tool}: scenario `{}` is not {kind} scenario",
+            s.name
+        ))),
     }
 }
 
@@ -382,8 +425,17 @@ pub fn scenario_of<P: Protocol>(arg: &str, tool: &str, kind: &str) -> Result<(cr
 /// about a field the tool's command line sets (`options`: model field and
 /// option, `("data_id", "--data-id")`) is blamed on the option, the rest on
 /// the scenario file.
-pub fn tool_error(tool: &str, s: &crate::scenario::Scenario, options: &[(&str, &str)], e: model::ConfigError) -> Error {
-    let model::ConfigError::Invalid { field, problem, fix } = &e;
+pub fn tool_error(
+    tool: &str,
+    s: &crate::scenario::Scenario,
+    options: &[(&str, &str)],
+    e: model::ConfigError,
+) -> Error {
+    let model::ConfigError::Invalid {
+        field,
+        problem,
+        fix,
+    } = &e;
     match options.iter().find(|(f, _)| f == field) {
         Some((_, option)) => Error::Decode(format!("{tool}: option {option}: {problem}; {fix}")),
         None => s.value_error(e),
@@ -410,9 +462,16 @@ mod tests {
         let s = crate::builtin::find("tformat_readout_all_ids").unwrap();
         let e = model::ConfigError::invalid("data_id", "0x5 is not in Table 1", "give 0, 1");
         let msg = tool_error("timing tformat", &s, &[("data_id", "--data-id")], e).to_string();
-        assert_eq!(msg, "timing tformat: option --data-id: 0x5 is not in Table 1; give 0, 1");
+        assert_eq!(
+            msg,
+            "timing tformat: option --data-id: 0x5 is not in Table 1; give 0, 1"
+        );
         let e = model::ConfigError::invalid("baud", "x", "y");
-        assert!(tool_error("timing tformat", &s, &[("data_id", "--data-id")], e).to_string().starts_with("scenarios/tformat/readout_all_ids.toml:"));
+        assert!(
+            tool_error("timing tformat", &s, &[("data_id", "--data-id")], e)
+                .to_string()
+                .starts_with("scenarios/tformat/readout_all_ids.toml:")
+        );
     }
 
     #[test]
@@ -420,8 +479,17 @@ mod tests {
         // `Decode::run` finds the protocol by the subcommand's name: a
         // decoder or budget named otherwise than its table could not be run.
         for e in crate::PROTOCOLS {
-            for cmd in [(e.decode_command)(), (e.timing_command)()].into_iter().flatten() {
-                assert_eq!(cmd.get_name(), e.table, "{}: a subcommand named `{}`", e.table, cmd.get_name());
+            for cmd in [(e.decode_command)(), (e.timing_command)()]
+                .into_iter()
+                .flatten()
+            {
+                assert_eq!(
+                    cmd.get_name(),
+                    e.table,
+                    "{}: a subcommand named `{}`",
+                    e.table,
+                    cmd.get_name()
+                );
             }
         }
     }
@@ -430,14 +498,33 @@ mod tests {
     fn the_command_line_reaches_each_protocols_own_parser_and_refuses_others() {
         use clap::{FromArgMatches, Subcommand};
         let cli = Decode::augment_subcommands(Command::new("decode").subcommand_required(true));
-        let m = cli.clone().try_get_matches_from(["decode", "biss", "x.vcd", "--bits", "12,26"]).unwrap();
+        let m = cli
+            .clone()
+            .try_get_matches_from(["decode", "biss", "x.vcd", "--bits", "12,26"])
+            .unwrap();
         let call = Decode::from_arg_matches(&m).unwrap();
         assert_eq!(call.0.protocol, "biss");
-        assert_eq!(call.0.args.get_many::<u32>("bits").unwrap().copied().collect::<Vec<_>>(), vec![12, 26]);
+        assert_eq!(
+            call.0
+                .args
+                .get_many::<u32>("bits")
+                .unwrap()
+                .copied()
+                .collect::<Vec<_>>(),
+            vec![12, 26]
+        );
         // An option of another protocol's decoder is refused by this one's parser.
-        assert!(cli.clone().try_get_matches_from(["decode", "biss", "x.vcd", "--pos-bits", "13"]).is_err());
+        assert!(cli
+            .clone()
+            .try_get_matches_from(["decode", "biss", "x.vcd", "--pos-bits", "13"])
+            .is_err());
         // A protocol without a decoder is not a subcommand.
-        assert!(!Decode::has_subcommand("uart") && cli.try_get_matches_from(["decode", "uart", "x.vcd"]).is_err());
+        assert!(
+            !Decode::has_subcommand("uart")
+                && cli
+                    .try_get_matches_from(["decode", "uart", "x.vcd"])
+                    .is_err()
+        );
         assert!(Timing::has_subcommand("endat") && !Timing::has_subcommand("uart"));
     }
 
@@ -448,7 +535,11 @@ mod tests {
         for (line, e) in t.lines().zip(crate::PROTOCOLS) {
             assert!(line.starts_with(e.table) && line.contains(e.core), "{line}");
         }
-        assert!(t.lines().any(|l| l.starts_with("ssi ") && l.ends_with("sigrok=spi")), "{t}");
+        assert!(
+            t.lines()
+                .any(|l| l.starts_with("ssi ") && l.ends_with("sigrok=spi")),
+            "{t}"
+        );
     }
 
     #[test]
@@ -457,13 +548,26 @@ mod tests {
         // of that value the same (`IDLE = 3'd0,`).
         let mut named = 0;
         for e in crate::PROTOCOLS {
-            let rtl = std::fs::read_to_string(format!("{}/../hdl/rtl/{}.v", env!("CARGO_MANIFEST_DIR"), e.core)).unwrap();
+            let rtl = std::fs::read_to_string(format!(
+                "{}/../hdl/rtl/{}.v",
+                env!("CARGO_MANIFEST_DIR"),
+                e.core
+            ))
+            .unwrap();
             for (signal, names) in (e.wave_names)() {
                 assert!(!names.is_empty(), "{}: {signal}", e.core);
                 for (value, name) in names {
-                    let decl = rtl.lines().find(|l| l.trim_start().starts_with(&format!("{name} ")) && l.contains('='));
-                    let decl = decl.unwrap_or_else(|| panic!("{}: no state {name} in the RTL", e.core));
-                    let rhs = decl.split('=').nth(1).unwrap().trim().trim_end_matches([',', ';']);
+                    let decl = rtl.lines().find(|l| {
+                        l.trim_start().starts_with(&format!("{name} ")) && l.contains('=')
+                    });
+                    let decl =
+                        decl.unwrap_or_else(|| panic!("{}: no state {name} in the RTL", e.core));
+                    let rhs = decl
+                        .split('=')
+                        .nth(1)
+                        .unwrap()
+                        .trim()
+                        .trim_end_matches([',', ';']);
                     let rtl_value = rhs.rsplit('d').next().unwrap().parse::<u64>().unwrap();
                     assert_eq!(rtl_value, value, "{}: {name}", e.core);
                     named += 1;
@@ -480,7 +584,10 @@ mod tests {
             Idle = 0,
             NoAck = 10,
         }
-        assert_eq!(enum_names(&[S::Idle, S::NoAck], |s| s as u64), vec![(0, "IDLE".to_string()), (10, "NOACK".to_string())]);
+        assert_eq!(
+            enum_names(&[S::Idle, S::NoAck], |s| s as u64),
+            vec![(0, "IDLE".to_string()), (10, "NOACK".to_string())]
+        );
     }
 
     #[test]

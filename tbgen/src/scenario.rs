@@ -17,10 +17,10 @@ use std::path::Path;
 use crate::{Error, Result};
 use model::toml_place::line_column;
 
-pub use crate::registry::Visitor;
-pub use crate::Setup;
 use crate::registry::Protocol;
+pub use crate::registry::Visitor;
 use crate::ScenarioFile;
+pub use crate::Setup;
 
 struct CoreAndTable;
 impl Visitor for CoreAndTable {
@@ -60,7 +60,8 @@ impl Scenario {
             let mut message = e.message().trim().to_string();
             let mut field = offset.and_then(|o| path_at(text, o));
             if field.is_none() {
-                if let Some((f, at)) = offset.and_then(|o| field_by_quoted_value(text, o, &message)) {
+                if let Some((f, at)) = offset.and_then(|o| field_by_quoted_value(text, o, &message))
+                {
                     (field, offset) = (Some(f), Some(at));
                 }
             }
@@ -70,18 +71,36 @@ impl Scenario {
                     message = format!("field `{field}`: {message}");
                 }
             }
-            Error::ScenarioSyntax { file: origin.into(), line, column, message }
+            Error::ScenarioSyntax {
+                file: origin.into(),
+                line,
+                column,
+                message,
+            }
         })?;
-        if file.name.is_empty() || !file.name.chars().all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '_') {
+        if file.name.is_empty()
+            || !file
+                .name
+                .chars()
+                .all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '_')
+        {
             return Err(Error::Scenario {
                 file: origin.into(),
-                message: format!("name `{}`: use lower-case letters, digits and `_` (it names the output files)", file.name),
+                message: format!(
+                    "name `{}`: use lower-case letters, digits and `_` (it names the output files)",
+                    file.name
+                ),
             });
         }
         let mut setups = file.setups();
         if setups.len() != 1 {
-            let tables: Vec<String> = crate::PROTOCOLS.iter().map(|p| format!("`[{}]`", p.table)).collect();
-            let (last, rest) = tables.split_last().expect("at least one protocol is registered");
+            let tables: Vec<String> = crate::PROTOCOLS
+                .iter()
+                .map(|p| format!("`[{}]`", p.table))
+                .collect();
+            let (last, rest) = tables
+                .split_last()
+                .expect("at least one protocol is registered");
             return Err(Error::Scenario {
                 file: origin.into(),
                 message: format!(
@@ -92,7 +111,13 @@ impl Scenario {
             });
         }
         let setup = setups.remove(0);
-        let scenario = Scenario { name: file.name, description: file.description, setup, origin: origin.into(), text: text.into() };
+        let scenario = Scenario {
+            name: file.name,
+            description: file.description,
+            setup,
+            origin: origin.into(),
+            text: text.into(),
+        };
         scenario.check()?;
         Ok(scenario)
     }
@@ -126,7 +151,9 @@ impl Scenario {
 
     /// Runs the model's own checks and places any error on a line of the file.
     fn check(&self) -> Result<()> {
-        self.setup.accept(Validate).map_err(|source| self.value_error(source))
+        self.setup
+            .accept(Validate)
+            .map_err(|source| self.value_error(source))
     }
 
     /// A model error placed on the line of the field it names.
@@ -155,8 +182,14 @@ fn path_at(text: &str, offset: usize) -> Option<String> {
         match v {
             DeValue::Table(t) => {
                 for (k, val) in t {
-                    let p = if path.is_empty() { k.get_ref().to_string() } else { format!("{path}.{}", k.get_ref()) };
-                    if k.span().contains(&offset) || (scalar(val.get_ref()) && val.span().contains(&offset)) {
+                    let p = if path.is_empty() {
+                        k.get_ref().to_string()
+                    } else {
+                        format!("{path}.{}", k.get_ref())
+                    };
+                    if k.span().contains(&offset)
+                        || (scalar(val.get_ref()) && val.span().contains(&offset))
+                    {
                         *out = Some(p.clone());
                     }
                     walk(val.get_ref(), &p, offset, out);
@@ -199,9 +232,17 @@ fn field_by_quoted_value(text: &str, offset: usize, message: &str) -> Option<(St
     };
     // Every table with its dotted path and span. A `[a.b]` table's span
     // need not lie inside `[a]`'s, so all are searched, not one branch.
-    fn tables<'a>(t: &'a DeTable<'a>, path: &str, out: &mut Vec<(String, std::ops::Range<usize>, &'a DeTable<'a>)>) {
+    fn tables<'a>(
+        t: &'a DeTable<'a>,
+        path: &str,
+        out: &mut Vec<(String, std::ops::Range<usize>, &'a DeTable<'a>)>,
+    ) {
         for (k, v) in t {
-            let p = if path.is_empty() { k.get_ref().to_string() } else { format!("{path}.{}", k.get_ref()) };
+            let p = if path.is_empty() {
+                k.get_ref().to_string()
+            } else {
+                format!("{path}.{}", k.get_ref())
+            };
             match v.get_ref() {
                 DeValue::Table(inner) => {
                     out.push((p.clone(), v.span(), inner));
@@ -224,8 +265,17 @@ fn field_by_quoted_value(text: &str, offset: usize, message: &str) -> Option<(St
     let mut all = Vec::new();
     tables(doc.get_ref(), "", &mut all);
     // The table that starts at `offset`, else the innermost one holding it.
-    let (path, _, table) = all.iter().find(|(_, span, _)| span.start == offset).or_else(|| all.iter().filter(|(_, span, _)| span.contains(&offset)).max_by_key(|(_, span, _)| span.start))?;
-    let mut hits = table.iter().filter(|(_, v)| !matches!(v.get_ref(), DeValue::Table(_) | DeValue::Array(_)) && same(&text[v.span()]));
+    let (path, _, table) = all
+        .iter()
+        .find(|(_, span, _)| span.start == offset)
+        .or_else(|| {
+            all.iter()
+                .filter(|(_, span, _)| span.contains(&offset))
+                .max_by_key(|(_, span, _)| span.start)
+        })?;
+    let mut hits = table.iter().filter(|(_, v)| {
+        !matches!(v.get_ref(), DeValue::Table(_) | DeValue::Array(_)) && same(&text[v.span()])
+    });
     let (key, _) = hits.next()?;
     if hits.next().is_some() {
         return None;
@@ -243,18 +293,22 @@ fn field_on_line(text: &str, line: usize) -> Option<String> {
             table = header.trim_start_matches('[').trim().to_string();
         } else if i + 1 == line {
             let key = l.split_once('=')?.0.trim();
-            return Some(if table.is_empty() { key.to_string() } else { format!("{table}.{key}") });
+            return Some(if table.is_empty() {
+                key.to_string()
+            } else {
+                format!("{table}.{key}")
+            });
         }
     }
     None
 }
 
-
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    const GOOD: &str = "name = \"t\"\n[ssi]\npositions = [1]\n[ssi.master]\nbits = 12\nclock_khz = 250\n";
+    const GOOD: &str =
+        "name = \"t\"\n[ssi]\npositions = [1]\n[ssi.master]\nbits = 12\nclock_khz = 250\n";
 
     #[test]
     fn a_good_file_parses() {
@@ -275,7 +329,10 @@ mod tests {
     fn an_impossible_value_is_placed_on_its_line_with_the_fix() {
         let text = GOOD.replace("250", "300");
         let msg = Scenario::parse(&text, "t.toml").unwrap_err().to_string();
-        assert!(msg.starts_with("t.toml:6: field `master.clock_khz`"), "{msg}");
+        assert!(
+            msg.starts_with("t.toml:6: field `master.clock_khz`"),
+            "{msg}"
+        );
         assert!(msg.contains("use "), "{msg}");
     }
 
@@ -283,14 +340,22 @@ mod tests {
     fn a_value_in_an_array_of_tables_is_placed_on_its_own_line() {
         let text = "name = \"t\"\n[biss]\n[biss.host]\nframes = 6\n\n[[biss.flips]]\nframe = 0\nbits = [0]\n\n[[biss.flips]]\nframe = 1\nbits = [1]\n\n[[biss.flips]]\nbits = [2]\nframe = 40\n";
         let msg = Scenario::parse(text, "flip.toml").unwrap_err().to_string();
-        assert!(msg.starts_with("flip.toml:16: field `flips[2].frame`: frame 40, but the run has 6 frames"), "{msg}");
+        assert!(
+            msg.starts_with(
+                "flip.toml:16: field `flips[2].frame`: frame 40, but the run has 6 frames"
+            ),
+            "{msg}"
+        );
     }
 
     #[test]
     fn a_value_in_an_inline_array_is_placed_on_its_own_line() {
         let text = "name = \"t\"\n[endat]\n[[endat.commands]]\ncommand = \"pos22\"\nrepeat = 3\n[endat.faults]\nflips = [\n  { request = 1, bits = [2] },\n  { request = 44, bits = [3] },\n]\n";
         let msg = Scenario::parse(text, "f.toml").unwrap_err().to_string();
-        assert!(msg.starts_with("f.toml:9: field `faults.flips[1].request`"), "{msg}");
+        assert!(
+            msg.starts_with("f.toml:9: field `faults.flips[1].request`"),
+            "{msg}"
+        );
     }
 
     #[test]
@@ -299,10 +364,16 @@ mod tests {
         // (serde's flatten): serde alone places the error at the table.
         let text = "name = \"t\"\n[endat]\n[[endat.commands]]\ncommand = \"pos22\"\n[endat.faults]\nabsent_from = 1\nstuck_from = -1\n";
         let msg = Scenario::parse(text, "f.toml").unwrap_err().to_string();
-        assert!(msg.starts_with("f.toml:7:1: field `endat.faults.stuck_from`"), "{msg}");
+        assert!(
+            msg.starts_with("f.toml:7:1: field `endat.faults.stuck_from`"),
+            "{msg}"
+        );
         let text = text.replace("-1", "nan");
         let msg = Scenario::parse(&text, "f.toml").unwrap_err().to_string();
-        assert!(msg.starts_with("f.toml:7:1: field `endat.faults.stuck_from`"), "{msg}");
+        assert!(
+            msg.starts_with("f.toml:7:1: field `endat.faults.stuck_from`"),
+            "{msg}"
+        );
     }
 
     #[test]
@@ -316,7 +387,9 @@ mod tests {
 
     #[test]
     fn a_file_without_a_protocol_table_says_what_to_add() {
-        let msg = Scenario::parse("name = \"x\"\n", "x.toml").unwrap_err().to_string();
+        let msg = Scenario::parse("name = \"x\"\n", "x.toml")
+            .unwrap_err()
+            .to_string();
         for p in crate::PROTOCOLS {
             assert!(msg.contains(&format!("`[{}]`", p.table)), "{msg}");
         }
@@ -324,7 +397,9 @@ mod tests {
 
     #[test]
     fn a_file_with_two_protocol_tables_is_refused() {
-        let msg = Scenario::parse(&format!("{GOOD}[uart]\nbaud = 10e6\n"), "x.toml").unwrap_err().to_string();
+        let msg = Scenario::parse(&format!("{GOOD}[uart]\nbaud = 10e6\n"), "x.toml")
+            .unwrap_err()
+            .to_string();
         assert!(msg.contains("2 protocol tables"), "{msg}");
     }
 }

@@ -56,13 +56,21 @@ pub struct Decoded<'a, T: Serialize> {
 
 impl<'a, T: Serialize> Decoded<'a, T> {
     /// The envelope of `transactions` decoded from `file`.
-    pub fn new(protocol: &'a str, file: &std::path::Path, signals: &[(&'static str, &str)], transactions: &'a [T]) -> Self {
+    pub fn new(
+        protocol: &'a str,
+        file: &std::path::Path,
+        signals: &[(&'static str, &str)],
+        transactions: &'a [T],
+    ) -> Self {
         Decoded {
             format: FORMAT,
             source: "decode",
             protocol,
             file: file.display().to_string(),
-            signals: signals.iter().map(|&(role, name)| (role, name.to_string())).collect(),
+            signals: signals
+                .iter()
+                .map(|&(role, name)| (role, name.to_string()))
+                .collect(),
             transactions,
         }
     }
@@ -73,11 +81,20 @@ impl<'a, T: Serialize> Decoded<'a, T> {
 /// `wire_answers`. `None` if the transcript is not of that shape (one answer
 /// list per request, one wire request per request sent).
 pub fn wire_bytes(transcript: &serde_json::Value) -> Option<Vec<u64>> {
-    let bytes = |set: &serde_json::Value| -> Option<Vec<u64>> { set.as_array()?.iter().map(|b| b.as_u64()).collect() };
+    let bytes = |set: &serde_json::Value| -> Option<Vec<u64>> {
+        set.as_array()?.iter().map(|b| b.as_u64()).collect()
+    };
     let mut expected = Vec::new();
     for t in transcript["transactions"].as_array()? {
-        let (requests, answers) = (t["wire_requests"].as_array()?, t["wire_answers"].as_array()?);
-        if requests.len() != answers.len() || t["requests"].as_u64().is_some_and(|sent| requests.len() as u64 != sent) {
+        let (requests, answers) = (
+            t["wire_requests"].as_array()?,
+            t["wire_answers"].as_array()?,
+        );
+        if requests.len() != answers.len()
+            || t["requests"]
+                .as_u64()
+                .is_some_and(|sent| requests.len() as u64 != sent)
+        {
             return None;
         }
         for (request, answer) in requests.iter().zip(answers) {
@@ -91,10 +108,16 @@ pub fn wire_bytes(transcript: &serde_json::Value) -> Option<Vec<u64>> {
 /// sigrok's `uart` decoder on the line at a half-duplex host at `baud`: it
 /// must find, in order, every character the transcript says was on the wire
 /// ([`wire_bytes`]), faults included.
-pub fn sigrok_wire_bytes(transcript: &serde_json::Value, baud: f64) -> Option<crate::registry::SigrokCheck> {
+pub fn sigrok_wire_bytes(
+    transcript: &serde_json::Value,
+    baud: f64,
+) -> Option<crate::registry::SigrokCheck> {
     Some(crate::registry::SigrokCheck {
         decoder: format!("uart:rx=line_at_host:baudrate={}", baud as u64),
         annotation: "uart=rx-data",
-        expected: wire_bytes(transcript)?.into_iter().map(|b| Some(b as u128)).collect(),
+        expected: wire_bytes(transcript)?
+            .into_iter()
+            .map(|b| Some(b as u128))
+            .collect(),
     })
 }

@@ -13,10 +13,29 @@ use toml::Value;
 
 /// Integers a field may be set to: zero, negative, one, just past 16, 31 and
 /// 32 bits, past f64's exact integers, and the extremes.
-pub const INTEGERS: &[i64] = &[0, -1, 1, 65_536, 2_147_483_648, 4_294_967_296, 1 << 53, i64::MAX, i64::MIN];
+pub const INTEGERS: &[i64] = &[
+    0,
+    -1,
+    1,
+    65_536,
+    2_147_483_648,
+    4_294_967_296,
+    1 << 53,
+    i64::MAX,
+    i64::MIN,
+];
 
 /// Floats a field may be set to (also where an integer belongs).
-pub const FLOATS: &[f64] = &[0.0, -1.0, 1e-300, 4_294_967_296.0, 1e300, f64::NAN, f64::INFINITY, f64::NEG_INFINITY];
+pub const FLOATS: &[f64] = &[
+    0.0,
+    -1.0,
+    1e-300,
+    4_294_967_296.0,
+    1e300,
+    f64::NAN,
+    f64::INFINITY,
+    f64::NEG_INFINITY,
+];
 
 /// xorshift64*: the same sequence every run, so a failure repeats.
 pub struct Rng(pub u64);
@@ -98,7 +117,11 @@ pub fn shown(value: &Value) -> String {
 /// Every value a field at `path` is tried with: the integers where it holds
 /// an integer, and the floats everywhere.
 pub fn awkward_values(integer: bool) -> impl Iterator<Item = Value> {
-    INTEGERS.iter().filter(move |_| integer).map(|&v| Value::Integer(v)).chain(FLOATS.iter().map(|&v| Value::Float(v)))
+    INTEGERS
+        .iter()
+        .filter(move |_| integer)
+        .map(|&v| Value::Integer(v))
+        .chain(FLOATS.iter().map(|&v| Value::Float(v)))
 }
 
 thread_local! {
@@ -113,9 +136,16 @@ pub fn quiet_panics() {
     let before = std::panic::take_hook();
     std::panic::set_hook(Box::new(move |info| {
         if CATCHING.with(|c| *c.borrow()) {
-            let place = info.location().map(|l| format!("{}:{}", l.file(), l.line())).unwrap_or_default();
+            let place = info
+                .location()
+                .map(|l| format!("{}:{}", l.file(), l.line()))
+                .unwrap_or_default();
             let payload = info.payload();
-            let what = payload.downcast_ref::<&str>().map(|s| s.to_string()).or_else(|| payload.downcast_ref::<String>().cloned()).unwrap_or_default();
+            let what = payload
+                .downcast_ref::<&str>()
+                .map(|s| s.to_string())
+                .or_else(|| payload.downcast_ref::<String>().cloned())
+                .unwrap_or_default();
             LAST_PANIC.with(|p| *p.borrow_mut() = format!("panicked at {place}: {what}"));
         } else {
             before(info);

@@ -18,7 +18,9 @@ pub type Parser = vcd::Parser<BufReader<File>>;
 /// 1000`: its times are rounded to the nearest picosecond, the decoders'
 /// resolution (a line edge is never closer than a few ns to the next).
 pub fn timescale_ps(header: &vcd::Header) -> (u64, u64) {
-    let Some((n, unit)) = header.timescale else { return (1, 1) };
+    let Some((n, unit)) = header.timescale else {
+        return (1, 1);
+    };
     let n = n as u64;
     match unit {
         vcd::TimescaleUnit::S => (n * 1_000_000_000_000, 1),
@@ -58,20 +60,36 @@ pub enum ScanError {
 /// command in file order with [`Signal::push`]: a level is high unless the
 /// value is 0 (x and z read high, like the idle line). `scale` is
 /// [`timescale_ps`] of the header.
-pub fn read_scalars(parser: Parser, signals: &[(&str, vcd::IdCode)], scale: (u64, u64)) -> Result<Vec<Signal>, ScanError> {
+pub fn read_scalars(
+    parser: Parser,
+    signals: &[(&str, vcd::IdCode)],
+    scale: (u64, u64),
+) -> Result<Vec<Signal>, ScanError> {
     let (mul, div) = scale;
-    let mut out: Vec<Signal> = signals.iter().map(|&(name, _)| Signal { name: name.to_string(), changes: Vec::new() }).collect();
+    let mut out: Vec<Signal> = signals
+        .iter()
+        .map(|&(name, _)| Signal {
+            name: name.to_string(),
+            changes: Vec::new(),
+        })
+        .collect();
     let mut t = 0u64;
     let mut last_ts = 0u64;
     for cmd in parser {
         match cmd.map_err(ScanError::Io)? {
             vcd::Command::Timestamp(ts) => {
                 if ts < last_ts {
-                    return Err(ScanError::TimeGoesBack { later: last_ts, earlier: ts });
+                    return Err(ScanError::TimeGoesBack {
+                        later: last_ts,
+                        earlier: ts,
+                    });
                 }
                 last_ts = ts;
                 let ps = (ts as u128 * mul as u128 + div as u128 / 2) / div as u128;
-                t = u64::try_from(ps).ok().filter(|&t| t <= MAX_PS).ok_or(ScanError::TimestampOverflow(ts))?;
+                t = u64::try_from(ps)
+                    .ok()
+                    .filter(|&t| t <= MAX_PS)
+                    .ok_or(ScanError::TimestampOverflow(ts))?;
             }
             vcd::Command::ChangeScalar(code, v) => {
                 let level = v != vcd::Value::V0;

@@ -63,11 +63,22 @@ impl VectorWriter {
     fn record(&mut self, cycle: u64, s: &Sample) {
         let _ = write!(self.body, "{cycle:08x}");
         for (port, v) in self.inputs.iter().zip(&s.inputs) {
-            let _ = write!(self.body, " {:0w$x}", v & port.mask(), w = hex_digits(port.width));
+            let _ = write!(
+                self.body,
+                " {:0w$x}",
+                v & port.mask(),
+                w = hex_digits(port.width)
+            );
         }
         for ((port, v), care) in self.outputs.iter().zip(&s.outputs).zip(&s.care) {
             let w = hex_digits(port.width);
-            let _ = write!(self.body, " {:0w$x} {:0w$x}", v & port.mask(), care & port.mask(), w = w);
+            let _ = write!(
+                self.body,
+                " {:0w$x} {:0w$x}",
+                v & port.mask(),
+                care & port.mask(),
+                w = w
+            );
         }
         self.body.push('\n');
         self.records += 1;
@@ -89,12 +100,29 @@ impl VectorWriter {
         writeln!(out, "// f_sys_hz: {}", header.f_sys_hz)?;
         writeln!(out, "// records: {}", self.records)?;
         writeln!(out, "// cycles: {cycles}")?;
-        let params: Vec<String> = header.params.iter().map(|(k, v)| format!("{k}={v}")).collect();
+        let params: Vec<String> = header
+            .params
+            .iter()
+            .map(|(k, v)| format!("{k}={v}"))
+            .collect();
         writeln!(out, "// params: {}", params.join(" "))?;
-        writeln!(out, "// words_per_record: {}", 1 + self.inputs.len() + 2 * self.outputs.len())?;
+        writeln!(
+            out,
+            "// words_per_record: {}",
+            1 + self.inputs.len() + 2 * self.outputs.len()
+        )?;
         let ins: Vec<String> = self.inputs.iter().map(port_label).collect();
-        let outs: Vec<String> = self.outputs.iter().map(|p| format!("{} mask", port_label(p))).collect();
-        writeln!(out, "// record: cycle | {} | {}", ins.join(" "), outs.join(" "))?;
+        let outs: Vec<String> = self
+            .outputs
+            .iter()
+            .map(|p| format!("{} mask", port_label(p)))
+            .collect();
+        writeln!(
+            out,
+            "// record: cycle | {} | {}",
+            ins.join(" "),
+            outs.join(" ")
+        )?;
         out.write_all(self.body.as_bytes())?;
         Ok(self.records)
     }
@@ -164,7 +192,10 @@ impl VectorFile {
                 }
                 continue;
             }
-            let words: Result<Vec<u64>, _> = line.split_whitespace().map(|w| u64::from_str_radix(w, 16)).collect();
+            let words: Result<Vec<u64>, _> = line
+                .split_whitespace()
+                .map(|w| u64::from_str_radix(w, 16))
+                .collect();
             records.push(words.map_err(|e| format!("line {}: {e}", i + 1))?);
         }
         Ok(VectorFile { header, records })
@@ -172,19 +203,27 @@ impl VectorFile {
 
     /// A header field.
     pub fn get(&self, key: &str) -> Option<&str> {
-        self.header.iter().find(|(k, _)| k == key).map(|(_, v)| v.as_str())
+        self.header
+            .iter()
+            .find(|(k, _)| k == key)
+            .map(|(_, v)| v.as_str())
     }
 
     /// The word index of port `name` in a record (an output's value word; its mask follows), from the
     /// `record:` header line.
     pub fn column(&self, name: &str) -> Option<usize> {
         let layout = self.get("record")?;
-        layout.split_whitespace().filter(|w| *w != "|").position(|w| w.split('[').next() == Some(name))
+        layout
+            .split_whitespace()
+            .filter(|w| *w != "|")
+            .position(|w| w.split('[').next() == Some(name))
     }
 
     /// The value of the word at `column` in cycle `cycle` (records hold until the next one).
     pub fn value_at(&self, column: usize, cycle: u64) -> Option<u64> {
-        let i = self.records.partition_point(|r| r.first().is_some_and(|c| *c <= cycle));
+        let i = self
+            .records
+            .partition_point(|r| r.first().is_some_and(|c| *c <= cycle));
         self.records.get(i.checked_sub(1)?)?.get(column).copied()
     }
 

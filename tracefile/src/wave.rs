@@ -49,8 +49,14 @@ pub fn signal_names(core: &str, layout: &Layout) -> Vec<(String, Vec<String>)> {
     // The decoded group before the many core ports, so that it shows in an
     // 800-pixel-high window.
     vec![
-        ("line".to_string(), layout.line.iter().map(|p| name("line", p)).collect()),
-        ("decoded".to_string(), layout.decoded.iter().map(|p| name("decoded", p)).collect()),
+        (
+            "line".to_string(),
+            layout.line.iter().map(|p| name("line", p)).collect(),
+        ),
+        (
+            "decoded".to_string(),
+            layout.decoded.iter().map(|p| name("decoded", p)).collect(),
+        ),
         (core.to_string(), ports),
     ]
 }
@@ -58,7 +64,13 @@ pub fn signal_names(core: &str, layout: &Layout) -> Vec<(String, Vec<String>)> {
 impl Waves {
     /// Writes the header for `layout` of `core` on the system clock `timebase`
     /// (each cycle at its exact time rounded to the picosecond, [`model::time::Timebase::ps_at`]).
-    pub fn new(out: BufWriter<File>, core: &str, layout: &Layout, timebase: model::time::Timebase, comment: &str) -> io::Result<Self> {
+    pub fn new(
+        out: BufWriter<File>,
+        core: &str,
+        layout: &Layout,
+        timebase: model::time::Timebase,
+        comment: &str,
+    ) -> io::Result<Self> {
         let mut vcd = vcd::Writer::new(out);
         vcd.comment(comment)?;
         vcd.timescale(1, TimescaleUnit::PS)?;
@@ -66,14 +78,25 @@ impl Waves {
         let mut signals = Vec::new();
         let groups: [(&str, Vec<Port>); 3] = [
             ("line", layout.line.clone()),
-            (core, layout.inputs.iter().chain(&layout.outputs).copied().collect()),
+            (
+                core,
+                layout
+                    .inputs
+                    .iter()
+                    .chain(&layout.outputs)
+                    .copied()
+                    .collect(),
+            ),
             ("decoded", layout.decoded.clone()),
         ];
         for (scope, ports) in groups.iter() {
             vcd.add_module(scope)?;
             for p in ports {
                 if *scope == "line" && p.width != 1 {
-                    return Err(io::Error::new(io::ErrorKind::InvalidInput, format!("line signal {} must be a scalar", p.name)));
+                    return Err(io::Error::new(
+                        io::ErrorKind::InvalidInput,
+                        format!("line signal {} must be a scalar", p.name),
+                    ));
                 }
                 let index = (p.width > 1).then(|| ReferenceIndex::Range(p.width as i32 - 1, 0));
                 let id = vcd.add_var(VarType::Wire, p.width, p.name, index)?;
@@ -84,7 +107,13 @@ impl Waves {
         vcd.upscope()?;
         vcd.enddefinitions()?;
         let n = signals.len();
-        Ok(Waves { vcd, signals, last: vec![0; n], last_time: None, timebase })
+        Ok(Waves {
+            vcd,
+            signals,
+            last: vec![0; n],
+            last_time: None,
+            timebase,
+        })
     }
 
     fn write_value(&mut self, index: usize, value: u64) -> io::Result<()> {
@@ -92,7 +121,13 @@ impl Waves {
         if s.width == 1 {
             self.vcd.change_scalar(s.id, value & 1 == 1)
         } else {
-            let bits = (0..s.width).rev().map(|b| if (value >> b) & 1 == 1 { Value::V1 } else { Value::V0 });
+            let bits = (0..s.width).rev().map(|b| {
+                if (value >> b) & 1 == 1 {
+                    Value::V1
+                } else {
+                    Value::V0
+                }
+            });
             self.vcd.change_vector(s.id, bits)
         }
     }
@@ -195,7 +230,8 @@ pub fn scalars_only(vcd_text: &str) -> String {
     let mut out = String::with_capacity(vcd_text.len());
     for line in vcd_text.lines() {
         let t = line.trim_start();
-        let is_vector_var = t.starts_with("$var") && t.split_whitespace().nth(2).is_some_and(|w| w != "1");
+        let is_vector_var =
+            t.starts_with("$var") && t.split_whitespace().nth(2).is_some_and(|w| w != "1");
         if is_vector_var || t.starts_with('b') || t.starts_with('B') {
             continue;
         }

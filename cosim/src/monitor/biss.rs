@@ -85,54 +85,117 @@ impl BissMonitor {
     /// A monitor from TOML text (`origin` names it in errors) at `f_mon_hz`.
     pub fn from_toml(text: &str, origin: &str, f_mon_hz: u64) -> Result<Self> {
         let tables = config::tables(text, origin, "biss")?;
-        config::emulator_clock(f_mon_hz, &tables.emulator, MAX_CLOCK_KHZ, "the BiSS-C monitor", origin)?;
+        config::emulator_clock(
+            f_mon_hz,
+            &tables.emulator,
+            MAX_CLOCK_KHZ,
+            "the BiSS-C monitor",
+            origin,
+        )?;
         let whole = proto_table(text, origin, "biss")?;
         let checks: BissChecks = config::decode_in(&whole, "checks", origin)?;
         let mon: MonitorTable = config::decode_in(&whole, "monitor", origin)?;
         let slaves: Vec<SlaveSettings> = match whole.get("slaves") {
-            Some(v) => v.clone().try_into().map_err(|e: toml::de::Error| Error::Toml { origin: origin.to_string(), line: None, message: format!("table `slaves`: {}", e.to_string().split_whitespace().collect::<Vec<_>>().join(" ")) })?,
+            Some(v) => v
+                .clone()
+                .try_into()
+                .map_err(|e: toml::de::Error| Error::Toml {
+                    origin: origin.to_string(),
+                    line: None,
+                    message: format!(
+                        "table `slaves`: {}",
+                        e.to_string()
+                            .split_whitespace()
+                            .collect::<Vec<_>>()
+                            .join(" ")
+                    ),
+                })?,
             None => vec![SlaveSettings::default()],
         };
         if slaves.is_empty() || slaves.len() > model::biss::MAX_SLAVES {
-            return Err(Error::field(origin, "slaves", format!("{} slaves", slaves.len()), format!("give 1 to {} [[slaves]] tables", model::biss::MAX_SLAVES)));
+            return Err(Error::field(
+                origin,
+                "slaves",
+                format!("{} slaves", slaves.len()),
+                format!("give 1 to {} [[slaves]] tables", model::biss::MAX_SLAVES),
+            ));
         }
         for (i, s) in slaves.iter().enumerate() {
             if !(1..=64).contains(&s.bits) || !(1..=8).contains(&s.crc_width) {
-                return Err(Error::field(origin, format!("slaves[{i}]"), format!("{} bits, CRC width {}", s.bits, s.crc_width), "give 1 to 64 bits and a CRC width of 1 to 8"));
+                return Err(Error::field(
+                    origin,
+                    format!("slaves[{i}]"),
+                    format!("{} bits, CRC width {}", s.bits, s.crc_width),
+                    "give 1 to 64 bits and a CRC width of 1 to 8",
+                ));
             }
         }
         let longest = slaves.iter().map(|s| s.timeout_us).fold(0.0, f64::max);
         let base = Base::new(f_mon_hz);
         let tol = base.period_ps;
         let ps = |ns: f64| ((ns * 1e3).round() as u64).saturating_sub(tol);
-        let tmas = limit(origin, "monitor.min_tmas_ns", mon.min_tmas_ns.unwrap_or(checks.min_tmas_ns), "give the least MA period in ns (seed: 100)")?;
-        let tmash = limit(origin, "monitor.min_tmash_ns", mon.min_tmash_ns.unwrap_or(25.0), "give the least MA high time in ns (seed: 25)")?;
-        let tmasl = limit(origin, "monitor.min_tmasl_ns", mon.min_tmasl_ns.unwrap_or(25.0), "give the least MA low time in ns (seed: 25)")?;
-        let timeout = limit(origin, "monitor.timeout_us", mon.timeout_us.unwrap_or(longest), "give the slaves' BiSS timeout in µs (seed: 16)")?;
+        let tmas = limit(
+            origin,
+            "monitor.min_tmas_ns",
+            mon.min_tmas_ns.unwrap_or(checks.min_tmas_ns),
+            "give the least MA period in ns (seed: 100)",
+        )?;
+        let tmash = limit(
+            origin,
+            "monitor.min_tmash_ns",
+            mon.min_tmash_ns.unwrap_or(25.0),
+            "give the least MA high time in ns (seed: 25)",
+        )?;
+        let tmasl = limit(
+            origin,
+            "monitor.min_tmasl_ns",
+            mon.min_tmasl_ns.unwrap_or(25.0),
+            "give the least MA low time in ns (seed: 25)",
+        )?;
+        let timeout = limit(
+            origin,
+            "monitor.timeout_us",
+            mon.timeout_us.unwrap_or(longest),
+            "give the slaves' BiSS timeout in µs (seed: 16)",
+        )?;
         Ok(BissMonitor {
             tmas: ps(tmas),
             tmash: ps(tmash),
             tmasl: ps(tmasl),
             timeout: ps(timeout * 1e3),
             base,
-            layout: Layout { bits: slaves.iter().map(|s| s.bits).collect(), crc_width: slaves.iter().map(|s| s.crc_width).collect(), crc_poly: slaves.iter().map(|s| s.crc_poly).collect() },
+            layout: Layout {
+                bits: slaves.iter().map(|s| s.bits).collect(),
+                crc_width: slaves.iter().map(|s| s.crc_width).collect(),
+                crc_poly: slaves.iter().map(|s| s.crc_poly).collect(),
+            },
             decoder: Decoder::default(),
             ma: Signal::named("ma"),
             slo: Signal::named("slo"),
             slo_now: true,
-            watch: Watch { ma: true, ..Watch::default() },
+            watch: Watch {
+                ma: true,
+                ..Watch::default()
+            },
         })
     }
 
     /// The frames since the last decoded one (the decoder's state is not changed).
     fn pending(&self) -> Vec<Value> {
         let mut d = self.decoder.clone();
-        d.feed(&self.ma, &self.slo, &self.layout).into_iter().map(|f| serde_json::to_value(f).unwrap_or(Value::Null)).collect()
+        d.feed(&self.ma, &self.slo, &self.layout)
+            .into_iter()
+            .map(|f| serde_json::to_value(f).unwrap_or(Value::Null))
+            .collect()
     }
 
     fn flush(&mut self, now: u64) {
         let frames = self.decoder.feed(&self.ma, &self.slo, &self.layout);
-        self.base.done.extend(frames.into_iter().map(|f| serde_json::to_value(f).unwrap_or(Value::Null)));
+        self.base.done.extend(
+            frames
+                .into_iter()
+                .map(|f| serde_json::to_value(f).unwrap_or(Value::Null)),
+        );
         self.ma.forget_before(now);
         self.slo.forget_before(now);
     }
@@ -154,7 +217,13 @@ impl BissMonitor {
                 return; // MA back high after a CDM = 1 hold
             }
             let gap = w.frame_end.map(|end| now - end);
-            *w = Watch { ma, last_edge: now, in_frame: true, frame_end: w.frame_end, ..Watch::default() };
+            *w = Watch {
+                ma,
+                last_edge: now,
+                in_frame: true,
+                frame_end: w.frame_end,
+                ..Watch::default()
+            };
             if let Some(gap) = gap.filter(|&g| g < self.timeout) {
                 self.base.violation(now, RULE_TIMEOUT, format!("frame started {:.3} us after the previous frame's last MA edge; the slave's timeout is {:.3} us", us(gap), us(self.timeout + self.base.period_ps)));
             } else if !self.slo_now {
@@ -165,19 +234,33 @@ impl BissMonitor {
         w.half.get_or_insert(len);
         if ma {
             if len < self.tmasl {
-                self.base.violation(now, RULE_TMASL, format!("MA low for {:.1} ns within a frame", len as f64 / 1e3));
+                self.base.violation(
+                    now,
+                    RULE_TMASL,
+                    format!("MA low for {:.1} ns within a frame", len as f64 / 1e3),
+                );
             }
             if let Some(r) = w.last_rise.filter(|&r| now - r < self.tmas) {
-                self.base.violation(now, RULE_TMAS, format!("MA period {:.1} ns within a frame", (now - r) as f64 / 1e3));
+                self.base.violation(
+                    now,
+                    RULE_TMAS,
+                    format!("MA period {:.1} ns within a frame", (now - r) as f64 / 1e3),
+                );
             }
             self.watch.last_rise = Some(now);
         } else if len < self.tmash {
-            self.base.violation(now, RULE_TMASH, format!("MA high for {:.1} ns within a frame", len as f64 / 1e3));
+            self.base.violation(
+                now,
+                RULE_TMASH,
+                format!("MA high for {:.1} ns within a frame", len as f64 / 1e3),
+            );
         }
     }
 
     fn last(&self) -> Option<Value> {
-        self.pending().pop().or_else(|| self.base.done.last().cloned())
+        self.pending()
+            .pop()
+            .or_else(|| self.base.done.last().cloned())
     }
 }
 
@@ -218,17 +301,27 @@ impl Emulator for BissMonitor {
 
     /// Slave `device`'s position in the last frame seen.
     fn last_value(&self, device: usize) -> Option<u64> {
-        self.last()?.get("slaves")?.get(device)?.get("position")?.as_u64()
+        self.last()?
+            .get("slaves")?
+            .get(device)?
+            .get("position")?
+            .as_u64()
     }
 
     /// Slave `device`'s `"error"`, `"warning"` or `"crc_ok"` in the last frame seen.
     fn last_status(&self, device: usize, name: &str) -> Result<bool> {
         if !matches!(name, "error" | "warning" | "crc_ok") {
-            return Err(Error::Usage(format!("biss_monitor: no status `{name}`; give \"error\", \"warning\" or \"crc_ok\"")));
+            return Err(Error::Usage(format!(
+                "biss_monitor: no status `{name}`; give \"error\", \"warning\" or \"crc_ok\""
+            )));
         }
         self.last()
             .and_then(|f| f.get("slaves")?.get(device)?.get(name)?.as_bool())
-            .ok_or_else(|| Error::Usage(format!("biss_monitor: no frame with slave {device} decoded yet")))
+            .ok_or_else(|| {
+                Error::Usage(format!(
+                    "biss_monitor: no frame with slave {device} decoded yet"
+                ))
+            })
     }
 
     fn transcript(&self) -> Value {

@@ -60,7 +60,8 @@ pub const RULE_INTERMISSION: &str = "intermission (ISO 11898-1 10.4.5: 3 recessi
 /// See [`RULE_STUFF`].
 pub const RULE_BIT_TIME: &str = "bit time (ISO 11898-1 11.3: the transmitter's edges on the nominal bit time of the configured bit rate, within the oscillator tolerance and SJW)";
 /// See [`RULE_STUFF`].
-pub const RULE_DOMINANT: &str = "dominant length (ISO 11898-1 10.4.4: no dominant level longer than an error flag, 6 bits)";
+pub const RULE_DOMINANT: &str =
+    "dominant length (ISO 11898-1 10.4.4: no dominant level longer than an error flag, 6 bits)";
 
 /// The monitor's own table (`[monitor]`), every field optional; the CANopen
 /// monitor adds its own fields, which the CAN part ignores.
@@ -94,12 +95,31 @@ impl Timing {
     /// The timing of `t` at `f_sys_hz`, with the `[monitor]` limits.
     pub fn new(t: &BitTiming, f_sys_hz: f64, limits: &CanLimits, origin: &str) -> Result<Timing> {
         let tq = t.brp as f64 * 1e12 / f_sys_hz;
-        let tol = limits.bit_tolerance_percent.unwrap_or(100.0 * t.oscillator_tolerance());
+        let tol = limits
+            .bit_tolerance_percent
+            .unwrap_or(100.0 * t.oscillator_tolerance());
         if !(0.0..=10.0).contains(&tol) {
-            return Err(Error::field(origin, "monitor.bit_tolerance_percent", format!("{tol}"), "give 0 to 10 %"));
+            return Err(Error::field(
+                origin,
+                "monitor.bit_tolerance_percent",
+                format!("{tol}"),
+                "give 0 to 10 %",
+            ));
         }
-        let dom = limit(origin, "monitor.max_dominant_bits", limits.max_dominant_bits.unwrap_or(6.0), "give the longest dominant level in bits (an error flag: 6)")?;
-        Ok(Timing { bit_ps: tq * t.ntq() as f64, sample_point: t.sample_point(), sjw_ps: tq * t.sjw as f64, prop_ps: tq * t.prop_seg as f64, tolerance: tol / 100.0, max_dominant_bits: dom })
+        let dom = limit(
+            origin,
+            "monitor.max_dominant_bits",
+            limits.max_dominant_bits.unwrap_or(6.0),
+            "give the longest dominant level in bits (an error flag: 6)",
+        )?;
+        Ok(Timing {
+            bit_ps: tq * t.ntq() as f64,
+            sample_point: t.sample_point(),
+            sjw_ps: tq * t.sjw as f64,
+            prop_ps: tq * t.prop_seg as f64,
+            tolerance: tol / 100.0,
+            max_dominant_bits: dom,
+        })
     }
 }
 
@@ -151,7 +171,22 @@ pub struct CanWatch {
 impl CanWatch {
     /// A watch at `base`'s clock holding the master to `t`; `describe` gives a frame's transcript entry.
     pub fn new(base: Base, t: Timing, describe: fn(&Seen) -> Value) -> Self {
-        CanWatch { base, t, rx: Signal::named("rx"), tx: Signal::named("tx"), rx_level: true, rx_rise: 0, tx_level: true, tx_fall: 0, dominant_reported: false, open: false, last: None, intact: 0, sent: 0, describe }
+        CanWatch {
+            base,
+            t,
+            rx: Signal::named("rx"),
+            tx: Signal::named("tx"),
+            rx_level: true,
+            rx_rise: 0,
+            tx_level: true,
+            tx_fall: 0,
+            dominant_reported: false,
+            open: false,
+            last: None,
+            intact: 0,
+            sent: 0,
+            describe,
+        }
     }
 
     /// The timing.
@@ -192,7 +227,9 @@ impl CanWatch {
                 // (The bus before this cycle: RXD follows TXD by the loop delay, or at once.)
                 let idle = now - rise_was;
                 if rx_was && idle >= self.bits(7.5) {
-                    let least = 11.0 * self.t.bit_ps * (1.0 - self.t.tolerance) - self.t.prop_ps - 2.0 * cycle as f64;
+                    let least = 11.0 * self.t.bit_ps * (1.0 - self.t.tolerance)
+                        - self.t.prop_ps
+                        - 2.0 * cycle as f64;
                     if (idle as f64) < least {
                         self.base.violation(now, RULE_INTERMISSION, format!("the master's SOF {:.2} bits after the bus's last dominant bit; 11 recessive bits (ACK delimiter and EOF, or error delimiter, and 3 of intermission) come first", idle as f64 / self.t.bit_ps));
                     }
@@ -201,9 +238,21 @@ impl CanWatch {
         }
         if !tx && !self.dominant_reported {
             let held = (now - self.tx_fall) as f64;
-            if held > self.t.max_dominant_bits * self.t.bit_ps * (1.0 + self.t.tolerance) + 2.0 * cycle as f64 {
+            if held
+                > self.t.max_dominant_bits * self.t.bit_ps * (1.0 + self.t.tolerance)
+                    + 2.0 * cycle as f64
+            {
                 self.dominant_reported = true;
-                self.base.violation(now, RULE_DOMINANT, format!("TXD dominant for more than {:.2} bits ({:.3} us) from {:.3} us", self.t.max_dominant_bits, us(now - self.tx_fall), us(self.tx_fall)));
+                self.base.violation(
+                    now,
+                    RULE_DOMINANT,
+                    format!(
+                        "TXD dominant for more than {:.2} bits ({:.3} us) from {:.3} us",
+                        self.t.max_dominant_bits,
+                        us(now - self.tx_fall),
+                        us(self.tx_fall)
+                    ),
+                );
             }
         }
         self.rx.push(now, rx);
@@ -214,7 +263,10 @@ impl CanWatch {
     /// The frames of the window complete by `now` (decoded, not judged).
     fn decoded(&self, now: u64) -> Vec<Decoded> {
         let bit = self.t.bit_ps.round() as u64;
-        decode::frames(&self.rx, bit, self.t.sample_point).into_iter().filter(|d| d.sof_ps + d.bits as u64 * bit <= now).collect()
+        decode::frames(&self.rx, bit, self.t.sample_point)
+            .into_iter()
+            .filter(|d| d.sof_ps + d.bits as u64 * bit <= now)
+            .collect()
     }
 
     /// Judges the window's frames and forgets its line.
@@ -258,9 +310,19 @@ impl CanWatch {
         let tx_at = |w: &CanWatch, k: usize| w.tx.level_at(w.at(sof, k) - lead);
         let rx_at = |w: &CanWatch, k: usize| w.rx.level_at(w.at(sof, k));
         // Arbitration is lost only in the arbitration field (wire bits, stuff bits included).
-        let arbitration = if d.error.is_none() { let a = model::can::frame::arbitration_end(d.ide) as usize; a + a / 4 + 1 } else { 40 };
-        let by_master = !tx_at(self, 0) && (0..stuffed.min(arbitration).max(1)).all(|k| !tx_at(self, k) || rx_at(self, k));
-        let seen = Seen { frame: d, by_master, end_ps };
+        let arbitration = if d.error.is_none() {
+            let a = model::can::frame::arbitration_end(d.ide) as usize;
+            a + a / 4 + 1
+        } else {
+            40
+        };
+        let by_master = !tx_at(self, 0)
+            && (0..stuffed.min(arbitration).max(1)).all(|k| !tx_at(self, k) || rx_at(self, k));
+        let seen = Seen {
+            frame: d,
+            by_master,
+            end_ps,
+        };
         if by_master && !self.grid(&seen, stuffed) {
             return seen;
         }
@@ -287,7 +349,18 @@ impl CanWatch {
         }
         if let Some(&(k, what)) = form.iter().find(|&&(k, _)| !tx_at(self, k)) {
             let t = self.at(d.sof_ps, k);
-            self.base.violation(t, RULE_FORM, format!("TXD dominant in the {what} (wire bit {k}) of a frame {} sent", if by_master { "the master" } else { "another node" }));
+            self.base.violation(
+                t,
+                RULE_FORM,
+                format!(
+                    "TXD dominant in the {what} (wire bit {k}) of a frame {} sent",
+                    if by_master {
+                        "the master"
+                    } else {
+                        "another node"
+                    }
+                ),
+            );
         }
         seen
     }
@@ -298,7 +371,12 @@ impl CanWatch {
     /// slot alone, follows RXD).
     fn lead(&self, sof: u64) -> u64 {
         let bit = self.t.bit_ps as u64;
-        self.tx.edges().iter().rev().find(|&&(t, l)| !l && t <= sof).map_or(0, |&(t, _)| if sof - t < bit { sof - t } else { 0 })
+        self.tx
+            .edges()
+            .iter()
+            .rev()
+            .find(|&&(t, l)| !l && t <= sof)
+            .map_or(0, |&(t, _)| if sof - t < bit { sof - t } else { 0 })
     }
 
     /// Six dominant bits ending at wire bit `k` that are the master's error
@@ -306,7 +384,10 @@ impl CanWatch {
     /// missing stuff bit.
     fn error_flag(&self, sof: u64, lead: u64, k: usize) -> bool {
         let tx = |j: usize| self.tx.level_at(self.at(sof, j) - lead);
-        !self.rx.level_at(self.at(sof, k)) && (k + 1..=k + 7).find(|&j| tx(j)).is_some_and(|j| (j..j + 7).all(tx))
+        !self.rx.level_at(self.at(sof, k))
+            && (k + 1..=k + 7)
+                .find(|&j| tx(j))
+                .is_some_and(|j| (j..j + 7).all(tx))
     }
 
     /// The bit-time rule on the master's TXD edges from its SOF through
@@ -315,7 +396,11 @@ impl CanWatch {
         let bit = self.t.bit_ps;
         let sof_rx = s.frame.sof_ps;
         let edges = self.tx.edges();
-        let Some(&(sof, _)) = edges.iter().rev().find(|&&(t, l)| !l && t <= sof_rx + bit as u64 && t + 2 * bit as u64 >= sof_rx) else {
+        let Some(&(sof, _)) = edges
+            .iter()
+            .rev()
+            .find(|&&(t, l)| !l && t <= sof_rx + bit as u64 && t + 2 * bit as u64 >= sof_rx)
+        else {
             return true;
         };
         // Through the CRC's last bit; a damaged frame (read off the master's
@@ -324,12 +409,24 @@ impl CanWatch {
         let mut last = sof + ((through as f64 + 1.0) * bit) as u64;
         if s.frame.error.is_some() {
             let after: Vec<(u64, bool)> = edges.iter().copied().filter(|&(t, _)| t > sof).collect();
-            last = after.iter().enumerate().find(|&(i, &(t, l))| l && after.get(i + 1).is_none_or(|&(u, _)| (u - t) as f64 >= 7.0 * bit)).map_or(last, |(_, &(t, _))| t + 1).max(last);
+            last = after
+                .iter()
+                .enumerate()
+                .find(|&(i, &(t, l))| {
+                    l && after
+                        .get(i + 1)
+                        .is_none_or(|&(u, _)| (u - t) as f64 >= 7.0 * bit)
+                })
+                .map_or(last, |(_, &(t, _))| t + 1)
+                .max(last);
         }
         let rx_edges = self.rx.edges();
         let cycle = 2.0 * self.base.period_ps as f64;
         for &(t, _) in edges.iter().filter(|&&(t, _)| t > sof && t < last) {
-            let resyncs = rx_edges.iter().filter(|&&(r, l)| !l && r > sof && r < t && self.tx.level_at(r)).count() as f64;
+            let resyncs = rx_edges
+                .iter()
+                .filter(|&&(r, l)| !l && r > sof && r < t && self.tx.level_at(r))
+                .count() as f64;
             let o = (t - sof) as f64;
             let n = (o / bit).round();
             let slack = self.t.tolerance * o + self.t.sjw_ps * (1.0 + resyncs) + cycle;
@@ -348,7 +445,10 @@ impl CanWatch {
         copy.rx = self.rx.clone();
         copy.tx = self.tx.clone();
         copy.base.cycle = self.base.cycle;
-        self.decoded(now).into_iter().map(|d| copy.judge(d)).collect()
+        self.decoded(now)
+            .into_iter()
+            .map(|d| copy.judge(d))
+            .collect()
     }
 
     /// The last frame complete (pending or final).
@@ -361,7 +461,11 @@ impl CanWatch {
         let p = self.pending();
         let intact = p.iter().filter(|s| s.frame.error.is_none()).count() as u64;
         let sent = p.iter().filter(|s| s.by_master).count() as u64;
-        (self.base.done.len() as u64 + p.len() as u64, self.intact + intact, self.sent + sent)
+        (
+            self.base.done.len() as u64 + p.len() as u64,
+            self.intact + intact,
+            self.sent + sent,
+        )
     }
 
     /// `last_value(field)` of the CAN monitors: 0 the last frame's data
@@ -381,7 +485,9 @@ impl CanWatch {
 
     /// `last_status(name)`: `rtr`, `ide`, `ack`, `error` (damaged), `master` (the master sent it) of the last frame.
     pub fn status(&self, kind: &str, name: &str) -> Result<bool> {
-        let s = self.last().ok_or_else(|| Error::Usage(format!("{kind}: no frame decoded yet")))?;
+        let s = self
+            .last()
+            .ok_or_else(|| Error::Usage(format!("{kind}: no frame decoded yet")))?;
         match name {
             "rtr" => Ok(s.frame.rtr),
             "ide" => Ok(s.frame.ide),
@@ -399,7 +505,8 @@ pub fn model_table(whole: &toml::Table, f_mon_hz: u64) -> toml::Table {
     for key in ["monitor", "emulator", "name", "description"] {
         t.remove(key);
     }
-    t.entry("f_sys_mhz").or_insert(toml::Value::Float(f_mon_hz as f64 / 1e6));
+    t.entry("f_sys_mhz")
+        .or_insert(toml::Value::Float(f_mon_hz as f64 / 1e6));
     t
 }
 
@@ -412,7 +519,13 @@ impl CanMonitor {
     /// A monitor from TOML text (`origin` names it in errors) at `f_mon_hz`.
     pub fn from_toml(text: &str, origin: &str, f_mon_hz: u64) -> Result<Self> {
         let tables = config::tables(text, origin, "can")?;
-        config::emulator_clock(f_mon_hz, &tables.emulator, crate::can::MAX_BIT_RATE_KHZ, "the CAN monitor", origin)?;
+        config::emulator_clock(
+            f_mon_hz,
+            &tables.emulator,
+            crate::can::MAX_BIT_RATE_KHZ,
+            "the CAN monitor",
+            origin,
+        )?;
         let whole = proto_table(text, origin, "can")?;
         let limits: CanLimits = config::decode_in(&whole, "monitor", origin)?;
         let mut device = model_table(&whole, f_mon_hz);
@@ -422,7 +535,9 @@ impl CanMonitor {
         let bench: model::can::BenchConfig = config::decode(device, origin)?;
         let timing = bench.bit_timing().map_err(|e| Error::config(origin, e))?;
         let t = Timing::new(&timing, bench.f_sys_mhz * 1e6, &limits, origin)?;
-        Ok(CanMonitor { watch: CanWatch::new(Base::new(f_mon_hz), t, Seen::json) })
+        Ok(CanMonitor {
+            watch: CanWatch::new(Base::new(f_mon_hz), t, Seen::json),
+        })
     }
 }
 
@@ -445,7 +560,10 @@ impl Emulator for CanMonitor {
     }
 
     fn schedule_fault(&mut self, _: &str) -> Result<()> {
-        Err(listens_only("can_monitor", "frames to send or faults to schedule"))
+        Err(listens_only(
+            "can_monitor",
+            "frames to send or faults to schedule",
+        ))
     }
 
     /// Frames seen so far (complete ones, damaged ones included).

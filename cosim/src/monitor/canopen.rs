@@ -59,7 +59,8 @@ pub const RULE_GUARD: &str = "node guarding (DS 301: the master guards each node
 /// See [`RULE_SDO`].
 pub const RULE_GUARD_HEARTBEAT: &str = "node guarding (DS 301: one error control service per node; a node with a producer heartbeat time 1017h is not guarded)";
 /// See [`RULE_SDO`].
-pub const RULE_SYNC: &str = "SYNC period (the master's configured SYNC period, `sync_period_us`; the seeds state none)";
+pub const RULE_SYNC: &str =
+    "SYNC period (the master's configured SYNC period, `sync_period_us`; the seeds state none)";
 /// See [`RULE_SDO`].
 pub const RULE_SAR: &str = "SAR58K24 command (seed 001 §3.4 (3): each command is answered; the next command to the node after the answer or the answer timeout)";
 
@@ -108,32 +109,71 @@ pub struct CanopenMonitor {
 }
 
 fn le32(d: &[u8]) -> u64 {
-    d.iter().take(4).enumerate().fold(0, |a, (k, &b)| a | (b as u64) << (8 * k))
+    d.iter()
+        .take(4)
+        .enumerate()
+        .fold(0, |a, (k, &b)| a | (b as u64) << (8 * k))
 }
 
 impl CanopenMonitor {
     /// A monitor from TOML text (`origin` names it in errors) at `f_mon_hz`.
     pub fn from_toml(text: &str, origin: &str, f_mon_hz: u64) -> Result<Self> {
         let tables = config::tables(text, origin, "canopen")?;
-        config::emulator_clock(f_mon_hz, &tables.emulator, crate::canopen::MAX_BIT_RATE_KHZ, "the CANopen monitor", origin)?;
+        config::emulator_clock(
+            f_mon_hz,
+            &tables.emulator,
+            crate::canopen::MAX_BIT_RATE_KHZ,
+            "the CANopen monitor",
+            origin,
+        )?;
         let whole = proto_table(text, origin, "canopen")?;
         let mon: MonitorTable = config::decode_in(&whole, "monitor", origin)?;
         let mut device = model_table(&whole, f_mon_hz);
         device.remove("tool");
         device.remove("faults");
         let bench: model::canopen::BenchConfig = config::decode(device, origin)?;
-        let master = bench.master_config().map_err(|e| Error::config(origin, e))?;
-        let limits = CanLimits { bit_tolerance_percent: mon.bit_tolerance_percent, max_dominant_bits: mon.max_dominant_bits };
+        let master = bench
+            .master_config()
+            .map_err(|e| Error::config(origin, e))?;
+        let limits = CanLimits {
+            bit_tolerance_percent: mon.bit_tolerance_percent,
+            max_dominant_bits: mon.max_dominant_bits,
+        };
         let t = Timing::new(&master.can.timing, bench.f_sys_mhz * 1e6, &limits, origin)?;
         let ps = |us: f64| (us * 1e6).round() as u64;
-        let sdo = limit(origin, "monitor.sdo_timeout_us", mon.sdo_timeout_us.unwrap_or(bench.master.sdo_timeout_us), "give the master's SDO timeout in µs")?;
-        let sync = limit(origin, "monitor.sync_period_us", mon.sync_period_us.unwrap_or(bench.master.sync_period_us), "give the master's SYNC period in µs (0: not checked)")?;
-        let guard_tol = limit(origin, "monitor.guard_tolerance_percent", mon.guard_tolerance_percent.unwrap_or(10.0), "give the guard period's tolerance in %")?;
+        let sdo = limit(
+            origin,
+            "monitor.sdo_timeout_us",
+            mon.sdo_timeout_us.unwrap_or(bench.master.sdo_timeout_us),
+            "give the master's SDO timeout in µs",
+        )?;
+        let sync = limit(
+            origin,
+            "monitor.sync_period_us",
+            mon.sync_period_us.unwrap_or(bench.master.sync_period_us),
+            "give the master's SYNC period in µs (0: not checked)",
+        )?;
+        let guard_tol = limit(
+            origin,
+            "monitor.guard_tolerance_percent",
+            mon.guard_tolerance_percent.unwrap_or(10.0),
+            "give the guard period's tolerance in %",
+        )?;
         let guard_ms = match mon.guard_time_ms {
-            Some(g) => Some(limit(origin, "monitor.guard_time_ms", g, "give the guard time in ms (0: guarding off)")?),
+            Some(g) => Some(limit(
+                origin,
+                "monitor.guard_time_ms",
+                g,
+                "give the guard time in ms (0: guarding off)",
+            )?),
             None => None,
         };
-        let sar = limit(origin, "monitor.sar_answer_timeout_us", mon.sar_answer_timeout_us.unwrap_or(10_000.0), "give the time after which a SAR58K24 command counts as unanswered, in µs")?;
+        let sar = limit(
+            origin,
+            "monitor.sar_answer_timeout_us",
+            mon.sar_answer_timeout_us.unwrap_or(10_000.0),
+            "give the time after which a SAR58K24 command counts as unanswered, in µs",
+        )?;
         Ok(CanopenMonitor {
             watch: CanWatch::new(Base::new(f_mon_hz), t, CanopenMonitor::json),
             nodes: BTreeMap::new(),
@@ -144,7 +184,11 @@ impl CanopenMonitor {
             guard_tol: guard_tol / 100.0,
             sar_timeout: ps(sar),
             sar_bases: bench.sar.iter().map(|s| s.encoder.answer_base).collect(),
-            ds406: bench.encoders.iter().map(|e| e.encoder.node_switch).collect(),
+            ds406: bench
+                .encoders
+                .iter()
+                .map(|e| e.encoder.node_switch)
+                .collect(),
             config_cmd: None,
             last_sync: None,
             last_position: None,
@@ -166,7 +210,8 @@ impl CanopenMonitor {
         let frame_time = self.bits(160.0);
         let mut found: Vec<(u64, &'static str, String)> = Vec::new();
         let service = classify(f.id as u16);
-        if matches!(service, Service::Tpdo1(_) | Service::Tpdo2(_)) && d.len() >= 4 && !s.by_master {
+        if matches!(service, Service::Tpdo1(_) | Service::Tpdo2(_)) && d.len() >= 4 && !s.by_master
+        {
             self.last_position = Some(le32(&d));
         }
         if !s.by_master {
@@ -180,7 +225,10 @@ impl CanopenMonitor {
                 self.config_cmd = None;
             }
             for &b in &self.sar_bases {
-                if let Some(n) = (f.id as u16).checked_sub(b).filter(|&n| (1..=0x7F).contains(&n)) {
+                if let Some(n) = (f.id as u16)
+                    .checked_sub(b)
+                    .filter(|&n| (1..=0x7F).contains(&n))
+                {
                     self.nodes.entry(n as u8).or_default().sar = None;
                 }
             }
@@ -191,14 +239,22 @@ impl CanopenMonitor {
             Service::SdoRx(n) if !f.rtr && d.len() == 8 => {
                 let node = self.nodes.entry(n).or_default();
                 let abort = d[0] >> 5 == 4;
-                if let Some(prev) = node.sdo.filter(|&p| !abort && sof < p + self.sdo_timeout - slack.min(self.sdo_timeout)) {
+                if let Some(prev) = node
+                    .sdo
+                    .filter(|&p| !abort && sof < p + self.sdo_timeout - slack.min(self.sdo_timeout))
+                {
                     found.push((sof, RULE_SDO, format!("SDO request to node {n} {:.3} us after the end of the previous one, which node {n} has not answered; the SDO timeout is {:.3} us", us(sof - prev), us(self.sdo_timeout))));
                 }
                 node.sdo = (!abort).then_some(end);
                 // Expedited downloads of the guard time and the producer heartbeat time.
                 if d[0] & 0xE3 == 0x23 || d[0] == 0x22 {
                     let (index, subi) = (u16::from_le_bytes([d[1], d[2]]), d[3]);
-                    let v = le32(&d[4..]) & if d[0] & 1 != 0 { 0xFFFF_FFFF >> (8 * ((d[0] >> 2) & 3)) } else { 0xFFFF_FFFF };
+                    let v = le32(&d[4..])
+                        & if d[0] & 1 != 0 {
+                            0xFFFF_FFFF >> (8 * ((d[0] >> 2) & 3))
+                        } else {
+                            0xFFFF_FFFF
+                        };
                     match (index, subi) {
                         (0x100C, 0) => node.guard_ms = Some(v as f64),
                         (0x1017, 0) => node.heartbeat = v != 0,
@@ -209,9 +265,30 @@ impl CanopenMonitor {
             Service::Nmt if d.len() >= 2 && !f.rtr => {
                 let (cmd, n) = (d[0], d[1]);
                 if cmd == 0x01 {
-                    let again = self.all_started || if n == 0 { self.nodes.values().any(|x| x.started) } else { self.nodes.get(&n).is_some_and(|x| x.started) };
+                    let again = self.all_started
+                        || if n == 0 {
+                            self.nodes.values().any(|x| x.started)
+                        } else {
+                            self.nodes.get(&n).is_some_and(|x| x.started)
+                        };
                     if again {
-                        found.push((sof, RULE_NMT, format!("NMT start ({}) while {} already started by the master", if n == 0 { "all nodes".into() } else { format!("node {n}") }, if n == 0 { "a node was".to_string() } else { format!("node {n} was") })));
+                        found.push((
+                            sof,
+                            RULE_NMT,
+                            format!(
+                                "NMT start ({}) while {} already started by the master",
+                                if n == 0 {
+                                    "all nodes".into()
+                                } else {
+                                    format!("node {n}")
+                                },
+                                if n == 0 {
+                                    "a node was".to_string()
+                                } else {
+                                    format!("node {n} was")
+                                }
+                            ),
+                        ));
                     }
                     if n == 0 {
                         self.all_started = true;
@@ -245,9 +322,19 @@ impl CanopenMonitor {
             Service::Sync if d.is_empty() && !f.rtr && self.sync_period > 0 => {
                 if let Some(prev) = self.last_sync {
                     let gap = sof - prev;
-                    let tol = (self.sync_period as f64 * self.watch.timing().tolerance) as u64 + frame_time + slack;
+                    let tol = (self.sync_period as f64 * self.watch.timing().tolerance) as u64
+                        + frame_time
+                        + slack;
                     if gap + tol < self.sync_period || gap > self.sync_period + tol {
-                        found.push((sof, RULE_SYNC, format!("SYNC {:.3} us after the previous one; the period is {:.3} us", us(gap), us(self.sync_period))));
+                        found.push((
+                            sof,
+                            RULE_SYNC,
+                            format!(
+                                "SYNC {:.3} us after the previous one; the period is {:.3} us",
+                                us(gap),
+                                us(self.sync_period)
+                            ),
+                        ));
                     }
                 }
                 self.last_sync = Some(sof);
@@ -293,7 +380,10 @@ impl CanopenMonitor {
             v["meaning"] = Value::from(m.text);
         } else {
             v["service"] = Value::Null;
-            v["meaning"] = Value::from(format!("damaged frame ({})", s.frame.error.as_deref().unwrap_or("")));
+            v["meaning"] = Value::from(format!(
+                "damaged frame ({})",
+                s.frame.error.as_deref().unwrap_or("")
+            ));
         }
         v
     }
@@ -320,7 +410,10 @@ impl Emulator for CanopenMonitor {
     }
 
     fn schedule_fault(&mut self, _: &str) -> Result<()> {
-        Err(listens_only("canopen_monitor", "frames to send or faults to schedule"))
+        Err(listens_only(
+            "canopen_monitor",
+            "frames to send or faults to schedule",
+        ))
     }
 
     /// Frames seen so far (complete ones, damaged ones included).
@@ -333,7 +426,16 @@ impl Emulator for CanopenMonitor {
     /// endian) of the last TPDO1/TPDO2 another node sent.
     fn last_value(&self, field: usize) -> Option<u64> {
         if field == 5 {
-            let pending = self.watch.pending().into_iter().rev().find(|s| !s.by_master && s.frame.error.is_none() && !s.frame.ide && matches!(classify(s.frame.id as u16), Service::Tpdo1(_) | Service::Tpdo2(_)) && s.frame.data.len() >= 4);
+            let pending = self.watch.pending().into_iter().rev().find(|s| {
+                !s.by_master
+                    && s.frame.error.is_none()
+                    && !s.frame.ide
+                    && matches!(
+                        classify(s.frame.id as u16),
+                        Service::Tpdo1(_) | Service::Tpdo2(_)
+                    )
+                    && s.frame.data.len() >= 4
+            });
             return pending.map(|s| le32(&s.frame.data)).or(self.last_position);
         }
         self.watch.value(field)
@@ -344,8 +446,15 @@ impl Emulator for CanopenMonitor {
     }
 
     fn transcript(&self) -> Value {
-        let pending = self.watch.pending().iter().map(CanopenMonitor::json).collect();
-        self.watch.base.transcript("canopen", &["rx", "tx"], pending)
+        let pending = self
+            .watch
+            .pending()
+            .iter()
+            .map(CanopenMonitor::json)
+            .collect();
+        self.watch
+            .base
+            .transcript("canopen", &["rx", "tx"], pending)
     }
 
     fn checks(&mut self) -> &mut crate::check::Checks {

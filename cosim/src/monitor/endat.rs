@@ -82,7 +82,8 @@ pub const RULE_FC_MAX: &str = "f_c (seed 004 EnDat 2.2, 2.3.2 and 2.1.1: f_c up 
 /// See [`RULE_FC_MAX`].
 pub const RULE_FC_MIN: &str = "f_c (seed 004 EnDat 2.2, 2.3.2: f_c at least 100 kHz)";
 /// See [`RULE_FC_MAX`].
-pub const RULE_ON_OFF: &str = "on-off ratio (seed 004 EnDat 2.2, 2.3.2: on-off ratio error within 10 %)";
+pub const RULE_ON_OFF: &str =
+    "on-off ratio (seed 004 EnDat 2.2, 2.3.2: on-off ratio error within 10 %)";
 /// See [`RULE_FC_MAX`].
 pub const RULE_T_ST: &str = "t_ST (seed 004 EnDat 2.2, 2.3 and 2.3.2 note 8: the first clock's low level t_ST = 2 us for f_c = 2 to 8 MHz, 1 us at 16 MHz)";
 /// See [`RULE_FC_MAX`].
@@ -178,39 +179,120 @@ impl EndatMonitor {
     /// A monitor from TOML text (`origin` names it in errors) at `f_mon_hz`.
     pub fn from_toml(text: &str, origin: &str, f_mon_hz: u64) -> Result<Self> {
         let tables = config::tables(text, origin, "endat")?;
-        config::emulator_clock(f_mon_hz, &tables.emulator, MAX_CLOCK_KHZ, "the EnDat monitor", origin)?;
+        config::emulator_clock(
+            f_mon_hz,
+            &tables.emulator,
+            MAX_CLOCK_KHZ,
+            "the EnDat monitor",
+            origin,
+        )?;
         let whole = proto_table(text, origin, "endat")?;
         let checks: EndatChecks = config::decode_in(&whole, "checks", origin)?;
         let encoder: EncoderSettings = config::decode_in(&whole, "encoder", origin)?;
         let master: MasterSettings = config::decode_in(&whole, "master", origin)?;
         let cable: CableConfig = config::decode_in(&whole, "cable", origin)?;
         let mon: MonitorTable = config::decode_in(&whole, "monitor", origin)?;
-        let pos_bits = mon.pos_bits.unwrap_or(encoder.singleturn_bits + encoder.multiturn_bits);
+        let pos_bits = mon
+            .pos_bits
+            .unwrap_or(encoder.singleturn_bits + encoder.multiturn_bits);
         if !(1..=48).contains(&pos_bits) {
-            return Err(Error::field(origin, "monitor.pos_bits", format!("{pos_bits} bits"), "give 1 to 48 position bits (default: encoder.singleturn_bits + multiturn_bits)"));
+            return Err(Error::field(
+                origin,
+                "monitor.pos_bits",
+                format!("{pos_bits} bits"),
+                "give 1 to 48 position bits (default: encoder.singleturn_bits + multiturn_bits)",
+            ));
         }
         let delay_comp = mon.delay_comp.unwrap_or(master.delay_comp);
-        let max_clock_khz = mon.max_clock_khz.unwrap_or(if delay_comp { checks.max_clock_khz } else { 2000.0 });
+        let max_clock_khz = mon.max_clock_khz.unwrap_or(if delay_comp {
+            checks.max_clock_khz
+        } else {
+            2000.0
+        });
         let min_clock_khz = mon.min_clock_khz.unwrap_or(100.0);
         if !(min_clock_khz > 0.0 && min_clock_khz <= max_clock_khz && max_clock_khz < 1e6) {
             return Err(Error::field(origin, "monitor.min_clock_khz", format!("{min_clock_khz} to {max_clock_khz} kHz"), "give 0 < min_clock_khz <= max_clock_khz (seed: 100 kHz, and 2000 without or 8000 with delay compensation)"));
         }
-        let on_off = limit(origin, "monitor.on_off_percent", mon.on_off_percent.unwrap_or(10.0), "give the on-off ratio error in percent (seed: 10)")?;
-        let t_st_us = mon.t_st_us.map(|v| limit(origin, "monitor.t_st_us", v, "give the least first low phase in µs (seed: 2 from 2 to 8 MHz)")).transpose()?;
+        let on_off = limit(
+            origin,
+            "monitor.on_off_percent",
+            mon.on_off_percent.unwrap_or(10.0),
+            "give the on-off ratio error in percent (seed: 10)",
+        )?;
+        let t_st_us = mon
+            .t_st_us
+            .map(|v| {
+                limit(
+                    origin,
+                    "monitor.t_st_us",
+                    v,
+                    "give the least first low phase in µs (seed: 2 from 2 to 8 MHz)",
+                )
+            })
+            .transpose()?;
         let short = encoder.recovery_short;
-        let (t_m22, t_m22_field) = first_given([("monitor.t_m_us", mon.t_m_us), ("encoder.t_m_us", encoder.t_m_us)], if short { 2.0 } else { 15.0 });
+        let (t_m22, t_m22_field) = first_given(
+            [
+                ("monitor.t_m_us", mon.t_m_us),
+                ("encoder.t_m_us", encoder.t_m_us),
+            ],
+            if short { 2.0 } else { 15.0 },
+        );
         let t_m22 = limit(origin, t_m22_field, t_m22, "give the encoder's recovery time I of type 2.2 frames in µs (seed: 10 to 30, or 1.25 to 3.75)")?;
-        let (t_m21, t_m21_field) = first_given([("monitor.t_m21_us", mon.t_m21_us), ("encoder.t_m21_us", Some(encoder.t_m21_us))], 0.0);
-        let t_m21 = limit(origin, t_m21_field, t_m21, "give the encoder's recovery time I of type 2.1 frames in µs (seed: 10 to 30)")?;
-        let t_r = limit(origin, "monitor.t_r_us", mon.t_r_us.unwrap_or(0.5), "give recovery time II in µs (seed: at least 0.5)")?;
-        let round_trip = mon.round_trip_ns.unwrap_or(2.0 * cable.length_m * cable.ns_per_m + encoder.output_delay_ns);
-        let round_trip = limit(origin, "monitor.round_trip_ns", round_trip, "give the round trip (cable both ways and the encoder's output delay) in ns")?;
-        let t_err = limit(origin, "monitor.t_err_us", mon.t_err_us.unwrap_or(30.0), "give the wait after an error in µs (seed: 30)")?;
-        let t_b = limit(origin, "monitor.t_b_us", mon.t_b_us.unwrap_or(checks.t_b_us), "give t_b in µs (seed: more than 1000)")?;
-        let meas_below_khz = limit(origin, "monitor.meas_frame_below_khz", mon.meas_frame_below_khz.unwrap_or(500.0), "give the clock below which a 000111 transfer is a delay measurement, kHz")?;
+        let (t_m21, t_m21_field) = first_given(
+            [
+                ("monitor.t_m21_us", mon.t_m21_us),
+                ("encoder.t_m21_us", Some(encoder.t_m21_us)),
+            ],
+            0.0,
+        );
+        let t_m21 = limit(
+            origin,
+            t_m21_field,
+            t_m21,
+            "give the encoder's recovery time I of type 2.1 frames in µs (seed: 10 to 30)",
+        )?;
+        let t_r = limit(
+            origin,
+            "monitor.t_r_us",
+            mon.t_r_us.unwrap_or(0.5),
+            "give recovery time II in µs (seed: at least 0.5)",
+        )?;
+        let round_trip = mon
+            .round_trip_ns
+            .unwrap_or(2.0 * cable.length_m * cable.ns_per_m + encoder.output_delay_ns);
+        let round_trip = limit(
+            origin,
+            "monitor.round_trip_ns",
+            round_trip,
+            "give the round trip (cable both ways and the encoder's output delay) in ns",
+        )?;
+        let t_err = limit(
+            origin,
+            "monitor.t_err_us",
+            mon.t_err_us.unwrap_or(30.0),
+            "give the wait after an error in µs (seed: 30)",
+        )?;
+        let t_b = limit(
+            origin,
+            "monitor.t_b_us",
+            mon.t_b_us.unwrap_or(checks.t_b_us),
+            "give t_b in µs (seed: more than 1000)",
+        )?;
+        let meas_below_khz = limit(
+            origin,
+            "monitor.meas_frame_below_khz",
+            mon.meas_frame_below_khz.unwrap_or(500.0),
+            "give the clock below which a 000111 transfer is a delay measurement, kHz",
+        )?;
         let meas_clock_khz = mon.meas_clock_khz.unwrap_or(master.meas_clock_khz);
         if !(meas_clock_khz > 0.0 && meas_clock_khz < 1e6) {
-            return Err(Error::field(origin, "monitor.meas_clock_khz", format!("{meas_clock_khz} kHz"), "give the master's measuring clock in kHz (seed: 100 to 200)"));
+            return Err(Error::field(
+                origin,
+                "monitor.meas_clock_khz",
+                format!("{meas_clock_khz} kHz"),
+                "give the master's measuring clock in kHz (seed: 100 to 200)",
+            ));
         }
         let base = Base::new(f_mon_hz);
         let tol = base.period_ps;
@@ -233,9 +315,14 @@ impl EndatMonitor {
             meas_phase: (least(0.45 * 1e3 / 200.0), ps(0.55 * 1e3 / 100.0) + tol),
             meas_frames_min: mon.meas_frames_min.unwrap_or(3),
         };
-        let opts = Options { pos_bits, meas_khz: delay_comp.then_some(meas_clock_khz) };
+        let opts = Options {
+            pos_bits,
+            meas_khz: delay_comp.then_some(meas_clock_khz),
+        };
         Ok(EndatMonitor {
-            decoder: Decoder::new(&opts).map_err(|e| Error::field(origin, "monitor.pos_bits", e, "give 1 to 48 position bits"))?,
+            decoder: Decoder::new(&opts).map_err(|e| {
+                Error::field(origin, "monitor.pos_bits", e, "give 1 to 48 position bits")
+            })?,
             opts,
             lim,
             base,
@@ -266,13 +353,20 @@ impl EndatMonitor {
 
     /// The transfers since the last decoded one (the decoder's state is not changed).
     fn pending(&self) -> Vec<Value> {
-        let Some(b) = &self.cur else { return Vec::new() };
+        let Some(b) = &self.cur else {
+            return Vec::new();
+        };
         let mut d = self.decoder.clone();
-        d.burst(b, &self.data, &self.opts).into_iter().map(|t| serde_json::to_value(t).unwrap_or(Value::Null)).collect()
+        d.burst(b, &self.data, &self.opts)
+            .into_iter()
+            .map(|t| serde_json::to_value(t).unwrap_or(Value::Null))
+            .collect()
     }
 
     fn last(&self) -> Option<Value> {
-        self.pending().pop().or_else(|| self.base.done.last().cloned())
+        self.pending()
+            .pop()
+            .or_else(|| self.base.done.last().cloned())
     }
 
     fn khz(b: &Burst) -> f64 {
@@ -280,22 +374,38 @@ impl EndatMonitor {
     }
 
     fn is_measurement(&self, b: &Burst) -> bool {
-        self.lim.delay_comp && b.mode(&self.data) == Some(Command::Pos21.code()) && Self::khz(b) < self.lim.meas_below_khz
+        self.lim.delay_comp
+            && b.mode(&self.data) == Some(Command::Pos21.code())
+            && Self::khz(b) < self.lim.meas_below_khz
     }
 
     /// The burst is over: decode it, check its measurement rules, remember it.
     fn finish(&mut self, now: u64) {
         let Some(b) = self.cur.take() else { return };
         let list = self.decoder.burst(&b, &self.data, &self.opts);
-        let error = list.iter().any(|t| t.errors.as_ref().is_some_and(|e| e.iter().any(|e| matches!(e.as_str(), "no_start_bit" | "line_not_driven" | "framing"))));
+        let error = list.iter().any(|t| {
+            t.errors.as_ref().is_some_and(|e| {
+                e.iter()
+                    .any(|e| matches!(e.as_str(), "no_start_bit" | "line_not_driven" | "framing"))
+            })
+        });
         let mode = b.mode(&self.data);
         let start = b.falls[0];
         if self.is_measurement(&b) {
             self.meas_run += 1;
             let (lo, hi) = self.lim.meas_phase;
-            let mut edges: Vec<(u64, bool)> = b.falls.iter().map(|&t| (t, false)).chain(b.rises.iter().map(|&t| (t, true))).collect();
+            let mut edges: Vec<(u64, bool)> = b
+                .falls
+                .iter()
+                .map(|&t| (t, false))
+                .chain(b.rises.iter().map(|&t| (t, true)))
+                .collect();
             edges.sort_unstable();
-            let bad: Vec<(u64, u64, bool)> = edges.windows(2).map(|w| (w[1].0, w[1].0 - w[0].0, w[1].1)).filter(|&(_, len, _)| len < lo || len > hi).collect();
+            let bad: Vec<(u64, u64, bool)> = edges
+                .windows(2)
+                .map(|w| (w[1].0, w[1].0 - w[0].0, w[1].1))
+                .filter(|&(_, len, _)| len < lo || len > hi)
+                .collect();
             if let Some(&(t, len, rose)) = bad.first() {
                 let phase = if rose { "low" } else { "high" };
                 self.base.violation(t, RULE_MEAS_CLOCK, format!("delay measurement frame at {:.3} us: clock {phase} for {:.3} us ({} phase(s) of this frame outside {:.3} to {:.3} us)", us(start), us(len), bad.len(), us(lo + self.base.period_ps), us(hi - self.base.period_ps)));
@@ -303,9 +413,21 @@ impl EndatMonitor {
         } else {
             self.end_of_measurement(start);
         }
-        self.base.done.extend(list.into_iter().map(|t| serde_json::to_value(t).unwrap_or(Value::Null)));
-        let last_edge = b.rises.last().copied().unwrap_or(start).max(b.falls.last().copied().unwrap_or(start));
-        self.prev = Some(Previous { last_edge, mode, error });
+        self.base.done.extend(
+            list.into_iter()
+                .map(|t| serde_json::to_value(t).unwrap_or(Value::Null)),
+        );
+        let last_edge = b
+            .rises
+            .last()
+            .copied()
+            .unwrap_or(start)
+            .max(b.falls.last().copied().unwrap_or(start));
+        self.prev = Some(Previous {
+            last_edge,
+            mode,
+            error,
+        });
         self.clk.forget_before(now);
         self.data.forget_before(now);
     }
@@ -332,7 +454,10 @@ impl EndatMonitor {
         }
         let Some(p) = self.prev.clone() else { return };
         let gap = now - p.last_edge;
-        let is21 = p.mode.and_then(Command::from_code).is_some_and(|c| !c.is_type22());
+        let is21 = p
+            .mode
+            .and_then(Command::from_code)
+            .is_some_and(|c| !c.is_type22());
         let t_m = if is21 { self.lim.t_m21 } else { self.lim.t_m22 };
         let tol = self.base.period_ps;
         if is21 && gap < self.lim.t_b {
@@ -353,28 +478,66 @@ impl EndatMonitor {
     fn check_edge(&mut self, now: u64, rose: bool) {
         let Some(b) = &self.cur else { return };
         let (nf, nr) = (b.falls.len(), b.rises.len());
-        let len = if rose { now - b.falls[nf - 1] } else { now - b.rises[nr - 1] };
+        let len = if rose {
+            now - b.falls[nf - 1]
+        } else {
+            now - b.rises[nr - 1]
+        };
         let phase = if rose { "low" } else { "high" };
         let mut found: Vec<(u64, &'static str, String)> = Vec::new();
         if len < self.lim.phase_min {
-            found.push((now, RULE_FC_MAX, format!("clock {phase} for {:.3} us within a transfer (at {:.0} kHz at most: {:.3} us)", us(len), self.lim.max_clock_khz, us(self.lim.phase_min + self.base.period_ps))));
+            found.push((
+                now,
+                RULE_FC_MAX,
+                format!(
+                    "clock {phase} for {:.3} us within a transfer (at {:.0} kHz at most: {:.3} us)",
+                    us(len),
+                    self.lim.max_clock_khz,
+                    us(self.lim.phase_min + self.base.period_ps)
+                ),
+            ));
         }
         if !rose && nf >= 2 {
             let period = now - b.falls[nf - 1];
             let low = b.rises[nr - 1] - b.falls[nf - 1];
             if period > self.lim.period_max {
-                found.push((now, RULE_FC_MIN, format!("clock period {:.3} us within a transfer (100 kHz: 10 us at most)", us(period))));
+                found.push((
+                    now,
+                    RULE_FC_MIN,
+                    format!(
+                        "clock period {:.3} us within a transfer (100 kHz: 10 us at most)",
+                        us(period)
+                    ),
+                ));
             }
             let diff = len.abs_diff(low) as f64;
             if diff > self.lim.on_off * period as f64 + 2.0 * self.base.period_ps as f64 {
-                found.push((now, RULE_ON_OFF, format!("clock high {:.3} us and low {:.3} us in a period of {:.3} us", us(len), us(low), us(period))));
+                found.push((
+                    now,
+                    RULE_ON_OFF,
+                    format!(
+                        "clock high {:.3} us and low {:.3} us in a period of {:.3} us",
+                        us(len),
+                        us(low),
+                        us(period)
+                    ),
+                ));
             }
             if nf == 2 {
                 // F3: the clock is known, so is t_ST of its first low phase.
                 let khz = 1e9 / period.max(1) as f64;
                 let first = b.rises[0] - b.falls[0];
                 if let Some(need) = self.t_st(khz).filter(|&n| first < n) {
-                    found.push((b.rises[0], RULE_T_ST, format!("first low phase {:.3} us at a {:.0} kHz clock; t_ST is {:.3} us", us(first), khz, us(need + self.base.period_ps))));
+                    found.push((
+                        b.rises[0],
+                        RULE_T_ST,
+                        format!(
+                            "first low phase {:.3} us at a {:.0} kHz clock; t_ST is {:.3} us",
+                            us(first),
+                            khz,
+                            us(need + self.base.period_ps)
+                        ),
+                    ));
                 }
             }
         }
@@ -382,7 +545,11 @@ impl EndatMonitor {
             // R8 (R37 after a type 2.1 parameter command's block): the master's driver must be off.
             let k = nr + 1;
             let mode = b.mode(&self.data);
-            let r_off = if mode.map(frame_kind) == Some(FrameKind::Param21) { 8 + BLOCK_BITS as usize } else { 8 };
+            let r_off = if mode.map(frame_kind) == Some(FrameKind::Param21) {
+                8 + BLOCK_BITS as usize
+            } else {
+                8
+            };
             if k == r_off && self.de_now {
                 found.push((now, RULE_SEND_BLOCK, format!("the master's data driver still on at R{k} (mode {:06b}), where the encoder drives", mode.unwrap_or(0))));
             }
@@ -400,12 +567,23 @@ impl Emulator for EndatMonitor {
 
     fn step(&mut self, pins: Pins) -> Pins {
         let now = self.base.now_ps();
-        let (clk, d, de, rx) = (pins.0 & 1 != 0, pins.0 & 2 != 0, pins.0 & 4 != 0, pins.0 & 8 != 0);
+        let (clk, d, de, rx) = (
+            pins.0 & 1 != 0,
+            pins.0 & 2 != 0,
+            pins.0 & 4 != 0,
+            pins.0 & 8 != 0,
+        );
         let line = if de { d } else { rx };
         // A burst is over once a falling edge would no longer continue it; it is decoded 10 us (t_HI's maximum)
         // after its last edge, when every bit the encoder sent has crossed the cable back (or at the next start).
         let settled = |b: &Burst| b.rises.last().is_some_and(|&r| now - r > SETTLE_PS);
-        if clk && self.clk_now && self.cur.as_ref().is_some_and(|b| b.falls.len() >= 2 && !b.continues_at(now) && settled(b)) {
+        if clk
+            && self.clk_now
+            && self
+                .cur
+                .as_ref()
+                .is_some_and(|b| b.falls.len() >= 2 && !b.continues_at(now) && settled(b))
+        {
             self.finish(now);
         }
         // The data line first, so that the clock edge of this cycle sees it.
@@ -429,13 +607,24 @@ impl Emulator for EndatMonitor {
                     self.finish(now);
                 }
                 self.check_start(now);
-                self.cur = Some(Burst { falls: vec![now], rises: Vec::new() });
+                self.cur = Some(Burst {
+                    falls: vec![now],
+                    rises: Vec::new(),
+                });
             }
         }
         self.clk.push(now, clk);
         if de && !self.de_now && self.cur.as_ref().is_none_or(|b| b.falls.len() < 2) {
-            let when = if self.cur.is_some() { "between the first and the second falling clock edge (t_ST)" } else { "outside a transfer" };
-            self.base.violation(now, RULE_SEND_BLOCK, format!("the master switched its data driver on {when}"));
+            let when = if self.cur.is_some() {
+                "between the first and the second falling clock edge (t_ST)"
+            } else {
+                "outside a transfer"
+            };
+            self.base.violation(
+                now,
+                RULE_SEND_BLOCK,
+                format!("the master switched its data driver on {when}"),
+            );
         }
         if !de && line && !self.line_now {
             self.line_rise = Some(now);
@@ -470,18 +659,36 @@ impl Emulator for EndatMonitor {
     /// `"f1"`, `"f2"` (as the master reads them: F2 is low-active, `true` is no error), `"crc_ok"` (no `crc`
     /// error), `"error"` (any error flagged) of the last transaction seen.
     fn last_status(&self, _: usize, name: &str) -> Result<bool> {
-        let t = self.last().ok_or_else(|| Error::Usage("endat_monitor: no transfer decoded yet".into()))?;
-        let errors: Vec<&str> = t["errors"].as_array().map(|e| e.iter().filter_map(|x| x.as_str()).collect()).unwrap_or_default();
+        let t = self
+            .last()
+            .ok_or_else(|| Error::Usage("endat_monitor: no transfer decoded yet".into()))?;
+        let errors: Vec<&str> = t["errors"]
+            .as_array()
+            .map(|e| e.iter().filter_map(|x| x.as_str()).collect())
+            .unwrap_or_default();
         match name {
-            "f1" | "f2" => t[name].as_bool().ok_or_else(|| Error::Usage(format!("endat_monitor: the last transfer carried no {}", name.to_uppercase()))),
+            "f1" | "f2" => t[name].as_bool().ok_or_else(|| {
+                Error::Usage(format!(
+                    "endat_monitor: the last transfer carried no {}",
+                    name.to_uppercase()
+                ))
+            }),
             "crc_ok" => Ok(!errors.contains(&"crc")),
-            "error" | "errors" => Ok(errors.iter().any(|e| !matches!(*e, "f1_error" | "f2_error"))),
-            other => Err(Error::Usage(format!("endat_monitor: no status `{other}`; give \"f1\", \"f2\", \"crc_ok\" or \"error\""))),
+            "error" | "errors" => Ok(errors
+                .iter()
+                .any(|e| !matches!(*e, "f1_error" | "f2_error"))),
+            other => Err(Error::Usage(format!(
+                "endat_monitor: no status `{other}`; give \"f1\", \"f2\", \"crc_ok\" or \"error\""
+            ))),
         }
     }
 
     fn transcript(&self) -> Value {
-        self.base.transcript("endat", &["clk", "data", "data_oe", "data_in"], self.pending())
+        self.base.transcript(
+            "endat",
+            &["clk", "data", "data_oe", "data_in"],
+            self.pending(),
+        )
     }
 
     fn checks(&mut self) -> &mut crate::check::Checks {

@@ -55,7 +55,8 @@ use crate::config::{self, Error};
 use crate::{Emulator, Pins, Result};
 
 /// The rules, as the seed states them.
-pub const RULE_CHARACTER: &str = "character timing (seed 000 Table 1, Figure 1: 10 Mbps, 10-bit frames, start, 8 data, stop)";
+pub const RULE_CHARACTER: &str =
+    "character timing (seed 000 Table 1, Figure 1: 10 Mbps, 10-bit frames, start, 8 data, stop)";
 /// See [`RULE_CHARACTER`].
 pub const RULE_GAP: &str = "request frame (seed 000 Figure 1: a frame set ends when no start bit follows a stop bit; a request's frames back to back)";
 /// See [`RULE_CHARACTER`].
@@ -63,21 +64,44 @@ pub const RULE_FIELDS: &str = "request frame (seed 000 Table 12: a request is RC
 /// See [`RULE_CHARACTER`].
 pub const RULE_RELEASE: &str = "turnaround (seed 000 Figure 2: the encoder answers 2.0 us (typ.) after the request; half duplex, the host releases the line before)";
 /// See [`RULE_CHARACTER`].
-pub const RULE_ANSWER: &str = "turnaround (seed 000 Table 1: half duplex; the host does not drive while an encoder answers)";
+pub const RULE_ANSWER: &str =
+    "turnaround (seed 000 Table 1: half duplex; the host does not drive while an encoder answers)";
 /// See [`RULE_CHARACTER`].
 pub const RULE_REPEAT: &str = "request spacing (seed 000 Table 4: B, C, D minimum 8 times consecutively at a typical interval of 40 us)";
 /// See [`RULE_CHARACTER`].
-pub const RULE_READ: &str = "request spacing (seed 000: wait more than 200 us between each memory read operation)";
+pub const RULE_READ: &str =
+    "request spacing (seed 000: wait more than 200 us between each memory read operation)";
 /// See [`RULE_CHARACTER`].
-pub const RULE_WRITE: &str = "request spacing (seed 000: wait more than 6 ms between each memory write operation)";
+pub const RULE_WRITE: &str =
+    "request spacing (seed 000: wait more than 6 ms between each memory write operation)";
 /// See [`RULE_CHARACTER`].
 pub const RULE_PAGE: &str = "request spacing (seed 000 Table 11 note 3: once the page value is changed, allow a 18 ms delay)";
 
 /// The ALM flags by name (Table 7) and their bit in ALM1 (the emulator's names).
-const ALARMS: [(&str, u8); 9] = [("xc", 0), ("mt", 1), ("led", 2), ("lis", 2), ("overspeed", 3), ("mem", 4), ("st", 5), ("uv", 6), ("ov", 7)];
+const ALARMS: [(&str, u8); 9] = [
+    ("xc", 0),
+    ("mt", 1),
+    ("led", 2),
+    ("lis", 2),
+    ("overspeed", 3),
+    ("mem", 4),
+    ("st", 5),
+    ("uv", 6),
+    ("ov", 7),
+];
 
 /// The error names of an operation (`model::esl::error_names`).
-const ERRORS: [&str; 9] = ["crc1", "crc2", "timeout", "frame", "cf_mismatch", "comm_alarm", "sequence", "channel_mismatch", "busy"];
+const ERRORS: [&str; 9] = [
+    "crc1",
+    "crc2",
+    "timeout",
+    "frame",
+    "cf_mismatch",
+    "comm_alarm",
+    "sequence",
+    "channel_mismatch",
+    "busy",
+];
 
 /// The monitor's own table (`[monitor]`), every field optional.
 #[derive(Debug, Clone, Default, Deserialize)]
@@ -116,7 +140,9 @@ struct Decode(Decoder, u64);
 
 impl ExchangeDecoder for Decode {
     fn exchange(&mut self, line: &Exchanges, (rise, fall, next): Window) -> Option<Value> {
-        self.0.exchange(rise, fall, next, &uart_bytes(&line.wire, self.1)).map(json)
+        self.0
+            .exchange(rise, fall, next, &uart_bytes(&line.wire, self.1))
+            .map(json)
     }
 
     fn finish(&mut self) -> Option<Value> {
@@ -141,39 +167,101 @@ impl EslMonitor {
         let whole = proto_table(text, origin, "esl")?;
         let baud: f64 = field::<f64>(&whole, "baud", origin, "baud")?.unwrap_or(10e6);
         if !(1e3..=50e6).contains(&baud) {
-            return Err(Error::field(origin, "baud", format!("{baud} bit/s"), "give the bit rate in bit/s (seed 000: 10e6)"));
+            return Err(Error::field(
+                origin,
+                "baud",
+                format!("{baud} bit/s"),
+                "give the bit rate in bit/s (seed 000: 10e6)",
+            ));
         }
         let mut settings = tables.emulator.clone();
         settings.max_line_clock_khz = settings.max_line_clock_khz.or(Some(baud / 1e3));
-        config::emulator_clock(f_mon_hz, &settings, baud / 1e3, "the ESL monitor (its line clock is the bit rate)", origin)?;
+        config::emulator_clock(
+            f_mon_hz,
+            &settings,
+            baud / 1e3,
+            "the ESL monitor (its line clock is the bit rate)",
+            origin,
+        )?;
         let mon: MonitorTable = config::decode_in(&whole, "monitor", origin)?;
         let host = sub(&whole, "host", origin)?;
         let checks = sub(&whole, "checks", origin)?;
-        let tolerance = mon.bit_tolerance_percent.or(field(&checks, "bit_tolerance_percent", origin, "checks.bit_tolerance_percent")?).unwrap_or(3.0);
+        let tolerance = mon
+            .bit_tolerance_percent
+            .or(field(
+                &checks,
+                "bit_tolerance_percent",
+                origin,
+                "checks.bit_tolerance_percent",
+            )?)
+            .unwrap_or(3.0);
         if !(0.0..=20.0).contains(&tolerance) {
-            return Err(Error::field(origin, "monitor.bit_tolerance_percent", format!("{tolerance}"), "give 0 to 20 %"));
+            return Err(Error::field(
+                origin,
+                "monitor.bit_tolerance_percent",
+                format!("{tolerance}"),
+                "give 0 to 20 %",
+            ));
         }
-        let gap = limit(origin, "monitor.max_gap_bits", mon.max_gap_bits.unwrap_or(0.5), "give the longest idle line between two frames of a request, in bits")?;
-        let release = limit(origin, "monitor.release_us", mon.release_us.unwrap_or(1.0), "give the longest time from the request's last stop bit to DE off, in µs")?;
-        let broadcast_address = mon.broadcast_address.or(field(&host, "broadcast_address", origin, "host.broadcast_address")?).unwrap_or(7);
-        let busy_tries = mon.busy_tries.or(field(&host, "busy_tries", origin, "host.busy_tries")?).unwrap_or(3);
-        let rs_tolerance = mon.rs_tolerance.or(field(&host, "rs_tolerance", origin, "host.rs_tolerance")?).unwrap_or(1);
+        let gap = limit(
+            origin,
+            "monitor.max_gap_bits",
+            mon.max_gap_bits.unwrap_or(0.5),
+            "give the longest idle line between two frames of a request, in bits",
+        )?;
+        let release = limit(
+            origin,
+            "monitor.release_us",
+            mon.release_us.unwrap_or(1.0),
+            "give the longest time from the request's last stop bit to DE off, in µs",
+        )?;
+        let broadcast_address = mon
+            .broadcast_address
+            .or(field(
+                &host,
+                "broadcast_address",
+                origin,
+                "host.broadcast_address",
+            )?)
+            .unwrap_or(7);
+        let busy_tries = mon
+            .busy_tries
+            .or(field(&host, "busy_tries", origin, "host.busy_tries")?)
+            .unwrap_or(3);
+        let rs_tolerance = mon
+            .rs_tolerance
+            .or(field(&host, "rs_tolerance", origin, "host.rs_tolerance")?)
+            .unwrap_or(1);
         if broadcast_address > 7 || !(1..=15).contains(&busy_tries) {
-            return Err(Error::field(origin, "monitor.broadcast_address", format!("{broadcast_address}, busy_tries {busy_tries}"), "give a broadcast address 0..7 and busy_tries 1..15"));
+            return Err(Error::field(
+                origin,
+                "monitor.broadcast_address",
+                format!("{broadcast_address}, busy_tries {busy_tries}"),
+                "give a broadcast address 0..7 and busy_tries 1..15",
+            ));
         }
         let base = Base::new(f_mon_hz);
         let ps = |us: f64| ((us * 1e6).round() as u64).saturating_sub(base.period_ps);
         let d = EncoderSettings::default();
         let mut spacing = vec![Spacing::default(); 8];
-        let encoders: Vec<toml::Table> = field(&whole, "encoders", origin, "encoders")?.unwrap_or_default();
+        let encoders: Vec<toml::Table> =
+            field(&whole, "encoders", origin, "encoders")?.unwrap_or_default();
         for a in 0..8u8 {
-            let e = encoders.iter().find(|e| e.get("address").and_then(|v| v.as_integer()) == Some(a as i64) || (a == 0 && e.get("address").is_none()));
+            let e = encoders.iter().find(|e| {
+                e.get("address").and_then(|v| v.as_integer()) == Some(a as i64)
+                    || (a == 0 && e.get("address").is_none())
+            });
             let time = |key: &str, given: Option<f64>, default: f64| -> Result<u64> {
                 let from_encoder = match e {
                     Some(t) => field::<f64>(t, key, origin, &format!("encoders.{key}"))?,
                     None => None,
                 };
-                Ok(ps(limit(origin, &format!("monitor.{key}"), given.or(from_encoder).unwrap_or(default), "give a time in µs")?))
+                Ok(ps(limit(
+                    origin,
+                    &format!("monitor.{key}"),
+                    given.or(from_encoder).unwrap_or(default),
+                    "give a time in µs",
+                )?))
             };
             let s = &mut spacing[a as usize];
             s.window = time("repeat_window_us", mon.repeat_window_us, d.repeat_window_us)?;
@@ -183,22 +271,56 @@ impl EslMonitor {
             s.page = frames::DEFAULT_PAGE;
         }
         let bit_ps = (1e12 / baud).round() as u64;
-        let limits = Limits { bit_ps: 1e12 / baud, tolerance: tolerance / 100.0, jitter_ps: 0.0, max_gap_ps: gap * 1e12 / baud, release_ps: (release * 1e6).round() as u64 };
-        let rules = Rules { character: RULE_CHARACTER, gap: RULE_GAP, release: RULE_RELEASE, answer: RULE_ANSWER };
+        let limits = Limits {
+            bit_ps: 1e12 / baud,
+            tolerance: tolerance / 100.0,
+            jitter_ps: 0.0,
+            max_gap_ps: gap * 1e12 / baud,
+            release_ps: (release * 1e6).round() as u64,
+        };
+        let rules = Rules {
+            character: RULE_CHARACTER,
+            gap: RULE_GAP,
+            release: RULE_RELEASE,
+            answer: RULE_ANSWER,
+        };
         Ok(EslMonitor {
-            side: Side::new(base, limits, rules, Decode(Decoder::new(DecodeOptions { baud, broadcast_address, busy_tries, rs_tolerance }), bit_ps)),
+            side: Side::new(
+                base,
+                limits,
+                rules,
+                Decode(
+                    Decoder::new(DecodeOptions {
+                        baud,
+                        broadcast_address,
+                        busy_tries,
+                        rs_tolerance,
+                    }),
+                    bit_ps,
+                ),
+            ),
             spacing,
         })
     }
 
     fn on_request(&mut self, r: Request) {
-        let Some(&byte) = r.fields.first() else { return };
+        let Some(&byte) = r.fields.first() else {
+            return;
+        };
         let cf = frames::parse_control_field(byte);
         let id = DataId::from_code(cf.code);
         if id.is_some() && !r.damaged {
             let want = frames::request(0, cf.code, 0, 0).len();
             if r.fields.len() != want {
-                self.side.base.violation(r.end_ps, RULE_FIELDS, format!("a request of {} frame(s) for Data ID {:X}, which takes {want}", r.fields.len(), cf.code));
+                self.side.base.violation(
+                    r.end_ps,
+                    RULE_FIELDS,
+                    format!(
+                        "a request of {} frame(s) for Data ID {:X}, which takes {want}",
+                        r.fields.len(),
+                        cf.code
+                    ),
+                );
             }
         }
         if !cf.parity_ok {
@@ -233,7 +355,14 @@ impl EslMonitor {
             let eeprom = address != frames::PAGE_REGISTER && s.page != frames::REGISTER_PAGE;
             if id == DataId::IdE && eeprom {
                 if let Some(c) = s.last_read.map(|t| end - t).filter(|&c| c < s.read) {
-                    found.push((RULE_READ, format!("an EEPROM read {:.1} us after the one before (read time {:.1} us)", ms(c), ms(s.read + tol))));
+                    found.push((
+                        RULE_READ,
+                        format!(
+                            "an EEPROM read {:.1} us after the one before (read time {:.1} us)",
+                            ms(c),
+                            ms(s.read + tol)
+                        ),
+                    ));
                 }
                 s.last_read = Some(end);
             }
@@ -294,12 +423,17 @@ impl Emulator for EslMonitor {
     /// `cf_mismatch`, `comm_alarm`, `sequence`, `channel_mismatch`, `busy`)
     /// or an ALM flag (ALM1) after it.
     fn last_status(&self, _: usize, name: &str) -> Result<bool> {
-        let t = self.side.last().ok_or_else(|| Error::Usage("esl_monitor: no operation decoded yet".into()))?;
+        let t = self
+            .side
+            .last()
+            .ok_or_else(|| Error::Usage("esl_monitor: no operation decoded yet".into()))?;
         if let Some(&(_, bit)) = ALARMS.iter().find(|a| a.0 == name) {
             return Ok(t["alm1"].as_u64().unwrap_or(0) >> bit & 1 == 1);
         }
         if ERRORS.contains(&name) {
-            return Ok(t["errors"].as_array().is_some_and(|e| e.iter().any(|x| x == name)));
+            return Ok(t["errors"]
+                .as_array()
+                .is_some_and(|e| e.iter().any(|x| x == name)));
         }
         Err(Error::Usage(format!("esl_monitor: no status `{name}`; give an error ({}) or an ALM flag (xc, mt, led, lis, overspeed, mem, st, uv, ov)", ERRORS.join(", "))))
     }

@@ -135,7 +135,14 @@ impl Watch {
     /// One monitor cycle at `now`: the host's driver input `tx`, its enable
     /// `de`, its receiver's output `rx`. Returns the request that ended
     /// (the driver enable fell).
-    pub fn step(&mut self, base: &mut Base, now: u64, tx: bool, de: bool, rx: bool) -> Option<Request> {
+    pub fn step(
+        &mut self,
+        base: &mut Base,
+        now: u64,
+        tx: bool,
+        de: bool,
+        rx: bool,
+    ) -> Option<Request> {
         let bit = self.limits.bit_ps;
         let cycle = base.period_ps as f64;
         let r = self.rules;
@@ -156,7 +163,12 @@ impl Watch {
         // whenever the host sends a 0.)
         let both = de && tx && !rx;
         if both && !self.both {
-            base.violation(now, r.answer, "the host's driver was on while the encoder drove the line low (both drivers on)".to_string());
+            base.violation(
+                now,
+                r.answer,
+                "the host's driver was on while the encoder drove the line low (both drivers on)"
+                    .to_string(),
+            );
         }
         self.both = both;
         if de && !self.de && self.answer_until.is_some_and(|u| now < u) {
@@ -181,16 +193,32 @@ impl Watch {
             }
             if !self.stop_checked && now >= self.at(s, 9.5) {
                 self.stop_checked = true;
-                self.request.get_or_insert(Request { start_ps: s, end_ps: 0, fields: Vec::new(), damaged: false }).fields.push(self.value);
+                self.request
+                    .get_or_insert(Request {
+                        start_ps: s,
+                        end_ps: 0,
+                        fields: Vec::new(),
+                        damaged: false,
+                    })
+                    .fields
+                    .push(self.value);
                 if !level {
-                    base.violation(now, r.character, "stop bit low at its middle (framing error)".to_string());
+                    base.violation(
+                        now,
+                        r.character,
+                        "stop bit low at its middle (framing error)".to_string(),
+                    );
                     self.lose();
                 }
             }
             if self.lost {
                 // the stop bit was low
             } else if !de && self.de && !self.stop_checked {
-                base.violation(now, r.character, format!("driver enable released {:.2} bits into a field", o / bit));
+                base.violation(
+                    now,
+                    r.character,
+                    format!("driver enable released {:.2} bits into a field", o / bit),
+                );
                 self.lose();
             } else if level != self.drive {
                 if self.stop_checked {
@@ -230,7 +258,9 @@ impl Watch {
         self.drive = level;
         // The end of the request: the driver enable falls.
         if de && self.field.is_none() && !self.release_reported {
-            if let Some(end) = self.last_end.filter(|&e| self.request.is_some() && now > e + self.limits.release_ps + base.period_ps) {
+            if let Some(end) = self.last_end.filter(|&e| {
+                self.request.is_some() && now > e + self.limits.release_ps + base.period_ps
+            }) {
                 self.release_reported = true;
                 base.violation(now, r.release, format!("driver enable still on {:.3} us after the request's last stop bit; at most {:.3} us", (now - end) as f64 / 1e6, self.limits.release_ps as f64 / 1e6));
             }
@@ -256,7 +286,12 @@ impl Watch {
         self.stop_checked = false;
         self.release_reported = false;
         if self.request.is_none() {
-            self.request = Some(Request { start_ps: now, end_ps: 0, fields: Vec::new(), damaged: false });
+            self.request = Some(Request {
+                start_ps: now,
+                end_ps: 0,
+                fields: Vec::new(),
+                damaged: false,
+            });
         }
     }
 }
@@ -287,12 +322,27 @@ pub type Window = (u64, u64, u64);
 impl Exchanges {
     /// An empty line; an exchange is decoded `settle_ps` after the next one began.
     pub fn new(settle_ps: u64) -> Self {
-        Exchanges { wire: Signal::named("wire"), de: Signal::named("de"), heard: Signal::named("heard"), start: None, next: None, settle_ps, de_now: false }
+        Exchanges {
+            wire: Signal::named("wire"),
+            de: Signal::named("de"),
+            heard: Signal::named("heard"),
+            start: None,
+            next: None,
+            settle_ps,
+            de_now: false,
+        }
     }
 
     /// One cycle; `decode` gets each exchange as it becomes complete (with
     /// the line still holding it).
-    pub fn step(&mut self, now: u64, tx: bool, de: bool, rx: bool, mut decode: impl FnMut(&Exchanges, Window)) {
+    pub fn step(
+        &mut self,
+        now: u64,
+        tx: bool,
+        de: bool,
+        rx: bool,
+        mut decode: impl FnMut(&Exchanges, Window),
+    ) {
         if de && !self.de_now {
             if let Some(w) = self.window(false) {
                 decode(self, w);
@@ -324,7 +374,11 @@ impl Exchanges {
             return None;
         }
         let next = self.next.unwrap_or(u64::MAX);
-        let fall = self.de.next_level(start, false).filter(|&f| f < next).unwrap_or(u64::MAX);
+        let fall = self
+            .de
+            .next_level(start, false)
+            .filter(|&f| f < next)
+            .unwrap_or(u64::MAX);
         Some((start, fall, next))
     }
 
@@ -332,7 +386,11 @@ impl Exchanges {
     pub fn pending(&self) -> Vec<Window> {
         let mut list: Vec<Window> = self.window(true).into_iter().collect();
         if let Some(n) = self.next {
-            list.push((n, self.de.next_level(n, false).unwrap_or(u64::MAX), u64::MAX));
+            list.push((
+                n,
+                self.de.next_level(n, false).unwrap_or(u64::MAX),
+                u64::MAX,
+            ));
         }
         list
     }
@@ -372,7 +430,12 @@ impl<D: ExchangeDecoder> Side<D> {
     /// decoded 12 bits after the next one began.
     pub fn new(base: Base, limits: Limits, rules: Rules, decoder: D) -> Self {
         let settle = (12.0 * limits.bit_ps).round() as u64;
-        Side { base, watch: Watch::new(limits, rules), line: Exchanges::new(settle), decoder }
+        Side {
+            base,
+            watch: Watch::new(limits, rules),
+            line: Exchanges::new(settle),
+            decoder,
+        }
     }
 
     /// One monitor cycle (pins: bit 0 R, bit 1 D, bit 2 DE); the request that ended, if any.
@@ -380,21 +443,30 @@ impl<D: ExchangeDecoder> Side<D> {
         let now = self.base.now_ps();
         let (rx, tx, de) = (pins.0 & 1 != 0, pins.0 & 2 != 0, pins.0 & 4 != 0);
         let (decoder, done) = (&mut self.decoder, &mut self.base.done);
-        self.line.step(now, tx, de, rx, |line, w| done.extend(decoder.exchange(line, w)));
+        self.line.step(now, tx, de, rx, |line, w| {
+            done.extend(decoder.exchange(line, w))
+        });
         self.watch.step(&mut self.base, now, tx, de, rx)
     }
 
     /// The transactions not yet in `base.done` (the decoder's state is not changed).
     pub fn pending(&self) -> Vec<Value> {
         let mut d = self.decoder.clone();
-        let mut out: Vec<Value> = self.line.pending().into_iter().filter_map(|w| d.exchange(&self.line, w)).collect();
+        let mut out: Vec<Value> = self
+            .line
+            .pending()
+            .into_iter()
+            .filter_map(|w| d.exchange(&self.line, w))
+            .collect();
         out.extend(d.finish());
         out
     }
 
     /// The last transaction (the one in progress included).
     pub fn last(&self) -> Option<Value> {
-        self.pending().pop().or_else(|| self.base.done.last().cloned())
+        self.pending()
+            .pop()
+            .or_else(|| self.base.done.last().cloned())
     }
 
     /// Transactions seen so far (the one in progress included).
@@ -404,6 +476,7 @@ impl<D: ExchangeDecoder> Side<D> {
 
     /// The transcript.
     pub fn transcript(&self, protocol: &str) -> Value {
-        self.base.transcript(protocol, &["rx", "tx", "tx_en"], self.pending())
+        self.base
+            .transcript(protocol, &["rx", "tx", "tx_en"], self.pending())
     }
 }

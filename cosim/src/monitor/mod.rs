@@ -52,7 +52,13 @@ impl Base {
     /// A monitor base at `f_mon_hz`.
     pub fn new(f_mon_hz: u64) -> Self {
         let period_ps = model::time::PS_PER_S / f_mon_hz.max(1);
-        Base { f_mon_hz, period_ps, cycle: 0, checks: Checks::new(period_ps), done: Vec::new() }
+        Base {
+            f_mon_hz,
+            period_ps,
+            cycle: 0,
+            checks: Checks::new(period_ps),
+            done: Vec::new(),
+        }
     }
 
     /// The time of the current cycle, ps.
@@ -68,7 +74,11 @@ impl Base {
     /// The pins out after a step: only the violation flag.
     pub fn step_out(&mut self) -> crate::Pins {
         self.cycle += 1;
-        crate::Pins(if self.checks.pending() { VIOLATION_PENDING } else { 0 })
+        crate::Pins(if self.checks.pending() {
+            VIOLATION_PENDING
+        } else {
+            0
+        })
     }
 
     /// The transcript: the protocol, the clock, every transaction and every violation.
@@ -97,14 +107,29 @@ pub fn listens_only(kind: &str, what: &str) -> Error {
 }
 
 /// Reads one optional field of a TOML table as `T`, naming `origin` and the field in the error.
-pub fn field<T: serde::de::DeserializeOwned>(table: &toml::Table, key: &str, origin: &str, path: &str) -> Result<Option<T>> {
+pub fn field<T: serde::de::DeserializeOwned>(
+    table: &toml::Table,
+    key: &str,
+    origin: &str,
+    path: &str,
+) -> Result<Option<T>> {
     match table.get(key) {
         None => Ok(None),
-        Some(v) => v.clone().try_into().map(Some).map_err(|e: toml::de::Error| Error::Toml {
-            origin: origin.to_string(),
-            line: None,
-            message: format!("{} in `{path}`", e.to_string().split_whitespace().collect::<Vec<_>>().join(" ")),
-        }),
+        Some(v) => v
+            .clone()
+            .try_into()
+            .map(Some)
+            .map_err(|e: toml::de::Error| Error::Toml {
+                origin: origin.to_string(),
+                line: None,
+                message: format!(
+                    "{} in `{path}`",
+                    e.to_string()
+                        .split_whitespace()
+                        .collect::<Vec<_>>()
+                        .join(" ")
+                ),
+            }),
     }
 }
 
@@ -112,9 +137,15 @@ pub fn field<T: serde::de::DeserializeOwned>(table: &toml::Table, key: &str, ori
 /// field it came from (`("monitor.t_m_us", ..)`, `("encoder.monoflop_us",
 /// ..)`), else `default` under the first field: an error then names the
 /// field the user wrote, not the monitor's own when it was not set.
-pub fn first_given<T, const N: usize>(sources: [(&'static str, Option<T>); N], default: T) -> (T, &'static str) {
+pub fn first_given<T, const N: usize>(
+    sources: [(&'static str, Option<T>); N],
+    default: T,
+) -> (T, &'static str) {
     let first = sources[0].0;
-    sources.into_iter().find_map(|(field, v)| v.map(|v| (v, field))).unwrap_or((default, first))
+    sources
+        .into_iter()
+        .find_map(|(field, v)| v.map(|v| (v, field)))
+        .unwrap_or((default, first))
 }
 
 /// A limit given in a monitor table must be a finite non-negative number.
@@ -133,7 +164,11 @@ pub fn proto_table(text: &str, origin: &str, proto: &str) -> Result<toml::Table>
     let root: toml::Table = text.parse().map_err(|e: toml::de::Error| Error::Toml {
         origin: origin.to_string(),
         line: None,
-        message: e.to_string().split_whitespace().collect::<Vec<_>>().join(" "),
+        message: e
+            .to_string()
+            .split_whitespace()
+            .collect::<Vec<_>>()
+            .join(" "),
     })?;
     Ok(match root.get(proto) {
         Some(toml::Value::Table(t)) => t.clone(),

@@ -90,14 +90,45 @@ fn json(index: usize, t: decode::Transaction) -> Value {
 impl ModbusMonitor {
     /// A monitor from TOML text (`origin` names it in errors) at `f_mon_hz`.
     pub fn from_toml(text: &str, origin: &str, f_mon_hz: u64) -> Result<Self> {
-        let (_, _, cfg): (_, EmulatorOwn, BenchConfig) = crate::sar58k24::uart_bench(text, origin, f_mon_hz, "modbus", "the Modbus monitor", 19_200.0)?;
+        let (_, _, cfg): (_, EmulatorOwn, BenchConfig) = crate::sar58k24::uart_bench(
+            text,
+            origin,
+            f_mon_hz,
+            "modbus",
+            "the Modbus monitor",
+            19_200.0,
+        )?;
         let whole = proto_table(text, origin, "modbus")?;
         let mon: MonitorTable = config::decode_in(&whole, "monitor", origin)?;
         let master = sub(&whole, "master", origin)?;
-        let (timeout, timeout_field) = first_given([("monitor.timeout_us", mon.timeout_us), ("master.timeout_us", field(&master, "timeout_us", origin, "master.timeout_us")?)], 5000.0);
-        let timeout = limit(origin, timeout_field, timeout, "give the master's answer timeout in µs")?;
-        let tol = limit(origin, "monitor.baud_tolerance_percent", mon.baud_tolerance_percent.unwrap_or(2.0), "give the baud rate tolerance of the master's characters in percent (2)")?;
-        let release = limit(origin, "monitor.release_bits", mon.release_bits.unwrap_or(1.0), "give the longest time from the request's last stop bit to DE off, in bit times (1)")?;
+        let (timeout, timeout_field) = first_given(
+            [
+                ("monitor.timeout_us", mon.timeout_us),
+                (
+                    "master.timeout_us",
+                    field(&master, "timeout_us", origin, "master.timeout_us")?,
+                ),
+            ],
+            5000.0,
+        );
+        let timeout = limit(
+            origin,
+            timeout_field,
+            timeout,
+            "give the master's answer timeout in µs",
+        )?;
+        let tol = limit(
+            origin,
+            "monitor.baud_tolerance_percent",
+            mon.baud_tolerance_percent.unwrap_or(2.0),
+            "give the baud rate tolerance of the master's characters in percent (2)",
+        )?;
+        let release = limit(
+            origin,
+            "monitor.release_bits",
+            mon.release_bits.unwrap_or(1.0),
+            "give the longest time from the request's last stop bit to DE off, in bit times (1)",
+        )?;
         let fb = cfg.parity.frame_bits();
         let bit_ps = 1e12 / cfg.baud;
         let limits = Limits {
@@ -109,19 +140,42 @@ impl ModbusMonitor {
             release_ps: release * bit_ps,
             timeout_ps: timeout * 1e6,
         };
-        let rules = Rules { character: RULE_CHARACTER, gap: RULE_T15, silence: RULE_T35, release: RULE_RELEASE, answer: RULE_ANSWER, wait: RULE_TIMEOUT };
-        let options = Options { baud: cfg.baud, parity: cfg.parity, timeout_us: timeout, gray: cfg.devices.first().is_some_and(|d| d.gray) };
-        Ok(ModbusMonitor { base: Base::new(f_mon_hz), watch: Watch::new(limits, rules), line: Line::new(), options })
+        let rules = Rules {
+            character: RULE_CHARACTER,
+            gap: RULE_T15,
+            silence: RULE_T35,
+            release: RULE_RELEASE,
+            answer: RULE_ANSWER,
+            wait: RULE_TIMEOUT,
+        };
+        let options = Options {
+            baud: cfg.baud,
+            parity: cfg.parity,
+            timeout_us: timeout,
+            gray: cfg.devices.first().is_some_and(|d| d.gray),
+        };
+        Ok(ModbusMonitor {
+            base: Base::new(f_mon_hz),
+            watch: Watch::new(limits, rules),
+            line: Line::new(),
+            options,
+        })
     }
 
     /// The polls not yet in `base.done` (the one in progress included).
     fn pending(&self) -> Vec<Value> {
         let n = self.base.done.len();
-        decode::decode(&self.line.wire, &self.line.de, &self.options).into_iter().enumerate().map(|(k, t)| json(n + k, t)).collect()
+        decode::decode(&self.line.wire, &self.line.de, &self.options)
+            .into_iter()
+            .enumerate()
+            .map(|(k, t)| json(n + k, t))
+            .collect()
     }
 
     fn last(&self) -> Option<Value> {
-        self.pending().pop().or_else(|| self.base.done.last().cloned())
+        self.pending()
+            .pop()
+            .or_else(|| self.base.done.last().cloned())
     }
 }
 
@@ -175,18 +229,35 @@ impl Emulator for ModbusMonitor {
     /// `crc`, `address`, `exception`, `function`, `count`, `timeout`), or
     /// `valid` (no error).
     fn last_status(&self, _: usize, name: &str) -> Result<bool> {
-        const FLAGS: [&str; 10] = ["parity", "framing", "gap", "length", "crc", "address", "exception", "function", "count", "timeout"];
-        let t = self.last().ok_or_else(|| Error::Usage("modbus_monitor: no poll decoded yet".into()))?;
+        const FLAGS: [&str; 10] = [
+            "parity",
+            "framing",
+            "gap",
+            "length",
+            "crc",
+            "address",
+            "exception",
+            "function",
+            "count",
+            "timeout",
+        ];
+        let t = self
+            .last()
+            .ok_or_else(|| Error::Usage("modbus_monitor: no poll decoded yet".into()))?;
         let errors = t["errors"].as_array().cloned().unwrap_or_default();
         match name {
             "valid" => Ok(errors.is_empty()),
             f if FLAGS.contains(&f) => Ok(errors.iter().any(|x| x == f)),
-            other => Err(Error::Usage(format!("modbus_monitor: no status `{other}`; give valid or an error: {}", FLAGS.join(", ")))),
+            other => Err(Error::Usage(format!(
+                "modbus_monitor: no status `{other}`; give valid or an error: {}",
+                FLAGS.join(", ")
+            ))),
         }
     }
 
     fn transcript(&self) -> Value {
-        self.base.transcript("modbus", &["rx", "tx", "tx_en"], self.pending())
+        self.base
+            .transcript("modbus", &["rx", "tx", "tx_en"], self.pending())
     }
 
     fn checks(&mut self) -> &mut crate::check::Checks {

@@ -51,15 +51,19 @@ pub const RULE_CHARACTER: &str = "character timing (seed 001 3.1.5: commands BC 
 /// See [`RULE_CHARACTER`].
 pub const RULE_GAP: &str = "command gap (seed 001 3.1.5, 3.1.6: BC AA Bx as one command; the project's reading: at most command_gap_bits of silence between its characters)";
 /// See [`RULE_CHARACTER`].
-pub const RULE_RELEASE: &str = "turnaround (seed 001 3.1.5: the host releases the shared RS-485 line after its command)";
+pub const RULE_RELEASE: &str =
+    "turnaround (seed 001 3.1.5: the host releases the shared RS-485 line after its command)";
 /// See [`RULE_CHARACTER`].
-pub const RULE_ANSWER: &str = "turnaround (seed 001 3.1.5: one driver at a time; never during an encoder's answer)";
+pub const RULE_ANSWER: &str =
+    "turnaround (seed 001 3.1.5: one driver at a time; never during an encoder's answer)";
 /// See [`RULE_CHARACTER`].
 pub const RULE_WAIT: &str = "answer wait (seed 001 3.1.3, 3.1.5: one answer per trigger or command; the host waits for it or its timeout, [host] timeout_us)";
 /// See [`RULE_CHARACTER`].
-pub const RULE_T2: &str = "T2 (seed 001 3.1.3: the falling edge of the external pulse triggers the encoder, T2 >= 10 us)";
+pub const RULE_T2: &str =
+    "T2 (seed 001 3.1.3: the falling edge of the external pulse triggers the encoder, T2 >= 10 us)";
 /// See [`RULE_CHARACTER`].
-pub const RULE_TRIGGER_BUSY: &str = "T1-T3 (seed 001 3.1.3: the data transmission time; a trigger inside the encoder's frame)";
+pub const RULE_TRIGGER_BUSY: &str =
+    "T1-T3 (seed 001 3.1.3: the data transmission time; a trigger inside the encoder's frame)";
 /// See [`RULE_CHARACTER`].
 pub const RULE_CLR: &str = "CLR (seed 001 3.1.2, 3.1.4: a low level on CLR zeroes; the project's reading: at least clr_min_low_us)";
 
@@ -105,27 +109,116 @@ pub struct SarMonitor {
 impl SarMonitor {
     /// A monitor from TOML text (`origin` names it in errors) at `f_mon_hz`.
     pub fn from_toml(text: &str, origin: &str, f_mon_hz: u64) -> Result<Self> {
-        let (_, _, cfg): (_, EmulatorOwn, BenchConfig) = crate::sar58k24::uart_bench(text, origin, f_mon_hz, "sar", "the SAR58K24 monitor", 115_200.0)?;
+        let (_, _, cfg): (_, EmulatorOwn, BenchConfig) = crate::sar58k24::uart_bench(
+            text,
+            origin,
+            f_mon_hz,
+            "sar",
+            "the SAR58K24 monitor",
+            115_200.0,
+        )?;
         let whole = proto_table(text, origin, "sar")?;
         let mon: MonitorTable = config::decode_in(&whole, "monitor", origin)?;
         let host = sub(&whole, "host", origin)?;
         let enc = cfg.encoders.first().cloned().unwrap_or_default();
-        let (timeout, timeout_field) = first_given([("monitor.timeout_us", mon.timeout_us), ("host.timeout_us", field(&host, "timeout_us", origin, "host.timeout_us")?)], 5000.0);
-        let timeout = limit(origin, timeout_field, timeout, "give the host's answer timeout in µs")?;
+        let (timeout, timeout_field) = first_given(
+            [
+                ("monitor.timeout_us", mon.timeout_us),
+                (
+                    "host.timeout_us",
+                    field(&host, "timeout_us", origin, "host.timeout_us")?,
+                ),
+            ],
+            5000.0,
+        );
+        let timeout = limit(
+            origin,
+            timeout_field,
+            timeout,
+            "give the host's answer timeout in µs",
+        )?;
         let gap_bits: f64 = field(&host, "gap_bits", origin, "host.gap_bits")?.unwrap_or(15.0);
-        let tol = limit(origin, "monitor.baud_tolerance_percent", mon.baud_tolerance_percent.unwrap_or(2.0), "give the baud rate tolerance of the host's characters in percent (2)")?;
-        let release = limit(origin, "monitor.release_bits", mon.release_bits.unwrap_or(1.0), "give the longest time from the command's last stop bit to DE off, in bit times (1)")?;
-        let (t2, t2_field) = first_given([("monitor.t2_us", mon.t2_us), ("encoders[0].trigger_min_low_us", Some(enc.trigger_min_low_us))], 0.0);
-        let t2 = limit(origin, t2_field, t2, "give the shortest trigger pulse in µs (seed 001: T2 >= 10)")?;
-        let (clr, clr_field) = first_given([("monitor.clr_min_low_us", mon.clr_min_low_us), ("encoders[0].clr_min_low_us", Some(enc.clr_min_low_us))], 0.0);
-        let clr = limit(origin, clr_field, clr, "give the shortest CLR pulse in µs (10)")?;
-        let (cmd_gap, cmd_gap_field) = first_given([("monitor.command_gap_bits", mon.command_gap_bits), ("encoders[0].command_gap_bits", Some(enc.command_gap_bits))], 0.0);
-        let cmd_gap = limit(origin, cmd_gap_field, cmd_gap, "give the longest silence between two characters of a command in bit times (15)")?;
+        let tol = limit(
+            origin,
+            "monitor.baud_tolerance_percent",
+            mon.baud_tolerance_percent.unwrap_or(2.0),
+            "give the baud rate tolerance of the host's characters in percent (2)",
+        )?;
+        let release = limit(
+            origin,
+            "monitor.release_bits",
+            mon.release_bits.unwrap_or(1.0),
+            "give the longest time from the command's last stop bit to DE off, in bit times (1)",
+        )?;
+        let (t2, t2_field) = first_given(
+            [
+                ("monitor.t2_us", mon.t2_us),
+                (
+                    "encoders[0].trigger_min_low_us",
+                    Some(enc.trigger_min_low_us),
+                ),
+            ],
+            0.0,
+        );
+        let t2 = limit(
+            origin,
+            t2_field,
+            t2,
+            "give the shortest trigger pulse in µs (seed 001: T2 >= 10)",
+        )?;
+        let (clr, clr_field) = first_given(
+            [
+                ("monitor.clr_min_low_us", mon.clr_min_low_us),
+                ("encoders[0].clr_min_low_us", Some(enc.clr_min_low_us)),
+            ],
+            0.0,
+        );
+        let clr = limit(
+            origin,
+            clr_field,
+            clr,
+            "give the shortest CLR pulse in µs (10)",
+        )?;
+        let (cmd_gap, cmd_gap_field) = first_given(
+            [
+                ("monitor.command_gap_bits", mon.command_gap_bits),
+                ("encoders[0].command_gap_bits", Some(enc.command_gap_bits)),
+            ],
+            0.0,
+        );
+        let cmd_gap = limit(
+            origin,
+            cmd_gap_field,
+            cmd_gap,
+            "give the longest silence between two characters of a command in bit times (15)",
+        )?;
         let fb = cfg.parity.frame_bits() as f64;
         let bit_ps = 1e12 / cfg.baud;
-        let limits = Limits { bit_ps, parity: cfg.parity, tolerance: tol / 100.0, max_gap_ps: cmd_gap * bit_ps, min_silence_ps: 0.0, release_ps: release * bit_ps, timeout_ps: timeout * 1e6 };
-        let rules = Rules { character: RULE_CHARACTER, gap: RULE_GAP, silence: RULE_GAP, release: RULE_RELEASE, answer: RULE_ANSWER, wait: RULE_WAIT };
-        let options = Options { baud: cfg.baud, parity: cfg.parity, bits: enc.bits, gray: enc.code == model::sar58k24::OutputCode::Gray, gap_bits, answer_tag: enc.answer_tag };
+        let limits = Limits {
+            bit_ps,
+            parity: cfg.parity,
+            tolerance: tol / 100.0,
+            max_gap_ps: cmd_gap * bit_ps,
+            min_silence_ps: 0.0,
+            release_ps: release * bit_ps,
+            timeout_ps: timeout * 1e6,
+        };
+        let rules = Rules {
+            character: RULE_CHARACTER,
+            gap: RULE_GAP,
+            silence: RULE_GAP,
+            release: RULE_RELEASE,
+            answer: RULE_ANSWER,
+            wait: RULE_WAIT,
+        };
+        let options = Options {
+            baud: cfg.baud,
+            parity: cfg.parity,
+            bits: enc.bits,
+            gray: enc.code == model::sar58k24::OutputCode::Gray,
+            gap_bits,
+            answer_tag: enc.answer_tag,
+        };
         Ok(SarMonitor {
             base: Base::new(f_mon_hz),
             watch: Watch::new(limits, rules),
@@ -150,13 +243,26 @@ impl SarMonitor {
     /// The events not yet in `base.done` (the decoder's state is not changed).
     fn pending(&self) -> Vec<Value> {
         let mut d = self.decoder.clone();
-        d.feed(&self.line.wire, &self.line.de).into_iter().map(|b| serde_json::to_value(b).unwrap_or(Value::Null)).collect()
+        d.feed(&self.line.wire, &self.line.de)
+            .into_iter()
+            .map(|b| serde_json::to_value(b).unwrap_or(Value::Null))
+            .collect()
     }
 
     /// The last event that is a frame (`frames`) or not a command, the piece in progress included.
     fn last_where(&self, frames: bool) -> Option<Value> {
-        let keep = |e: &Value| if frames { e["kind"] == "frame" } else { e["kind"] != "command" };
-        self.pending().into_iter().rev().find(keep).or_else(|| self.base.done.iter().rev().find(|e| keep(e)).cloned())
+        let keep = |e: &Value| {
+            if frames {
+                e["kind"] == "frame"
+            } else {
+                e["kind"] != "command"
+            }
+        };
+        self.pending()
+            .into_iter()
+            .rev()
+            .find(keep)
+            .or_else(|| self.base.done.iter().rev().find(|e| keep(e)).cloned())
     }
 
     /// Decodes the piece of line before `now` into `base.done` and starts
@@ -164,9 +270,17 @@ impl SarMonitor {
     /// ends the frame finder's run, and the gap cut waits for the next
     /// character), or between two of the encoder's characters (`carry`).
     fn cut(&mut self, now: u64, carry: bool) {
-        let events = if carry { self.decoder.feed_carrying(&self.line.wire, &self.line.de) } else { self.decoder.feed(&self.line.wire, &self.line.de) };
+        let events = if carry {
+            self.decoder.feed_carrying(&self.line.wire, &self.line.de)
+        } else {
+            self.decoder.feed(&self.line.wire, &self.line.de)
+        };
         self.frames += events.iter().filter(|b| b.kind == "frame").count() as u64;
-        self.base.done.extend(events.into_iter().map(|b| serde_json::to_value(b).unwrap_or(Value::Null)));
+        self.base.done.extend(
+            events
+                .into_iter()
+                .map(|b| serde_json::to_value(b).unwrap_or(Value::Null)),
+        );
         self.line.cut(now);
         self.uncut_answer = false;
         if !carry {
@@ -181,13 +295,30 @@ impl SarMonitor {
         }
         if level {
             let low = now - since;
-            let (min, rule, name) = if clr { (self.clr_ps, RULE_CLR, "CLR") } else { (self.t2_ps, RULE_T2, "trigger") };
+            let (min, rule, name) = if clr {
+                (self.clr_ps, RULE_CLR, "CLR")
+            } else {
+                (self.t2_ps, RULE_T2, "trigger")
+            };
             if low + self.base.period_ps < min {
-                self.base.violation(now, rule, format!("{name} low for {:.3} us; at least {:.3} us", low as f64 / 1e6, min as f64 / 1e6));
+                self.base.violation(
+                    now,
+                    rule,
+                    format!(
+                        "{name} low for {:.3} us; at least {:.3} us",
+                        low as f64 / 1e6,
+                        min as f64 / 1e6
+                    ),
+                );
             }
         } else if !clr {
             if self.watch.device_busy(now) {
-                self.base.violation(now, RULE_TRIGGER_BUSY, "a trigger's falling edge while the encoder sends a character of its frame".to_string());
+                self.base.violation(
+                    now,
+                    RULE_TRIGGER_BUSY,
+                    "a trigger's falling edge while the encoder sends a character of its frame"
+                        .to_string(),
+                );
             }
             self.watch.check_wait(&mut self.base, now, "a trigger");
             if self.handshake {
@@ -211,10 +342,19 @@ impl Emulator for SarMonitor {
         let now = self.base.now_ps();
         let (rx, tx, de) = uart::pins(pins);
         let wire = if de { tx } else { rx };
-        if self.last_fall.is_some_and(|f| wire && self.wire && now >= f + self.cut_after_ps) {
+        if self
+            .last_fall
+            .is_some_and(|f| wire && self.wire && now >= f + self.cut_after_ps)
+        {
             // The line has been idle the host's gap after the last character: decode the piece.
             self.cut(now, false);
-        } else if self.uncut_answer && !de && !self.de && wire && self.wire && self.last_fall.is_some_and(|f| now >= f + self.char_ps) {
+        } else if self.uncut_answer
+            && !de
+            && !self.de
+            && wire
+            && self.wire
+            && self.last_fall.is_some_and(|f| now >= f + self.char_ps)
+        {
             // Between two of the encoder's characters, the line idle: cut
             // here too, carrying the frame finder over (the events are those
             // of one piece), so that `count` and `last_value`, which decode
@@ -259,7 +399,12 @@ impl Emulator for SarMonitor {
 
     /// Frames accepted so far (positions; the piece in progress included).
     fn count(&self) -> u64 {
-        self.frames + self.pending().iter().filter(|e| e["kind"] == "frame").count() as u64
+        self.frames
+            + self
+                .pending()
+                .iter()
+                .filter(|e| e["kind"] == "frame")
+                .count() as u64
     }
 
     /// The position of the last frame accepted (binary, after Gray decoding).
@@ -270,7 +415,9 @@ impl Emulator for SarMonitor {
     /// A flag of the last event on the line that is not a command
     /// (`checksum`, `parity`, `frame`, `address`), or `frame_ok` (it was a frame).
     fn last_status(&self, _: usize, name: &str) -> Result<bool> {
-        let e = self.last_where(false).ok_or_else(|| Error::Usage("sar58k24_monitor: no frame decoded yet".into()))?;
+        let e = self
+            .last_where(false)
+            .ok_or_else(|| Error::Usage("sar58k24_monitor: no frame decoded yet".into()))?;
         match name {
             "frame_ok" => Ok(e["kind"] == "frame"),
             "checksum" | "parity" | "frame" | "address" => Ok(e["errors"].as_array().is_some_and(|x| x.iter().any(|f| f == name))),
@@ -279,7 +426,11 @@ impl Emulator for SarMonitor {
     }
 
     fn transcript(&self) -> Value {
-        self.base.transcript("sar", &["rx", "tx", "tx_en", "trigger", "clr"], self.pending())
+        self.base.transcript(
+            "sar",
+            &["rx", "tx", "tx_en", "trigger", "clr"],
+            self.pending(),
+        )
     }
 
     fn checks(&mut self) -> &mut crate::check::Checks {

@@ -39,7 +39,8 @@ use crate::{Emulator, Pins, Result};
 /// The rules, as the seed states them.
 pub const RULE_T_CS: &str = "T_cs (seed 001 SAR58K24 manual, SSI (2): T_cs > 4 us)";
 /// See [`RULE_T_CS`].
-pub const RULE_CLOCK: &str = "clock range (seed 001 SAR58K24 manual, SSI (2): 100 kHz < f_clk < 250 kHz)";
+pub const RULE_CLOCK: &str =
+    "clock range (seed 001 SAR58K24 manual, SSI (2): 100 kHz < f_clk < 250 kHz)";
 /// See [`RULE_T_CS`].
 pub const RULE_T_M: &str = "T_m (seed 001 SAR58K24 manual, SSI (2): T_m > 500 us; a new read only after the monoflop time)";
 
@@ -85,24 +86,77 @@ impl SsiMonitor {
         let whole = proto_table(text, origin, "ssi")?;
         let checks: SsiChecks = config::decode_in(&whole, "checks", origin)?;
         let mut settings = tables.emulator.clone();
-        settings.max_line_clock_khz = settings.max_line_clock_khz.or(Some(checks.max_clock_khz.max(MAX_CLOCK_KHZ)));
-        config::emulator_clock(f_mon_hz, &settings, MAX_CLOCK_KHZ, "the SSI monitor", origin)?;
+        settings.max_line_clock_khz = settings
+            .max_line_clock_khz
+            .or(Some(checks.max_clock_khz.max(MAX_CLOCK_KHZ)));
+        config::emulator_clock(
+            f_mon_hz,
+            &settings,
+            MAX_CLOCK_KHZ,
+            "the SSI monitor",
+            origin,
+        )?;
         let encoder: EncoderSettings = config::decode_in(&whole, "encoder", origin)?;
         let master = sub(&whole, "master", origin)?;
         let mon: MonitorTable = config::decode_in(&whole, "monitor", origin)?;
-        let (bits, bits_field) = first_given([("monitor.bits", mon.bits), ("master.bits", field(&master, "bits", origin, "master.bits")?), ("encoder.bits", Some(encoder.bits))], 0);
+        let (bits, bits_field) = first_given(
+            [
+                ("monitor.bits", mon.bits),
+                (
+                    "master.bits",
+                    field(&master, "bits", origin, "master.bits")?,
+                ),
+                ("encoder.bits", Some(encoder.bits)),
+            ],
+            0,
+        );
         if !(1..=64).contains(&bits) {
-            return Err(Error::field(origin, bits_field, format!("{bits} bits"), "give 1 to 64 bits"));
+            return Err(Error::field(
+                origin,
+                bits_field,
+                format!("{bits} bits"),
+                "give 1 to 64 bits",
+            ));
         }
-        let code = mon.code.or(field(&master, "code", origin, "master.code")?).unwrap_or(encoder.code);
-        let double_read = mon.double_read.or(field(&master, "double_read", origin, "master.double_read")?).unwrap_or(false);
-        let wire_check = mon.wire_check.or(field(&master, "wire_check", origin, "master.wire_check")?).unwrap_or(false);
-        let (t_m_us, t_m_field) = first_given([("monitor.t_m_us", mon.t_m_us), ("encoder.monoflop_us", Some(encoder.monoflop_us))], 0.0);
-        let t_m_us = limit(origin, t_m_field, t_m_us, "give the encoder's monoflop time in µs (seed: 500)")?;
+        let code = mon
+            .code
+            .or(field(&master, "code", origin, "master.code")?)
+            .unwrap_or(encoder.code);
+        let double_read = mon
+            .double_read
+            .or(field(&master, "double_read", origin, "master.double_read")?)
+            .unwrap_or(false);
+        let wire_check = mon
+            .wire_check
+            .or(field(&master, "wire_check", origin, "master.wire_check")?)
+            .unwrap_or(false);
+        let (t_m_us, t_m_field) = first_given(
+            [
+                ("monitor.t_m_us", mon.t_m_us),
+                ("encoder.monoflop_us", Some(encoder.monoflop_us)),
+            ],
+            0.0,
+        );
+        let t_m_us = limit(
+            origin,
+            t_m_field,
+            t_m_us,
+            "give the encoder's monoflop time in µs (seed: 500)",
+        )?;
         if !(checks.min_clock_khz > 0.0 && checks.min_clock_khz <= checks.max_clock_khz) {
-            return Err(Error::field(origin, "checks.min_clock_khz", format!("{} to {} kHz", checks.min_clock_khz, checks.max_clock_khz), "give 0 < min_clock_khz <= max_clock_khz (seed: 100 and 250)"));
+            return Err(Error::field(
+                origin,
+                "checks.min_clock_khz",
+                format!("{} to {} kHz", checks.min_clock_khz, checks.max_clock_khz),
+                "give 0 < min_clock_khz <= max_clock_khz (seed: 100 and 250)",
+            ));
         }
-        let t_cs_us = limit(origin, "checks.t_cs_min_us", checks.t_cs_min_us, "give the least T_cs in µs (seed: 4)")?;
+        let t_cs_us = limit(
+            origin,
+            "checks.t_cs_min_us",
+            checks.t_cs_min_us,
+            "give the least T_cs in µs (seed: 4)",
+        )?;
         let base = Base::new(f_mon_hz);
         let tol = base.period_ps;
         let ps = |us: f64| (us * 1e6).round() as u64;
@@ -112,10 +166,18 @@ impl SsiMonitor {
             t_cs: ps(t_cs_us).saturating_sub(tol),
             t_m: ps(t_m_us).saturating_sub(tol),
             base,
-            layout: Layout { bits: Some(bits), gray: code == Code::Gray, double_read, wire_check },
+            layout: Layout {
+                bits: Some(bits),
+                gray: code == Code::Gray,
+                double_read,
+                wire_check,
+            },
             clk: Signal::named("clk"),
             data: Signal::named("data"),
-            watch: Watch { clk: true, ..Watch::default() },
+            watch: Watch {
+                clk: true,
+                ..Watch::default()
+            },
         })
     }
 
@@ -155,7 +217,14 @@ impl SsiMonitor {
         w.last_edge = now;
         if !clk && !w.in_read {
             let gap = w.read_end.map(|end| now - end);
-            *w = Watch { clk, last_edge: now, in_read: true, edges: 1, half: None, read_end: w.read_end };
+            *w = Watch {
+                clk,
+                last_edge: now,
+                in_read: true,
+                edges: 1,
+                half: None,
+                read_end: w.read_end,
+            };
             if let Some(gap) = gap.filter(|&g| g < self.t_m) {
                 let want = self.t_m + self.base.period_ps;
                 self.base.violation(now, RULE_T_M, format!("read started {:.3} us after the last clock edge of the previous read; T_m is {:.3} us", us(gap), us(want)));
@@ -168,19 +237,31 @@ impl SsiMonitor {
         w.edges += 1;
         if w.edges == 2 {
             if len < self.t_cs {
-                self.base.violation(now, RULE_T_CS, format!("first low phase {:.3} us", us(len)));
+                self.base
+                    .violation(now, RULE_T_CS, format!("first low phase {:.3} us", us(len)));
             }
             return;
         }
         w.half.get_or_insert(len);
         if len < self.half_min || len > self.half_max {
             let phase = if clk { "low" } else { "high" };
-            self.base.violation(now, RULE_CLOCK, format!("clock {phase} for {:.3} us within a read (half period {:.3} to {:.3} us)", us(len), us(self.half_min + self.base.period_ps), us(self.half_max - self.base.period_ps)));
+            self.base.violation(
+                now,
+                RULE_CLOCK,
+                format!(
+                    "clock {phase} for {:.3} us within a read (half period {:.3} to {:.3} us)",
+                    us(len),
+                    us(self.half_min + self.base.period_ps),
+                    us(self.half_max - self.base.period_ps)
+                ),
+            );
         }
     }
 
     fn last(&self) -> Option<Value> {
-        self.pending().pop().or_else(|| self.base.done.last().cloned())
+        self.pending()
+            .pop()
+            .or_else(|| self.base.done.last().cloned())
     }
 }
 
@@ -227,13 +308,19 @@ impl Emulator for SsiMonitor {
     /// `"errors"`: the last read had an error (double-read mismatch, wire check, bit count).
     fn last_status(&self, _: usize, name: &str) -> Result<bool> {
         match name {
-            "errors" | "error" => Ok(self.last().and_then(|r| r["errors"].as_array().map(|e| !e.is_empty())).unwrap_or(false)),
-            other => Err(Error::Usage(format!("ssi_monitor: no status `{other}`; give \"error\""))),
+            "errors" | "error" => Ok(self
+                .last()
+                .and_then(|r| r["errors"].as_array().map(|e| !e.is_empty()))
+                .unwrap_or(false)),
+            other => Err(Error::Usage(format!(
+                "ssi_monitor: no status `{other}`; give \"error\""
+            ))),
         }
     }
 
     fn transcript(&self) -> Value {
-        self.base.transcript("ssi", &["clk", "data"], self.pending())
+        self.base
+            .transcript("ssi", &["clk", "data"], self.pending())
     }
 
     fn checks(&mut self) -> &mut crate::check::Checks {

@@ -56,7 +56,8 @@ pub const RULE_FIELDS: &str = "request frame (seed 002 6.2, 6.3: a readout or re
 /// See [`RULE_CHARACTER`].
 pub const RULE_RELEASE: &str = "turnaround (seed 002 7.1: the answer comes 3 us (typ.) after the request's delimiter; the host releases the line before)";
 /// See [`RULE_CHARACTER`].
-pub const RULE_ANSWER: &str = "turnaround (seed 002 10: never transmit any request while the encoder transmits its data)";
+pub const RULE_ANSWER: &str =
+    "turnaround (seed 002 10: never transmit any request while the encoder transmits its data)";
 /// See [`RULE_CHARACTER`].
 pub const RULE_RESET: &str = "request spacing (seed 002 9: resets 7, 8, C: 10 times in one sequence, with the interval of 40 ms or more)";
 
@@ -88,8 +89,13 @@ struct Decode(Decoder, u64);
 
 impl ExchangeDecoder for Decode {
     fn exchange(&mut self, line: &Exchanges, (start, fall, next): Window) -> Option<Value> {
-        let (wire, heard) = (uart_bytes(&line.wire, self.1), uart_bytes(&line.heard, self.1));
-        self.0.exchange(start, fall, next, &wire, &heard, &line.heard).map(json)
+        let (wire, heard) = (
+            uart_bytes(&line.wire, self.1),
+            uart_bytes(&line.heard, self.1),
+        );
+        self.0
+            .exchange(start, fall, next, &wire, &heard, &line.heard)
+            .map(json)
     }
 
     fn finish(&mut self) -> Option<Value> {
@@ -116,19 +122,59 @@ impl TformatMonitor {
         let whole = proto_table(text, origin, "tformat")?;
         let baud: f64 = field::<f64>(&whole, "baud", origin, "baud")?.unwrap_or(2.5e6);
         if !(1e3..=50e6).contains(&baud) {
-            return Err(Error::field(origin, "baud", format!("{baud} bit/s"), "give the bit rate in bit/s (seed 002: 2.5e6)"));
+            return Err(Error::field(
+                origin,
+                "baud",
+                format!("{baud} bit/s"),
+                "give the bit rate in bit/s (seed 002: 2.5e6)",
+            ));
         }
         let mut settings = tables.emulator.clone();
         settings.max_line_clock_khz = settings.max_line_clock_khz.or(Some(baud / 1e3));
-        config::emulator_clock(f_mon_hz, &settings, baud / 1e3, "the T-format monitor (its line clock is the bit rate)", origin)?;
+        config::emulator_clock(
+            f_mon_hz,
+            &settings,
+            baud / 1e3,
+            "the T-format monitor (its line clock is the bit rate)",
+            origin,
+        )?;
         let mon: MonitorTable = config::decode_in(&whole, "monitor", origin)?;
         let host = sub(&whole, "host", origin)?;
         let encoder = sub(&whole, "encoder", origin)?;
-        let (timeout, timeout_field) = first_given([("monitor.timeout_us", mon.timeout_us), ("host.timeout_us", field(&host, "timeout_us", origin, "host.timeout_us")?)], 10.0);
-        let timeout = limit(origin, timeout_field, timeout, "give the host's answer timeout in µs")?;
-        let jitter = limit(origin, "monitor.jitter_ns", mon.jitter_ns.unwrap_or(100.0), "give the jitter allowed on a request's edges in ns (seed 002: 100)")?;
-        let gap = limit(origin, "monitor.max_gap_bits", mon.max_gap_bits.unwrap_or(0.5), "give the longest idle line between two fields of a request, in bits")?;
-        let release = limit(origin, "monitor.release_us", mon.release_us.unwrap_or(1.5), "give the longest time from the request's last delimiter to DE off, in µs")?;
+        let (timeout, timeout_field) = first_given(
+            [
+                ("monitor.timeout_us", mon.timeout_us),
+                (
+                    "host.timeout_us",
+                    field(&host, "timeout_us", origin, "host.timeout_us")?,
+                ),
+            ],
+            10.0,
+        );
+        let timeout = limit(
+            origin,
+            timeout_field,
+            timeout,
+            "give the host's answer timeout in µs",
+        )?;
+        let jitter = limit(
+            origin,
+            "monitor.jitter_ns",
+            mon.jitter_ns.unwrap_or(100.0),
+            "give the jitter allowed on a request's edges in ns (seed 002: 100)",
+        )?;
+        let gap = limit(
+            origin,
+            "monitor.max_gap_bits",
+            mon.max_gap_bits.unwrap_or(0.5),
+            "give the longest idle line between two fields of a request, in bits",
+        )?;
+        let release = limit(
+            origin,
+            "monitor.release_us",
+            mon.release_us.unwrap_or(1.5),
+            "give the longest time from the request's last delimiter to DE off, in µs",
+        )?;
         let reset = limit(
             origin,
             "monitor.reset_interval_us",
@@ -137,11 +183,27 @@ impl TformatMonitor {
         )?;
         let base = Base::new(f_mon_hz);
         let bit_ps = (1e12 / baud).round() as u64;
-        let limits = Limits { bit_ps: 1e12 / baud, tolerance: 0.0, jitter_ps: jitter * 1e3, max_gap_ps: gap * 1e12 / baud, release_ps: (release * 1e6).round() as u64 };
-        let rules = Rules { character: RULE_CHARACTER, gap: RULE_GAP, release: RULE_RELEASE, answer: RULE_ANSWER };
+        let limits = Limits {
+            bit_ps: 1e12 / baud,
+            tolerance: 0.0,
+            jitter_ps: jitter * 1e3,
+            max_gap_ps: gap * 1e12 / baud,
+            release_ps: (release * 1e6).round() as u64,
+        };
+        let rules = Rules {
+            character: RULE_CHARACTER,
+            gap: RULE_GAP,
+            release: RULE_RELEASE,
+            answer: RULE_ANSWER,
+        };
         Ok(TformatMonitor {
             reset_interval: ((reset * 1e6).round() as u64).saturating_sub(base.period_ps),
-            side: Side::new(base, limits, rules, Decode(Decoder::new(baud.round() as u64, timeout), bit_ps)),
+            side: Side::new(
+                base,
+                limits,
+                rules,
+                Decode(Decoder::new(baud.round() as u64, timeout), bit_ps),
+            ),
             reset: None,
         })
     }
@@ -153,7 +215,14 @@ impl TformatMonitor {
         if let Some(id) = id.filter(|_| !r.damaged) {
             let want = frames::request(id, 0, 0).len();
             if r.fields.len() != want {
-                self.side.base.violation(r.end_ps, RULE_FIELDS, format!("a request of {} field(s) for Data ID {code:X}, which takes {want}", r.fields.len()));
+                self.side.base.violation(
+                    r.end_ps,
+                    RULE_FIELDS,
+                    format!(
+                        "a request of {} field(s) for Data ID {code:X}, which takes {want}",
+                        r.fields.len()
+                    ),
+                );
             }
         }
         let reset = id.is_some_and(|d| d.is_reset());
@@ -212,7 +281,10 @@ impl Emulator for TformatMonitor {
 
     /// An error of the last transaction (`crc`, `timeout`, `frame`, `cf_mismatch`, `comm_alarm`) or an ALMC flag after it.
     fn last_status(&self, _: usize, name: &str) -> Result<bool> {
-        let t = self.side.last().ok_or_else(|| Error::Usage("tformat_monitor: no transaction decoded yet".into()))?;
+        let t = self
+            .side
+            .last()
+            .ok_or_else(|| Error::Usage("tformat_monitor: no transaction decoded yet".into()))?;
         if let Some(&(_, bit)) = ALMC.iter().find(|a| a.0 == name) {
             return Ok(t["almc"].as_u64().unwrap_or(0) >> bit & 1 == 1);
         }

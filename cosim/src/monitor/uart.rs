@@ -182,7 +182,14 @@ impl Watch {
 
     /// One monitor cycle at `now`: the host's driver input `tx`, its enable
     /// `de`, its receiver's output `rx`. Returns the request that ended (DE fell).
-    pub fn step(&mut self, base: &mut Base, now: u64, tx: bool, de: bool, rx: bool) -> Option<Request> {
+    pub fn step(
+        &mut self,
+        base: &mut Base,
+        now: u64,
+        tx: bool,
+        de: bool,
+        rx: bool,
+    ) -> Option<Request> {
         let bit = self.limits.bit_ps;
         let cycle = base.period_ps as f64;
         let fb = self.fb();
@@ -190,7 +197,11 @@ impl Watch {
         // The device's characters at the host's receiver.
         if rx != self.rx {
             self.rx = rx;
-            if !rx && !de && !self.device_busy(now) && self.dev_char.is_none_or(|d| now >= self.at(d, fb - 0.5)) {
+            if !rx
+                && !de
+                && !self.device_busy(now)
+                && self.dev_char.is_none_or(|d| now >= self.at(d, fb - 0.5))
+            {
                 self.dev_char = Some(now);
                 self.dev_stop_mid = Some(now as f64 + (fb - 0.5) * bit);
                 self.awaiting = None;
@@ -211,7 +222,14 @@ impl Watch {
         }
         if de && !self.de && self.device_busy(now) {
             let d = self.dev_char.unwrap_or(now);
-            base.violation(now, r.answer, format!("the host switched its driver on {:.2} bits into a character of the device", (now - d) as f64 / bit));
+            base.violation(
+                now,
+                r.answer,
+                format!(
+                    "the host switched its driver on {:.2} bits into a character of the device",
+                    (now - d) as f64 / bit
+                ),
+            );
         }
         // The host's characters, as its driver puts them on the line.
         let level = tx || !de;
@@ -229,10 +247,21 @@ impl Watch {
                 }
                 self.bits += 1;
             }
-            if self.limits.parity != Parity::None && self.bits == 8 && !self.parity_checked && now >= self.at(s, 9.5) {
+            if self.limits.parity != Parity::None
+                && self.bits == 8
+                && !self.parity_checked
+                && now >= self.at(s, 9.5)
+            {
                 self.parity_checked = true;
                 if level != self.limits.parity.bit(self.value) {
-                    base.violation(now, r.character, format!("parity bit wrong for 0x{:02X} ({:?} parity)", self.value, self.limits.parity));
+                    base.violation(
+                        now,
+                        r.character,
+                        format!(
+                            "parity bit wrong for 0x{:02X} ({:?} parity)",
+                            self.value, self.limits.parity
+                        ),
+                    );
                 }
             }
             if !self.stop_checked && now >= self.at(s, fb - 0.5) {
@@ -241,16 +270,33 @@ impl Watch {
                 self.last_end = Some(s as f64 + fb * bit);
                 self.gap_reported = false;
                 let v = self.value;
-                self.request.get_or_insert(Request { start_ps: s, bytes: Vec::new() }).bytes.push(v);
+                self.request
+                    .get_or_insert(Request {
+                        start_ps: s,
+                        bytes: Vec::new(),
+                    })
+                    .bytes
+                    .push(v);
                 if !level {
-                    base.violation(now, r.character, "stop bit low at its middle (framing error)".to_string());
+                    base.violation(
+                        now,
+                        r.character,
+                        "stop bit low at its middle (framing error)".to_string(),
+                    );
                     self.lose();
                 }
             }
             if self.lost {
                 // the stop bit was low
             } else if !de && self.de && !self.stop_checked {
-                base.violation(now, r.character, format!("driver enable released {:.2} bits into a character", o / bit));
+                base.violation(
+                    now,
+                    r.character,
+                    format!(
+                        "driver enable released {:.2} bits into a character",
+                        o / bit
+                    ),
+                );
                 self.lose();
             } else if level != self.drive {
                 if self.stop_checked {
@@ -300,7 +346,10 @@ impl Watch {
         let first = self.request.is_none();
         if first {
             // The silence before a request, from the last character on the line (either direction).
-            let last = [self.last_stop_mid, self.dev_stop_mid].into_iter().flatten().fold(None, |a: Option<f64>, b| Some(a.map_or(b, |a| a.max(b))));
+            let last = [self.last_stop_mid, self.dev_stop_mid]
+                .into_iter()
+                .flatten()
+                .fold(None, |a: Option<f64>, b| Some(a.map_or(b, |a| a.max(b))));
             if let Some(l) = last.filter(|_| self.limits.min_silence_ps > 0.0) {
                 let quiet = now as f64 - l;
                 if quiet + (base.period_ps as f64) < self.limits.min_silence_ps {
@@ -309,7 +358,10 @@ impl Watch {
             }
             self.check_wait(base, now, "a request");
             self.resync = false;
-        } else if let Some(m) = self.last_stop_mid.filter(|_| !std::mem::take(&mut self.resync)) {
+        } else if let Some(m) = self
+            .last_stop_mid
+            .filter(|_| !std::mem::take(&mut self.resync))
+        {
             let gap = now as f64 - m;
             if gap > self.limits.max_gap_ps + base.period_ps as f64 && !self.gap_reported {
                 self.gap_reported = true;
@@ -341,7 +393,11 @@ impl Line {
     pub fn new() -> Self {
         let mut de = Signal::named("tx_en");
         de.push(0, false);
-        Line { wire: Signal::named("line"), de, from: 0 }
+        Line {
+            wire: Signal::named("line"),
+            de,
+            from: 0,
+        }
     }
 
     /// One monitor cycle.

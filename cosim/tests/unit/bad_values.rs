@@ -61,11 +61,23 @@ fn poke(emu: &mut dyn Emulator, rng: &mut Rng) {
         let _ = emu.set_status(device, name, rng.below(2) == 1);
         let _ = emu.last_status(device, name);
     }
-    for text in ["", "x = ", "[motion]\nspeed = nan", "[motion]\nkind = \"ramp\"\nspeed_cps = 1e300", "[[faults]]\nkind = \"flip\"\nbit = -1", "[[flips]]\nframe = 18446744073709551615"] {
+    for text in [
+        "",
+        "x = ",
+        "[motion]\nspeed = nan",
+        "[motion]\nkind = \"ramp\"\nspeed_cps = 1e300",
+        "[[faults]]\nkind = \"flip\"\nbit = -1",
+        "[[flips]]\nframe = 18446744073709551615",
+    ] {
         let _ = emu.set_motion(device, text);
         let _ = emu.schedule_fault(text);
     }
-    let _ = (emu.count(), emu.last_value(device), emu.transcript(), emu.take_violation());
+    let _ = (
+        emu.count(),
+        emu.last_value(device),
+        emu.transcript(),
+        emu.take_violation(),
+    );
 }
 
 #[derive(Default)]
@@ -85,7 +97,15 @@ impl Tally {
     /// Opens `kind` on `text` at `f_emu_hz`; an error must name `origin`,
     /// the line and the field (or the clock), an accepted emulator is
     /// stepped a while.
-    fn try_open(&mut self, kind: &str, text: &str, origin: &str, f_emu_hz: u64, nan: bool, rng: &mut Rng) {
+    fn try_open(
+        &mut self,
+        kind: &str,
+        text: &str,
+        origin: &str,
+        f_emu_hz: u64,
+        nan: bool,
+        rng: &mut Rng,
+    ) {
         self.tried += 1;
         let run = caught(|| match open(kind, text, origin, f_emu_hz) {
             Err(e) => Err(e.to_string()),
@@ -95,14 +115,19 @@ impl Tally {
             }
         });
         match run {
-            Err(p) => self.panics.push(format!("{kind} {origin} f_emu {f_emu_hz} Hz: {p}")),
+            Err(p) => self
+                .panics
+                .push(format!("{kind} {origin} f_emu {f_emu_hz} Hz: {p}")),
             Ok(Err(message)) => {
                 self.refused += 1;
                 // The file, then the line (`<origin>:<line>:`, or the TOML
                 // parser's `at line <n>`) and the field in backticks; an
                 // emulator clock, which no file holds, by name.
                 let clock = message.contains("emulator clock");
-                let line = message.strip_prefix(&format!("{origin}:")).is_some_and(|rest| rest.starts_with(|c: char| c.is_ascii_digit())) || message.contains(" line ");
+                let line = message
+                    .strip_prefix(&format!("{origin}:"))
+                    .is_some_and(|rest| rest.starts_with(|c: char| c.is_ascii_digit()))
+                    || message.contains(" line ");
                 if !message.starts_with(origin) || !(clock || line && message.contains('`')) {
                     self.unnamed.push(format!("{kind}: {message}"));
                 }
@@ -122,11 +147,21 @@ fn configs() -> Vec<(String, &'static str, String)> {
     let mut out = Vec::new();
     for &(core, kind) in KINDS {
         let dir = root.join(core).join("configs");
-        let mut files: Vec<_> = std::fs::read_dir(&dir).unwrap_or_else(|e| panic!("{}: {e}", dir.display())).map(|e| e.expect("a directory entry").path()).collect();
+        let mut files: Vec<_> = std::fs::read_dir(&dir)
+            .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
+            .map(|e| e.expect("a directory entry").path())
+            .collect();
         files.sort();
         for f in files {
             let text = std::fs::read_to_string(&f).expect("a configuration reads");
-            out.push((format!("hdl/tb_cosim/{core}/configs/{}", f.file_name().unwrap().to_string_lossy()), kind, text));
+            out.push((
+                format!(
+                    "hdl/tb_cosim/{core}/configs/{}",
+                    f.file_name().unwrap().to_string_lossy()
+                ),
+                kind,
+                text,
+            ));
         }
     }
     out
@@ -154,14 +189,17 @@ fn emulators_and_monitors_answer_any_configuration_clock_and_pins_without_a_pani
         for k in [*kind, monitor.as_str()] {
             // As written, on random pins with every run-time call between.
             let run = caught(|| {
-                let mut emu = open(k, text, origin, f).unwrap_or_else(|e| panic!("a closed-loop configuration opens: {e}"));
+                let mut emu = open(k, text, origin, f)
+                    .unwrap_or_else(|e| panic!("a closed-loop configuration opens: {e}"));
                 for _ in 0..20 {
                     random_pins(emu.as_mut(), &mut rng, 1_000);
                     poke(emu.as_mut(), &mut rng);
                 }
             });
             if let Err(p) = run {
-                tally.panics.push(format!("{k} {origin} on random pins and calls: {p}"));
+                tally
+                    .panics
+                    .push(format!("{k} {origin} on random pins and calls: {p}"));
             }
             for hz in [0, 1, 999_999_999, 1_000_000_001, u64::MAX] {
                 tally.try_open(k, text, origin, hz, false, &mut rng);
@@ -183,9 +221,22 @@ fn emulators_and_monitors_answer_any_configuration_clock_and_pins_without_a_pani
         }
     }
     println!("{} opens tried: {} refused, {} accepted and stepped on random pins ({} with a NaN in a field)", tally.tried, tally.refused, tally.stepped, tally.took_nan.len());
-    assert!(tally.panics.is_empty(), "{} panics:\n{}", tally.panics.len(), tally.panics.join("\n"));
-    assert!(tally.unnamed.is_empty(), "{} errors without the file, the line and the field:\n{}", tally.unnamed.len(), tally.unnamed.join("\n"));
-    assert!(tally.refused > tally.tried / 4 && tally.stepped > tally.tried / 10, "the sweep reaches both sides");
+    assert!(
+        tally.panics.is_empty(),
+        "{} panics:\n{}",
+        tally.panics.len(),
+        tally.panics.join("\n")
+    );
+    assert!(
+        tally.unnamed.is_empty(),
+        "{} errors without the file, the line and the field:\n{}",
+        tally.unnamed.len(),
+        tally.unnamed.join("\n")
+    );
+    assert!(
+        tally.refused > tally.tried / 4 && tally.stepped > tally.tried / 10,
+        "the sweep reaches both sides"
+    );
 }
 
 /// An emulator's or a monitor's error places its field on its line, as
@@ -194,9 +245,21 @@ fn emulators_and_monitors_answer_any_configuration_clock_and_pins_without_a_pani
 fn a_bad_field_is_named_on_its_line_by_emulator_and_monitor() {
     let text = "name = \"t\"\n[ssi]\nf_sys_mhz = 4\n\n[ssi.encoder]\ncode = \"gray\"\nbits = 70\n";
     for kind in ["ssi", "ssi_monitor"] {
-        let e = open(kind, text, "t.toml", 4_000_000).err().expect("70 bits are refused").to_string();
-        assert!(e.starts_with("t.toml:7: ") && e.contains("bits"), "{kind}: {e}");
-        let e = open(kind, &text.replace("70", "-1"), "t.toml", 4_000_000).err().expect("-1 bits are refused").to_string();
-        assert!(e.starts_with("t.toml:7: ") && e.contains("encoder.bits`"), "{kind}: {e}");
+        let e = open(kind, text, "t.toml", 4_000_000)
+            .err()
+            .expect("70 bits are refused")
+            .to_string();
+        assert!(
+            e.starts_with("t.toml:7: ") && e.contains("bits"),
+            "{kind}: {e}"
+        );
+        let e = open(kind, &text.replace("70", "-1"), "t.toml", 4_000_000)
+            .err()
+            .expect("-1 bits are refused")
+            .to_string();
+        assert!(
+            e.starts_with("t.toml:7: ") && e.contains("encoder.bits`"),
+            "{kind}: {e}"
+        );
     }
 }

@@ -25,13 +25,18 @@ fn a_nodes_frame_reaches_the_other_node_through_a_recessive_master() {
 #[test]
 fn a_frame_scripted_at_run_time_is_sent() {
     let mut emu = CanEmulator::from_toml(TWO, "two.toml", 10_000_000).unwrap();
-    emu.schedule_fault("[[send]]\nnode = 0\nid = 0x42\ndlc = 1\ndata = [7]\n").unwrap();
+    emu.schedule_fault("[[send]]\nnode = 0\nid = 0x42\ndlc = 1\ndata = [7]\n")
+        .unwrap();
     for _ in 0..6000 {
         emu.step(Pins(2));
     }
     assert_eq!(emu.last_value(48), Some(1), "node a sent its frame");
     assert_eq!(emu.last_value(1 + 16), Some(0x42), "node b received it");
-    let err = emu.schedule_fault("[[send]]\nnode = 5\nid = 1\n").err().unwrap().to_string();
+    let err = emu
+        .schedule_fault("[[send]]\nnode = 5\nid = 1\n")
+        .err()
+        .unwrap()
+        .to_string();
     assert!(err.contains("send[0].node"), "{err}");
 }
 
@@ -49,8 +54,17 @@ fn a_master_holding_the_bus_dominant_is_reported() {
 
 #[test]
 fn faults_and_missing_nodes_are_refused_by_name() {
-    let err = CanEmulator::from_toml("[can]\n", "c.toml", 10_000_000).err().unwrap().to_string();
-    assert!(err.starts_with("c.toml: ") && err.contains("nodes"), "{err}");
-    let err = CanEmulator::from_toml("", "c.toml", 3_000_000).err().unwrap().to_string();
+    let err = CanEmulator::from_toml("[can]\n", "c.toml", 10_000_000)
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(
+        err.starts_with("c.toml: ") && err.contains("nodes"),
+        "{err}"
+    );
+    let err = CanEmulator::from_toml("", "c.toml", 3_000_000)
+        .err()
+        .unwrap()
+        .to_string();
     assert!(err.contains("at least 4000000 Hz"), "{err}");
 }

@@ -48,7 +48,10 @@ fn a_position_read_returns_the_position_set_and_f2_differs_from_f1_when_told() {
     // seen[0] is before the encoder switched its driver on (the idle high), then low until the start bit.
     assert!(!seen[1]);
     let start = 1 + seen[1..].iter().position(|&b| b).expect("start bit");
-    let frame: String = seen[start + 1..start + 1 + 27].iter().map(|&b| if b { '1' } else { '0' }).collect();
+    let frame: String = seen[start + 1..start + 1 + 27]
+        .iter()
+        .map(|&b| if b { '1' } else { '0' })
+        .collect();
     assert_eq!(frame, e.sent_bits[..27]);
     assert!(emu.violations().is_empty(), "{:?}", emu.violations());
 }
@@ -60,7 +63,11 @@ fn clocking_within_the_recovery_time_and_driving_into_the_encoder_are_reported()
     // Type 2.2 position reads (a falling edge in the recovery of a 2.1 read is a continuous clock).
     transfer(&mut emu, 0b111000, 16, 40, 64); // 1 µs later: t_m is 15 µs
     transfer(&mut emu, 0b111000, 16, 40, 64 * 40);
-    let rules: Vec<&str> = emu.violations().iter().map(|v| v.rule.split(' ').next().unwrap()).collect();
+    let rules: Vec<&str> = emu
+        .violations()
+        .iter()
+        .map(|v| v.rule.split(' ').next().unwrap())
+        .collect();
     assert!(rules.contains(&"t_m"), "{rules:?}");
 }
 
@@ -72,7 +79,11 @@ fn a_type_21_transfer_before_t_b_is_reported_and_one_after_it_is_not() {
     transfer(&mut emu, 0b000111, 16, 33, 64 * 1010); // 1.01 ms later
     transfer(&mut emu, 0b000111, 16, 33, 64 * 40);
     assert_eq!(emu.count(), 3);
-    let rules: Vec<(u64, &str)> = emu.violations().iter().map(|v| (v.cycle, v.rule.split(' ').next().unwrap())).collect();
+    let rules: Vec<(u64, &str)> = emu
+        .violations()
+        .iter()
+        .map(|v| (v.cycle, v.rule.split(' ').next().unwrap()))
+        .collect();
     assert_eq!(rules.len(), 1, "{:?}", emu.violations());
     assert_eq!(rules[0].1, "t_b");
     assert_eq!(rules[0].0, emu.entries()[1].cycle);
@@ -80,7 +91,10 @@ fn a_type_21_transfer_before_t_b_is_reported_and_one_after_it_is_not() {
 
 #[test]
 fn an_emulator_clock_below_four_times_8_mhz_is_refused_with_the_minimum() {
-    let err = EndatEmulator::from_toml("", "e.toml", 16_000_000).err().unwrap().to_string();
+    let err = EndatEmulator::from_toml("", "e.toml", 16_000_000)
+        .err()
+        .unwrap()
+        .to_string();
     assert!(err.contains("at least 32000000 Hz"), "{err}");
 }
 
@@ -88,5 +102,8 @@ fn an_emulator_clock_below_four_times_8_mhz_is_refused_with_the_minimum() {
 fn an_unknown_status_names_the_ones_there_are() {
     let mut emu = EndatEmulator::from_toml("", "e.toml", 64_000_000).unwrap();
     let err = emu.set_status(0, "alarm", true).unwrap_err().to_string();
-    assert!(err.contains("f1") && err.contains("f2") && err.contains("busy"), "{err}");
+    assert!(
+        err.contains("f1") && err.contains("f2") && err.contains("busy"),
+        "{err}"
+    );
 }

@@ -1,6 +1,6 @@
 use cosim::esl::*;
-use model::esl::frames::request;
 use cosim::{Emulator, Pins};
+use model::esl::frames::request;
 
 const F: u64 = 80_000_000;
 
@@ -18,7 +18,10 @@ fn send(emu: &mut EslEmulator, fields: &[u8], bit: usize, listen: usize) -> Vec<
 }
 
 fn rules(emu: &mut EslEmulator) -> Vec<String> {
-    emu.violations().iter().map(|v| v.rule.split(" (").next().unwrap().to_string()).collect()
+    emu.violations()
+        .iter()
+        .map(|v| v.rule.split(" (").next().unwrap().to_string())
+        .collect()
 }
 
 #[test]
@@ -37,7 +40,11 @@ fn a_safety_readout_carries_the_position_and_alarms_set() {
     // EA0 from UV, EA1 from OVSP (seed 000 Table 5), DD0 forced.
     assert!(emu.last_status(0, "ea0").unwrap() && emu.last_status(0, "ea1").unwrap());
     assert!(emu.last_status(0, "temp_warning").unwrap());
-    assert_eq!(emu.entries()[0].fields.len(), 18, "Data ID 1: 18 fields (Table 12)");
+    assert_eq!(
+        emu.entries()[0].fields.len(),
+        18,
+        "Data ID 1: 18 fields (Table 12)"
+    );
     assert!(out.iter().any(|p| p.enable()));
     assert!(emu.violations().is_empty(), "{:?}", emu.violations());
 }
@@ -45,7 +52,8 @@ fn a_safety_readout_carries_the_position_and_alarms_set() {
 #[test]
 fn a_scheduled_flip_changes_the_line_but_not_the_entry() {
     let mut emu = EslEmulator::from_toml("[cable]\nlength_m = 0\n", "e.toml", F).unwrap();
-    emu.schedule_fault("flips = [{ answer = 0, field = 3, bit = 1 }]").unwrap();
+    emu.schedule_fault("flips = [{ answer = 0, field = 3, bit = 1 }]")
+        .unwrap();
     let out = send(&mut emu, &request(0, 5, 0, 0), 8, 1200);
     let clean = {
         let mut e = EslEmulator::from_toml("[cable]\nlength_m = 0\n", "e.toml", F).unwrap();
@@ -57,10 +65,22 @@ fn a_scheduled_flip_changes_the_line_but_not_the_entry() {
 
 #[test]
 fn an_emulator_clock_below_four_times_the_bit_rate_is_refused_with_the_minimum() {
-    let err = EslEmulator::from_toml("", "e.toml", 20_000_000).err().unwrap().to_string();
-    assert!(err.contains("at least 40000000 Hz") && err.contains("e.toml"), "{err}");
-    let err = EslEmulator::from_toml("[[encoders]]\naddress = 9\n", "e.toml", F).err().unwrap().to_string();
-    assert!(err.contains("encoders[0]") && err.contains("e.toml"), "{err}");
+    let err = EslEmulator::from_toml("", "e.toml", 20_000_000)
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(
+        err.contains("at least 40000000 Hz") && err.contains("e.toml"),
+        "{err}"
+    );
+    let err = EslEmulator::from_toml("[[encoders]]\naddress = 9\n", "e.toml", F)
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(
+        err.contains("encoders[0]") && err.contains("e.toml"),
+        "{err}"
+    );
 }
 
 #[test]
@@ -78,13 +98,21 @@ fn a_slow_host_bit_and_a_split_request_are_character_timing_violations() {
     // 9 cycles per bit instead of 8: 12.5 % slow.
     let mut emu = EslEmulator::from_toml("[cable]\nlength_m = 0\n", "e.toml", F).unwrap();
     send(&mut emu, &request(0, 1, 0, 0), 9, 3000);
-    assert!(rules(&mut emu).iter().any(|r| r == "character timing"), "{:?}", emu.violations());
+    assert!(
+        rules(&mut emu).iter().any(|r| r == "character timing"),
+        "{:?}",
+        emu.violations()
+    );
     // CF, a pause of 3 bits, then the CRC: two frame sets of one field.
     let mut emu = EslEmulator::from_toml("[cable]\nlength_m = 0\n", "e.toml", F).unwrap();
     let r = request(0, 1, 0, 0);
     send(&mut emu, &r[..1], 8, 24);
     send(&mut emu, &r[1..], 8, 3000);
-    let v = emu.violations().iter().filter(|v| v.rule == BACK_TO_BACK).count();
+    let v = emu
+        .violations()
+        .iter()
+        .filter(|v| v.rule == BACK_TO_BACK)
+        .count();
     assert!(v >= 1, "{:?}", emu.violations());
     assert_eq!(emu.count(), 0);
 }

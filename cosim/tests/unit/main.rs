@@ -6,7 +6,7 @@
 //! They are an integration test rather than `#[cfg(test)]` modules inside
 //! the library so that `make test`'s build compiles cosim once: a library
 //! with unit tests is compiled a second time, whole, for its test binary
-//! (about 100 s of CPU on the 2-core machine, issue 15). They reach the
+//! (about 100 s of CPU on the 2-core machine). They reach the
 //! library through its public API only.
 
 mod bad_values;

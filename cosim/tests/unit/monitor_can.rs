@@ -35,7 +35,8 @@ impl Line {
     }
     /// A frame the master sends, acknowledged by another node; then 3 bits of intermission.
     fn sent(&mut self, f: &Frame) -> &mut Self {
-        self.bits(&f.wire_bits(false), &f.wire_bits(true), CPB).idle(3)
+        self.bits(&f.wire_bits(false), &f.wire_bits(true), CPB)
+            .idle(3)
     }
     /// A frame another node sends, acknowledged by the master.
     fn heard(&mut self, f: &Frame) -> &mut Self {
@@ -62,8 +63,23 @@ fn rules(m: &mut dyn Emulator) -> Vec<&'static str> {
 #[test]
 fn a_clean_exchange_is_decoded_with_its_senders_and_no_violation() {
     let mut m = can();
-    let (a, b) = (Frame::data(0x123, &[0xDE, 0xAD]), Frame { id: 0x456, ide: false, rtr: true, dlc: 2, data: vec![] });
-    let ext = Frame { id: 0x1ABCDEF, ide: true, rtr: false, dlc: 1, data: vec![0x55] };
+    let (a, b) = (
+        Frame::data(0x123, &[0xDE, 0xAD]),
+        Frame {
+            id: 0x456,
+            ide: false,
+            rtr: true,
+            dlc: 2,
+            data: vec![],
+        },
+    );
+    let ext = Frame {
+        id: 0x1ABCDEF,
+        ide: true,
+        rtr: false,
+        dlc: 1,
+        data: vec![0x55],
+    };
     let mut l = Line::default();
     l.idle(20).sent(&a).heard(&b).sent(&ext).idle(20);
     l.play(&mut m);
@@ -71,9 +87,35 @@ fn a_clean_exchange_is_decoded_with_its_senders_and_no_violation() {
     assert_eq!(m.count(), 3);
     let t = m.transcript();
     let list = t["transactions"].as_array().unwrap();
-    assert_eq!((list[0]["id"].clone(), list[0]["data"].clone(), list[0]["sender"].clone()), (0x123.into(), serde_json::json!([0xDE, 0xAD]), "master".into()));
-    assert_eq!((list[1]["rtr"].clone(), list[1]["dlc"].clone(), list[1]["sender"].clone()), (true.into(), 2.into(), "bus".into()));
-    assert_eq!((m.last_value(1), m.last_value(0), m.last_value(3), m.last_value(4)), (Some(0x1ABCDEF), Some(0x55 << 56), Some(3), Some(2)));
+    assert_eq!(
+        (
+            list[0]["id"].clone(),
+            list[0]["data"].clone(),
+            list[0]["sender"].clone()
+        ),
+        (
+            0x123.into(),
+            serde_json::json!([0xDE, 0xAD]),
+            "master".into()
+        )
+    );
+    assert_eq!(
+        (
+            list[1]["rtr"].clone(),
+            list[1]["dlc"].clone(),
+            list[1]["sender"].clone()
+        ),
+        (true.into(), 2.into(), "bus".into())
+    );
+    assert_eq!(
+        (
+            m.last_value(1),
+            m.last_value(0),
+            m.last_value(3),
+            m.last_value(4)
+        ),
+        (Some(0x1ABCDEF), Some(0x55 << 56), Some(3), Some(2))
+    );
     assert!(m.last_status(0, "ide").unwrap() && m.last_status(0, "master").unwrap());
 }
 
@@ -87,7 +129,9 @@ fn a_frame_the_master_sends_stays_its_own_when_rxd_lags_txd_past_the_bit_end() {
     let mut l = Line::default();
     l.idle(20).sent(&f).idle(20);
     let lag = 5;
-    let pins: Vec<(bool, bool)> = (0..l.pins.len()).map(|i| (l.pins[i].0, if i < lag { true } else { l.pins[i - lag].1 })).collect();
+    let pins: Vec<(bool, bool)> = (0..l.pins.len())
+        .map(|i| (l.pins[i].0, if i < lag { true } else { l.pins[i - lag].1 }))
+        .collect();
     let mut m = can();
     for &(t, r) in &pins {
         m.step(Pins(r as u32 | (t as u32) << 1));
@@ -124,11 +168,17 @@ fn each_can_rule_fires_once() {
     check(&l, RULE_FORM);
     // Intermission: the next SOF after 2 bits of it.
     let mut l = Line::default();
-    l.idle(20).bits(&f.wire_bits(false), &f.wire_bits(true), CPB).idle(2).sent(&f).idle(20);
+    l.idle(20)
+        .bits(&f.wire_bits(false), &f.wire_bits(true), CPB)
+        .idle(2)
+        .sent(&f)
+        .idle(20);
     check(&l, RULE_INTERMISSION);
     // Bit time: a frame 3 % fast.
     let mut l = Line::default();
-    l.idle(20).bits(&f.wire_bits(false), &f.wire_bits(true), CPB * 0.97).idle(30);
+    l.idle(20)
+        .bits(&f.wire_bits(false), &f.wire_bits(true), CPB * 0.97)
+        .idle(30);
     check(&l, RULE_BIT_TIME);
     // Dominant length: an error flag of 8 bits after bus idle.
     let mut l = Line::default();
@@ -155,7 +205,10 @@ fn a_lost_arbitration_is_not_the_masters_frame() {
     l.idle(20).bits(&tx, &rx, CPB).idle(20);
     l.play(&mut m);
     assert!(rules(&mut m).is_empty(), "{:?}", m.violations());
-    assert_eq!((m.last_value(1), m.last_status(0, "master").unwrap()), (Some(0x123), false));
+    assert_eq!(
+        (m.last_value(1), m.last_status(0, "master").unwrap()),
+        (Some(0x123), false)
+    );
 }
 
 fn canopen(extra: &str) -> CanopenMonitor {
@@ -163,15 +216,29 @@ fn canopen(extra: &str) -> CanopenMonitor {
 }
 
 fn sdo(node: u32, index: u16, v: u32) -> Frame {
-    Frame::data(0x600 + node, &model::canopen::sdo::download(index, 0, &v.to_le_bytes()[..2]))
+    Frame::data(
+        0x600 + node,
+        &model::canopen::sdo::download(index, 0, &v.to_le_bytes()[..2]),
+    )
 }
 
 /// Each CANopen rule broken once; the clean sequence says nothing.
 #[test]
 fn each_canopen_rule_fires_once() {
-    let confirm = |node: u32, index: u16| Frame::data(0x580 + node, &[0x60, index as u8, (index >> 8) as u8, 0, 0, 0, 0, 0]);
+    let confirm = |node: u32, index: u16| {
+        Frame::data(
+            0x580 + node,
+            &[0x60, index as u8, (index >> 8) as u8, 0, 0, 0, 0, 0],
+        )
+    };
     let start = Frame::data(0, &[1, 5]);
-    let guard = Frame { id: 0x705, ide: false, rtr: true, dlc: 1, data: vec![] };
+    let guard = Frame {
+        id: 0x705,
+        ide: false,
+        rtr: true,
+        dlc: 1,
+        data: vec![],
+    };
     let sync = Frame::data(0x80, &[]);
     let run = |l: &Line, extra: &str| {
         let mut m = canopen(extra);
@@ -180,9 +247,19 @@ fn each_canopen_rule_fires_once() {
     };
     // Clean: boot-up, an SDO and its answer, a timed-out SDO resent after 1 ms, start, guarding every 10 ms, SYNC every 2 ms.
     let mut l = Line::default();
-    l.idle(20).heard(&Frame::data(0x85, &[])).sent(&sdo(5, 0x100C, 10)).heard(&confirm(5, 0x100C)).sent(&sdo(5, 0x6200, 1)).idle(520).sent(&sdo(5, 0x6200, 1)).heard(&confirm(5, 0x6200)).sent(&start);
+    l.idle(20)
+        .heard(&Frame::data(0x85, &[]))
+        .sent(&sdo(5, 0x100C, 10))
+        .heard(&confirm(5, 0x100C))
+        .sent(&sdo(5, 0x6200, 1))
+        .idle(520)
+        .sent(&sdo(5, 0x6200, 1))
+        .heard(&confirm(5, 0x6200))
+        .sent(&start);
     for _ in 0..3 {
-        l.sent(&guard).heard(&Frame::data(0x705, &[0x05])).idle(4900);
+        l.sent(&guard)
+            .heard(&Frame::data(0x705, &[0x05]))
+            .idle(4900);
     }
     l.idle(200);
     let (got, mut m) = run(&l, "");
@@ -196,7 +273,11 @@ fn each_canopen_rule_fires_once() {
     assert!(got.is_empty(), "{got:?}");
     // SDO: the second request 100 us after the first, unanswered.
     let mut l = Line::default();
-    l.idle(20).sent(&sdo(5, 0x6200, 1)).idle(50).sent(&sdo(5, 0x6200, 2)).idle(20);
+    l.idle(20)
+        .sent(&sdo(5, 0x6200, 1))
+        .idle(50)
+        .sent(&sdo(5, 0x6200, 2))
+        .idle(20);
     assert_eq!(run(&l, "").0, vec![co::RULE_SDO]);
     // NMT: start twice.
     let mut l = Line::default();
@@ -204,7 +285,9 @@ fn each_canopen_rule_fires_once() {
     assert_eq!(run(&l, "").0, vec![co::RULE_NMT]);
     // Guarding: 10 ms guard time, the third request 16 ms after the second.
     let mut l = Line::default();
-    l.idle(20).sent(&sdo(5, 0x100C, 10)).heard(&confirm(5, 0x100C));
+    l.idle(20)
+        .sent(&sdo(5, 0x100C, 10))
+        .heard(&confirm(5, 0x100C));
     for gap in [4900, 7900, 100] {
         l.sent(&guard).heard(&Frame::data(0x705, &[0x05])).idle(gap);
     }
@@ -220,7 +303,13 @@ fn each_canopen_rule_fires_once() {
     let click = Frame::data(0x220, &[0x80, 0x20, 0, 0, 0, 0, 0, 0]);
     let sar = "[[canopen.sar]]\n[canopen.sar.encoder]\nnode = 0x20\n";
     let mut l = Line::default();
-    l.idle(20).sent(&click).heard(&Frame::data(0x120, &[0x47, 0x26, 0, 0, 0, 0, 0, 0])).sent(&click).idle(50).sent(&click).idle(20);
+    l.idle(20)
+        .sent(&click)
+        .heard(&Frame::data(0x120, &[0x47, 0x26, 0, 0, 0, 0, 0, 0]))
+        .sent(&click)
+        .idle(50)
+        .sent(&click)
+        .idle(20);
     assert_eq!(run(&l, sar).0, vec![co::RULE_SAR]);
 }
 
@@ -232,9 +321,19 @@ fn beside_the_emulator_every_frame_is_read_as_sent() {
     let mut emu = cosim::open("can", toml, "t.toml", F).unwrap();
     let mut mon = cosim::open("can_monitor", toml, "t.toml", F).unwrap();
     let tb = model::Timebase::new(F).unwrap();
-    let bench: model::can::BenchConfig = toml::from_str::<toml::Table>(toml).unwrap()["can"].clone().try_into().unwrap();
+    let bench: model::can::BenchConfig = toml::from_str::<toml::Table>(toml).unwrap()["can"]
+        .clone()
+        .try_into()
+        .unwrap();
     let cc = bench.controller_config().unwrap();
-    let s = NodeSettings { name: "master".into(), position_m: 0.0, loop_delay_ns: 150.0, ppm: 0.0, ack: true, frames: Vec::new() };
+    let s = NodeSettings {
+        name: "master".into(),
+        position_m: 0.0,
+        loop_delay_ns: 150.0,
+        ppm: 0.0,
+        ack: true,
+        frames: Vec::new(),
+    };
     let mut host = model::can::Emulator::new(&s, cc, &tb).unwrap();
     let mut rx = true;
     let mut sent = Vec::new();
@@ -244,7 +343,11 @@ fn beside_the_emulator_every_frame_is_read_as_sent() {
             assert!(host.load(&f));
             sent.push(f);
         } else {
-            emu.schedule_fault(&format!("[[send]]\nnode = 0\nid = {}\ndlc = 1\ndata = [{k}]\n", 0x200 + k)).unwrap();
+            emu.schedule_fault(&format!(
+                "[[send]]\nnode = 0\nid = {}\ndlc = 1\ndata = [{k}]\n",
+                0x200 + k
+            ))
+            .unwrap();
             sent.push(Frame::data(0x200 + k, &[k as u8]));
         }
         for _ in 0..16 * 200 {
@@ -257,6 +360,11 @@ fn beside_the_emulator_every_frame_is_read_as_sent() {
     let t = mon.transcript();
     let got: Vec<Frame> = t["transactions"].as_array().unwrap().iter().map(|v| serde_json::from_value::<Frame>(serde_json::json!({"id": v["id"], "ide": v["ide"], "rtr": v["rtr"], "dlc": v["dlc"], "data": v["data"]})).unwrap()).collect();
     assert_eq!(got, sent);
-    let senders: Vec<&str> = t["transactions"].as_array().unwrap().iter().map(|v| v["sender"].as_str().unwrap()).collect();
+    let senders: Vec<&str> = t["transactions"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v["sender"].as_str().unwrap())
+        .collect();
     assert_eq!(senders.iter().filter(|&&s| s == "master").count(), 10);
 }

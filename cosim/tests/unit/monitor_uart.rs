@@ -21,13 +21,25 @@ impl Rig {
     fn new(kind: &str, toml: &str, f: u64, cpb: u64, parity: Parity) -> Rig {
         let emu = open(kind, toml, "test.toml", f).unwrap();
         let mon = open(&format!("{kind}_monitor"), toml, "test.toml", f).unwrap();
-        Rig { emu, mon, cpb, parity, rx: true, trigger: true, cycle: 0 }
+        Rig {
+            emu,
+            mon,
+            cpb,
+            parity,
+            rx: true,
+            trigger: true,
+            cycle: 0,
+        }
     }
 
     fn step(&mut self, tx: bool, de: bool) {
-        let out = self.emu.step(Pins(self.trigger as u32 | (tx as u32) << 1 | (de as u32) << 2 | 8));
+        let out = self.emu.step(Pins(
+            self.trigger as u32 | (tx as u32) << 1 | (de as u32) << 2 | 8,
+        ));
         self.rx = out.0 & 4 != 0;
-        self.mon.step(Pins(self.rx as u32 | (tx as u32) << 1 | (de as u32) << 2 | (self.trigger as u32) << 3 | 16));
+        self.mon.step(Pins(
+            self.rx as u32 | (tx as u32) << 1 | (de as u32) << 2 | (self.trigger as u32) << 3 | 16,
+        ));
         self.cycle += 1;
     }
 
@@ -74,7 +86,11 @@ impl Rig {
     }
 
     fn violations(&mut self) -> Vec<String> {
-        self.mon.violations().iter().map(|v| format!("{} at {} ns: {}", v.rule, v.time_ns, v.detail)).collect()
+        self.mon
+            .violations()
+            .iter()
+            .map(|v| format!("{} at {} ns: {}", v.rule, v.time_ns, v.detail))
+            .collect()
     }
 }
 
@@ -144,7 +160,10 @@ fn each_modbus_rule_fires_once_with_its_time() {
     r.send(&READ2, 0, 48);
     r.quiet(T35);
     let v = r.violations();
-    assert!(v.len() == 1 && v[0].starts_with(cosim::monitor::modbus::RULE_RELEASE), "{v:?}");
+    assert!(
+        v.len() == 1 && v[0].starts_with(cosim::monitor::modbus::RULE_RELEASE),
+        "{v:?}"
+    );
     // A parity bit wrong, and a character 5 % slow.
     for (stretch, bad) in [(0, true), (1, false)] {
         let mut r = modbus();
@@ -155,7 +174,10 @@ fn each_modbus_rule_fires_once_with_its_time() {
         r.step(true, false);
         r.quiet(T35);
         let v = r.violations();
-        assert!(v.len() == 1 && v[0].starts_with(cosim::monitor::modbus::RULE_CHARACTER), "{v:?}");
+        assert!(
+            v.len() == 1 && v[0].starts_with(cosim::monitor::modbus::RULE_CHARACTER),
+            "{v:?}"
+        );
     }
     // No answer (station 9 is absent): the next request 10 ms later, inside the 20 ms timeout.
     let mut r = modbus();
@@ -168,7 +190,10 @@ fn each_modbus_rule_fires_once_with_its_time() {
     r.send(&READ2, 0, 0);
     r.quiet(T35);
     let v = r.violations();
-    assert!(v.len() == 1 && v[0].starts_with(cosim::monitor::modbus::RULE_TIMEOUT), "{v:?}");
+    assert!(
+        v.len() == 1 && v[0].starts_with(cosim::monitor::modbus::RULE_TIMEOUT),
+        "{v:?}"
+    );
 }
 
 const SAR_BUS: &str = "[sar]\nbaud = 15625.0\nmode = \"bus\"\n[sar.host]\ntimeout_us = 20000.0\n[[sar.encoders]]\naddress = 1\nbits = 32\nanswer_delay_us = 100.0\n[sar.random]\ncount = 100\nseed = 5\n[sar.cable]\nlength_m = 10\n";
@@ -221,7 +246,11 @@ fn the_sar_monitor_reads_bus_answers_tagged_81_when_the_encoders_send_them() {
     let r = sar_bus_reads(&toml, 5);
     let t = r.mon.transcript();
     let frame = &t["transactions"].as_array().unwrap()[1];
-    assert_eq!((frame["kind"].as_str(), frame["bytes"][1].as_u64()), (Some("frame"), Some(0x81)), "{frame}");
+    assert_eq!(
+        (frame["kind"].as_str(), frame["bytes"][1].as_u64()),
+        (Some("frame"), Some(0x81)),
+        "{frame}"
+    );
 }
 
 #[test]
@@ -237,7 +266,10 @@ fn each_sar_rule_fires_once_with_its_time() {
     r.step(true, false);
     r.quiet(400);
     let v = r.violations();
-    assert!(v.len() == 1 && v[0].starts_with(cosim::monitor::sar::RULE_GAP), "{v:?}");
+    assert!(
+        v.len() == 1 && v[0].starts_with(cosim::monitor::sar::RULE_GAP),
+        "{v:?}"
+    );
     // A second command 2 ms after the first, before the answer (100 µs delay, 5.6 ms frame) ends: inside the answer.
     let mut r = Rig::new("sar58k24", SAR_BUS, 250_000, 16, Parity::None);
     r.idle(100, false);
@@ -246,7 +278,12 @@ fn each_sar_rule_fires_once_with_its_time() {
     r.send(&[0xBC, 0xAA, 0xB1], 0, 0);
     r.quiet(400);
     let v = r.violations();
-    assert!(!v.is_empty() && v.iter().all(|x| x.starts_with(cosim::monitor::sar::RULE_ANSWER)), "{v:?}");
+    assert!(
+        !v.is_empty()
+            && v.iter()
+                .all(|x| x.starts_with(cosim::monitor::sar::RULE_ANSWER)),
+        "{v:?}"
+    );
     // No answer from encoder 2: the next command 4 ms later, inside the 20 ms timeout.
     let mut r = Rig::new("sar58k24", SAR_BUS, 250_000, 16, Parity::None);
     r.idle(100, false);
@@ -256,7 +293,10 @@ fn each_sar_rule_fires_once_with_its_time() {
     r.send(&[0xBC, 0xAA, 0xB1], 0, 0);
     r.quiet(400);
     let v = r.violations();
-    assert!(v.len() == 1 && v[0].starts_with(cosim::monitor::sar::RULE_WAIT), "{v:?}");
+    assert!(
+        v.len() == 1 && v[0].starts_with(cosim::monitor::sar::RULE_WAIT),
+        "{v:?}"
+    );
     let time = r.mon.violations()[0].time_ns;
     assert!((time - ((at + 16) * 4000) as f64).abs() <= 4000.0, "{time}");
     // A trigger of 6 µs (3 cycles at 500 kHz).
@@ -267,5 +307,8 @@ fn each_sar_rule_fires_once_with_its_time() {
     r.trigger = true;
     r.quiet(400);
     let v = r.violations();
-    assert!(v.len() == 1 && v[0].starts_with(cosim::monitor::sar::RULE_T2), "{v:?}");
+    assert!(
+        v.len() == 1 && v[0].starts_with(cosim::monitor::sar::RULE_T2),
+        "{v:?}"
+    );
 }

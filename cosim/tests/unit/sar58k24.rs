@@ -91,7 +91,7 @@ fn poll(emu: &mut SarEmulator) -> u64 {
 
 #[test]
 fn set_position_and_set_motion_drive_the_next_answers() {
-    // Issue 10: a closed-loop bench sets the shaft at run time.
+    // A closed-loop bench sets the shaft at run time.
     let text = "[sar]\nmode = \"bus\"\n[[sar.encoders]]\naddress = 1\nbits = 16\npositions = [7]\n";
     let mut emu = SarEmulator::from_toml(text, "bus.toml", 10_000_000).unwrap();
     assert_eq!(poll(&mut emu), 7);
@@ -99,9 +99,16 @@ fn set_position_and_set_motion_drive_the_next_answers() {
     assert_eq!(poll(&mut emu), 0xABCD);
     assert_eq!(emu.last_value(0), Some(0xABCD));
     // 1000 counts per ms from 100: each poll (12 000 cycles, 1.2 ms) reads a later position.
-    emu.set_motion(0, "[motion]\nkind = \"constant\"\nstart = 100\ncounts_per_ms = 1000\n").unwrap();
+    emu.set_motion(
+        0,
+        "[motion]\nkind = \"constant\"\nstart = 100\ncounts_per_ms = 1000\n",
+    )
+    .unwrap();
     let (a, b) = (poll(&mut emu), poll(&mut emu));
-    assert!((100..1400).contains(&a) && b > a + 1000 && b < a + 1400, "{a} {b}");
+    assert!(
+        (100..1400).contains(&a) && b > a + 1000 && b < a + 1400,
+        "{a} {b}"
+    );
     // A set position stops the motion.
     emu.set_position(0, 5).unwrap();
     assert_eq!((poll(&mut emu), poll(&mut emu)), (5, 5));
@@ -117,12 +124,22 @@ fn bad_tables_name_the_file_and_field() {
         .err()
         .unwrap()
         .to_string();
-    assert!(err.starts_with("s.toml: ") && err.contains("encoders[0].bits") || err.contains("encoder.bits"), "{err}");
+    assert!(
+        err.starts_with("s.toml: ") && err.contains("encoders[0].bits")
+            || err.contains("encoder.bits"),
+        "{err}"
+    );
     let err = SarEmulator::from_toml("[sar]\n[sar.random]\ncount = \"x\"\n", "s.toml", 10_000_000)
         .err()
         .unwrap()
         .to_string();
-    assert!(err.starts_with("s.toml: ") && err.contains("count"), "{err}");
-    let err = SarEmulator::from_toml("", "s.toml", 500_000).err().unwrap().to_string();
+    assert!(
+        err.starts_with("s.toml: ") && err.contains("count"),
+        "{err}"
+    );
+    let err = SarEmulator::from_toml("", "s.toml", 500_000)
+        .err()
+        .unwrap()
+        .to_string();
     assert!(err.contains("at least 921600 Hz"), "{err}");
 }

@@ -1,12 +1,14 @@
 use cosim::tformat::*;
-use model::tformat::frames::control_field_for_code;
 use cosim::{Emulator, Pins};
+use model::tformat::frames::control_field_for_code;
 
 /// Sends one request field (at 32 cycles per bit, 80 MHz) and listens for
 /// `listen` cycles; returns the emulator's outputs while listening.
 /// The ten bits of one field on the line: start 0, data LSB first, delimiter 1.
 fn frame_bits(byte: u8) -> impl Iterator<Item = bool> {
-    std::iter::once(false).chain((0..8).map(move |i| (byte >> i) & 1 == 1)).chain(std::iter::once(true))
+    std::iter::once(false)
+        .chain((0..8).map(move |i| (byte >> i) & 1 == 1))
+        .chain(std::iter::once(true))
 }
 
 fn request(emu: &mut TformatEmulator, cf: u8, listen: usize) -> Vec<Pins> {
@@ -20,7 +22,8 @@ fn request(emu: &mut TformatEmulator, cf: u8, listen: usize) -> Vec<Pins> {
 
 #[test]
 fn a_data_id_3_readout_carries_the_position_and_alarms_set() {
-    let mut emu = TformatEmulator::from_toml("[cable]\nlength_m = 0\n", "t.toml", 80_000_000).unwrap();
+    let mut emu =
+        TformatEmulator::from_toml("[cable]\nlength_m = 0\n", "t.toml", 80_000_000).unwrap();
     emu.set_position(0, (0x1234u64 << 17) | 0x1_5A5A).unwrap();
     emu.set_status(0, "battery_alarm", true).unwrap();
     emu.set_status(0, "over_speed", true).unwrap();
@@ -40,15 +43,25 @@ fn a_data_id_3_readout_carries_the_position_and_alarms_set() {
 
 #[test]
 fn an_emulator_clock_that_is_no_multiple_of_the_baud_rate_is_refused() {
-    let err = TformatEmulator::from_toml("", "t.toml", 16_000_000).err().unwrap().to_string();
-    assert!(err.contains("whole multiple") && err.contains("t.toml"), "{err}");
-    let err = TformatEmulator::from_toml("", "t.toml", 5_000_000).err().unwrap().to_string();
+    let err = TformatEmulator::from_toml("", "t.toml", 16_000_000)
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(
+        err.contains("whole multiple") && err.contains("t.toml"),
+        "{err}"
+    );
+    let err = TformatEmulator::from_toml("", "t.toml", 5_000_000)
+        .err()
+        .unwrap()
+        .to_string();
     assert!(err.contains("at least 10000000 Hz"), "{err}");
 }
 
 #[test]
 fn a_host_that_keeps_driving_into_the_answer_is_reported() {
-    let mut emu = TformatEmulator::from_toml("[cable]\nlength_m = 0\n", "t.toml", 80_000_000).unwrap();
+    let mut emu =
+        TformatEmulator::from_toml("[cable]\nlength_m = 0\n", "t.toml", 80_000_000).unwrap();
     for b in frame_bits(control_field_for_code(0)) {
         for _ in 0..32 {
             emu.step(Pins((b as u32) << 1 | 4));
@@ -57,6 +70,10 @@ fn a_host_that_keeps_driving_into_the_answer_is_reported() {
     for _ in 0..4000 {
         emu.step(Pins(2 | 4)); // still driving idle high
     }
-    let rules: Vec<&str> = emu.violations().iter().map(|v| v.rule.split(' ').next().unwrap()).collect();
+    let rules: Vec<&str> = emu
+        .violations()
+        .iter()
+        .map(|v| v.rule.split(' ').next().unwrap())
+        .collect();
     assert_eq!(rules, vec!["turnaround"]);
 }

@@ -6,7 +6,7 @@
 // the device's answer (u_emu.last_value), no error
 // pulse, and the device must have seen and answered exactly one request.
 // The second half of the polls first sets a random position of 16 x COUNT
-// bits with u_emu.set_position (issue 10), and the answer must carry it
+// bits with u_emu.set_position, and the answer must carry it
 // (binary, or Gray for a Gray device).
 //
 // A pin-level monitor (hdl/emu/modbus_monitor.v) watches the master's D, DE

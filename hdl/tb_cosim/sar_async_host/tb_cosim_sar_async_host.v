@@ -7,7 +7,7 @@
 // says it sent (u_emu.last_value), no error pulse, and in the handshake and
 // bus modes the emulator must have sent exactly one frame per read. The
 // second half of the reads first sets a random position of BITS bits with
-// u_emu.set_position (issue 10: the testbench owns the shaft from then on),
+// u_emu.set_position (the testbench owns the shaft from then on),
 // and the frame must carry exactly that position.
 //
 // A pin-level monitor (hdl/emu/sar58k24_monitor.v) watches the host's D, DE,

@@ -176,7 +176,13 @@ pub struct HostSettings {
 
 impl Default for HostSettings {
     fn default() -> Self {
-        HostSettings { first_start_us: 1.0, gap_us: 1.0, frames: 1, registers: Vec::new(), commands: Vec::new() }
+        HostSettings {
+            first_start_us: 1.0,
+            gap_us: 1.0,
+            frames: 1,
+            registers: Vec::new(),
+            commands: Vec::new(),
+        }
     }
 }
 
@@ -253,7 +259,11 @@ impl Default for BenchConfig {
 
 fn check_time(field: &str, value: f64) -> Result<()> {
     if !(0.0..1e7).contains(&value) {
-        return Err(ConfigError::invalid(field, format!("{value}"), "give a non-negative time"));
+        return Err(ConfigError::invalid(
+            field,
+            format!("{value}"),
+            "give a non-negative time",
+        ));
     }
     Ok(())
 }
@@ -263,8 +273,15 @@ impl BenchConfig {
     /// nW = 0 (seed 001, BiSS-C section), read at 10 MHz through 10 m.
     pub fn seed_example() -> Self {
         BenchConfig {
-            slaves: vec![SlaveSettings { positions: vec![0b1000_1010_1110_0011], warning: true, ..SlaveSettings::default() }],
-            cable: CableConfig { length_m: 10.0, ..CableConfig::default() },
+            slaves: vec![SlaveSettings {
+                positions: vec![0b1000_1010_1110_0011],
+                warning: true,
+                ..SlaveSettings::default()
+            }],
+            cable: CableConfig {
+                length_m: 10.0,
+                ..CableConfig::default()
+            },
             ..BenchConfig::default()
         }
     }
@@ -294,9 +311,18 @@ impl BenchConfig {
         let n = self.slaves.len();
         let cfg = MasterConfig {
             slaves: n as u32,
-            slave_bits: m.bits.clone().unwrap_or_else(|| self.slaves.iter().map(|s| s.bits).collect()),
-            slave_crc_width: m.crc_width.clone().unwrap_or_else(|| self.slaves.iter().map(|s| s.crc_width).collect()),
-            slave_crc_poly: m.crc_poly.clone().unwrap_or_else(|| self.slaves.iter().map(|s| s.crc_poly).collect()),
+            slave_bits: m
+                .bits
+                .clone()
+                .unwrap_or_else(|| self.slaves.iter().map(|s| s.bits).collect()),
+            slave_crc_width: m
+                .crc_width
+                .clone()
+                .unwrap_or_else(|| self.slaves.iter().map(|s| s.crc_width).collect()),
+            slave_crc_poly: m
+                .crc_poly
+                .clone()
+                .unwrap_or_else(|| self.slaves.iter().map(|s| s.crc_poly).collect()),
             clocks_per_bit,
             high_clocks: clock.high,
             low_clocks: clock.low,
@@ -334,7 +360,11 @@ impl BenchConfig {
         // runs at any emulator clock of 4 x MA or more); at an even divider
         // it is exactly the master's clocks per bit.
         if !(self.master.clock_khz >= 100.0 && self.master.clock_khz <= 10_000.0) {
-            return Err(ConfigError::invalid("master.clock_khz", format!("{} kHz", self.master.clock_khz), "give MA from 100 to 10000 kHz (seed: TMAS > 100 ns)"));
+            return Err(ConfigError::invalid(
+                "master.clock_khz",
+                format!("{} kHz", self.master.clock_khz),
+                "give MA from 100 to 10000 kHz (seed: TMAS > 100 ns)",
+            ));
         }
         let two_tmas = 2 * tb.cycles_nearest_ns(1e6 / self.master.clock_khz).max(1);
         cfg.busy_clocks = match s.busy_ns {
@@ -357,19 +387,29 @@ impl BenchConfig {
 
     /// Slave `i`'s `t_busy` in ns: as given, or 2 × TMAS of the MA clock.
     pub fn busy_ns(&self, i: usize) -> f64 {
-        self.slaves[i].busy_ns.unwrap_or(2e6 / self.master.clock_khz)
+        self.slaves[i]
+            .busy_ns
+            .unwrap_or(2e6 / self.master.clock_khz)
     }
 
     /// The position slave `i` holds in frame `k`.
     pub fn position_at(&self, i: usize, k: usize) -> u64 {
         let s = &self.slaves[i];
-        let listed = if s.positions.is_empty() { 0 } else { s.positions[k % s.positions.len()] };
+        let listed = if s.positions.is_empty() {
+            0
+        } else {
+            s.positions[k % s.positions.len()]
+        };
         listed.wrapping_add((k as u64).wrapping_mul(s.step))
     }
 
     fn check(&self) -> Result<()> {
         if self.slaves.is_empty() || self.slaves.len() > MAX_SLAVES {
-            return Err(ConfigError::invalid("slaves", format!("{} slaves", self.slaves.len()), "give 1 to 3 [[slaves]] tables"));
+            return Err(ConfigError::invalid(
+                "slaves",
+                format!("{} slaves", self.slaves.len()),
+                "give 1 to 3 [[slaves]] tables",
+            ));
         }
         self.cable.validate("cable")?;
         // The slaves first: the master's per-slave lists default to theirs.
@@ -379,7 +419,11 @@ impl BenchConfig {
         self.master_config()?;
         for i in 0..self.slaves.len() {
             let s = &self.slaves[i];
-            let limit = if s.bits == 64 { u64::MAX } else { (1u64 << s.bits) - 1 };
+            let limit = if s.bits == 64 {
+                u64::MAX
+            } else {
+                (1u64 << s.bits) - 1
+            };
             if let Some((j, p)) = s.positions.iter().enumerate().find(|(_, p)| **p > limit) {
                 return Err(ConfigError::invalid(
                     format!("slaves[{i}].positions[{j}]"),
@@ -393,41 +437,87 @@ impl BenchConfig {
         }
         check_time("host.first_start_us", self.host.first_start_us)?;
         check_time("host.gap_us", self.host.gap_us)?;
-        if let Some((j, _)) = self.host.commands.iter().enumerate().find(|(_, c)| c.code > 3) {
-            return Err(ConfigError::invalid(format!("host.commands[{j}].code"), "above 3", "give a 2-bit command, 0 to 3"));
+        if let Some((j, _)) = self
+            .host
+            .commands
+            .iter()
+            .enumerate()
+            .find(|(_, c)| c.code > 3)
+        {
+            return Err(ConfigError::invalid(
+                format!("host.commands[{j}].code"),
+                "above 3",
+                "give a 2-bit command, 0 to 3",
+            ));
         }
-        if self.host.frames == 0 && self.host.registers.is_empty() && self.host.commands.is_empty() {
-            return Err(ConfigError::invalid("host.frames", "no frames", "ask for at least one frame"));
+        if self.host.frames == 0 && self.host.registers.is_empty() && self.host.commands.is_empty()
+        {
+            return Err(ConfigError::invalid(
+                "host.frames",
+                "no frames",
+                "ask for at least one frame",
+            ));
         }
         if self.host.frames > 1_000_000 {
-            return Err(ConfigError::invalid("host.frames", format!("{}", self.host.frames), "ask for at most a million frames"));
+            return Err(ConfigError::invalid(
+                "host.frames",
+                format!("{}", self.host.frames),
+                "ask for at most a million frames",
+            ));
         }
         for (j, op) in self.host.registers.iter().enumerate() {
             if op.id > 7 || op.addr > 127 {
-                return Err(ConfigError::invalid(format!("host.registers[{j}]"), "ID or address out of range", "give id 0 to 7 and addr 0 to 127"));
+                return Err(ConfigError::invalid(
+                    format!("host.registers[{j}]"),
+                    "ID or address out of range",
+                    "give id 0 to 7 and addr 0 to 127",
+                ));
             }
         }
         for (j, f) in self.flips.iter().enumerate() {
             if f.slave >= self.slaves.len() {
-                return Err(ConfigError::invalid(format!("flips[{j}].slave"), format!("slave {}", f.slave), "name a slave of the chain (0-based)"));
+                return Err(ConfigError::invalid(
+                    format!("flips[{j}].slave"),
+                    format!("slave {}", f.slave),
+                    "name a slave of the chain (0-based)",
+                ));
             }
             let s = &self.slaves[f.slave];
             let len = s.bits + 2 + s.crc_width;
             if let Some(b) = f.bits.iter().find(|&&b| b >= len) {
-                return Err(ConfigError::invalid(format!("flips[{j}].bits"), format!("bit {b}"), format!("give bits 0 to {}", len - 1)));
+                return Err(ConfigError::invalid(
+                    format!("flips[{j}].bits"),
+                    format!("bit {b}"),
+                    format!("give bits 0 to {}", len - 1),
+                ));
             }
         }
         // A fault in a frame the run never reaches would pass unnoticed.
         let frames = self.frame_limit();
-        let scheduled = self.flips.iter().enumerate().map(|(j, f)| (format!("flips[{j}].frame"), f.frame));
+        let scheduled = self
+            .flips
+            .iter()
+            .enumerate()
+            .map(|(j, f)| (format!("flips[{j}].frame"), f.frame));
         let scheduled = scheduled
-            .chain(self.stuck.iter().map(|s| ("stuck.from_frame".to_string(), s.from_frame)))
-            .chain(self.delay_step.iter().map(|d| ("delay_step.from_frame".to_string(), d.from_frame)));
+            .chain(
+                self.stuck
+                    .iter()
+                    .map(|s| ("stuck.from_frame".to_string(), s.from_frame)),
+            )
+            .chain(
+                self.delay_step
+                    .iter()
+                    .map(|d| ("delay_step.from_frame".to_string(), d.from_frame)),
+            );
         for (field, frame) in scheduled {
             if frame >= frames {
                 return Err(ConfigError::invalid(
                     field,
-                    format!("frame {frame}, but the run has {frames} frames (0 to {})", frames - 1),
+                    format!(
+                        "frame {frame}, but the run has {frames} frames (0 to {})",
+                        frames - 1
+                    ),
                     "give a frame below host.frames (0-based), or raise host.frames",
                 ));
             }
@@ -439,8 +529,10 @@ impl BenchConfig {
     /// register accesses need (14 sync zeros and 33 control frames each).
     pub fn frame_limit(&self) -> usize {
         self.host.frames
-            + self.host.registers.len() * (control::SYNC_ZEROS as usize + control::K_LAST as usize + 2)
-            + self.host.commands.len() * (control::SYNC_ZEROS as usize + control::K_CMD_LAST as usize + 2)
+            + self.host.registers.len()
+                * (control::SYNC_ZEROS as usize + control::K_LAST as usize + 2)
+            + self.host.commands.len()
+                * (control::SYNC_ZEROS as usize + control::K_CMD_LAST as usize + 2)
     }
 }
 
@@ -616,7 +708,12 @@ impl Bench {
         let layout = Layout {
             inputs: master.input_ports(),
             outputs: master.output_ports(),
-            line: vec![Port::new("ma_master", 1), Port::new("ma_slave", 1), Port::new("slo_slave", 1), Port::new("slo_master", 1)],
+            line: vec![
+                Port::new("ma_master", 1),
+                Port::new("ma_slave", 1),
+                Port::new("slo_slave", 1),
+                Port::new("slo_master", 1),
+            ],
             decoded: vec![
                 Port::new("state", 4),
                 Port::new("slave", 2),
@@ -637,10 +734,19 @@ impl Bench {
             next_op: 0,
             stuck: None,
             extra_slo: None,
-            delay_step: cfg.delay_step.as_ref().map(|d| (d.from_frame, tb.cycles_nearest_ns(d.extra_ns))),
+            delay_step: cfg
+                .delay_step
+                .as_ref()
+                .map(|d| (d.from_frame, tb.cycles_nearest_ns(d.extra_ns))),
             cycle: 0,
-            last_in: In { i_slo: true, ..In::default() },
-            last_out: Out { o_ma: true, ..Out::default() },
+            last_in: In {
+                i_slo: true,
+                ..In::default()
+            },
+            last_out: Out {
+                o_ma: true,
+                ..Out::default()
+            },
             open: None,
             open_op: None,
             open_cmd: None,
@@ -677,7 +783,10 @@ impl Bench {
     }
 
     fn host_decides(&mut self) -> In {
-        let mut input = In { i_slo: self.stuck.unwrap_or(self.slo_at_master), ..In::default() };
+        let mut input = In {
+            i_slo: self.stuck.unwrap_or(self.slo_at_master),
+            ..In::default()
+        };
         if let Host::WaitUntil(at) = self.host {
             if self.cycle >= at && !self.last_out.o_busy && !self.last_out.o_reg_busy {
                 if self.next_op < self.cfg.host.registers.len() {
@@ -720,7 +829,13 @@ impl Bench {
             let s = &self.cfg.slaves[i];
             let error = s.error || s.error_frames.contains(&k);
             let warning = s.warning || s.warning_frames.contains(&k);
-            let flips: Vec<u32> = self.cfg.flips.iter().filter(|f| f.frame == k && f.slave == i).flat_map(|f| f.bits.clone()).collect();
+            let flips: Vec<u32> = self
+                .cfg
+                .flips
+                .iter()
+                .filter(|f| f.frame == k && f.slave == i)
+                .flat_map(|f| f.bits.clone())
+                .collect();
             let slave = &mut self.chain.slaves_mut()[i];
             slave.set_position(p);
             slave.set_flags(error, warning);
@@ -787,7 +902,13 @@ impl Bench {
                 t.delay_mean_cycles = self.master.calibrated().then_some(out.o_delay_mean);
                 if out.o_reg_done {
                     if let Some(op) = self.open_op.take() {
-                        let acc = control::Access { write: op.write, id: op.id, addr: op.addr, wdata: op.data, ..control::Access::default() };
+                        let acc = control::Access {
+                            write: op.write,
+                            id: op.id,
+                            addr: op.addr,
+                            wdata: op.data,
+                            ..control::Access::default()
+                        };
                         let sent = t.control_index.map_or(0, |k| k as usize + 1);
                         let cdm = &control::cdm_sequence(&acc)[..sent];
                         t.register = Some(RegResult {
@@ -802,9 +923,19 @@ impl Bench {
                         });
                     }
                     if let Some(cmd) = self.open_cmd.take() {
-                        let acc = control::Access { command: true, ids: cmd.ids, code: cmd.code, ..control::Access::default() };
+                        let acc = control::Access {
+                            command: true,
+                            ids: cmd.ids,
+                            code: cmd.code,
+                            ..control::Access::default()
+                        };
                         let sent = t.control_index.map_or(0, |k| k as usize + 1);
-                        t.command = Some(CmdResult { ids: cmd.ids, code: cmd.code, ok: !out.o_reg_err, cdm: crate::bits::string(&control::cdm_sequence(&acc)[..sent]) });
+                        t.command = Some(CmdResult {
+                            ids: cmd.ids,
+                            code: cmd.code,
+                            ok: !out.o_reg_err,
+                            cdm: crate::bits::string(&control::cdm_sequence(&acc)[..sent]),
+                        });
                     }
                 }
                 self.transactions.push(t);
@@ -816,9 +947,15 @@ impl Bench {
                 _ => false,
             };
             if host_done {
-                let more_ops = self.next_op < self.cfg.host.registers.len() || self.next_cmd < self.cfg.host.commands.len();
-                let more = (self.next_frame < self.cfg.host.frames || more_ops) && self.next_frame < self.cfg.frame_limit();
-                self.host = if more { Host::WaitUntil(self.cycle + self.gap_clocks) } else { Host::Finished(self.cycle + TAIL_CYCLES) };
+                let more_ops = self.next_op < self.cfg.host.registers.len()
+                    || self.next_cmd < self.cfg.host.commands.len();
+                let more = (self.next_frame < self.cfg.host.frames || more_ops)
+                    && self.next_frame < self.cfg.frame_limit();
+                self.host = if more {
+                    Host::WaitUntil(self.cycle + self.gap_clocks)
+                } else {
+                    Host::Finished(self.cycle + TAIL_CYCLES)
+                };
             }
         }
     }
@@ -883,13 +1020,19 @@ impl Testbench for Bench {
             Host::WaitUntil(_) | Host::WaitDone | Host::WaitRegDone => u64::MAX,
             Host::Finished(end) => end.saturating_sub(self.cycle),
         };
-        let input = In { i_slo: self.stuck.unwrap_or(self.slo_at_master), ..In::default() };
+        let input = In {
+            i_slo: self.stuck.unwrap_or(self.slo_at_master),
+            ..In::default()
+        };
         // The cycle after a request shows its pulse falling.
         if host == 0 || input != self.last_in {
             return 0;
         }
         let slo_back = self.slo_line.quiet(self.chain.slo());
-        let extra = self.extra_slo.as_ref().map_or(u64::MAX, |l| l.quiet(self.slo_line.output()));
+        let extra = self
+            .extra_slo
+            .as_ref()
+            .map_or(u64::MAX, |l| l.quiet(self.slo_line.output()));
         host.min(self.master.quiet(&input))
             .min(self.ma_line.quiet(self.last_out.o_ma))
             .min(self.chain.quiet(self.ma_line.output()))

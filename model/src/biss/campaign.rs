@@ -30,7 +30,10 @@ pub struct Report {
 impl Report {
     /// All corruptions run.
     pub fn total(&self) -> u64 {
-        self.by_flips.values().map(|c| c.detected + c.undetected).sum()
+        self.by_flips
+            .values()
+            .map(|c| c.detected + c.undetected)
+            .sum()
     }
 }
 
@@ -60,11 +63,22 @@ pub fn run_with(trials: u64, bits: u32, max_flips: u32, seed: u64, fast_forward:
     let mut report = Report::default();
     for _ in 0..trials {
         let k = rng.random_range(1..=max_flips.min(field));
-        let flips: Vec<u32> = sample(&mut rng, field as usize, k as usize).into_iter().map(|i| i as u32).collect();
+        let flips: Vec<u32> = sample(&mut rng, field as usize, k as usize)
+            .into_iter()
+            .map(|i| i as u32)
+            .collect();
         let position = rng.random::<u64>();
         let (error, warning) = (rng.random_bool(0.1), rng.random_bool(0.1));
         let entry = report.by_flips.entry(k).or_default();
-        if frame_detected(&mut master, &mut chain, position, error, warning, flips, fast_forward) {
+        if frame_detected(
+            &mut master,
+            &mut chain,
+            position,
+            error,
+            warning,
+            flips,
+            fast_forward,
+        ) {
             entry.detected += 1;
         } else {
             entry.undetected += 1;
@@ -77,7 +91,15 @@ pub fn run_with(trials: u64, bits: u32, max_flips: u32, seed: u64, fast_forward:
 /// `position` (nE = nW = 1) whose section bits `flips` are corrupted.
 pub fn detected(bits: u32, position: u64, flips: &[u32]) -> bool {
     let (mut master, mut chain) = pair(bits);
-    frame_detected(&mut master, &mut chain, position, false, false, flips.to_vec(), true)
+    frame_detected(
+        &mut master,
+        &mut chain,
+        position,
+        false,
+        false,
+        flips.to_vec(),
+        true,
+    )
 }
 
 fn pair(bits: u32) -> (Master, Chain) {
@@ -94,14 +116,33 @@ fn pair(bits: u32) -> (Master, Chain) {
         cal_frames: 1,
         delay_tol: 1,
     };
-    let scfg = SlaveConfig { bits, crc_width: 6, crc_poly: 0x03, busy_clocks: 16, timeout_clocks: 80, id: 0, registers: vec![] };
+    let scfg = SlaveConfig {
+        bits,
+        crc_width: 6,
+        crc_poly: 0x03,
+        busy_clocks: 16,
+        timeout_clocks: 80,
+        id: 0,
+        registers: vec![],
+    };
     let master = Master::new(mcfg).expect("campaign master configuration is valid");
-    let chain = Chain::new(vec![Slave::new(scfg).expect("campaign slave configuration is valid")], 1);
+    let chain = Chain::new(
+        vec![Slave::new(scfg).expect("campaign slave configuration is valid")],
+        1,
+    );
     (master, chain)
 }
 
 /// Runs one frame; the master is idle with SLO high before and after it.
-fn frame_detected(master: &mut Master, chain: &mut Chain, position: u64, error: bool, warning: bool, flips: Vec<u32>, fast_forward: bool) -> bool {
+fn frame_detected(
+    master: &mut Master,
+    chain: &mut Chain,
+    position: u64,
+    error: bool,
+    warning: bool,
+    flips: Vec<u32>,
+    fast_forward: bool,
+) -> bool {
     {
         let s = &mut chain.slaves_mut()[0];
         s.set_position(position);
@@ -113,10 +154,18 @@ fn frame_detected(master: &mut Master, chain: &mut Chain, position: u64, error: 
     let mut ma = true;
     let mut crc_err = None;
     loop {
-        let input = In { i_start: start, i_slo: slo, ..In::default() };
+        let input = In {
+            i_start: start,
+            i_slo: slo,
+            ..In::default()
+        };
         // Fast-forward through the slave's busy time and timeout: nothing
         // changes there but counters (tests/fast_forward.rs).
-        let quiet = if fast_forward { master.quiet(&input).min(chain.quiet(ma)) } else { 0 };
+        let quiet = if fast_forward {
+            master.quiet(&input).min(chain.quiet(ma))
+        } else {
+            0
+        };
         if quiet > 0 && quiet < u64::MAX {
             master.skip(quiet);
             chain.skip(quiet);

@@ -219,7 +219,11 @@ impl Observer {
         };
         let k = started?;
         if k == 0 {
-            *self = Observer { zeros: self.zeros, k: Some(0), ..Observer::default() };
+            *self = Observer {
+                zeros: self.zeros,
+                k: Some(0),
+                ..Observer::default()
+            };
         }
         let a = &mut self.acc;
         match k {
@@ -233,7 +237,9 @@ impl Observer {
             _ => {}
         }
         if a.command {
-            let selected: Vec<usize> = (0..f.slaves.min(super::MAX_SLAVES)).filter(|&i| selects(a.ids, i as u8)).collect();
+            let selected: Vec<usize> = (0..f.slaves.min(super::MAX_SLAVES))
+                .filter(|&i| selects(a.ids, i as u8))
+                .collect();
             let all_cds = !selected.is_empty() && selected.iter().all(|&i| f.cds[i]);
             let crc_bad = selected.iter().any(|&i| f.crc_bad[i]);
             let end = match k {
@@ -263,7 +269,8 @@ impl Observer {
                 28..=31 => self.crc_rx.push(cds),
                 K_LAST => {
                     let crc = &crate::crc::BISS_CTRL_CRC4;
-                    self.crc_bad = crc.crc_from_wire_bits(&self.crc_rx[8..]) != Some(crc.checksum_bits(&self.crc_rx[..8]));
+                    self.crc_bad = crc.crc_from_wire_bits(&self.crc_rx[8..])
+                        != Some(crc.checksum_bits(&self.crc_rx[..8]));
                     end = Some(!(self.crc_bad || cds || (write && self.rdata != a.wdata)));
                 }
                 _ => {}
@@ -276,7 +283,13 @@ impl Observer {
         match end {
             Some(ok) => {
                 self.k = None;
-                Some(Observed { access: self.acc, rdata: self.rdata, ok, crc4_ok: !self.crc_bad, last_k: k })
+                Some(Observed {
+                    access: self.acc,
+                    rdata: self.rdata,
+                    ok,
+                    crc4_ok: !self.crc_bad,
+                    last_k: k,
+                })
             }
             None => {
                 self.k = Some(k + 1);

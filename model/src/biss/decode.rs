@@ -157,7 +157,12 @@ impl Decoder {
             self.next_index += 1;
             f.control_index = self.observer.index(f.cdm);
             let ok = f.errors.iter().all(|e| e.starts_with("crc_error"));
-            let mut view = control::FrameView { ok, cdm: f.cdm, slaves: f.slaves.len(), ..Default::default() };
+            let mut view = control::FrameView {
+                ok,
+                cdm: f.cdm,
+                slaves: f.slaves.len(),
+                ..Default::default()
+            };
             for s in f.slaves.iter().filter(|s| (s.slave as usize) < MAX_SLAVES) {
                 view.cds[s.slave as usize] = s.cds;
                 view.crc_bad[s.slave as usize] = !s.crc_ok;
@@ -166,10 +171,24 @@ impl Decoder {
                 let a = o.access;
                 let cdm = crate::bits::string(&control::cdm_sequence(&a)[..=o.last_k as usize]);
                 if a.command {
-                    f.command = Some(CommandSeen { ids: a.ids, code: a.code, ok: o.ok, cdm });
+                    f.command = Some(CommandSeen {
+                        ids: a.ids,
+                        code: a.code,
+                        ok: o.ok,
+                        cdm,
+                    });
                 } else {
                     let wdata_seen = !a.write || o.last_k >= control::K_DATA_CRC - 1;
-                    f.register = Some(RegisterSeen { write: a.write, id: a.id, addr: a.addr, wdata: wdata_seen.then_some(a.wdata), rdata: o.rdata, ok: o.ok, crc4_ok: o.crc4_ok, cdm });
+                    f.register = Some(RegisterSeen {
+                        write: a.write,
+                        id: a.id,
+                        addr: a.addr,
+                        wdata: wdata_seen.then_some(a.wdata),
+                        rdata: o.rdata,
+                        ok: o.ok,
+                        crc4_ok: o.crc4_ok,
+                        cdm,
+                    });
                 }
             }
             frames.push(f);
@@ -189,7 +208,9 @@ const TRAILING_CELLS: u64 = 2;
 /// and what would fit.
 pub fn check_layout(frames: &[FrameSeen], layout: &Layout) -> Result<(), String> {
     let read: Vec<&FrameSeen> = frames.iter().filter(|f| f.cells.is_some()).collect();
-    let misfit = |f: &&FrameSeen| f.cells.is_some_and(|(clocked, need)| clocked != need) && f.slaves.iter().all(|s| !s.crc_ok);
+    let misfit = |f: &&FrameSeen| {
+        f.cells.is_some_and(|(clocked, need)| clocked != need) && f.slaves.iter().all(|s| !s.crc_ok)
+    };
     if read.is_empty() || !read.iter().all(misfit) {
         return Ok(());
     }
@@ -198,11 +219,13 @@ pub fn check_layout(frames: &[FrameSeen], layout: &Layout) -> Result<(), String>
     let last_w = *layout.crc_width.last().unwrap_or(&6) as u64;
     let others = need - (1 + *layout.bits.last().unwrap_or(&0) as u64 + 2 + last_w);
     let hint = match clocked.checked_sub(others + 3 + last_w) {
-        Some(n) if (1..=64).contains(&n) => format!("; with the same CRC widths, --bits {} would fit", {
-            let mut b = layout.bits.clone();
-            *b.last_mut().expect("at least one slave") = n as u32;
-            list(&b)
-        }),
+        Some(n) if (1..=64).contains(&n) => {
+            format!("; with the same CRC widths, --bits {} would fit", {
+                let mut b = layout.bits.clone();
+                *b.last_mut().expect("at least one slave") = n as u32;
+                list(&b)
+            })
+        }
         _ => String::new(),
     };
     Err(format!(
@@ -214,7 +237,13 @@ pub fn check_layout(frames: &[FrameSeen], layout: &Layout) -> Result<(), String>
 
 /// One frame from its MA burst (falling edge first) and SLO; `next_start`
 /// bounds the search for a late ack.
-fn read_frame(index: usize, burst: &[(u64, bool)], next_start: u64, slo: &Signal, layout: &Layout) -> FrameSeen {
+fn read_frame(
+    index: usize,
+    burst: &[(u64, bool)],
+    next_start: u64,
+    slo: &Signal,
+    layout: &Layout,
+) -> FrameSeen {
     let t0 = burst[0].0;
     let cdm = burst.last().is_some_and(|e| !e.1);
     let mut f = FrameSeen {
@@ -259,14 +288,31 @@ fn read_frame(index: usize, burst: &[(u64, bool)], next_start: u64, slo: &Signal
 /// The start bit and every slave's section, cell `m` read at
 /// `ack + m·period + period/2` (the middle of the cell that rising edge
 /// `2 + m` sent), while MA clocked it (`m <= rises - 2`).
-fn read_sections(f: &mut FrameSeen, ack: u64, period: u64, rises: u64, slo: &Signal, layout: &Layout) {
+fn read_sections(
+    f: &mut FrameSeen,
+    ack: u64,
+    period: u64,
+    rises: u64,
+    slo: &Signal,
+    layout: &Layout,
+) {
     let cell = |m: u64| slo.level_at(ack + m * period + period / 2);
     let Some(start) = (1..=rises.saturating_sub(2)).find(|&m| cell(m)) else {
         f.errors.push("no_start_bit".into());
         return;
     };
-    let need: u64 = layout.bits.iter().zip(&layout.crc_width).map(|(n, w)| (1 + n + 2 + w) as u64).sum();
-    f.cells = Some((rises.saturating_sub(2 + TRAILING_CELLS).saturating_sub(start), need));
+    let need: u64 = layout
+        .bits
+        .iter()
+        .zip(&layout.crc_width)
+        .map(|(n, w)| (1 + n + 2 + w) as u64)
+        .sum();
+    f.cells = Some((
+        rises
+            .saturating_sub(2 + TRAILING_CELLS)
+            .saturating_sub(start),
+        need,
+    ));
     let mut m = start;
     let mut received = vec![true];
     for s in 0..layout.bits.len() {
@@ -276,7 +322,8 @@ fn read_sections(f: &mut FrameSeen, ack: u64, period: u64, rises: u64, slo: &Sig
         received.extend(&section);
         let covered = &section[1..1 + n + 2];
         let alg = data_crc(w as u32, layout.crc_poly[s]);
-        let crc_ok = alg.crc_from_wire_bits(&section[1 + n + 2..]) == Some(alg.checksum_bits(covered));
+        let crc_ok =
+            alg.crc_from_wire_bits(&section[1 + n + 2..]) == Some(alg.checksum_bits(covered));
         let position = covered[..n].iter().fold(0u64, |a, &b| (a << 1) | b as u64);
         if !crc_ok {
             f.errors.push(format!("crc_error_slave{s}"));
@@ -293,4 +340,3 @@ fn read_sections(f: &mut FrameSeen, ack: u64, period: u64, rises: u64, slo: &Sig
     }
     f.received_bits = crate::bits::string(&received);
 }
-

@@ -66,7 +66,10 @@ fn selected(a: &Access, slave: u8) -> bool {
 
 /// Packs per-slave values 8 bits each, slave 0 lowest (the RTL's parameter form).
 pub fn pack8(values: &[u64]) -> u64 {
-    values.iter().enumerate().fold(0, |acc, (i, v)| acc | ((v & 0xFF) << (8 * i)))
+    values
+        .iter()
+        .enumerate()
+        .fold(0, |acc, (i, v)| acc | ((v & 0xFF) << (8 * i)))
 }
 
 impl MasterConfig {
@@ -74,7 +77,11 @@ impl MasterConfig {
     pub fn validate(&self) -> Result<()> {
         let n = self.slaves as usize;
         if !(1..=MAX_SLAVES).contains(&n) {
-            return Err(ConfigError::invalid("slaves", format!("{n} slaves"), "give 1 to 3 slaves"));
+            return Err(ConfigError::invalid(
+                "slaves",
+                format!("{n} slaves"),
+                "give 1 to 3 slaves",
+            ));
         }
         for (field, len) in [
             ("master.bits", self.slave_bits.len()),
@@ -82,7 +89,11 @@ impl MasterConfig {
             ("master.crc_poly", self.slave_crc_poly.len()),
         ] {
             if len != n {
-                return Err(ConfigError::invalid(field, format!("{len} entries for {n} slaves"), "give one entry per slave"));
+                return Err(ConfigError::invalid(
+                    field,
+                    format!("{len} entries for {n} slaves"),
+                    "give one entry per slave",
+                ));
             }
         }
         for i in 0..n {
@@ -95,7 +106,11 @@ impl MasterConfig {
             }
             let w = self.slave_crc_width[i];
             if !(1..=8).contains(&w) {
-                return Err(ConfigError::invalid(format!("master.crc_width[{i}]"), format!("{w} bits"), "give a CRC of 1 to 8 bits (BiSS-C: 6)"));
+                return Err(ConfigError::invalid(
+                    format!("master.crc_width[{i}]"),
+                    format!("{w} bits"),
+                    "give a CRC of 1 to 8 bits (BiSS-C: 6)",
+                ));
             }
             let p = self.slave_crc_poly[i];
             if p >= 1 << w || p & 1 == 0 {
@@ -113,10 +128,16 @@ impl MasterConfig {
                 "make f_sys a multiple of MA, 8 to 4096 times (10 MHz needs f_sys of at least 80 MHz)",
             ));
         }
-        if self.high_clocks + self.low_clocks != self.clocks_per_bit || self.high_clocks == 0 || self.low_clocks == 0 {
+        if self.high_clocks + self.low_clocks != self.clocks_per_bit
+            || self.high_clocks == 0
+            || self.low_clocks == 0
+        {
             return Err(ConfigError::invalid(
                 "master.clock_khz",
-                format!("MA phases of {} + {} cycles for a period of {}", self.high_clocks, self.low_clocks, self.clocks_per_bit),
+                format!(
+                    "MA phases of {} + {} cycles for a period of {}",
+                    self.high_clocks, self.low_clocks, self.clocks_per_bit
+                ),
                 "give high and low phases that make up the period",
             ));
         }
@@ -128,12 +149,20 @@ impl MasterConfig {
             ));
         }
         if !matches!(self.cal_frames, 1 | 2 | 4 | 8 | 16) {
-            return Err(ConfigError::invalid("master.cal_frames", format!("{}", self.cal_frames), "give 1, 2, 4, 8 or 16 start-up frames (a power of two: the mean is a shift)"));
+            return Err(ConfigError::invalid(
+                "master.cal_frames",
+                format!("{}", self.cal_frames),
+                "give 1, 2, 4, 8 or 16 start-up frames (a power of two: the mean is a shift)",
+            ));
         }
         if self.delay_tol >= self.clocks_per_bit / 2 {
             return Err(ConfigError::invalid(
                 "master.delay_tolerance_ns",
-                format!("{} cycles for half an MA period of {}", self.delay_tol, self.clocks_per_bit / 2),
+                format!(
+                    "{} cycles for half an MA period of {}",
+                    self.delay_tol,
+                    self.clocks_per_bit / 2
+                ),
                 "give a tolerance below half an MA period (the sample must stay inside its cell)",
             ));
         }
@@ -154,7 +183,9 @@ impl MasterConfig {
 
     /// Bits after the ack in one frame: start, then per slave CDS, data, nE, nW, CRC.
     pub fn frame_bits(&self) -> u64 {
-        1 + (0..self.slaves as usize).map(|i| 1 + self.slave_bits[i] as u64 + 2 + self.slave_crc_width[i] as u64).sum::<u64>()
+        1 + (0..self.slaves as usize)
+            .map(|i| 1 + self.slave_bits[i] as u64 + 2 + self.slave_crc_width[i] as u64)
+            .sum::<u64>()
     }
 
     /// The Verilog parameters, in vector-header order.
@@ -169,7 +200,11 @@ impl MasterConfig {
             ("CLOCKS_PER_BIT", self.clocks_per_bit),
         ]
         .into_iter()
-        .chain(BitClock::parameters(self.high_clocks, self.low_clocks, ["HIGH_CLOCKS", "LOW_CLOCKS"]))
+        .chain(BitClock::parameters(
+            self.high_clocks,
+            self.low_clocks,
+            ["HIGH_CLOCKS", "LOW_CLOCKS"],
+        ))
         .chain([
             ("MAX_DELAY", self.max_delay),
             ("TIMEOUT_CLOCKS", self.timeout_clocks),
@@ -393,7 +428,9 @@ impl Master {
     /// A master in its reset state.
     pub fn new(cfg: MasterConfig) -> Result<Self> {
         cfg.validate()?;
-        let crcs: Vec<BitSerial> = (0..cfg.slaves as usize).map(|i| BitSerial::new(&data_crc(cfg.slave_crc_width[i], cfg.slave_crc_poly[i]))).collect();
+        let crcs: Vec<BitSerial> = (0..cfg.slaves as usize)
+            .map(|i| BitSerial::new(&data_crc(cfg.slave_crc_width[i], cfg.slave_crc_poly[i])))
+            .collect();
         Ok(Master {
             r: Regs {
                 state: State::Idle,
@@ -438,7 +475,10 @@ impl Master {
             crc4_rx: BitSerial::new(&BISS_CTRL_CRC4),
             crcs,
             raw: Vec::new(),
-            out: Out { o_ma: true, ..Out::default() },
+            out: Out {
+                o_ma: true,
+                ..Out::default()
+            },
             cfg,
         })
     }
@@ -524,9 +564,24 @@ impl Master {
     /// up, a request or start is in, or the SLO synchroniser has not settled.
     pub fn quiet(&self, input: &In) -> u64 {
         let (c, o) = (&self.r, &self.out);
-        let pulse = o.o_done || o.o_err_line || o.o_err_ack || o.o_err_delay || o.o_err_start || o.o_err_timeout || o.o_slave_valid || o.o_reg_done || o.o_reg_err || o.o_reg_crc_err || o.o_err_drift;
+        let pulse = o.o_done
+            || o.o_err_line
+            || o.o_err_ack
+            || o.o_err_delay
+            || o.o_err_start
+            || o.o_err_timeout
+            || o.o_slave_valid
+            || o.o_reg_done
+            || o.o_reg_err
+            || o.o_reg_crc_err
+            || o.o_err_drift;
         let request = input.i_start || input.i_reg_start || input.i_cmd_start;
-        if pulse || request || c.slo_meta != input.i_slo || c.slo_sync != input.i_slo || (!c.ma_run && c.ma_cnt != 0) {
+        if pulse
+            || request
+            || c.slo_meta != input.i_slo
+            || c.slo_sync != input.i_slo
+            || (!c.ma_run && c.ma_cnt != 0)
+        {
             return 0;
         }
         let ma = if c.ma_run { c.ma_cnt } else { u64::MAX };
@@ -601,10 +656,17 @@ impl Master {
         }
 
         // Bit sampling: once per MA period, in the middle of each cell as it arrives.
-        let sampling = matches!(c.state, State::Start | State::Cds | State::Data | State::Err | State::Warn | State::Crc);
+        let sampling = matches!(
+            c.state,
+            State::Start | State::Cds | State::Data | State::Err | State::Warn | State::Crc
+        );
         let sample = sampling && c.smp_cnt == 0;
         if sampling {
-            n.smp_cnt = if c.smp_cnt == 0 { period - 1 } else { c.smp_cnt - 1 };
+            n.smp_cnt = if c.smp_cnt == 0 {
+                period - 1
+            } else {
+                c.smp_cnt - 1
+            };
         }
         let b = c.slo_sync;
         if sample && (c.state != State::Start || b) {
@@ -687,7 +749,11 @@ impl Master {
             State::Data => {
                 if sample {
                     let bits = cfg.slave_bits[c.slave as usize];
-                    let mask = if bits == 64 { u64::MAX } else { (1u64 << bits) - 1 };
+                    let mask = if bits == 64 {
+                        u64::MAX
+                    } else {
+                        (1u64 << bits) - 1
+                    };
                     n.data = ((c.data << 1) | b as u64) & mask;
                     self.crc.push(b);
                     if c.bit_cnt == 0 {
@@ -805,9 +871,20 @@ impl Master {
         if (input.i_reg_start || input.i_cmd_start) && !c.reg_pending && !c.ctl_active {
             n.reg_pending = true;
             n.acc = if input.i_reg_start {
-                Access { write: input.i_reg_write, id: input.i_reg_id & 7, addr: input.i_reg_addr & 0x7F, wdata: input.i_reg_wdata, ..Access::default() }
+                Access {
+                    write: input.i_reg_write,
+                    id: input.i_reg_id & 7,
+                    addr: input.i_reg_addr & 0x7F,
+                    wdata: input.i_reg_wdata,
+                    ..Access::default()
+                }
             } else {
-                Access { command: true, ids: input.i_cmd_ids, code: input.i_cmd_code & 3, ..Access::default() }
+                Access {
+                    command: true,
+                    ids: input.i_cmd_ids,
+                    code: input.i_cmd_code & 3,
+                    ..Access::default()
+                }
             };
             o.o_reg_busy = true;
         }

@@ -90,21 +90,33 @@
 //!  o_done                                                                             /‾\
 //! ```
 
-pub mod campaign;
 mod bench;
-pub mod decode;
+pub mod campaign;
 pub mod control;
-pub mod seed_timing;
+pub mod decode;
 mod master;
+pub mod seed_timing;
 mod slave;
 
-pub use bench::{Bench, BenchConfig, CmdOp, CmdResult, DelayStep, FlipFault, HostSettings, MasterSettings, RegOp, RegResult, SlaveResult, SlaveSettings, StuckFault, Transaction};
+pub use bench::{
+    Bench, BenchConfig, CmdOp, CmdResult, DelayStep, FlipFault, HostSettings, MasterSettings,
+    RegOp, RegResult, SlaveResult, SlaveSettings, StuckFault, Transaction,
+};
 pub use master::{In, Master, MasterConfig, Out, State, MAX_SLAVES, SYNC_STAGES};
 pub use slave::{Chain, Slave, SlaveConfig};
 
 /// A CRC of the BiSS-C family with another width or polynomial: initial value
 /// 0, sent inverted, MSB first, like [`crate::crc::BISS_CRC6`].
 pub fn data_crc(width: u32, poly: u64) -> crate::crc::Algorithm {
-    let all_ones = if width >= 64 { u64::MAX } else { (1u64 << width) - 1 };
-    crate::crc::Algorithm { width, poly, wire_xor: all_ones, ..crate::crc::BISS_CRC6 }
+    let all_ones = if width >= 64 {
+        u64::MAX
+    } else {
+        (1u64 << width) - 1
+    };
+    crate::crc::Algorithm {
+        width,
+        poly,
+        wire_xor: all_ones,
+        ..crate::crc::BISS_CRC6
+    }
 }

@@ -34,7 +34,12 @@ pub fn check(cfg: &BenchConfig) -> Result<Vec<String>> {
     let mut rows: Vec<(bool, bool, bool, u64)> = Vec::new();
     while !bench.finished() {
         bench.step(Some(&mut sample));
-        rows.push((sample.line[0] == 1, sample.line[1] == 1, sample.line[2] == 1, sample.decoded[0]));
+        rows.push((
+            sample.line[0] == 1,
+            sample.line[1] == 1,
+            sample.line[2] == 1,
+            sample.decoded[0],
+        ));
     }
     let mut bad = Vec::new();
     let at = |cycle: usize| format!("cycle {cycle} ({:.1} ns)", cycle as f64 * ns);
@@ -48,8 +53,16 @@ pub fn check(cfg: &BenchConfig) -> Result<Vec<String>> {
         if let Some(e) = last_edge {
             let len = (c - e) as f64 * ns;
             if len <= TMAS_HL_MIN_NS {
-                let (rule, level) = if rows[e].0 { ("TMASH", "high") } else { ("TMASL", "low") };
-                bad.push(format!("{}: MA {level} for {len} ns, {} cycles (seed 001, BiSS-C: {rule} > 25 ns)", at(e), c - e));
+                let (rule, level) = if rows[e].0 {
+                    ("TMASH", "high")
+                } else {
+                    ("TMASL", "low")
+                };
+                bad.push(format!(
+                    "{}: MA {level} for {len} ns, {} cycles (seed 001, BiSS-C: {rule} > 25 ns)",
+                    at(e),
+                    c - e
+                ));
             }
         }
         last_edge = Some(c);
@@ -57,7 +70,9 @@ pub fn check(cfg: &BenchConfig) -> Result<Vec<String>> {
 
     // t_busy at the slave: from each frame's start (IDLE to ACK), the second
     // rising MA edge at the slave, the ack after it, the start bit after that.
-    let starts: Vec<usize> = (1..rows.len()).filter(|&c| rows[c].3 == 1 && rows[c - 1].3 == 0).collect();
+    let starts: Vec<usize> = (1..rows.len())
+        .filter(|&c| rows[c].3 == 1 && rows[c - 1].3 == 0)
+        .collect();
     for (i, &s) in starts.iter().enumerate() {
         let end = starts.get(i + 1).copied().unwrap_or(rows.len());
         // An ack is SLO falling after the second rising MA edge at the

@@ -31,9 +31,16 @@ impl SlaveConfig {
     /// Checks the configuration; `prefix` is the scenario table (`slaves[1]`).
     pub fn validate(&self, prefix: &str) -> Result<()> {
         if !(1..=64).contains(&self.bits) {
-            return Err(ConfigError::invalid(format!("{prefix}.bits"), format!("{} bits", self.bits), "give 1 to 64 data bits"));
+            return Err(ConfigError::invalid(
+                format!("{prefix}.bits"),
+                format!("{} bits", self.bits),
+                "give 1 to 64 data bits",
+            ));
         }
-        if !(1..=8).contains(&self.crc_width) || self.crc_poly >= 1 << self.crc_width || self.crc_poly & 1 == 0 {
+        if !(1..=8).contains(&self.crc_width)
+            || self.crc_poly >= 1 << self.crc_width
+            || self.crc_poly & 1 == 0
+        {
             return Err(ConfigError::invalid(
                 format!("{prefix}.crc_poly"),
                 format!("{:#x} for a {}-bit CRC", self.crc_poly, self.crc_width),
@@ -41,13 +48,25 @@ impl SlaveConfig {
             ));
         }
         if self.timeout_clocks == 0 {
-            return Err(ConfigError::invalid(format!("{prefix}.timeout_us"), "zero", "give the slave's BiSS timeout, e.g. 16 µs"));
+            return Err(ConfigError::invalid(
+                format!("{prefix}.timeout_us"),
+                "zero",
+                "give the slave's BiSS timeout, e.g. 16 µs",
+            ));
         }
         if self.id > 7 {
-            return Err(ConfigError::invalid(format!("{prefix}.id"), format!("{}", self.id), "give an ID of 0 to 7"));
+            return Err(ConfigError::invalid(
+                format!("{prefix}.id"),
+                format!("{}", self.id),
+                "give an ID of 0 to 7",
+            ));
         }
         if self.registers.len() > 128 {
-            return Err(ConfigError::invalid(format!("{prefix}.registers"), format!("{} values", self.registers.len()), "give at most 128 registers"));
+            return Err(ConfigError::invalid(
+                format!("{prefix}.registers"),
+                format!("{} values", self.registers.len()),
+                "give at most 128 registers",
+            ));
         }
         Ok(())
     }
@@ -117,7 +136,11 @@ impl Slave {
 
     /// The value the next latch stores (masked to the width).
     pub fn set_position(&mut self, position: u64) {
-        let mask = if self.cfg.bits == 64 { u64::MAX } else { (1u64 << self.cfg.bits) - 1 };
+        let mask = if self.cfg.bits == 64 {
+            u64::MAX
+        } else {
+            (1u64 << self.cfg.bits) - 1
+        };
         self.position = position & mask;
     }
 
@@ -164,7 +187,10 @@ impl Slave {
     /// nW, the CRC inverted MSB first, then the requested corruptions.
     pub fn section(&mut self) -> Vec<bool> {
         let n = self.cfg.bits;
-        let mut covered: Vec<bool> = (0..n).rev().map(|i| (self.position >> i) & 1 == 1).collect();
+        let mut covered: Vec<bool> = (0..n)
+            .rev()
+            .map(|i| (self.position >> i) & 1 == 1)
+            .collect();
         covered.push(!self.error);
         covered.push(!self.warning);
         let alg = data_crc(self.cfg.crc_width, self.cfg.crc_poly);
@@ -193,7 +219,11 @@ impl Slave {
             }
         }
         let zeros_before = self.zeros;
-        self.zeros = if bit { 0 } else { (self.zeros + 1).min(control::SYNC_ZEROS) };
+        self.zeros = if bit {
+            0
+        } else {
+            (self.zeros + 1).min(control::SYNC_ZEROS)
+        };
         let mut cds = false;
         match self.ctl_k {
             None => {
@@ -214,14 +244,19 @@ impl Slave {
                     12..=15 => {
                         self.crc_bits.push(bit);
                         if k == 15 {
-                            let crc_ok = crc4.crc_from_wire_bits(&self.crc_bits) == Some(crc4.checksum_bits(&self.addr_bits));
+                            let crc_ok = crc4.crc_from_wire_bits(&self.crc_bits)
+                                == Some(crc4.checksum_bits(&self.addr_bits));
                             self.command = !self.addr_bits[0];
                             if self.command {
-                                let ids = self.addr_bits[1..9].iter().fold(0u8, |a, &b| (a << 1) | b as u8);
+                                let ids = self.addr_bits[1..9]
+                                    .iter()
+                                    .fold(0u8, |a, &b| (a << 1) | b as u8);
                                 self.accepted = crc_ok && control::selects(ids, self.cfg.id);
                                 cds = self.accepted; // IDA
                             } else {
-                                let id = self.addr_bits[1..4].iter().fold(0u8, |a, &b| (a << 1) | b as u8);
+                                let id = self.addr_bits[1..4]
+                                    .iter()
+                                    .fold(0u8, |a, &b| (a << 1) | b as u8);
                                 self.accepted = crc_ok && id == self.cfg.id;
                             }
                         }
@@ -230,7 +265,9 @@ impl Slave {
                         if k == control::K_EX {
                             cds = self.accepted && bit; // the EX echo
                             if self.accepted && bit {
-                                let code = self.addr_bits[9..11].iter().fold(0u8, |a, &b| (a << 1) | b as u8);
+                                let code = self.addr_bits[9..11]
+                                    .iter()
+                                    .fold(0u8, |a, &b| (a << 1) | b as u8);
                                 self.executed.push(code);
                             }
                         } else if k == control::K_CMD_LAST {
@@ -286,7 +323,9 @@ impl Slave {
     }
 
     fn addr(&self) -> u8 {
-        self.addr_bits[4..11].iter().fold(0u8, |a, &b| (a << 1) | b as u8)
+        self.addr_bits[4..11]
+            .iter()
+            .fold(0u8, |a, &b| (a << 1) | b as u8)
     }
 }
 
@@ -324,7 +363,11 @@ impl Chain {
     /// A chain of `slaves` whose SLO output changes `output_delay_clocks` after an MA edge.
     pub fn new(slaves: Vec<Slave>, output_delay_clocks: u64) -> Self {
         let busy_clocks = slaves.iter().map(|s| s.cfg.busy_clocks).max().unwrap_or(0);
-        let timeout_clocks = slaves.iter().map(|s| s.cfg.timeout_clocks).max().unwrap_or(1);
+        let timeout_clocks = slaves
+            .iter()
+            .map(|s| s.cfg.timeout_clocks)
+            .max()
+            .unwrap_or(1);
         Chain {
             slaves,
             busy_clocks,

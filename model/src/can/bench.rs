@@ -51,7 +51,12 @@ pub struct TimingSettings {
 
 impl Default for TimingSettings {
     fn default() -> Self {
-        TimingSettings { bit_rate_kbps: 250.0, tq_per_bit: 16, sample_point: 0.875, sjw: 1 }
+        TimingSettings {
+            bit_rate_kbps: 250.0,
+            tq_per_bit: 16,
+            sample_point: 0.875,
+            sjw: 1,
+        }
     }
 }
 
@@ -73,14 +78,23 @@ pub struct DutSettings {
 
 impl Default for DutSettings {
     fn default() -> Self {
-        DutSettings { position_m: 0.0, loop_delay_ns: 150.0, filter_id: 0, filter_mask: 0, frames: Vec::new() }
+        DutSettings {
+            position_m: 0.0,
+            loop_delay_ns: 150.0,
+            filter_id: 0,
+            filter_mask: 0,
+            frames: Vec::new(),
+        }
     }
 }
 
 impl DutSettings {
     /// Where the core sits.
     pub fn place(&self) -> Place {
-        Place { position_m: self.position_m, loop_delay_ns: self.loop_delay_ns }
+        Place {
+            position_m: self.position_m,
+            loop_delay_ns: self.loop_delay_ns,
+        }
     }
 }
 
@@ -121,14 +135,26 @@ impl Fault {
         for (k, f) in faults.iter().enumerate() {
             for t in &f.targets {
                 if !names.contains(&t.as_str()) {
-                    return Err(ConfigError::invalid(format!("faults[{k}].targets"), format!("no node `{t}`"), hint));
+                    return Err(ConfigError::invalid(
+                        format!("faults[{k}].targets"),
+                        format!("no node `{t}`"),
+                        hint,
+                    ));
                 }
             }
             if f.kind == FaultKind::StuckDominant && !(f.width_us > 0.0 && f.at_us >= 0.0) {
-                return Err(ConfigError::invalid(format!("faults[{k}].width_us"), format!("{}", f.width_us), "give a stuck line a positive width_us and at_us ≥ 0"));
+                return Err(ConfigError::invalid(
+                    format!("faults[{k}].width_us"),
+                    format!("{}", f.width_us),
+                    "give a stuck line a positive width_us and at_us ≥ 0",
+                ));
             }
             if f.kind == FaultKind::Flip && (f.bit > 200 || f.count == 0) {
-                return Err(ConfigError::invalid(format!("faults[{k}].bit"), format!("bit {} count {}", f.bit, f.count), "give a bit from 0 to 200 and count ≥ 1"));
+                return Err(ConfigError::invalid(
+                    format!("faults[{k}].bit"),
+                    format!("bit {} count {}", f.bit, f.count),
+                    "give a bit from 0 to 200 and count ≥ 1",
+                ));
             }
         }
         Ok(())
@@ -187,17 +213,34 @@ impl BenchConfig {
     pub fn bit_timing(&self) -> Result<BitTiming> {
         let t = &self.timing;
         if !(0.5..0.95).contains(&t.sample_point) {
-            return Err(ConfigError::invalid("timing.sample_point", format!("{}", t.sample_point), "give a sample point between 0.5 and 0.95"));
+            return Err(ConfigError::invalid(
+                "timing.sample_point",
+                format!("{}", t.sample_point),
+                "give a sample point between 0.5 and 0.95",
+            ));
         }
         if !(10.0..=1000.0).contains(&t.bit_rate_kbps) {
-            return Err(ConfigError::invalid("timing.bit_rate_kbps", format!("{}", t.bit_rate_kbps), "give 10 to 1000 kbit/s"));
+            return Err(ConfigError::invalid(
+                "timing.bit_rate_kbps",
+                format!("{}", t.bit_rate_kbps),
+                "give 10 to 1000 kbit/s",
+            ));
         }
-        BitTiming::for_rate(self.timebase()?.f_sys_hz(), t.bit_rate_kbps * 1e3, t.tq_per_bit, t.sample_point, t.sjw)
+        BitTiming::for_rate(
+            self.timebase()?.f_sys_hz(),
+            t.bit_rate_kbps * 1e3,
+            t.tq_per_bit,
+            t.sample_point,
+            t.sjw,
+        )
     }
 
     /// The core's configuration (the Verilog parameters).
     pub fn controller_config(&self) -> Result<ControllerConfig> {
-        let c = ControllerConfig { timing: self.bit_timing()?, sync_stages: self.sync_stages };
+        let c = ControllerConfig {
+            timing: self.bit_timing()?,
+            sync_stages: self.sync_stages,
+        };
         c.validate()?;
         Ok(c)
     }
@@ -205,32 +248,62 @@ impl BenchConfig {
     fn check(&self) -> Result<()> {
         self.controller_config()?;
         if !(0.0..=50.0).contains(&self.ns_per_m) {
-            return Err(ConfigError::invalid("ns_per_m", format!("{}", self.ns_per_m), "give the cable delay in ns/m (5 for twisted pair)"));
+            return Err(ConfigError::invalid(
+                "ns_per_m",
+                format!("{}", self.ns_per_m),
+                "give the cable delay in ns/m (5 for twisted pair)",
+            ));
         }
         self.dut.place().validate("dut")?;
         for (k, s) in self.dut.frames.iter().enumerate() {
             s.frame().validate(&format!("dut.frames[{k}]"))?;
             // The emulated nodes' rule (`Node::validate`), for the core's script.
             if !(0.0..1e8).contains(&s.at_us) {
-                return Err(ConfigError::invalid(format!("dut.frames[{k}].at_us"), format!("{}", s.at_us), "give a time ≥ 0 µs"));
+                return Err(ConfigError::invalid(
+                    format!("dut.frames[{k}].at_us"),
+                    format!("{}", s.at_us),
+                    "give a time ≥ 0 µs",
+                ));
             }
             if s.ide {
-                return Err(ConfigError::invalid(format!("dut.frames[{k}].ide"), "the core sends standard frames only", "send extended frames from an emulated node"));
+                return Err(ConfigError::invalid(
+                    format!("dut.frames[{k}].ide"),
+                    "the core sends standard frames only",
+                    "send extended frames from an emulated node",
+                ));
             }
         }
         if self.dut.filter_id >= 1 << 29 || self.dut.filter_mask >= 1 << 29 {
-            return Err(ConfigError::invalid("dut.filter_id", "wider than 29 bits", "give 29-bit filter_id and filter_mask"));
+            return Err(ConfigError::invalid(
+                "dut.filter_id",
+                "wider than 29 bits",
+                "give 29-bit filter_id and filter_mask",
+            ));
         }
         for (k, n) in self.nodes.iter().enumerate() {
             n.validate(&format!("nodes[{k}]"))?;
             if n.name == "dut" || self.nodes[..k].iter().any(|m| m.name == n.name) {
-                return Err(ConfigError::invalid(format!("nodes[{k}].name"), format!("`{}` is taken", n.name), "give each node its own name (not `dut`)"));
+                return Err(ConfigError::invalid(
+                    format!("nodes[{k}].name"),
+                    format!("`{}` is taken", n.name),
+                    "give each node its own name (not `dut`)",
+                ));
             }
         }
-        let names: Vec<&str> = std::iter::once("dut").chain(self.nodes.iter().map(|n| n.name.as_str())).collect();
-        Fault::validate_all(&self.faults, &names, "name `dut` or a node of [[can.nodes]]")?;
+        let names: Vec<&str> = std::iter::once("dut")
+            .chain(self.nodes.iter().map(|n| n.name.as_str()))
+            .collect();
+        Fault::validate_all(
+            &self.faults,
+            &names,
+            "name `dut` or a node of [[can.nodes]]",
+        )?;
         if !(1.0..=1e7).contains(&self.max_us) {
-            return Err(ConfigError::invalid("max_us", format!("{}", self.max_us), "give 1 to 10 000 000 µs"));
+            return Err(ConfigError::invalid(
+                "max_us",
+                format!("{}", self.max_us),
+                "give 1 to 10 000 000 µs",
+            ));
         }
         Ok(())
     }
@@ -345,7 +418,10 @@ impl PinMonitor {
     pub(crate) fn new(cc: ControllerConfig) -> Result<PinMonitor> {
         let mut monitor = Controller::new(cc)?;
         monitor.set_listen_only();
-        Ok(PinMonitor { monitor, frame: OnBus::default() })
+        Ok(PinMonitor {
+            monitor,
+            frame: OnBus::default(),
+        })
     }
 
     /// The receiver.
@@ -369,13 +445,28 @@ impl PinMonitor {
     /// (with `overload`, its overload flags too) go with the frame while it
     /// is active. Returns the receiver's outputs, its state before and after,
     /// and the replaced frame.
-    pub(crate) fn step(&mut self, rx: bool, cycle: u64, overload: bool) -> (Out, State, State, Option<OnBus>) {
+    pub(crate) fn step(
+        &mut self,
+        rx: bool,
+        cycle: u64,
+        overload: bool,
+    ) -> (Out, State, State, Option<OnBus>) {
         let before = self.monitor.state();
-        let m = self.monitor.step(&In { i_can_rx: rx, ..In::default() });
+        let m = self.monitor.step(&In {
+            i_can_rx: rx,
+            ..In::default()
+        });
         let now = self.monitor.state();
         let mut replaced = None;
         if now == State::Frame && before != State::Frame && self.monitor.pos() <= 1 {
-            replaced = Some(std::mem::replace(&mut self.frame, OnBus { sof_cycle: cycle, active: true, ..OnBus::default() }));
+            replaced = Some(std::mem::replace(
+                &mut self.frame,
+                OnBus {
+                    sof_cycle: cycle,
+                    active: true,
+                    ..OnBus::default()
+                },
+            ));
         }
         if now == State::CrcDelim && before == State::Frame {
             self.frame.complete = true;
@@ -385,7 +476,14 @@ impl PinMonitor {
             self.frame.ack_passed = true;
             self.frame.seen.ack = self.monitor.seen().ack;
         }
-        for (flag, name) in [(m.o_err_bit, "bit"), (m.o_err_stuff, "stuff"), (m.o_err_crc, "crc"), (m.o_err_form, "form"), (m.o_err_ack, "ack"), (m.o_overload && overload, "overload")] {
+        for (flag, name) in [
+            (m.o_err_bit, "bit"),
+            (m.o_err_stuff, "stuff"),
+            (m.o_err_crc, "crc"),
+            (m.o_err_form, "form"),
+            (m.o_err_ack, "ack"),
+            (m.o_overload && overload, "overload"),
+        ] {
             if flag && self.frame.active {
                 self.frame.errors.push(name);
             }
@@ -416,7 +514,14 @@ impl Disturber {
     /// The flips of `faults` aimed at the node `name` (a fault without targets hits every node).
     pub(crate) fn new(faults: &[Fault], name: &str) -> Disturber {
         Disturber {
-            flips: faults.iter().filter(|f| f.kind == FaultKind::Flip && (f.targets.is_empty() || f.targets.iter().any(|t| t == name))).map(|f| (f.frame, f.count, f.bit)).collect(),
+            flips: faults
+                .iter()
+                .filter(|f| {
+                    f.kind == FaultKind::Flip
+                        && (f.targets.is_empty() || f.targets.iter().any(|t| t == name))
+                })
+                .map(|f| (f.frame, f.count, f.bit))
+                .collect(),
             recessive_run: 0,
             prev: true,
             frames: -1,
@@ -432,7 +537,10 @@ impl Disturber {
             .map(|f| {
                 let a = tb.cycles_nearest_ns(f.at_us * 1e3);
                 // A fault at or beyond the end of time is one that never comes.
-                (a, a.saturating_add(tb.cycles_nearest_ns(f.width_us * 1e3).max(1)))
+                (
+                    a,
+                    a.saturating_add(tb.cycles_nearest_ns(f.width_us * 1e3).max(1)),
+                )
             })
             .collect()
     }
@@ -450,7 +558,10 @@ impl Disturber {
         }
         let k = self.frames as u32;
         let off = cycle - self.sof;
-        let flip = self.flips.iter().any(|&(f, n, bit)| k >= f && k < f + n && off / cpb == bit as u64);
+        let flip = self
+            .flips
+            .iter()
+            .any(|&(f, n, bit)| k >= f && k < f + n && off / cpb == bit as u64);
         level ^ flip
     }
 }
@@ -467,7 +578,14 @@ pub(crate) fn undisturbed_rx(bus: &Bus, stuck: &[(u64, u64)], j: usize, cycle: u
 /// stuck window opens or closes, or a flip window does. `None` on an edge
 /// the disturber may count as a frame start. (The CAN and CANopen benches'
 /// fast-forward.)
-pub(crate) fn steady_rx(bus: &Bus, stuck: &[(u64, u64)], disturber: &Disturber, j: usize, cycle: u64, cpb: u64) -> Option<(bool, u64)> {
+pub(crate) fn steady_rx(
+    bus: &Bus,
+    stuck: &[(u64, u64)],
+    disturber: &Disturber,
+    j: usize,
+    cycle: u64,
+    cpb: u64,
+) -> Option<(bool, u64)> {
     let (undisturbed, q) = undisturbed_steady(bus, stuck, j, cycle);
     let (level, flips) = disturber.steady(undisturbed, cycle, cpb)?;
     Some((level, q.min(flips)))
@@ -477,7 +595,12 @@ pub(crate) fn steady_rx(bus: &Bus, stuck: &[(u64, u64)], disturber: &Disturber, 
 /// ([`undisturbed_rx`]), and for how many cycles from `cycle` on it holds
 /// while every node keeps its transmit level: until a change on its way
 /// through the bus arrives, or a stuck window opens or closes.
-pub(crate) fn undisturbed_steady(bus: &Bus, stuck: &[(u64, u64)], j: usize, cycle: u64) -> (bool, u64) {
+pub(crate) fn undisturbed_steady(
+    bus: &Bus,
+    stuck: &[(u64, u64)],
+    j: usize,
+    cycle: u64,
+) -> (bool, u64) {
     let (mut level, mut q) = bus.rx_steady(j);
     for &(a, b) in stuck {
         if cycle < a {
@@ -516,7 +639,10 @@ impl Disturber {
         let mut flip = false;
         let mut q = u64::MAX;
         for &(_, _, bit) in self.flips.iter().filter(|&&(f, n, _)| k >= f && k < f + n) {
-            let (from, to) = (self.sof + bit as u64 * cpb, self.sof + (bit as u64 + 1) * cpb);
+            let (from, to) = (
+                self.sof + bit as u64 * cpb,
+                self.sof + (bit as u64 + 1) * cpb,
+            );
             if cycle < from {
                 q = q.min(from - cycle);
             } else if cycle < to {
@@ -618,15 +744,33 @@ impl Bench {
         let cc = cfg.controller_config()?;
         let mut places = vec![cfg.dut.place()];
         places.extend(cfg.nodes.iter().map(NodeSettings::place));
-        let nodes = cfg.nodes.iter().map(|n| Emulator::new(n, cc, &tb)).collect::<Result<Vec<_>>>()?;
-        let names: Vec<&str> = std::iter::once("dut").chain(cfg.nodes.iter().map(|n| n.name.as_str())).collect();
-        let disturbers = names.iter().map(|name| Disturber::new(&cfg.faults, name)).collect();
+        let nodes = cfg
+            .nodes
+            .iter()
+            .map(|n| Emulator::new(n, cc, &tb))
+            .collect::<Result<Vec<_>>>()?;
+        let names: Vec<&str> = std::iter::once("dut")
+            .chain(cfg.nodes.iter().map(|n| n.name.as_str()))
+            .collect();
+        let disturbers = names
+            .iter()
+            .map(|name| Disturber::new(&cfg.faults, name))
+            .collect();
         let stuck = Disturber::stuck_windows(&cfg.faults, &tb);
         let layout = Layout {
             inputs: Controller::input_ports(),
             outputs: Controller::output_ports(),
-            line: vec![Port::new("can_rx", 1), Port::new("can_tx", 1), Port::new("bus_tx_nodes", 1)],
-            decoded: vec![Port::new("state", 4), Port::new("pos", 7), Port::new("tq_cnt", 5), Port::new("monitor_state", 4)],
+            line: vec![
+                Port::new("can_rx", 1),
+                Port::new("can_tx", 1),
+                Port::new("bus_tx_nodes", 1),
+            ],
+            decoded: vec![
+                Port::new("state", 4),
+                Port::new("pos", 7),
+                Port::new("tq_cnt", 5),
+                Port::new("monitor_state", 4),
+            ],
         };
         let (lines, parts) = (cfg.nodes.len() + 1, cfg.nodes.len() + NODES);
         Ok(Bench {
@@ -636,7 +780,12 @@ impl Bench {
             bus: Bus::new(&places, cfg.ns_per_m, &tb),
             disturbers,
             stuck,
-            script: cfg.dut.frames.iter().map(|s| (tb.cycles_nearest_ns(s.at_us * 1e3), s.frame())).collect(),
+            script: cfg
+                .dut
+                .frames
+                .iter()
+                .map(|s| (tb.cycles_nearest_ns(s.at_us * 1e3), s.frame()))
+                .collect(),
             next: 0,
             last_out: Out::default(),
             started: false,
@@ -724,7 +873,11 @@ impl Bench {
         self.line_at[j] = c + 1;
         // Before its next event (reckoned: not after steps of every part)
         // the line keeps the level it had.
-        let level = if self.scheduled && c < self.line_due[j] { self.line_level[j] } else { undisturbed_rx(&self.bus, &self.stuck, j, c) };
+        let level = if self.scheduled && c < self.line_due[j] {
+            self.line_level[j]
+        } else {
+            undisturbed_rx(&self.bus, &self.stuck, j, c)
+        };
         self.rx[j] = self.disturbers[j].step(level, c, self.cpb);
         self.rx[j]
     }
@@ -732,14 +885,21 @@ impl Bench {
     /// Nothing left to send and the core idle: `step` counts such cycles
     /// towards the end of the run.
     fn all_done(&self) -> bool {
-        self.next == self.script.len() && !self.last_out.o_tx_busy && self.nodes.iter().all(Emulator::done) && self.dut.state() == State::Idle
+        self.next == self.script.len()
+            && !self.last_out.o_tx_busy
+            && self.nodes.iter().all(Emulator::done)
+            && self.dut.state() == State::Idle
     }
 
     /// Cycles from this one to the one whose step decides the end of the
     /// run (two idle bits, or `max_us`), while nothing changes: the end is
     /// then one bit later.
     fn cycles_to_end_decision(&self) -> u64 {
-        let by_idle = if self.all_done() { (2 * self.cpb).saturating_sub(self.idle_cycles).max(1) } else { u64::MAX };
+        let by_idle = if self.all_done() {
+            (2 * self.cpb).saturating_sub(self.idle_cycles).max(1)
+        } else {
+            u64::MAX
+        };
         by_idle.min(self.max_cycles.saturating_sub(self.cycle).max(1))
     }
 
@@ -756,7 +916,9 @@ impl Bench {
                 let q = self.dut.quiet_crossing(rx);
                 match self.script.get(self.next) {
                     // One already due waits for the core's buffer, which frees only on a sample point.
-                    Some((at, _)) if !self.last_out.o_tx_busy => q.min(at.saturating_sub(self.cycle)),
+                    Some((at, _)) if !self.last_out.o_tx_busy => {
+                        q.min(at.saturating_sub(self.cycle))
+                    }
                     _ => q,
                 }
             }
@@ -788,7 +950,13 @@ impl Bench {
                 self.part_due[p] = self.part_event(p);
             }
         }
-        self.next_event = self.part_due.iter().chain(&self.line_due).copied().min().unwrap_or(next);
+        self.next_event = self
+            .part_due
+            .iter()
+            .chain(&self.line_due)
+            .copied()
+            .min()
+            .unwrap_or(next);
         self.scheduled = true;
     }
 
@@ -809,7 +977,8 @@ impl Bench {
     /// this one): the first cycle of its next event while its line holds
     /// the level it last read.
     fn part_event(&self, p: usize) -> u64 {
-        self.cycle.saturating_add(self.part_quiet(p, self.rx[line_of(p)]))
+        self.cycle
+            .saturating_add(self.part_quiet(p, self.rx[line_of(p)]))
     }
 
     /// After steps of every part (which leave the next events unreckoned:
@@ -851,7 +1020,11 @@ impl Bench {
             return;
         }
         for (j, r) in read.iter_mut().enumerate() {
-            let parts_due = if j == 0 { self.part_due[DUT].min(self.part_due[MONITOR]) } else { self.part_due[NODES + j - 1] };
+            let parts_due = if j == 0 {
+                self.part_due[DUT].min(self.part_due[MONITOR])
+            } else {
+                self.part_due[NODES + j - 1]
+            };
             *r = c >= self.line_due[j].min(parts_due);
         }
         for (p, r) in runs.iter_mut().enumerate() {
@@ -878,7 +1051,12 @@ impl Bench {
         let mut runs = std::mem::take(&mut self.part_runs);
         self.read_lines(all, &mut read, &mut runs);
         let rx0 = self.rx[0];
-        let mut input = In { i_can_rx: rx0, i_filter_id: self.cfg.dut.filter_id, i_filter_mask: self.cfg.dut.filter_mask, ..In::default() };
+        let mut input = In {
+            i_can_rx: rx0,
+            i_filter_id: self.cfg.dut.filter_id,
+            i_filter_mask: self.cfg.dut.filter_mask,
+            ..In::default()
+        };
         let out = if runs[DUT] {
             self.catch_up_part(DUT);
             if let Some((at, f)) = self.script.get(self.next) {
@@ -926,7 +1104,14 @@ impl Bench {
         }
         self.monitor.frame.arb_lost |= out.o_arb_lost;
         self.overloads += out.o_overload as u32;
-        if out.o_tx_done || out.o_rx_valid || out.o_err_bit || out.o_err_stuff || out.o_err_crc || out.o_err_form || out.o_err_ack {
+        if out.o_tx_done
+            || out.o_rx_valid
+            || out.o_err_bit
+            || out.o_err_stuff
+            || out.o_err_crc
+            || out.o_err_form
+            || out.o_err_ack
+        {
             for (flag, name) in [
                 (out.o_tx_done, "tx_done"),
                 (out.o_rx_valid, "rx_valid"),
@@ -943,9 +1128,13 @@ impl Bench {
         }
         self.last_out = out;
         self.cycle += 1;
-        let quiet = self.next == self.script.len() && !out.o_tx_busy && self.nodes.iter().all(Emulator::done) && self.dut.state() == State::Idle;
+        let quiet = self.next == self.script.len()
+            && !out.o_tx_busy
+            && self.nodes.iter().all(Emulator::done)
+            && self.dut.state() == State::Idle;
         self.idle_cycles = if quiet { self.idle_cycles + 1 } else { 0 };
-        if self.end.is_none() && (self.idle_cycles >= 2 * self.cpb || self.cycle >= self.max_cycles) {
+        if self.end.is_none() && (self.idle_cycles >= 2 * self.cpb || self.cycle >= self.max_cycles)
+        {
             self.end = Some(self.cycle + self.cpb);
         }
         if all {
@@ -960,8 +1149,15 @@ impl Bench {
         let Some(sample) = sample else { return };
         input.write_values(&mut sample.inputs);
         out.write_values(&mut sample.outputs);
-        sample.line.copy_from_slice(&[rx0 as u64, out.o_can_tx as u64, nodes_tx as u64]);
-        sample.decoded.copy_from_slice(&[self.dut.state() as u64, self.dut.pos() as u64 & 0x7F, self.dut.clock().tq_cnt as u64, self.monitor.controller().state() as u64]);
+        sample
+            .line
+            .copy_from_slice(&[rx0 as u64, out.o_can_tx as u64, nodes_tx as u64]);
+        sample.decoded.copy_from_slice(&[
+            self.dut.state() as u64,
+            self.dut.pos() as u64 & 0x7F,
+            self.dut.clock().tq_cnt as u64,
+            self.monitor.controller().state() as u64,
+        ]);
     }
 
     fn outcome(&mut self, outcome: &'static str, out: &Out) {
@@ -980,7 +1176,11 @@ impl Bench {
             ide: f.seen.ide,
             rtr: f.seen.rtr,
             dlc: f.seen.dlc,
-            data: if f.complete { unpack(f.seen.data, n) } else { Vec::new() },
+            data: if f.complete {
+                unpack(f.seen.data, n)
+            } else {
+                Vec::new()
+            },
             crc: f.complete.then_some(f.seen.crc),
             ack: f.ack_passed && f.seen.ack,
             errors: f.errors.clone(),
@@ -1003,12 +1203,19 @@ impl Testbench for Bench {
                 n => bench.skip(n),
             }
         }
-        crate::testbench::Run { cycles: bench.cycle, transactions: bench.transactions }
+        crate::testbench::Run {
+            cycles: bench.cycle,
+            transactions: bench.transactions,
+        }
     }
     fn run_every_cycle_compiled(self) -> crate::testbench::Run<Transaction> {
         crate::testbench::run_every_cycle(self)
     }
-    fn lockstep_compiled(self, name: &str, stepped: Self) -> crate::testbench::Lockstep<Transaction> {
+    fn lockstep_compiled(
+        self,
+        name: &str,
+        stepped: Self,
+    ) -> crate::testbench::Lockstep<Transaction> {
         crate::testbench::lockstep(name, self, stepped)
     }
 
@@ -1045,7 +1252,10 @@ impl Testbench for Bench {
         } else {
             // After a step of every part: each line was read, each part stepped.
             let lines = (0..self.line_due.len()).map(|j| self.line_event(j).1);
-            lines.chain((0..self.part_due.len()).map(|p| self.part_event(p))).min().unwrap_or(c)
+            lines
+                .chain((0..self.part_due.len()).map(|p| self.part_event(p)))
+                .min()
+                .unwrap_or(c)
         };
         let due = match self.end {
             Some(e) => next_event.min(e),
@@ -1070,7 +1280,11 @@ impl Testbench for Bench {
                 self.end = Some(c + s + self.cpb);
             }
         }
-        self.idle_cycles = if self.all_done() { self.idle_cycles + n } else { 0 };
+        self.idle_cycles = if self.all_done() {
+            self.idle_cycles + n
+        } else {
+            0
+        };
         self.cycle += n;
     }
 

@@ -29,10 +29,18 @@ impl Place {
     /// Checks the fields; `field` names the scenario table.
     pub fn validate(&self, field: &str) -> Result<()> {
         if !(0.0..=10_000.0).contains(&self.position_m) {
-            return Err(ConfigError::invalid(format!("{field}.position_m"), format!("{}", self.position_m), "give a position from 0 to 10 000 m"));
+            return Err(ConfigError::invalid(
+                format!("{field}.position_m"),
+                format!("{}", self.position_m),
+                "give a position from 0 to 10 000 m",
+            ));
         }
         if !(0.0..=10_000.0).contains(&self.loop_delay_ns) {
-            return Err(ConfigError::invalid(format!("{field}.loop_delay_ns"), format!("{}", self.loop_delay_ns), "give a loop delay from 0 to 10 000 ns"));
+            return Err(ConfigError::invalid(
+                format!("{field}.loop_delay_ns"),
+                format!("{}", self.loop_delay_ns),
+                "give a loop delay from 0 to 10 000 ns",
+            ));
         }
         Ok(())
     }
@@ -68,14 +76,22 @@ impl Bus {
                 places
                     .iter()
                     .map(|b| {
-                        let ns = a.loop_delay_ns / 2.0 + (a.position_m - b.position_m).abs() * ns_per_m + b.loop_delay_ns / 2.0;
+                        let ns = a.loop_delay_ns / 2.0
+                            + (a.position_m - b.position_m).abs() * ns_per_m
+                            + b.loop_delay_ns / 2.0;
                         ((ns * 1e3 / ps).round() as usize).max(1)
                     })
                     .collect()
             })
             .collect();
         let len = delay.iter().flatten().copied().max().unwrap_or(1) + 1;
-        Bus { level: vec![true; places.len()], delay, len, cycle: 0, changes: vec![VecDeque::new(); places.len()] }
+        Bus {
+            level: vec![true; places.len()],
+            delay,
+            len,
+            cycle: 0,
+            changes: vec![VecDeque::new(); places.len()],
+        }
     }
 
     /// Delay from node `from`'s TXD to node `to`'s RXD, cycles.
@@ -91,17 +107,25 @@ impl Bus {
     /// The level at node `j`'s RXD this cycle: every node's level of its
     /// delay to `j` ago (recessive before the first cycle).
     pub fn rx(&self, j: usize) -> bool {
-        self.level.iter().zip(&self.changes).zip(&self.delay).all(|((&level, changes), d)| {
-            // A change made at cycle t reaches j at t + d: undo those still on
-            // their way (mostly none: the last change has arrived).
-            match changes.back() {
-                Some(&t) if t + d[j] > self.cycle => {
-                    let on_the_way = changes.iter().rev().take_while(|&&t| t + d[j] > self.cycle).count();
-                    level ^ (on_the_way % 2 == 1)
+        self.level
+            .iter()
+            .zip(&self.changes)
+            .zip(&self.delay)
+            .all(|((&level, changes), d)| {
+                // A change made at cycle t reaches j at t + d: undo those still on
+                // their way (mostly none: the last change has arrived).
+                match changes.back() {
+                    Some(&t) if t + d[j] > self.cycle => {
+                        let on_the_way = changes
+                            .iter()
+                            .rev()
+                            .take_while(|&&t| t + d[j] > self.cycle)
+                            .count();
+                        level ^ (on_the_way % 2 == 1)
+                    }
+                    _ => level,
                 }
-                _ => level,
-            }
-        })
+            })
     }
 
     /// [`Bus::rx`] and [`Bus::steady`] of node `j` in one pass over the

@@ -70,9 +70,23 @@ pub fn random_frame(rng: &mut impl Rng) -> Frame {
     let ide = rng.random_bool(0.3);
     let rtr = rng.random_bool(0.1);
     let dlc = rng.random_range(0..=8u8);
-    let id = if ide { rng.random_range(0..1u32 << 29) } else { rng.random_range(0..1u32 << 11) };
-    let data = if rtr { Vec::new() } else { (0..dlc).map(|_| rng.random()).collect() };
-    Frame { id, ide, rtr, dlc, data }
+    let id = if ide {
+        rng.random_range(0..1u32 << 29)
+    } else {
+        rng.random_range(0..1u32 << 11)
+    };
+    let data = if rtr {
+        Vec::new()
+    } else {
+        (0..dlc).map(|_| rng.random()).collect()
+    };
+    Frame {
+        id,
+        ide,
+        rtr,
+        dlc,
+        data,
+    }
 }
 
 /// Wire bits SOF through the CRC delimiter, the ACK slot dominant, and EOF.
@@ -84,7 +98,8 @@ fn wire(f: &Frame) -> Vec<bool> {
 pub fn corrupt(rng: &mut impl Rng, f: &Frame, flips: usize) -> (Vec<bool>, Vec<usize>) {
     let mut w = wire(f);
     let protected = stuff(&f.destuffed_bits()).len() + 1;
-    let mut at: Vec<usize> = rand::seq::index::sample(rng, protected, flips.min(protected)).into_vec();
+    let mut at: Vec<usize> =
+        rand::seq::index::sample(rng, protected, flips.min(protected)).into_vec();
     at.sort_unstable();
     for &i in &at {
         w[i] = !w[i];
@@ -118,18 +133,42 @@ pub fn run(trials: u64, seed: u64) -> Report {
 /// per bit, the line fed directly): detected when the controller raised an
 /// error before it reported a frame, or never reported one.
 pub fn controller_verdict(sent: &Frame, wire: &[bool]) -> Verdict {
-    let cfg = ControllerConfig { timing: BitTiming { brp: 1, prop_seg: 3, phase_seg1: 2, phase_seg2: 2, sjw: 1 }, sync_stages: 2 };
+    let cfg = ControllerConfig {
+        timing: BitTiming {
+            brp: 1,
+            prop_seg: 3,
+            phase_seg1: 2,
+            phase_seg2: 2,
+            sjw: 1,
+        },
+        sync_stages: 2,
+    };
     let mut c = Controller::new(cfg).expect("campaign timing is valid");
-    let levels = std::iter::repeat_n(true, 12).chain(wire.iter().copied()).chain(std::iter::repeat_n(true, 12));
+    let levels = std::iter::repeat_n(true, 12)
+        .chain(wire.iter().copied())
+        .chain(std::iter::repeat_n(true, 12));
     for level in levels {
         for _ in 0..8 {
-            let o = c.step(&In { i_can_rx: level, ..In::default() });
+            let o = c.step(&In {
+                i_can_rx: level,
+                ..In::default()
+            });
             if o.o_err_bit || o.o_err_stuff || o.o_err_crc || o.o_err_form || o.o_err_ack {
                 return Verdict::Detected;
             }
             if o.o_rx_valid {
-                let f = Frame { id: o.o_rx_id, ide: o.o_rx_ide, rtr: o.o_rx_rtr, dlc: o.o_rx_dlc, data: frame::unpack(o.o_rx_data, frame::data_len(o.o_rx_dlc, o.o_rx_rtr)) };
-                return if f == *sent { Verdict::Harmless } else { Verdict::Undetected };
+                let f = Frame {
+                    id: o.o_rx_id,
+                    ide: o.o_rx_ide,
+                    rtr: o.o_rx_rtr,
+                    dlc: o.o_rx_dlc,
+                    data: frame::unpack(o.o_rx_data, frame::data_len(o.o_rx_dlc, o.o_rx_rtr)),
+                };
+                return if f == *sent {
+                    Verdict::Harmless
+                } else {
+                    Verdict::Undetected
+                };
             }
         }
     }

@@ -60,7 +60,11 @@ impl ControllerConfig {
     pub fn validate(&self) -> Result<()> {
         self.timing.validate()?;
         if !(2..=3).contains(&self.sync_stages) {
-            return Err(ConfigError::invalid("sync_stages", format!("{}", self.sync_stages), "give 2 or 3 synchroniser flops"));
+            return Err(ConfigError::invalid(
+                "sync_stages",
+                format!("{}", self.sync_stages),
+                "give 2 or 3 synchroniser flops",
+            ));
         }
         Ok(())
     }
@@ -130,7 +134,16 @@ pub struct In {
 
 impl Default for In {
     fn default() -> Self {
-        In { i_tx_start: false, i_tx_id: 0, i_tx_rtr: false, i_tx_dlc: 0, i_tx_data: 0, i_filter_id: 0, i_filter_mask: 0, i_can_rx: true }
+        In {
+            i_tx_start: false,
+            i_tx_id: 0,
+            i_tx_rtr: false,
+            i_tx_dlc: 0,
+            i_tx_data: 0,
+            i_filter_id: 0,
+            i_filter_mask: 0,
+            i_can_rx: true,
+        }
     }
 }
 
@@ -469,7 +482,15 @@ impl Controller {
     pub fn quiet_crossing(&self, rx: bool) -> u64 {
         let n = self.cfg.sync_stages as usize;
         let o = &self.out;
-        let pulse = o.o_tx_done || o.o_arb_lost || o.o_rx_valid || o.o_err_bit || o.o_err_stuff || o.o_err_crc || o.o_err_form || o.o_err_ack || o.o_overload;
+        let pulse = o.o_tx_done
+            || o.o_arb_lost
+            || o.o_rx_valid
+            || o.o_err_bit
+            || o.o_err_stuff
+            || o.o_err_crc
+            || o.o_err_form
+            || o.o_err_ack
+            || o.o_overload;
         if pulse {
             return 0;
         }
@@ -479,7 +500,14 @@ impl Controller {
             None if rx != self.rx_prev => n as u64,
             None => u64::MAX,
         };
-        if crossing == u64::MAX && self.state == State::Idle && rx && !self.tx_pending && self.tx_bit && o.o_can_tx && !o.o_tx_busy {
+        if crossing == u64::MAX
+            && self.state == State::Idle
+            && rx
+            && !self.tx_pending
+            && self.tx_bit
+            && o.o_can_tx
+            && !o.o_tx_busy
+        {
             u64::MAX
         } else if self.tx_bit == o.o_can_tx {
             // The bit end loads the level already sent: only the counters restart.
@@ -514,7 +542,8 @@ impl Controller {
         }
         self.sync[0] = i.i_can_rx;
         let edge = self.rx_prev && !rx && self.last_sample;
-        let hard = matches!(self.state, State::Idle | State::Suspend) || (self.state == State::Intermission && self.bit_cnt == 2);
+        let hard = matches!(self.state, State::Idle | State::Suspend)
+            || (self.state == State::Intermission && self.bit_cnt == 2);
         let resync = self.out.o_can_tx;
         let tick = self.clock.step(&self.cfg.timing, edge, hard, resync);
         let o = &mut self.out;
@@ -533,7 +562,13 @@ impl Controller {
             self.last_sample = rx;
         }
         if load {
-            self.tx = TxBuffer { id: i.i_tx_id as u32 & 0x7FF, ide: false, rtr: i.i_tx_rtr, dlc: i.i_tx_dlc & 0xF, data: i.i_tx_data };
+            self.tx = TxBuffer {
+                id: i.i_tx_id as u32 & 0x7FF,
+                ide: false,
+                rtr: i.i_tx_rtr,
+                dlc: i.i_tx_dlc & 0xF,
+                data: i.i_tx_data,
+            };
             self.tx_pending = true;
         }
         if tick.load_tx {
@@ -690,7 +725,11 @@ impl Controller {
 
     /// The protocol engine at one sample point: `b` is the bus level read.
     pub fn on_sample(&mut self, b: bool, i: &In) {
-        let sent = if self.listen_only { b } else { self.out.o_can_tx };
+        let sent = if self.listen_only {
+            b
+        } else {
+            self.out.o_can_tx
+        };
         match self.state {
             State::Integrate => {
                 if !b {
@@ -976,7 +1015,15 @@ impl Controller {
         }
         let ds = data_start(self.rx_ide);
         if self.pos >= ds && self.pos == self.crc_start() + 15 && self.stuff_cnt != 5 {
-            self.seen = Seen { id: self.rx_id, ide: self.rx_ide, rtr: self.rx_rtr, dlc: self.rx_dlc, data: self.rx_data, crc: self.rx_crc, ack: false };
+            self.seen = Seen {
+                id: self.rx_id,
+                ide: self.rx_ide,
+                rtr: self.rx_rtr,
+                dlc: self.rx_dlc,
+                data: self.rx_data,
+                crc: self.rx_crc,
+                ack: false,
+            };
             self.state = State::CrcDelim;
             self.tx_bit = true;
         } else {

@@ -41,7 +41,13 @@ pub struct Decoded {
 impl Decoded {
     /// The frame's fields (for an intact frame).
     pub fn frame(&self) -> super::frame::Frame {
-        super::frame::Frame { id: self.id, ide: self.ide, rtr: self.rtr, dlc: self.dlc, data: self.data.clone() }
+        super::frame::Frame {
+            id: self.id,
+            ide: self.ide,
+            rtr: self.rtr,
+            dlc: self.dlc,
+            data: self.data.clone(),
+        }
     }
 }
 
@@ -58,11 +64,24 @@ pub fn frames(line: &Signal, bit_ps: u64, sample_point: f64) -> Vec<Decoded> {
         if t < after || t - idle_since < 11 * bit_ps - bit_ps / 2 {
             continue;
         }
-        let bits: Vec<bool> = (0..200u64).map(|k| line.level_at(t + k * bit_ps + (sample_point * bit_ps as f64) as u64)).collect();
+        let bits: Vec<bool> = (0..200u64)
+            .map(|k| line.level_at(t + k * bit_ps + (sample_point * bit_ps as f64) as u64))
+            .collect();
         let d = match super::frame::parse(&bits) {
             Ok(p) => {
                 after = t + p.len as u64 * bit_ps;
-                Decoded { sof_ps: t, id: p.frame.id, ide: p.frame.ide, rtr: p.frame.rtr, dlc: p.frame.dlc, data: p.frame.data, crc: Some(p.crc), ack: p.ack, error: None, bits: p.len }
+                Decoded {
+                    sof_ps: t,
+                    id: p.frame.id,
+                    ide: p.frame.ide,
+                    rtr: p.frame.rtr,
+                    dlc: p.frame.dlc,
+                    data: p.frame.data,
+                    crc: Some(p.crc),
+                    ack: p.ack,
+                    error: None,
+                    bits: p.len,
+                }
             }
             Err((e, at)) => {
                 after = t + at as u64 * bit_ps;
@@ -72,7 +91,18 @@ pub fn frames(line: &Signal, bit_ps: u64, sample_point: f64) -> Vec<Decoded> {
                     FrameError::Form => "form",
                     FrameError::Truncated => "truncated",
                 };
-                Decoded { sof_ps: t, id: 0, ide: false, rtr: false, dlc: 0, data: Vec::new(), crc: None, ack: false, error: Some(name.to_string()), bits: at + 1 }
+                Decoded {
+                    sof_ps: t,
+                    id: 0,
+                    ide: false,
+                    rtr: false,
+                    dlc: 0,
+                    data: Vec::new(),
+                    crc: None,
+                    ack: false,
+                    error: Some(name.to_string()),
+                    bits: at + 1,
+                }
             }
         };
         frames.push(d);

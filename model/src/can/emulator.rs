@@ -39,12 +39,25 @@ pub struct Scripted {
 impl Scripted {
     /// `frame` at `at_us`.
     pub fn new(at_us: f64, frame: Frame) -> Scripted {
-        Scripted { at_us, id: frame.id, ide: frame.ide, rtr: frame.rtr, dlc: frame.dlc, data: frame.data }
+        Scripted {
+            at_us,
+            id: frame.id,
+            ide: frame.ide,
+            rtr: frame.rtr,
+            dlc: frame.dlc,
+            data: frame.data,
+        }
     }
 
     /// The frame.
     pub fn frame(&self) -> Frame {
-        Frame { id: self.id, ide: self.ide, rtr: self.rtr, dlc: self.dlc, data: self.data.clone() }
+        Frame {
+            id: self.id,
+            ide: self.ide,
+            rtr: self.rtr,
+            dlc: self.dlc,
+            data: self.data.clone(),
+        }
     }
 }
 
@@ -82,19 +95,30 @@ fn default_loop() -> f64 {
 impl NodeSettings {
     /// Where the node sits.
     pub fn place(&self) -> Place {
-        Place { position_m: self.position_m, loop_delay_ns: self.loop_delay_ns }
+        Place {
+            position_m: self.position_m,
+            loop_delay_ns: self.loop_delay_ns,
+        }
     }
 
     /// Checks the fields; `field` names the table.
     pub fn validate(&self, field: &str) -> Result<()> {
         self.place().validate(field)?;
         if !(-50_000.0..=50_000.0).contains(&self.ppm) {
-            return Err(ConfigError::invalid(format!("{field}.ppm"), format!("{}", self.ppm), "give an oscillator offset within ±50 000 ppm (±5 %)"));
+            return Err(ConfigError::invalid(
+                format!("{field}.ppm"),
+                format!("{}", self.ppm),
+                "give an oscillator offset within ±50 000 ppm (±5 %)",
+            ));
         }
         for (k, s) in self.frames.iter().enumerate() {
             s.frame().validate(&format!("{field}.frames[{k}]"))?;
             if !(0.0..1e8).contains(&s.at_us) {
-                return Err(ConfigError::invalid(format!("{field}.frames[{k}].at_us"), format!("{}", s.at_us), "give a time ≥ 0 µs"));
+                return Err(ConfigError::invalid(
+                    format!("{field}.frames[{k}].at_us"),
+                    format!("{}", s.at_us),
+                    "give a time ≥ 0 µs",
+                ));
             }
         }
         Ok(())
@@ -120,7 +144,11 @@ pub struct Emulator {
 impl Emulator {
     /// A node in its reset state; `cfg` is its nominal controller configuration.
     pub fn new(s: &NodeSettings, cfg: ControllerConfig, tb: &Timebase) -> Result<Self> {
-        let script = s.frames.iter().map(|f| (tb.cycles_nearest_ns(f.at_us * 1e3), f.frame())).collect();
+        let script = s
+            .frames
+            .iter()
+            .map(|f| (tb.cycles_nearest_ns(f.at_us * 1e3), f.frame()))
+            .collect();
         let mut ctrl = Controller::new(cfg)?;
         if !s.ack {
             ctrl.set_no_ack();
@@ -142,7 +170,13 @@ impl Emulator {
 
     /// Queues a frame now (for device models built on the node); false while busy.
     pub fn load(&mut self, f: &Frame) -> bool {
-        self.ctrl.load(TxBuffer { id: f.id, ide: f.ide, rtr: f.rtr, dlc: f.dlc, data: f.packed() })
+        self.ctrl.load(TxBuffer {
+            id: f.id,
+            ide: f.ide,
+            rtr: f.rtr,
+            dlc: f.dlc,
+            data: f.packed(),
+        })
     }
 
     /// One reference cycle: the node's own clock runs `1 + ppm·1e-6` cycles
@@ -153,22 +187,50 @@ impl Emulator {
             self.phase -= 1.0;
             if let Some((at, f)) = self.script.get(self.next) {
                 if self.own_cycle >= *at && !self.ctrl.out().o_tx_busy {
-                    let f = TxBuffer { id: f.id, ide: f.ide, rtr: f.rtr, dlc: f.dlc, data: f.packed() };
+                    let f = TxBuffer {
+                        id: f.id,
+                        ide: f.ide,
+                        rtr: f.rtr,
+                        dlc: f.dlc,
+                        data: f.packed(),
+                    };
                     self.ctrl.load(f);
                     self.next += 1;
                 }
             }
-            let out = self.ctrl.step(&In { i_can_rx: rx, ..In::default() });
+            let out = self.ctrl.step(&In {
+                i_can_rx: rx,
+                ..In::default()
+            });
             self.own_cycle += 1;
             if out.o_tx_done {
                 let t = self.ctrl.seen();
-                self.sent.push(Frame { id: t.id, ide: t.ide, rtr: t.rtr, dlc: t.dlc, data: unpack(t.data, super::frame::data_len(t.dlc, t.rtr)) });
+                self.sent.push(Frame {
+                    id: t.id,
+                    ide: t.ide,
+                    rtr: t.rtr,
+                    dlc: t.dlc,
+                    data: unpack(t.data, super::frame::data_len(t.dlc, t.rtr)),
+                });
             }
             if out.o_rx_valid {
-                self.received.push(Frame { id: out.o_rx_id, ide: out.o_rx_ide, rtr: out.o_rx_rtr, dlc: out.o_rx_dlc, data: unpack(out.o_rx_data, super::frame::data_len(out.o_rx_dlc, out.o_rx_rtr)) });
+                self.received.push(Frame {
+                    id: out.o_rx_id,
+                    ide: out.o_rx_ide,
+                    rtr: out.o_rx_rtr,
+                    dlc: out.o_rx_dlc,
+                    data: unpack(
+                        out.o_rx_data,
+                        super::frame::data_len(out.o_rx_dlc, out.o_rx_rtr),
+                    ),
+                });
             }
             self.arb_lost += out.o_arb_lost as u64;
-            self.errors += (out.o_err_bit || out.o_err_stuff || out.o_err_crc || out.o_err_form || out.o_err_ack) as u64;
+            self.errors += (out.o_err_bit
+                || out.o_err_stuff
+                || out.o_err_crc
+                || out.o_err_form
+                || out.o_err_ack) as u64;
             self.tx = out.o_can_tx;
         }
         self.tx
@@ -205,7 +267,10 @@ impl Emulator {
         if self.rate == 1.0 || own == u64::MAX {
             own
         } else {
-            ((own.saturating_sub(1)) as f64 / self.rate).floor().max(1.0) as u64 - 1
+            ((own.saturating_sub(1)) as f64 / self.rate)
+                .floor()
+                .max(1.0) as u64
+                - 1
         }
     }
 

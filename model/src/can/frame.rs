@@ -61,12 +61,17 @@ pub fn arbitration_end(ide: bool) -> u32 {
 
 /// The data bytes packed into a `u64`, byte 0 in bits 63..56 (the `o_rx_data` layout).
 pub fn pack(data: &[u8]) -> u64 {
-    data.iter().take(8).enumerate().fold(0, |acc, (k, &b)| acc | (b as u64) << (56 - 8 * k))
+    data.iter()
+        .take(8)
+        .enumerate()
+        .fold(0, |acc, (k, &b)| acc | (b as u64) << (56 - 8 * k))
 }
 
 /// The first `len` bytes of a packed `u64`.
 pub fn unpack(data: u64, len: usize) -> Vec<u8> {
-    (0..len.min(8)).map(|k| (data >> (56 - 8 * k)) as u8).collect()
+    (0..len.min(8))
+        .map(|k| (data >> (56 - 8 * k)) as u8)
+        .collect()
 }
 
 /// The bit a transmitter sends at destuffed position `pos` before the CRC
@@ -78,7 +83,13 @@ pub fn header_bit(id: u32, ide: bool, rtr: bool, dlc: u8, data: u64, pos: u32) -
     let bit = match pos {
         0 => false,
         1..=11 => (base >> (11 - pos)) & 1 == 1,
-        12 => if ide { true } else { rtr },
+        12 => {
+            if ide {
+                true
+            } else {
+                rtr
+            }
+        }
         13 => ide,
         _ if !ide => match pos {
             14 => false,
@@ -101,7 +112,13 @@ fn data_bit(data: u64, k: u32, n: u32) -> Option<bool> {
 impl Frame {
     /// A standard data frame.
     pub fn data(id: u32, data: &[u8]) -> Frame {
-        Frame { id, ide: false, rtr: false, dlc: data.len() as u8, data: data.to_vec() }
+        Frame {
+            id,
+            ide: false,
+            rtr: false,
+            dlc: data.len() as u8,
+            data: data.to_vec(),
+        }
     }
 
     /// The data as a packed `u64`.
@@ -112,7 +129,9 @@ impl Frame {
     /// Destuffed bits from SOF to the end of the data field (what CRC-15 covers).
     pub fn covered_bits(&self) -> Vec<bool> {
         let d = self.packed();
-        (0..).map_while(|p| header_bit(self.id, self.ide, self.rtr, self.dlc, d, p)).collect()
+        (0..)
+            .map_while(|p| header_bit(self.id, self.ide, self.rtr, self.dlc, d, p))
+            .collect()
     }
 
     /// CRC-15 of the frame.
@@ -145,7 +164,11 @@ impl Frame {
     pub fn validate(&self, field: &str) -> crate::Result<()> {
         let limit = if self.ide { 1 << 29 } else { 1 << 11 };
         if self.id >= limit {
-            return Err(crate::ConfigError::invalid(format!("{field}.id"), format!("{:#x} does not fit the identifier", self.id), "give an 11-bit id (29-bit with ide = true)"));
+            return Err(crate::ConfigError::invalid(
+                format!("{field}.id"),
+                format!("{:#x} does not fit the identifier", self.id),
+                "give an 11-bit id (29-bit with ide = true)",
+            ));
         }
         if self.dlc > 15 || self.data.len() != data_len(self.dlc, self.rtr) {
             return Err(crate::ConfigError::invalid(
@@ -281,5 +304,10 @@ pub fn parse(wire: &[bool]) -> Result<Parsed, (FrameError, usize)> {
             return Err((FrameError::Form, i - 1));
         }
     }
-    Ok(Parsed { frame: f, crc: rx_crc, ack, len: i + 1 })
+    Ok(Parsed {
+        frame: f,
+        crc: rx_crc,
+        ack,
+        len: i + 1,
+    })
 }

@@ -61,7 +61,11 @@ impl BitTiming {
             if (lo..=hi).contains(&v) {
                 Ok(())
             } else {
-                Err(ConfigError::invalid(format!("timing.{f}"), format!("{v} is outside {lo} to {hi}"), format!("give {f} from {lo} to {hi} quanta")))
+                Err(ConfigError::invalid(
+                    format!("timing.{f}"),
+                    format!("{v} is outside {lo} to {hi}"),
+                    format!("give {f} from {lo} to {hi} quanta"),
+                ))
             }
         };
         range("brp", self.brp, 1, 1024)?;
@@ -70,10 +74,18 @@ impl BitTiming {
         range("phase_seg2", self.phase_seg2, 2, 8)?;
         range("sjw", self.sjw, 1, 4)?;
         if self.sjw > self.phase_seg1 || self.sjw > self.phase_seg2 {
-            return Err(ConfigError::invalid("timing.sjw", format!("SJW {} exceeds a phase segment", self.sjw), "give SJW at most min(phase_seg1, phase_seg2)"));
+            return Err(ConfigError::invalid(
+                "timing.sjw",
+                format!("SJW {} exceeds a phase segment", self.sjw),
+                "give SJW at most min(phase_seg1, phase_seg2)",
+            ));
         }
         if !(8..=25).contains(&self.ntq()) {
-            return Err(ConfigError::invalid("timing", format!("{} quanta per bit", self.ntq()), "make 1 + prop_seg + phase_seg1 + phase_seg2 between 8 and 25"));
+            return Err(ConfigError::invalid(
+                "timing",
+                format!("{} quanta per bit", self.ntq()),
+                "make 1 + prop_seg + phase_seg1 + phase_seg2 between 8 and 25",
+            ));
         }
         Ok(())
     }
@@ -88,7 +100,11 @@ impl BitTiming {
     /// F. Hartwig, A. Bassemir, "The Configuration of the CAN Bit Timing"
     /// (Bosch, 6th iCC 1999), conditions I and II.
     pub fn oscillator_tolerance(&self) -> f64 {
-        let (ps1, ps2, ntq) = (self.phase_seg1 as f64, self.phase_seg2 as f64, self.ntq() as f64);
+        let (ps1, ps2, ntq) = (
+            self.phase_seg1 as f64,
+            self.phase_seg2 as f64,
+            self.ntq() as f64,
+        );
         let a = ps1.min(ps2) / (2.0 * (13.0 * ntq - ps2));
         let b = self.sjw as f64 / (20.0 * ntq);
         a.min(b)
@@ -108,22 +124,45 @@ impl BitTiming {
     /// The timing for `bit_rate` at `f_sys_hz` with `ntq` quanta per bit and
     /// the sample point nearest `sample_point`, and `sjw` quanta (clipped to
     /// the phase segments).
-    pub fn for_rate(f_sys_hz: u64, bit_rate: f64, ntq: u32, sample_point: f64, sjw: u32) -> Result<BitTiming> {
+    pub fn for_rate(
+        f_sys_hz: u64,
+        bit_rate: f64,
+        ntq: u32,
+        sample_point: f64,
+        sjw: u32,
+    ) -> Result<BitTiming> {
         if !(8..=25).contains(&ntq) {
-            return Err(ConfigError::invalid("timing.tq_per_bit", format!("{ntq}"), "give 8 to 25 quanta per bit (ISO 11898-1)"));
+            return Err(ConfigError::invalid(
+                "timing.tq_per_bit",
+                format!("{ntq}"),
+                "give 8 to 25 quanta per bit (ISO 11898-1)",
+            ));
         }
         let brp_f = f_sys_hz as f64 / bit_rate / ntq as f64;
         if !(brp_f.is_finite() && (brp_f - brp_f.round()).abs() < 1e-6 && brp_f >= 1.0) {
-            return Err(ConfigError::invalid("bit_rate_kbps", format!("f_sys / (bit rate × {ntq} quanta) = {brp_f:.4}"), "choose a bit rate and tq_per_bit whose product divides f_sys"));
+            return Err(ConfigError::invalid(
+                "bit_rate_kbps",
+                format!("f_sys / (bit rate × {ntq} quanta) = {brp_f:.4}"),
+                "choose a bit rate and tq_per_bit whose product divides f_sys",
+            ));
         }
         let after = ((1.0 - sample_point) * ntq as f64).round() as u32;
         let phase_seg2 = after.clamp(2, 8);
         let tseg1 = ntq - 1 - phase_seg2;
         // PHASE_SEG1 as long as PHASE_SEG2 (symmetric resynchronisation
         // range), PROP_SEG the rest, neither above 8.
-        let phase_seg1 = phase_seg2.min(tseg1 - 1).max(tseg1.saturating_sub(8)).min(8);
+        let phase_seg1 = phase_seg2
+            .min(tseg1 - 1)
+            .max(tseg1.saturating_sub(8))
+            .min(8);
         let prop_seg = tseg1 - phase_seg1;
-        let t = BitTiming { brp: brp_f.round() as u32, prop_seg, phase_seg1, phase_seg2, sjw: sjw.min(phase_seg1).min(phase_seg2) };
+        let t = BitTiming {
+            brp: brp_f.round() as u32,
+            prop_seg,
+            phase_seg1,
+            phase_seg2,
+            sjw: sjw.min(phase_seg1).min(phase_seg2),
+        };
         t.validate()?;
         Ok(t)
     }
@@ -197,7 +236,10 @@ impl BitClock {
                 self.pre_cnt = 1;
                 self.tq_cnt = 0;
             }
-            return Tick { sample: false, load_tx: true };
+            return Tick {
+                sample: false,
+                load_tx: true,
+            };
         }
         let end_tq = self.end_tq(t);
         let tq_last_cycle = self.pre_cnt == t.brp - 1;
@@ -218,7 +260,10 @@ impl BitClock {
         } else {
             self.pre_cnt += 1;
         }
-        Tick { sample, load_tx: bit_end }
+        Tick {
+            sample,
+            load_tx: bit_end,
+        }
     }
 
     /// Advances `n` cycles without an edge, exactly as `n` calls of
@@ -256,7 +301,11 @@ impl BitClock {
         let brp = t.brp as u64;
         let sample_tq = t.tseg1() + self.ext;
         let end_tq = self.end_tq(t);
-        let next = if self.tq_cnt <= sample_tq { sample_tq } else { end_tq };
+        let next = if self.tq_cnt <= sample_tq {
+            sample_tq
+        } else {
+            end_tq
+        };
         (next - self.tq_cnt) as u64 * brp + (brp - 1 - self.pre_cnt as u64)
     }
 

@@ -108,13 +108,28 @@ pub struct EncoderSettings {
 
 impl Default for EncoderSettings {
     fn default() -> Self {
-        EncoderSettings { name: "encoder".into(), position_m: 10.0, loop_delay_ns: 150.0, ppm: 0.0, power_on_us: 0.0, alarm_at_us: None, encoder: EncoderConfig::default() }
+        EncoderSettings {
+            name: "encoder".into(),
+            position_m: 10.0,
+            loop_delay_ns: 150.0,
+            ppm: 0.0,
+            power_on_us: 0.0,
+            alarm_at_us: None,
+            encoder: EncoderConfig::default(),
+        }
     }
 }
 
 impl EncoderSettings {
     fn node_settings(&self) -> NodeSettings {
-        NodeSettings { name: self.name.clone(), position_m: self.position_m, loop_delay_ns: self.loop_delay_ns, ppm: self.ppm, ack: true, frames: Vec::new() }
+        NodeSettings {
+            name: self.name.clone(),
+            position_m: self.position_m,
+            loop_delay_ns: self.loop_delay_ns,
+            ppm: self.ppm,
+            ack: true,
+            frames: Vec::new(),
+        }
     }
 }
 
@@ -134,7 +149,12 @@ pub struct SarSettings {
 
 impl Default for SarSettings {
     fn default() -> Self {
-        SarSettings { name: "sar58k24".into(), position_m: 10.0, loop_delay_ns: 150.0, encoder: SarCanConfig::default() }
+        SarSettings {
+            name: "sar58k24".into(),
+            position_m: 10.0,
+            loop_delay_ns: 150.0,
+            encoder: SarCanConfig::default(),
+        }
     }
 }
 
@@ -194,7 +214,12 @@ impl Default for BenchConfig {
 impl BenchConfig {
     /// The bit timing rules of every node.
     pub fn node_timing(&self) -> NodeTiming {
-        NodeTiming { tq_per_bit: self.tq_per_bit, sample_point: self.sample_point, sjw: self.sjw, sync_stages: self.sync_stages }
+        NodeTiming {
+            tq_per_bit: self.tq_per_bit,
+            sample_point: self.sample_point,
+            sjw: self.sjw,
+            sync_stages: self.sync_stages,
+        }
     }
 
     /// The master's configuration (the Verilog parameters).
@@ -204,15 +229,27 @@ impl BenchConfig {
             return Err(ConfigError::invalid("bit_rate_kbps", format!("{}", self.bit_rate_kbps), "give one of the gateway's rates: 10, 20, 50, 125, 250, 500, 800, 1000 kbit/s (seed 003 §5.5)"));
         }
         if !(8..=25).contains(&self.tq_per_bit) {
-            return Err(ConfigError::invalid("tq_per_bit", format!("{}", self.tq_per_bit), "give 8 to 25 quanta per bit (ISO 11898-1)"));
+            return Err(ConfigError::invalid(
+                "tq_per_bit",
+                format!("{}", self.tq_per_bit),
+                "give 8 to 25 quanta per bit (ISO 11898-1)",
+            ));
         }
         if !(0.5..0.95).contains(&self.sample_point) {
-            return Err(ConfigError::invalid("sample_point", format!("{}", self.sample_point), "give a sample point between 0.5 and 0.95"));
+            return Err(ConfigError::invalid(
+                "sample_point",
+                format!("{}", self.sample_point),
+                "give a sample point between 0.5 and 0.95",
+            ));
         }
         let m = &self.master;
         let cycles = |field: &str, us: f64, zero_ok: bool| -> Result<u64> {
             if !(us.is_finite() && us >= 0.0 && (zero_ok || us > 0.0)) {
-                return Err(ConfigError::invalid(format!("master.{field}"), format!("{us}"), "give a time in µs above 0"));
+                return Err(ConfigError::invalid(
+                    format!("master.{field}"),
+                    format!("{us}"),
+                    "give a time in µs above 0",
+                ));
             }
             Ok(tb.cycles_nearest_ns(us * 1e3))
         };
@@ -244,25 +281,45 @@ impl BenchConfig {
     fn check(&self) -> Result<()> {
         self.master_config()?;
         if !(0.0..=50.0).contains(&self.ns_per_m) {
-            return Err(ConfigError::invalid("ns_per_m", format!("{}", self.ns_per_m), "give the cable delay in ns/m (5 for twisted pair)"));
+            return Err(ConfigError::invalid(
+                "ns_per_m",
+                format!("{}", self.ns_per_m),
+                "give the cable delay in ns/m (5 for twisted pair)",
+            ));
         }
-        Place { position_m: self.master.position_m, loop_delay_ns: self.master.loop_delay_ns }.validate("master")?;
+        Place {
+            position_m: self.master.position_m,
+            loop_delay_ns: self.master.loop_delay_ns,
+        }
+        .validate("master")?;
         for (k, e) in self.encoders.iter().enumerate() {
             let f = format!("encoders[{k}]");
             e.encoder.validate(&format!("{f}.encoder"))?;
             e.node_settings().validate(&f)?;
             if !(e.power_on_us >= 0.0 && e.power_on_us < self.run_us) {
-                return Err(ConfigError::invalid(format!("{f}.power_on_us"), format!("{}", e.power_on_us), "give a power-on time from 0 to run_us"));
+                return Err(ConfigError::invalid(
+                    format!("{f}.power_on_us"),
+                    format!("{}", e.power_on_us),
+                    "give a power-on time from 0 to run_us",
+                ));
             }
             if let Some(a) = e.alarm_at_us {
                 if !(a > e.power_on_us && a < self.run_us) {
-                    return Err(ConfigError::invalid(format!("{f}.alarm_at_us"), format!("{a}"), "give a time after power_on_us and before run_us"));
+                    return Err(ConfigError::invalid(
+                        format!("{f}.alarm_at_us"),
+                        format!("{a}"),
+                        "give a time after power_on_us and before run_us",
+                    ));
                 }
             }
         }
         for (k, s) in self.sar.iter().enumerate() {
             s.encoder.validate(&format!("sar[{k}].encoder"))?;
-            Place { position_m: s.position_m, loop_delay_ns: s.loop_delay_ns }.validate(&format!("sar[{k}]"))?;
+            Place {
+                position_m: s.position_m,
+                loop_delay_ns: s.loop_delay_ns,
+            }
+            .validate(&format!("sar[{k}]"))?;
         }
         if let Some(t) = &self.tool {
             t.validate("tool")?;
@@ -271,14 +328,26 @@ impl BenchConfig {
             }
         }
         let names: Vec<&str> = self.node_names();
-        Fault::validate_all(&self.faults, &names, "name `master`, `tool` or an encoder of [[canopen.encoders]] or [[canopen.sar]]")?;
+        Fault::validate_all(
+            &self.faults,
+            &names,
+            "name `master`, `tool` or an encoder of [[canopen.encoders]] or [[canopen.sar]]",
+        )?;
         for (k, &t) in self.master.start_us.iter().enumerate() {
             if !(t >= 0.0 && t < self.run_us) {
-                return Err(ConfigError::invalid(format!("master.start_us[{k}]"), format!("{t}"), "give a time from 0 to run_us"));
+                return Err(ConfigError::invalid(
+                    format!("master.start_us[{k}]"),
+                    format!("{t}"),
+                    "give a time from 0 to run_us",
+                ));
             }
         }
         if !(1.0..=10_000_000.0).contains(&self.run_us) {
-            return Err(ConfigError::invalid("run_us", format!("{}", self.run_us), "give 1 to 10 000 000 µs"));
+            return Err(ConfigError::invalid(
+                "run_us",
+                format!("{}", self.run_us),
+                "give 1 to 10 000 000 µs",
+            ));
         }
         Ok(())
     }
@@ -298,8 +367,26 @@ impl Setup for BenchConfig {
     }
 
     fn verilog_parameters(&self) -> Result<Vec<(&'static str, u64)>> {
-        const OBJECT: [&str; 8] = ["PARAM0_OBJECT", "PARAM1_OBJECT", "PARAM2_OBJECT", "PARAM3_OBJECT", "PARAM4_OBJECT", "PARAM5_OBJECT", "PARAM6_OBJECT", "PARAM7_OBJECT"];
-        const VALUE: [&str; 8] = ["PARAM0_VALUE", "PARAM1_VALUE", "PARAM2_VALUE", "PARAM3_VALUE", "PARAM4_VALUE", "PARAM5_VALUE", "PARAM6_VALUE", "PARAM7_VALUE"];
+        const OBJECT: [&str; 8] = [
+            "PARAM0_OBJECT",
+            "PARAM1_OBJECT",
+            "PARAM2_OBJECT",
+            "PARAM3_OBJECT",
+            "PARAM4_OBJECT",
+            "PARAM5_OBJECT",
+            "PARAM6_OBJECT",
+            "PARAM7_OBJECT",
+        ];
+        const VALUE: [&str; 8] = [
+            "PARAM0_VALUE",
+            "PARAM1_VALUE",
+            "PARAM2_VALUE",
+            "PARAM3_VALUE",
+            "PARAM4_VALUE",
+            "PARAM5_VALUE",
+            "PARAM6_VALUE",
+            "PARAM7_VALUE",
+        ];
         let c = self.master_config()?;
         let t = c.can.timing;
         let mut p = vec![
@@ -316,7 +403,13 @@ impl Setup for BenchConfig {
             p.push((OBJECT[k], q.object_word() as u64));
             p.push((VALUE[k], q.value as u64));
         }
-        p.extend([("BOOT_TIMEOUT", c.boot_timeout), ("SDO_TIMEOUT", c.sdo_timeout), ("RETRIES", c.retries as u64), ("PDO_TIMEOUT", c.pdo_timeout), ("SYNC_PERIOD", c.sync_period)]);
+        p.extend([
+            ("BOOT_TIMEOUT", c.boot_timeout),
+            ("SDO_TIMEOUT", c.sdo_timeout),
+            ("RETRIES", c.retries as u64),
+            ("PDO_TIMEOUT", c.pdo_timeout),
+            ("SYNC_PERIOD", c.sync_period),
+        ]);
         Ok(p)
     }
 
@@ -402,7 +495,14 @@ pub struct Bench {
 impl Bench {
     /// Node `j`'s receive level this cycle and for how long it holds ([`steady_rx`]).
     fn steady_rx(&self, j: usize) -> Option<(bool, u64)> {
-        steady_rx(&self.bus, &self.stuck, &self.disturbers[j], j, self.cycle, self.cpb)
+        steady_rx(
+            &self.bus,
+            &self.stuck,
+            &self.disturbers[j],
+            j,
+            self.cycle,
+            self.cpb,
+        )
     }
 
     /// A bench in its reset state.
@@ -411,18 +511,37 @@ impl Bench {
         let tb = cfg.timebase()?;
         let mc = cfg.master_config()?;
         let timing = cfg.node_timing();
-        let mut places = vec![Place { position_m: cfg.master.position_m, loop_delay_ns: cfg.master.loop_delay_ns }];
+        let mut places = vec![Place {
+            position_m: cfg.master.position_m,
+            loop_delay_ns: cfg.master.loop_delay_ns,
+        }];
         let mut encoders = Vec::new();
         for e in &cfg.encoders {
             places.push(e.node_settings().place());
             let node = EncoderNode::new(&e.encoder, &e.node_settings(), timing, &tb)?;
-            encoders.push((node, tb.cycles_nearest_ns(e.power_on_us * 1e3), e.alarm_at_us.map(|a| tb.cycles_nearest_ns(a * 1e3))));
+            encoders.push((
+                node,
+                tb.cycles_nearest_ns(e.power_on_us * 1e3),
+                e.alarm_at_us.map(|a| tb.cycles_nearest_ns(a * 1e3)),
+            ));
         }
         let mut sars = Vec::new();
         for s in &cfg.sar {
-            let settings = NodeSettings { name: s.name.clone(), position_m: s.position_m, loop_delay_ns: s.loop_delay_ns, ppm: 0.0, ack: true, frames: Vec::new() };
+            let settings = NodeSettings {
+                name: s.name.clone(),
+                position_m: s.position_m,
+                loop_delay_ns: s.loop_delay_ns,
+                ppm: 0.0,
+                ack: true,
+                frames: Vec::new(),
+            };
             places.push(settings.place());
-            sars.push(DeviceNode::with(SarCan::new(&s.encoder)?, &settings, timing, &tb)?);
+            sars.push(DeviceNode::with(
+                SarCan::new(&s.encoder)?,
+                &settings,
+                timing,
+                &tb,
+            )?);
         }
         let tool = match &cfg.tool {
             Some(t) => {
@@ -434,8 +553,18 @@ impl Bench {
         let layout = Layout {
             inputs: Master::input_ports(),
             outputs: Master::output_ports(),
-            line: vec![Port::new("can_rx", 1), Port::new("can_tx", 1), Port::new("bus_tx_nodes", 1)],
-            decoded: vec![Port::new("state", 3), Port::new("param", 4), Port::new("tries", 8), Port::new("can_state", 4), Port::new("monitor_state", 4)],
+            line: vec![
+                Port::new("can_rx", 1),
+                Port::new("can_tx", 1),
+                Port::new("bus_tx_nodes", 1),
+            ],
+            decoded: vec![
+                Port::new("state", 3),
+                Port::new("param", 4),
+                Port::new("tries", 8),
+                Port::new("can_state", 4),
+                Port::new("monitor_state", 4),
+            ],
         };
         Ok(Bench {
             cpb: mc.can.timing.clocks_per_bit(),
@@ -445,9 +574,18 @@ impl Bench {
             sars,
             tool,
             bus: Bus::new(&places, cfg.ns_per_m, &tb),
-            disturbers: cfg.node_names().iter().map(|n| Disturber::new(&cfg.faults, n)).collect(),
+            disturbers: cfg
+                .node_names()
+                .iter()
+                .map(|n| Disturber::new(&cfg.faults, n))
+                .collect(),
             stuck: Disturber::stuck_windows(&cfg.faults, &tb),
-            starts: cfg.master.start_us.iter().map(|&t| tb.cycles_nearest_ns(t * 1e3)).collect(),
+            starts: cfg
+                .master
+                .start_us
+                .iter()
+                .map(|&t| tb.cycles_nearest_ns(t * 1e3))
+                .collect(),
             cycle: 0,
             run_cycles: tb.cycles_nearest_ns(cfg.run_us * 1e3),
             end: None,
@@ -474,13 +612,27 @@ impl Bench {
             return;
         }
         let n = crate::can::frame::data_len(f.seen.dlc, f.seen.rtr);
-        let data = if f.complete { unpack(f.seen.data, n) } else { Vec::new() };
-        let frame = Frame { id: f.seen.id, ide: f.seen.ide, rtr: f.seen.rtr, dlc: f.seen.dlc, data: data.clone() };
+        let data = if f.complete {
+            unpack(f.seen.data, n)
+        } else {
+            Vec::new()
+        };
+        let frame = Frame {
+            id: f.seen.id,
+            ide: f.seen.ide,
+            rtr: f.seen.rtr,
+            dlc: f.seen.dlc,
+            data: data.clone(),
+        };
         self.pending.push(BusFrame {
             sof_cycle: f.sof_cycle,
             id: f.seen.id,
             dlc: f.seen.dlc,
-            meaning: if f.complete && f.errors.is_empty() { interpret(&frame).text } else { "damaged frame".into() },
+            meaning: if f.complete && f.errors.is_empty() {
+                interpret(&frame).text
+            } else {
+                "damaged frame".into()
+            },
             data,
             crc: f.seen.crc,
             ack: f.ack_passed && f.seen.ack,
@@ -498,7 +650,11 @@ impl Bench {
             cycle: self.cycle,
             state: o.o_state,
             position: (outcome == "pos_valid").then_some(o.o_position),
-            abort: (outcome == "sdo_abort").then_some((o.o_abort_code, o.o_abort_index, o.o_abort_sub)),
+            abort: (outcome == "sdo_abort").then_some((
+                o.o_abort_code,
+                o.o_abort_index,
+                o.o_abort_sub,
+            )),
             emcy: (outcome == "emcy_valid").then_some((o.o_emcy_code, o.o_emcy_reg)),
             frames,
         });
@@ -518,12 +674,18 @@ impl Testbench for Bench {
         let nodes = 1 + self.encoders.len() + self.sars.len() + self.tool.is_some() as usize;
         let mut rx = std::mem::take(&mut self.rx_buf);
         rx.clear();
-        let stuck = self.stuck.iter().any(|&(a, b)| (a..b).contains(&self.cycle));
+        let stuck = self
+            .stuck
+            .iter()
+            .any(|&(a, b)| (a..b).contains(&self.cycle));
         for j in 0..nodes {
             let level = self.bus.rx(j) && !stuck;
             rx.push(self.disturbers[j].step(level, self.cycle, self.cpb));
         }
-        let input = In { i_start: self.starts.contains(&self.cycle), i_can_rx: rx[0] };
+        let input = In {
+            i_start: self.starts.contains(&self.cycle),
+            i_can_rx: rx[0],
+        };
         let out = self.master.step(&input);
         let mut tx = std::mem::take(&mut self.tx_buf);
         tx.clear();
@@ -583,7 +745,11 @@ impl Testbench for Bench {
         let rx0 = rx[0];
         self.rx_buf = rx;
         self.cycle += 1;
-        if self.end.is_none() && self.cycle >= self.run_cycles && !self.monitor.frame.active && matches!(now, CanState::Idle | CanState::Integrate | CanState::BusOff) {
+        if self.end.is_none()
+            && self.cycle >= self.run_cycles
+            && !self.monitor.frame.active
+            && matches!(now, CanState::Idle | CanState::Integrate | CanState::BusOff)
+        {
             self.end = Some(self.cycle + self.cpb);
         }
         if self.end.is_none() && self.cycle >= 2 * self.run_cycles {
@@ -592,7 +758,9 @@ impl Testbench for Bench {
         let Some(sample) = sample else { return };
         input.write_values(&mut sample.inputs);
         out.write_values(&mut sample.outputs);
-        sample.line.copy_from_slice(&[rx0 as u64, out.o_can_tx as u64, nodes_tx as u64]);
+        sample
+            .line
+            .copy_from_slice(&[rx0 as u64, out.o_can_tx as u64, nodes_tx as u64]);
         sample.decoded.copy_from_slice(&[
             self.master.state() as u64,
             self.master.param_index() as u64 & 0xF,
@@ -614,8 +782,13 @@ impl Testbench for Bench {
     /// the run's end not decided within it (see the module docs).
     fn quiet_cycles(&self) -> u64 {
         let c = self.cycle;
-        let Some((rx, steady)) = self.steady_rx(0) else { return 0 };
-        let mut q = self.master.quiet(rx).min(self.monitor.controller().quiet(rx));
+        let Some((rx, steady)) = self.steady_rx(0) else {
+            return 0;
+        };
+        let mut q = self
+            .master
+            .quiet(rx)
+            .min(self.monitor.controller().quiet(rx));
         if q == 0 {
             return 0;
         }
@@ -636,7 +809,9 @@ impl Testbench for Bench {
         // The nodes in bus order, as `step` reads their receive levels.
         let mut j = 1;
         for (e, power_on, alarm) in &self.encoders {
-            let Some((rx, steady)) = self.steady_rx(j) else { return 0 };
+            let Some((rx, steady)) = self.steady_rx(j) else {
+                return 0;
+            };
             q = q.min(steady);
             if c < *power_on {
                 q = q.min(power_on - c);
@@ -651,12 +826,16 @@ impl Testbench for Bench {
             j += 1;
         }
         for s in &self.sars {
-            let Some((rx, steady)) = self.steady_rx(j) else { return 0 };
+            let Some((rx, steady)) = self.steady_rx(j) else {
+                return 0;
+            };
             q = q.min(steady).min(s.quiet(rx));
             j += 1;
         }
         if let Some(t) = &self.tool {
-            let Some((rx, steady)) = self.steady_rx(j) else { return 0 };
+            let Some((rx, steady)) = self.steady_rx(j) else {
+                return 0;
+            };
             q = q.min(steady).min(t.quiet(rx));
         }
         q

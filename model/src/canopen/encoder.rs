@@ -136,22 +136,46 @@ impl EncoderConfig {
     /// Checks the fields; `field` names the table.
     pub fn validate(&self, field: &str) -> Result<()> {
         if !(1..=127).contains(&self.node_switch) {
-            return Err(ConfigError::invalid(format!("{field}.node_switch"), format!("{}", self.node_switch), "give a node number from 1 to 127 (seed 003 §5.4)"));
+            return Err(ConfigError::invalid(
+                format!("{field}.node_switch"),
+                format!("{}", self.node_switch),
+                "give a node number from 1 to 127 (seed 003 §5.4)",
+            ));
         }
         if self.bit_rate_switch > 7 {
-            return Err(ConfigError::invalid(format!("{field}.bit_rate_switch"), format!("{}", self.bit_rate_switch), "give a code from 0 (10 kbit/s) to 7 (1000 kbit/s) (seed 003 §5.5)"));
+            return Err(ConfigError::invalid(
+                format!("{field}.bit_rate_switch"),
+                format!("{}", self.bit_rate_switch),
+                "give a code from 0 (10 kbit/s) to 7 (1000 kbit/s) (seed 003 §5.5)",
+            ));
         }
         if self.raw_position >= self.kind.total_resolution() {
-            return Err(ConfigError::invalid(format!("{field}.raw_position"), format!("{}", self.raw_position), format!("give a raw position below {}", self.kind.total_resolution())));
+            return Err(ConfigError::invalid(
+                format!("{field}.raw_position"),
+                format!("{}", self.raw_position),
+                format!("give a raw position below {}", self.kind.total_resolution()),
+            ));
         }
         if !(0.0..=1e6).contains(&self.response_delay_us) {
-            return Err(ConfigError::invalid(format!("{field}.response_delay_us"), format!("{}", self.response_delay_us), "give 0 to 1 000 000 µs"));
+            return Err(ConfigError::invalid(
+                format!("{field}.response_delay_us"),
+                format!("{}", self.response_delay_us),
+                "give 0 to 1 000 000 µs",
+            ));
         }
         if !self.speed_cps.is_finite() || self.speed_cps.abs() > 1e9 {
-            return Err(ConfigError::invalid(format!("{field}.speed_cps"), format!("{}", self.speed_cps), "give at most 1e9 counts per second"));
+            return Err(ConfigError::invalid(
+                format!("{field}.speed_cps"),
+                format!("{}", self.speed_cps),
+                "give at most 1e9 counts per second",
+            ));
         }
         if self.kind == EncoderKind::Linear && self.linear_step_nm == 0 {
-            return Err(ConfigError::invalid(format!("{field}.linear_step_nm"), "0", "give the measuring step in nm, at least 1"));
+            return Err(ConfigError::invalid(
+                format!("{field}.linear_step_nm"),
+                "0",
+                "give the measuring step in nm, at least 1",
+            ));
         }
         Ok(())
     }
@@ -199,7 +223,15 @@ impl Encoder {
             dict: Dictionary::encoder(cfg, cfg.node_switch),
             values: BTreeMap::new(),
             stored: BTreeMap::new(),
-            scaling: if k == EncoderKind::Linear { Scaling::new(1 << 32, 1, limit) } else { Scaling::new(k.singleturn_resolution() as u64, k.revolutions() as u64, limit) },
+            scaling: if k == EncoderKind::Linear {
+                Scaling::new(1 << 32, 1, limit)
+            } else {
+                Scaling::new(
+                    k.singleturn_resolution() as u64,
+                    k.revolutions() as u64,
+                    limit,
+                )
+            },
             cyclic_stored: true,
             sdo: sdo::Server::default(),
             raw_base: cfg.raw_position,
@@ -221,8 +253,16 @@ impl Encoder {
         let dict = Dictionary::encoder(&self.cfg, self.node);
         for (index, s) in dict.entries() {
             let keep = STORED.contains(&index) || (!all && index >= 0x2000);
-            let v = if keep { self.stored.get(&(index, s.sub)).or(self.values.get(&(index, s.sub))).cloned() } else { None };
-            self.values.insert((index, s.sub), v.unwrap_or_else(|| s.default.clone()));
+            let v = if keep {
+                self.stored
+                    .get(&(index, s.sub))
+                    .or(self.values.get(&(index, s.sub)))
+                    .cloned()
+            } else {
+                None
+            };
+            self.values
+                .insert((index, s.sub), v.unwrap_or_else(|| s.default.clone()));
         }
         self.dict = dict;
         let get = |i: u16| self.values.get(&(i, 0)).map(|v| value(v)).unwrap_or(0);
@@ -245,8 +285,20 @@ impl Encoder {
 
     fn initialise(&mut self, all: bool) -> Vec<Frame> {
         let sw = |v: u32, s: u8| if v == 0xFF { s } else { v as u8 };
-        self.node = sw(self.stored.get(&(0x5001, 0)).map(|v| value(v)).unwrap_or(0xFF), self.cfg.node_switch);
-        self.bit_code = sw(self.stored.get(&(0x5000, 0)).map(|v| value(v)).unwrap_or(0xFF), self.cfg.bit_rate_switch);
+        self.node = sw(
+            self.stored
+                .get(&(0x5001, 0))
+                .map(|v| value(v))
+                .unwrap_or(0xFF),
+            self.cfg.node_switch,
+        );
+        self.bit_code = sw(
+            self.stored
+                .get(&(0x5000, 0))
+                .map(|v| value(v))
+                .unwrap_or(0xFF),
+            self.cfg.bit_rate_switch,
+        );
         self.load_defaults(all);
         self.sdo = sdo::Server::default();
         self.state = NmtState::PreOperational;
@@ -292,7 +344,8 @@ impl Encoder {
     /// The raw disk position at `now_ns`.
     pub fn raw(&self, now_ns: u64) -> u64 {
         let total = self.cfg.kind.total_resolution() as i128;
-        let moved = (self.cfg.speed_cps * (now_ns.saturating_sub(self.raw_base_ns)) as f64 * 1e-9).round() as i128;
+        let moved = (self.cfg.speed_cps * (now_ns.saturating_sub(self.raw_base_ns)) as f64 * 1e-9)
+            .round() as i128;
         (self.raw_base as i128 + moved).rem_euclid(total) as u64
     }
 
@@ -327,7 +380,19 @@ impl Encoder {
             return Vec::new();
         }
         let a = self.alarms.to_le_bytes();
-        vec![Frame::data(cob_id(cob::EMCY, self.node) as u32, &[code as u8, (code >> 8) as u8, self.error_register, a[0], a[1], 0, 0, 0])]
+        vec![Frame::data(
+            cob_id(cob::EMCY, self.node) as u32,
+            &[
+                code as u8,
+                (code >> 8) as u8,
+                self.error_register,
+                a[0],
+                a[1],
+                0,
+                0,
+                0,
+            ],
+        )]
     }
 
     fn arm_heartbeat(&mut self) {
@@ -337,18 +402,23 @@ impl Encoder {
 
     fn arm_cyclic(&mut self) {
         let t = self.values.get(&(0x6200, 0)).map(|v| value(v)).unwrap_or(0) as u64;
-        self.next_cyclic = (t > 0 && self.state == NmtState::Operational).then(|| self.now_ns + t * 1_000_000);
+        self.next_cyclic =
+            (t > 0 && self.state == NmtState::Operational).then(|| self.now_ns + t * 1_000_000);
     }
 
     fn tpdo(&self, n: u16) -> Option<Frame> {
         let id = value(&self.values[&(0x1800 + n, 1)]);
-        (id & 0x8000_0000 == 0).then(|| Frame::data(id & 0x7FF, &self.position(self.now_ns).to_le_bytes()))
+        (id & 0x8000_0000 == 0)
+            .then(|| Frame::data(id & 0x7FF, &self.position(self.now_ns).to_le_bytes()))
     }
 
     /// The earliest of the cyclic timer, the heartbeat and the life
     /// guarding deadline: before then [`Encoder::poll`] only records the time.
     pub fn next_due_ns(&self) -> Option<u64> {
-        [self.next_cyclic, self.next_heartbeat, self.life_deadline].into_iter().flatten().min()
+        [self.next_cyclic, self.next_heartbeat, self.life_deadline]
+            .into_iter()
+            .flatten()
+            .min()
     }
 
     /// Frames due by `now_ns` (TPDOs of the cyclic timer, heartbeat, life guarding).
@@ -370,7 +440,10 @@ impl Encoder {
             if now_ns >= t {
                 let p = value(&self.values[&(0x1017, 0)]) as u64 * 1_000_000;
                 self.next_heartbeat = Some(t + p);
-                out.push(Frame::data(cob_id(cob::NMT_ERR, self.node) as u32, &[self.state as u8]));
+                out.push(Frame::data(
+                    cob_id(cob::NMT_ERR, self.node) as u32,
+                    &[self.state as u8],
+                ));
             }
         }
         if let Some(t) = self.life_deadline {
@@ -396,17 +469,27 @@ impl Encoder {
             return self.on_sync();
         }
         match cob::classify(f.id as u16) {
-            Service::Nmt if f.data.len() >= 2 && !f.rtr && (f.data[1] == 0 || f.data[1] == self.node) => self.on_nmt(f.data[0]),
-            Service::SdoRx(n) if n == self.node && !f.rtr && matches!(self.state, NmtState::PreOperational | NmtState::Operational) => {
+            Service::Nmt
+                if f.data.len() >= 2 && !f.rtr && (f.data[1] == 0 || f.data[1] == self.node) =>
+            {
+                self.on_nmt(f.data[0])
+            }
+            Service::SdoRx(n)
+                if n == self.node
+                    && !f.rtr
+                    && matches!(self.state, NmtState::PreOperational | NmtState::Operational) =>
+            {
                 let mut server = std::mem::take(&mut self.sdo);
                 let r = server.request(&f.data, &mut Access_ { enc: self });
                 self.sdo = server;
-                r.map(|a| vec![Frame::data(cob_id(cob::SDO_TX, self.node) as u32, &a)]).unwrap_or_default()
+                r.map(|a| vec![Frame::data(cob_id(cob::SDO_TX, self.node) as u32, &a)])
+                    .unwrap_or_default()
             }
             Service::NmtErr(n) if n == self.node && f.rtr && self.next_heartbeat.is_none() => {
                 let b = (self.guard_toggle as u8) << 7 | self.state as u8;
                 self.guard_toggle = !self.guard_toggle;
-                let life = value(&self.values[&(0x100C, 0)]) as u64 * value(&self.values[&(0x100D, 0)]) as u64;
+                let life = value(&self.values[&(0x100C, 0)]) as u64
+                    * value(&self.values[&(0x100D, 0)]) as u64;
                 self.life_deadline = (life > 0).then(|| now_ns + life * 1_000_000);
                 vec![Frame::data(f.id, &[b])]
             }
@@ -462,7 +545,15 @@ impl Encoder {
 
     fn check_write(&self, index: u16, sub: u8, v: u32) -> std::result::Result<(), u32> {
         let k = self.cfg.kind;
-        let in_range = |lo: u32, hi: u32| if v < lo { Err(abort::TOO_LOW) } else if v > hi { Err(abort::TOO_HIGH) } else { Ok(()) };
+        let in_range = |lo: u32, hi: u32| {
+            if v < lo {
+                Err(abort::TOO_LOW)
+            } else if v > hi {
+                Err(abort::TOO_HIGH)
+            } else {
+                Ok(())
+            }
+        };
         match (index, sub) {
             (0x1005, 0) | (0x1800, 1) | (0x1801, 1) => {
                 if v & 0x7FFF_F800 != 0 {
@@ -477,8 +568,20 @@ impl Encoder {
                     Err(abort::RANGE)
                 }
             }
-            (0x5000, 0) => if v <= 7 || v == 0xFF { Ok(()) } else { Err(abort::RANGE) },
-            (0x5001, 0) => if (1..=127).contains(&v) || v == 0xFF { Ok(()) } else { Err(abort::RANGE) },
+            (0x5000, 0) => {
+                if v <= 7 || v == 0xFF {
+                    Ok(())
+                } else {
+                    Err(abort::RANGE)
+                }
+            }
+            (0x5001, 0) => {
+                if (1..=127).contains(&v) || v == 0xFF {
+                    Ok(())
+                } else {
+                    Err(abort::RANGE)
+                }
+            }
             (0x6000, 0) => {
                 let allowed = if k == EncoderKind::Linear { 0 } else { 0x0005 };
                 if v & !allowed != 0 {
@@ -498,8 +601,17 @@ impl Encoder {
                 _ => in_range(2, k.singleturn_resolution()),
             },
             (0x6002, 0) => match k {
-                EncoderKind::Multiturn25 => in_range(1, self.scaling.units_per_rev.saturating_mul(k.revolutions())),
-                _ => if v == self.scaling.units_per_rev { Ok(()) } else { Err(abort::RANGE) },
+                EncoderKind::Multiturn25 => in_range(
+                    1,
+                    self.scaling.units_per_rev.saturating_mul(k.revolutions()),
+                ),
+                _ => {
+                    if v == self.scaling.units_per_rev {
+                        Ok(())
+                    } else {
+                        Err(abort::RANGE)
+                    }
+                }
             },
             (0x6003, 0) => {
                 if (v as u64) < self.scaling.out_range() || k == EncoderKind::Linear {
@@ -523,8 +635,10 @@ impl Encoder {
                 if self.cfg.kind != EncoderKind::Multiturn25 {
                     // Singleturn and angle encoders: the range is the scaled singleturn resolution (§7.1, §7.3).
                     self.scaling.set_range(v);
-                    self.values.insert((0x6002, 0), od::le(od::DataType::Unsigned32, v));
-                    self.stored.insert((0x6002, 0), od::le(od::DataType::Unsigned32, v));
+                    self.values
+                        .insert((0x6002, 0), od::le(od::DataType::Unsigned32, v));
+                    self.stored
+                        .insert((0x6002, 0), od::le(od::DataType::Unsigned32, v));
                 }
             }
             0x6002 => {
@@ -582,7 +696,13 @@ impl ObjectAccess for Access_<'_> {
         self.enc.read(index, sub)
     }
 
-    fn write(&mut self, index: u16, sub: u8, data: &[u8], sized: bool) -> std::result::Result<(), u32> {
+    fn write(
+        &mut self,
+        index: u16,
+        sub: u8,
+        data: &[u8],
+        sized: bool,
+    ) -> std::result::Result<(), u32> {
         self.writable(index, sub)?;
         let e = self.enc.dict.entry(index, sub)?;
         let size = e.dtype.size().unwrap_or(data.len());

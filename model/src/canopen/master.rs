@@ -50,7 +50,11 @@ pub struct Param {
 impl Param {
     /// The request's 8 data bytes.
     pub fn request(&self) -> [u8; 8] {
-        super::sdo::download(self.index, self.sub, &self.value.to_le_bytes()[..self.size as usize])
+        super::sdo::download(
+            self.index,
+            self.sub,
+            &self.value.to_le_bytes()[..self.size as usize],
+        )
     }
 
     /// The RTL's `PARAMk_OBJECT`: index, sub-index and size in one word.
@@ -85,26 +89,54 @@ impl MasterConfig {
     pub fn validate(&self) -> Result<()> {
         self.can.validate()?;
         if !(1..=127).contains(&self.node) {
-            return Err(ConfigError::invalid("master.node", format!("{}", self.node), "give the encoder's node number, 1 to 127"));
+            return Err(ConfigError::invalid(
+                "master.node",
+                format!("{}", self.node),
+                "give the encoder's node number, 1 to 127",
+            ));
         }
         if self.params.len() > MAX_PARAMS {
-            return Err(ConfigError::invalid("master.params", format!("{} entries", self.params.len()), format!("give at most {MAX_PARAMS} SDO downloads (the RTL's PARAM0..PARAM7)")));
+            return Err(ConfigError::invalid(
+                "master.params",
+                format!("{} entries", self.params.len()),
+                format!("give at most {MAX_PARAMS} SDO downloads (the RTL's PARAM0..PARAM7)"),
+            ));
         }
         for (k, p) in self.params.iter().enumerate() {
             if ![1, 2, 4].contains(&p.size) || (p.size < 4 && p.value >> (8 * p.size as u32) != 0) {
-                return Err(ConfigError::invalid(format!("master.params[{k}].size"), format!("size {} value {:#x}", p.size, p.value), "give size 1, 2 or 4 bytes and a value that fits it"));
+                return Err(ConfigError::invalid(
+                    format!("master.params[{k}].size"),
+                    format!("size {} value {:#x}", p.size, p.value),
+                    "give size 1, 2 or 4 bytes and a value that fits it",
+                ));
             }
         }
-        for (f, v) in [("master.boot_timeout", self.boot_timeout), ("master.sdo_timeout", self.sdo_timeout), ("master.pdo_timeout", self.pdo_timeout)] {
+        for (f, v) in [
+            ("master.boot_timeout", self.boot_timeout),
+            ("master.sdo_timeout", self.sdo_timeout),
+            ("master.pdo_timeout", self.pdo_timeout),
+        ] {
             if v == 0 || v >= 1 << 31 {
-                return Err(ConfigError::invalid(f, format!("{v} cycles"), "give 1 to 2^31 − 1 cycles"));
+                return Err(ConfigError::invalid(
+                    f,
+                    format!("{v} cycles"),
+                    "give 1 to 2^31 − 1 cycles",
+                ));
             }
         }
         if self.sync_period >= 1 << 31 {
-            return Err(ConfigError::invalid("master.sync_period", format!("{} cycles", self.sync_period), "give 0 (off) to 2^31 − 1 cycles"));
+            return Err(ConfigError::invalid(
+                "master.sync_period",
+                format!("{} cycles", self.sync_period),
+                "give 0 (off) to 2^31 − 1 cycles",
+            ));
         }
         if self.retries > 255 {
-            return Err(ConfigError::invalid("master.retries", format!("{}", self.retries), "give 0 to 255"));
+            return Err(ConfigError::invalid(
+                "master.retries",
+                format!("{}", self.retries),
+                "give 0 to 255",
+            ));
         }
         Ok(())
     }
@@ -139,7 +171,10 @@ pub struct In {
 
 impl Default for In {
     fn default() -> Self {
-        In { i_start: false, i_can_rx: true }
+        In {
+            i_start: false,
+            i_can_rx: true,
+        }
     }
 }
 
@@ -222,7 +257,10 @@ impl Master {
             tx_dlc: 0,
             tx_data: 0,
             tx_sync: false,
-            out: Out { o_can_tx: true, ..Out::default() },
+            out: Out {
+                o_can_tx: true,
+                ..Out::default()
+            },
         })
     }
 
@@ -251,18 +289,40 @@ impl Master {
 
     /// One rising edge of f_sys.
     pub fn step(&mut self, i: &In) -> Out {
-        let ci = crate::can::In { i_tx_start: self.tx_start, i_tx_id: self.tx_id, i_tx_rtr: false, i_tx_dlc: self.tx_dlc, i_tx_data: self.tx_data, i_filter_id: 0, i_filter_mask: 0, i_can_rx: i.i_can_rx };
+        let ci = crate::can::In {
+            i_tx_start: self.tx_start,
+            i_tx_id: self.tx_id,
+            i_tx_rtr: false,
+            i_tx_dlc: self.tx_dlc,
+            i_tx_data: self.tx_data,
+            i_filter_id: 0,
+            i_filter_mask: 0,
+            i_can_rx: i.i_can_rx,
+        };
         let c_next = self.ctrl.step(&ci);
         let c = self.c_out;
         let n = self.cfg.node;
-        let mut o = Out { o_can_tx: c_next.o_can_tx, o_booted: false, o_config_done: false, o_sdo_abort: false, o_node_lost: false, o_pos_valid: false, o_pos_timeout: false, o_emcy_valid: false, o_sync_sent: false, ..self.out };
+        let mut o = Out {
+            o_can_tx: c_next.o_can_tx,
+            o_booted: false,
+            o_config_done: false,
+            o_sdo_abort: false,
+            o_node_lost: false,
+            o_pos_valid: false,
+            o_pos_timeout: false,
+            o_emcy_valid: false,
+            o_sync_sent: false,
+            ..self.out
+        };
         // `free`: the buffer is empty and no request is on its way to it.
         let free = !c.o_tx_busy && !self.tx_start;
         self.tx_start = false;
         let rx = c.o_rx_valid && !c.o_rx_ide && !c.o_rx_rtr;
         let id = c.o_rx_id as u16;
         let byte = |k: u32| (c.o_rx_data >> (56 - 8 * k)) as u8;
-        let boot = rx && ((id == cob_id(EMCY, n) && c.o_rx_dlc == 0) || (id == cob_id(NMT_ERR, n) && c.o_rx_dlc == 1 && byte(0) == 0));
+        let boot = rx
+            && ((id == cob_id(EMCY, n) && c.o_rx_dlc == 0)
+                || (id == cob_id(NMT_ERR, n) && c.o_rx_dlc == 1 && byte(0) == 0));
         if c.o_tx_done && self.tx_sync {
             o.o_sync_sent = true;
             self.tx_sync = false;
@@ -289,7 +349,11 @@ impl Master {
                         o.o_booted = true;
                         self.k = 0;
                         self.tries = 0;
-                        self.state = if self.cfg.params.is_empty() { State::NmtSend } else { State::SdoSend };
+                        self.state = if self.cfg.params.is_empty() {
+                            State::NmtSend
+                        } else {
+                            State::SdoSend
+                        };
                     } else if self.timer >= self.cfg.boot_timeout {
                         self.timer = 0;
                         if self.tries >= self.cfg.retries {
@@ -317,7 +381,11 @@ impl Master {
                 }
                 State::SdoWait => {
                     let p = self.cfg.params[self.k];
-                    let ours = rx && id == cob_id(SDO_TX, n) && c.o_rx_dlc >= 8 && byte(1) as u16 | (byte(2) as u16) << 8 == p.index && byte(3) == p.sub;
+                    let ours = rx
+                        && id == cob_id(SDO_TX, n)
+                        && c.o_rx_dlc >= 8
+                        && byte(1) as u16 | (byte(2) as u16) << 8 == p.index
+                        && byte(3) == p.sub;
                     if boot {
                         // The node started again: the table from its first
                         // entry, with all its retries (a new node, not a late answer).
@@ -329,7 +397,11 @@ impl Master {
                     } else if ours && byte(0) == 0x60 {
                         self.tries = 0;
                         self.k += 1;
-                        self.state = if self.k == self.cfg.params.len() { State::NmtSend } else { State::SdoSend };
+                        self.state = if self.k == self.cfg.params.len() {
+                            State::NmtSend
+                        } else {
+                            State::SdoSend
+                        };
                     } else if ours && byte(0) == 0x80 {
                         o.o_sdo_abort = true;
                         o.o_abort_code = u32::from_le_bytes([byte(4), byte(5), byte(6), byte(7)]);
@@ -360,8 +432,15 @@ impl Master {
                     if boot {
                         o.o_booted = true;
                         self.k = 0;
-                        self.state = if self.cfg.params.is_empty() { State::NmtSend } else { State::SdoSend };
-                    } else if rx && (id == cob_id(TPDO1, n) || id == cob_id(TPDO2, n)) && c.o_rx_dlc >= 4 {
+                        self.state = if self.cfg.params.is_empty() {
+                            State::NmtSend
+                        } else {
+                            State::SdoSend
+                        };
+                    } else if rx
+                        && (id == cob_id(TPDO1, n) || id == cob_id(TPDO2, n))
+                        && c.o_rx_dlc >= 4
+                    {
                         o.o_pos_valid = true;
                         o.o_position = u32::from_le_bytes([byte(0), byte(1), byte(2), byte(3)]);
                         o.o_pos_stale = false;
@@ -403,9 +482,22 @@ impl Master {
     /// free, so they are never quiet.
     pub fn quiet(&self, rx: bool) -> u64 {
         let o = &self.out;
-        let pulse = o.o_booted || o.o_config_done || o.o_sdo_abort || o.o_node_lost || o.o_pos_valid || o.o_pos_timeout || o.o_emcy_valid || o.o_sync_sent;
+        let pulse = o.o_booted
+            || o.o_config_done
+            || o.o_sdo_abort
+            || o.o_node_lost
+            || o.o_pos_valid
+            || o.o_pos_timeout
+            || o.o_emcy_valid
+            || o.o_sync_sent;
         let ctrl = self.ctrl.quiet(rx);
-        if pulse || self.tx_start || self.tx_sync || self.c_out != self.ctrl.out() || ctrl == 0 || o.o_can_tx != self.c_out.o_can_tx {
+        if pulse
+            || self.tx_start
+            || self.tx_sync
+            || self.c_out != self.ctrl.out()
+            || ctrl == 0
+            || o.o_can_tx != self.c_out.o_can_tx
+        {
             return 0;
         }
         self.timers_quiet().min(ctrl)
@@ -415,7 +507,11 @@ impl Master {
     fn timers_quiet(&self) -> u64 {
         // Steps before `timer` (incremented first) reaches `limit`.
         let before = |limit: u64| limit.saturating_sub(self.timer + 1);
-        let sync = if self.cfg.sync_period == 0 { u64::MAX } else { self.cfg.sync_period - self.sync_cnt - 1 };
+        let sync = if self.cfg.sync_period == 0 {
+            u64::MAX
+        } else {
+            self.cfg.sync_period - self.sync_cnt - 1
+        };
         match self.state {
             State::WaitBoot => before(self.cfg.boot_timeout),
             State::SdoWait => before(self.cfg.sdo_timeout),
@@ -424,7 +520,11 @@ impl Master {
                 if self.sync_pending {
                     return 0;
                 }
-                let pdo = if self.timer < self.cfg.pdo_timeout { before(self.cfg.pdo_timeout) } else { u64::MAX };
+                let pdo = if self.timer < self.cfg.pdo_timeout {
+                    before(self.cfg.pdo_timeout)
+                } else {
+                    u64::MAX
+                };
                 pdo.min(sync)
             }
             State::Failed => u64::MAX,

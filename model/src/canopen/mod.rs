@@ -20,15 +20,15 @@
 //! assert_eq!(sdo::parse_response(&a[0].data, false), sdo::Response::Downloaded { index: 0x6200, sub: 0 });
 //! ```
 
+pub mod bench;
 pub mod cob;
 pub mod encoder;
-pub mod bench;
 pub mod interpret;
 pub mod master;
 pub mod node;
 pub mod od;
-pub mod scaling;
 pub mod sar58k24;
+pub mod scaling;
 pub mod sdo;
 
 pub use bench::BenchConfig;

@@ -34,7 +34,12 @@ pub struct NodeTiming {
 
 impl Default for NodeTiming {
     fn default() -> Self {
-        NodeTiming { tq_per_bit: 16, sample_point: 0.875, sjw: 1, sync_stages: 2 }
+        NodeTiming {
+            tq_per_bit: 16,
+            sample_point: 0.875,
+            sjw: 1,
+            sync_stages: 2,
+        }
     }
 }
 
@@ -44,8 +49,13 @@ impl NodeTiming {
         let f = tb.f_sys_hz();
         let tries = std::iter::once(self.tq_per_bit).chain((8..=25).rev());
         for tq in tries {
-            if let Ok(t) = BitTiming::for_rate(f, kbps as f64 * 1e3, tq, self.sample_point, self.sjw) {
-                return Ok(ControllerConfig { timing: t, sync_stages: self.sync_stages });
+            if let Ok(t) =
+                BitTiming::for_rate(f, kbps as f64 * 1e3, tq, self.sample_point, self.sjw)
+            {
+                return Ok(ControllerConfig {
+                    timing: t,
+                    sync_stages: self.sync_stages,
+                });
             }
         }
         Err(ConfigError::invalid("f_sys_mhz", format!("{} Hz has no bit timing of 8 to 25 quanta for {kbps} kbit/s", f), "choose f_sys a multiple of the bit rate × 8 .. 25 (40 MHz fits every rate but 800 kbit/s; 48 or 64 MHz fit all)"))
@@ -112,17 +122,34 @@ pub struct DeviceNode<D> {
 
 impl EncoderNode {
     /// The encoder of `cfg` at power-on (its boot-up queued).
-    pub fn new(cfg: &EncoderConfig, settings: &NodeSettings, timing: NodeTiming, tb: &Timebase) -> Result<EncoderNode> {
+    pub fn new(
+        cfg: &EncoderConfig,
+        settings: &NodeSettings,
+        timing: NodeTiming,
+        tb: &Timebase,
+    ) -> Result<EncoderNode> {
         DeviceNode::with(Encoder::new(cfg)?, settings, timing, tb)
     }
 }
 
 impl<D: Device> DeviceNode<D> {
     /// `dev` at power-on (its boot-up queued).
-    pub fn with(mut enc: D, settings: &NodeSettings, timing: NodeTiming, tb: &Timebase) -> Result<DeviceNode<D>> {
+    pub fn with(
+        mut enc: D,
+        settings: &NodeSettings,
+        timing: NodeTiming,
+        tb: &Timebase,
+    ) -> Result<DeviceNode<D>> {
         let boot = enc.power_on(0);
         let rate = enc.bit_rate_kbps();
-        let emu = Emulator::new(&NodeSettings { frames: Vec::new(), ..settings.clone() }, timing.controller(tb, rate)?, tb)?;
+        let emu = Emulator::new(
+            &NodeSettings {
+                frames: Vec::new(),
+                ..settings.clone()
+            },
+            timing.controller(tb, rate)?,
+            tb,
+        )?;
         let delay = tb.cycles_nearest_ns(enc.response_delay_us() * 1e3);
         Ok(DeviceNode {
             enc,
@@ -165,7 +192,14 @@ impl<D: Device> DeviceNode<D> {
             // A reset applied a new bit rate (5000h): the controller restarts at the new rate.
             self.rate = self.enc.bit_rate_kbps();
             if let Ok(cc) = self.timing.controller(&self.tb, self.rate) {
-                if let Ok(e) = Emulator::new(&NodeSettings { frames: Vec::new(), ..self.settings.clone() }, cc, &self.tb) {
+                if let Ok(e) = Emulator::new(
+                    &NodeSettings {
+                        frames: Vec::new(),
+                        ..self.settings.clone()
+                    },
+                    cc,
+                    &self.tb,
+                ) {
                     self.emu = e;
                     self.seen = 0;
                 }
@@ -208,7 +242,8 @@ impl<D: Device> DeviceNode<D> {
             return 0;
         }
         let f = self.tb.f_sys_hz() as u128;
-        let mut x = ((due as u128 * 1000 * f) / 1_000_000_000_000).max(self.cycle as u128 + 1) as u64;
+        let mut x =
+            ((due as u128 * 1000 * f) / 1_000_000_000_000).max(self.cycle as u128 + 1) as u64;
         while x > self.cycle + 1 && at_ns(x - 1) >= due {
             x -= 1;
         }

@@ -17,8 +17,8 @@
 //! - 5500h defaults to FFFF FFFFh ("not used": the note prints "FF FF FF h",
 //!   read as all ones of an Unsigned32).
 
-use super::encoder::{EncoderConfig, EncoderKind};
 use super::cob::{cob_id, TPDO1, TPDO2};
+use super::encoder::{EncoderConfig, EncoderKind};
 
 /// CiA 301 data types used here.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -146,21 +146,68 @@ pub fn le(dtype: DataType, v: u32) -> Vec<u8> {
 
 /// The value of little-endian bytes (up to 4).
 pub fn value(bytes: &[u8]) -> u32 {
-    bytes.iter().take(4).enumerate().fold(0, |a, (k, &b)| a | (b as u32) << (8 * k))
+    bytes
+        .iter()
+        .take(4)
+        .enumerate()
+        .fold(0, |a, (k, &b)| a | (b as u32) << (8 * k))
 }
 
 fn var(index: u16, name: &str, dtype: DataType, access: Access, default: u32, pdo: bool) -> Object {
-    Object { index, name: name.into(), kind: ObjectKind::Var, subs: vec![Sub { sub: 0, name: name.into(), dtype, access, default: le(dtype, default), pdo }] }
+    Object {
+        index,
+        name: name.into(),
+        kind: ObjectKind::Var,
+        subs: vec![Sub {
+            sub: 0,
+            name: name.into(),
+            dtype,
+            access,
+            default: le(dtype, default),
+            pdo,
+        }],
+    }
 }
 
 fn string(index: u16, name: &str, text: &str) -> Object {
-    Object { index, name: name.into(), kind: ObjectKind::Var, subs: vec![Sub { sub: 0, name: name.into(), dtype: DataType::VisibleString, access: Access::Const, default: text.as_bytes().to_vec(), pdo: false }] }
+    Object {
+        index,
+        name: name.into(),
+        kind: ObjectKind::Var,
+        subs: vec![Sub {
+            sub: 0,
+            name: name.into(),
+            dtype: DataType::VisibleString,
+            access: Access::Const,
+            default: text.as_bytes().to_vec(),
+            pdo: false,
+        }],
+    }
 }
 
 fn record(index: u16, name: &str, subs: &[(&str, DataType, Access, u32)]) -> Object {
-    let mut v = vec![Sub { sub: 0, name: "Highest sub-index supported".into(), dtype: DataType::Unsigned8, access: Access::Const, default: vec![subs.len() as u8], pdo: false }];
-    v.extend(subs.iter().enumerate().map(|(k, &(n, t, a, d))| Sub { sub: k as u8 + 1, name: n.into(), dtype: t, access: a, default: le(t, d), pdo: false }));
-    Object { index, name: name.into(), kind: ObjectKind::Record, subs: v }
+    let mut v = vec![Sub {
+        sub: 0,
+        name: "Highest sub-index supported".into(),
+        dtype: DataType::Unsigned8,
+        access: Access::Const,
+        default: vec![subs.len() as u8],
+        pdo: false,
+    }];
+    v.extend(subs.iter().enumerate().map(|(k, &(n, t, a, d))| Sub {
+        sub: k as u8 + 1,
+        name: n.into(),
+        dtype: t,
+        access: a,
+        default: le(t, d),
+        pdo: false,
+    }));
+    Object {
+        index,
+        name: name.into(),
+        kind: ObjectKind::Record,
+        subs: v,
+    }
 }
 
 use Access::{Const, Ro, Rw};
@@ -190,39 +237,134 @@ impl Dictionary {
             var(0x100C, "Guard time", U16, Rw, 0, false),
             var(0x100D, "Life time factor", U8, Rw, 0, false),
             var(0x1017, "Producer heartbeat time", U16, Rw, 0, false),
-            record(0x1018, "Identity object", &[("Vendor-ID", U32, Ro, cfg.vendor_id), ("Product code", U32, Ro, 0x0000_0406), ("Revision number", U32, Ro, 0x0001_0003), ("Serial number", U32, Ro, cfg.serial_number)]),
-            record(0x1800, "TPDO1 communication parameter", &[("COB-ID used by TPDO", U32, Rw, cob_id(TPDO1, node) as u32), ("Transmission type", U8, Rw, 0xFE)]),
-            record(0x1801, "TPDO2 communication parameter", &[("COB-ID used by TPDO", U32, Rw, cob_id(TPDO2, node) as u32), ("Transmission type", U8, Rw, 0x01)]),
-            record(0x1A00, "TPDO1 mapping parameter", &[("Application object 1", U32, Const, MAP_POSITION)]),
-            record(0x1A01, "TPDO2 mapping parameter", &[("Application object 1", U32, Const, MAP_POSITION)]),
+            record(
+                0x1018,
+                "Identity object",
+                &[
+                    ("Vendor-ID", U32, Ro, cfg.vendor_id),
+                    ("Product code", U32, Ro, 0x0000_0406),
+                    ("Revision number", U32, Ro, 0x0001_0003),
+                    ("Serial number", U32, Ro, cfg.serial_number),
+                ],
+            ),
+            record(
+                0x1800,
+                "TPDO1 communication parameter",
+                &[
+                    ("COB-ID used by TPDO", U32, Rw, cob_id(TPDO1, node) as u32),
+                    ("Transmission type", U8, Rw, 0xFE),
+                ],
+            ),
+            record(
+                0x1801,
+                "TPDO2 communication parameter",
+                &[
+                    ("COB-ID used by TPDO", U32, Rw, cob_id(TPDO2, node) as u32),
+                    ("Transmission type", U8, Rw, 0x01),
+                ],
+            ),
+            record(
+                0x1A00,
+                "TPDO1 mapping parameter",
+                &[("Application object 1", U32, Const, MAP_POSITION)],
+            ),
+            record(
+                0x1A01,
+                "TPDO2 mapping parameter",
+                &[("Application object 1", U32, Const, MAP_POSITION)],
+            ),
             var(0x5000, "Transmission rate", U8, Rw, 0xFF, false),
             var(0x5001, "Node number", U8, Rw, 0xFF, false),
-            var(0x5500, "Gateway Serial number", U32, Ro, cfg.serial_number, false),
+            var(
+                0x5500,
+                "Gateway Serial number",
+                U32,
+                Ro,
+                cfg.serial_number,
+                false,
+            ),
             var(0x6000, "Operating parameters", U16, Rw, 0, false),
         ];
         if k != EncoderKind::Linear {
-            o.push(var(0x6001, "Measuring units per revolution", U32, Rw, k.singleturn_resolution(), false));
-            o.push(var(0x6002, "Total measuring range in measuring units", U32, Rw, k.total_resolution() as u32, false));
+            o.push(var(
+                0x6001,
+                "Measuring units per revolution",
+                U32,
+                Rw,
+                k.singleturn_resolution(),
+                false,
+            ));
+            o.push(var(
+                0x6002,
+                "Total measuring range in measuring units",
+                U32,
+                Rw,
+                k.total_resolution() as u32,
+                false,
+            ));
         }
         o.extend([
             var(0x6003, "Preset value", U32, Rw, 0, false),
             var(0x6004, "Position value", U32, Ro, 0, true),
             var(0x6200, "Cyclic timer", U16, Rw, 0, false),
             var(0x6500, "Operating status", U16, Ro, 0, false),
-            var(0x6501, if k == EncoderKind::Linear { "Measuring step" } else { "Singleturn resolution" }, U32, Const, if k == EncoderKind::Linear { cfg.linear_step_nm } else { k.singleturn_resolution() }, false),
+            var(
+                0x6501,
+                if k == EncoderKind::Linear {
+                    "Measuring step"
+                } else {
+                    "Singleturn resolution"
+                },
+                U32,
+                Const,
+                if k == EncoderKind::Linear {
+                    cfg.linear_step_nm
+                } else {
+                    k.singleturn_resolution()
+                },
+                false,
+            ),
         ]);
         if k != EncoderKind::Linear {
-            o.push(var(0x6502, "Number of distinguishable revolutions", U16, Const, k.revolutions(), false));
+            o.push(var(
+                0x6502,
+                "Number of distinguishable revolutions",
+                U16,
+                Const,
+                k.revolutions(),
+                false,
+            ));
         }
         o.extend([
             var(0x6503, "Alarms", U16, Ro, 0, false),
-            var(0x6504, "Supported alarms", U16, Const, SUPPORTED_ALARMS as u32, false),
+            var(
+                0x6504,
+                "Supported alarms",
+                U16,
+                Const,
+                SUPPORTED_ALARMS as u32,
+                false,
+            ),
             var(0x6505, "Warnings", U16, Ro, 0, false),
             var(0x6506, "Supported warnings", U16, Const, 0, false),
-            var(0x6507, "Profile and software version", U32, Const, 0x0103_0201, false),
+            var(
+                0x6507,
+                "Profile and software version",
+                U32,
+                Const,
+                0x0103_0201,
+                false,
+            ),
             var(0x6508, "Operating time", U32, Ro, 0, false),
             var(0x6509, "Offset value", I32, Ro, 0, false),
-            var(0x650B, "Serial number", U32, Const, cfg.encoder_serial, false),
+            var(
+                0x650B,
+                "Serial number",
+                U32,
+                Const,
+                cfg.encoder_serial,
+                false,
+            ),
         ]);
         Dictionary { objects: o }
     }
@@ -235,12 +377,17 @@ impl Dictionary {
     /// The entry at `index`/`sub`, or the SDO abort code saying which part is missing.
     pub fn entry(&self, index: u16, sub: u8) -> Result<&Sub, u32> {
         let o = self.object(index).ok_or(super::sdo::abort::NO_OBJECT)?;
-        o.subs.iter().find(|s| s.sub == sub).ok_or(super::sdo::abort::NO_SUBINDEX)
+        o.subs
+            .iter()
+            .find(|s| s.sub == sub)
+            .ok_or(super::sdo::abort::NO_SUBINDEX)
     }
 
     /// Every entry, in index then sub-index order.
     pub fn entries(&self) -> impl Iterator<Item = (u16, &Sub)> {
-        self.objects.iter().flat_map(|o| o.subs.iter().map(move |s| (o.index, s)))
+        self.objects
+            .iter()
+            .flat_map(|o| o.subs.iter().map(move |s| (o.index, s)))
     }
 }
 

@@ -78,7 +78,16 @@ pub struct SarCanConfig {
 
 impl Default for SarCanConfig {
     fn default() -> Self {
-        SarCanConfig { node: 0x20, bit_rate_kbps: 250, bits: 14, cycle_ms: 100, raw_position: 0, speed_cps: 0.0, direction: Direction::Toggle, answer_base: 0x100 }
+        SarCanConfig {
+            node: 0x20,
+            bit_rate_kbps: 250,
+            bits: 14,
+            cycle_ms: 100,
+            raw_position: 0,
+            speed_cps: 0.0,
+            direction: Direction::Toggle,
+            answer_base: 0x100,
+        }
     }
 }
 
@@ -88,24 +97,52 @@ impl SarCanConfig {
         if ![0x100, 0x180].contains(&self.answer_base) {
             return Err(ConfigError::invalid(format!("{field}.answer_base"), format!("{:#x}", self.answer_base), "give 0x100 (the manual's examples: 0x120 for node 0x20) or 0x180 (its function-code table)"));
         }
-        let top = if self.answer_base == 0x100 { 0xFF } else { 0x7F };
+        let top = if self.answer_base == 0x100 {
+            0xFF
+        } else {
+            0x7F
+        };
         if !(1..=top).contains(&self.node) {
-            return Err(ConfigError::invalid(format!("{field}.node"), format!("{:#x}", self.node), format!("give a node from 0x01 to {top:#x} (factory 0x20)")));
+            return Err(ConfigError::invalid(
+                format!("{field}.node"),
+                format!("{:#x}", self.node),
+                format!("give a node from 0x01 to {top:#x} (factory 0x20)"),
+            ));
         }
         if ![1000, 500, 250].contains(&self.bit_rate_kbps) {
-            return Err(ConfigError::invalid(format!("{field}.bit_rate_kbps"), format!("{}", self.bit_rate_kbps), "give 1000, 500 or 250 (the rates of seed 001 §3.4 ③)"));
+            return Err(ConfigError::invalid(
+                format!("{field}.bit_rate_kbps"),
+                format!("{}", self.bit_rate_kbps),
+                "give 1000, 500 or 250 (the rates of seed 001 §3.4 ③)",
+            ));
         }
         if !(10..=32).contains(&self.bits) {
-            return Err(ConfigError::invalid(format!("{field}.bits"), format!("{}", self.bits), "give 10 to 32 bits"));
+            return Err(ConfigError::invalid(
+                format!("{field}.bits"),
+                format!("{}", self.bits),
+                "give 10 to 32 bits",
+            ));
         }
         if self.cycle_ms == 0 {
-            return Err(ConfigError::invalid(format!("{field}.cycle_ms"), "0", "give the cycle time in ms, at least 1"));
+            return Err(ConfigError::invalid(
+                format!("{field}.cycle_ms"),
+                "0",
+                "give the cycle time in ms, at least 1",
+            ));
         }
         if !self.speed_cps.is_finite() || self.speed_cps.abs() > 1e9 {
-            return Err(ConfigError::invalid(format!("{field}.speed_cps"), format!("{}", self.speed_cps), "give at most 1e9 counts per second"));
+            return Err(ConfigError::invalid(
+                format!("{field}.speed_cps"),
+                format!("{}", self.speed_cps),
+                "give at most 1e9 counts per second",
+            ));
         }
         if self.raw_position >> self.bits != 0 {
-            return Err(ConfigError::invalid(format!("{field}.raw_position"), format!("{}", self.raw_position), format!("give a position below 2^{}", self.bits)));
+            return Err(ConfigError::invalid(
+                format!("{field}.raw_position"),
+                format!("{}", self.raw_position),
+                format!("give a position below 2^{}", self.bits),
+            ));
         }
         Ok(())
     }
@@ -132,7 +169,20 @@ impl SarCan {
     /// Before power-on.
     pub fn new(cfg: &SarCanConfig) -> Result<SarCan> {
         cfg.validate("sar_can")?;
-        Ok(SarCan { cfg: cfg.clone(), node: cfg.node, rate: cfg.bit_rate_kbps, next_node: cfg.node, next_rate: cfg.bit_rate_kbps, config_mode: false, reverse: false, zero: 0, raw_base: cfg.raw_position, raw_ns: 0, period_ns: None, next_at: 0 })
+        Ok(SarCan {
+            cfg: cfg.clone(),
+            node: cfg.node,
+            rate: cfg.bit_rate_kbps,
+            next_node: cfg.node,
+            next_rate: cfg.bit_rate_kbps,
+            config_mode: false,
+            reverse: false,
+            zero: 0,
+            raw_base: cfg.raw_position,
+            raw_ns: 0,
+            period_ns: None,
+            next_at: 0,
+        })
     }
 
     /// Node in use.
@@ -178,7 +228,8 @@ impl SarCan {
     /// The position it reports at `now_ns`.
     pub fn position(&self, now_ns: u64) -> u64 {
         let m = self.mask() as i128 + 1;
-        let moved = (self.cfg.speed_cps * now_ns.saturating_sub(self.raw_ns) as f64 * 1e-9).round() as i128;
+        let moved =
+            (self.cfg.speed_cps * now_ns.saturating_sub(self.raw_ns) as f64 * 1e-9).round() as i128;
         let raw = (self.raw_base as i128 + moved).rem_euclid(m);
         let p = (raw - self.zero as i128).rem_euclid(m);
         (if self.reverse { (m - p) % m } else { p }) as u64

@@ -58,7 +58,17 @@ pub fn is_binary(units_per_rev: u32, range: u32) -> bool {
 impl Scaling {
     /// Unscaled, for a disk of `st_res` × `revs` positions.
     pub fn new(st_res: u64, revs: u64, limit: NonCyclicLimit) -> Scaling {
-        Scaling { st_res, revs, ccw: false, scaling: false, units_per_rev: st_res as u32, range: (st_res * revs).min(u32::MAX as u64) as u32, cyclic: true, offset: 0, limit }
+        Scaling {
+            st_res,
+            revs,
+            ccw: false,
+            scaling: false,
+            units_per_rev: st_res as u32,
+            range: (st_res * revs).min(u32::MAX as u64) as u32,
+            cyclic: true,
+            offset: 0,
+            limit,
+        }
     }
 
     /// Positions of the raw disk.
@@ -84,7 +94,11 @@ impl Scaling {
     /// `current_position` of §4.2: the scaled position before the offset.
     pub fn current(&self, raw: u64) -> i64 {
         let raw = raw % self.raw_range();
-        let raw = if self.ccw { self.raw_range() - 1 - raw } else { raw };
+        let raw = if self.ccw {
+            self.raw_range() - 1 - raw
+        } else {
+            raw
+        };
         if !self.scaling {
             return raw as i64;
         }

@@ -72,8 +72,20 @@ pub trait ObjectAccess {
 #[derive(Debug, Clone, PartialEq, Eq)]
 enum Transfer {
     Idle,
-    Download { index: u16, sub: u8, toggle: bool, buf: Vec<u8>, size: Option<usize> },
-    Upload { index: u16, sub: u8, toggle: bool, data: Vec<u8>, pos: usize },
+    Download {
+        index: u16,
+        sub: u8,
+        toggle: bool,
+        buf: Vec<u8>,
+        size: Option<usize>,
+    },
+    Upload {
+        index: u16,
+        sub: u8,
+        toggle: bool,
+        data: Vec<u8>,
+        pos: usize,
+    },
 }
 
 /// The SDO server: one transfer at a time.
@@ -91,7 +103,16 @@ impl Default for Server {
 /// An abort frame's data.
 pub fn abort_frame(index: u16, sub: u8, code: u32) -> [u8; 8] {
     let c = code.to_le_bytes();
-    [0x80, index as u8, (index >> 8) as u8, sub, c[0], c[1], c[2], c[3]]
+    [
+        0x80,
+        index as u8,
+        (index >> 8) as u8,
+        sub,
+        c[0],
+        c[1],
+        c[2],
+        c[3],
+    ]
 }
 
 fn head(cmd: u8, index: u16, sub: u8) -> [u8; 8] {
@@ -113,7 +134,9 @@ impl Server {
         let sub = r[3];
         let ccs = r[0] >> 5;
         let (ti, ts) = match &self.t {
-            Transfer::Download { index, sub, .. } | Transfer::Upload { index, sub, .. } => (*index, *sub),
+            Transfer::Download { index, sub, .. } | Transfer::Upload { index, sub, .. } => {
+                (*index, *sub)
+            }
             Transfer::Idle => (index, sub),
         };
         let answer = match ccs {
@@ -122,12 +145,21 @@ impl Server {
                 let (e, s, n) = (r[0] & 2 != 0, r[0] & 1 != 0, ((r[0] >> 2) & 3) as usize);
                 if e {
                     let len = if s { 4 - n } else { 4 };
-                    od.write(index, sub, &r[4..4 + len], s).map(|_| head(0x60, index, sub)).unwrap_or_else(|c| abort_frame(index, sub, c))
+                    od.write(index, sub, &r[4..4 + len], s)
+                        .map(|_| head(0x60, index, sub))
+                        .unwrap_or_else(|c| abort_frame(index, sub, c))
                 } else {
                     match od.writable(index, sub) {
                         Ok(()) => {
-                            let size = s.then(|| u32::from_le_bytes([r[4], r[5], r[6], r[7]]) as usize);
-                            self.t = Transfer::Download { index, sub, toggle: false, buf: Vec::new(), size };
+                            let size =
+                                s.then(|| u32::from_le_bytes([r[4], r[5], r[6], r[7]]) as usize);
+                            self.t = Transfer::Download {
+                                index,
+                                sub,
+                                toggle: false,
+                                buf: Vec::new(),
+                                size,
+                            };
                             head(0x60, index, sub)
                         }
                         Err(c) => abort_frame(index, sub, c),
@@ -135,7 +167,13 @@ impl Server {
                 }
             }
             0 => match &mut self.t {
-                Transfer::Download { index, sub, toggle, buf, size } => {
+                Transfer::Download {
+                    index,
+                    sub,
+                    toggle,
+                    buf,
+                    size,
+                } => {
                     let (t, n, c) = (r[0] & 0x10 != 0, ((r[0] >> 1) & 7) as usize, r[0] & 1 != 0);
                     if t != *toggle {
                         let a = abort_frame(*index, *sub, abort::TOGGLE);
@@ -146,12 +184,15 @@ impl Server {
                         *toggle = !*toggle;
                         let ok = [0x20 | (t as u8) << 4, 0, 0, 0, 0, 0, 0, 0];
                         if c {
-                            let (index, sub, buf, size) = (*index, *sub, std::mem::take(buf), *size);
+                            let (index, sub, buf, size) =
+                                (*index, *sub, std::mem::take(buf), *size);
                             self.t = Transfer::Idle;
                             if size.is_some_and(|s| s != buf.len()) {
                                 abort_frame(index, sub, abort::LENGTH)
                             } else {
-                                od.write(index, sub, &buf, true).map(|_| ok).unwrap_or_else(|c| abort_frame(index, sub, c))
+                                od.write(index, sub, &buf, true)
+                                    .map(|_| ok)
+                                    .unwrap_or_else(|c| abort_frame(index, sub, c))
                             }
                         } else {
                             ok
@@ -171,14 +212,26 @@ impl Server {
                     Ok(v) => {
                         let mut a = head(0x41, index, sub);
                         a[4..8].copy_from_slice(&(v.len() as u32).to_le_bytes());
-                        self.t = Transfer::Upload { index, sub, toggle: false, data: v, pos: 0 };
+                        self.t = Transfer::Upload {
+                            index,
+                            sub,
+                            toggle: false,
+                            data: v,
+                            pos: 0,
+                        };
                         a
                     }
                     Err(c) => abort_frame(index, sub, c),
                 }
             }
             3 => match &mut self.t {
-                Transfer::Upload { index, sub, toggle, data, pos } => {
+                Transfer::Upload {
+                    index,
+                    sub,
+                    toggle,
+                    data,
+                    pos,
+                } => {
                     let t = r[0] & 0x10 != 0;
                     if t != *toggle {
                         let a = abort_frame(*index, *sub, abort::TOGGLE);
@@ -187,7 +240,16 @@ impl Server {
                     } else {
                         let chunk = &data[*pos..(*pos + 7).min(data.len())];
                         let last = *pos + chunk.len() == data.len();
-                        let mut a = [(t as u8) << 4 | ((7 - chunk.len()) as u8) << 1 | last as u8, 0, 0, 0, 0, 0, 0, 0];
+                        let mut a = [
+                            (t as u8) << 4 | ((7 - chunk.len()) as u8) << 1 | last as u8,
+                            0,
+                            0,
+                            0,
+                            0,
+                            0,
+                            0,
+                            0,
+                        ];
                         a[1..1 + chunk.len()].copy_from_slice(chunk);
                         *pos += chunk.len();
                         *toggle = !*toggle;
@@ -290,7 +352,11 @@ pub fn parse_response(d: &[u8], segment: bool) -> Response {
     let index = d[1] as u16 | (d[2] as u16) << 8;
     let sub = d[3];
     match d[0] >> 5 {
-        4 => Response::Abort { index, sub, code: u32::from_le_bytes([d[4], d[5], d[6], d[7]]) },
+        4 => Response::Abort {
+            index,
+            sub,
+            code: u32::from_le_bytes([d[4], d[5], d[6], d[7]]),
+        },
         0 if segment => {
             let n = ((d[0] >> 1) & 7) as usize;
             Response::Segment(d[0] & 0x10 != 0, d[1..8 - n].to_vec(), d[0] & 1 != 0)
@@ -298,10 +364,22 @@ pub fn parse_response(d: &[u8], segment: bool) -> Response {
         1 if segment => Response::SegmentDownloaded(d[0] & 0x10 != 0),
         3 if d[0] == 0x60 => Response::Downloaded { index, sub },
         2 if d[0] & 2 != 0 => {
-            let n = if d[0] & 1 != 0 { 4 - ((d[0] >> 2) & 3) as usize } else { 4 };
-            Response::Uploaded { index, sub, data: d[4..4 + n].to_vec() }
+            let n = if d[0] & 1 != 0 {
+                4 - ((d[0] >> 2) & 3) as usize
+            } else {
+                4
+            };
+            Response::Uploaded {
+                index,
+                sub,
+                data: d[4..4 + n].to_vec(),
+            }
         }
-        2 => Response::UploadSegmented { index, sub, size: u32::from_le_bytes([d[4], d[5], d[6], d[7]]) },
+        2 => Response::UploadSegmented {
+            index,
+            sub,
+            size: u32::from_le_bytes([d[4], d[5], d[6], d[7]]),
+        },
         _ => Response::Invalid,
     }
 }

@@ -19,8 +19,8 @@ use super::{Command, FrameKind};
 use crate::line::{CableConfig, DelayLine, Drive, HalfDuplexLine};
 use crate::ports::{Port, Ports};
 use crate::testbench::{self, Setup, Testbench};
-use crate::trace::{Layout, Sample};
 use crate::time::BitClock;
+use crate::trace::{Layout, Sample};
 use crate::{ConfigError, Result, Timebase};
 
 /// The master's settings in a scenario's units (`[endat.master]`).
@@ -163,19 +163,35 @@ pub struct HostCommand {
 
 impl Default for HostCommand {
     fn default() -> Self {
-        HostCommand { command: Command::Pos21, raw_mode: None, mrs: 0, param: 0, cont_values: 0, repeat: 1, measure: false }
+        HostCommand {
+            command: Command::Pos21,
+            raw_mode: None,
+            mrs: 0,
+            param: 0,
+            cont_values: 0,
+            repeat: 1,
+            measure: false,
+        }
     }
 }
 
 impl HostCommand {
     /// One request of `command` with MRS and parameter 0.
     pub fn new(command: Command) -> Self {
-        HostCommand { command, ..HostCommand::default() }
+        HostCommand {
+            command,
+            ..HostCommand::default()
+        }
     }
 
     /// With MRS code / address and parameter.
     pub fn with(command: Command, mrs: u8, param: u16) -> Self {
-        HostCommand { command, mrs, param, ..HostCommand::default() }
+        HostCommand {
+            command,
+            mrs,
+            param,
+            ..HostCommand::default()
+        }
     }
 
     fn mode(&self) -> u8 {
@@ -195,7 +211,10 @@ pub struct HostSettings {
 
 impl Default for HostSettings {
     fn default() -> Self {
-        HostSettings { first_start_us: 1.0, gap_us: 0.0 }
+        HostSettings {
+            first_start_us: 1.0,
+            gap_us: 0.0,
+        }
     }
 }
 
@@ -322,7 +341,13 @@ fn positive(field: &str, v: f64, fix: &str) -> Result<f64> {
 impl BenchConfig {
     /// A 25-bit multiturn encoder at 1 MHz through 10 m, no delay compensation.
     pub fn example() -> Self {
-        BenchConfig { cable: CableConfig { length_m: 10.0, ..CableConfig::default() }, ..BenchConfig::default() }
+        BenchConfig {
+            cable: CableConfig {
+                length_m: 10.0,
+                ..CableConfig::default()
+            },
+            ..BenchConfig::default()
+        }
     }
 
     /// The master's configuration in cycles (the Verilog parameters).
@@ -344,7 +369,11 @@ impl BenchConfig {
             ));
         }
         if !(100.0..=200.0).contains(&m.meas_clock_khz) {
-            return Err(ConfigError::invalid("master.meas_clock_khz", format!("{} kHz", m.meas_clock_khz), "give 100 to 200 kHz (seed 2.1.2)"));
+            return Err(ConfigError::invalid(
+                "master.meas_clock_khz",
+                format!("{} kHz", m.meas_clock_khz),
+                "give 100 to 200 kHz (seed 2.1.2)",
+            ));
         }
         if m.recovery_short && m.clock_khz <= 1000.0 {
             return Err(ConfigError::invalid(
@@ -354,10 +383,18 @@ impl BenchConfig {
             ));
         }
         if m.t_b_us <= 1000.0 {
-            return Err(ConfigError::invalid("master.t_b_us", format!("{} µs", m.t_b_us), "give more than 1000 µs (seed 2.3.2: t_b > 1 ms)"));
+            return Err(ConfigError::invalid(
+                "master.t_b_us",
+                format!("{} µs", m.t_b_us),
+                "give more than 1000 µs (seed 2.3.2: t_b > 1 ms)",
+            ));
         }
         if m.t_r_us < 0.5 {
-            return Err(ConfigError::invalid("master.t_r_us", format!("{} µs", m.t_r_us), "give at least 0.5 µs (seed 2.3.2: t_R >= 500 ns)"));
+            return Err(ConfigError::invalid(
+                "master.t_r_us",
+                format!("{} µs", m.t_r_us),
+                "give at least 0.5 µs (seed 2.3.2: t_R >= 500 ns)",
+            ));
         }
         let clock = tb.divider(m.clock_khz * 1e3, "master.clock_khz", 8)?;
         let meas = tb.divider(m.meas_clock_khz * 1e3, "master.meas_clock_khz", 8)?;
@@ -371,7 +408,11 @@ impl BenchConfig {
         let t_st = tb.cycles_at_least_ns(t_st_us * 1e3).max(clock.low);
         let t_m_max = if m.recovery_short { 3.75 } else { 30.0 };
         let t_r = positive("master.t_r_us", m.t_r_us, "give t_R in µs")?;
-        let timeout_us = positive("master.timeout_us", m.timeout_us, "give the start-bit timeout in µs")?;
+        let timeout_us = positive(
+            "master.timeout_us",
+            m.timeout_us,
+            "give the start-bit timeout in µs",
+        )?;
         let timeout_clocks = (timeout_us * m.clock_khz / 1e3).ceil() as u64;
         let cfg = MasterConfig {
             pos_bits: self.encoder.singleturn_bits + self.encoder.multiturn_bits,
@@ -383,14 +424,23 @@ impl BenchConfig {
             meas_low_clocks: meas.low,
             t_st_clocks: t_st,
             delay_comp: m.delay_comp,
-            sample_delay: tb.cycles_nearest_ns(positive("master.sample_delay_ns", m.sample_delay_ns, "give ns")?),
+            sample_delay: tb.cycles_nearest_ns(positive(
+                "master.sample_delay_ns",
+                m.sample_delay_ns,
+                "give ns",
+            )?),
             meas_count: m.meas_count,
             meas_retries: m.meas_retries,
             delay_tol: (cpb / 8).max(1),
-            delay_max: MasterConfig::delay_limit(cpb, self.encoder.singleturn_bits + self.encoder.multiturn_bits, self.block_gap_clocks),
+            delay_max: MasterConfig::delay_limit(
+                cpb,
+                self.encoder.singleturn_bits + self.encoder.multiturn_bits,
+                self.block_gap_clocks,
+            ),
             timeout_clocks,
             t_m_clocks: tb.cycles_at_least_ns((t_m_max + t_r) * 1e3),
-            t_b_clocks: tb.cycles_at_least_ns(positive("master.t_b_us", m.t_b_us, "give t_b in µs")? * 1e3),
+            t_b_clocks: tb
+                .cycles_at_least_ns(positive("master.t_b_us", m.t_b_us, "give t_b in µs")? * 1e3),
             t_err_clocks: tb.cycles_at_least_ns((30.0 + t_r) * 1e3),
             block_gap: self.block_gap_clocks,
         };
@@ -402,26 +452,50 @@ impl BenchConfig {
     pub fn encoder_config(&self) -> Result<EncoderConfig> {
         let tb = self.timebase()?;
         let e = &self.encoder;
-        let ns = |field: &str, us: f64| -> Result<u64> { Ok(tb.cycles_at_least_ns(positive(field, us, "give a non-negative time")? * 1e3)) };
+        let ns = |field: &str, us: f64| -> Result<u64> {
+            Ok(tb.cycles_at_least_ns(positive(field, us, "give a non-negative time")? * 1e3))
+        };
         // Unwritten, t_m follows the recovery setting: a default the user never
         // wrote must not be what refuses `recovery_short = true`.
-        let (t_m_range, t_m_default) = if e.recovery_short { ((1.25, 3.75), 2.0) } else { ((10.0, 30.0), 15.0) };
+        let (t_m_range, t_m_default) = if e.recovery_short {
+            ((1.25, 3.75), 2.0)
+        } else {
+            ((10.0, 30.0), 15.0)
+        };
         let t_m_us = e.t_m_us.unwrap_or(t_m_default);
         if t_m_us < t_m_range.0 || t_m_us > t_m_range.1 {
             return Err(ConfigError::invalid(
                 "encoder.t_m_us",
-                format!("{t_m_us} µs with encoder.recovery_short = {}", e.recovery_short),
-                format!("give {} to {} µs for this recovery setting, or leave t_m_us out (seed 2.3.2)", t_m_range.0, t_m_range.1),
+                format!(
+                    "{t_m_us} µs with encoder.recovery_short = {}",
+                    e.recovery_short
+                ),
+                format!(
+                    "give {} to {} µs for this recovery setting, or leave t_m_us out (seed 2.3.2)",
+                    t_m_range.0, t_m_range.1
+                ),
             ));
         }
         if e.t_m21_us < 10.0 || e.t_m21_us > 30.0 {
-            return Err(ConfigError::invalid("encoder.t_m21_us", format!("{} µs", e.t_m21_us), "give 10 to 30 µs (seed 2.3.2)"));
+            return Err(ConfigError::invalid(
+                "encoder.t_m21_us",
+                format!("{} µs", e.t_m21_us),
+                "give 10 to 30 µs (seed 2.3.2)",
+            ));
         }
         if !(1.25..=3.75).contains(&e.t_m_short_us) {
-            return Err(ConfigError::invalid("encoder.t_m_short_us", format!("{} µs", e.t_m_short_us), "give 1.25 to 3.75 µs (seed 2.3.2)"));
+            return Err(ConfigError::invalid(
+                "encoder.t_m_short_us",
+                format!("{} µs", e.t_m_short_us),
+                "give 1.25 to 3.75 µs (seed 2.3.2)",
+            ));
         }
         if e.t_cal_us > 1000.0 {
-            return Err(ConfigError::invalid("encoder.t_cal_us", format!("{} µs", e.t_cal_us), "give at most 1000 µs (seed 2.3.2)"));
+            return Err(ConfigError::invalid(
+                "encoder.t_cal_us",
+                format!("{} µs", e.t_cal_us),
+                "give at most 1000 µs (seed 2.3.2)",
+            ));
         }
         let cfg = EncoderConfig {
             kind: e.kind,
@@ -432,13 +506,24 @@ impl BenchConfig {
             t_ac_clocks: ns("encoder.t_ac_us", e.t_ac_us)?,
             t_m_clocks: ns("encoder.t_m_us", t_m_us)?,
             t_m21_clocks: ns("encoder.t_m21_us", e.t_m21_us)?,
-            t_m_other_clocks: if e.recovery_short { ns("encoder.t_m21_us", e.t_m21_us)? } else { ns("encoder.t_m_short_us", e.t_m_short_us)? },
+            t_m_other_clocks: if e.recovery_short {
+                ns("encoder.t_m21_us", e.t_m21_us)?
+            } else {
+                ns("encoder.t_m_short_us", e.t_m_short_us)?
+            },
             recovery_short: e.recovery_short,
-            output_delay_clocks: tb.cycles_nearest_ns(positive("encoder.output_delay_ns", e.output_delay_ns, "give ns")?),
+            output_delay_clocks: tb.cycles_nearest_ns(positive(
+                "encoder.output_delay_ns",
+                e.output_delay_ns,
+                "give ns",
+            )?),
             block_gap: self.block_gap_clocks,
             cont_low_bits: e.cont_low_bits,
             endat22: e.endat22,
-            ad_supported: e.ad_supported.clone().unwrap_or_else(|| (1u8..=14).chain(17..=25).chain([27]).collect()),
+            ad_supported: e
+                .ad_supported
+                .clone()
+                .unwrap_or_else(|| (1u8..=14).chain(17..=25).chain([27]).collect()),
             section2_blocks: e.section2_blocks,
             max_clock_khz: e.max_clock_khz,
             t_cal_us: e.t_cal_us.ceil() as u16,
@@ -449,12 +534,19 @@ impl BenchConfig {
 
     /// The requests, each repeat expanded.
     pub fn requests(&self) -> Vec<HostCommand> {
-        self.commands.iter().flat_map(|c| std::iter::repeat_n(c.clone(), c.repeat)).collect()
+        self.commands
+            .iter()
+            .flat_map(|c| std::iter::repeat_n(c.clone(), c.repeat))
+            .collect()
     }
 
     /// The raw position at request `k`.
     pub fn position_at(&self, k: usize) -> u64 {
-        let listed = if self.positions.is_empty() { 0 } else { self.positions[k % self.positions.len()] };
+        let listed = if self.positions.is_empty() {
+            0
+        } else {
+            self.positions[k % self.positions.len()]
+        };
         listed.wrapping_add((k as u64).wrapping_mul(self.step))
     }
 
@@ -471,12 +563,23 @@ impl BenchConfig {
         let m = self.master_config()?;
         let e = self.encoder_config()?;
         // Counted before they are expanded: a huge `repeat` is refused, not allocated.
-        let count = self.commands.iter().fold(0usize, |n, c| n.saturating_add(c.repeat));
+        let count = self
+            .commands
+            .iter()
+            .fold(0usize, |n, c| n.saturating_add(c.repeat));
         if count == 0 {
-            return Err(ConfigError::invalid("commands", "no requests", "add at least one [[endat.commands]]"));
+            return Err(ConfigError::invalid(
+                "commands",
+                "no requests",
+                "add at least one [[endat.commands]]",
+            ));
         }
         if count > 100_000 {
-            return Err(ConfigError::invalid("commands", format!("{count} requests"), "ask for at most 100000"));
+            return Err(ConfigError::invalid(
+                "commands",
+                format!("{count} requests"),
+                "ask for at most 100000",
+            ));
         }
         let reqs = self.requests();
         let d = self.expected_delay()?;
@@ -490,21 +593,54 @@ impl BenchConfig {
         if m.timeout_clocks * m.clocks_per_bit < e.t_cal_clocks && self.faults.dead_from.is_none() {
             // Allowed (it is the "start bit late" fault), but only on purpose: say so in the file.
         }
-        let limit = if e.pos_bits() >= 64 { u64::MAX } else { (1u64 << e.pos_bits()) - 1 };
+        let limit = if e.pos_bits() >= 64 {
+            u64::MAX
+        } else {
+            (1u64 << e.pos_bits()) - 1
+        };
         if let Some((i, p)) = self.positions.iter().enumerate().find(|(_, p)| **p > limit) {
-            return Err(ConfigError::invalid(format!("positions[{i}]"), format!("{p} does not fit {} bits", e.pos_bits()), format!("give 0 to {limit}")));
+            return Err(ConfigError::invalid(
+                format!("positions[{i}]"),
+                format!("{p} does not fit {} bits", e.pos_bits()),
+                format!("give 0 to {limit}"),
+            ));
         }
         // A fault in a request the run never reaches would pass unnoticed.
         let f = &self.faults;
-        let scheduled = f.flips.iter().enumerate().map(|(j, x)| (format!("faults.flips[{j}].request"), x.request));
+        let scheduled = f
+            .flips
+            .iter()
+            .enumerate()
+            .map(|(j, x)| (format!("faults.flips[{j}].request"), x.request));
         let scheduled = scheduled
-            .chain(f.line.stuck_level.map(|_| ("faults.stuck_from".to_string(), f.line.stuck_from)))
-            .chain(f.line.drift_ns.map(|_| ("faults.drift_from".to_string(), f.line.drift_from)))
+            .chain(
+                f.line
+                    .stuck_level
+                    .map(|_| ("faults.stuck_from".to_string(), f.line.stuck_from)),
+            )
+            .chain(
+                f.line
+                    .drift_ns
+                    .map(|_| ("faults.drift_from".to_string(), f.line.drift_from)),
+            )
             .chain(f.dead_from.map(|r| ("faults.dead_from".to_string(), r)))
             .chain(f.absent_from.map(|r| ("faults.absent_from".to_string(), r)))
-            .chain(f.stale_ad.iter().enumerate().map(|(j, r)| (format!("faults.stale_ad[{j}]"), *r)))
-            .chain(f.errors_at.map(|(_, r)| ("faults.errors_at".to_string(), r)))
-            .chain(f.ack_xor.iter().enumerate().map(|(j, x)| (format!("faults.ack_xor[{j}].request"), x.request)));
+            .chain(
+                f.stale_ad
+                    .iter()
+                    .enumerate()
+                    .map(|(j, r)| (format!("faults.stale_ad[{j}]"), *r)),
+            )
+            .chain(
+                f.errors_at
+                    .map(|(_, r)| ("faults.errors_at".to_string(), r)),
+            )
+            .chain(
+                f.ack_xor
+                    .iter()
+                    .enumerate()
+                    .map(|(j, x)| (format!("faults.ack_xor[{j}].request"), x.request)),
+            );
         for (field, request) in scheduled {
             if request >= reqs.len() {
                 return Err(ConfigError::invalid(
@@ -517,7 +653,10 @@ impl BenchConfig {
         // An acknowledgement fault on a request that sends none would pass unnoticed.
         for (j, x) in f.ack_xor.iter().enumerate() {
             let c = &reqs[x.request];
-            let param21 = matches!(c.command, Command::Select21 | Command::Receive21 | Command::Send21 | Command::Reset21);
+            let param21 = matches!(
+                c.command,
+                Command::Select21 | Command::Receive21 | Command::Send21 | Command::Reset21
+            );
             if !param21 || c.raw_mode.is_some() || c.measure {
                 return Err(ConfigError::invalid(
                     format!("faults.ack_xor[{j}].request"),
@@ -526,7 +665,11 @@ impl BenchConfig {
                 ));
             }
             if x.address == 0 && x.data == 0 {
-                return Err(ConfigError::invalid(format!("faults.ack_xor[{j}]"), "address and data 0 change nothing", "give a nonzero address or data XOR"));
+                return Err(ConfigError::invalid(
+                    format!("faults.ack_xor[{j}]"),
+                    "address and data 0 change nothing",
+                    "give a nonzero address or data XOR",
+                ));
             }
         }
         if let Some(k) = f.early_start.filter(|k| !(1..=2).contains(k)) {
@@ -546,10 +689,21 @@ impl BenchConfig {
 
     fn parameters(&self) -> Result<Vec<(&'static str, u64)>> {
         let c = self.master_config()?;
-        let mut p = vec![("POS_BITS", c.pos_bits as u64), ("CLOCKS_PER_BIT", c.clocks_per_bit)];
-        p.extend(BitClock::parameters(c.high_clocks, c.low_clocks, ["HIGH_CLOCKS", "LOW_CLOCKS"]));
+        let mut p = vec![
+            ("POS_BITS", c.pos_bits as u64),
+            ("CLOCKS_PER_BIT", c.clocks_per_bit),
+        ];
+        p.extend(BitClock::parameters(
+            c.high_clocks,
+            c.low_clocks,
+            ["HIGH_CLOCKS", "LOW_CLOCKS"],
+        ));
         p.push(("MEAS_CLOCKS_PER_BIT", c.meas_clocks_per_bit));
-        p.extend(BitClock::parameters(c.meas_high_clocks, c.meas_low_clocks, ["MEAS_HIGH_CLOCKS", "MEAS_LOW_CLOCKS"]));
+        p.extend(BitClock::parameters(
+            c.meas_high_clocks,
+            c.meas_low_clocks,
+            ["MEAS_HIGH_CLOCKS", "MEAS_LOW_CLOCKS"],
+        ));
         p.extend([
             ("T_ST_CLOCKS", c.t_st_clocks),
             ("DELAY_COMP", c.delay_comp as u64),
@@ -683,7 +837,11 @@ impl Bench {
         encoder.set_warnings(cfg.encoder.warnings);
         encoder.early_start = cfg.faults.early_start.unwrap_or(0);
         if let Some(w) = cfg.encoder.write_protect {
-            encoder.memory_mut().areas.get_mut(&0xB9).expect("status area")[2] = w;
+            encoder
+                .memory_mut()
+                .areas
+                .get_mut(&0xB9)
+                .expect("status area")[2] = w;
         }
         let (clk_line, _) = cfg.cable.lines(&tb, true);
         let pair = HalfDuplexLine::new(cfg.cable.delay_cycles(&tb), true);
@@ -698,7 +856,12 @@ impl Bench {
                 Port::new("master_oe", 1),
                 Port::new("encoder_oe", 1),
             ],
-            decoded: vec![Port::new("state", 3), Port::new("rx_phase", 4), Port::new("fall_idx", 16), Port::new("encoder_position", 48)],
+            decoded: vec![
+                Port::new("state", 3),
+                Port::new("rx_phase", 4),
+                Port::new("fall_idx", 16),
+                Port::new("encoder_position", 48),
+            ],
         };
         Ok(Bench {
             requests: cfg.requests(),
@@ -706,7 +869,10 @@ impl Bench {
             encoder,
             clk_line,
             pair,
-            enc_drive: Drive { enable: true, level: true },
+            enc_drive: Drive {
+                enable: true,
+                level: true,
+            },
             data_at_master: true,
             host: Host::WaitUntil(tb.cycles_at_least_ns(cfg.host.first_start_us * 1e3)),
             gap: tb.cycles_at_least_ns(cfg.host.gap_us * 1e3),
@@ -715,7 +881,11 @@ impl Bench {
             stuck: None,
             cycle: 0,
             last_in: In::default(),
-            last_out: Out { o_endat_clk: true, o_busy: cfg.master.delay_comp, ..Out::default() },
+            last_out: Out {
+                o_endat_clk: true,
+                o_busy: cfg.master.delay_comp,
+                ..Out::default()
+            },
             transactions: Vec::new(),
             layout,
             tb,
@@ -745,7 +915,10 @@ impl Bench {
     }
 
     fn host_decides(&mut self) -> In {
-        let mut input = In { i_endat_data_in: self.stuck.unwrap_or(self.data_at_master), ..In::default() };
+        let mut input = In {
+            i_endat_data_in: self.stuck.unwrap_or(self.data_at_master),
+            ..In::default()
+        };
         if let Host::WaitUntil(at) = self.host {
             if self.cycle >= at && !self.last_out.o_busy {
                 let k = self.next;
@@ -792,8 +965,17 @@ impl Bench {
                 self.encoder.set_errors(w);
             }
         }
-        self.encoder.flips = f.flips.iter().filter(|x| x.request == k).flat_map(|x| x.bits.iter().copied()).collect();
-        self.encoder.ack_xor = f.ack_xor.iter().filter(|x| x.request == k).fold((0, 0), |(a, d), x| (a ^ x.address, d ^ x.data));
+        self.encoder.flips = f
+            .flips
+            .iter()
+            .filter(|x| x.request == k)
+            .flat_map(|x| x.bits.iter().copied())
+            .collect();
+        self.encoder.ack_xor = f
+            .ack_xor
+            .iter()
+            .filter(|x| x.request == k)
+            .fold((0, 0), |(a, d), x| (a ^ x.address, d ^ x.data));
     }
 
     fn host_observes(&mut self, out: &Out) {
@@ -812,8 +994,20 @@ impl Bench {
             let req = self.requests.get(k).cloned().unwrap_or_default();
             let mode = req.mode();
             let cont = req.command == Command::Pos21 && req.cont_values > 1 && mode == 0b000111;
-            let already = self.transactions.iter().filter(|t| t.request == Some(k)).count();
-            let mut t = self.blank(if cont && already > 0 { "continuous_value" } else { "command" }, req.command.name(), mode);
+            let already = self
+                .transactions
+                .iter()
+                .filter(|t| t.request == Some(k))
+                .count();
+            let mut t = self.blank(
+                if cont && already > 0 {
+                    "continuous_value"
+                } else {
+                    "command"
+                },
+                req.command.name(),
+                mode,
+            );
             t.request = Some(k);
             t.start_cycle = start;
             t.mrs = req.mrs;
@@ -850,7 +1044,12 @@ impl Bench {
             if let Some((k, _)) = self.current {
                 let mode = self.requests.get(k).map(|r| r.mode()).unwrap_or(0);
                 if super::frame_kind(mode) == FrameKind::Block22 {
-                    for t in self.transactions.iter_mut().rev().take_while(|t| t.request == Some(k)) {
+                    for t in self
+                        .transactions
+                        .iter_mut()
+                        .rev()
+                        .take_while(|t| t.request == Some(k))
+                    {
                         t.encoder_answer = answer_name(self.encoder.answer).into();
                     }
                 }
@@ -917,7 +1116,11 @@ pub fn error_names(out: &Out) -> Vec<String> {
         (out.o_f1, "f1_error"),
         (!out.o_f2, "f2_error"),
     ];
-    flags.iter().filter(|(on, _)| *on).map(|(_, n)| n.to_string()).collect()
+    flags
+        .iter()
+        .filter(|(on, _)| *on)
+        .map(|(_, n)| n.to_string())
+        .collect()
 }
 
 impl Testbench for Bench {
@@ -945,7 +1148,13 @@ impl Testbench for Bench {
         let input = self.host_decides();
         let out = self.master.step(&input);
         let clk_at_encoder = self.clk_line.step(out.o_endat_clk);
-        let (at_master, at_encoder) = self.pair.step(Drive { enable: out.o_endat_data_oe, level: out.o_endat_data_out }, self.enc_drive);
+        let (at_master, at_encoder) = self.pair.step(
+            Drive {
+                enable: out.o_endat_data_oe,
+                level: out.o_endat_data_out,
+            },
+            self.enc_drive,
+        );
         self.enc_drive = self.encoder.step(clk_at_encoder, at_encoder.level);
         self.data_at_master = at_master.level;
         self.host_observes(&out);
@@ -975,12 +1184,18 @@ impl Testbench for Bench {
             Host::WaitUntil(_) | Host::WaitIdle => u64::MAX,
             Host::Finished(end) => end.saturating_sub(self.cycle),
         };
-        let input = In { i_endat_data_in: self.stuck.unwrap_or(self.data_at_master), ..In::default() };
+        let input = In {
+            i_endat_data_in: self.stuck.unwrap_or(self.data_at_master),
+            ..In::default()
+        };
         // The cycle after a request shows its pulse falling.
         if host == 0 || input != self.last_in {
             return 0;
         }
-        let master_drive = Drive { enable: self.last_out.o_endat_data_oe, level: self.last_out.o_endat_data_out };
+        let master_drive = Drive {
+            enable: self.last_out.o_endat_data_oe,
+            level: self.last_out.o_endat_data_out,
+        };
         host.min(self.master.quiet(&input))
             .min(self.clk_line.quiet(self.last_out.o_endat_clk))
             .min(self.pair.quiet(master_drive, self.enc_drive))
@@ -988,7 +1203,10 @@ impl Testbench for Bench {
     }
 
     fn skip(&mut self, n: u64) {
-        let master_drive = Drive { enable: self.last_out.o_endat_data_oe, level: self.last_out.o_endat_data_out };
+        let master_drive = Drive {
+            enable: self.last_out.o_endat_data_oe,
+            level: self.last_out.o_endat_data_out,
+        };
         self.master.skip(n);
         self.clk_line.skip(n);
         self.pair.skip(n, master_drive, self.enc_drive);

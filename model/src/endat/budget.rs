@@ -47,11 +47,23 @@ pub fn budget(cfg: &BenchConfig, command: Command) -> Result<Budget> {
     let half = m.high_clocks; // the first high phase (the longer one of an odd period)
     let kind = super::frame_kind(command.code());
     use super::FrameKind as K;
-    let k_off = if kind == K::Param21 { 8 + super::BLOCK_BITS } else { 8 };
-    let t_ready = if command == Command::Reset21 { e.reset_clocks } else { e.t_cal_clocks };
+    let k_off = if kind == K::Param21 {
+        8 + super::BLOCK_BITS
+    } else {
+        8
+    };
+    let t_ready = if command == Command::Reset21 {
+        e.reset_clocks
+    } else {
+        e.t_cal_clocks
+    };
     // R_j - F1 = t_ST + (j - 1) * CPB; the start bit goes out at the first R_j, j >= k_off + 3, at least t_ready
     // after F1, or, for the type 2.1 parameter commands, after R36, where the encoder has taken the block's last bit.
-    let ready_from = if kind == K::Param21 { m.t_st_clocks + (k_off - 2) * cpb } else { 0 };
+    let ready_from = if kind == K::Param21 {
+        m.t_st_clocks + (k_off - 2) * cpb
+    } else {
+        0
+    };
     let mut j = k_off + 3;
     while m.t_st_clocks + (j - 1) * cpb < ready_from + t_ready {
         j += 1;
@@ -62,31 +74,77 @@ pub fn budget(cfg: &BenchConfig, command: Command) -> Result<Budget> {
         K::Param21 => (0, 24),
         K::Test21 => (1, super::TEST_VALUE_BITS as u64),
     };
-    let ads = if matches!(kind, K::Pos22 | K::Block22) { cfg.master.ad_count_hint() } else { 0 };
+    let ads = if matches!(kind, K::Pos22 | K::Block22) {
+        cfg.master.ad_count_hint()
+    } else {
+        0
+    };
     let frame = nf + len + 5 + super::AD_WIRE_BITS * ads;
     let s = j + 1;
     let mut stop = s + frame;
     if kind == K::Block22 {
         stop += m.block_gap + super::BLOCK_BITS - 1;
     }
-    let pause = if matches!(kind, K::Pos21 | K::Param21 | K::Test21) { m.t_b_clocks } else { m.t_m_clocks };
-    let delay = if m.delay_comp { cfg.expected_delay()? } else { m.fixed_delay() };
+    let pause = if matches!(kind, K::Pos21 | K::Param21 | K::Test21) {
+        m.t_b_clocks
+    } else {
+        m.t_m_clocks
+    };
+    let delay = if m.delay_comp {
+        cfg.expected_delay()?
+    } else {
+        m.fixed_delay()
+    };
     let ns = |c: u64| c as f64 * tb.period_ps() as f64 / 1e3;
     let mut phases = Vec::new();
-    let mut push = |name: &str, cycles: u64| phases.push(Phase { name: name.into(), cycles, ns: ns(cycles) });
-    push("t_ST: first low phase after the first falling clock edge (it latches the position)", m.t_st_clocks);
+    let mut push = |name: &str, cycles: u64| {
+        phases.push(Phase {
+            name: name.into(),
+            cycles,
+            ns: ns(cycles),
+        })
+    };
+    push(
+        "t_ST: first low phase after the first falling clock edge (it latches the position)",
+        m.t_st_clocks,
+    );
     push("first high phase", half);
-    push("mode bits M2..(M0), falling clock edges 2 to 8 (6 clocks)", 6 * cpb);
+    push(
+        "mode bits M2..(M0), falling clock edges 2 to 8 (6 clocks)",
+        6 * cpb,
+    );
     if kind == K::Param21 {
-        push("parameter block: MRS/address, parameter, CRC (29 clocks)", 29 * cpb);
+        push(
+            "parameter block: MRS/address, parameter, CRC (29 clocks)",
+            29 * cpb,
+        );
     }
-    push(&format!("turnaround and start-bit polling, t_cal ({} clocks)", s - k_off), (s - k_off) * cpb);
+    push(
+        &format!(
+            "turnaround and start-bit polling, t_cal ({} clocks)",
+            s - k_off
+        ),
+        (s - k_off) * cpb,
+    );
     push(&format!("frame after the start bit: {nf} error bits, {len} data bits, CRC, {ads} additional data ({frame} clocks)"), frame * cpb);
     if kind == K::Block22 {
-        push("gap and the master's parameter block", (m.block_gap + super::BLOCK_BITS - 1) * cpb);
+        push(
+            "gap and the master's parameter block",
+            (m.block_gap + super::BLOCK_BITS - 1) * cpb,
+        );
     }
-    push("last rising edge, clock high until the driver is released", cpb);
-    push(if pause == m.t_b_clocks { "t_b: time between type 2.1 cycles" } else { "t_m + t_R: recovery times I and II" }, pause);
+    push(
+        "last rising edge, clock high until the driver is released",
+        cpb,
+    );
+    push(
+        if pause == m.t_b_clocks {
+            "t_b: time between type 2.1 cycles"
+        } else {
+            "t_m + t_R: recovery times I and II"
+        },
+        pause,
+    );
     push("return to idle", 1);
     let cycle = m.t_st_clocks + half + (stop - 2) * cpb + cpb + pause + 1;
     let sum: u64 = phases.iter().map(|p| p.cycles).sum();
@@ -126,14 +184,29 @@ pub fn budget_for(cfg: &BenchConfig, command: Command, ads: u64) -> Result<Budge
 impl Budget {
     /// A human-readable table.
     pub fn render(&self) -> String {
-        let mut s = format!("EnDat cycle-time budget: {} at f_sys = {} Hz\n", self.command, self.f_sys_hz);
+        let mut s = format!(
+            "EnDat cycle-time budget: {} at f_sys = {} Hz\n",
+            self.command, self.f_sys_hz
+        );
         for p in &self.phases {
             s += &format!("  {:>9} cycles {:>11.1} ns  {}\n", p.cycles, p.ns, p.name);
         }
         let ns = |c: u64| c as f64 * 1e9 / self.f_sys_hz as f64;
-        s += &format!("  {:>9} cycles {:>11.1} ns  cycle (start to next possible start)\n", self.cycle_clocks, ns(self.cycle_clocks));
-        s += &format!("  {:>9} cycles {:>11.1} ns  latency (start to o_done), sample delay D = {} cycles\n", self.latency_clocks, ns(self.latency_clocks), self.sample_delay_clocks);
-        s += &format!("  position-read rate: {:.0} reads/s\n", self.reads_per_second);
+        s += &format!(
+            "  {:>9} cycles {:>11.1} ns  cycle (start to next possible start)\n",
+            self.cycle_clocks,
+            ns(self.cycle_clocks)
+        );
+        s += &format!(
+            "  {:>9} cycles {:>11.1} ns  latency (start to o_done), sample delay D = {} cycles\n",
+            self.latency_clocks,
+            ns(self.latency_clocks),
+            self.sample_delay_clocks
+        );
+        s += &format!(
+            "  position-read rate: {:.0} reads/s\n",
+            self.reads_per_second
+        );
         s
     }
 }

@@ -114,18 +114,22 @@ impl Burst {
 
     /// The six mode bits (the line at `R2..R7`), if the burst is that long.
     pub fn mode(&self, data: &Signal) -> Option<u8> {
-        self.bits_at_rises(data, 2, 7).map(|bits| bits.iter().fold(0u8, |a, &x| (a << 1) | x as u8))
+        self.bits_at_rises(data, 2, 7)
+            .map(|bits| bits.iter().fold(0u8, |a, &x| (a << 1) | x as u8))
     }
 
     /// A frame of the master's delay measurement: `000111` at `opts.meas_khz` (±3 %).
     pub fn is_measurement(&self, data: &Signal, opts: &Options) -> bool {
         let khz = self.period().map_or(0.0, |p| 1e9 / p as f64);
-        self.mode(data) == Some(Command::Pos21.code()) && opts.meas_khz.is_some_and(|m| (khz - m).abs() <= 0.03 * m)
+        self.mode(data) == Some(Command::Pos21.code())
+            && opts.meas_khz.is_some_and(|m| (khz - m).abs() <= 0.03 * m)
     }
 
     /// The level of `line` at each rising edge `R_from..=R_to` (1-based).
     pub fn bits_at_rises(&self, line: &Signal, from: usize, to: usize) -> Option<Vec<bool>> {
-        (from..=to).map(|k| self.rises.get(k - 1).map(|&t| line.level_at(t))).collect()
+        (from..=to)
+            .map(|k| self.rises.get(k - 1).map(|&t| line.level_at(t)))
+            .collect()
     }
 }
 
@@ -146,7 +150,10 @@ pub fn bursts(clk: &Signal) -> Vec<Burst> {
             out.extend(cur.take());
         }
         if !level {
-            cur = Some(Burst { falls: vec![t], rises: Vec::new() });
+            cur = Some(Burst {
+                falls: vec![t],
+                rises: Vec::new(),
+            });
         }
     }
     out.extend(cur);
@@ -166,9 +173,15 @@ impl Decoder {
     /// A decoder in the master's power-on state; fails when `opts.pos_bits` is not 1 to 48.
     pub fn new(opts: &Options) -> Result<Decoder, String> {
         if !(1..=48).contains(&opts.pos_bits) {
-            return Err(format!("decode endat: --pos-bits {} is not 1 to 48", opts.pos_bits));
+            return Err(format!(
+                "decode endat: --pos-bits {} is not 1 to 48",
+                opts.pos_bits
+            ));
         }
-        Ok(Decoder { judge: LineJudge::new(opts.pos_bits), last_was_measurement: false })
+        Ok(Decoder {
+            judge: LineJudge::new(opts.pos_bits),
+            last_was_measurement: false,
+        })
     }
 
     /// The transactions of one burst (none for a measurement frame that continues a run).
@@ -186,7 +199,10 @@ impl Decoder {
         };
         if b.is_measurement(data, opts) {
             if !self.last_was_measurement {
-                out.push(Transaction { kind: "delay_measurement".into(), ..blank(b, mode) });
+                out.push(Transaction {
+                    kind: "delay_measurement".into(),
+                    ..blank(b, mode)
+                });
             }
             self.last_was_measurement = true;
             return out;
@@ -200,7 +216,10 @@ impl Decoder {
 /// Every transaction of a line (`clk` and `data` at the master).
 pub fn decode(clk: &Signal, data: &Signal, opts: &Options) -> Result<Vec<Transaction>, String> {
     let mut decoder = Decoder::new(opts)?;
-    Ok(bursts(clk).iter().flat_map(|b| decoder.burst(b, data, opts)).collect())
+    Ok(bursts(clk)
+        .iter()
+        .flat_map(|b| decoder.burst(b, data, opts))
+        .collect())
 }
 
 fn blank(b: &Burst, mode: u8) -> Transaction {
@@ -223,7 +242,13 @@ fn blank(b: &Burst, mode: u8) -> Transaction {
 
 /// A burst too short to be a transaction.
 fn framing(b: &Burst) -> Transaction {
-    Transaction { kind: "command".into(), command: None, mode: String::new(), errors: Some(vec!["framing".into()]), ..blank(b, 0) }
+    Transaction {
+        kind: "command".into(),
+        command: None,
+        mode: String::new(),
+        errors: Some(vec!["framing".into()]),
+        ..blank(b, 0)
+    }
 }
 
 /// MRS code / address, parameter and whether the block's CRC is right, from 29 bits.
@@ -233,15 +258,28 @@ fn block(bits: &[bool]) -> (u8, u16, bool) {
     (mrs, param, crc == super::crc_norm(mrs, param))
 }
 
-fn decode_burst(b: &Burst, period: u64, mode: u8, data: &Signal, judge: &mut LineJudge, out: &mut Vec<Transaction>) {
+fn decode_burst(
+    b: &Burst,
+    period: u64,
+    mode: u8,
+    data: &Signal,
+    judge: &mut LineJudge,
+    out: &mut Vec<Transaction>,
+) {
     let kind = frame_kind(mode);
-    let k_off = if kind == FrameKind::Param21 { 8 + BLOCK_BITS as usize } else { 8 };
+    let k_off = if kind == FrameKind::Param21 {
+        8 + BLOCK_BITS as usize
+    } else {
+        8
+    };
     let n = b.falls.len();
     let mut t = blank(b, mode);
     let mut extra = Vec::new();
     let blk = match kind {
         FrameKind::Param21 => b.bits_at_rises(data, 8, 36),
-        FrameKind::Block22 if n >= BLOCK_BITS as usize => b.bits_at_rises(data, n + 1 - BLOCK_BITS as usize, n),
+        FrameKind::Block22 if n >= BLOCK_BITS as usize => {
+            b.bits_at_rises(data, n + 1 - BLOCK_BITS as usize, n)
+        }
         _ => None,
     };
     let (mrs, param) = match blk.map(|bits| block(&bits)) {
@@ -268,7 +306,9 @@ fn decode_burst(b: &Burst, period: u64, mode: u8, data: &Signal, judge: &mut Lin
     };
     let last_rise = *b.rises.last().unwrap_or(&r_off);
     // The encoder drives low from R_off: its arrival is the round trip; none before the clock stops: not driven.
-    let low = data.next_level(r_off, false).filter(|&tl| tl <= last_rise.saturating_add(period));
+    let low = data
+        .next_level(r_off, false)
+        .filter(|&tl| tl <= last_rise.saturating_add(period));
     let Some(t_low) = low else {
         finish(&mut t, judge.aborted(false), kind, extra_if_aborted);
         out.push(t);
@@ -281,7 +321,12 @@ fn decode_burst(b: &Burst, period: u64, mode: u8, data: &Signal, judge: &mut Lin
     loop {
         // The start bit: launched at R_j, seen by the master at sample j + 1; the frame must fit the burst.
         let frame_bits = judge.frame_bits();
-        let start = data.next_level(from, true).map(|ts| (ts, FrameTiming::of(b, data, ts, round_trip, period, frame_bits)));
+        let start = data.next_level(from, true).map(|ts| {
+            (
+                ts,
+                FrameTiming::of(b, data, ts, round_trip, period, frame_bits),
+            )
+        });
         let seen = start.filter(|(_, ft)| n >= ft.j.saturating_add(1 + frame_bits as usize));
         let Some((_, ft)) = seen else {
             if first {
@@ -291,7 +336,9 @@ fn decode_burst(b: &Burst, period: u64, mode: u8, data: &Signal, judge: &mut Lin
             break;
         };
         // Bit i after the start bit leaves at R_(j+1+i) and is read in the middle of its cell.
-        let bits: Vec<bool> = (0..frame_bits as usize).map(|i| data.level_at(ft.arrival(b, ft.j + i, period).saturating_add(period / 2))).collect();
+        let bits: Vec<bool> = (0..frame_bits as usize)
+            .map(|i| data.level_at(ft.arrival(b, ft.j + i, period).saturating_add(period / 2)))
+            .collect();
         let o = judge.frame(&bits);
         let mut v = t.clone();
         if !first {
@@ -339,17 +386,35 @@ struct FrameTiming {
 impl FrameTiming {
     /// The timing of the frame whose start bit rises at `ts`, `frame_bits` bits after it; `rt0` is a first
     /// estimate of the round trip (the first low after `R_off`), only used for its whole periods.
-    fn of(b: &Burst, data: &Signal, ts: u64, rt0: u64, period: u64, frame_bits: u64) -> FrameTiming {
+    fn of(
+        b: &Burst,
+        data: &Signal,
+        ts: u64,
+        rt0: u64,
+        period: u64,
+        frame_bits: u64,
+    ) -> FrameTiming {
         let p = ps(period.max(1));
         let r1 = ps(b.rises.first().copied().unwrap_or(0));
         // The frame's edges: the start bit's and those between its bits, not the one after its last bit (what
         // follows the frame need not be launched by the clock), nor any after the clock stopped.
-        let last = b.rises.last().copied().unwrap_or(0).saturating_add(rt0).saturating_add(period / 2);
-        let until = ts.saturating_add(frame_bits.saturating_mul(period)).saturating_add(period / 2).min(last.max(ts));
+        let last = b
+            .rises
+            .last()
+            .copied()
+            .unwrap_or(0)
+            .saturating_add(rt0)
+            .saturating_add(period / 2);
+        let until = ts
+            .saturating_add(frame_bits.saturating_mul(period))
+            .saturating_add(period / 2)
+            .min(last.max(ts));
         let lo = data.changes.partition_point(|&(t, _)| t < ts);
         let hi = data.changes.partition_point(|&(t, _)| t <= until);
-        let mut edges: Vec<i64> =
-            (lo..hi).filter(|&i| data.changes[i].1 != (i == 0 || data.changes[i - 1].1)).map(|i| ps(data.changes[i].0)).collect();
+        let mut edges: Vec<i64> = (lo..hi)
+            .filter(|&i| data.changes[i].1 != (i == 0 || data.changes[i - 1].1))
+            .map(|i| ps(data.changes[i].0))
+            .collect();
         if edges.is_empty() {
             edges.push(ps(ts));
         }
@@ -359,19 +424,25 @@ impl FrameTiming {
             let angle = (t - r1).rem_euclid(p) as f64 / p as f64 * std::f64::consts::TAU;
             (s + angle.sin(), c + angle.cos())
         });
-        let phase = sin.atan2(cos).rem_euclid(std::f64::consts::TAU) / std::f64::consts::TAU * p as f64;
+        let phase =
+            sin.atan2(cos).rem_euclid(std::f64::consts::TAU) / std::f64::consts::TAU * p as f64;
         let guess = phase + ((rt0 as f64 - phase) / p as f64).round() * p as f64;
         // Each edge against its launching rising edge (the one nearest the edge less the guess), then the mean.
         let sum: i128 = edges.iter().map(|&t| launch(b, t, guess).1 as i128).sum();
         let round_trip = (sum as f64 / edges.len() as f64).round() as i64;
-        FrameTiming { j: launch(b, ps(ts), round_trip as f64).0 + 1, round_trip }
+        FrameTiming {
+            j: launch(b, ps(ts), round_trip as f64).0 + 1,
+            round_trip,
+        }
     }
 
     /// When the bit launched at rising edge `b.rises[k]` (0-based; extrapolated past the burst) reaches the master.
     fn arrival(&self, b: &Burst, k: usize, period: u64) -> u64 {
         let rise = match (b.rises.get(k), b.rises.last()) {
             (Some(&r), _) => r,
-            (None, Some(&last)) => last.saturating_add(((k + 1 - b.rises.len()) as u64).saturating_mul(period)),
+            (None, Some(&last)) => {
+                last.saturating_add(((k + 1 - b.rises.len()) as u64).saturating_mul(period))
+            }
             (None, None) => 0,
         };
         ps(rise).saturating_add(self.round_trip).max(0) as u64
@@ -386,12 +457,18 @@ fn ps(t: u64) -> i64 {
 /// The rising edge (0-based index into `b.rises`) that launched an edge arriving at `t` after about `round_trip`
 /// ps, and the edge's time after it.
 fn launch(b: &Burst, t: i64, round_trip: f64) -> (usize, i64) {
-    let k = b.rises.partition_point(|&r| (ps(r) as f64) < t as f64 - round_trip);
+    let k = b
+        .rises
+        .partition_point(|&r| (ps(r) as f64) < t as f64 - round_trip);
     [k.checked_sub(1), (k < b.rises.len()).then_some(k)]
         .into_iter()
         .flatten()
         .map(|k| (k, t - ps(b.rises[k])))
-        .min_by(|x, y| (x.1 as f64 - round_trip).abs().total_cmp(&(y.1 as f64 - round_trip).abs()))
+        .min_by(|x, y| {
+            (x.1 as f64 - round_trip)
+                .abs()
+                .total_cmp(&(y.1 as f64 - round_trip).abs())
+        })
         .unwrap_or((0, t))
 }
 

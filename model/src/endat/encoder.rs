@@ -92,16 +92,32 @@ impl EncoderConfig {
             ));
         }
         if self.kind != EncoderKind::Multiturn && self.multiturn_bits != 0 {
-            return Err(ConfigError::invalid("encoder.multiturn_bits", "set on a non-multiturn encoder", "set it to 0 or kind = \"multiturn\""));
+            return Err(ConfigError::invalid(
+                "encoder.multiturn_bits",
+                "set on a non-multiturn encoder",
+                "set it to 0 or kind = \"multiturn\"",
+            ));
         }
         if self.multiturn_bits > 16 {
-            return Err(ConfigError::invalid("encoder.multiturn_bits", format!("{}", self.multiturn_bits), "give at most 16 (word 17)"));
+            return Err(ConfigError::invalid(
+                "encoder.multiturn_bits",
+                format!("{}", self.multiturn_bits),
+                "give at most 16 (word 17)",
+            ));
         }
         if !(1..=7).contains(&self.cont_low_bits) {
-            return Err(ConfigError::invalid("encoder.cont_low_bits", format!("{}", self.cont_low_bits), "give 1 to 7 (seed 2.3.1.1)"));
+            return Err(ConfigError::invalid(
+                "encoder.cont_low_bits",
+                format!("{}", self.cont_low_bits),
+                "give 1 to 7 (seed 2.3.1.1)",
+            ));
         }
         if self.t_m_clocks == 0 {
-            return Err(ConfigError::invalid("encoder.t_m_us", "zero", "give the encoder's recovery time t_m"));
+            return Err(ConfigError::invalid(
+                "encoder.t_m_us",
+                "zero",
+                "give the encoder's recovery time t_m",
+            ));
         }
         Ok(())
     }
@@ -151,8 +167,17 @@ impl Memory {
             EncoderKind::Multiturn => 0xE001,
             EncoderKind::Linear => 0x4001,
         };
-        m[17] = if cfg.multiturn_bits == 0 { 0 } else { ((1u32 << cfg.multiturn_bits) - 1).min(0xFFFF) as u16 + if cfg.multiturn_bits < 16 { 1 } else { 0 } };
-        let steps: u64 = if cfg.kind == EncoderKind::Linear { 10 } else { 1u64 << cfg.singleturn_bits.min(32) };
+        m[17] = if cfg.multiturn_bits == 0 {
+            0
+        } else {
+            ((1u32 << cfg.multiturn_bits) - 1).min(0xFFFF) as u16
+                + if cfg.multiturn_bits < 16 { 1 } else { 0 }
+        };
+        let steps: u64 = if cfg.kind == EncoderKind::Linear {
+            10
+        } else {
+            1u64 << cfg.singleturn_bits.min(32)
+        };
         m[20] = steps as u16;
         m[21] = (steps >> 16) as u16;
         m[24] = 0x0007;
@@ -341,7 +366,10 @@ impl Encoder {
             ready_at: 0,
             queue: Default::default(),
             recovery_until: 0,
-            drive: Drive { enable: true, level: true },
+            drive: Drive {
+                enable: true,
+                level: true,
+            },
             en_line: DelayLine::new(d, true),
             lvl_line: DelayLine::new(d, true),
             position: 0,
@@ -476,14 +504,27 @@ impl Encoder {
             return 0;
         }
         let phase = match self.phase {
-            Phase::Ready if self.drive == (Drive { enable: true, level: true }) => u64::MAX,
+            Phase::Ready
+                if self.drive
+                    == (Drive {
+                        enable: true,
+                        level: true,
+                    }) =>
+            {
+                u64::MAX
+            }
             Phase::Ready => 0,
             Phase::Recovery => self.recovery_until.saturating_sub(self.now),
             _ if !clk => u64::MAX,
             _ => (self.last_edge + self.t_m() + 1).saturating_sub(self.now),
         };
-        let d = Drive { enable: self.drive.enable && !self.absent, level: self.drive.level };
-        phase.min(self.en_line.quiet(d.enable)).min(self.lvl_line.quiet(d.level))
+        let d = Drive {
+            enable: self.drive.enable && !self.absent,
+            level: self.drive.level,
+        };
+        phase
+            .min(self.en_line.quiet(d.enable))
+            .min(self.lvl_line.quiet(d.level))
     }
 
     /// The same as `n` steps with the last clock level, for `n` up to [`Encoder::quiet`].
@@ -498,7 +539,10 @@ impl Encoder {
 
     /// What the encoder drives onto the cable after the last step.
     pub fn drive(&self) -> Drive {
-        Drive { enable: self.en_line.output(), level: self.lvl_line.output() }
+        Drive {
+            enable: self.en_line.output(),
+            level: self.lvl_line.output(),
+        }
     }
 
     /// One cycle with the clock and the data line (as driven by the master) at the encoder's pins;
@@ -514,7 +558,10 @@ impl Encoder {
         let quiet = self.now - self.last_edge;
         match self.phase {
             Phase::Ready => {
-                self.drive = Drive { enable: true, level: true };
+                self.drive = Drive {
+                    enable: true,
+                    level: true,
+                };
                 if fell {
                     self.latch();
                     self.drive.enable = false; // t_ST: the send block is switched off with the first falling edge
@@ -553,7 +600,10 @@ impl Encoder {
                 if rose {
                     self.rise += 1;
                     if self.rise == self.k_off() {
-                        self.drive = Drive { enable: !self.absent, level: false };
+                        self.drive = Drive {
+                            enable: !self.absent,
+                            level: false,
+                        };
                     }
                 } else if quiet > self.t_m() {
                     self.enter_recovery();
@@ -563,9 +613,15 @@ impl Encoder {
                 if rose {
                     self.rise += 1;
                     if self.rise == self.k_off() {
-                        self.drive = Drive { enable: !self.absent, level: false };
+                        self.drive = Drive {
+                            enable: !self.absent,
+                            level: false,
+                        };
                     }
-                    if self.rise >= self.earliest && (self.now >= self.ready_at || self.early_start > 0) && !self.dead {
+                    if self.rise >= self.earliest
+                        && (self.now >= self.ready_at || self.early_start > 0)
+                        && !self.dead
+                    {
                         self.build_frame();
                         self.drive.level = true; // the start bit
                         self.phase = Phase::Send;
@@ -612,7 +668,12 @@ impl Encoder {
                 }
             }
             Phase::Recovery => {
-                if fell && self.kind == FrameKind::Pos21 && self.mode == Command::Pos21.code() && self.now < self.recovery_until && !self.dead {
+                if fell
+                    && self.kind == FrameKind::Pos21
+                    && self.mode == Command::Pos21.code()
+                    && self.now < self.recovery_until
+                    && !self.dead
+                {
                     // Continuous clock: the second falling edge after the CRC latches the next
                     // value; cont_low_bits low bits (the first already on the line), then the start bit.
                     self.latch();
@@ -629,13 +690,22 @@ impl Encoder {
                     self.violations += 1;
                 } else if self.now >= self.recovery_until {
                     self.phase = Phase::Ready;
-                    self.drive = Drive { enable: !self.absent, level: true };
+                    self.drive = Drive {
+                        enable: !self.absent,
+                        level: true,
+                    };
                 }
             }
         }
         self.now += 1;
-        let d = Drive { enable: self.drive.enable && !self.absent, level: self.drive.level };
-        Drive { enable: self.en_line.step(d.enable), level: self.lvl_line.step(d.level) }
+        let d = Drive {
+            enable: self.drive.enable && !self.absent,
+            level: self.drive.level,
+        };
+        Drive {
+            enable: self.en_line.step(d.enable),
+            level: self.lvl_line.step(d.level),
+        }
     }
 
     fn k_off(&self) -> u64 {
@@ -678,12 +748,18 @@ impl Encoder {
     /// `2 t_m`, past the 30 µs the appendix tells the control to wait).
     fn enter_recovery(&mut self) {
         self.phase = Phase::Recovery;
-        self.drive = Drive { enable: !self.absent, level: false };
+        self.drive = Drive {
+            enable: !self.absent,
+            level: false,
+        };
         self.recovery_until = self.last_edge + self.t_m();
         if self.now >= self.recovery_until {
             // Detected by the silence alone: ready at once, no one-cycle low pulse.
             self.phase = Phase::Ready;
-            self.drive = Drive { enable: !self.absent, level: true };
+            self.drive = Drive {
+                enable: !self.absent,
+                level: true,
+            };
         }
     }
 
@@ -702,7 +778,12 @@ impl Encoder {
             self.phase = Phase::TypeOne;
             return;
         }
-        self.earliest = self.k_off() + if self.early_start > 0 { self.early_start } else { 3 };
+        self.earliest = self.k_off()
+            + if self.early_start > 0 {
+                self.early_start
+            } else {
+                3
+            };
         if self.kind == FrameKind::Param21 {
             self.block = 0;
             self.block_bits = 0;
@@ -733,7 +814,10 @@ impl Encoder {
                     self.phase = Phase::TypeOne;
                     return;
                 }
-                if busy || matches!(addr, mrs::MFR22 | mrs::SECTION2 | mrs::OPERATING2) || !self.mem.areas.contains_key(&addr) {
+                if busy
+                    || matches!(addr, mrs::MFR22 | mrs::SECTION2 | mrs::OPERATING2)
+                    || !self.mem.areas.contains_key(&addr)
+                {
                     (false, data)
                 } else {
                     self.selected = Some(addr);
@@ -772,7 +856,11 @@ impl Encoder {
             }
             _ => (true, data),
         };
-        let (a, d) = if ok { (addr, ack_data) } else { (!addr, !ack_data) };
+        let (a, d) = if ok {
+            (addr, ack_data)
+        } else {
+            (!addr, !ack_data)
+        };
         self.answer = if ok { Answer::Ok } else { Answer::TypeII };
         self.queue.clear();
         self.pending_ack = Some((a, d));
@@ -805,7 +893,11 @@ impl Encoder {
         let area = self.selected?;
         let a = addr as usize;
         if area == mrs::SECTION2 {
-            return self.mem.section2.get_mut(self.block_addr as usize)?.get_mut(a);
+            return self
+                .mem
+                .section2
+                .get_mut(self.block_addr as usize)?
+                .get_mut(a);
         }
         if area == mrs::MFR_A && a < 4 {
             return None;
@@ -823,7 +915,9 @@ impl Encoder {
     }
 
     fn write(&mut self, addr: u8, data: u16) -> bool {
-        let Some(area) = self.selected else { return false };
+        let Some(area) = self.selected else {
+            return false;
+        };
         if !self.area_writable(area) {
             self.last_mem = (addr, data, true);
             return false;
@@ -864,8 +958,16 @@ impl Encoder {
             Some(Command::Select22) => {
                 if (addr & 0xE0) == 0x40 {
                     let code = addr & 0x1F;
-                    let slot = if code < 16 { &mut self.ad1 } else { &mut self.ad2 };
-                    *slot = if code & 0x0F == 0x0F { None } else { Some(code) };
+                    let slot = if code < 16 {
+                        &mut self.ad1
+                    } else {
+                        &mut self.ad2
+                    };
+                    *slot = if code & 0x0F == 0x0F {
+                        None
+                    } else {
+                        Some(code)
+                    };
                     self.last_mrs = (addr, data, false);
                 } else if addr & 0xE1 == 0xA1 && self.mem.areas.contains_key(&addr) && !busy {
                     self.selected = Some(addr);
@@ -881,7 +983,11 @@ impl Encoder {
                     self.last_mrs = (addr, data, false);
                 } else {
                     self.last_mrs = (addr, data, true);
-                    self.answer = if busy { Answer::Ignored } else { Answer::TypeII };
+                    self.answer = if busy {
+                        Answer::Ignored
+                    } else {
+                        Answer::TypeII
+                    };
                 }
             }
             Some(Command::Receive22) => {
@@ -951,7 +1057,12 @@ impl Encoder {
                 for i in 0..TEST_VALUE_BITS {
                     bits.push((self.test_value >> i) & 1 == 1);
                 }
-                bits.extend(crc_wire(crc_pos(f1, None, self.test_value, TEST_VALUE_BITS)));
+                bits.extend(crc_wire(crc_pos(
+                    f1,
+                    None,
+                    self.test_value,
+                    TEST_VALUE_BITS,
+                )));
             }
             FrameKind::Param21 => {
                 let (a, d) = self.pending_ack.take().unwrap_or((0, 0));
@@ -1043,7 +1154,11 @@ impl Encoder {
             };
             (code, payload)
         };
-        let mut word = ((wrn as u32) << 23) | ((rm as u32) << 22) | ((busy as u32) << 21) | ((i as u32) << 16) | payload as u32;
+        let mut word = ((wrn as u32) << 23)
+            | ((rm as u32) << 22)
+            | ((busy as u32) << 21)
+            | ((i as u32) << 16)
+            | payload as u32;
         // Type II for type 2.2 accesses: the acknowledged address comes back inverted (A2 4.2.2).
         if (i == 5 || i == 6) && self.last_mem.2 || i == 7 && self.last_mrs.2 {
             word ^= 0xFF00;

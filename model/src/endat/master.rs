@@ -8,8 +8,8 @@
 //! sampler, `D` cycles behind every falling edge: [`RxPhase`]).
 
 use super::{crc_norm, frame_kind, FrameKind, CONT_MAX_LOW_BITS, CRC_RESIDUE, TEST_VALUE_BITS};
-use crate::crc::ENDAT_CRC5;
 use crate::crc::BitSerial;
+use crate::crc::ENDAT_CRC5;
 use crate::ports::{Port, Ports};
 use crate::{ConfigError, Result};
 
@@ -97,7 +97,9 @@ impl MasterConfig {
         let shortest = (1 + pos_bits as u64 + 5).min(24 + 5);
         let by_stop = (shortest + 1) * clocks_per_bit - 2;
         // The longer phase of an odd period (its high phase) keeps the bound safe.
-        let by_gap = block_gap.saturating_mul(clocks_per_bit).saturating_sub(clocks_per_bit - clocks_per_bit / 2);
+        let by_gap = block_gap
+            .saturating_mul(clocks_per_bit)
+            .saturating_sub(clocks_per_bit - clocks_per_bit / 2);
         by_stop.min(by_gap).min(DELAY_COUNTER_MAX)
     }
 
@@ -125,8 +127,18 @@ impl MasterConfig {
             ));
         }
         for (field, period, high, low) in [
-            ("master.clock_khz", self.clocks_per_bit, self.high_clocks, self.low_clocks),
-            ("master.meas_clock_khz", self.meas_clocks_per_bit, self.meas_high_clocks, self.meas_low_clocks),
+            (
+                "master.clock_khz",
+                self.clocks_per_bit,
+                self.high_clocks,
+                self.low_clocks,
+            ),
+            (
+                "master.meas_clock_khz",
+                self.meas_clocks_per_bit,
+                self.meas_high_clocks,
+                self.meas_low_clocks,
+            ),
         ] {
             if high + low != period || high == 0 || low == 0 {
                 return Err(ConfigError::invalid(
@@ -149,7 +161,10 @@ impl MasterConfig {
         if self.t_st_clocks < self.low_clocks {
             return Err(ConfigError::invalid(
                 "master.t_st_us",
-                format!("{} cycles is shorter than half a clock period", self.t_st_clocks),
+                format!(
+                    "{} cycles is shorter than half a clock period",
+                    self.t_st_clocks
+                ),
                 "give t_ST of at least half the clock period",
             ));
         }
@@ -168,7 +183,11 @@ impl MasterConfig {
             ));
         }
         if self.meas_retries == 0 || self.meas_retries > 255 {
-            return Err(ConfigError::invalid("master.meas_retries", format!("{}", self.meas_retries), "give 1 to 255 rounds"));
+            return Err(ConfigError::invalid(
+                "master.meas_retries",
+                format!("{}", self.meas_retries),
+                "give 1 to 255 rounds",
+            ));
         }
         if self.timeout_clocks == 0 || self.timeout_clocks > 60_000 {
             return Err(ConfigError::invalid(
@@ -178,10 +197,18 @@ impl MasterConfig {
             ));
         }
         if self.block_gap < 2 || self.block_gap > 255 {
-            return Err(ConfigError::invalid("block_gap_clocks", format!("{}", self.block_gap), "give 2 to 255 clocks"));
+            return Err(ConfigError::invalid(
+                "block_gap_clocks",
+                format!("{}", self.block_gap),
+                "give 2 to 255 clocks",
+            ));
         }
         if self.delay_max < 1 {
-            return Err(ConfigError::invalid("block_gap_clocks", "no usable delay", "raise block_gap_clocks"));
+            return Err(ConfigError::invalid(
+                "block_gap_clocks",
+                "no usable delay",
+                "raise block_gap_clocks",
+            ));
         }
         if !self.delay_comp && self.fixed_delay() > self.delay_max {
             return Err(ConfigError::invalid(
@@ -190,9 +217,17 @@ impl MasterConfig {
                 "lower sample_delay_ns or raise block_gap_clocks",
             ));
         }
-        for (field, v) in [("master.t_m_us", self.t_m_clocks), ("master.t_b_us", self.t_b_clocks), ("master.t_err_us", self.t_err_clocks)] {
+        for (field, v) in [
+            ("master.t_m_us", self.t_m_clocks),
+            ("master.t_b_us", self.t_b_clocks),
+            ("master.t_err_us", self.t_err_clocks),
+        ] {
             if v == 0 || v >= 1 << 24 {
-                return Err(ConfigError::invalid(field, format!("{v} cycles"), "give a pause of 1 to 2^24 cycles"));
+                return Err(ConfigError::invalid(
+                    field,
+                    format!("{v} cycles"),
+                    "give a pause of 1 to 2^24 cycles",
+                ));
             }
         }
         Ok(())
@@ -537,7 +572,13 @@ impl Master {
     pub fn new(cfg: MasterConfig) -> Result<Self> {
         cfg.validate()?;
         debug_assert_eq!(ENDAT_CRC5.wire_residue(), CRC_RESIDUE);
-        let out = Out { o_endat_clk: true, o_f2: true, o_busy: cfg.delay_comp, o_delay: cfg.fixed_delay() as u16, ..Out::default() };
+        let out = Out {
+            o_endat_clk: true,
+            o_f2: true,
+            o_busy: cfg.delay_comp,
+            o_delay: cfg.fixed_delay() as u16,
+            ..Out::default()
+        };
         let r = Regs {
             state: State::Idle,
             cnt: 0,
@@ -651,7 +692,17 @@ impl Master {
         let mut cleared = c.out;
         clear_strobes(&mut cleared);
         let d = i.i_endat_data_in;
-        if cleared != c.out || i.i_start || i.i_meas || c.rx_on || c.meas_evt || c.meas_eval1 || c.meas_eval2 || c.data_meta != d || c.data_sync != d || c.data_prev != d {
+        if cleared != c.out
+            || i.i_start
+            || i.i_meas
+            || c.rx_on
+            || c.meas_evt
+            || c.meas_eval1
+            || c.meas_eval2
+            || c.data_meta != d
+            || c.data_sync != d
+            || c.data_prev != d
+        {
             return 0;
         }
         match c.state {
@@ -680,7 +731,11 @@ impl Master {
         // ---- line timing: edges of the synchronised data line -------------------------
         let edge_any = c.data_sync != c.data_prev;
         let edge_rise = c.data_sync && !c.data_prev;
-        n.since_edge = if edge_any { 1 } else { (c.since_edge + 1).min(SAT16) };
+        n.since_edge = if edge_any {
+            1
+        } else {
+            (c.since_edge + 1).min(SAT16)
+        };
         n.meas_cnt = (c.meas_cnt + 1).min(SAT16);
         if c.meas_frame && c.rx_on && c.phase == RxPhase::Poll && edge_rise && !c.meas_got {
             n.meas_cap = c.meas_cnt;
@@ -702,7 +757,11 @@ impl Master {
 
         // ---- transmitter: clock, mode bits, parameter block ---------------------------
         let cfg = &self.cfg;
-        let (high, low) = if c.meas_frame { (cfg.meas_high_clocks, cfg.meas_low_clocks) } else { (cfg.high_clocks, cfg.low_clocks) };
+        let (high, low) = if c.meas_frame {
+            (cfg.meas_high_clocks, cfg.meas_low_clocks)
+        } else {
+            (cfg.high_clocks, cfg.low_clocks)
+        };
         match c.state {
             State::Idle => {
                 n.out.o_endat_clk = true;
@@ -726,7 +785,16 @@ impl Master {
                         n.out.o_done = true;
                         n.out.o_err_meas = true;
                     } else {
-                        start_frame(cfg, &c, &mut n, false, i.i_mode & 0x3F, i.i_mrs, i.i_param, i.i_cont_values as u64);
+                        start_frame(
+                            cfg,
+                            &c,
+                            &mut n,
+                            false,
+                            i.i_mode & 0x3F,
+                            i.i_mrs,
+                            i.i_param,
+                            i.i_cont_values as u64,
+                        );
                     }
                 }
             }
@@ -760,7 +828,9 @@ impl Master {
                         n.out.o_endat_clk = false;
                         n.fall_idx = k;
                         n.cnt = low - 1;
-                        let in_block = c.kind == FrameKind::Block22 && k >= c.blk_idx && k < c.blk_idx + super::BLOCK_BITS;
+                        let in_block = c.kind == FrameKind::Block22
+                            && k >= c.blk_idx
+                            && k < c.blk_idx + super::BLOCK_BITS;
                         if (k >= 2 && k < c.k_off) || in_block {
                             n.out.o_endat_data_oe = true;
                             n.out.o_endat_data_out = (c.tx_bits >> 34) & 1 == 1;
@@ -770,7 +840,11 @@ impl Master {
                             n.out.o_endat_data_out = false;
                         }
                         if k == c.k_off + 1 {
-                            let d = if c.meas_frame || !(cfg.delay_comp && c.delay_valid) { cfg.fixed_delay() } else { c.delay };
+                            let d = if c.meas_frame || !(cfg.delay_comp && c.delay_valid) {
+                                cfg.fixed_delay()
+                            } else {
+                                c.delay
+                            };
                             n.rx_on = true;
                             n.rx_cnt = d - 1;
                             n.smp_idx = k;
@@ -832,7 +906,11 @@ impl Master {
             RxPhase::Poll => {
                 if bit {
                     let s = c.smp_idx;
-                    n.phase = if nf == 0 { RxPhase::Data } else { RxPhase::FBit };
+                    n.phase = if nf == 0 {
+                        RxPhase::Data
+                    } else {
+                        RxPhase::FBit
+                    };
                     n.seg_cnt = 0;
                     n.lfsr = 0x1F;
                     n.rx_data = 0;
@@ -841,7 +919,11 @@ impl Master {
                     n.bad_head = false;
                     n.bad_ad1 = false;
                     n.bad_ad2 = false;
-                    let ads = if is22 { c.ad1_on as u64 + c.ad2_on as u64 } else { 0 };
+                    let ads = if is22 {
+                        c.ad1_on as u64 + c.ad2_on as u64
+                    } else {
+                        0
+                    };
                     let frame = nf + len + 5 + super::AD_WIRE_BITS * ads;
                     if c.kind == FrameKind::Block22 {
                         n.blk_idx = s + frame + cfg.block_gap;
@@ -855,7 +937,8 @@ impl Master {
                     n.drift = cfg.delay_comp
                         && !c.meas_frame
                         && c.delay_valid
-                        && (c.since_edge > high + cfg.delay_tol || c.since_edge + cfg.delay_tol < high);
+                        && (c.since_edge > high + cfg.delay_tol
+                            || c.since_edge + cfg.delay_tol < high);
                 } else if c.polls == c.poll_limit {
                     self.abort(c, n, true);
                 } else {
@@ -935,7 +1018,11 @@ impl Master {
                 n.lfsr = lfsr;
                 n.ad_shift = ((c.ad_shift << 1) | bit as u64) & 0xFF_FFFF;
                 if c.seg_cnt == 23 {
-                    n.phase = if c.phase == RxPhase::Ad2 { RxPhase::Ad2Crc } else { RxPhase::Ad1Crc };
+                    n.phase = if c.phase == RxPhase::Ad2 {
+                        RxPhase::Ad2Crc
+                    } else {
+                        RxPhase::Ad1Crc
+                    };
                     n.seg_cnt = 0;
                 } else {
                     n.seg_cnt = c.seg_cnt + 1;
@@ -1020,7 +1107,8 @@ impl Master {
         let ok2 = ad2 && !n.bad_ad2;
         let t3 = (ok1 && i1 == 15) || (ok2 && i2 == 31);
         let t4 = (ok1 && i1 == 0 && c.ad1_sel != 0) || (ok2 && i2 == 16 && c.ad2_sel != 16);
-        let other = (ok1 && i1 != 15 && i1 != 0 && i1 != c.ad1_sel) || (ok2 && i2 != 31 && i2 != 16 && i2 != c.ad2_sel);
+        let other = (ok1 && i1 != 15 && i1 != 0 && i1 != c.ad1_sel)
+            || (ok2 && i2 != 31 && i2 != 16 && i2 != c.ad2_sel);
         // An acknowledgement (I = 5, 6, 7) echoes the address or MRS code the master sent; inverted it is error
         // handling type II (A2 4.2.2), anything else an access the encoder did not take (e.g. ignored while busy).
         let echoed = (n.ad1_val >> 8) as u8;
@@ -1126,7 +1214,10 @@ fn remember_request(c: &Regs, n: &mut Regs) {
     // last memory access (2.1 or 2.2), I = 7 the last 2.2 MRS code (seed 2.3.5.1, A2 4.2.2).
     if !c.err_frame {
         use super::Command as C;
-        if [C::Receive21, C::Send21, C::Receive22, C::Send22].iter().any(|x| x.code() == c.mode) {
+        if [C::Receive21, C::Send21, C::Receive22, C::Send22]
+            .iter()
+            .any(|x| x.code() == c.mode)
+        {
             n.mem_addr = c.mrs;
             n.mem_known = true;
         }
@@ -1149,25 +1240,56 @@ fn head_layout(kind: FrameKind, pos_bits: u32) -> (u64, u64) {
 
 /// Loads a transaction and produces the latching edge `F1`.
 #[allow(clippy::too_many_arguments)]
-fn start_frame(cfg: &MasterConfig, _c: &Regs, n: &mut Regs, meas: bool, code: u8, mrs: u8, param: u16, cont: u64) {
+fn start_frame(
+    cfg: &MasterConfig,
+    _c: &Regs,
+    n: &mut Regs,
+    meas: bool,
+    code: u8,
+    mrs: u8,
+    param: u16,
+    cont: u64,
+) {
     let kind = frame_kind(code);
     n.state = State::First;
     n.out.o_endat_clk = false;
     n.fall_idx = 1;
-    n.cpb = if meas { cfg.meas_clocks_per_bit } else { cfg.clocks_per_bit };
-    n.cnt = if meas { cfg.meas_low_clocks } else { cfg.t_st_clocks } - 1;
+    n.cpb = if meas {
+        cfg.meas_clocks_per_bit
+    } else {
+        cfg.clocks_per_bit
+    };
+    n.cnt = if meas {
+        cfg.meas_low_clocks
+    } else {
+        cfg.t_st_clocks
+    } - 1;
     n.kind = kind;
-    n.k_off = if kind == FrameKind::Param21 { 8 + super::BLOCK_BITS } else { 8 };
+    n.k_off = if kind == FrameKind::Param21 {
+        8 + super::BLOCK_BITS
+    } else {
+        8
+    };
     n.mode = code;
     n.mrs = mrs;
     n.param = param;
-    n.tx_bits = ((code as u64) << 29) | ((mrs as u64) << 21) | ((param as u64) << 5) | crc_norm(mrs, param) as u64;
+    n.tx_bits = ((code as u64) << 29)
+        | ((mrs as u64) << 21)
+        | ((param as u64) << 5)
+        | crc_norm(mrs, param) as u64;
     n.stop_idx = NONE;
     n.blk_idx = NONE;
     n.meas_frame = meas;
     n.meas_got = false;
-    n.cont_left = if !meas && code == 0b000111 && cont > 1 { cont } else { 1 };
-    n.is21 = matches!(kind, FrameKind::Pos21 | FrameKind::Param21 | FrameKind::Test21);
+    n.cont_left = if !meas && code == 0b000111 && cont > 1 {
+        cont
+    } else {
+        1
+    };
+    n.is21 = matches!(
+        kind,
+        FrameKind::Pos21 | FrameKind::Param21 | FrameKind::Test21
+    );
     n.err_frame = false;
     n.drift = false;
 }
@@ -1217,7 +1339,11 @@ impl FrameChecker {
     pub fn frame_bits(&self) -> u64 {
         let (nf, len) = head_layout(self.master.r.kind, self.master.cfg.pos_bits);
         let is22 = matches!(self.master.r.kind, FrameKind::Pos22 | FrameKind::Block22);
-        let ads = if is22 { self.master.r.ad1_on as u64 + self.master.r.ad2_on as u64 } else { 0 };
+        let ads = if is22 {
+            self.master.r.ad1_on as u64 + self.master.r.ad2_on as u64
+        } else {
+            0
+        };
         nf + len + 5 + super::AD_WIRE_BITS * ads
     }
 
@@ -1262,7 +1388,9 @@ pub struct LineJudge {
 impl LineJudge {
     /// A judge for an encoder with `pos_bits` position bits, in the master's power-on state.
     pub fn new(pos_bits: u32) -> Self {
-        LineJudge { checker: FrameChecker::new(0b000111, pos_bits, false, false) }
+        LineJudge {
+            checker: FrameChecker::new(0b000111, pos_bits, false, false),
+        }
     }
 
     /// A request begins: its mode bits, and the MRS code / address and parameter of its block (0 if none).

@@ -93,21 +93,24 @@
 //! ```
 //! `docs/timing/endat.md` has the same diagrams rendered from the model.
 
+mod bench;
 pub mod budget;
 pub mod decode;
-mod bench;
 pub mod diagram;
 mod encoder;
 mod master;
 
 pub use bench::{
-    error_names, AckXor, Bench, BenchConfig, CableFaults, EncoderSettings, FaultSettings, Flip, HostCommand, HostSettings,
-    MasterSettings, Transaction,
+    error_names, AckXor, Bench, BenchConfig, CableFaults, EncoderSettings, FaultSettings, Flip,
+    HostCommand, HostSettings, MasterSettings, Transaction,
 };
 pub use encoder::{AdSource, Answer, Encoder, EncoderConfig, EncoderKind, Memory};
-pub use master::{FrameChecker, FrameResult, In, LineJudge, Master, MasterConfig, Out, RxPhase, State, DELAY_COUNTER_MAX, SYNC_STAGES};
 #[doc(hidden)]
 pub use master::{catalogue_engine, lfsr_push_for_test};
+pub use master::{
+    FrameChecker, FrameResult, In, LineJudge, Master, MasterConfig, Out, RxPhase, State,
+    DELAY_COUNTER_MAX, SYNC_STAGES,
+};
 
 use crate::crc::{BitSerial, ENDAT_CRC5};
 
@@ -222,7 +225,10 @@ impl Command {
 
     /// The command these six mode bits encode, if any.
     pub fn from_code(code: u8) -> Option<Command> {
-        Command::ALL.iter().copied().find(|c| c.code() == code & 0x3F)
+        Command::ALL
+            .iter()
+            .copied()
+            .find(|c| c.code() == code & 0x3F)
     }
 
     /// Whether the command is of type 2.2 (seed 2.3.2.1).
@@ -264,9 +270,13 @@ impl Command {
 pub fn frame_kind(code: u8) -> FrameKind {
     match Command::from_code(code) {
         Some(Command::Pos22) => FrameKind::Pos22,
-        Some(Command::Select22 | Command::Receive22 | Command::Send22 | Command::TestCommand22 | Command::ErrorReset22) => {
-            FrameKind::Block22
-        }
+        Some(
+            Command::Select22
+            | Command::Receive22
+            | Command::Send22
+            | Command::TestCommand22
+            | Command::ErrorReset22,
+        ) => FrameKind::Block22,
         Some(
             Command::Select21
             | Command::Receive21
@@ -308,5 +318,11 @@ pub fn crc_pos(f1: bool, f2: Option<bool>, value: u64, bits: u32) -> u8 {
 
 /// The five CRC bits as they go on the wire, CRC bit 4 first.
 pub fn crc_wire(crc: u8) -> [bool; 5] {
-    [crc & 16 != 0, crc & 8 != 0, crc & 4 != 0, crc & 2 != 0, crc & 1 != 0]
+    [
+        crc & 16 != 0,
+        crc & 8 != 0,
+        crc & 4 != 0,
+        crc & 2 != 0,
+        crc & 1 != 0,
+    ]
 }

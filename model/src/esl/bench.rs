@@ -284,7 +284,11 @@ impl BenchConfig {
     fn check(&self) -> Result<()> {
         self.cable.validate("cable")?;
         if self.repeat_ops == 0 || self.ops.len().saturating_mul(self.repeat_ops) > 1_000_000 {
-            return Err(ConfigError::invalid("repeat_ops", format!("{}", self.repeat_ops), "give 1 or more, at most 1 000 000 operations in all"));
+            return Err(ConfigError::invalid(
+                "repeat_ops",
+                format!("{}", self.repeat_ops),
+                "give 1 or more, at most 1 000 000 operations in all",
+            ));
         }
         self.host_config()?;
         if self.encoders.is_empty() || self.encoders.len() > 8 {
@@ -316,13 +320,37 @@ impl BenchConfig {
         }
         for (i, op) in self.ops.iter().enumerate() {
             let range = [
-                ("data_id", op.data_id as f64 > 15.0, format!("{:#X} is above 0xF", op.data_id), "give a Data ID from 0 to 0xF"),
-                ("address", op.address > 7, format!("{} is above 7", op.address), "give an encoder address from 0 to 7"),
-                ("mem_address", op.mem_address > 0x7F, format!("{:#X} is above 0x7F", op.mem_address), "give a memory address from 0 to 0x7F"),
-                ("gap_us", !(0.0..1e6).contains(&op.gap_us), format!("{} µs", op.gap_us), "give a gap from 0 to 1 s in µs"),
+                (
+                    "data_id",
+                    op.data_id as f64 > 15.0,
+                    format!("{:#X} is above 0xF", op.data_id),
+                    "give a Data ID from 0 to 0xF",
+                ),
+                (
+                    "address",
+                    op.address > 7,
+                    format!("{} is above 7", op.address),
+                    "give an encoder address from 0 to 7",
+                ),
+                (
+                    "mem_address",
+                    op.mem_address > 0x7F,
+                    format!("{:#X} is above 0x7F", op.mem_address),
+                    "give a memory address from 0 to 0x7F",
+                ),
+                (
+                    "gap_us",
+                    !(0.0..1e6).contains(&op.gap_us),
+                    format!("{} µs", op.gap_us),
+                    "give a gap from 0 to 1 s in µs",
+                ),
             ];
             if let Some((field, _, problem, fix)) = range.into_iter().find(|r| r.1) {
-                return Err(ConfigError::invalid(format!("ops[{i}].{field}"), problem, fix));
+                return Err(ConfigError::invalid(
+                    format!("ops[{i}].{field}"),
+                    problem,
+                    fix,
+                ));
             }
             if op.broadcast && DataId::from_code(op.data_id).is_some_and(|d| d.is_memory()) {
                 return Err(ConfigError::invalid(
@@ -565,7 +593,10 @@ impl Bench {
             next_op: 0,
             start_at: tb.cycles_at_least_ns(cfg.ops[0].gap_us * 1e3),
             waiting: false,
-            last_in: In { i_rx: true, ..In::default() },
+            last_in: In {
+                i_rx: true,
+                ..In::default()
+            },
             last_out: Out {
                 o_tx: true,
                 ..Out::default()
@@ -577,7 +608,16 @@ impl Bench {
             clocks_per_bit: cfg.clocks_per_bit()?,
             tb,
             layout,
-            cfg: BenchConfig { ops: cfg.ops.iter().cycle().take(cfg.ops.len() * cfg.repeat_ops).cloned().collect(), ..cfg.clone() },
+            cfg: BenchConfig {
+                ops: cfg
+                    .ops
+                    .iter()
+                    .cycle()
+                    .take(cfg.ops.len() * cfg.repeat_ops)
+                    .cloned()
+                    .collect(),
+                ..cfg.clone()
+            },
         })
     }
 
@@ -604,8 +644,15 @@ impl Bench {
     /// What the encoders' side drives onto the line this cycle (an
     /// intruder pulls it low).
     fn bus_drive(&self) -> Drive {
-        if self.intruders.iter().any(|&(a, b)| (a..b).contains(&self.cycle)) {
-            Drive { enable: true, level: false }
+        if self
+            .intruders
+            .iter()
+            .any(|&(a, b)| (a..b).contains(&self.cycle))
+        {
+            Drive {
+                enable: true,
+                level: false,
+            }
         } else {
             self.encoder_drive
         }
@@ -645,7 +692,11 @@ impl Bench {
             Some(t) => Some(t),
             None => self.transactions.last_mut(),
         };
-        self.wire_tap.step(line, out.o_tx_en, latest.map(|t| (&mut t.wire_requests, &mut t.wire_answers)));
+        self.wire_tap.step(
+            line,
+            out.o_tx_en,
+            latest.map(|t| (&mut t.wire_requests, &mut t.wire_answers)),
+        );
     }
 }
 
@@ -742,7 +793,10 @@ impl Testbench for Bench {
         if enabled > 1 {
             self.bus_contention += 1;
         }
-        self.encoder_drive = Drive { enable: enabled > 0, level };
+        self.encoder_drive = Drive {
+            enable: enabled > 0,
+            level,
+        };
         self.at_host = at_host.level;
         if out.o_done {
             if let Some(mut t) = self.open.take() {
@@ -805,11 +859,15 @@ impl Testbench for Bench {
             None if self.last_out.o_busy => u64::MAX,
             None => 0,
         };
-        let input = In { i_rx: self.at_host, ..In::default() };
+        let input = In {
+            i_rx: self.at_host,
+            ..In::default()
+        };
         // The cycle after a start shows its pulse falling; a flipped
         // request bit depends on the cycle.
         let out = &self.last_out;
-        if host == 0 || input != self.last_in || (out.o_tx_en && !self.cfg.request_flips.is_empty()) {
+        if host == 0 || input != self.last_in || (out.o_tx_en && !self.cfg.request_flips.is_empty())
+        {
             return 0;
         }
         // The parts most often busy first: most calls in a frame end at
@@ -819,7 +877,10 @@ impl Testbench for Bench {
             return 0;
         }
         q = q.min(self.wire_tap.quiet(input.i_rx, out.o_tx_en));
-        let host_drive = Drive { enable: out.o_tx_en, level: out.o_tx };
+        let host_drive = Drive {
+            enable: out.o_tx_en,
+            level: out.o_tx,
+        };
         let bus = self.bus_drive();
         q = q.min(self.line.quiet(host_drive, bus));
         if q == 0 {
@@ -831,7 +892,11 @@ impl Testbench for Bench {
         }
         // Not across the start or end of an intruder.
         for &(a, b) in &self.intruders {
-            let until = if self.cycle < a { a - self.cycle } else { b.saturating_sub(self.cycle) };
+            let until = if self.cycle < a {
+                a - self.cycle
+            } else {
+                b.saturating_sub(self.cycle)
+            };
             if until > 0 {
                 q = q.min(until);
             }
@@ -841,9 +906,17 @@ impl Testbench for Bench {
 
     fn skip(&mut self, n: u64) {
         let out = self.last_out;
-        let host_drive = Drive { enable: out.o_tx_en, level: out.o_tx };
+        let host_drive = Drive {
+            enable: out.o_tx_en,
+            level: out.o_tx,
+        };
         let bus = self.bus_drive();
-        if self.intruders.iter().any(|&(a, b)| (a..b).contains(&self.cycle)) && self.encoder_drive.enable {
+        if self
+            .intruders
+            .iter()
+            .any(|&(a, b)| (a..b).contains(&self.cycle))
+            && self.encoder_drive.enable
+        {
             self.bus_contention += n;
         }
         if self.encoders.iter().filter(|e| e.drive().enable).count() > 1 {

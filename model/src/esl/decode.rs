@@ -32,7 +32,12 @@ pub struct DecodeOptions {
 
 impl Default for DecodeOptions {
     fn default() -> Self {
-        DecodeOptions { baud: 10e6, broadcast_address: 7, busy_tries: 3, rs_tolerance: 1 }
+        DecodeOptions {
+            baud: 10e6,
+            broadcast_address: 7,
+            busy_tries: 3,
+            rs_tolerance: 1,
+        }
     }
 }
 
@@ -84,7 +89,16 @@ pub struct Decoder {
 impl Decoder {
     /// A decoder for a host configured as `opt`.
     pub fn new(opt: DecodeOptions) -> Self {
-        Decoder { opt, host: HostState { seq: [(false, 0, 0); 8], out: frames::Decoded::default(), page: frames::DEFAULT_PAGE }, open: None, count: 0 }
+        Decoder {
+            opt,
+            host: HostState {
+                seq: [(false, 0, 0); 8],
+                out: frames::Decoded::default(),
+                page: frames::DEFAULT_PAGE,
+            },
+            open: None,
+            count: 0,
+        }
     }
 
     /// Picoseconds per bit.
@@ -96,9 +110,23 @@ impl Decoder {
     /// exchange starting at `next` (`u64::MAX`: none); `bytes` the
     /// characters of the line, at least those from `rise` to `next`.
     /// Returns the operation this exchange completed, if any.
-    pub fn exchange(&mut self, rise: u64, fall: u64, next: u64, bytes: &[UartByte]) -> Option<DecodedOp> {
-        let request: Vec<UartByte> = bytes.iter().copied().filter(|b| (rise..fall).contains(&b.start_ps)).collect();
-        let answer: Vec<UartByte> = bytes.iter().copied().filter(|b| (fall..next).contains(&b.start_ps)).collect();
+    pub fn exchange(
+        &mut self,
+        rise: u64,
+        fall: u64,
+        next: u64,
+        bytes: &[UartByte],
+    ) -> Option<DecodedOp> {
+        let request: Vec<UartByte> = bytes
+            .iter()
+            .copied()
+            .filter(|b| (rise..fall).contains(&b.start_ps))
+            .collect();
+        let answer: Vec<UartByte> = bytes
+            .iter()
+            .copied()
+            .filter(|b| (fall..next).contains(&b.start_ps))
+            .collect();
         let sent: Vec<u8> = request.iter().map(|b| b.value).collect();
         let cf = frames::parse_control_field(sent.first().copied().unwrap_or(0));
         let (mut op, repeats, tries) = match self.open.take() {
@@ -171,7 +199,11 @@ pub fn decode(en: &Signal, ln: &Signal, opt: &DecodeOptions) -> Vec<DecodedOp> {
     let falls: Vec<u64> = edges.iter().filter(|e| !e.1).map(|e| e.0).collect();
     let mut ops = Vec::new();
     for (i, &rise) in rises.iter().enumerate() {
-        let fall = falls.iter().copied().find(|&f| f > rise).unwrap_or(u64::MAX);
+        let fall = falls
+            .iter()
+            .copied()
+            .find(|&f| f > rise)
+            .unwrap_or(u64::MAX);
         let next = rises.get(i + 1).copied().unwrap_or(u64::MAX);
         ops.extend(decoder.exchange(rise, fall, next, &bytes));
     }
@@ -190,8 +222,13 @@ struct HostState {
 impl HostState {
     /// `model::esl::Host::finish` on bytes: errors into `op`, results into
     /// `self.out`; returns (repeat after busy, tries left).
-    fn finish(&mut self, op: &mut DecodedOp, answer: &[UartByte], tries: u64, opt: &DecodeOptions) -> (bool, u64) {
-        
+    fn finish(
+        &mut self,
+        op: &mut DecodedOp,
+        answer: &[UartByte],
+        tries: u64,
+        opt: &DecodeOptions,
+    ) -> (bool, u64) {
         let mut flag = |name: &'static str, on: bool| {
             if on && !op.errors.contains(&name) {
                 op.errors.push(name);
@@ -217,7 +254,10 @@ impl HostState {
         let request_cf = op.sent.first().copied().unwrap_or(0);
         let d = frames::decode(id, &values);
         let mut k = frames::check(id, request_cf, &values, framing, opt.rs_tolerance);
-        let (mem_address, wdata) = (op.sent.get(1).map_or(0, |a| a >> 1), op.sent.get(2).copied().unwrap_or(0));
+        let (mem_address, wdata) = (
+            op.sent.get(1).map_or(0, |a| a >> 1),
+            op.sent.get(2).copied().unwrap_or(0),
+        );
         if id.is_memory() && !k.any() {
             k.cf |= d.adf >> 1 != mem_address;
             if id == DataId::IdF && d.adf & 1 == 0 && d.edf != wdata {
@@ -267,9 +307,18 @@ impl HostState {
 /// The order of the model's error names ([`model::esl::error_names`]), so
 /// that a decoded list compares equal to the transcript's.
 pub fn sort_errors(ops: &mut [DecodedOp]) {
-    const ORDER: [&str; 9] = ["crc1", "crc2", "timeout", "frame", "cf_mismatch", "comm_alarm", "sequence", "channel_mismatch", "busy"];
+    const ORDER: [&str; 9] = [
+        "crc1",
+        "crc2",
+        "timeout",
+        "frame",
+        "cf_mismatch",
+        "comm_alarm",
+        "sequence",
+        "channel_mismatch",
+        "busy",
+    ];
     for op in ops {
         op.errors.sort_by_key(|e| ORDER.iter().position(|o| o == e));
     }
 }
-

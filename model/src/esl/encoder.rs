@@ -328,8 +328,10 @@ impl Encoder {
         let s = &mut self.cfg.settings;
         s.flips.extend(faults.flips.iter().cloned());
         s.truncations.extend(faults.truncations.iter().cloned());
-        s.sequence_jumps.extend(faults.sequence_jumps.iter().cloned());
-        s.foreign_address_answers.extend(faults.foreign_address_answers.iter().copied());
+        s.sequence_jumps
+            .extend(faults.sequence_jumps.iter().cloned());
+        s.foreign_address_answers
+            .extend(faults.foreign_address_answers.iter().copied());
         if let Some(r) = rs_offset {
             s.rs_offset = r;
         }
@@ -359,7 +361,9 @@ impl Encoder {
             return 0;
         }
         let until = |t: u64| t.saturating_sub(self.now);
-        let write = self.pending_write.map_or(u64::MAX, |_| until(self.busy_until));
+        let write = self
+            .pending_write
+            .map_or(u64::MAX, |_| until(self.busy_until));
         let receive = match self.rx {
             _ if self.driving => u64::MAX,
             Rx::Hunt => u64::MAX,
@@ -370,7 +374,9 @@ impl Encoder {
         let transmit = if self.driving {
             until(self.tx_next_at)
         } else {
-            self.answer_at.as_ref().map_or(u64::MAX, |(at, _)| until(*at))
+            self.answer_at
+                .as_ref()
+                .map_or(u64::MAX, |(at, _)| until(*at))
         };
         write.min(receive).min(transmit)
     }
@@ -385,7 +391,10 @@ impl Encoder {
 
     /// What the encoder drives after the last step.
     pub fn drive(&self) -> Drive {
-        Drive { enable: self.driving, level: self.level }
+        Drive {
+            enable: self.driving,
+            level: self.level,
+        }
     }
 
     /// One cycle with the line level at the encoder's pins; returns what the
@@ -712,7 +721,8 @@ impl Encoder {
             }
             self.level = self.tx_bits[self.tx_index];
             self.tx_index += 1;
-            self.tx_next_at = self.tx_start + (self.tx_index as f64 * self.cfg.bit_cycles).round() as u64;
+            self.tx_next_at =
+                self.tx_start + (self.tx_index as f64 * self.cfg.bit_cycles).round() as u64;
         }
     }
 }

@@ -442,7 +442,9 @@ impl Host {
         if self.out.o_done || input.i_start {
             return 0;
         }
-        let rx_in = uart::In { i_rx: input.i_rx || self.out.o_tx_en };
+        let rx_in = uart::In {
+            i_rx: input.i_rx || self.out.o_tx_en,
+        };
         let rx = self.rx_out;
         let c = self.cfg.clocks_per_bit;
         let state = match self.state {

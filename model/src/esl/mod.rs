@@ -33,8 +33,8 @@
 
 mod bench;
 pub mod campaign;
-mod encoder;
 pub mod decode;
+mod encoder;
 pub mod frames;
 mod host;
 
@@ -43,7 +43,7 @@ pub use bench::{
     Transaction,
 };
 pub use encoder::{
-    AnswerFlip, Encoder, EncoderConfig, EncoderSettings, MemoryInit, Request, SequenceJump,
-    Truncation, frame_bits, PAGES,
+    frame_bits, AnswerFlip, Encoder, EncoderConfig, EncoderSettings, MemoryInit, Request,
+    SequenceJump, Truncation, PAGES,
 };
 pub use host::{Host, HostConfig, In, Out, State, MAX_FIELDS, QUIET_BITS, REPEATS};

@@ -102,8 +102,17 @@ impl Default for BenchConfig {
             parity: Parity::None,
             master: MasterSettings::default(),
             devices: vec![DeviceSettings::default()],
-            cable: CableConfig { length_m: 10.0, ..CableConfig::default() },
-            ops: vec![Operation { op: OpKind::Read, address: 1, count: 1, gap_us: 0.0, new_address: 0 }],
+            cable: CableConfig {
+                length_m: 10.0,
+                ..CableConfig::default()
+            },
+            ops: vec![Operation {
+                op: OpKind::Read,
+                address: 1,
+                count: 1,
+                gap_us: 0.0,
+                new_address: 0,
+            }],
             second_drivers: Vec::new(),
         }
     }
@@ -114,12 +123,20 @@ impl BenchConfig {
     pub fn clocks_per_bit(&self) -> Result<u64> {
         let tb = self.timebase()?;
         if !(300.0..=10e6).contains(&self.baud) {
-            return Err(ConfigError::invalid("baud", format!("{}", self.baud), "give a baud rate such as 9600, 19200 or 115200"));
+            return Err(ConfigError::invalid(
+                "baud",
+                format!("{}", self.baud),
+                "give a baud rate such as 9600, 19200 or 115200",
+            ));
         }
         let c = (tb.f_sys_hz() as f64 / self.baud).round().max(1.0) as u64;
         let err = (tb.f_sys_hz() as f64 / c as f64 / self.baud - 1.0) * 100.0;
         if err.abs() > 0.5 {
-            return Err(ConfigError::invalid("baud", format!("{c} clocks per bit are {err:+.2} % off"), "raise f_sys_mhz or pick a clock that divides the baud rate within 0.5 %"));
+            return Err(ConfigError::invalid(
+                "baud",
+                format!("{c} clocks per bit are {err:+.2} % off"),
+                "raise f_sys_mhz or pick a clock that divides the baud rate within 0.5 %",
+            ));
         }
         Ok(c)
     }
@@ -128,7 +145,11 @@ impl BenchConfig {
     pub fn master_config(&self) -> Result<MasterConfig> {
         let tb = self.timebase()?;
         if !(self.master.timeout_us > 0.0 && self.master.timeout_us < 1e7) {
-            return Err(ConfigError::invalid("master.timeout_us", format!("{}", self.master.timeout_us), "give a positive time in µs"));
+            return Err(ConfigError::invalid(
+                "master.timeout_us",
+                format!("{}", self.master.timeout_us),
+                "give a positive time in µs",
+            ));
         }
         let fb = self.parity.frame_bits();
         let cfg = MasterConfig {
@@ -148,8 +169,16 @@ impl BenchConfig {
         let m = self.master_config()?;
         let d = &self.devices[i];
         d.validate(self.parity).map_err(|e| {
-            let ConfigError::Invalid { field, problem, fix } = e;
-            ConfigError::invalid(field.replacen("device.", &format!("devices[{i}]."), 1), problem, fix)
+            let ConfigError::Invalid {
+                field,
+                problem,
+                fix,
+            } = e;
+            ConfigError::invalid(
+                field.replacen("device.", &format!("devices[{i}]."), 1),
+                problem,
+                fix,
+            )
         })?;
         Ok(DeviceConfig {
             period_ps: tb.period_ps(),
@@ -167,20 +196,36 @@ impl BenchConfig {
         self.cable.validate("cable")?;
         self.master_config()?;
         if self.devices.is_empty() || self.devices.len() > 3 {
-            return Err(ConfigError::invalid("devices", format!("{} devices", self.devices.len()), "give 1 to 3 devices"));
+            return Err(ConfigError::invalid(
+                "devices",
+                format!("{} devices", self.devices.len()),
+                "give 1 to 3 devices",
+            ));
         }
         for i in 0..self.devices.len() {
             self.device_config(i)?;
         }
         if self.ops.is_empty() || self.ops.len() > 100_000 {
-            return Err(ConfigError::invalid("ops", format!("{} polls", self.ops.len()), "list 1 to 100 000 polls"));
+            return Err(ConfigError::invalid(
+                "ops",
+                format!("{} polls", self.ops.len()),
+                "list 1 to 100 000 polls",
+            ));
         }
         for (i, op) in self.ops.iter().enumerate() {
             if op.count > 3 || !(0.0..1e8).contains(&op.gap_us) {
-                return Err(ConfigError::invalid(format!("ops[{i}]"), format!("count {}, gap {} µs", op.count, op.gap_us), "give count 0 to 3 (1 or 2 are valid reads) and gap_us ≥ 0"));
+                return Err(ConfigError::invalid(
+                    format!("ops[{i}]"),
+                    format!("count {}, gap {} µs", op.count, op.gap_us),
+                    "give count 0 to 3 (1 or 2 are valid reads) and gap_us ≥ 0",
+                ));
             }
             if op.op == OpKind::SetAddress && !(1..=247).contains(&op.new_address) {
-                return Err(ConfigError::invalid(format!("ops[{i}].new_address"), format!("{}", op.new_address), "give the station's new address, 1 to 247"));
+                return Err(ConfigError::invalid(
+                    format!("ops[{i}].new_address"),
+                    format!("{}", op.new_address),
+                    "give the station's new address, 1 to 247",
+                ));
             }
         }
         for (i, d) in self.second_drivers.iter().enumerate() {
@@ -305,7 +350,9 @@ impl Bench {
             ],
             decoded: vec![Port::new("state", 3)],
         };
-        let devices = (0..cfg.devices.len()).map(|i| Device::new(cfg.device_config(i)?)).collect::<Result<Vec<_>>>()?;
+        let devices = (0..cfg.devices.len())
+            .map(|i| Device::new(cfg.device_config(i)?))
+            .collect::<Result<Vec<_>>>()?;
         let drivers = cfg
             .second_drivers
             .iter()
@@ -362,8 +409,15 @@ impl Testbench for Bench {
     }
 
     fn step(&mut self, sample: Option<&mut Sample>) {
-        let mut input = In { i_rx: self.at_master, ..In::default() };
-        if !self.waiting && self.end.is_none() && self.cycle >= self.start_at && !self.last_out.o_busy {
+        let mut input = In {
+            i_rx: self.at_master,
+            ..In::default()
+        };
+        if !self.waiting
+            && self.end.is_none()
+            && self.cycle >= self.start_at
+            && !self.last_out.o_busy
+        {
             let op = self.cfg.ops[self.next_op].clone();
             input = In {
                 i_start: op.op == OpKind::Read,
@@ -394,10 +448,17 @@ impl Testbench for Bench {
             self.waiting = true;
         }
         let out = self.master.step(&input);
-        let master_drive = Drive { enable: out.o_tx_en, level: out.o_tx };
+        let master_drive = Drive {
+            enable: out.o_tx_en,
+            level: out.o_tx,
+        };
         {
             let t = self.open.as_mut().or(self.transactions.last_mut());
-            self.wire_tap.step(input.i_rx, out.o_tx_en, t.map(|t| (&mut t.wire_requests, &mut t.wire_answers)));
+            self.wire_tap.step(
+                input.i_rx,
+                out.o_tx_en,
+                t.map(|t| (&mut t.wire_requests, &mut t.wire_answers)),
+            );
         }
         let (mut at_master, mut at_device) = self.line.step(master_drive, self.device_drive);
         let now = self.cycle;
@@ -411,23 +472,41 @@ impl Testbench for Bench {
                 }
             }
         }
-        let drives: Vec<Drive> = self.devices.iter_mut().map(|d| d.step(at_device.level)).collect();
+        let drives: Vec<Drive> = self
+            .devices
+            .iter_mut()
+            .map(|d| d.step(at_device.level))
+            .collect();
         let on: Vec<&Drive> = drives.iter().filter(|d| d.enable).collect();
         if on.len() > 1 {
             self.device_contention += 1;
         }
         self.devices_on = on.len();
-        self.device_drive = on.first().map_or(Drive { enable: false, level: true }, |d| **d);
+        self.device_drive = on.first().map_or(
+            Drive {
+                enable: false,
+                level: true,
+            },
+            |d| **d,
+        );
         self.at_master = at_master.level;
         if out.o_done {
             if let Some(mut t) = self.open.take() {
                 t.done_cycle = self.cycle;
                 t.request = self.master.request().to_vec();
                 // No answer: nothing received (the master's buffer still holds the last answer's characters).
-                t.received = if out.o_err_timeout { Vec::new() } else { self.master.received().to_vec() };
+                t.received = if out.o_err_timeout {
+                    Vec::new()
+                } else {
+                    self.master.received().to_vec()
+                };
                 if out.o_valid && t.op == OpKind::Read {
                     let d = &self.cfg.devices[0];
-                    let v = if d.gray { from_gray(out.o_value as u64) as u32 } else { out.o_value };
+                    let v = if d.gray {
+                        from_gray(out.o_value as u64) as u32
+                    } else {
+                        out.o_value
+                    };
                     t.value = Some(v);
                     t.angle_deg = Some(angle_deg(v as u64, d.bits));
                 }
@@ -460,7 +539,10 @@ impl Testbench for Bench {
             if self.next_op == self.cfg.ops.len() {
                 self.end = Some(self.cycle + 16);
             } else {
-                self.start_at = self.cycle + self.tb.cycles_at_least_ns(self.cfg.ops[self.next_op].gap_us * 1e3);
+                self.start_at = self.cycle
+                    + self
+                        .tb
+                        .cycles_at_least_ns(self.cfg.ops[self.next_op].gap_us * 1e3);
             }
         }
         self.last_out = out;
@@ -489,20 +571,38 @@ impl Testbench for Bench {
         let c = self.cycle;
         // The cycle after a start shows its pulse falling.
         let just_started = self.open.as_ref().is_some_and(|t| t.start_cycle + 1 == c);
-        let q = uart::bench_quiet(c, self.end, self.waiting || self.last_out.o_busy, self.start_at, just_started, &self.drivers);
+        let q = uart::bench_quiet(
+            c,
+            self.end,
+            self.waiting || self.last_out.o_busy,
+            self.start_at,
+            just_started,
+            &self.drivers,
+        );
         if q == 0 {
             return 0;
         }
         let out = &self.last_out;
-        let input = In { i_rx: self.at_master, ..In::default() };
-        let master_drive = Drive { enable: out.o_tx_en, level: out.o_tx };
+        let input = In {
+            i_rx: self.at_master,
+            ..In::default()
+        };
+        let master_drive = Drive {
+            enable: out.o_tx_en,
+            level: out.o_tx,
+        };
         let (near, far) = self.line.sensed(master_drive, self.device_drive);
         // The level a second driver left at the near end gives way to the line's.
         if near.level != self.at_master {
             return 0;
         }
         let at_device = far.level;
-        let devices = self.devices.iter().map(|d| d.quiet(at_device)).min().unwrap_or(u64::MAX);
+        let devices = self
+            .devices
+            .iter()
+            .map(|d| d.quiet(at_device))
+            .min()
+            .unwrap_or(u64::MAX);
         q.min(self.master.quiet(&input))
             .min(self.wire_tap.quiet(input.i_rx, out.o_tx_en))
             .min(self.line.quiet(master_drive, self.device_drive))
@@ -511,7 +611,10 @@ impl Testbench for Bench {
 
     fn skip(&mut self, n: u64) {
         let out = self.last_out;
-        let master_drive = Drive { enable: out.o_tx_en, level: out.o_tx };
+        let master_drive = Drive {
+            enable: out.o_tx_en,
+            level: out.o_tx,
+        };
         self.master.skip(n);
         self.wire_tap.skip(n);
         self.line.skip(n, master_drive, self.device_drive);

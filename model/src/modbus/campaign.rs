@@ -31,7 +31,13 @@ pub const CLOCKS_PER_BIT: u64 = 6;
 
 /// The campaign master: t1.5 and t3.5 of 10-bit characters, 2000-cycle timeout.
 pub fn master_config() -> MasterConfig {
-    MasterConfig { clocks_per_bit: CLOCKS_PER_BIT, parity: Parity::None, t15_clocks: 15 * CLOCKS_PER_BIT, t35_clocks: 35 * CLOCKS_PER_BIT, timeout_clocks: 2000 }
+    MasterConfig {
+        clocks_per_bit: CLOCKS_PER_BIT,
+        parity: Parity::None,
+        t15_clocks: 15 * CLOCKS_PER_BIT,
+        t35_clocks: 35 * CLOCKS_PER_BIT,
+        timeout_clocks: 2000,
+    }
 }
 
 /// The campaign's result: the tally of [`crate::uart::campaign`].
@@ -51,7 +57,12 @@ impl std::ops::Deref for Report {
 impl std::fmt::Display for Report {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         self.tally.table(f, "answers", "CRC-16 promise: every 1, 2 or 3 inverted data bits and every odd number seen; a re-framed character passes with p = 2^-16")?;
-        write!(f, "total {}, disagreements with the checks {}", self.total(), self.disagreements)
+        write!(
+            f,
+            "total {}, disagreements with the checks {}",
+            self.total(),
+            self.disagreements
+        )
     }
 }
 
@@ -59,9 +70,15 @@ impl std::fmt::Display for Report {
 /// station `address` to a read of `count` registers: no framing error,
 /// CRC, address, function 03, byte count and length.
 pub fn blind(levels: &[bool], address: u8, count: u8) -> bool {
-    let Some(bytes) = characters(levels) else { return false };
+    let Some(bytes) = characters(levels) else {
+        return false;
+    };
     let n = 5 + 2 * count as usize;
-    bytes.len() == n && frames::crc_ok(&bytes) && bytes[0] == address && bytes[1] == frames::READ_HOLDING && bytes[2] == 2 * count
+    bytes.len() == n
+        && frames::crc_ok(&bytes)
+        && bytes[0] == address
+        && bytes[1] == frames::READ_HOLDING
+        && bytes[2] == 2 * count
 }
 
 /// Whether the master flags the answer `levels` (sent 100 cycles after its
@@ -76,11 +93,19 @@ pub fn detected(address: u8, count: u8, levels: &[bool]) -> bool {
 pub fn detected_with(address: u8, count: u8, levels: &[bool], fast_forward: bool) -> bool {
     const LIMIT: u64 = 100_000;
     let mut m = Master::new(master_config()).expect("campaign master configuration is valid");
-    let mut input = In { i_start: true, i_address: address, i_count: count, ..In::default() };
+    let mut input = In {
+        i_start: true,
+        i_address: address,
+        i_count: count,
+        ..In::default()
+    };
     let (mut driving, mut from) = (false, None::<u64>);
     // The line level step t + 1 sees, set after step t.
     let rx_after = |t: u64, from: Option<u64>| match from {
-        Some(f) if t >= f => levels.get(((t - f) / CLOCKS_PER_BIT) as usize).copied().unwrap_or(true),
+        Some(f) if t >= f => levels
+            .get(((t - f) / CLOCKS_PER_BIT) as usize)
+            .copied()
+            .unwrap_or(true),
         _ => true,
     };
     let mut t = 0;
@@ -95,7 +120,10 @@ pub fn detected_with(address: u8, count: u8, levels: &[bool], fast_forward: bool
                 Some(f) => f + ((s - f) / CLOCKS_PER_BIT + 1) * CLOCKS_PER_BIT,
                 None => u64::MAX,
             };
-            let n = m.quiet(&input).min(boundary.saturating_sub(s)).min(LIMIT - t);
+            let n = m
+                .quiet(&input)
+                .min(boundary.saturating_sub(s))
+                .min(LIMIT - t);
             if n > 0 {
                 m.skip(n);
                 t += n;
@@ -133,7 +161,11 @@ pub fn run_with(trials: u64, max_flips: usize, seed: u64, fast_forward: bool) ->
         let count = rng.random_range(1..=2u8);
         let clean = levels(&frames::read_answer(address, count as u16, rng.random()));
         let (k, corrupted) = corrupt(&mut rng, &clean, max_flips);
-        report.tally.add(k, detected_with(address, count, &corrupted, fast_forward), blind(&corrupted, address, count));
+        report.tally.add(
+            k,
+            detected_with(address, count, &corrupted, fast_forward),
+            blind(&corrupted, address, count),
+        );
     }
     report
 }

@@ -84,8 +84,16 @@ pub fn decode(line: &Signal, tx_en: &Signal, options: &Options) -> Vec<Transacti
     for (index, &rise) in rises.iter().enumerate() {
         let fall = tx_en.next_level(rise, false).unwrap_or(u64::MAX);
         let next = rises.get(index + 1).copied().unwrap_or(u64::MAX);
-        let request: Vec<u8> = chars.iter().filter(|c| c.from_host && (rise..fall).contains(&c.start_ps)).map(|c| c.value).collect();
-        let answers: Vec<Char> = chars.iter().filter(|c| !c.from_host && (fall..next).contains(&c.start_ps)).copied().collect();
+        let request: Vec<u8> = chars
+            .iter()
+            .filter(|c| c.from_host && (rise..fall).contains(&c.start_ps))
+            .map(|c| c.value)
+            .collect();
+        let answers: Vec<Char> = chars
+            .iter()
+            .filter(|c| !c.from_host && (fall..next).contains(&c.start_ps))
+            .copied()
+            .collect();
         let mut t = Transaction {
             index,
             start_ps: rise,
@@ -108,7 +116,16 @@ pub fn decode(line: &Signal, tx_en: &Signal, options: &Options) -> Vec<Transacti
             _ => {}
         }
         match answers.first() {
-            Some(first) if first.start_ps <= fall.saturating_add(timeout_ps) => judge(&mut t, &answers, bit_ps, fb as u64, t15_ps, t35_ps, limit_ps, options.gray),
+            Some(first) if first.start_ps <= fall.saturating_add(timeout_ps) => judge(
+                &mut t,
+                &answers,
+                bit_ps,
+                fb as u64,
+                t15_ps,
+                t35_ps,
+                limit_ps,
+                options.gray,
+            ),
             _ => t.errors.push("timeout"),
         }
         out.push(t);
@@ -118,7 +135,16 @@ pub fn decode(line: &Signal, tx_en: &Signal, options: &Options) -> Vec<Transacti
 
 /// The master's verdict on the answer that begins with `answers[0]`.
 #[allow(clippy::too_many_arguments)]
-fn judge(t: &mut Transaction, answers: &[Char], bit_ps: u64, bits: u64, t15_ps: u64, t35_ps: u64, limit_ps: u64, gray: bool) {
+fn judge(
+    t: &mut Transaction,
+    answers: &[Char],
+    bit_ps: u64,
+    bits: u64,
+    t15_ps: u64,
+    t35_ps: u64,
+    limit_ps: u64,
+    gray: bool,
+) {
     let stop_sample = |c: &Char| c.start_ps + (bits - 1) * bit_ps + bit_ps / 2;
     let first = answers[0].start_ps;
     let (mut parity, mut framing, mut gap, mut cut) = (false, false, false, false);
@@ -140,12 +166,19 @@ fn judge(t: &mut Transaction, answers: &[Char], bit_ps: u64, bits: u64, t15_ps: 
         frame.push(*c);
     }
     // The frame ends t3.5 after its last stop-bit sample: past the receive limit, the master cuts it first.
-    cut |= frame.last().is_some_and(|c| stop_sample(c) + t35_ps > first + limit_ps);
+    cut |= frame
+        .last()
+        .is_some_and(|c| stop_sample(c) + t35_ps > first + limit_ps);
     let n = frame.len();
     let b: Vec<u8> = values(&frame);
     t.received = b[..n.min(super::MAX_CHARS)].to_vec();
     let length = cut || !(4..=super::MAX_CHARS).contains(&n);
-    for (flag, name) in [(parity, "parity"), (framing, "framing"), (gap, "gap"), (length, "length")] {
+    for (flag, name) in [
+        (parity, "parity"),
+        (framing, "framing"),
+        (gap, "gap"),
+        (length, "length"),
+    ] {
         if flag {
             t.errors.push(name);
         }
@@ -192,7 +225,11 @@ fn judge(t: &mut Transaction, answers: &[Char], bit_ps: u64, bits: u64, t15_ps: 
         } else {
             let len = if count == 1 { 2 } else { 4 };
             let v = b[3..3 + len].iter().fold(0u32, |v, &x| (v << 8) | x as u32);
-            t.value = Some(if gray { crate::gray::from_gray(v as u64) as u32 } else { v });
+            t.value = Some(if gray {
+                crate::gray::from_gray(v as u64) as u32
+            } else {
+                v
+            });
         }
     }
 }

@@ -64,22 +64,43 @@ impl DeviceSettings {
     /// Checks the settings.
     pub fn validate(&self, parity: Parity) -> Result<()> {
         if !(1..=247).contains(&self.address) {
-            return Err(ConfigError::invalid("device.address", format!("{}", self.address), "give a station address from 1 to 247"));
+            return Err(ConfigError::invalid(
+                "device.address",
+                format!("{}", self.address),
+                "give a station address from 1 to 247",
+            ));
         }
         if !(10..=32).contains(&self.bits) {
-            return Err(ConfigError::invalid("device.bits", format!("{}", self.bits), "give 10 to 32 bits"));
+            return Err(ConfigError::invalid(
+                "device.bits",
+                format!("{}", self.bits),
+                "give 10 to 32 bits",
+            ));
         }
         if self.positions.is_empty() || self.positions.iter().any(|&p| p >> self.bits != 0) {
-            return Err(ConfigError::invalid("device.positions", "empty, or a position does not fit the resolution", "list positions below 2^bits"));
+            return Err(ConfigError::invalid(
+                "device.positions",
+                "empty, or a position does not fit the resolution",
+                "list positions below 2^bits",
+            ));
         }
         if !(0.0..1e7).contains(&self.answer_delay_us) {
-            return Err(ConfigError::invalid("device.answer_delay_us", format!("{}", self.answer_delay_us), "give 0 to 10^7 µs"));
+            return Err(ConfigError::invalid(
+                "device.answer_delay_us",
+                format!("{}", self.answer_delay_us),
+                "give 0 to 10^7 µs",
+            ));
         }
         if !(-10.0..=10.0).contains(&self.baud_error_percent) {
-            return Err(ConfigError::invalid("device.baud_error_percent", format!("{}", self.baud_error_percent), "give −10 to +10 %"));
+            return Err(ConfigError::invalid(
+                "device.baud_error_percent",
+                format!("{}", self.baud_error_percent),
+                "give −10 to +10 %",
+            ));
         }
         for (i, f) in self.faults.iter().enumerate() {
-            f.validate(9, parity).map_err(|e| ConfigError::invalid(format!("device.faults[{i}]"), e.0, e.1))?;
+            f.validate(9, parity)
+                .map_err(|e| ConfigError::invalid(format!("device.faults[{i}]"), e.0, e.1))?;
         }
         Ok(())
     }
@@ -159,8 +180,20 @@ impl Device {
             answers: 0,
             reads: 0,
             position_now: None,
-            tx: Transmitter::new(cfg.period_ps, cfg.baud, cfg.settings.baud_error_percent, 0.0, 1).with_parity(cfg.parity),
-            rx: Receiver::with_parity(ReceiverConfig { clocks_per_bit: cfg.clocks_per_bit }, cfg.parity)?,
+            tx: Transmitter::new(
+                cfg.period_ps,
+                cfg.baud,
+                cfg.settings.baud_error_percent,
+                0.0,
+                1,
+            )
+            .with_parity(cfg.parity),
+            rx: Receiver::with_parity(
+                ReceiverConfig {
+                    clocks_per_bit: cfg.clocks_per_bit,
+                },
+                cfg.parity,
+            )?,
             frame: Vec::new(),
             bad: false,
             idle: 0,
@@ -187,7 +220,11 @@ impl Device {
     /// when it does not fit the resolution.
     pub fn set_position(&mut self, raw: u64) -> Result<()> {
         if raw >> self.cfg.settings.bits != 0 {
-            return Err(ConfigError::invalid("position", format!("{raw} does not fit {} bits", self.cfg.settings.bits), "give a position below 2^bits"));
+            return Err(ConfigError::invalid(
+                "position",
+                format!("{raw} does not fit {} bits", self.cfg.settings.bits),
+                "give a position below 2^bits",
+            ));
         }
         self.position_now = Some(raw);
         Ok(())
@@ -195,7 +232,9 @@ impl Device {
 
     fn position(&mut self) -> u64 {
         let p = &self.cfg.settings.positions;
-        let v = self.position_now.unwrap_or_else(|| p[self.reads.min(p.len() - 1)]);
+        let v = self
+            .position_now
+            .unwrap_or_else(|| p[self.reads.min(p.len() - 1)]);
         self.reads += 1;
         if self.cfg.settings.gray {
             to_gray(v)
@@ -233,7 +272,9 @@ impl Device {
                     frames::read_answer(addr, count, v)
                 }
             }
-            frames::WRITE_SINGLE if !self.cfg.settings.address_change => frames::exception_answer(addr, function, Exception::IllegalFunction),
+            frames::WRITE_SINGLE if !self.cfg.settings.address_change => {
+                frames::exception_answer(addr, function, Exception::IllegalFunction)
+            }
             frames::WRITE_SINGLE if frame.len() == 8 => {
                 let (register, value) = (word(2), word(4));
                 if register != self.cfg.settings.address_register {
@@ -245,7 +286,9 @@ impl Device {
                     frame.to_vec()
                 }
             }
-            frames::READ_HOLDING | frames::WRITE_SINGLE => frames::exception_answer(addr, function, Exception::IllegalDataValue),
+            frames::READ_HOLDING | frames::WRITE_SINGLE => {
+                frames::exception_answer(addr, function, Exception::IllegalDataValue)
+            }
             _ => frames::exception_answer(addr, function, Exception::IllegalFunction),
         };
         (Verdict::Answered, answer)
@@ -254,7 +297,14 @@ impl Device {
     fn answer(&mut self, mut bytes: Vec<u8>) {
         let index = self.answers;
         self.answers += 1;
-        let faults: Vec<FrameFault> = self.cfg.settings.faults.iter().filter(|f| f.frame == index).cloned().collect();
+        let faults: Vec<FrameFault> = self
+            .cfg
+            .settings
+            .faults
+            .iter()
+            .filter(|f| f.frame == index)
+            .cloned()
+            .collect();
         let n = bytes.len();
         let mut changed = false;
         for f in &faults {
@@ -269,7 +319,10 @@ impl Device {
         // Insertions after replacements (whose `byte` counts the answer as
         // built), last position first so that each `byte` still names a
         // character of the answer as built; only before the CRC.
-        let mut inserts: Vec<&FrameFault> = faults.iter().filter(|f| f.kind == FaultKind::Insert && f.byte + 2 <= n).collect();
+        let mut inserts: Vec<&FrameFault> = faults
+            .iter()
+            .filter(|f| f.kind == FaultKind::Insert && f.byte + 2 <= n)
+            .collect();
         inserts.sort_by_key(|f| std::cmp::Reverse(f.byte));
         for f in inserts {
             bytes.splice(f.byte..f.byte, f.bytes.iter().copied());
@@ -313,7 +366,9 @@ impl Device {
             q = q.min(self.cfg.t35.saturating_sub(self.idle + 1));
         }
         let driving = now_ps < self.driving_until_ps + period as f64;
-        q.min(self.rx.quiet(&uart::In { i_rx: rx || driving }))
+        q.min(self.rx.quiet(&uart::In {
+            i_rx: rx || driving,
+        }))
     }
 
     /// The same as `n` steps with the last line level, for `n` up to [`Device::quiet`].
@@ -335,7 +390,9 @@ impl Device {
     pub fn step(&mut self, rx: bool) -> Drive {
         let now_ps = (self.cycle * self.cfg.period_ps) as f64;
         let driving = now_ps < self.driving_until_ps + self.cfg.period_ps as f64;
-        let r = self.rx.step(&uart::In { i_rx: rx || driving });
+        let r = self.rx.step(&uart::In {
+            i_rx: rx || driving,
+        });
         if r.o_valid || r.o_parity_err || r.o_frame_err {
             self.frame.push(r.o_data);
             self.bad |= !r.o_valid;
@@ -350,12 +407,21 @@ impl Device {
             self.idle += 1;
             if self.idle == self.cfg.t35 {
                 let request = std::mem::take(&mut self.frame);
-                let (verdict, answer) = if self.bad || request.len() > 256 { (Verdict::Discarded, Vec::new()) } else { self.respond(&request) };
+                let (verdict, answer) = if self.bad || request.len() > 256 {
+                    (Verdict::Discarded, Vec::new())
+                } else {
+                    self.respond(&request)
+                };
                 self.bad = false;
                 if verdict == Verdict::Answered {
                     self.pending = Some((self.cycle + self.cfg.answer_delay, answer.clone()));
                 }
-                self.seen.push(Seen { cycle: self.cycle, request, verdict, answer });
+                self.seen.push(Seen {
+                    cycle: self.cycle,
+                    request,
+                    verdict,
+                    answer,
+                });
             }
         }
         if let Some((at, _)) = &self.pending {
@@ -366,6 +432,9 @@ impl Device {
         }
         let level = self.tx.step();
         self.cycle += 1;
-        Drive { enable: now_ps < self.driving_until_ps, level }
+        Drive {
+            enable: now_ps < self.driving_until_ps,
+            level,
+        }
     }
 }

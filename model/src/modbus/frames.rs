@@ -66,7 +66,11 @@ pub fn read_request(address: u8, count: u16) -> Vec<u8> {
 
 /// The answer: `addr 03 <2·count> <data high first> CRC`.
 pub fn read_answer(address: u8, count: u16, value: u32) -> Vec<u8> {
-    let data = if count == 1 { (value as u16).to_be_bytes().to_vec() } else { value.to_be_bytes().to_vec() };
+    let data = if count == 1 {
+        (value as u16).to_be_bytes().to_vec()
+    } else {
+        value.to_be_bytes().to_vec()
+    };
     let mut v = vec![address, READ_HOLDING, data.len() as u8];
     v.extend(data);
     with_crc(&v)

@@ -67,12 +67,26 @@ pub struct MasterConfig {
 impl MasterConfig {
     /// Checks the configuration (fields of `[modbus.master]`).
     pub fn validate(&self) -> Result<()> {
-        ReceiverConfig { clocks_per_bit: self.clocks_per_bit }.validate()?;
+        ReceiverConfig {
+            clocks_per_bit: self.clocks_per_bit,
+        }
+        .validate()?;
         if self.t15_clocks < self.clocks_per_bit || self.t35_clocks <= self.t15_clocks {
-            return Err(ConfigError::invalid("master", format!("t1.5 = {} and t3.5 = {} cycles", self.t15_clocks, self.t35_clocks), "give t1.5 of at least a bit and t3.5 longer than t1.5"));
+            return Err(ConfigError::invalid(
+                "master",
+                format!(
+                    "t1.5 = {} and t3.5 = {} cycles",
+                    self.t15_clocks, self.t35_clocks
+                ),
+                "give t1.5 of at least a bit and t3.5 longer than t1.5",
+            ));
         }
         if self.timeout_clocks == 0 {
-            return Err(ConfigError::invalid("master.timeout_us", "0", "give a positive timeout"));
+            return Err(ConfigError::invalid(
+                "master.timeout_us",
+                "0",
+                "give a positive timeout",
+            ));
         }
         Ok(())
     }
@@ -120,7 +134,15 @@ pub struct In {
 
 impl Default for In {
     fn default() -> Self {
-        In { i_start: false, i_query: false, i_write: false, i_address: 1, i_new_address: 1, i_count: 1, i_rx: true }
+        In {
+            i_start: false,
+            i_query: false,
+            i_write: false,
+            i_address: 1,
+            i_new_address: 1,
+            i_count: 1,
+            i_rx: true,
+        }
     }
 }
 
@@ -264,9 +286,17 @@ impl Master {
     pub fn new(cfg: MasterConfig) -> Result<Self> {
         cfg.validate()?;
         Ok(Master {
-            rx: Receiver::with_parity(ReceiverConfig { clocks_per_bit: cfg.clocks_per_bit }, cfg.parity)?,
+            rx: Receiver::with_parity(
+                ReceiverConfig {
+                    clocks_per_bit: cfg.clocks_per_bit,
+                },
+                cfg.parity,
+            )?,
             rx_out: uart::Out::default(),
-            tx: Tx::new(TxConfig { clocks_per_bit: cfg.clocks_per_bit, parity: cfg.parity })?,
+            tx: Tx::new(TxConfig {
+                clocks_per_bit: cfg.clocks_per_bit,
+                parity: cfg.parity,
+            })?,
             tx_out: TxOut::default(),
             tx_in: TxIn::default(),
             tx_pending: false,
@@ -365,14 +395,26 @@ impl Master {
             || o.o_err_count
             || o.o_err_timeout;
         let rx = self.rx_out;
-        if pulse || rx.o_valid || rx.o_parity_err || rx.o_frame_err || self.tx_pending || self.tx_in.i_valid {
+        if pulse
+            || rx.o_valid
+            || rx.o_parity_err
+            || rx.o_frame_err
+            || self.tx_pending
+            || self.tx_in.i_valid
+        {
             return 0;
         }
         // Mid-bit of a request character: only the sender's bit timer runs
         // (the Send state waits for its busy to fall; the receiver listens
         // to a high line while the driver is on).
         if self.tx.state() != TxState::Idle {
-            return if self.state == State::Send { self.tx.quiet().min(self.rx.quiet(&uart::In { i_rx: input.i_rx || o.o_tx_en })) } else { 0 };
+            return if self.state == State::Send {
+                self.tx.quiet().min(self.rx.quiet(&uart::In {
+                    i_rx: input.i_rx || o.o_tx_en,
+                }))
+            } else {
+                0
+            };
         }
         let t35 = self.cfg.t35_clocks;
         let fsm = match self.state {
@@ -386,7 +428,9 @@ impl Master {
             State::Recv if rx.o_busy => self.cnt,
             State::Recv => self.cnt.min(t35.saturating_sub(self.gap + 1)),
         };
-        fsm.min(self.rx.quiet(&uart::In { i_rx: input.i_rx || o.o_tx_en }))
+        fsm.min(self.rx.quiet(&uart::In {
+            i_rx: input.i_rx || o.o_tx_en,
+        }))
     }
 
     /// The same as `n` steps with the last input, for `n` up to [`Master::quiet`].
@@ -436,7 +480,10 @@ impl Master {
         };
         let rx = self.rx_out;
         let tx = self.tx_out;
-        let mut tx_in = TxIn { i_valid: false, i_data: self.tx_in.i_data };
+        let mut tx_in = TxIn {
+            i_valid: false,
+            i_data: self.tx_in.i_data,
+        };
         let char_end = rx.o_valid || rx.o_parity_err || rx.o_frame_err;
         match self.state {
             State::Idle => {
@@ -455,7 +502,11 @@ impl Master {
                     let bytes = match self.op {
                         Op::Read => frames::read_request(self.address, self.count as u16),
                         Op::Query => frames::address_query(),
-                        Op::Write => frames::write_request(self.address, frames::ADDRESS_REGISTER, self.new_address as u16),
+                        Op::Write => frames::write_request(
+                            self.address,
+                            frames::ADDRESS_REGISTER,
+                            self.new_address as u16,
+                        ),
                     };
                     self.req = [0; 8];
                     self.req[..bytes.len()].copy_from_slice(&bytes);
@@ -482,7 +533,10 @@ impl Master {
                         self.state = State::Wait;
                         self.cnt = cfg.timeout_clocks - 1;
                     } else {
-                        tx_in = TxIn { i_valid: true, i_data: self.req[self.req_index as usize] };
+                        tx_in = TxIn {
+                            i_valid: true,
+                            i_data: self.req[self.req_index as usize],
+                        };
                         self.req_index += 1;
                         self.tx_pending = true;
                     }
@@ -506,7 +560,12 @@ impl Master {
             }
             State::Recv => {
                 // The check reads the registers as they were before this edge (the RTL's `_reg`s).
-                let seen = Seen { parity: self.parity_seen, framing: self.framing_seen, gap: self.gap_seen, nbytes: self.nbytes };
+                let seen = Seen {
+                    parity: self.parity_seen,
+                    framing: self.framing_seen,
+                    gap: self.gap_seen,
+                    nbytes: self.nbytes,
+                };
                 if char_end {
                     if (self.nbytes as usize) < MAX_CHARS {
                         self.buf[self.nbytes as usize] = rx.o_data;
@@ -543,7 +602,9 @@ impl Master {
         self.tx_out = self.tx.step(&self.tx_in);
         self.tx_in = tx_in;
         next.o_tx = self.tx_out.o_tx;
-        self.rx_out = self.rx.step(&uart::In { i_rx: input.i_rx || self.out.o_tx_en });
+        self.rx_out = self.rx.step(&uart::In {
+            i_rx: input.i_rx || self.out.o_tx_en,
+        });
         if self.out.o_tx_en {
             // The master's own request counts as line activity for t3.5.
             self.line_idle = 0;

@@ -38,7 +38,14 @@ pub fn poll(baud: f64, parity: Parity, registers: u8, answer_delay_us: f64) -> R
     let t35_us = frames::t35_seconds(baud, bits) * 1e6;
     let answer_chars = 5.0 + 2.0 * registers as f64;
     let poll_us = 8.0 * char_us + t35_us + answer_delay_us + answer_chars * char_us + t35_us;
-    Row { baud, registers, char_us, t15_us, t35_us, poll_us }
+    Row {
+        baud,
+        registers,
+        char_us,
+        t15_us,
+        t35_us,
+        poll_us,
+    }
 }
 
 /// The budget as a Markdown table for the manual's baud rates and 115200.
@@ -47,7 +54,16 @@ pub fn table(parity: Parity, answer_delay_us: f64) -> String {
     for baud in [2400.0, 4800.0, 9600.0, 19_200.0, 57_600.0, 115_200.0] {
         for registers in [1, 2] {
             let r = poll(baud, parity, registers, answer_delay_us);
-            s += &format!("| {} | {} | {:.1} µs | {:.1} µs | {:.1} µs | {:.2} ms | {:.0} Hz |\n", r.baud, r.registers, r.char_us, r.t15_us, r.t35_us, r.poll_us / 1e3, r.poll_hz());
+            s += &format!(
+                "| {} | {} | {:.1} µs | {:.1} µs | {:.1} µs | {:.2} ms | {:.0} Hz |\n",
+                r.baud,
+                r.registers,
+                r.char_us,
+                r.t15_us,
+                r.t35_us,
+                r.poll_us / 1e3,
+                r.poll_hz()
+            );
         }
     }
     s

@@ -4,7 +4,9 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::encoder::{Encoder, EncoderConfig, EncoderIn, EncoderSettings, Mode, OutputCode, SentFrame};
+use super::encoder::{
+    Encoder, EncoderConfig, EncoderIn, EncoderSettings, Mode, OutputCode, SentFrame,
+};
 use super::host::{Host, HostConfig, In, Out};
 use crate::angle::angle_deg;
 use crate::line::{CableConfig, DelayLine, Drive, HalfDuplexLine};
@@ -33,7 +35,13 @@ pub struct HostSettings {
 
 impl Default for HostSettings {
     fn default() -> Self {
-        HostSettings { timeout_us: 5000.0, gap_bits: 15.0, stale_periods: 3.0, trigger_low_us: 10.0, clr_low_us: 20.0 }
+        HostSettings {
+            timeout_us: 5000.0,
+            gap_bits: 15.0,
+            stale_periods: 3.0,
+            trigger_low_us: 10.0,
+            clr_low_us: 20.0,
+        }
     }
 }
 
@@ -106,8 +114,16 @@ impl Default for BenchConfig {
             mode: Mode::TimedSend,
             host: HostSettings::default(),
             encoders: vec![EncoderSettings::default()],
-            cable: CableConfig { length_m: 10.0, ..CableConfig::default() },
-            ops: vec![Operation { op: OpKind::Read, address: 1, gap_us: 0.0, repeat: 2 }],
+            cable: CableConfig {
+                length_m: 10.0,
+                ..CableConfig::default()
+            },
+            ops: vec![Operation {
+                op: OpKind::Read,
+                address: 1,
+                gap_us: 0.0,
+                repeat: 2,
+            }],
             second_drivers: Vec::new(),
         }
     }
@@ -126,13 +142,20 @@ impl BenchConfig {
     pub fn clocks_per_bit(&self) -> Result<u64> {
         let tb = self.timebase()?;
         if !(300.0..=10e6).contains(&self.baud) {
-            return Err(ConfigError::invalid("baud", format!("{}", self.baud), "give a baud rate such as 2400, 9600, 19200 or 115200"));
+            return Err(ConfigError::invalid(
+                "baud",
+                format!("{}", self.baud),
+                "give a baud rate such as 2400, 9600, 19200 or 115200",
+            ));
         }
         let (c, err) = divider(tb.f_sys_hz(), self.baud);
         if err.abs() > 0.5 {
             return Err(ConfigError::invalid(
                 "baud",
-                format!("f_sys / baud = {:.3}, rounded to {c} clocks per bit, is {err:+.2} % off", tb.f_sys_hz() as f64 / self.baud),
+                format!(
+                    "f_sys / baud = {:.3}, rounded to {c} clocks per bit, is {err:+.2} % off",
+                    tb.f_sys_hz() as f64 / self.baud
+                ),
                 "raise f_sys_mhz or pick a clock that divides the baud rate within 0.5 %",
             ));
         }
@@ -147,17 +170,33 @@ impl BenchConfig {
     pub fn host_config(&self) -> Result<HostConfig> {
         let tb = self.timebase()?;
         let h = &self.host;
-        for (f, v) in [("host.timeout_us", h.timeout_us), ("host.trigger_low_us", h.trigger_low_us), ("host.clr_low_us", h.clr_low_us)] {
+        for (f, v) in [
+            ("host.timeout_us", h.timeout_us),
+            ("host.trigger_low_us", h.trigger_low_us),
+            ("host.clr_low_us", h.clr_low_us),
+        ] {
             if !(v > 0.0 && v < 1e7) {
-                return Err(ConfigError::invalid(f, format!("{v}"), "give a positive time in µs"));
+                return Err(ConfigError::invalid(
+                    f,
+                    format!("{v}"),
+                    "give a positive time in µs",
+                ));
             }
         }
         if !(1.0..=1000.0).contains(&h.gap_bits) || !(0.0..=1000.0).contains(&h.stale_periods) {
-            return Err(ConfigError::invalid("host.gap_bits", format!("gap_bits {} stale_periods {}", h.gap_bits, h.stale_periods), "give gap_bits 1 to 1000 and stale_periods 0 to 1000"));
+            return Err(ConfigError::invalid(
+                "host.gap_bits",
+                format!("gap_bits {} stale_periods {}", h.gap_bits, h.stale_periods),
+                "give gap_bits 1 to 1000 and stale_periods 0 to 1000",
+            ));
         }
         let e = self.encoders.first().cloned().unwrap_or_default();
         let c = self.clocks_per_bit()?;
-        let stale_clocks = if self.mode.is_timed() && h.stale_periods > 0.0 { tb.cycles_at_least_ns(h.stale_periods * 1e9 / self.refresh_hz()) } else { 0 };
+        let stale_clocks = if self.mode.is_timed() && h.stale_periods > 0.0 {
+            tb.cycles_at_least_ns(h.stale_periods * 1e9 / self.refresh_hz())
+        } else {
+            0
+        };
         let cfg = HostConfig {
             mode: self.mode,
             bits: e.bits,
@@ -180,7 +219,8 @@ impl BenchConfig {
     pub fn encoder_config(&self, i: usize) -> Result<EncoderConfig> {
         let tb = self.timebase()?;
         let e = &self.encoders[i];
-        e.validate(self.mode, self.baud, self.parity).map_err(|err| prefix(err, i))?;
+        e.validate(self.mode, self.baud, self.parity)
+            .map_err(|err| prefix(err, i))?;
         Ok(EncoderConfig {
             mode: self.mode,
             parity: self.parity,
@@ -199,7 +239,18 @@ impl BenchConfig {
 
     /// The operations with their repeats written out.
     pub fn expanded_ops(&self) -> Vec<Operation> {
-        self.ops.iter().flat_map(|op| std::iter::repeat_n(Operation { repeat: 1, ..op.clone() }, op.repeat as usize)).collect()
+        self.ops
+            .iter()
+            .flat_map(|op| {
+                std::iter::repeat_n(
+                    Operation {
+                        repeat: 1,
+                        ..op.clone()
+                    },
+                    op.repeat as usize,
+                )
+            })
+            .collect()
     }
 
     fn check(&self) -> Result<()> {
@@ -216,23 +267,43 @@ impl BenchConfig {
             self.encoder_config(i)?;
             let e = &self.encoders[i];
             let first = &self.encoders[0];
-            if e.bits != first.bits || e.code != first.code || e.answer_tag != first.answer_tag || e.answer_zeroing != first.answer_zeroing {
-                return Err(ConfigError::invalid(format!("encoders[{i}]"), "resolution, code, answer tag or zeroing answer differs from encoders[0]", "give every encoder on one host the same format"));
+            if e.bits != first.bits
+                || e.code != first.code
+                || e.answer_tag != first.answer_tag
+                || e.answer_zeroing != first.answer_zeroing
+            {
+                return Err(ConfigError::invalid(
+                    format!("encoders[{i}]"),
+                    "resolution, code, answer tag or zeroing answer differs from encoders[0]",
+                    "give every encoder on one host the same format",
+                ));
             }
             if self.encoders[..i].iter().any(|o| o.address == e.address) {
-                return Err(ConfigError::invalid(format!("encoders[{i}].address"), format!("address {} used twice", e.address), "give each encoder on the bus its own address"));
+                return Err(ConfigError::invalid(
+                    format!("encoders[{i}].address"),
+                    format!("address {} used twice", e.address),
+                    "give each encoder on the bus its own address",
+                ));
             }
         }
         self.host_config()?;
         if self.ops.is_empty() || self.ops.len() > 100_000 {
-            return Err(ConfigError::invalid("ops", format!("{} operations", self.ops.len()), "list 1 to 100 000 operations"));
+            return Err(ConfigError::invalid(
+                "ops",
+                format!("{} operations", self.ops.len()),
+                "list 1 to 100 000 operations",
+            ));
         }
         for (i, op) in self.ops.iter().enumerate() {
             let usable = match op.op {
                 OpKind::Read => true,
                 OpKind::Zero => self.mode.has_clr() || self.mode == Mode::BusClear,
             };
-            if !usable || op.address > 15 || !(0.0..1e8).contains(&op.gap_us) || !(1..=100_000).contains(&op.repeat) {
+            if !usable
+                || op.address > 15
+                || !(0.0..1e8).contains(&op.gap_us)
+                || !(1..=100_000).contains(&op.repeat)
+            {
                 return Err(ConfigError::invalid(
                     format!("ops[{i}]"),
                     format!("{:?} in mode {:?} (address {}, gap {} µs, repeat {})", op.op, self.mode, op.address, op.gap_us, op.repeat),
@@ -249,8 +320,16 @@ impl BenchConfig {
 
 /// Renames `encoder.x` to `encoders[i].x` in an encoder's error.
 fn prefix(err: ConfigError, i: usize) -> ConfigError {
-    let ConfigError::Invalid { field, problem, fix } = err;
-    ConfigError::invalid(field.replacen("encoder.", &format!("encoders[{i}]."), 1), problem, fix)
+    let ConfigError::Invalid {
+        field,
+        problem,
+        fix,
+    } = err;
+    ConfigError::invalid(
+        field.replacen("encoder.", &format!("encoders[{i}]."), 1),
+        problem,
+        fix,
+    )
 }
 
 impl Setup for BenchConfig {
@@ -366,10 +445,23 @@ impl Bench {
         let layout = Layout {
             inputs: Host::input_ports(),
             outputs: Host::output_ports(),
-            line: vec![Port::new("tx_en_host", 1), Port::new("tx_en_encoder", 1), Port::new("line_at_host", 1), Port::new("line_at_encoder", 1), Port::new("trigger_at_encoder", 1), Port::new("clr_at_encoder", 1)],
-            decoded: vec![Port::new("state", 3), Port::new("count", 4), Port::new("synced", 1)],
+            line: vec![
+                Port::new("tx_en_host", 1),
+                Port::new("tx_en_encoder", 1),
+                Port::new("line_at_host", 1),
+                Port::new("line_at_encoder", 1),
+                Port::new("trigger_at_encoder", 1),
+                Port::new("clr_at_encoder", 1),
+            ],
+            decoded: vec![
+                Port::new("state", 3),
+                Port::new("count", 4),
+                Port::new("synced", 1),
+            ],
         };
-        let encoders = (0..cfg.encoders.len()).map(|i| Encoder::new(cfg.encoder_config(i)?)).collect::<Result<Vec<_>>>()?;
+        let encoders = (0..cfg.encoders.len())
+            .map(|i| Encoder::new(cfg.encoder_config(i)?))
+            .collect::<Result<Vec<_>>>()?;
         let drivers = cfg
             .second_drivers
             .iter()
@@ -419,7 +511,8 @@ impl Bench {
 
     fn open_transaction(&mut self) {
         let op = self.ops[self.next_op].clone();
-        let sends = self.cfg.mode.is_bus() && (op.op == OpKind::Read || self.cfg.mode == Mode::BusClear);
+        let sends =
+            self.cfg.mode.is_bus() && (op.op == OpKind::Read || self.cfg.mode == Mode::BusClear);
         self.open = Some(Transaction {
             index: self.next_op,
             op: op.op,
@@ -442,7 +535,12 @@ impl Bench {
             if out.o_valid {
                 t.position = Some(out.o_position);
             }
-            let sent: Vec<&SentFrame> = self.encoders.iter().flat_map(|e| e.sent().iter()).filter(|f| f.cycle >= t.start_cycle && f.cycle <= t.done_cycle).collect();
+            let sent: Vec<&SentFrame> = self
+                .encoders
+                .iter()
+                .flat_map(|e| e.sent().iter())
+                .filter(|f| f.cycle >= t.start_cycle && f.cycle <= t.done_cycle)
+                .collect();
             t.encoder_frames = sent.iter().map(|f| f.bytes.clone()).collect();
             self.transactions.push(t);
         }
@@ -450,7 +548,10 @@ impl Bench {
         if self.next_op == self.ops.len() {
             self.end = Some(self.cycle + 16);
         } else {
-            self.start_at = self.cycle + self.tb.cycles_at_least_ns(self.ops[self.next_op].gap_us * 1e3);
+            self.start_at = self.cycle
+                + self
+                    .tb
+                    .cycles_at_least_ns(self.ops[self.next_op].gap_us * 1e3);
         }
     }
 }
@@ -465,8 +566,15 @@ impl Testbench for Bench {
     }
 
     fn step(&mut self, sample: Option<&mut Sample>) {
-        let mut input = In { i_rx: self.at_host, ..In::default() };
-        if self.open.is_none() && self.end.is_none() && self.cycle >= self.start_at && !self.last_out.o_busy {
+        let mut input = In {
+            i_rx: self.at_host,
+            ..In::default()
+        };
+        if self.open.is_none()
+            && self.end.is_none()
+            && self.cycle >= self.start_at
+            && !self.last_out.o_busy
+        {
             let op = self.ops[self.next_op].clone();
             input.i_start = op.op == OpKind::Read;
             input.i_zero = op.op == OpKind::Zero;
@@ -474,10 +582,17 @@ impl Testbench for Bench {
             self.open_transaction();
         }
         let out = self.host.step(&input);
-        let host_drive = Drive { enable: out.o_tx_en, level: out.o_tx };
+        let host_drive = Drive {
+            enable: out.o_tx_en,
+            level: out.o_tx,
+        };
         {
             let t = self.open.as_mut().or(self.transactions.last_mut());
-            self.wire_tap.step(input.i_rx, out.o_tx_en, t.map(|t| (&mut t.wire_requests, &mut t.wire_answers)));
+            self.wire_tap.step(
+                input.i_rx,
+                out.o_tx_en,
+                t.map(|t| (&mut t.wire_requests, &mut t.wire_answers)),
+            );
         }
         let (mut at_host, mut at_encoder) = self.line.step(host_drive, self.encoder_drive);
         let now = self.cycle;
@@ -493,19 +608,30 @@ impl Testbench for Bench {
         }
         let trigger = self.trigger_line.step(out.o_trigger);
         let clr = self.clr_line.step(out.o_clr);
-        let enc_in = EncoderIn { rx: at_encoder.level, trigger, clr };
+        let enc_in = EncoderIn {
+            rx: at_encoder.level,
+            trigger,
+            clr,
+        };
         let drives: Vec<Drive> = self.encoders.iter_mut().map(|e| e.step(&enc_in)).collect();
         let on: Vec<&Drive> = drives.iter().filter(|d| d.enable).collect();
         if on.len() > 1 {
             self.encoder_contention += 1;
         }
         self.encoders_on = on.len();
-        self.encoder_drive = on.first().map_or(Drive { enable: false, level: true }, |d| **d);
+        self.encoder_drive = on.first().map_or(
+            Drive {
+                enable: false,
+                level: true,
+            },
+            |d| **d,
+        );
         self.at_host = at_host.level;
         if let Some(t) = self.open.as_mut().or(self.transactions.last_mut()) {
             if out.o_valid {
                 t.positions.push(out.o_position);
-                t.angles_deg.push(angle_deg(out.o_position as u64, self.cfg.encoders[0].bits));
+                t.angles_deg
+                    .push(angle_deg(out.o_position as u64, self.cfg.encoders[0].bits));
             }
             for (flag, name) in [
                 (out.o_err_checksum, "checksum"),
@@ -536,7 +662,11 @@ impl Testbench for Bench {
             trigger as u64,
             clr as u64,
         ]);
-        sample.decoded.copy_from_slice(&[self.host.state() as u64, self.host.count() as u64, self.host.synced() as u64]);
+        sample.decoded.copy_from_slice(&[
+            self.host.state() as u64,
+            self.host.count() as u64,
+            self.host.synced() as u64,
+        ]);
     }
 
     fn finished(&self) -> bool {
@@ -547,21 +677,43 @@ impl Testbench for Bench {
         let c = self.cycle;
         // The cycle after a start shows its pulse falling.
         let just_started = self.open.as_ref().is_some_and(|t| t.start_cycle + 1 == c);
-        let q = uart::bench_quiet(c, self.end, self.open.is_some() || self.last_out.o_busy, self.start_at, just_started, &self.drivers);
+        let q = uart::bench_quiet(
+            c,
+            self.end,
+            self.open.is_some() || self.last_out.o_busy,
+            self.start_at,
+            just_started,
+            &self.drivers,
+        );
         if q == 0 {
             return 0;
         }
         let out = &self.last_out;
-        let input = In { i_rx: self.at_host, ..In::default() };
-        let host_drive = Drive { enable: out.o_tx_en, level: out.o_tx };
+        let input = In {
+            i_rx: self.at_host,
+            ..In::default()
+        };
+        let host_drive = Drive {
+            enable: out.o_tx_en,
+            level: out.o_tx,
+        };
         let (near, far) = self.line.sensed(host_drive, self.encoder_drive);
         // The level a second driver left at the near end gives way to the line's.
         if near.level != self.at_host {
             return 0;
         }
         let at_encoder = far.level;
-        let enc_in = EncoderIn { rx: at_encoder, trigger: self.trigger_line.output(), clr: self.clr_line.output() };
-        let encoders = self.encoders.iter().map(|e| e.quiet(&enc_in)).min().unwrap_or(u64::MAX);
+        let enc_in = EncoderIn {
+            rx: at_encoder,
+            trigger: self.trigger_line.output(),
+            clr: self.clr_line.output(),
+        };
+        let encoders = self
+            .encoders
+            .iter()
+            .map(|e| e.quiet(&enc_in))
+            .min()
+            .unwrap_or(u64::MAX);
         q.min(self.host.quiet(&input))
             .min(self.wire_tap.quiet(input.i_rx, out.o_tx_en))
             .min(self.line.quiet(host_drive, self.encoder_drive))
@@ -572,7 +724,10 @@ impl Testbench for Bench {
 
     fn skip(&mut self, n: u64) {
         let out = self.last_out;
-        let host_drive = Drive { enable: out.o_tx_en, level: out.o_tx };
+        let host_drive = Drive {
+            enable: out.o_tx_en,
+            level: out.o_tx,
+        };
         self.host.skip(n);
         self.wire_tap.skip(n);
         self.line.skip(n, host_drive, self.encoder_drive);

@@ -79,7 +79,13 @@ impl std::fmt::Display for Report {
             "frames",
             "8-bit sum promise: every inverted data bit seen; two are blind only when their changes cancel mod 256; a character re-framed by an inverted start bit passes with p = 1/256",
         )?;
-        write!(f, "total {}, disagreements with the checks {}, clean frames lost after a corruption {}", self.total(), self.disagreements, self.lost_recoveries)
+        write!(
+            f,
+            "total {}, disagreements with the checks {}, clean frames lost after a corruption {}",
+            self.total(),
+            self.disagreements,
+            self.lost_recoveries
+        )
     }
 }
 
@@ -104,25 +110,49 @@ pub fn judge(bits: u32, corrupted: &[bool], clean: &[bool], clean_value: u32) ->
 /// [`judge`], with fast-forward through the host's quiet cycles
 /// ([`Host::quiet`], never across a bit boundary, where the line may
 /// change) or stepping every cycle.
-pub fn judge_with(bits: u32, corrupted: &[bool], clean: &[bool], clean_value: u32, fast_forward: bool) -> (bool, bool) {
+pub fn judge_with(
+    bits: u32,
+    corrupted: &[bool],
+    clean: &[bool],
+    clean_value: u32,
+    fast_forward: bool,
+) -> (bool, bool) {
     let mut host = Host::new(host_config(bits)).expect("campaign host configuration is valid");
     let idle = vec![true; IDLE_BITS];
     let first_end = (IDLE_BITS + corrupted.len() + IDLE_BITS) as u64 * CLOCKS_PER_BIT;
-    let line: Vec<bool> = idle.iter().chain(corrupted).chain(&idle).chain(clean).chain(&idle).copied().collect();
+    let line: Vec<bool> = idle
+        .iter()
+        .chain(corrupted)
+        .chain(&idle)
+        .chain(clean)
+        .chain(&idle)
+        .copied()
+        .collect();
     let (mut flagged, mut accepted, mut recovered) = (false, false, false);
     let end = line.len() as u64 * CLOCKS_PER_BIT;
     let mut t = 0;
     while t < end {
-        let input = In { i_rx: line[(t / CLOCKS_PER_BIT) as usize], ..In::default() };
+        let input = In {
+            i_rx: line[(t / CLOCKS_PER_BIT) as usize],
+            ..In::default()
+        };
         // A quiet cycle shows the last output again: no pulse, nothing to tally.
-        let quiet = if fast_forward { host.quiet(&input).min(CLOCKS_PER_BIT - t % CLOCKS_PER_BIT) } else { 0 };
+        let quiet = if fast_forward {
+            host.quiet(&input).min(CLOCKS_PER_BIT - t % CLOCKS_PER_BIT)
+        } else {
+            0
+        };
         if quiet > 0 {
             host.skip(quiet);
             t += quiet;
             continue;
         }
         let out = host.step(&input);
-        let err = out.o_err_checksum || out.o_err_parity || out.o_err_frame || out.o_err_address || out.o_err_timeout;
+        let err = out.o_err_checksum
+            || out.o_err_parity
+            || out.o_err_frame
+            || out.o_err_address
+            || out.o_err_timeout;
         if t < first_end {
             flagged |= err;
             accepted |= out.o_valid;
@@ -146,12 +176,26 @@ pub fn run_with(trials: u64, max_flips: usize, seed: u64, fast_forward: bool) ->
     let mut report = Report::default();
     for _ in 0..trials {
         let bits = [16u32, 24, 32][rng.random_range(0..3)];
-        let value = if bits == 32 { rng.random::<u32>() } else { rng.random::<u32>() & ((1 << bits) - 1) };
+        let value = if bits == 32 {
+            rng.random::<u32>()
+        } else {
+            rng.random::<u32>() & ((1 << bits) - 1)
+        };
         let clean = levels(&frames::encode(value, bits));
         let (k, corrupted) = corrupt(&mut rng, &clean, max_flips);
         let next = rng.random::<u32>() & 0xFFFF;
         let next_frame = levels(&frames::encode(next, bits));
-        let (detected, recovered) = judge_with(bits, &corrupted, &next_frame, next & if bits == 32 { u32::MAX } else { (1 << bits) - 1 }, fast_forward);
+        let (detected, recovered) = judge_with(
+            bits,
+            &corrupted,
+            &next_frame,
+            next & if bits == 32 {
+                u32::MAX
+            } else {
+                (1 << bits) - 1
+            },
+            fast_forward,
+        );
         report.tally.add(k, detected, blind(&corrupted, bits));
         if !recovered {
             report.lost_recoveries += 1;

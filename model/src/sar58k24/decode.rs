@@ -95,7 +95,17 @@ impl Finder {
         let angle_deg = position.map(|v| crate::angle::angle_deg(v as u64, self.options.bits));
         let bytes = values(&self.pending);
         self.pending.clear();
-        self.out.push(Burst { index: self.out.len(), start_ps, kind, bytes, command: None, address: None, position, angle_deg, errors });
+        self.out.push(Burst {
+            index: self.out.len(),
+            start_ps,
+            kind,
+            bytes,
+            command: None,
+            address: None,
+            position,
+            angle_deg,
+            errors,
+        });
     }
 
     /// An idle gap of the host's `GAP_CLOCKS`: a frame boundary.
@@ -118,10 +128,15 @@ impl Finder {
             self.gap();
         }
         // Idle is counted from the receiver's stop-bit sample.
-        self.last_end_ps = Some(c.start_ps + (self.options.parity.frame_bits() as u64 - 1) * bit_ps + bit_ps / 2);
+        self.last_end_ps =
+            Some(c.start_ps + (self.options.parity.frame_bits() as u64 - 1) * bit_ps + bit_ps / 2);
         self.pending.push(c);
         if c.parity_error || c.framing_error {
-            let errors = [(c.parity_error, "parity"), (c.framing_error, "frame")].into_iter().filter(|f| f.0).map(|f| f.1).collect();
+            let errors = [(c.parity_error, "parity"), (c.framing_error, "frame")]
+                .into_iter()
+                .filter(|f| f.0)
+                .map(|f| f.1)
+                .collect();
             self.count = 0;
             self.synced = false;
             self.emit("fault", errors, None);
@@ -134,14 +149,23 @@ impl Finder {
         let w = &self.window;
         let header_ok = w[0] == frames::SYNC && w[1] == self.tag;
         if self.count >= l && header_ok && frames::checksum(&w[..l - 1]) == w[l - 1] {
-            let data = w[2..l - 1].iter().fold(0u64, |v, &x| (v << 8) | x as u64) & ((1u64 << self.options.bits) - 1);
-            let v = if self.options.gray { crate::gray::from_gray(data) } else { data } as u32;
+            let data = w[2..l - 1].iter().fold(0u64, |v, &x| (v << 8) | x as u64)
+                & ((1u64 << self.options.bits) - 1);
+            let v = if self.options.gray {
+                crate::gray::from_gray(data)
+            } else {
+                data
+            } as u32;
             self.count = 0;
             self.synced = true;
             self.emit("frame", Vec::new(), Some(v));
         } else if self.count == l && self.synced {
             self.synced = false;
-            let error = if w[0] == frames::SYNC && w[1] & 0xF0 == 0xB0 && self.tag & 0xF0 == 0xB0 && w[1] != self.tag {
+            let error = if w[0] == frames::SYNC
+                && w[1] & 0xF0 == 0xB0
+                && self.tag & 0xF0 == 0xB0
+                && w[1] != self.tag
+            {
                 "address"
             } else if !header_ok {
                 "frame"
@@ -179,7 +203,12 @@ struct Carried {
 impl Decoder {
     /// A decoder with `options`, the tag `81` (no command seen yet).
     pub fn new(options: Options) -> Self {
-        Decoder { options, tag: frames::TAG_81, next_index: 0, carried: None }
+        Decoder {
+            options,
+            tag: frames::TAG_81,
+            next_index: 0,
+            carried: None,
+        }
     }
 
     /// The bit time, ps.
@@ -211,8 +240,24 @@ impl Decoder {
         let options = self.options.clone();
         let bit_ps = self.bit_ps();
         let len = frames::frame_len(options.bits);
-        let c = self.carried.take().unwrap_or(Carried { window: vec![0; len], count: 0, synced: true, pending: Vec::new(), last_end_ps: None });
-        let mut f = Finder { options: options.clone(), len, window: c.window, count: c.count, synced: c.synced, pending: c.pending, last_end_ps: c.last_end_ps, tag: self.tag, out: Vec::new() };
+        let c = self.carried.take().unwrap_or(Carried {
+            window: vec![0; len],
+            count: 0,
+            synced: true,
+            pending: Vec::new(),
+            last_end_ps: None,
+        });
+        let mut f = Finder {
+            options: options.clone(),
+            len,
+            window: c.window,
+            count: c.count,
+            synced: c.synced,
+            pending: c.pending,
+            last_end_ps: c.last_end_ps,
+            tag: self.tag,
+            out: Vec::new(),
+        };
         let chars = line::chars(line_sig, Some(tx_en), bit_ps, options.parity);
         let mut k = 0;
         while k < chars.len() {
@@ -223,7 +268,10 @@ impl Decoder {
                 // are two events, not one unreadable six-byte command.
                 let gap_ps = (options.gap_bits * bit_ps as f64) as u64;
                 let mut n = 1;
-                while chars.get(k + n).is_some_and(|c| c.from_host && c.start_ps < chars[k + n - 1].end_ps(bit_ps, options.parity) + gap_ps) {
+                while chars.get(k + n).is_some_and(|c| {
+                    c.from_host
+                        && c.start_ps < chars[k + n - 1].end_ps(bit_ps, options.parity) + gap_ps
+                }) {
                     n += 1;
                 }
                 f.gap();
@@ -238,7 +286,17 @@ impl Decoder {
                     // As the host: `TAG_ADDRESS ? {4'hB, i_address} : 8'h81`.
                     f.tag = frames::tag_byte(options.answer_tag, true, a);
                 }
-                f.out.push(Burst { index: f.out.len(), start_ps: cmd[0].start_ps, kind: "command", bytes, command, address, position: None, angle_deg: None, errors: Vec::new() });
+                f.out.push(Burst {
+                    index: f.out.len(),
+                    start_ps: cmd[0].start_ps,
+                    kind: "command",
+                    bytes,
+                    command,
+                    address,
+                    position: None,
+                    angle_deg: None,
+                    errors: Vec::new(),
+                });
                 k += n;
             } else {
                 f.char(chars[k], bit_ps);
@@ -246,7 +304,13 @@ impl Decoder {
             }
         }
         if carry {
-            self.carried = Some(Carried { window: std::mem::take(&mut f.window), count: f.count, synced: f.synced, pending: std::mem::take(&mut f.pending), last_end_ps: f.last_end_ps });
+            self.carried = Some(Carried {
+                window: std::mem::take(&mut f.window),
+                count: f.count,
+                synced: f.synced,
+                pending: std::mem::take(&mut f.pending),
+                last_end_ps: f.last_end_ps,
+            });
         } else {
             f.gap();
         }

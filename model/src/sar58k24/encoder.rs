@@ -79,7 +79,9 @@ pub enum OutputCode {
 pub const REFRESH_RATES_HZ: [f64; 8] = [2000.0, 1000.0, 500.0, 400.0, 200.0, 100.0, 50.0, 20.0];
 
 /// The baud rates of 2.4.
-pub const BAUD_RATES: [f64; 7] = [115_200.0, 57_600.0, 38_400.0, 19_200.0, 9_600.0, 4_800.0, 2_400.0];
+pub const BAUD_RATES: [f64; 7] = [
+    115_200.0, 57_600.0, 38_400.0, 19_200.0, 9_600.0, 4_800.0, 2_400.0,
+];
 
 /// The emulator's settings in a scenario's units (`[sar.encoder]`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -176,16 +178,32 @@ impl EncoderSettings {
     /// `parity` are the set-up's.
     pub fn validate(&self, mode: Mode, baud: f64, parity: Parity) -> Result<()> {
         if !(10..=32).contains(&self.bits) {
-            return Err(ConfigError::invalid("encoder.bits", format!("{}", self.bits), "give a resolution of 10 to 32 bits"));
+            return Err(ConfigError::invalid(
+                "encoder.bits",
+                format!("{}", self.bits),
+                "give a resolution of 10 to 32 bits",
+            ));
         }
         if self.address > 15 {
-            return Err(ConfigError::invalid("encoder.address", format!("{}", self.address), "give 0 to 15: the x of BC AA Bx is one hex digit"));
+            return Err(ConfigError::invalid(
+                "encoder.address",
+                format!("{}", self.address),
+                "give 0 to 15: the x of BC AA Bx is one hex digit",
+            ));
         }
         if self.positions.is_empty() || self.positions.len() > 1_000_000 {
-            return Err(ConfigError::invalid("encoder.positions", "empty or longer than 10^6", "list 1 to 10^6 raw positions"));
+            return Err(ConfigError::invalid(
+                "encoder.positions",
+                "empty or longer than 10^6",
+                "list 1 to 10^6 raw positions",
+            ));
         }
         if let Some(p) = self.positions.iter().find(|&&p| p >> self.bits != 0) {
-            return Err(ConfigError::invalid("encoder.positions", format!("{p} does not fit {} bits", self.bits), "give positions below 2^bits"));
+            return Err(ConfigError::invalid(
+                "encoder.positions",
+                format!("{p} does not fit {} bits", self.bits),
+                "give positions below 2^bits",
+            ));
         }
         for (f, v) in [
             ("encoder.acquisition_us", self.acquisition_us),
@@ -194,25 +212,44 @@ impl EncoderSettings {
             ("encoder.answer_delay_us", self.answer_delay_us),
         ] {
             if !(0.0..1e7).contains(&v) {
-                return Err(ConfigError::invalid(f, format!("{v}"), "give a time from 0 to 10^7 µs"));
+                return Err(ConfigError::invalid(
+                    f,
+                    format!("{v}"),
+                    "give a time from 0 to 10^7 µs",
+                ));
             }
         }
         if self.acquisition_us < self.trigger_min_low_us {
             return Err(ConfigError::invalid(
                 "encoder.acquisition_us",
-                format!("T3 = {} µs is shorter than T2 = {} µs", self.acquisition_us, self.trigger_min_low_us),
+                format!(
+                    "T3 = {} µs is shorter than T2 = {} µs",
+                    self.acquisition_us, self.trigger_min_low_us
+                ),
                 "the encoder can only send after it has seen the trigger low for T2: give T3 ≥ T2",
             ));
         }
         if !(1.0..=1000.0).contains(&self.command_gap_bits) {
-            return Err(ConfigError::invalid("encoder.command_gap_bits", format!("{}", self.command_gap_bits), "give 1 to 1000 bit times"));
+            return Err(ConfigError::invalid(
+                "encoder.command_gap_bits",
+                format!("{}", self.command_gap_bits),
+                "give 1 to 1000 bit times",
+            ));
         }
         if !(-10.0..=10.0).contains(&self.baud_error_percent) {
-            return Err(ConfigError::invalid("encoder.baud_error_percent", format!("{}", self.baud_error_percent), "give −10 to +10 %"));
+            return Err(ConfigError::invalid(
+                "encoder.baud_error_percent",
+                format!("{}", self.baud_error_percent),
+                "give −10 to +10 %",
+            ));
         }
         if mode.is_timed() {
             if !(1.0..=2000.0).contains(&self.refresh_hz) {
-                return Err(ConfigError::invalid("encoder.refresh_hz", format!("{}", self.refresh_hz), "give 1 to 2000 Hz (the manual lists 20 Hz to 2 kHz)"));
+                return Err(ConfigError::invalid(
+                    "encoder.refresh_hz",
+                    format!("{}", self.refresh_hz),
+                    "give 1 to 2000 Hz (the manual lists 20 Hz to 2 kHz)",
+                ));
             }
             let frame_s = frame_seconds(self.bits, baud, parity);
             let period_s = 1.0 / self.refresh_hz;
@@ -240,7 +277,8 @@ impl EncoderSettings {
                     "a SAR58K24 frame has one length: use flip, truncate, gap, noise, silent, retag or replace",
                 ));
             }
-            f.validate(len, parity).map_err(|e| ConfigError::invalid(format!("encoder.faults[{i}]"), e.0, e.1))?;
+            f.validate(len, parity)
+                .map_err(|e| ConfigError::invalid(format!("encoder.faults[{i}]"), e.0, e.1))?;
         }
         Ok(())
     }
@@ -306,8 +344,20 @@ pub struct Encoder {
 impl Encoder {
     /// An emulator in its power-on state.
     pub fn new(cfg: EncoderConfig) -> Result<Self> {
-        let tx = Transmitter::new(cfg.period_ps, cfg.baud, cfg.settings.baud_error_percent, 0.0, 1).with_parity(cfg.parity);
-        let rx = Receiver::with_parity(ReceiverConfig { clocks_per_bit: cfg.clocks_per_bit }, cfg.parity)?;
+        let tx = Transmitter::new(
+            cfg.period_ps,
+            cfg.baud,
+            cfg.settings.baud_error_percent,
+            0.0,
+            1,
+        )
+        .with_parity(cfg.parity);
+        let rx = Receiver::with_parity(
+            ReceiverConfig {
+                clocks_per_bit: cfg.clocks_per_bit,
+            },
+            cfg.parity,
+        )?;
         Ok(Encoder {
             next_timed: cfg.refresh_clocks,
             tx,
@@ -370,7 +420,11 @@ impl Encoder {
     /// not fit the resolution.
     pub fn set_position(&mut self, raw: u64) -> Result<()> {
         if raw & !self.mask() != 0 {
-            return Err(ConfigError::invalid("position", format!("{raw} does not fit {} bits", self.cfg.settings.bits), "give a position below 2^bits"));
+            return Err(ConfigError::invalid(
+                "position",
+                format!("{raw} does not fit {} bits", self.cfg.settings.bits),
+                "give a position below 2^bits",
+            ));
         }
         self.position_now = Some(raw);
         Ok(())
@@ -397,18 +451,30 @@ impl Encoder {
             OutputCode::Binary => position,
             OutputCode::Gray => to_gray(position),
         };
-        let faults: Vec<FrameFault> = s.faults.iter().filter(|f| f.frame == index).cloned().collect();
+        let faults: Vec<FrameFault> = s
+            .faults
+            .iter()
+            .filter(|f| f.frame == index)
+            .cloned()
+            .collect();
         let mut tag = frames::tag_byte(s.answer_tag, self.cfg.mode.is_bus(), s.address);
         if let Some(f) = faults.iter().find(|f| f.kind == FaultKind::Retag) {
             tag = f.bytes[0];
         }
         let mut bytes = frames::encode_tagged(coded as u32, s.bits, tag);
         let n = bytes.len();
-        for f in faults.iter().filter(|f| f.kind == FaultKind::Replace && f.byte + 1 < n) {
+        for f in faults
+            .iter()
+            .filter(|f| f.kind == FaultKind::Replace && f.byte + 1 < n)
+        {
             bytes[f.byte] = f.bytes[0];
             bytes[n - 1] = frames::checksum(&bytes[..n - 1]);
         }
-        self.sent.push(SentFrame { cycle: self.cycle, bytes: bytes.clone(), position });
+        self.sent.push(SentFrame {
+            cycle: self.cycle,
+            bytes: bytes.clone(),
+            position,
+        });
         if faults.iter().any(|f| f.kind == FaultKind::Silent) {
             return;
         }
@@ -458,7 +524,9 @@ impl Encoder {
                 }
             }
             let driving = now_ps < self.driving_until_ps + period;
-            q = q.min(self.rx.quiet(&uart::In { i_rx: input.rx || driving }));
+            q = q.min(self.rx.quiet(&uart::In {
+                i_rx: input.rx || driving,
+            }));
         }
         q
     }
@@ -516,7 +584,11 @@ impl Encoder {
             self.trigger_before = input.trigger;
         }
         if let Some((at, p)) = self.pending_send {
-            if self.cycle >= at && (!mode.is_handshake() || self.trigger_low == 0 || self.trigger_low >= self.cfg.trigger_min_low) {
+            if self.cycle >= at
+                && (!mode.is_handshake()
+                    || self.trigger_low == 0
+                    || self.trigger_low >= self.cfg.trigger_min_low)
+            {
                 self.pending_send = None;
                 self.send_frame(p);
             }
@@ -525,7 +597,9 @@ impl Encoder {
         let driving = mode.is_bus() && now_ps < self.driving_until_ps + self.cfg.period_ps as f64;
         if mode.is_bus() {
             // The receiver hears the line only while the encoder's own driver is off.
-            let r = self.rx.step(&uart::In { i_rx: input.rx || driving });
+            let r = self.rx.step(&uart::In {
+                i_rx: input.rx || driving,
+            });
             self.since_byte += 1;
             if r.o_valid || r.o_frame_err || r.o_parity_err {
                 if self.since_byte > self.cfg.command_gap + self.cfg.clocks_per_bit * 11 {
@@ -563,7 +637,11 @@ impl Encoder {
         }
         let level = self.tx.step();
         self.cycle += 1;
-        let enable = if mode.is_bus() { now_ps < self.driving_until_ps } else { true };
+        let enable = if mode.is_bus() {
+            now_ps < self.driving_until_ps
+        } else {
+            true
+        };
         Drive { enable, level }
     }
 }

@@ -123,7 +123,11 @@ pub fn decode(frame: &[u8], bits: u32) -> Result<u32, FrameError> {
 pub fn decode_tagged(frame: &[u8], bits: u32, tag: u8) -> Result<u32, FrameError> {
     let n = data_bytes(bits);
     if frame.len() != n + 3 {
-        return Err(FrameError::Length { bits, expected: n + 3, got: frame.len() });
+        return Err(FrameError::Length {
+            bits,
+            expected: n + 3,
+            got: frame.len(),
+        });
     }
     if frame[..2] != [SYNC, tag] {
         return Err(FrameError::Header(frame[0], frame[1]));
@@ -133,7 +137,9 @@ pub fn decode_tagged(frame: &[u8], bits: u32, tag: u8) -> Result<u32, FrameError
     if expected != got {
         return Err(FrameError::Checksum { expected, got });
     }
-    Ok(frame[2..2 + n].iter().fold(0u32, |v, b| (v << 8) | *b as u32))
+    Ok(frame[2..2 + n]
+        .iter()
+        .fold(0u32, |v, b| (v << 8) | *b as u32))
 }
 
 /// A bus command recognised in a received byte string.

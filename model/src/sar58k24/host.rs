@@ -76,15 +76,30 @@ pub struct HostConfig {
 impl HostConfig {
     /// Checks the configuration; field names are those of `[sar.host]`.
     pub fn validate(&self) -> Result<()> {
-        ReceiverConfig { clocks_per_bit: self.clocks_per_bit }.validate()?;
+        ReceiverConfig {
+            clocks_per_bit: self.clocks_per_bit,
+        }
+        .validate()?;
         if !(10..=32).contains(&self.bits) {
-            return Err(ConfigError::invalid("encoder.bits", format!("{}", self.bits), "give 10 to 32 bits"));
+            return Err(ConfigError::invalid(
+                "encoder.bits",
+                format!("{}", self.bits),
+                "give 10 to 32 bits",
+            ));
         }
         if self.gap_clocks < self.clocks_per_bit {
-            return Err(ConfigError::invalid("host.gap_bits", "shorter than one bit", "give at least 1 bit time (the default is 15, 1.5 characters)"));
+            return Err(ConfigError::invalid(
+                "host.gap_bits",
+                "shorter than one bit",
+                "give at least 1 bit time (the default is 15, 1.5 characters)",
+            ));
         }
         if self.timeout_clocks == 0 || self.trigger_low_clocks == 0 || self.clr_low_clocks == 0 {
-            return Err(ConfigError::invalid("host", "a zero timeout, trigger or CLR width", "give positive times"));
+            return Err(ConfigError::invalid(
+                "host",
+                "a zero timeout, trigger or CLR width",
+                "give positive times",
+            ));
         }
         Ok(())
     }
@@ -126,7 +141,12 @@ pub struct In {
 
 impl Default for In {
     fn default() -> Self {
-        In { i_start: false, i_zero: false, i_address: 0, i_rx: true }
+        In {
+            i_start: false,
+            i_zero: false,
+            i_address: 0,
+            i_rx: true,
+        }
     }
 }
 
@@ -186,7 +206,12 @@ impl Default for Out {
 
 impl Ports for In {
     fn write_values(&self, dst: &mut [u64]) {
-        dst.copy_from_slice(&[self.i_start as u64, self.i_zero as u64, (self.i_address & 0xF) as u64, self.i_rx as u64]);
+        dst.copy_from_slice(&[
+            self.i_start as u64,
+            self.i_zero as u64,
+            (self.i_address & 0xF) as u64,
+            self.i_rx as u64,
+        ]);
     }
 }
 
@@ -242,9 +267,17 @@ impl Host {
     pub fn new(cfg: HostConfig) -> Result<Self> {
         cfg.validate()?;
         Ok(Host {
-            rx: Receiver::with_parity(ReceiverConfig { clocks_per_bit: cfg.clocks_per_bit }, cfg.parity)?,
+            rx: Receiver::with_parity(
+                ReceiverConfig {
+                    clocks_per_bit: cfg.clocks_per_bit,
+                },
+                cfg.parity,
+            )?,
             rx_out: uart::Out::default(),
-            tx: Tx::new(TxConfig { clocks_per_bit: cfg.clocks_per_bit, parity: cfg.parity })?,
+            tx: Tx::new(TxConfig {
+                clocks_per_bit: cfg.clocks_per_bit,
+                parity: cfg.parity,
+            })?,
             tx_out: TxOut::default(),
             tx_in: TxIn::default(),
             tx_pending: false,
@@ -266,7 +299,12 @@ impl Host {
 
     /// The input ports, in vector order (the Verilog port names).
     pub fn input_ports() -> Vec<Port> {
-        vec![Port::new("i_start", 1), Port::new("i_zero", 1), Port::new("i_address", 4), Port::new("i_rx", 1)]
+        vec![
+            Port::new("i_start", 1),
+            Port::new("i_zero", 1),
+            Port::new("i_address", 4),
+            Port::new("i_rx", 1),
+        ]
     }
 
     /// The output ports, in vector order (the Verilog port names).
@@ -317,9 +355,23 @@ impl Host {
     /// `input` starts an operation.
     pub fn quiet(&self, input: &In) -> u64 {
         let o = &self.out;
-        let pulse = o.o_done || o.o_valid || o.o_err_checksum || o.o_err_parity || o.o_err_frame || o.o_err_address || o.o_err_timeout || o.o_err_stale;
+        let pulse = o.o_done
+            || o.o_valid
+            || o.o_err_checksum
+            || o.o_err_parity
+            || o.o_err_frame
+            || o.o_err_address
+            || o.o_err_timeout
+            || o.o_err_stale;
         let rx = self.rx_out;
-        if pulse || rx.o_valid || rx.o_parity_err || rx.o_frame_err || self.tx_pending || self.tx_in.i_valid || self.tx.state() != uart::TxState::Idle {
+        if pulse
+            || rx.o_valid
+            || rx.o_parity_err
+            || rx.o_frame_err
+            || self.tx_pending
+            || self.tx_in.i_valid
+            || self.tx.state() != uart::TxState::Idle
+        {
             return 0;
         }
         let cfg = self.cfg;
@@ -329,9 +381,19 @@ impl Host {
             State::Trigger | State::Clr | State::Wait => self.cnt,
             State::Send => return 0,
         };
-        let gap = if !rx.o_busy && self.count != 0 { cfg.gap_clocks.saturating_sub(self.idle + 1) } else { u64::MAX };
-        let stale = if cfg.stale_clocks != 0 { cfg.stale_clocks.saturating_sub(self.stale + 1) } else { u64::MAX };
-        let line = uart::In { i_rx: input.i_rx || o.o_tx_en };
+        let gap = if !rx.o_busy && self.count != 0 {
+            cfg.gap_clocks.saturating_sub(self.idle + 1)
+        } else {
+            u64::MAX
+        };
+        let stale = if cfg.stale_clocks != 0 {
+            cfg.stale_clocks.saturating_sub(self.stale + 1)
+        } else {
+            u64::MAX
+        };
+        let line = uart::In {
+            i_rx: input.i_rx || o.o_tx_en,
+        };
         fsm.min(gap).min(stale).min(self.rx.quiet(&line))
     }
 
@@ -353,20 +415,41 @@ impl Host {
     pub fn step(&mut self, input: &In) -> Out {
         let cfg = self.cfg;
         let l = cfg.frame_len();
-        let mut next = Out { o_done: false, o_valid: false, o_err_checksum: false, o_err_parity: false, o_err_frame: false, o_err_address: false, o_err_timeout: false, o_err_stale: false, ..self.out };
+        let mut next = Out {
+            o_done: false,
+            o_valid: false,
+            o_err_checksum: false,
+            o_err_parity: false,
+            o_err_frame: false,
+            o_err_address: false,
+            o_err_timeout: false,
+            o_err_stale: false,
+            ..self.out
+        };
         let rx = self.rx_out;
         let tx = self.tx_out;
-        let mut tx_in = TxIn { i_valid: false, i_data: self.tx_in.i_data };
+        let mut tx_in = TxIn {
+            i_valid: false,
+            i_data: self.tx_in.i_data,
+        };
 
         // Frame finder.
         let mut event = false;
         let mut accepted = false;
         if rx.o_valid {
-            let mask = if l == 8 { u64::MAX } else { (1u64 << (8 * l)) - 1 };
+            let mask = if l == 8 {
+                u64::MAX
+            } else {
+                (1u64 << (8 * l)) - 1
+            };
             self.window = ((self.window << 8) | rx.o_data as u64) & mask;
             let count = (self.count + 1).min(l as u8 + 1);
             let sum = (0..l - 1).fold(0u8, |s, j| s.wrapping_add(self.window_byte(j)));
-            let (b0, b1, cs) = (self.window_byte(0), self.window_byte(1), self.window_byte(l - 1));
+            let (b0, b1, cs) = (
+                self.window_byte(0),
+                self.window_byte(1),
+                self.window_byte(l - 1),
+            );
             let header_ok = b0 == frames::SYNC && b1 == self.tag;
             if count as usize >= l && header_ok && sum == cs {
                 let data = (2..l - 1).fold(0u64, |v, j| (v << 8) | self.window_byte(j) as u64);
@@ -382,7 +465,12 @@ impl Host {
                 if count as usize == l && self.synced {
                     event = true;
                     self.synced = false;
-                    if b0 == frames::SYNC && b1 & 0xF0 == 0xB0 && cfg.mode.is_bus() && cfg.tag_address && b1 != self.tag {
+                    if b0 == frames::SYNC
+                        && b1 & 0xF0 == 0xB0
+                        && cfg.mode.is_bus()
+                        && cfg.tag_address
+                        && b1 != self.tag
+                    {
                         next.o_err_address = true;
                     } else if !header_ok {
                         next.o_err_frame = true;
@@ -438,9 +526,17 @@ impl Host {
                     next.o_busy = true;
                 } else if (input.i_start && cfg.mode.is_bus()) || bus_zero {
                     let a = input.i_address & 0xF;
-                    self.cmd = if input.i_start { frames::read_command(a) } else { frames::zero_command(a) };
+                    self.cmd = if input.i_start {
+                        frames::read_command(a)
+                    } else {
+                        frames::zero_command(a)
+                    };
                     self.expect_answer = input.i_start || cfg.zero_answer;
-                    self.tag = if cfg.tag_address { 0xB0 | a } else { frames::TAG_81 };
+                    self.tag = if cfg.tag_address {
+                        0xB0 | a
+                    } else {
+                        frames::TAG_81
+                    };
                     self.cmd_index = 0;
                     self.state = State::Send;
                     next.o_tx_en = true;
@@ -488,7 +584,10 @@ impl Host {
                             next.o_done = true;
                         }
                     } else {
-                        tx_in = TxIn { i_valid: true, i_data: self.cmd[self.cmd_index as usize] };
+                        tx_in = TxIn {
+                            i_valid: true,
+                            i_data: self.cmd[self.cmd_index as usize],
+                        };
                         self.cmd_index += 1;
                         self.tx_pending = true;
                     }
@@ -515,7 +614,9 @@ impl Host {
         self.tx_out = self.tx.step(&self.tx_in);
         self.tx_in = tx_in;
         next.o_tx = self.tx_out.o_tx;
-        self.rx_out = self.rx.step(&uart::In { i_rx: input.i_rx || self.out.o_tx_en });
+        self.rx_out = self.rx.step(&uart::In {
+            i_rx: input.i_rx || self.out.o_tx_en,
+        });
         self.out = next;
         next
     }

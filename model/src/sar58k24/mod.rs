@@ -30,8 +30,13 @@ pub mod frames;
 mod host;
 pub mod timing;
 
-pub use bench::{divider, Bench, BenchConfig, HostSettings, OpKind, Operation, SecondDriver, Transaction};
-pub use encoder::{frame_seconds, max_refresh_hz, Encoder, EncoderConfig, EncoderIn, EncoderSettings, Mode, OutputCode, SentFrame, BAUD_RATES, REFRESH_RATES_HZ};
+pub use crate::uart::{FaultKind, FrameFault};
+pub use bench::{
+    divider, Bench, BenchConfig, HostSettings, OpKind, Operation, SecondDriver, Transaction,
+};
+pub use encoder::{
+    frame_seconds, max_refresh_hz, Encoder, EncoderConfig, EncoderIn, EncoderSettings, Mode,
+    OutputCode, SentFrame, BAUD_RATES, REFRESH_RATES_HZ,
+};
 pub use frames::{checksum, data_bytes, decode, encode, AnswerTag, FrameError, HEADER};
 pub use host::{Host, HostConfig, In, Out, State};
-pub use crate::uart::{FaultKind, FrameFault};

@@ -27,8 +27,17 @@ pub fn budget(bits: u32, parity: Parity, t3_us: f64) -> Vec<Row> {
         .iter()
         .map(|&baud| {
             let frame_us = frame_seconds(bits, baud, parity) * 1e6;
-            let max_listed_refresh_hz = REFRESH_RATES_HZ.iter().copied().filter(|r| 1e6 / r >= frame_us).fold(0.0, f64::max);
-            Row { baud, frame_us, max_listed_refresh_hz, trigger_to_position_us: t3_us + (chars - 0.5) / baud * 1e6 }
+            let max_listed_refresh_hz = REFRESH_RATES_HZ
+                .iter()
+                .copied()
+                .filter(|r| 1e6 / r >= frame_us)
+                .fold(0.0, f64::max);
+            Row {
+                baud,
+                frame_us,
+                max_listed_refresh_hz,
+                trigger_to_position_us: t3_us + (chars - 0.5) / baud * 1e6,
+            }
         })
         .collect()
 }
@@ -40,7 +49,10 @@ pub fn table(bits: u32, parity: Parity, t3_us: f64) -> String {
         frames::frame_len(bits)
     );
     for r in budget(bits, parity, t3_us) {
-        s += &format!("| {} | {:.1} µs | {} Hz | {:.1} µs |\n", r.baud, r.frame_us, r.max_listed_refresh_hz, r.trigger_to_position_us);
+        s += &format!(
+            "| {} | {:.1} µs | {} Hz | {:.1} µs |\n",
+            r.baud, r.frame_us, r.max_listed_refresh_hz, r.trigger_to_position_us
+        );
     }
     s
 }

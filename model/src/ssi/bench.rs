@@ -20,8 +20,8 @@ use crate::angle::angle_deg;
 use crate::line::{CableConfig, DelayLine};
 use crate::ports::{Port, Ports};
 use crate::testbench::{self, Setup, Testbench};
-use crate::trace::{Layout, Sample};
 use crate::time::BitClock;
+use crate::trace::{Layout, Sample};
 use crate::{ConfigError, Result, Timebase};
 
 /// The reader's settings in a scenario file's units (`[master]`).
@@ -79,7 +79,13 @@ pub struct EncoderSettings {
 
 impl Default for EncoderSettings {
     fn default() -> Self {
-        EncoderSettings { bits: 12, code: Code::Binary, after_lsb: AfterLsb::Zeros, monoflop_us: 500.0, output_delay_ns: 100.0 }
+        EncoderSettings {
+            bits: 12,
+            code: Code::Binary,
+            after_lsb: AfterLsb::Zeros,
+            monoflop_us: 500.0,
+            output_delay_ns: 100.0,
+        }
     }
 }
 
@@ -95,7 +101,10 @@ pub struct HostSettings {
 
 impl Default for HostSettings {
     fn default() -> Self {
-        HostSettings { first_start_us: 1.0, gap_us: 2.0 }
+        HostSettings {
+            first_start_us: 1.0,
+            gap_us: 2.0,
+        }
     }
 }
 
@@ -155,7 +164,10 @@ impl BenchConfig {
     pub fn seed_example() -> Self {
         BenchConfig {
             positions: vec![495],
-            cable: CableConfig { length_m: 10.0, ..CableConfig::default() },
+            cable: CableConfig {
+                length_m: 10.0,
+                ..CableConfig::default()
+            },
             ..BenchConfig::default()
         }
     }
@@ -165,11 +177,23 @@ impl BenchConfig {
         let tb = self.timebase()?;
         let m = &self.master;
         if m.clock_khz.is_nan() || m.clock_khz <= 0.0 {
-            return Err(ConfigError::invalid("master.clock_khz", "not a positive frequency", "give the SSI clock in kHz, e.g. 250"));
+            return Err(ConfigError::invalid(
+                "master.clock_khz",
+                "not a positive frequency",
+                "give the SSI clock in kHz, e.g. 250",
+            ));
         }
-        for (field, value) in [("master.t_cs_us", m.t_cs_us), ("master.pause_us", m.pause_us), ("master.sample_delay_ns", m.sample_delay_ns)] {
+        for (field, value) in [
+            ("master.t_cs_us", m.t_cs_us),
+            ("master.pause_us", m.pause_us),
+            ("master.sample_delay_ns", m.sample_delay_ns),
+        ] {
             if !(0.0..1e7).contains(&value) {
-                return Err(ConfigError::invalid(field, format!("{value}"), "give a non-negative time"));
+                return Err(ConfigError::invalid(
+                    field,
+                    format!("{value}"),
+                    "give a non-negative time",
+                ));
             }
         }
         let clock = tb.divider(m.clock_khz * 1e3, "master.clock_khz", 8)?;
@@ -193,9 +217,16 @@ impl BenchConfig {
     pub fn encoder_config(&self) -> Result<EncoderConfig> {
         let tb = self.timebase()?;
         let e = &self.encoder;
-        for (field, value) in [("encoder.monoflop_us", e.monoflop_us), ("encoder.output_delay_ns", e.output_delay_ns)] {
+        for (field, value) in [
+            ("encoder.monoflop_us", e.monoflop_us),
+            ("encoder.output_delay_ns", e.output_delay_ns),
+        ] {
             if !(0.0..1e7).contains(&value) {
-                return Err(ConfigError::invalid(field, format!("{value}"), "give a non-negative time"));
+                return Err(ConfigError::invalid(
+                    field,
+                    format!("{value}"),
+                    "give a non-negative time",
+                ));
             }
         }
         let cfg = EncoderConfig {
@@ -216,7 +247,11 @@ impl BenchConfig {
 
     /// The position the encoder holds at read `k`.
     pub fn position_at(&self, k: usize) -> u64 {
-        let listed = if self.positions.is_empty() { 0 } else { self.positions[k % self.positions.len()] };
+        let listed = if self.positions.is_empty() {
+            0
+        } else {
+            self.positions[k % self.positions.len()]
+        };
         listed.wrapping_add((k as u64).wrapping_mul(self.step))
     }
 
@@ -224,8 +259,15 @@ impl BenchConfig {
     /// vector header lists them.
     fn parameters(&self) -> Result<Vec<(&'static str, u64)>> {
         let c = self.master_config()?;
-        let mut p = vec![("BITS", c.bits as u64), ("CLOCKS_PER_BIT", c.clocks_per_bit)];
-        p.extend(BitClock::parameters(c.high_clocks, c.low_clocks, ["HIGH_CLOCKS", "LOW_CLOCKS"]));
+        let mut p = vec![
+            ("BITS", c.bits as u64),
+            ("CLOCKS_PER_BIT", c.clocks_per_bit),
+        ];
+        p.extend(BitClock::parameters(
+            c.high_clocks,
+            c.low_clocks,
+            ["HIGH_CLOCKS", "LOW_CLOCKS"],
+        ));
         p.extend([
             ("GRAY", c.gray as u64),
             ("DOUBLE_READ", c.double_read as u64),
@@ -243,12 +285,24 @@ impl BenchConfig {
         self.master_config()?;
         self.encoder_config()?;
         if self.read_count() == 0 {
-            return Err(ConfigError::invalid("reads", "no reads", "list at least one position or set reads"));
+            return Err(ConfigError::invalid(
+                "reads",
+                "no reads",
+                "list at least one position or set reads",
+            ));
         }
         if self.read_count() > 10_000_000 {
-            return Err(ConfigError::invalid("reads", format!("{} reads", self.read_count()), "ask for at most 10 million reads"));
+            return Err(ConfigError::invalid(
+                "reads",
+                format!("{} reads", self.read_count()),
+                "ask for at most 10 million reads",
+            ));
         }
-        let limit = if self.encoder.bits == 64 { u64::MAX } else { (1u64 << self.encoder.bits) - 1 };
+        let limit = if self.encoder.bits == 64 {
+            u64::MAX
+        } else {
+            (1u64 << self.encoder.bits) - 1
+        };
         if let Some((i, p)) = self.positions.iter().enumerate().find(|(_, p)| **p > limit) {
             return Err(ConfigError::invalid(
                 format!("positions[{i}]"),
@@ -256,17 +310,26 @@ impl BenchConfig {
                 format!("give positions from 0 to {limit}"),
             ));
         }
-        for (field, us) in [("host.first_start_us", self.host.first_start_us), ("host.gap_us", self.host.gap_us)] {
+        for (field, us) in [
+            ("host.first_start_us", self.host.first_start_us),
+            ("host.gap_us", self.host.gap_us),
+        ] {
             if !(0.0..1e7).contains(&us) {
-                return Err(ConfigError::invalid(field, format!("{us}"), "give a non-negative time in µs"));
+                return Err(ConfigError::invalid(
+                    field,
+                    format!("{us}"),
+                    "give a non-negative time in µs",
+                ));
             }
         }
         // Refuse up front a run the vector format cannot hold, rather than
         // simulate for minutes and fail at the end.
         let tb = self.timebase()?;
         let m = self.master_config()?;
-        let per_read = m.read_cycles() + m.pause_clocks + tb.cycles_at_least_ns(self.host.gap_us * 1e3) + 4;
-        let total = (self.read_count() as u128) * per_read as u128 + tb.cycles_at_least_ns(self.host.first_start_us * 1e3) as u128;
+        let per_read =
+            m.read_cycles() + m.pause_clocks + tb.cycles_at_least_ns(self.host.gap_us * 1e3) + 4;
+        let total = (self.read_count() as u128) * per_read as u128
+            + tb.cycles_at_least_ns(self.host.first_start_us * 1e3) as u128;
         if total > MAX_CYCLES as u128 {
             return Err(ConfigError::invalid(
                 "reads",
@@ -398,7 +461,10 @@ impl Bench {
             next_read: 0,
             stuck: None,
             cycle: 0,
-            last_out: Out { o_ssi_clk: true, ..Out::default() },
+            last_out: Out {
+                o_ssi_clk: true,
+                ..Out::default()
+            },
             open: None,
             transactions: Vec::new(),
             layout,
@@ -443,7 +509,10 @@ impl Testbench for Bench {
     fn step(&mut self, sample: Option<&mut Sample>) {
         let start = self.host_decides();
         let pin = self.stuck.unwrap_or(self.data_at_master);
-        let input = In { i_start: start, i_ssi_data: pin };
+        let input = In {
+            i_start: start,
+            i_ssi_data: pin,
+        };
         let out = self.master.step(&input);
         let clk_at_encoder = self.clk_line.step(out.o_ssi_clk);
         let data_from_encoder = self.encoder.step(clk_at_encoder);
@@ -478,10 +547,13 @@ impl Testbench for Bench {
             return 0;
         }
         let pin = self.stuck.unwrap_or(self.data_at_master);
-        host.min(self.master.quiet(&In { i_start: false, i_ssi_data: pin }))
-            .min(self.clk_line.quiet(self.last_out.o_ssi_clk))
-            .min(self.encoder.quiet(self.clk_line.output()))
-            .min(self.data_line.quiet(self.encoder.data()))
+        host.min(self.master.quiet(&In {
+            i_start: false,
+            i_ssi_data: pin,
+        }))
+        .min(self.clk_line.quiet(self.last_out.o_ssi_clk))
+        .min(self.encoder.quiet(self.clk_line.output()))
+        .min(self.data_line.quiet(self.encoder.data()))
     }
 
     fn skip(&mut self, n: u64) {
@@ -548,7 +620,9 @@ impl Bench {
     }
 
     fn close_transaction(&mut self, out: &Out) {
-        let Some(mut t) = self.open.take() else { return };
+        let Some(mut t) = self.open.take() else {
+            return;
+        };
         let mc = self.master.config();
         t.done_cycle = self.cycle;
         if out.o_err_idle {
@@ -569,4 +643,3 @@ impl Bench {
         self.transactions.push(t);
     }
 }
-

@@ -85,7 +85,11 @@ pub fn bursts(clk: &Signal, data: &Signal) -> Vec<(u64, u64, String)> {
         let mut bits = String::new();
         for w in burst.windows(2).skip(1) {
             if !w[0].1 && w[1].1 {
-                bits.push(if data.level_at(w[1].0.saturating_sub(1)) { '1' } else { '0' });
+                bits.push(if data.level_at(w[1].0.saturating_sub(1)) {
+                    '1'
+                } else {
+                    '0'
+                });
             }
         }
         let end_ps = burst.last().map_or(burst[0].0, |e| e.0);
@@ -99,19 +103,35 @@ pub fn bursts(clk: &Signal, data: &Signal) -> Vec<(u64, u64, String)> {
 /// what `bits` would fit) when a read carries another number of bits than
 /// `layout` reads.
 pub fn decode(clk: &Signal, data: &Signal, layout: &Layout) -> Result<Vec<ReadSeen>, String> {
-    bursts(clk, data).into_iter().enumerate().map(|(index, (start_ps, end_ps, bits))| read(index, start_ps, end_ps, bits, layout)).collect()
+    bursts(clk, data)
+        .into_iter()
+        .enumerate()
+        .map(|(index, (start_ps, end_ps, bits))| read(index, start_ps, end_ps, bits, layout))
+        .collect()
 }
 
 /// One read from its bits.
-pub fn read(index: usize, start_ps: u64, end_ps: u64, bits: String, layout: &Layout) -> Result<ReadSeen, String> {
+pub fn read(
+    index: usize,
+    start_ps: u64,
+    end_ps: u64,
+    bits: String,
+    layout: &Layout,
+) -> Result<ReadSeen, String> {
     let copies = if layout.double_read { 2 } else { 1 };
     let extra = layout.wire_check as u32;
     let n = bits.len() as u32;
     let width = match layout.bits {
         Some(b) => {
             if b * copies + extra != n {
-                let fits = n.checked_sub(extra).filter(|m| m % copies == 0 && *m > 0).map(|m| m / copies);
-                let hint = fits.map_or_else(|| "no --bits fits with these options".to_string(), |b| format!("--bits {b} would fit"));
+                let fits = n
+                    .checked_sub(extra)
+                    .filter(|m| m % copies == 0 && *m > 0)
+                    .map(|m| m / copies);
+                let hint = fits.map_or_else(
+                    || "no --bits fits with these options".to_string(),
+                    |b| format!("--bits {b} would fit"),
+                );
                 return Err(format!(
                     "read {index} at {start_ps} ps carries {n} bits, but --bits {b}{}{} reads {}: {hint}",
                     if layout.double_read { " with --double-read" } else { "" },
@@ -125,11 +145,21 @@ pub fn read(index: usize, start_ps: u64, end_ps: u64, bits: String, layout: &Lay
     };
     let mut errors = Vec::new();
     let position = (width > 0 && width <= 64).then(|| value(&bits[..width as usize], layout.gray));
-    if layout.double_read && n >= 2 * width && bits[..width as usize] != bits[width as usize..2 * width as usize] {
+    if layout.double_read
+        && n >= 2 * width
+        && bits[..width as usize] != bits[width as usize..2 * width as usize]
+    {
         errors.push("double_read_mismatch".to_string());
     }
     if layout.wire_check && bits.ends_with('1') {
         errors.push("wire_check_failed".to_string());
     }
-    Ok(ReadSeen { index, start_ps, end_ps, received_bits: bits, position, errors })
+    Ok(ReadSeen {
+        index,
+        start_ps,
+        end_ps,
+        received_bits: bits,
+        position,
+        errors,
+    })
 }

@@ -41,10 +41,18 @@ impl EncoderConfig {
     /// Checks the configuration; field names are those of a scenario's `[encoder]` table.
     pub fn validate(&self) -> Result<()> {
         if !(1..=64).contains(&self.bits) {
-            return Err(ConfigError::invalid("encoder.bits", format!("{} bits", self.bits), "give 1 to 64 bits"));
+            return Err(ConfigError::invalid(
+                "encoder.bits",
+                format!("{} bits", self.bits),
+                "give 1 to 64 bits",
+            ));
         }
         if self.monoflop_clocks == 0 {
-            return Err(ConfigError::invalid("encoder.monoflop_us", "zero", "give the encoder's T_m, e.g. 500 µs"));
+            return Err(ConfigError::invalid(
+                "encoder.monoflop_us",
+                "zero",
+                "give the encoder's T_m, e.g. 500 µs",
+            ));
         }
         Ok(())
     }
@@ -76,7 +84,18 @@ impl Encoder {
     pub fn new(cfg: EncoderConfig) -> Result<Self> {
         cfg.validate()?;
         let output = DelayLine::new(cfg.output_delay_clocks, true);
-        Ok(Encoder { cfg, position: 0, phase: Phase::Idle, last_clk: true, stored: 0, sent: 0, quiet: 0, level: true, output, reads: 0 })
+        Ok(Encoder {
+            cfg,
+            position: 0,
+            phase: Phase::Idle,
+            last_clk: true,
+            stored: 0,
+            sent: 0,
+            quiet: 0,
+            level: true,
+            output,
+            reads: 0,
+        })
     }
 
     /// The shaft moves: the position the next falling edge will store.
@@ -169,7 +188,11 @@ impl Encoder {
             Phase::Idle => {
                 self.level = true;
                 if fell {
-                    self.stored = if self.cfg.gray { to_gray(self.position) } else { self.position };
+                    self.stored = if self.cfg.gray {
+                        to_gray(self.position)
+                    } else {
+                        self.position
+                    };
                     self.phase = Phase::Shifting;
                     self.sent = 0;
                     self.quiet = 0;

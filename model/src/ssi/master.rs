@@ -38,7 +38,11 @@ impl MasterConfig {
     /// Checks the configuration; field names are those of a scenario's `[master]` table.
     pub fn validate(&self) -> Result<()> {
         if !(1..=64).contains(&self.bits) {
-            return Err(ConfigError::invalid("master.bits", format!("{} bits", self.bits), "read 1 to 64 bits"));
+            return Err(ConfigError::invalid(
+                "master.bits",
+                format!("{} bits", self.bits),
+                "read 1 to 64 bits",
+            ));
         }
         if self.clocks_per_bit < 8 {
             return Err(ConfigError::invalid(
@@ -47,10 +51,16 @@ impl MasterConfig {
                 "make f_sys at least 8 times the SSI clock",
             ));
         }
-        if self.high_clocks + self.low_clocks != self.clocks_per_bit || self.high_clocks == 0 || self.low_clocks == 0 {
+        if self.high_clocks + self.low_clocks != self.clocks_per_bit
+            || self.high_clocks == 0
+            || self.low_clocks == 0
+        {
             return Err(ConfigError::invalid(
                 "master.clock_khz",
-                format!("phases of {} + {} cycles for a period of {}", self.high_clocks, self.low_clocks, self.clocks_per_bit),
+                format!(
+                    "phases of {} + {} cycles for a period of {}",
+                    self.high_clocks, self.low_clocks, self.clocks_per_bit
+                ),
                 "give high and low phases that make up the period",
             ));
         }
@@ -69,12 +79,19 @@ impl MasterConfig {
         if self.t_cs_clocks < low {
             return Err(ConfigError::invalid(
                 "master.t_cs_us",
-                format!("{} cycles is shorter than a low phase of the SSI clock ({} cycles)", self.t_cs_clocks, low),
+                format!(
+                    "{} cycles is shorter than a low phase of the SSI clock ({} cycles)",
+                    self.t_cs_clocks, low
+                ),
                 "give T_cs of at least half the SSI clock period",
             ));
         }
         if self.pause_clocks == 0 {
-            return Err(ConfigError::invalid("master.pause_us", "no pause", "pause at least the encoder's monoflop time T_m"));
+            return Err(ConfigError::invalid(
+                "master.pause_us",
+                "no pause",
+                "pause at least the encoder's monoflop time T_m",
+            ));
         }
         if self.double_read && self.wire_check {
             return Err(ConfigError::invalid(
@@ -195,7 +212,11 @@ impl Master {
         Ok(Master {
             high: cfg.high_clocks,
             low: cfg.low_clocks,
-            mask: if cfg.bits == 64 { u64::MAX } else { (1u64 << cfg.bits) - 1 },
+            mask: if cfg.bits == 64 {
+                u64::MAX
+            } else {
+                (1u64 << cfg.bits) - 1
+            },
             capture_at: cfg.capture_count(),
             sampled: cfg.sampled_bits(),
             cfg,
@@ -209,7 +230,10 @@ impl Master {
             copy: 0,
             wire_bad: false,
             raw: 0,
-            out: Out { o_ssi_clk: true, ..Out::default() },
+            out: Out {
+                o_ssi_clk: true,
+                ..Out::default()
+            },
         })
     }
 
@@ -261,7 +285,9 @@ impl Master {
         // move. `make test` proves the equivalence: vectors are unchanged.
         let o = &self.out;
         let no_pulse = !(o.o_done || o.o_err_idle || o.o_err_double || o.o_err_wire);
-        let counting = self.state != State::Idle && self.cnt > 0 && !(self.state == State::Low && self.cnt == self.capture_at);
+        let counting = self.state != State::Idle
+            && self.cnt > 0
+            && !(self.state == State::Low && self.cnt == self.capture_at);
         let idling = self.state == State::Idle && !input.i_start;
         if no_pulse && (counting || idling) {
             if counting {
@@ -271,7 +297,13 @@ impl Master {
             self.data_meta = input.i_ssi_data;
             return self.out;
         }
-        let mut next = Out { o_done: false, o_err_idle: false, o_err_double: false, o_err_wire: false, ..self.out };
+        let mut next = Out {
+            o_done: false,
+            o_err_idle: false,
+            o_err_double: false,
+            o_err_wire: false,
+            ..self.out
+        };
         let mut state = self.state;
         let mut cnt = self.cnt;
         match self.state {
@@ -296,9 +328,17 @@ impl Master {
             }
             State::Latch | State::High => {
                 if self.cnt == 0 {
-                    state = if self.state == State::Latch { State::High } else { State::Low };
+                    state = if self.state == State::Latch {
+                        State::High
+                    } else {
+                        State::Low
+                    };
                     next.o_ssi_clk = self.state == State::Latch;
-                    cnt = if self.state == State::Latch { self.high - 1 } else { self.low - 1 };
+                    cnt = if self.state == State::Latch {
+                        self.high - 1
+                    } else {
+                        self.low - 1
+                    };
                 } else {
                     cnt -= 1;
                 }
@@ -346,7 +386,13 @@ impl Master {
     /// pulse is up, the synchroniser has not settled, or an edge is due.
     pub fn quiet(&self, input: &In) -> u64 {
         let o = &self.out;
-        if o.o_done || o.o_err_idle || o.o_err_double || o.o_err_wire || self.data_meta != input.i_ssi_data || self.data_sync != input.i_ssi_data {
+        if o.o_done
+            || o.o_err_idle
+            || o.o_err_double
+            || o.o_err_wire
+            || self.data_meta != input.i_ssi_data
+            || self.data_sync != input.i_ssi_data
+        {
             return 0;
         }
         match self.state {
@@ -372,7 +418,11 @@ impl Master {
         let bits = self.cfg.bits;
         self.raw = (self.raw << 1) | bit as u128;
         // Serial Gray decoding restarts at the MSB of each copy.
-        let previous = if k == 0 || k == bits { false } else { self.gray_last };
+        let previous = if k == 0 || k == bits {
+            false
+        } else {
+            self.gray_last
+        };
         let binary = if self.cfg.gray { previous ^ bit } else { bit };
         if k < bits {
             self.data = ((self.data << 1) | binary as u64) & mask;

@@ -63,7 +63,9 @@ pub mod decode;
 mod encoder;
 mod master;
 
-pub use bench::{Bench, BenchConfig, EncoderSettings, HostSettings, MasterSettings, StuckFault, Transaction};
+pub use bench::{
+    Bench, BenchConfig, EncoderSettings, HostSettings, MasterSettings, StuckFault, Transaction,
+};
 pub use encoder::{AfterLsb, Encoder, EncoderConfig};
 pub use master::{In, Master, MasterConfig, Out, State};
 

@@ -26,7 +26,10 @@ pub struct HostSettings {
 
 impl Default for HostSettings {
     fn default() -> Self {
-        HostSettings { timeout_us: 10.0, repeat_gap_us: 40_000.0 }
+        HostSettings {
+            timeout_us: 10.0,
+            repeat_gap_us: 40_000.0,
+        }
     }
 }
 
@@ -110,8 +113,16 @@ impl Default for BenchConfig {
             baud: 2.5e6,
             host: HostSettings::default(),
             encoder: EncoderSettings::default(),
-            cable: CableConfig { length_m: 10.0, ..CableConfig::default() },
-            ops: vec![Operation { data_id: 0, address: 0, data: 0, gap_us: 5.0 }],
+            cable: CableConfig {
+                length_m: 10.0,
+                ..CableConfig::default()
+            },
+            ops: vec![Operation {
+                data_id: 0,
+                address: 0,
+                data: 0,
+                gap_us: 5.0,
+            }],
             line_faults: Vec::new(),
         }
     }
@@ -122,7 +133,11 @@ impl BenchConfig {
         let tb = self.timebase()?;
         let ratio = tb.f_sys_hz() as f64 / self.baud;
         if !(ratio.is_finite() && (ratio - ratio.round()).abs() < 1e-6) {
-            return Err(ConfigError::invalid("baud", format!("f_sys / baud = {ratio}"), "use a baud rate that divides f_sys (2.5 Mbps at 100 MHz)"));
+            return Err(ConfigError::invalid(
+                "baud",
+                format!("f_sys / baud = {ratio}"),
+                "use a baud rate that divides f_sys (2.5 Mbps at 100 MHz)",
+            ));
         }
         Ok(ratio.round() as u64)
     }
@@ -130,9 +145,16 @@ impl BenchConfig {
     /// The host's configuration in cycles (the Verilog parameters).
     pub fn host_config(&self) -> Result<HostConfig> {
         let tb = self.timebase()?;
-        for (f, v) in [("host.timeout_us", self.host.timeout_us), ("host.repeat_gap_us", self.host.repeat_gap_us)] {
+        for (f, v) in [
+            ("host.timeout_us", self.host.timeout_us),
+            ("host.repeat_gap_us", self.host.repeat_gap_us),
+        ] {
             if !(v > 0.0 && v < 1e7) {
-                return Err(ConfigError::invalid(f, format!("{v}"), "give a positive time in µs"));
+                return Err(ConfigError::invalid(
+                    f,
+                    format!("{v}"),
+                    "give a positive time in µs",
+                ));
             }
         }
         let cfg = HostConfig {
@@ -155,15 +177,27 @@ impl BenchConfig {
             ("encoder.reset_interval_us", e.reset_interval_us),
         ] {
             if !(0.0..1e7).contains(&v) {
-                return Err(ConfigError::invalid(f, format!("{v}"), "give a non-negative time in µs"));
+                return Err(ConfigError::invalid(
+                    f,
+                    format!("{v}"),
+                    "give a non-negative time in µs",
+                ));
             }
         }
         if !(-10.0..=10.0).contains(&e.baud_error_percent) {
-            return Err(ConfigError::invalid("encoder.baud_error_percent", format!("{}", e.baud_error_percent), "give the answer's bit rate error within ±10 %"));
+            return Err(ConfigError::invalid(
+                "encoder.baud_error_percent",
+                format!("{}", e.baud_error_percent),
+                "give the answer's bit rate error within ±10 %",
+            ));
         }
         let quarter_bit_ns = 1e9 / self.baud / 4.0;
         if !(0.0..=quarter_bit_ns).contains(&e.jitter_ns) {
-            return Err(ConfigError::invalid("encoder.jitter_ns", format!("{} ns", e.jitter_ns), format!("give a jitter from 0 to a quarter bit ({quarter_bit_ns} ns)")));
+            return Err(ConfigError::invalid(
+                "encoder.jitter_ns",
+                format!("{} ns", e.jitter_ns),
+                format!("give a jitter from 0 to a quarter bit ({quarter_bit_ns} ns)"),
+            ));
         }
         Ok(EncoderConfig {
             clocks_per_bit,
@@ -181,16 +215,28 @@ impl BenchConfig {
         self.host_config()?;
         self.encoder_config()?;
         if self.ops.is_empty() || self.ops.len() > 100_000 {
-            return Err(ConfigError::invalid("ops", format!("{} operations", self.ops.len()), "list 1 to 100 000 operations"));
+            return Err(ConfigError::invalid(
+                "ops",
+                format!("{} operations", self.ops.len()),
+                "list 1 to 100 000 operations",
+            ));
         }
         for (i, f) in self.encoder.flips.iter().enumerate() {
             if f.bit > 9 || f.field >= 11 {
-                return Err(ConfigError::invalid(format!("encoder.flips[{i}]"), "field above 10 or bit above 9", "give field 0..10 and bit 0..9 (0 start, 1..8 data, 9 delimiter)"));
+                return Err(ConfigError::invalid(
+                    format!("encoder.flips[{i}]"),
+                    "field above 10 or bit above 9",
+                    "give field 0..10 and bit 0..9 (0 start, 1..8 data, 9 delimiter)",
+                ));
             }
         }
         for (i, f) in self.line_faults.iter().enumerate() {
             let stuck = f.kind != LineFaultKind::SecondDriver;
-            if !(0.0..1e7).contains(&f.at_us) || !(0.0..1e7).contains(&f.width_us) || (stuck && f.width_us <= 0.0) || (!stuck && !(1..=1000).contains(&f.bytes.len())) {
+            if !(0.0..1e7).contains(&f.at_us)
+                || !(0.0..1e7).contains(&f.width_us)
+                || (stuck && f.width_us <= 0.0)
+                || (!stuck && !(1..=1000).contains(&f.bytes.len()))
+            {
                 return Err(ConfigError::invalid(
                     format!("line_faults[{i}]"),
                     "bad time, width or bytes",
@@ -200,18 +246,34 @@ impl BenchConfig {
         }
         if let Some(t) = &self.encoder.truncate {
             if t.bits == 0 || t.bits > 110 {
-                return Err(ConfigError::invalid("encoder.truncate.bits", format!("{}", t.bits), "give 1 to 110 bits (an answer has at most 11 fields of 10)"));
+                return Err(ConfigError::invalid(
+                    "encoder.truncate.bits",
+                    format!("{}", t.bits),
+                    "give 1 to 110 bits (an answer has at most 11 fields of 10)",
+                ));
             }
         }
         for (i, op) in self.ops.iter().enumerate() {
             if op.data_id > 0xF {
-                return Err(ConfigError::invalid(format!("ops[{i}].data_id"), format!("{:#X} is above 0xF", op.data_id), "give a Data ID from 0 to 0xF"));
+                return Err(ConfigError::invalid(
+                    format!("ops[{i}].data_id"),
+                    format!("{:#X} is above 0xF", op.data_id),
+                    "give a Data ID from 0 to 0xF",
+                ));
             }
             if op.address > 0x7F {
-                return Err(ConfigError::invalid(format!("ops[{i}].address"), format!("{} is above 127", op.address), "give an EEPROM address from 0 to 127"));
+                return Err(ConfigError::invalid(
+                    format!("ops[{i}].address"),
+                    format!("{} is above 127", op.address),
+                    "give an EEPROM address from 0 to 127",
+                ));
             }
             if !(0.0..1e7).contains(&op.gap_us) {
-                return Err(ConfigError::invalid(format!("ops[{i}].gap_us"), format!("{} µs", op.gap_us), "give a gap from 0 to 10 s in µs"));
+                return Err(ConfigError::invalid(
+                    format!("ops[{i}].gap_us"),
+                    format!("{} µs", op.gap_us),
+                    "give a gap from 0 to 10 s in µs",
+                ));
             }
         }
         Ok(())
@@ -233,7 +295,11 @@ impl Setup for BenchConfig {
 
     fn verilog_parameters(&self) -> Result<Vec<(&'static str, u64)>> {
         let h = self.host_config()?;
-        Ok(vec![("CLOCKS_PER_BIT", h.clocks_per_bit), ("TIMEOUT_CLOCKS", h.timeout_clocks), ("REPEAT_GAP_CLOCKS", h.repeat_gap_clocks)])
+        Ok(vec![
+            ("CLOCKS_PER_BIT", h.clocks_per_bit),
+            ("TIMEOUT_CLOCKS", h.timeout_clocks),
+            ("REPEAT_GAP_CLOCKS", h.repeat_gap_clocks),
+        ])
     }
 
     fn bench(&self) -> Result<Bench> {
@@ -331,7 +397,12 @@ impl Bench {
         let layout = Layout {
             inputs: Host::input_ports(),
             outputs: Host::output_ports(),
-            line: vec![Port::new("tx_en_host", 1), Port::new("tx_en_encoder", 1), Port::new("line_at_host", 1), Port::new("line_at_encoder", 1)],
+            line: vec![
+                Port::new("tx_en_host", 1),
+                Port::new("tx_en_encoder", 1),
+                Port::new("line_at_host", 1),
+                Port::new("line_at_encoder", 1),
+            ],
             decoded: vec![Port::new("state", 3)],
         };
         Ok(Bench {
@@ -346,8 +417,14 @@ impl Bench {
             next_op: 0,
             start_at: tb.cycles_at_least_ns(cfg.ops[0].gap_us * 1e3),
             waiting: false,
-            last_in: In { i_rx: true, ..In::default() },
-            last_out: Out { o_tx: true, ..Out::default() },
+            last_in: In {
+                i_rx: true,
+                ..In::default()
+            },
+            last_out: Out {
+                o_tx: true,
+                ..Out::default()
+            },
             cycle: 0,
             end: None,
             open: None,
@@ -371,7 +448,10 @@ impl Bench {
     /// The level a line fault forces this cycle, if any.
     fn forced_level(&mut self, host_drives: bool) -> Option<bool> {
         let now = self.cycle;
-        let (from, _, kind, levels) = self.faults.iter().find(|(from, to, _, _)| (*from..*to).contains(&now))?;
+        let (from, _, kind, levels) = self
+            .faults
+            .iter()
+            .find(|(from, to, _, _)| (*from..*to).contains(&now))?;
         let level = match kind {
             LineFaultKind::StuckLow => false,
             LineFaultKind::StuckHigh => true,
@@ -391,7 +471,11 @@ impl Bench {
             Some(t) => Some(t),
             None => self.transactions.last_mut(),
         };
-        self.wire_tap.step(line, out.o_tx_en, latest.map(|t| (&mut t.wire_requests, &mut t.wire_answers)));
+        self.wire_tap.step(
+            line,
+            out.o_tx_en,
+            latest.map(|t| (&mut t.wire_requests, &mut t.wire_answers)),
+        );
     }
 
     /// The encoder emulator (for tests that look inside it).
@@ -410,10 +494,23 @@ impl Testbench for Bench {
     }
 
     fn step(&mut self, sample: Option<&mut Sample>) {
-        let mut input = In { i_rx: self.at_host, ..In::default() };
-        if !self.waiting && self.end.is_none() && self.cycle >= self.start_at && !self.last_out.o_busy {
+        let mut input = In {
+            i_rx: self.at_host,
+            ..In::default()
+        };
+        if !self.waiting
+            && self.end.is_none()
+            && self.cycle >= self.start_at
+            && !self.last_out.o_busy
+        {
             let op = &self.cfg.ops[self.next_op];
-            input = In { i_start: true, i_data_id: op.data_id, i_address: op.address, i_wdata: op.data, i_rx: self.at_host };
+            input = In {
+                i_start: true,
+                i_data_id: op.data_id,
+                i_address: op.address,
+                i_wdata: op.data,
+                i_rx: self.at_host,
+            };
             let sent = match DataId::from_code(op.data_id) {
                 Some(id) => super::frames::request(id, op.address, op.data),
                 None => vec![super::frames::control_field_for_code(op.data_id)],
@@ -440,7 +537,10 @@ impl Testbench for Bench {
             self.waiting = true;
         }
         let out = self.host.step(&input);
-        let host_drive = Drive { enable: out.o_tx_en, level: out.o_tx };
+        let host_drive = Drive {
+            enable: out.o_tx_en,
+            level: out.o_tx,
+        };
         self.record_wire(input.i_rx, &out);
         let (mut at_host, mut at_encoder) = self.line.step(host_drive, self.encoder_drive);
         if let Some(level) = self.forced_level(host_drive.enable) {
@@ -479,7 +579,10 @@ impl Testbench for Bench {
             if self.next_op == self.cfg.ops.len() {
                 self.end = Some(self.cycle + 16);
             } else {
-                self.start_at = self.cycle + self.tb.cycles_at_least_ns(self.cfg.ops[self.next_op].gap_us * 1e3);
+                self.start_at = self.cycle
+                    + self
+                        .tb
+                        .cycles_at_least_ns(self.cfg.ops[self.next_op].gap_us * 1e3);
             }
         }
         self.last_in = input;
@@ -488,7 +591,12 @@ impl Testbench for Bench {
         let Some(sample) = sample else { return };
         input.write_values(&mut sample.inputs);
         out.write_values(&mut sample.outputs);
-        sample.line.copy_from_slice(&[host_drive.enable as u64, self.encoder_drive.enable as u64, at_host.level as u64, at_encoder.level as u64]);
+        sample.line.copy_from_slice(&[
+            host_drive.enable as u64,
+            self.encoder_drive.enable as u64,
+            at_host.level as u64,
+            at_encoder.level as u64,
+        ]);
         sample.decoded[0] = self.host.state() as u64;
     }
 
@@ -504,7 +612,10 @@ impl Testbench for Bench {
             None if self.last_out.o_busy => u64::MAX,
             None => 0,
         };
-        let input = In { i_rx: self.at_host, ..In::default() };
+        let input = In {
+            i_rx: self.at_host,
+            ..In::default()
+        };
         // The cycle after a start shows its pulse falling.
         if host == 0 || input != self.last_in {
             return 0;
@@ -519,11 +630,18 @@ impl Testbench for Bench {
             } else if self.cycle == from || self.cycle == to {
                 faults = 0; // the forcing starts or ends: the line changes
             } else if self.cycle < to {
-                faults = faults.min(if kind == LineFaultKind::SecondDriver { 0 } else { to - self.cycle });
+                faults = faults.min(if kind == LineFaultKind::SecondDriver {
+                    0
+                } else {
+                    to - self.cycle
+                });
             }
         }
         let out = &self.last_out;
-        let host_drive = Drive { enable: out.o_tx_en, level: out.o_tx };
+        let host_drive = Drive {
+            enable: out.o_tx_en,
+            level: out.o_tx,
+        };
         host.min(faults)
             .min(self.host.quiet(&input))
             .min(self.wire_tap.quiet(input.i_rx, out.o_tx_en))
@@ -535,7 +653,14 @@ impl Testbench for Bench {
         let out = self.last_out;
         self.host.skip(n);
         self.wire_tap.skip(n);
-        self.line.skip(n, Drive { enable: out.o_tx_en, level: out.o_tx }, self.encoder_drive);
+        self.line.skip(
+            n,
+            Drive {
+                enable: out.o_tx_en,
+                level: out.o_tx,
+            },
+            self.encoder_drive,
+        );
         self.encoder.skip(n);
         self.cycle += n;
     }
@@ -562,8 +687,17 @@ fn fault_windows(cfg: &BenchConfig, tb: &Timebase) -> Result<Vec<FaultWindow>> {
         .iter()
         .map(|f| {
             let from = tb.cycles_nearest_ns(f.at_us * 1e3);
-            let levels: Vec<bool> = f.bytes.iter().flat_map(|&b| super::encoder::frame_bits(b)).flat_map(|bit| std::iter::repeat_n(bit, c as usize)).collect();
-            let len = if f.kind == LineFaultKind::SecondDriver { levels.len() as u64 } else { tb.cycles_nearest_ns(f.width_us * 1e3).max(1) };
+            let levels: Vec<bool> = f
+                .bytes
+                .iter()
+                .flat_map(|&b| super::encoder::frame_bits(b))
+                .flat_map(|bit| std::iter::repeat_n(bit, c as usize))
+                .collect();
+            let len = if f.kind == LineFaultKind::SecondDriver {
+                levels.len() as u64
+            } else {
+                tb.cycles_nearest_ns(f.width_us * 1e3).max(1)
+            };
             (from, from + len, f.kind, levels)
         })
         .collect())

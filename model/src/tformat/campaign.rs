@@ -34,7 +34,11 @@ const ANSWER_DELAY: u64 = 45;
 
 /// The campaign host's configuration: 10 µs timeout, the shortest reset gap.
 pub fn host_config() -> HostConfig {
-    HostConfig { clocks_per_bit: CLOCKS_PER_BIT, timeout_clocks: 150, repeat_gap_clocks: 20 * CLOCKS_PER_BIT }
+    HostConfig {
+        clocks_per_bit: CLOCKS_PER_BIT,
+        timeout_clocks: 150,
+        repeat_gap_clocks: 20 * CLOCKS_PER_BIT,
+    }
 }
 
 /// Detected and undetected corruptions for one number of inverted bits.
@@ -83,13 +87,29 @@ impl Report {
 
 impl std::fmt::Display for Report {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        writeln!(f, "inverted bits | answers | detected | undetected | undetected rate")?;
+        writeln!(
+            f,
+            "inverted bits | answers | detected | undetected | undetected rate"
+        )?;
         for (k, c) in &self.by_flips {
-            writeln!(f, "{k:>13} | {:>7} | {:>8} | {:>10} | {:.5}", c.total(), c.detected, c.undetected, c.undetected as f64 / c.total() as f64)?;
+            writeln!(
+                f,
+                "{k:>13} | {:>7} | {:>8} | {:>10} | {:.5}",
+                c.total(),
+                c.detected,
+                c.undetected,
+                c.undetected as f64 / c.total() as f64
+            )?;
         }
         writeln!(f, "Data ID | answers | detected | undetected")?;
         for (id, c) in &self.by_data_id {
-            writeln!(f, "{id:>7X} | {:>7} | {:>8} | {:>10}", c.total(), c.detected, c.undetected)?;
+            writeln!(
+                f,
+                "{id:>7X} | {:>7} | {:>8} | {:>10}",
+                c.total(),
+                c.detected,
+                c.undetected
+            )?;
         }
         write!(f, "total {}", self.total())
     }
@@ -102,8 +122,18 @@ pub fn random_answer(rng: &mut impl Rng, id: DataId) -> Vec<u8> {
         let (address, busy) = (rng.random_range(0..80u8), rng.random_bool(0.2));
         return frames::eeprom_answer(id, address, busy, if busy { 0 } else { rng.random() });
     }
-    let status = Status { ea0: rng.random_bool(0.2), ea1: rng.random_bool(0.2), ..Status::default() };
-    frames::readout(id, status, rng.random(), rng.random(), rng.random::<u8>() & !0x10)
+    let status = Status {
+        ea0: rng.random_bool(0.2),
+        ea1: rng.random_bool(0.2),
+        ..Status::default()
+    };
+    frames::readout(
+        id,
+        status,
+        rng.random(),
+        rng.random(),
+        rng.random::<u8>() & !0x10,
+    )
 }
 
 /// Whether inverting wire bits `a` and `b` (field × 10 + bit, bit 0 the start
@@ -141,10 +171,18 @@ pub fn run_with(trials: u64, max_flips: usize, seed: u64, fast_forward: bool) ->
         }
         .min(bits);
         let flips = sample(&mut rng, bits, k).into_vec();
-        let which = if id.is_reset() { rng.random_range(0..10) } else { 0 };
+        let which = if id.is_reset() {
+            rng.random_range(0..10)
+        } else {
+            0
+        };
         let detected = flagged(&mut host, id, &answer, which, &flips, fast_forward);
         report.by_flips.entry(k).or_default().add(detected);
-        report.by_data_id.entry(id.code()).or_default().add(detected);
+        report
+            .by_data_id
+            .entry(id.code())
+            .or_default()
+            .add(detected);
         if k == 2 {
             if crc_blind_pair(id, flips[0], flips[1]) {
                 report.blind_pairs.add(detected);
@@ -166,13 +204,26 @@ pub fn detected(id: DataId, answer: &[u8], which: usize, flips: &[usize]) -> boo
 
 /// One operation of an idle `host`; the scripted encoder answers every
 /// request `ANSWER_DELAY` after the host's driver turns off.
-fn flagged(host: &mut Host, id: DataId, answer: &[u8], which: usize, flips: &[usize], fast_forward: bool) -> bool {
+fn flagged(
+    host: &mut Host,
+    id: DataId,
+    answer: &[u8],
+    which: usize,
+    flips: &[usize],
+    fast_forward: bool,
+) -> bool {
     let clean: Vec<bool> = answer.iter().flat_map(|&b| frame_bits(b)).collect();
     let mut corrupted = clean.clone();
     for &i in flips {
         corrupted[i] = !corrupted[i];
     }
-    let mut input = In { i_start: true, i_data_id: id.code(), i_address: answer.get(1).map_or(0, |a| a & 0x7F), i_wdata: 0, i_rx: true };
+    let mut input = In {
+        i_start: true,
+        i_data_id: id.code(),
+        i_address: answer.get(1).map_or(0, |a| a & 0x7F),
+        i_wdata: 0,
+        i_rx: true,
+    };
     let (mut driving, mut answers, mut wire, mut from) = (false, 0, &clean, None::<u64>);
     let mut t = 0;
     while t < 200_000u64 {
@@ -200,11 +251,18 @@ fn flagged(host: &mut Host, id: DataId, answer: &[u8], which: usize, flips: &[us
         }
         driving = out.o_tx_en;
         input.i_rx = match from {
-            Some(f) if t >= f => wire.get(((t - f) / CLOCKS_PER_BIT) as usize).copied().unwrap_or(true),
+            Some(f) if t >= f => wire
+                .get(((t - f) / CLOCKS_PER_BIT) as usize)
+                .copied()
+                .unwrap_or(true),
             _ => true,
         };
         if out.o_done {
-            return out.o_err_crc || out.o_err_timeout || out.o_err_frame || out.o_err_cf || out.o_err_comm;
+            return out.o_err_crc
+                || out.o_err_timeout
+                || out.o_err_frame
+                || out.o_err_cf
+                || out.o_err_comm;
         }
         t += 1;
     }

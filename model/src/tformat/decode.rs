@@ -105,7 +105,13 @@ pub struct Decoder {
 impl Decoder {
     /// A decoder at `baud` bit/s with the host's answer timeout `timeout_us`.
     pub fn new(baud: u64, timeout_us: f64) -> Self {
-        Decoder { bit_ps: 1_000_000_000_000 / baud.max(1), timeout_ps: (timeout_us * 1e6) as u64, regs: Registers::default(), open: None, count: 0 }
+        Decoder {
+            bit_ps: 1_000_000_000_000 / baud.max(1),
+            timeout_ps: (timeout_us * 1e6) as u64,
+            regs: Registers::default(),
+            open: None,
+            count: 0,
+        }
     }
 
     /// Picoseconds per bit.
@@ -119,17 +125,50 @@ impl Decoder {
     /// receiver hears (`heard_line`), at least those from `start_ps` to
     /// `next_ps`. Returns the transaction this exchange closed (the one
     /// before, unless this request continues a reset).
-    pub fn exchange(&mut self, start_ps: u64, end_ps: u64, next_ps: u64, wire: &[UartByte], heard: &[UartByte], heard_line: &Signal) -> Option<Transaction> {
+    pub fn exchange(
+        &mut self,
+        start_ps: u64,
+        end_ps: u64,
+        next_ps: u64,
+        wire: &[UartByte],
+        heard: &[UartByte],
+        heard_line: &Signal,
+    ) -> Option<Transaction> {
         let (mut request, mut wire_answer) = (Vec::new(), Vec::new());
-        for ch in wire.iter().filter(|c| (start_ps..next_ps).contains(&c.start_ps)) {
-            if ch.start_ps < end_ps { request.push(ch.value) } else { wire_answer.push(ch.value) }
+        for ch in wire
+            .iter()
+            .filter(|c| (start_ps..next_ps).contains(&c.start_ps))
+        {
+            if ch.start_ps < end_ps {
+                request.push(ch.value)
+            } else {
+                wire_answer.push(ch.value)
+            }
         }
-        let answer: Vec<UartByte> = heard.iter().filter(|c| c.start_ps >= end_ps && c.start_ps < next_ps).copied().collect();
+        let answer: Vec<UartByte> = heard
+            .iter()
+            .filter(|c| c.start_ps >= end_ps && c.start_ps < next_ps)
+            .copied()
+            .collect();
         let request_cf = request.first().copied();
         let data_id = request_cf.map(|cf| (cf >> 3) & 0xF);
-        let (received, errors) = check(&answer, request_cf, data_id, end_ps, self.timeout_ps, self.bit_ps, heard_line, &mut self.regs);
-        let reset = data_id.and_then(DataId::from_code).is_some_and(|d| d.is_reset());
-        let continues = self.open.as_ref().is_some_and(|t| reset && t.data_id == data_id && t.wire_requests.len() < 10);
+        let (received, errors) = check(
+            &answer,
+            request_cf,
+            data_id,
+            end_ps,
+            self.timeout_ps,
+            self.bit_ps,
+            heard_line,
+            &mut self.regs,
+        );
+        let reset = data_id
+            .and_then(DataId::from_code)
+            .is_some_and(|d| d.is_reset());
+        let continues = self
+            .open
+            .as_ref()
+            .is_some_and(|t| reset && t.data_id == data_id && t.wire_requests.len() < 10);
         let closed = if continues { None } else { self.open.take() };
         let index = self.count;
         let t = self.open.get_or_insert_with(|| Transaction {
@@ -155,8 +194,12 @@ impl Decoder {
         t.wire_answers.push(wire_answer);
         t.received = received;
         let r = &self.regs;
-        (t.abs, t.abm, t.sf, t.enid, t.almc, t.adf, t.edf) = (r.abs, r.abm, r.sf, r.enid, r.almc, r.adf, r.edf);
-        let merged: Vec<&'static str> = ["crc", "timeout", "frame", "cf_mismatch", "comm_alarm"].into_iter().filter(|e| t.errors.contains(e) || errors.contains(e)).collect();
+        (t.abs, t.abm, t.sf, t.enid, t.almc, t.adf, t.edf) =
+            (r.abs, r.abm, r.sf, r.enid, r.almc, r.adf, r.edf);
+        let merged: Vec<&'static str> = ["crc", "timeout", "frame", "cf_mismatch", "comm_alarm"]
+            .into_iter()
+            .filter(|e| t.errors.contains(e) || errors.contains(e))
+            .collect();
         t.errors = merged;
         closed
     }
@@ -201,8 +244,20 @@ pub fn decode(line: &Signal, tx_en: &Signal, baud: u64, timeout_us: f64) -> Vec<
 /// request ended at `request_end_ps`): the fields it stored and its errors;
 /// the registers take the answer's fields as the host's outputs do.
 #[allow(clippy::too_many_arguments)]
-fn check(answer: &[UartByte], request_cf: Option<u8>, data_id: Option<u8>, request_end_ps: u64, timeout_ps: u64, bit_ps: u64, heard: &Signal, regs: &mut Registers) -> (Vec<u8>, Vec<&'static str>) {
-    let Some(first) = answer.first().filter(|c| c.start_ps - request_end_ps <= timeout_ps) else {
+fn check(
+    answer: &[UartByte],
+    request_cf: Option<u8>,
+    data_id: Option<u8>,
+    request_end_ps: u64,
+    timeout_ps: u64,
+    bit_ps: u64,
+    heard: &Signal,
+    regs: &mut Registers,
+) -> (Vec<u8>, Vec<&'static str>) {
+    let Some(first) = answer
+        .first()
+        .filter(|c| c.start_ps - request_end_ps <= timeout_ps)
+    else {
         return (Vec::new(), vec!["timeout"]);
     };
     // The frame set: fields that follow within one bit of idle after the one
@@ -211,12 +266,18 @@ fn check(answer: &[UartByte], request_cf: Option<u8>, data_id: Option<u8>, reque
     let limit = first.start_ps.saturating_add(ANSWER_LIMIT_BITS * bit_ps);
     let resume = |c: &UartByte| {
         let stop_sample = c.start_ps.saturating_add(9 * bit_ps + bit_ps / 2);
-        if c.framing_error { heard.next_level(stop_sample, true).unwrap_or(u64::MAX) } else { stop_sample }
+        if c.framing_error {
+            heard.next_level(stop_sample, true).unwrap_or(u64::MAX)
+        } else {
+            stop_sample
+        }
     };
     let stop_sample = |c: &UartByte| c.start_ps.saturating_add(9 * bit_ps + bit_ps / 2);
     let mut set = vec![*first];
     for c in &answer[1..] {
-        if stop_sample(c) >= limit || c.start_ps >= resume(&set[set.len() - 1]).saturating_add(bit_ps) {
+        if stop_sample(c) >= limit
+            || c.start_ps >= resume(&set[set.len() - 1]).saturating_add(bit_ps)
+        {
             break;
         }
         set.push(*c);
@@ -244,12 +305,27 @@ fn check(answer: &[UartByte], request_cf: Option<u8>, data_id: Option<u8>, reque
             }
         }
     }
-    let expected = data_id.and_then(DataId::from_code).map_or(MAX_FIELDS, |d| d.answer_fields());
+    let expected = data_id
+        .and_then(DataId::from_code)
+        .map_or(MAX_FIELDS, |d| d.answer_fields());
     let crc_bad = set.iter().fold(0u8, |acc, c| acc ^ c.value) != 0;
-    let frame_bad = set.iter().any(|c| c.framing_error) || set.len() != expected || resume(&set[set.len() - 1]).saturating_add(bit_ps) > limit;
+    let frame_bad = set.iter().any(|c| c.framing_error)
+        || set.len() != expected
+        || resume(&set[set.len() - 1]).saturating_add(bit_ps) > limit;
     let cf_bad = Some(cf) != request_cf;
     let comm = !answered.is_some_and(|d| d.is_eeprom()) && f[1] & 0xC0 != 0;
-    let errors = [(crc_bad, "crc"), (frame_bad, "frame"), (cf_bad, "cf_mismatch"), (comm, "comm_alarm")].into_iter().filter(|e| e.0).map(|e| e.1).collect();
-    (set.iter().take(MAX_FIELDS).map(|c| c.value).collect(), errors)
+    let errors = [
+        (crc_bad, "crc"),
+        (frame_bad, "frame"),
+        (cf_bad, "cf_mismatch"),
+        (comm, "comm_alarm"),
+    ]
+    .into_iter()
+    .filter(|e| e.0)
+    .map(|e| e.1)
+    .collect();
+    (
+        set.iter().take(MAX_FIELDS).map(|c| c.value).collect(),
+        errors,
+    )
 }
-

@@ -228,7 +228,9 @@ impl Encoder {
     /// write or reset.
     pub fn quiet(&self) -> u64 {
         let until = |t: u64| t.saturating_sub(self.now);
-        let write = self.pending_write.map_or(u64::MAX, |_| until(self.busy_until));
+        let write = self
+            .pending_write
+            .map_or(u64::MAX, |_| until(self.busy_until));
         let reset = self.pending_reset.map_or(u64::MAX, |(_, at)| until(at));
         let receive = match self.rx {
             _ if self.driving => u64::MAX,
@@ -258,7 +260,10 @@ impl Encoder {
         self.transmit();
         self.last_level = line;
         self.now += 1;
-        Drive { enable: self.driving, level: self.level }
+        Drive {
+            enable: self.driving,
+            level: self.level,
+        }
     }
 
     fn apply_pending(&mut self) {
@@ -284,7 +289,10 @@ impl Encoder {
         match self.rx {
             Rx::Hunt => {
                 if self.last_level && !line {
-                    self.rx = Rx::Bit { n: 0, at: self.now + c / 2 };
+                    self.rx = Rx::Bit {
+                        n: 0,
+                        at: self.now + c / 2,
+                    };
                     self.shift = 0;
                 }
             }
@@ -303,7 +311,10 @@ impl Encoder {
                             self.rx = Rx::Hunt;
                             return;
                         }
-                        self.rx = Rx::Bit { n: n + 1, at: at + c };
+                        self.rx = Rx::Bit {
+                            n: n + 1,
+                            at: at + c,
+                        };
                     }
                     _ => {
                         self.request.fields.push(self.shift);
@@ -343,7 +354,9 @@ impl Encoder {
         status.ca1 = request.delimiter_error;
         let id = DataId::from_code(cf.code).filter(|_| cf.parity_ok && !request.delimiter_error);
         match id {
-            Some(id @ (DataId::Id0 | DataId::Id1 | DataId::Id2 | DataId::Id3)) => self.readout(id, status),
+            Some(id @ (DataId::Id0 | DataId::Id1 | DataId::Id2 | DataId::Id3)) => {
+                self.readout(id, status)
+            }
             Some(id @ (DataId::Id7 | DataId::Id8 | DataId::IdC)) => {
                 self.count_reset(id);
                 self.readout(id, status)
@@ -373,7 +386,13 @@ impl Encoder {
     }
 
     fn readout(&self, id: DataId, status: Status) -> Vec<u8> {
-        frames::readout(id, status, self.single_turn, self.multi_turn, self.alarms.byte())
+        frames::readout(
+            id,
+            status,
+            self.single_turn,
+            self.multi_turn,
+            self.alarms.byte(),
+        )
     }
 
     /// Ten requests of the same reset, each at least the reset interval after
@@ -385,7 +404,11 @@ impl Encoder {
         self.reset_count = (Some(id), count, self.now);
         if count == 10 {
             self.reset_count = (None, 0, 0);
-            let delay = if id == DataId::Id8 { self.cfg.eeprom_write } else { 0 };
+            let delay = if id == DataId::Id8 {
+                self.cfg.eeprom_write
+            } else {
+                0
+            };
             self.pending_reset = Some((id, self.now + delay));
         }
     }
@@ -425,7 +448,13 @@ impl Encoder {
                             *b = !*b;
                         }
                     }
-                    if let Some(t) = self.cfg.settings.truncate.as_ref().filter(|t| t.answer == n) {
+                    if let Some(t) = self
+                        .cfg
+                        .settings
+                        .truncate
+                        .as_ref()
+                        .filter(|t| t.answer == n)
+                    {
                         self.tx_bits.truncate(t.bits);
                     }
                     self.tx_times = self.bit_times(self.now, self.tx_bits.len());
@@ -457,7 +486,11 @@ impl Encoder {
         let (bit, jitter) = (self.cfg.answer_bit_clocks, self.cfg.jitter_clocks);
         let mut times: Vec<u64> = Vec::with_capacity(n + 1);
         for i in 0..=n {
-            let j = if jitter > 0.0 && i % 10 != 0 && i < n { self.rng.random_range(-jitter..=jitter) } else { 0.0 };
+            let j = if jitter > 0.0 && i % 10 != 0 && i < n {
+                self.rng.random_range(-jitter..=jitter)
+            } else {
+                0.0
+            };
             let t = start + (i as f64 * bit + j).max(0.0).ceil() as u64;
             times.push(times.last().map_or(t, |&last| t.max(last + 1)));
         }
@@ -467,5 +500,7 @@ impl Encoder {
 
 /// The ten bits of one field on the line: start 0, data LSB first, delimiter 1.
 pub fn frame_bits(byte: u8) -> impl Iterator<Item = bool> {
-    std::iter::once(false).chain((0..8).map(move |i| (byte >> i) & 1 == 1)).chain(std::iter::once(true))
+    std::iter::once(false)
+        .chain((0..8).map(move |i| (byte >> i) & 1 == 1))
+        .chain(std::iter::once(true))
 }

@@ -45,7 +45,17 @@ pub enum DataId {
 
 impl DataId {
     /// Every Data ID of Table 1.
-    pub const ALL: [DataId; 9] = [DataId::Id0, DataId::Id1, DataId::Id2, DataId::Id3, DataId::Id6, DataId::Id7, DataId::Id8, DataId::IdC, DataId::IdD];
+    pub const ALL: [DataId; 9] = [
+        DataId::Id0,
+        DataId::Id1,
+        DataId::Id2,
+        DataId::Id3,
+        DataId::Id6,
+        DataId::Id7,
+        DataId::Id8,
+        DataId::IdC,
+        DataId::IdD,
+    ];
 
     /// The 4-bit code cc0..cc3 (cc0 is bit 0).
     pub fn code(self) -> u8 {
@@ -116,7 +126,11 @@ pub struct ControlField {
 /// Splits a control field into its parts.
 pub fn parse_control_field(byte: u8) -> ControlField {
     let code = (byte >> 3) & 0xF;
-    ControlField { sink_ok: byte & 0b111 == SINK_CODE, code, parity_ok: (byte >> 7) == (code.count_ones() & 1) as u8 }
+    ControlField {
+        sink_ok: byte & 0b111 == SINK_CODE,
+        code,
+        parity_ok: (byte >> 7) == (code.count_ones() & 1) as u8,
+    }
 }
 
 /// The status field: information bits 0..3 are 0; then ea0, ea1, ca0, ca1.
@@ -138,12 +152,20 @@ pub struct Status {
 impl Status {
     /// The status byte.
     pub fn byte(self) -> u8 {
-        (self.ea0 as u8) << 4 | (self.ea1 as u8) << 5 | (self.ca0 as u8) << 6 | (self.ca1 as u8) << 7
+        (self.ea0 as u8) << 4
+            | (self.ea1 as u8) << 5
+            | (self.ca0 as u8) << 6
+            | (self.ca1 as u8) << 7
     }
 
     /// A status byte read back (information bits ignored).
     pub fn from_byte(b: u8) -> Status {
-        Status { ea0: b & 0x10 != 0, ea1: b & 0x20 != 0, ca0: b & 0x40 != 0, ca1: b & 0x80 != 0 }
+        Status {
+            ea0: b & 0x10 != 0,
+            ea1: b & 0x20 != 0,
+            ca0: b & 0x40 != 0,
+            ca1: b & 0x80 != 0,
+        }
     }
 }
 
@@ -182,7 +204,11 @@ impl Alarms {
     /// ea0 and ea1 of the status field (6.3.2): ea0 is the counting error,
     /// ea1 the OR of multi-turn error, battery error and battery alarm.
     pub fn status(self) -> Status {
-        Status { ea0: self.counting_error, ea1: self.multi_turn_error || self.battery_error || self.battery_alarm, ..Status::default() }
+        Status {
+            ea0: self.counting_error,
+            ea1: self.multi_turn_error || self.battery_error || self.battery_alarm,
+            ..Status::default()
+        }
     }
 }
 
@@ -237,7 +263,11 @@ pub fn readout(id: DataId, status: Status, single_turn: u32, multi_turn: u16, al
 /// The answer frame set to an accepted EEPROM request (Table 4): CF, ADF
 /// (address, bit 7 busy), EDF, CRC.
 pub fn eeprom_answer(id: DataId, address: u8, busy: bool, edf: u8) -> Vec<u8> {
-    with_crc(&[id.control_field(), (address & 0x7F) | (busy as u8) << 7, edf])
+    with_crc(&[
+        id.control_field(),
+        (address & 0x7F) | (busy as u8) << 7,
+        edf,
+    ])
 }
 
 /// Three little-endian bytes (ABS0..2, ABM0..2: "ABS0 is located to lower byte").

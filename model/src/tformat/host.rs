@@ -22,12 +22,23 @@ pub struct HostConfig {
 impl HostConfig {
     /// Checks the configuration; field names are those of `[tformat.host]`.
     pub fn validate(&self) -> Result<()> {
-        ReceiverConfig { clocks_per_bit: self.clocks_per_bit }.validate()?;
+        ReceiverConfig {
+            clocks_per_bit: self.clocks_per_bit,
+        }
+        .validate()?;
         if self.timeout_clocks < self.clocks_per_bit {
-            return Err(ConfigError::invalid("host.timeout_us", "shorter than one bit", "wait at least the encoder's 3 µs answer delay plus a bit"));
+            return Err(ConfigError::invalid(
+                "host.timeout_us",
+                "shorter than one bit",
+                "wait at least the encoder's 3 µs answer delay plus a bit",
+            ));
         }
         if self.repeat_gap_clocks < 20 * self.clocks_per_bit {
-            return Err(ConfigError::invalid("host.repeat_gap_us", "shorter than a request and its answer", "give the seed's 40 000 µs or at least 20 bits"));
+            return Err(ConfigError::invalid(
+                "host.repeat_gap_us",
+                "shorter than a request and its answer",
+                "give the seed's 40 000 µs or at least 20 bits",
+            ));
         }
         Ok(())
     }
@@ -76,7 +87,10 @@ pub fn tolerance(clocks_per_bit: u64, jitter_cycles: f64) -> (f64, f64) {
 /// (`10·T ≤ HALF + 9·C`), a framing error.
 pub fn always_flagged(clocks_per_bit: u64) -> (f64, f64) {
     let (c, half) = (clocks_per_bit as f64, (clocks_per_bit / 2) as f64);
-    ((10.0 * c / (half + 10.0 * c) - 1.0) * 100.0, (10.0 * c / (half + 9.0 * c) - 1.0) * 100.0)
+    (
+        (10.0 * c / (half + 10.0 * c) - 1.0) * 100.0,
+        (10.0 * c / (half + 9.0 * c) - 1.0) * 100.0,
+    )
 }
 
 /// Bit times from an answer's first start bit after which the host stops
@@ -108,7 +122,13 @@ pub struct In {
 
 impl Default for In {
     fn default() -> Self {
-        In { i_start: false, i_data_id: 0, i_address: 0, i_wdata: 0, i_rx: true }
+        In {
+            i_start: false,
+            i_data_id: 0,
+            i_address: 0,
+            i_wdata: 0,
+            i_rx: true,
+        }
     }
 }
 
@@ -159,7 +179,13 @@ impl Host {
     /// The input ports, in vector order (the Verilog port names).
     pub fn input_ports() -> Vec<crate::Port> {
         use crate::Port;
-        vec![Port::new("i_start", 1), Port::new("i_data_id", 4), Port::new("i_address", 7), Port::new("i_wdata", 8), Port::new("i_rx", 1)]
+        vec![
+            Port::new("i_start", 1),
+            Port::new("i_data_id", 4),
+            Port::new("i_address", 7),
+            Port::new("i_wdata", 8),
+            Port::new("i_rx", 1),
+        ]
     }
 
     /// The output ports, in vector order (the Verilog port names).
@@ -256,7 +282,9 @@ impl Host {
     pub fn new(cfg: HostConfig) -> Result<Self> {
         cfg.validate()?;
         Ok(Host {
-            rx: Receiver::new(ReceiverConfig { clocks_per_bit: cfg.clocks_per_bit })?,
+            rx: Receiver::new(ReceiverConfig {
+                clocks_per_bit: cfg.clocks_per_bit,
+            })?,
             rx_out: uart::Out::default(),
             cfg,
             state: State::Idle,
@@ -273,7 +301,10 @@ impl Host {
             crc: 0,
             idle: 0,
             errors: (false, false, false),
-            out: Out { o_tx: true, ..Out::default() },
+            out: Out {
+                o_tx: true,
+                ..Out::default()
+            },
         })
     }
 
@@ -296,7 +327,9 @@ impl Host {
         if self.out.o_done || input.i_start {
             return 0;
         }
-        let rx_in = uart::In { i_rx: input.i_rx || self.out.o_tx_en };
+        let rx_in = uart::In {
+            i_rx: input.i_rx || self.out.o_tx_en,
+        };
         let busy = self.rx_out.o_busy;
         let c = self.cfg.clocks_per_bit;
         let state = match self.state {
@@ -325,22 +358,33 @@ impl Host {
     /// One rising edge of the system clock.
     pub fn step(&mut self, input: &In) -> Out {
         let c = self.cfg.clocks_per_bit;
-        let mut next = Out { o_done: false, ..self.out };
+        let mut next = Out {
+            o_done: false,
+            ..self.out
+        };
         let rx = self.rx_out;
         match self.state {
             State::Idle => {
                 if input.i_start {
                     self.id = input.i_data_id & 0xF;
                     let id = DataId::from_code(self.id);
-                    let set = frames::request(id.unwrap_or(DataId::Id0), input.i_address, input.i_wdata);
+                    let set =
+                        frames::request(id.unwrap_or(DataId::Id0), input.i_address, input.i_wdata);
                     // An undefined code is sent as asked: the encoder answers
                     // it with Data ID 3 data (Table 5 no. 2).
                     let mut bytes = set.clone();
                     bytes[0] = frames::control_field_for_code(self.id);
                     self.req_cf = bytes[0];
-                    self.req_bits = bytes.iter().rev().fold(0u64, |acc, &b| (acc << 10) | (1 << 9) | (u64::from(b) << 1));
+                    self.req_bits = bytes
+                        .iter()
+                        .rev()
+                        .fold(0u64, |acc, &b| (acc << 10) | (1 << 9) | (u64::from(b) << 1));
                     self.req_nbits = 10 * bytes.len() as u8;
-                    self.repeats_left = if id.is_some_and(|d| d.is_reset()) { 10 } else { 1 };
+                    self.repeats_left = if id.is_some_and(|d| d.is_reset()) {
+                        10
+                    } else {
+                        1
+                    };
                     self.errors = (false, false, false);
                     next.o_busy = true;
                     next.o_err_crc = false;
@@ -428,7 +472,9 @@ impl Host {
             }
         }
         // The receiver listens only while the driver is off.
-        self.rx_out = self.rx.step(&uart::In { i_rx: input.i_rx || self.out.o_tx_en });
+        self.rx_out = self.rx.step(&uart::In {
+            i_rx: input.i_rx || self.out.o_tx_en,
+        });
         self.out = next;
         next
     }
@@ -473,7 +519,9 @@ impl Host {
                 }
             }
         }
-        let sf_comm = !timeout && !DataId::from_code((cf >> 3) & 0xF).is_some_and(|d| d.is_eeprom()) && f[1] & 0xC0 != 0;
+        let sf_comm = !timeout
+            && !DataId::from_code((cf >> 3) & 0xF).is_some_and(|d| d.is_eeprom())
+            && f[1] & 0xC0 != 0;
         let crc_bad = !timeout && self.crc != 0;
         let frame_bad = !timeout && (self.errors.2 || self.count != expected);
         let cf_bad = !timeout && cf != request_cf;

@@ -45,13 +45,17 @@
 
 mod bench;
 pub mod campaign;
-mod encoder;
 pub mod decode;
+mod encoder;
 pub mod frames;
 mod host;
 
-pub use bench::{Bench, BenchConfig, HostSettings, LineFault, LineFaultKind, Operation, Transaction};
-pub use encoder::{AnswerFlip, AnswerTruncation, Encoder, EncoderConfig, EncoderSettings, EEPROM_SIZE};
+pub use bench::{
+    Bench, BenchConfig, HostSettings, LineFault, LineFaultKind, Operation, Transaction,
+};
 #[doc(hidden)]
 pub use encoder::frame_bits;
+pub use encoder::{
+    AnswerFlip, AnswerTruncation, Encoder, EncoderConfig, EncoderSettings, EEPROM_SIZE,
+};
 pub use host::{always_flagged, tolerance, Host, HostConfig, In, Out, State};

@@ -78,17 +78,26 @@ impl BenchConfig {
     pub fn receiver_config(&self) -> Result<ReceiverConfig> {
         let tb = self.timebase()?;
         if self.baud.is_nan() || self.baud < 1.0 {
-            return Err(ConfigError::invalid("baud", format!("{}", self.baud), "give the bit rate in bit/s, e.g. 10e6"));
+            return Err(ConfigError::invalid(
+                "baud",
+                format!("{}", self.baud),
+                "give the bit rate in bit/s, e.g. 10e6",
+            ));
         }
         let ratio = tb.f_sys_hz() as f64 / self.baud;
         if (ratio - ratio.round()).abs() > 1e-6 {
             return Err(ConfigError::invalid(
                 "baud",
                 format!("f_sys / baud = {ratio:.4} is not a whole number of clocks per bit"),
-                format!("use a baud rate that divides f_sys, e.g. {} bit/s", tb.f_sys_hz() as f64 / ratio.round()),
+                format!(
+                    "use a baud rate that divides f_sys, e.g. {} bit/s",
+                    tb.f_sys_hz() as f64 / ratio.round()
+                ),
             ));
         }
-        let cfg = ReceiverConfig { clocks_per_bit: ratio.round() as u64 };
+        let cfg = ReceiverConfig {
+            clocks_per_bit: ratio.round() as u64,
+        };
         cfg.validate()?;
         Ok(cfg)
     }
@@ -97,44 +106,90 @@ impl BenchConfig {
         let cfg = self.receiver_config()?;
         let frames = self.bytes.len().saturating_mul(self.repeat);
         if frames > 1_000_000 {
-            return Err(ConfigError::invalid("repeat", format!("{frames} frames ({} bytes × {})", self.bytes.len(), self.repeat), "send at most 1000000 frames"));
+            return Err(ConfigError::invalid(
+                "repeat",
+                format!(
+                    "{frames} frames ({} bytes × {})",
+                    self.bytes.len(),
+                    self.repeat
+                ),
+                "send at most 1000000 frames",
+            ));
         }
-        if let Some(&f) = self.parity_flips.iter().find(|&&f| self.parity == Parity::None || f >= frames) {
+        if let Some(&f) = self
+            .parity_flips
+            .iter()
+            .find(|&&f| self.parity == Parity::None || f >= frames)
+        {
             return Err(ConfigError::invalid(
                 "parity_flips",
-                format!("frame {f} with parity {:?} and {frames} frames sent", self.parity),
+                format!(
+                    "frame {f} with parity {:?} and {frames} frames sent",
+                    self.parity
+                ),
                 "set parity to odd or even and list frame numbers below the number of frames sent",
             ));
         }
         if !(-20.0..=20.0).contains(&self.error_percent) {
-            return Err(ConfigError::invalid("error_percent", format!("{}", self.error_percent), "give a baud error within ±20 %"));
+            return Err(ConfigError::invalid(
+                "error_percent",
+                format!("{}", self.error_percent),
+                "give a baud error within ±20 %",
+            ));
         }
         let bit_ns = 1e9 / self.baud;
         if !(0.0..=bit_ns / 4.0).contains(&self.jitter_ns) {
             return Err(ConfigError::invalid(
                 "jitter_ns",
                 format!("{} ns", self.jitter_ns),
-                format!("give a jitter from 0 to a quarter bit ({} ns)", bit_ns / 4.0),
+                format!(
+                    "give a jitter from 0 to a quarter bit ({} ns)",
+                    bit_ns / 4.0
+                ),
             ));
         }
         if self.bytes.is_empty() || self.repeat == 0 || self.bytes.len() * self.repeat > 1_000_000 {
-            return Err(ConfigError::invalid("bytes", "no bytes, or more than a million", "list 1 to 1 000 000 bytes to send"));
+            return Err(ConfigError::invalid(
+                "bytes",
+                "no bytes, or more than a million",
+                "list 1 to 1 000 000 bytes to send",
+            ));
         }
         if !(0.0..1e6).contains(&self.gap_bits) || !(0.0..1e7).contains(&self.first_us) {
-            return Err(ConfigError::invalid("gap_bits", "out of range", "give non-negative times"));
+            return Err(ConfigError::invalid(
+                "gap_bits",
+                "out of range",
+                "give non-negative times",
+            ));
         }
         for (i, p) in self.low.iter().enumerate() {
             if !(p.at_us >= 0.0 && p.width_ns > 0.0 && p.width_ns < 1e9) {
-                return Err(ConfigError::invalid(format!("low[{i}]"), "bad time or width", "give at_us ≥ 0 and a positive width_ns"));
+                return Err(ConfigError::invalid(
+                    format!("low[{i}]"),
+                    "bad time or width",
+                    "give at_us ≥ 0 and a positive width_ns",
+                ));
             }
         }
         // Refuse up front a run the vector format cannot hold (32-bit cycle stamps).
-        let total = (self.first_us * 1e-6 + frames as f64 * (self.parity.frame_bits() as f64 + self.gap_bits) / self.baud) * self.timebase()?.f_sys_hz() as f64
-            + self.low.iter().map(|p| (p.at_us * 1e-6 + p.width_ns * 1e-9) * self.timebase().map_or(0.0, |t| t.f_sys_hz() as f64)).fold(0.0, f64::max);
+        let total = (self.first_us * 1e-6
+            + frames as f64 * (self.parity.frame_bits() as f64 + self.gap_bits) / self.baud)
+            * self.timebase()?.f_sys_hz() as f64
+            + self
+                .low
+                .iter()
+                .map(|p| {
+                    (p.at_us * 1e-6 + p.width_ns * 1e-9)
+                        * self.timebase().map_or(0.0, |t| t.f_sys_hz() as f64)
+                })
+                .fold(0.0, f64::max);
         if total > u32::MAX as f64 {
             return Err(ConfigError::invalid(
                 "bytes",
-                format!("the run takes about {total:.0} cycles, more than the {} a vector file holds", u32::MAX),
+                format!(
+                    "the run takes about {total:.0} cycles, more than the {} a vector file holds",
+                    u32::MAX
+                ),
                 "send fewer bytes, or shorter gaps",
             ));
         }
@@ -157,7 +212,10 @@ impl Setup for BenchConfig {
     }
 
     fn verilog_parameters(&self) -> Result<Vec<(&'static str, u64)>> {
-        Ok(vec![("CLOCKS_PER_BIT", self.receiver_config()?.clocks_per_bit), ("PARITY", self.parity.code())])
+        Ok(vec![
+            ("CLOCKS_PER_BIT", self.receiver_config()?.clocks_per_bit),
+            ("PARITY", self.parity.code()),
+        ])
     }
 
     fn bench(&self) -> Result<Bench> {
@@ -205,7 +263,14 @@ impl Bench {
         cfg.check()?;
         let tb = cfg.timebase()?;
         let rc = cfg.receiver_config()?;
-        let mut transmitter = Transmitter::new(tb.period_ps(), cfg.baud, cfg.error_percent, cfg.jitter_ns * 1e3, cfg.seed).with_parity(cfg.parity);
+        let mut transmitter = Transmitter::new(
+            tb.period_ps(),
+            cfg.baud,
+            cfg.error_percent,
+            cfg.jitter_ns * 1e3,
+            cfg.seed,
+        )
+        .with_parity(cfg.parity);
         let mut at = cfg.first_us * 1e6;
         let bytes = cfg.bytes.iter().cycle().take(cfg.bytes.len() * cfg.repeat);
         for (i, &b) in bytes.enumerate() {
@@ -227,7 +292,9 @@ impl Bench {
             })
             .collect();
         let last_low = lows.iter().map(|l| l.1).max().unwrap_or(0);
-        let idle_from = tb.cycles_at_least_ns(transmitter.idle_from_ps() / 1e3).max(last_low);
+        let idle_from = tb
+            .cycles_at_least_ns(transmitter.idle_from_ps() / 1e3)
+            .max(last_low);
         let end = idle_from + 3 * rc.clocks_per_bit + 16;
         let mut outputs = Receiver::output_ports();
         outputs.push(Port::new("o_parity_err", 1));
@@ -278,7 +345,10 @@ impl Bench {
                 .sent()
                 .iter()
                 .rev()
-                .find(|s| s.start_cycle + (self.frame_bits - 1) * bit <= self.cycle && self.cycle - s.start_cycle <= window)
+                .find(|s| {
+                    s.start_cycle + (self.frame_bits - 1) * bit <= self.cycle
+                        && self.cycle - s.start_cycle <= window
+                })
                 .copied()
         };
         self.events.push(Transaction {
@@ -302,7 +372,10 @@ impl Testbench for Bench {
 
     fn step(&mut self, sample: Option<&mut Sample>) {
         let sent = self.transmitter.step();
-        let forced_low = self.lows.iter().any(|&(a, b)| self.cycle >= a && self.cycle < b);
+        let forced_low = self
+            .lows
+            .iter()
+            .any(|&(a, b)| self.cycle >= a && self.cycle < b);
         let line = sent && !forced_low;
         let input = In { i_rx: line };
         let out = self.receiver.step(&input);
@@ -324,12 +397,27 @@ impl Testbench for Bench {
     fn quiet_cycles(&self) -> u64 {
         // Until a low pulse begins or ends ...
         let c = self.cycle;
-        let lows = self.lows.iter().map(|&(a, b)| if c < a { a - c } else if c < b { b - c } else { u64::MAX }).min().unwrap_or(u64::MAX);
+        let lows = self
+            .lows
+            .iter()
+            .map(|&(a, b)| {
+                if c < a {
+                    a - c
+                } else if c < b {
+                    b - c
+                } else {
+                    u64::MAX
+                }
+            })
+            .min()
+            .unwrap_or(u64::MAX);
         let forced_low = self.lows.iter().any(|&(a, b)| c >= a && c < b);
         // ... the sender's next edge or frame start, the receiver's next
         // sample, or the end.
         let line = self.transmitter.level() && !forced_low;
-        lows.min(self.transmitter.quiet()).min(self.receiver.quiet(&In { i_rx: line })).min(self.end.saturating_sub(c))
+        lows.min(self.transmitter.quiet())
+            .min(self.receiver.quiet(&In { i_rx: line }))
+            .min(self.end.saturating_sub(c))
     }
 
     fn skip(&mut self, n: u64) {

@@ -68,15 +68,49 @@ impl Tally {
 
     /// The table of the counts (`unit`: what a row counts, `promise`: what
     /// the protocol's check can promise), without the closing total.
-    pub fn table(&self, f: &mut std::fmt::Formatter<'_>, unit: &str, promise: &str) -> std::fmt::Result {
-        writeln!(f, "inverted bits | {unit:>7} | detected | undetected | undetected rate")?;
+    pub fn table(
+        &self,
+        f: &mut std::fmt::Formatter<'_>,
+        unit: &str,
+        promise: &str,
+    ) -> std::fmt::Result {
+        writeln!(
+            f,
+            "inverted bits | {unit:>7} | detected | undetected | undetected rate"
+        )?;
         for (k, c) in &self.by_flips {
-            writeln!(f, "{k:>13} | {:>7} | {:>8} | {:>10} | {:.5}", c.total(), c.detected, c.undetected, c.undetected as f64 / c.total() as f64)?;
+            writeln!(
+                f,
+                "{k:>13} | {:>7} | {:>8} | {:>10} | {:.5}",
+                c.total(),
+                c.detected,
+                c.undetected,
+                c.undetected as f64 / c.total() as f64
+            )?;
         }
-        let all = self.by_flips.values().fold(Counts::default(), |a, c| Counts { detected: a.detected + c.detected, undetected: a.undetected + c.undetected });
-        writeln!(f, "{:>13} | {:>7} | {:>8} | {:>10} | {:.5}", "all", all.total(), all.detected, all.undetected, all.undetected as f64 / all.total().max(1) as f64)?;
+        let all = self
+            .by_flips
+            .values()
+            .fold(Counts::default(), |a, c| Counts {
+                detected: a.detected + c.detected,
+                undetected: a.undetected + c.undetected,
+            });
+        writeln!(
+            f,
+            "{:>13} | {:>7} | {:>8} | {:>10} | {:.5}",
+            "all",
+            all.total(),
+            all.detected,
+            all.undetected,
+            all.undetected as f64 / all.total().max(1) as f64
+        )?;
         writeln!(f, "{promise}")?;
-        writeln!(f, "blind by the frame's own checks: {} (all {} accepted, as they must be)", self.blind.total(), self.blind.undetected)
+        writeln!(
+            f,
+            "blind by the frame's own checks: {} (all {} accepted, as they must be)",
+            self.blind.total(),
+            self.blind.undetected
+        )
     }
 }
 

@@ -72,12 +72,19 @@ impl FrameFault {
         let ok = match self.kind {
             FaultKind::Flip => self.byte < len && self.bit < bits,
             FaultKind::Truncate => self.byte < len,
-            FaultKind::Gap => self.byte > 0 && self.byte < len && (0.0..=1e5).contains(&self.gap_bits),
+            FaultKind::Gap => {
+                self.byte > 0 && self.byte < len && (0.0..=1e5).contains(&self.gap_bits)
+            }
             FaultKind::Noise => !self.bytes.is_empty() && self.bytes.len() <= 64 && self.byte < len,
             FaultKind::Silent => true,
             FaultKind::Retag => self.bytes.len() == 1,
             FaultKind::Replace => self.bytes.len() == 1 && self.byte + 1 < len,
-            FaultKind::Insert => !self.bytes.is_empty() && self.bytes.len() <= 64 && self.byte > 0 && self.byte + 1 < len,
+            FaultKind::Insert => {
+                !self.bytes.is_empty()
+                    && self.bytes.len() <= 64
+                    && self.byte > 0
+                    && self.byte + 1 < len
+            }
         };
         if ok {
             return Ok(());
@@ -92,18 +99,37 @@ impl FrameFault {
 /// Queues `bytes` on `tx` from `now_ps` with `faults` applied (the
 /// characters, each possibly preceded by noise or a gap and flipped, up to a
 /// truncation). `Silent`, `Retag` and `Replace` are the caller's.
-pub fn send_with_faults(tx: &mut Transmitter, bytes: &[u8], faults: &[FrameFault], parity: Parity, now_ps: f64) {
-    let keep = faults.iter().find(|f| f.kind == FaultKind::Truncate).map_or(bytes.len(), |f| f.byte);
+pub fn send_with_faults(
+    tx: &mut Transmitter,
+    bytes: &[u8],
+    faults: &[FrameFault],
+    parity: Parity,
+    now_ps: f64,
+) {
+    let keep = faults
+        .iter()
+        .find(|f| f.kind == FaultKind::Truncate)
+        .map_or(bytes.len(), |f| f.byte);
     for (i, &b) in bytes.iter().enumerate().take(keep) {
-        let mut gap = faults.iter().filter(|f| f.kind == FaultKind::Gap && f.byte == i).map(|f| f.gap_bits).sum::<f64>();
-        for f in faults.iter().filter(|f| f.kind == FaultKind::Noise && f.byte == i) {
+        let mut gap = faults
+            .iter()
+            .filter(|f| f.kind == FaultKind::Gap && f.byte == i)
+            .map(|f| f.gap_bits)
+            .sum::<f64>();
+        for f in faults
+            .iter()
+            .filter(|f| f.kind == FaultKind::Noise && f.byte == i)
+        {
             for &n in &f.bytes {
                 tx.send(n, now_ps, gap);
                 gap = 0.0;
             }
         }
         let mut levels = parity.levels(b);
-        for f in faults.iter().filter(|f| f.kind == FaultKind::Flip && f.byte == i) {
+        for f in faults
+            .iter()
+            .filter(|f| f.kind == FaultKind::Flip && f.byte == i)
+        {
             levels[f.bit] = !levels[f.bit];
         }
         tx.send_levels(&levels, now_ps, gap);

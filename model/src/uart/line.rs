@@ -57,8 +57,18 @@ pub fn chars(line: &Signal, tx_en: Option<&Signal>, bit_ps: u64, parity: Parity)
         let value = (0..8).fold(0u8, |acc, k| acc | ((line.level_at(mid(k + 1)) as u8) << k));
         let parity_error = parity != Parity::None && line.level_at(mid(9)) != parity.bit(value);
         let stop = line.level_at(mid(bits - 1));
-        out.push(Char { start_ps: fall, value, parity_error, framing_error: !stop, from_host: tx_en.is_some_and(|e| e.level_at(fall)) });
-        from = if stop { mid(bits - 1) } else { line.next_level(mid(bits - 1), true).unwrap_or(u64::MAX) };
+        out.push(Char {
+            start_ps: fall,
+            value,
+            parity_error,
+            framing_error: !stop,
+            from_host: tx_en.is_some_and(|e| e.level_at(fall)),
+        });
+        from = if stop {
+            mid(bits - 1)
+        } else {
+            line.next_level(mid(bits - 1), true).unwrap_or(u64::MAX)
+        };
         if from == u64::MAX {
             break;
         }
@@ -73,7 +83,13 @@ pub fn bursts(chars: &[Char], bit_ps: u64, parity: Parity, gap_ps: u64) -> Vec<V
     let mut out: Vec<Vec<Char>> = Vec::new();
     for &c in chars {
         match out.last_mut() {
-            Some(b) if b.last().is_some_and(|p| p.from_host == c.from_host && c.start_ps <= p.end_ps(bit_ps, parity) + gap_ps) => b.push(c),
+            Some(b)
+                if b.last().is_some_and(|p| {
+                    p.from_host == c.from_host && c.start_ps <= p.end_ps(bit_ps, parity) + gap_ps
+                }) =>
+            {
+                b.push(c)
+            }
             _ => out.push(vec![c]),
         }
     }

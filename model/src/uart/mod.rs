@@ -40,8 +40,8 @@
 
 mod bench;
 pub mod campaign;
-pub mod line;
 mod fault;
+pub mod line;
 mod receiver;
 mod second_driver;
 mod transmitter;
@@ -75,7 +75,7 @@ pub fn tolerance_for(clocks_per_bit: u64, jitter_cycles: f64, parity: Parity) ->
     // stop bit starts (kT + jitter) and before it ends ((k+1)T - jitter).
     let slowest_t = (half + k * c - jitter_cycles) / k; // T below this: sample after kT
     let fastest_t = (half + k * c + 1.0 + jitter_cycles) / (k + 1.0); // T above this: sample before (k+1)T
-    // Sender fast by δ has T = C / (1 + δ).
+                                                                      // Sender fast by δ has T = C / (1 + δ).
     let low = (c / slowest_t - 1.0) * 100.0;
     let high = (c / fastest_t - 1.0) * 100.0;
     (low, high)

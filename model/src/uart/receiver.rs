@@ -161,11 +161,20 @@ impl Receiver {
     /// have settled.
     pub fn quiet(&self, input: &In) -> u64 {
         let o = &self.out;
-        if o.o_valid || o.o_frame_err || o.o_start_err || o.o_parity_err || self.rx_meta != input.i_rx {
+        if o.o_valid
+            || o.o_frame_err
+            || o.o_start_err
+            || o.o_parity_err
+            || self.rx_meta != input.i_rx
+        {
             return 0;
         }
         match self.state {
-            State::Idle | State::Recover if self.rx_sync == input.i_rx && input.i_rx == (self.state == State::Idle) => u64::MAX,
+            State::Idle | State::Recover
+                if self.rx_sync == input.i_rx && input.i_rx == (self.state == State::Idle) =>
+            {
+                u64::MAX
+            }
             State::Idle | State::Recover => 0,
             State::Start | State::Data | State::ParityBit | State::Stop => self.cnt,
         }
@@ -173,7 +182,10 @@ impl Receiver {
 
     /// The same as `n` steps with the last input, for `n` up to [`Receiver::quiet`].
     pub fn skip(&mut self, n: u64) {
-        if matches!(self.state, State::Start | State::Data | State::ParityBit | State::Stop) {
+        if matches!(
+            self.state,
+            State::Start | State::Data | State::ParityBit | State::Stop
+        ) {
             self.cnt -= n;
         }
         if n > 0 {
@@ -186,7 +198,13 @@ impl Receiver {
     pub fn step(&mut self, input: &In) -> Out {
         let bit = self.cfg.clocks_per_bit;
         let half = bit / 2;
-        let mut next = Out { o_valid: false, o_frame_err: false, o_start_err: false, o_parity_err: false, ..self.out };
+        let mut next = Out {
+            o_valid: false,
+            o_frame_err: false,
+            o_start_err: false,
+            o_parity_err: false,
+            ..self.out
+        };
         let mut state = self.state;
         let mut cnt = self.cnt;
         let sample = self.rx_sync;
@@ -219,7 +237,11 @@ impl Receiver {
                     self.shift = (self.shift >> 1) | ((sample as u8) << 7);
                     cnt = bit - 1;
                     if self.bit_index == 7 {
-                        state = if self.parity == Parity::None { State::Stop } else { State::ParityBit };
+                        state = if self.parity == Parity::None {
+                            State::Stop
+                        } else {
+                            State::ParityBit
+                        };
                     } else {
                         self.bit_index += 1;
                     }

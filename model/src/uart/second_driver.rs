@@ -27,10 +27,19 @@ impl SecondDriver {
     /// Checks driver `i` of a scenario.
     pub fn validate(&self, i: usize) -> Result<()> {
         let something = !self.bytes.is_empty() || self.glitch_ns > 0.0;
-        if !(0.0..1e8).contains(&self.at_us) || self.bytes.len() > 1000 || !(0.0..1e6).contains(&self.glitch_ns) || !something {
+        if !(0.0..1e8).contains(&self.at_us)
+            || self.bytes.len() > 1000
+            || !(0.0..1e6).contains(&self.glitch_ns)
+            || !something
+        {
             return Err(ConfigError::invalid(
                 format!("second_drivers[{i}]"),
-                format!("at_us {}, {} bytes, glitch_ns {}", self.at_us, self.bytes.len(), self.glitch_ns),
+                format!(
+                    "at_us {}, {} bytes, glitch_ns {}",
+                    self.at_us,
+                    self.bytes.len(),
+                    self.glitch_ns
+                ),
                 "give at_us ≥ 0 and 1 to 1000 bytes, or a glitch_ns below 10^6",
             ));
         }
@@ -39,13 +48,27 @@ impl SecondDriver {
 
     /// The first cycle it drives and the level it drives in each cycle from
     /// then on (`clocks_per_bit` cycles a bit).
-    pub fn cycle_levels(&self, tb: &Timebase, parity: Parity, clocks_per_bit: u64) -> (u64, Vec<bool>) {
-        let glitch = if self.glitch_ns > 0.0 { tb.cycles_nearest_ns(self.glitch_ns).max(1) as usize } else { 0 };
+    pub fn cycle_levels(
+        &self,
+        tb: &Timebase,
+        parity: Parity,
+        clocks_per_bit: u64,
+    ) -> (u64, Vec<bool>) {
+        let glitch = if self.glitch_ns > 0.0 {
+            tb.cycles_nearest_ns(self.glitch_ns).max(1) as usize
+        } else {
+            0
+        };
         let mut levels = vec![false; glitch];
         if glitch > 0 && !self.bytes.is_empty() {
             levels.extend(std::iter::repeat_n(true, clocks_per_bit as usize));
         }
-        levels.extend(self.bytes.iter().flat_map(|&b| parity.levels(b)).flat_map(|bit| std::iter::repeat_n(bit, clocks_per_bit as usize)));
+        levels.extend(
+            self.bytes
+                .iter()
+                .flat_map(|&b| parity.levels(b))
+                .flat_map(|bit| std::iter::repeat_n(bit, clocks_per_bit as usize)),
+        );
         (tb.cycles_nearest_ns(self.at_us * 1e3), levels)
     }
 }
@@ -56,7 +79,14 @@ impl SecondDriver {
 /// `start_at`), no start pulse falling (`just_started`) and no second driver
 /// (its first cycle and its levels, one per cycle) beginning; 0 inside a
 /// second driver's levels.
-pub fn bench_quiet(cycle: u64, end: Option<u64>, busy: bool, start_at: u64, just_started: bool, drivers: &[(u64, Vec<bool>)]) -> u64 {
+pub fn bench_quiet(
+    cycle: u64,
+    end: Option<u64>,
+    busy: bool,
+    start_at: u64,
+    just_started: bool,
+    drivers: &[(u64, Vec<bool>)],
+) -> u64 {
     let host = match end {
         Some(end) => end.saturating_sub(cycle),
         None if busy => u64::MAX,

@@ -25,7 +25,11 @@ pub struct Sent {
 /// vector format's 32-bit cycles), so the product is exact in `f64` either way.
 pub fn first_cycle_at(from: u64, period_ps: u64, t_ps: f64) -> u64 {
     let estimate = (t_ps / period_ps as f64).ceil();
-    let mut c = if estimate > from as f64 { estimate.min(1e18) as u64 } else { from };
+    let mut c = if estimate > from as f64 {
+        estimate.min(1e18) as u64
+    } else {
+        from
+    };
     while c > from && ((c - 1) * period_ps) as f64 >= t_ps {
         c -= 1;
     }
@@ -91,13 +95,19 @@ impl Transmitter {
         let mut previous = self.edges.back().map_or(self.level, |e| e.1);
         for (i, &b) in levels.iter().enumerate() {
             if b != previous {
-                let j = if self.jitter_ps > 0.0 { self.rng.random_range(-self.jitter_ps..=self.jitter_ps) } else { 0.0 };
-                self.edges.push_back((start + i as f64 * self.bit_ps + j, b));
+                let j = if self.jitter_ps > 0.0 {
+                    self.rng.random_range(-self.jitter_ps..=self.jitter_ps)
+                } else {
+                    0.0
+                };
+                self.edges
+                    .push_back((start + i as f64 * self.bit_ps + j, b));
                 previous = b;
             }
         }
         if !previous {
-            self.edges.push_back((start + levels.len() as f64 * self.bit_ps, true));
+            self.edges
+                .push_back((start + levels.len() as f64 * self.bit_ps, true));
         }
         self.queued_until_ps = start + levels.len() as f64 * self.bit_ps;
         start
@@ -129,8 +139,13 @@ impl Transmitter {
             let mut previous = true;
             for (i, &b) in bits.iter().enumerate() {
                 if b != previous {
-                    let j = if self.jitter_ps > 0.0 { self.rng.random_range(-self.jitter_ps..=self.jitter_ps) } else { 0.0 };
-                    self.edges.push_back((start + i as f64 * self.bit_ps + j, b));
+                    let j = if self.jitter_ps > 0.0 {
+                        self.rng.random_range(-self.jitter_ps..=self.jitter_ps)
+                    } else {
+                        0.0
+                    };
+                    self.edges
+                        .push_back((start + i as f64 * self.bit_ps + j, b));
                     previous = b;
                 }
             }
@@ -162,7 +177,13 @@ impl Transmitter {
     /// and no frame start falls due in them, so the line keeps its level
     /// (fast-forward; `u64::MAX` once everything queued is sent).
     pub fn quiet(&self) -> u64 {
-        let next = [self.edges.front().map(|e| e.0), self.pending_frames.front().map(|f| f.0)].into_iter().flatten().fold(f64::INFINITY, f64::min);
+        let next = [
+            self.edges.front().map(|e| e.0),
+            self.pending_frames.front().map(|f| f.0),
+        ]
+        .into_iter()
+        .flatten()
+        .fold(f64::INFINITY, f64::min);
         if next == f64::INFINITY {
             return u64::MAX;
         }
@@ -190,7 +211,10 @@ impl Transmitter {
             if t > now {
                 break;
             }
-            self.sent.push(Sent { start_cycle: self.cycle, byte });
+            self.sent.push(Sent {
+                start_cycle: self.cycle,
+                byte,
+            });
             self.pending_frames.pop_front();
         }
         self.cycle += 1;

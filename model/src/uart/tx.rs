@@ -30,7 +30,11 @@ impl TxConfig {
     /// Checks the configuration.
     pub fn validate(&self) -> Result<()> {
         if !(2..=1 << 20).contains(&self.clocks_per_bit) {
-            return Err(ConfigError::invalid("baud", format!("{} clocks per bit", self.clocks_per_bit), "give f_sys at least twice the baud rate and at most 2^20 times"));
+            return Err(ConfigError::invalid(
+                "baud",
+                format!("{} clocks per bit", self.clocks_per_bit),
+                "give f_sys at least twice the baud rate and at most 2^20 times",
+            ));
         }
         Ok(())
     }
@@ -65,7 +69,10 @@ pub struct TxOut {
 
 impl Default for TxOut {
     fn default() -> Self {
-        TxOut { o_tx: true, o_busy: false }
+        TxOut {
+            o_tx: true,
+            o_busy: false,
+        }
     }
 }
 
@@ -98,7 +105,14 @@ impl Tx {
     /// A sender in its reset state.
     pub fn new(cfg: TxConfig) -> Result<Self> {
         cfg.validate()?;
-        Ok(Tx { cfg, state: TxState::Idle, shift: 0, bits_left: 0, cnt: 0, out: TxOut::default() })
+        Ok(Tx {
+            cfg,
+            state: TxState::Idle,
+            shift: 0,
+            bits_left: 0,
+            cnt: 0,
+            out: TxOut::default(),
+        })
     }
 
     /// The input ports, in vector order.
@@ -146,7 +160,10 @@ impl Tx {
             TxState::Idle => {
                 if input.i_valid {
                     let levels = self.cfg.parity.levels(input.i_data);
-                    self.shift = levels.iter().rev().fold(0u16, |acc, &b| (acc << 1) | b as u16);
+                    self.shift = levels
+                        .iter()
+                        .rev()
+                        .fold(0u16, |acc, &b| (acc << 1) | b as u16);
                     self.bits_left = levels.len() as u8 - 1;
                     self.cnt = self.cfg.clocks_per_bit - 1;
                     self.state = TxState::Send;

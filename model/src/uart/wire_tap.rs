@@ -31,7 +31,11 @@ impl WireTap {
     /// A tap for characters with a parity bit (a character with a wrong
     /// parity bit is filed as received, like one with a low stop bit).
     pub fn with_parity(clocks_per_bit: u64, parity: Parity) -> Result<Self> {
-        Ok(WireTap { rx: Receiver::with_parity(ReceiverConfig { clocks_per_bit }, parity)?, from_host: false, tx_en_before: false })
+        Ok(WireTap {
+            rx: Receiver::with_parity(ReceiverConfig { clocks_per_bit }, parity)?,
+            from_host: false,
+            tx_en_before: false,
+        })
     }
 
     /// How many of the next steps with `line` and `tx_en` record nothing
@@ -67,7 +71,9 @@ impl WireTap {
         }
         let opens_request = tx_en && !self.tx_en_before;
         self.tx_en_before = tx_en;
-        let Some((requests, answers)) = log else { return };
+        let Some((requests, answers)) = log else {
+            return;
+        };
         if opens_request {
             requests.push(Vec::new());
             answers.push(Vec::new());

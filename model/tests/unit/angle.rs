@@ -32,5 +32,8 @@ fn seed_001_async_frame_data_017f_is_383_of_14_bits_and_8_4155_degrees() {
 #[test]
 fn cutting_differs_from_rounding_where_the_seed_shows_it() {
     // 43.505859… rounds to 43.5059 but the seed prints 43.5058.
-    assert_ne!((360.0 * 495.0 / 4096.0 * 1e4_f64).round() / 1e4, angle_deg(495, 12));
+    assert_ne!(
+        (360.0 * 495.0 / 4096.0 * 1e4_f64).round() / 1e4,
+        angle_deg(495, 12)
+    );
 }

@@ -20,7 +20,11 @@ fn a_frame_stopped_just_after_its_start_bit_counts_no_cells_and_does_not_panic()
     // Ack low after the second rising edge, the start bit high a cell later.
     slo.push(11 * us + us / 2 + 100_000, false);
     slo.push(12 * us + us / 2 + 100_000, true);
-    let layout = Layout { bits: vec![12], crc_width: vec![6], crc_poly: vec![0x43] };
+    let layout = Layout {
+        bits: vec![12],
+        crc_width: vec![6],
+        crc_poly: vec![0x43],
+    };
     let frames = Decoder::default().feed(&ma, &slo, &layout);
     assert_eq!(frames.len(), 1, "{frames:?}");
     assert_eq!(frames[0].cells, Some((0, 1 + 12 + 2 + 6)), "{frames:?}");

@@ -8,12 +8,28 @@ use model::testbench::run_to_end;
 use model::{Setup, Testbench};
 
 fn node(name: &str, pos: f64, frames: Vec<(f64, Frame)>) -> NodeSettings {
-    NodeSettings { name: name.into(), position_m: pos, loop_delay_ns: 150.0, ppm: 0.0, ack: true, frames: frames.into_iter().map(|(at_us, frame)| Scripted::new(at_us, frame)).collect() }
+    NodeSettings {
+        name: name.into(),
+        position_m: pos,
+        loop_delay_ns: 150.0,
+        ppm: 0.0,
+        ack: true,
+        frames: frames
+            .into_iter()
+            .map(|(at_us, frame)| Scripted::new(at_us, frame))
+            .collect(),
+    }
 }
 
 fn cfg(dut_frames: Vec<(f64, Frame)>, nodes: Vec<NodeSettings>) -> BenchConfig {
     BenchConfig {
-        dut: DutSettings { frames: dut_frames.into_iter().map(|(at_us, frame)| Scripted::new(at_us, frame)).collect(), ..DutSettings::default() },
+        dut: DutSettings {
+            frames: dut_frames
+                .into_iter()
+                .map(|(at_us, frame)| Scripted::new(at_us, frame))
+                .collect(),
+            ..DutSettings::default()
+        },
         nodes,
         ..BenchConfig::default()
     }
@@ -28,8 +44,14 @@ fn crc_step_equals_the_catalogue_register() {
 
 #[test]
 fn stuffing_inserts_after_five_equal_bits_and_the_parser_removes_them() {
-    assert_eq!(stuff(&[false; 5]), vec![false, false, false, false, false, true]);
-    assert_eq!(stuff(&[true, true, true, true, true, false]), vec![true, true, true, true, true, false, false]);
+    assert_eq!(
+        stuff(&[false; 5]),
+        vec![false, false, false, false, false, true]
+    );
+    assert_eq!(
+        stuff(&[true, true, true, true, true, false]),
+        vec![true, true, true, true, true, false, false]
+    );
     // Data of zeros stuffs heavily; the parser gives the frame back.
     let f = Frame::data(0x000, &[0; 8]);
     let w = f.wire_bits(true);
@@ -59,14 +81,23 @@ fn a_frame_from_a_node_is_received_acknowledged_and_reported() {
     assert_eq!(run.transactions.len(), 1, "{:?}", run.transactions);
     let t = &run.transactions[0];
     assert!(t.complete && t.ack);
-    assert_eq!((t.id, t.dlc, t.data.clone(), t.crc), (f.id, f.dlc, f.data.clone(), Some(f.crc())));
+    assert_eq!(
+        (t.id, t.dlc, t.data.clone(), t.crc),
+        (f.id, f.dlc, f.data.clone(), Some(f.crc()))
+    );
     assert_eq!((t.outcome, t.rx_id), ("rx_valid", Some(f.id)));
     assert!(t.errors.is_empty());
 }
 
 #[test]
 fn the_core_sends_a_frame_a_node_acknowledges() {
-    let f = Frame { id: 0x7FF, ide: false, rtr: true, dlc: 2, data: vec![] };
+    let f = Frame {
+        id: 0x7FF,
+        ide: false,
+        rtr: true,
+        dlc: 2,
+        data: vec![],
+    };
     let c = cfg(vec![(5.0, f.clone())], vec![node("a", 40.0, vec![])]);
     let run = run_to_end(c.bench().unwrap());
     assert_eq!(run.transactions.len(), 1);
@@ -81,24 +112,58 @@ fn plain() -> Frame {
 }
 
 fn flip(targets: &[&str], frame: u32, count: u32, bit: u32) -> Fault {
-    Fault { kind: FaultKind::Flip, targets: targets.iter().map(|s| s.to_string()).collect(), frame, count, bit, at_us: 0.0, width_us: 0.0 }
+    Fault {
+        kind: FaultKind::Flip,
+        targets: targets.iter().map(|s| s.to_string()).collect(),
+        frame,
+        count,
+        bit,
+        at_us: 0.0,
+        width_us: 0.0,
+    }
 }
 
 fn show(ts: &[Transaction]) {
     for t in ts {
-        eprintln!("{:>3} sof {:>8} {} id {:#x} ok {} ack {} err {:?} arb_lost {} tec {} rec {} st {}", t.index, t.sof_cycle, t.outcome, t.id, t.complete, t.ack, t.errors, t.arb_lost, t.tec, t.rec, t.err_state);
+        eprintln!(
+            "{:>3} sof {:>8} {} id {:#x} ok {} ack {} err {:?} arb_lost {} tec {} rec {} st {}",
+            t.index,
+            t.sof_cycle,
+            t.outcome,
+            t.id,
+            t.complete,
+            t.ack,
+            t.errors,
+            t.arb_lost,
+            t.tec,
+            t.rec,
+            t.err_state
+        );
     }
 }
 
 #[test]
 fn arbitration_between_three_nodes_lowest_identifier_first_loser_retransmits() {
-    let c = cfg(vec![(10.0, Frame::data(0x100, &[1]))], vec![node("a", 20.0, vec![(10.0, Frame::data(0x0F0, &[2]))]), node("b", 40.0, vec![(10.0, Frame::data(0x200, &[3]))])]);
+    let c = cfg(
+        vec![(10.0, Frame::data(0x100, &[1]))],
+        vec![
+            node("a", 20.0, vec![(10.0, Frame::data(0x0F0, &[2]))]),
+            node("b", 40.0, vec![(10.0, Frame::data(0x200, &[3]))]),
+        ],
+    );
     let run = run_to_end(c.bench().unwrap());
     show(&run.transactions);
     let ids: Vec<u32> = run.transactions.iter().map(|t| t.id).collect();
     assert_eq!(ids, vec![0x0F0, 0x100, 0x200]);
-    let o: Vec<(&str, bool)> = run.transactions.iter().map(|t| (t.outcome, t.arb_lost)).collect();
-    assert_eq!(o, vec![("rx_valid", true), ("tx_done", false), ("rx_valid", false)]);
+    let o: Vec<(&str, bool)> = run
+        .transactions
+        .iter()
+        .map(|t| (t.outcome, t.arb_lost))
+        .collect();
+    assert_eq!(
+        o,
+        vec![("rx_valid", true), ("tx_done", false), ("rx_valid", false)]
+    );
 }
 
 #[test]
@@ -115,7 +180,10 @@ fn a_bit_error_of_the_transmitter_costs_8_and_the_retransmission_gives_1_back() 
 
 #[test]
 fn a_flipped_stuff_bit_is_a_stuff_error_of_the_receiver() {
-    let mut c = cfg(vec![], vec![node("a", 10.0, vec![(10.0, Frame::data(0x000, &[0, 0]))])]);
+    let mut c = cfg(
+        vec![],
+        vec![node("a", 10.0, vec![(10.0, Frame::data(0x000, &[0, 0]))])],
+    );
     c.faults = vec![flip(&["dut"], 0, 1, 5)];
     let run = run_to_end(c.bench().unwrap());
     show(&run.transactions);
@@ -129,7 +197,13 @@ fn a_flipped_stuff_bit_is_a_stuff_error_of_the_receiver() {
 
 #[test]
 fn a_flipped_data_bit_at_the_receiver_is_a_crc_error_after_the_ack_delimiter() {
-    let mut c = cfg(vec![], vec![node("a", 10.0, vec![(10.0, plain())]), node("b", 30.0, vec![])]);
+    let mut c = cfg(
+        vec![],
+        vec![
+            node("a", 10.0, vec![(10.0, plain())]),
+            node("b", 30.0, vec![]),
+        ],
+    );
     // Wire bit 24: data bit 4 (a stuff bit follows DLC2 at wire bit 17); 0 -> 1 makes no run of five.
     c.faults = vec![flip(&["dut"], 0, 1, 24)];
     let run = run_to_end(c.bench().unwrap());
@@ -137,8 +211,15 @@ fn a_flipped_data_bit_at_the_receiver_is_a_crc_error_after_the_ack_delimiter() {
     let t = &run.transactions;
     assert_eq!(t.len(), 2);
     assert_eq!(t[0].outcome, "err_crc");
-    assert!(t[0].complete && t[0].ack, "the transmitter saw the ACK of the other receiver");
-    assert_eq!(t[0].errors, vec!["crc"], "the listener at the pin sees the CRC error too");
+    assert!(
+        t[0].complete && t[0].ack,
+        "the transmitter saw the ACK of the other receiver"
+    );
+    assert_eq!(
+        t[0].errors,
+        vec!["crc"],
+        "the listener at the pin sees the CRC error too"
+    );
     assert_eq!(t[1].outcome, "rx_valid");
 }
 
@@ -170,7 +251,9 @@ fn no_acknowledgement_is_an_ack_error_up_to_error_passive_and_no_further() {
     assert_eq!(t[15].err_state, ERROR_PASSIVE);
     assert_eq!(t[14].err_state, ERROR_ACTIVE);
     // Error-passive: an ACK error without a dominant bit in the passive flag costs nothing.
-    assert!(t[16..].iter().all(|x| x.tec == 128 && x.outcome == "err_ack"));
+    assert!(t[16..]
+        .iter()
+        .all(|x| x.tec == 128 && x.outcome == "err_ack"));
 }
 
 #[test]
@@ -182,11 +265,18 @@ fn repeated_bit_errors_walk_the_transmitter_to_bus_off_and_128_x_11_recessive_bi
     let t = &run.transactions;
     assert_eq!(t.len(), 33);
     for (k, x) in t.iter().enumerate().take(32) {
-        assert_eq!((x.outcome, x.tec), ("err_bit", 8 * (k as u16 + 1)), "frame {k}");
+        assert_eq!(
+            (x.outcome, x.tec),
+            ("err_bit", 8 * (k as u16 + 1)),
+            "frame {k}"
+        );
     }
     assert_eq!((t[30].tec, t[30].err_state), (248, ERROR_PASSIVE));
     assert_eq!((t[31].tec, t[31].err_state), (256, BUS_OFF));
-    assert_eq!((t[32].outcome, t[32].tec, t[32].err_state), ("tx_done", 0, ERROR_ACTIVE));
+    assert_eq!(
+        (t[32].outcome, t[32].tec, t[32].err_state),
+        ("tx_done", 0, ERROR_ACTIVE)
+    );
     // Step again and time bus-off at the core's outputs: 128 × 11 recessive
     // bits, counted from the first sample point after the last error flag.
     let mut b = c.bench().unwrap();
@@ -215,7 +305,10 @@ fn repeated_bit_errors_walk_the_transmitter_to_bus_off_and_128_x_11_recessive_bi
 fn campaign_counts_by_inverted_bits() {
     let r = campaign::run(100_000, 1);
     for (n, c) in &r {
-        eprintln!("{n} flips: detected {} undetected {} harmless {}", c.detected, c.undetected, c.harmless);
+        eprintln!(
+            "{n} flips: detected {} undetected {} harmless {}",
+            c.detected, c.undetected, c.harmless
+        );
     }
     let (tried, missed) = campaign::shift_pairs(20, 2);
     eprintln!("shift pairs: {tried} tried, {missed} undetected");
@@ -235,7 +328,12 @@ fn the_controller_and_the_parser_agree_on_every_corruption() {
 }
 
 fn timing_125k(c: &mut BenchConfig) {
-    c.timing = TimingSettings { bit_rate_kbps: 125.0, tq_per_bit: 16, sample_point: 0.875, sjw: 1 };
+    c.timing = TimingSettings {
+        bit_rate_kbps: 125.0,
+        tq_per_bit: 16,
+        sample_point: 0.875,
+        sjw: 1,
+    };
 }
 
 #[test]
@@ -243,7 +341,10 @@ fn an_oscillator_offset_inside_the_tolerance_is_harmless_and_far_beyond_it_is_no
     let run = |ppm: f64| {
         let mut a = node("a", 10.0, vec![(10.0, Frame::data(0x000, &[0; 8]))]);
         a.ppm = ppm;
-        let mut c = cfg(vec![(1200.0, Frame::data(0x7FF, &[0xFF; 8]))], vec![a, node("b", 20.0, vec![])]);
+        let mut c = cfg(
+            vec![(1200.0, Frame::data(0x7FF, &[0xFF; 8]))],
+            vec![a, node("b", 20.0, vec![])],
+        );
         timing_125k(&mut c);
         c.max_us = 8000.0;
         run_to_end(c.bench().unwrap()).transactions
@@ -254,7 +355,10 @@ fn an_oscillator_offset_inside_the_tolerance_is_harmless_and_far_beyond_it_is_no
     assert!((tol - 0.003125).abs() < 1e-12, "{tol}");
     // Two nodes may differ by twice the per-node tolerance.
     let inside = run(0.8 * 2.0 * tol * 1e6);
-    assert_eq!(inside.iter().map(|t| t.outcome).collect::<Vec<_>>(), vec!["rx_valid", "tx_done"]);
+    assert_eq!(
+        inside.iter().map(|t| t.outcome).collect::<Vec<_>>(),
+        vec!["rx_valid", "tx_done"]
+    );
     let beyond = run(8.0 * 2.0 * tol * 1e6);
     assert!(beyond.iter().all(|t| t.outcome.starts_with("err_")) && !beyond.is_empty());
 }
@@ -262,7 +366,10 @@ fn an_oscillator_offset_inside_the_tolerance_is_harmless_and_far_beyond_it_is_no
 #[test]
 fn arbitration_works_across_the_longest_bus_the_timing_allows_and_fails_far_beyond() {
     let run = |len: f64| {
-        let mut c = cfg(vec![(10.0, Frame::data(0x101, &[0x11]))], vec![node("far", len, vec![(10.0, Frame::data(0x100, &[0x22]))])]);
+        let mut c = cfg(
+            vec![(10.0, Frame::data(0x101, &[0x11]))],
+            vec![node("far", len, vec![(10.0, Frame::data(0x100, &[0x22]))])],
+        );
         timing_125k(&mut c);
         c.max_us = 5000.0;
         run_to_end(c.bench().unwrap()).transactions
@@ -274,7 +381,10 @@ fn arbitration_works_across_the_longest_bus_the_timing_allows_and_fails_far_beyo
     assert!((longest - 357.5).abs() < 1e-9, "{longest}");
     let ok = run(longest);
     let o: Vec<(&str, u32, bool)> = ok.iter().map(|t| (t.outcome, t.id, t.arb_lost)).collect();
-    assert_eq!(o, vec![("rx_valid", 0x100, true), ("tx_done", 0x101, false)]);
+    assert_eq!(
+        o,
+        vec![("rx_valid", 0x100, true), ("tx_done", 0x101, false)]
+    );
     let bad = run(800.0);
     assert!(bad.iter().any(|t| t.outcome.starts_with("err_")), "{bad:?}");
 }
@@ -282,7 +392,14 @@ fn arbitration_works_across_the_longest_bus_the_timing_allows_and_fails_far_beyo
 #[test]
 fn a_frame_the_filter_rejects_is_still_acknowledged_but_not_reported() {
     let f = Frame::data(0x123, &[1, 2]);
-    let mut c = cfg(vec![], vec![node("a", 10.0, vec![(10.0, f.clone()), (300.0, Frame::data(0x321, &[3]))])]);
+    let mut c = cfg(
+        vec![],
+        vec![node(
+            "a",
+            10.0,
+            vec![(10.0, f.clone()), (300.0, Frame::data(0x321, &[3]))],
+        )],
+    );
     c.dut.filter_id = 0x321;
     c.dut.filter_mask = 0x7FF;
     let b = c.bench().unwrap();
@@ -293,7 +410,11 @@ fn a_frame_the_filter_rejects_is_still_acknowledged_but_not_reported() {
     // The node sent both (the core acknowledged both; it is the only receiver).
     assert_eq!(b2.nodes()[0].sent().len(), 2);
     let run = run_to_end(b);
-    let o: Vec<(&str, Option<u32>)> = run.transactions.iter().map(|t| (t.outcome, t.rx_id)).collect();
+    let o: Vec<(&str, Option<u32>)> = run
+        .transactions
+        .iter()
+        .map(|t| (t.outcome, t.rx_id))
+        .collect();
     assert_eq!(o, vec![("rx_valid", Some(0x321))]);
 }
 
@@ -301,14 +422,23 @@ fn a_frame_the_filter_rejects_is_still_acknowledged_but_not_reported() {
 fn a_dominant_first_intermission_bit_is_an_overload_condition() {
     let f = Frame::data(0x555, &[0x55, 0x55]);
     let intermission = frame::stuff(&f.destuffed_bits()).len() as u32 + 10;
-    let mut c = cfg(vec![], vec![node("a", 10.0, vec![(10.0, f.clone()), (20.0, f)])]);
+    let mut c = cfg(
+        vec![],
+        vec![node("a", 10.0, vec![(10.0, f.clone()), (20.0, f)])],
+    );
     c.faults = vec![flip(&["dut"], 0, 1, intermission)];
     let run = run_to_end(c.bench().unwrap());
     show(&run.transactions);
     let t = &run.transactions;
-    assert_eq!(t.iter().map(|t| t.outcome).collect::<Vec<_>>(), vec!["rx_valid", "rx_valid"]);
+    assert_eq!(
+        t.iter().map(|t| t.outcome).collect::<Vec<_>>(),
+        vec!["rx_valid", "rx_valid"]
+    );
     assert_eq!((t[0].overloads, t[1].overloads), (0, 1));
-    assert!(t.iter().all(|t| t.rec == 0 && t.tec == 0), "an overload frame is no error");
+    assert!(
+        t.iter().all(|t| t.rec == 0 && t.tec == 0),
+        "an overload frame is no error"
+    );
 }
 
 #[test]
@@ -332,9 +462,27 @@ fn bit_clock_skip_equals_stepping_without_edges() {
     let t = BitTiming::for_rate(40_000_000, 125_000.0, 16, 0.875, 1).unwrap();
     let starts = [
         BitClock::default(),
-        BitClock { pre_cnt: 7, tq_cnt: 5, ext: 1, short: false, synced: true },
-        BitClock { pre_cnt: 3, tq_cnt: 14, ext: 0, short: true, synced: true },
-        BitClock { pre_cnt: 19, tq_cnt: 15, ext: 0, short: false, synced: false },
+        BitClock {
+            pre_cnt: 7,
+            tq_cnt: 5,
+            ext: 1,
+            short: false,
+            synced: true,
+        },
+        BitClock {
+            pre_cnt: 3,
+            tq_cnt: 14,
+            ext: 0,
+            short: true,
+            synced: true,
+        },
+        BitClock {
+            pre_cnt: 19,
+            tq_cnt: 15,
+            ext: 0,
+            short: false,
+            synced: false,
+        },
     ];
     for start in starts {
         for n in [0, 1, 2, 19, 20, 21, 319, 320, 321, 1000, 12_345] {
@@ -357,12 +505,36 @@ fn bit_clock_cycles_to_sample_is_where_stepping_samples() {
     let t = BitTiming::for_rate(40_000_000, 125_000.0, 16, 0.875, 2).unwrap();
     let starts = [
         BitClock::default(),
-        BitClock { pre_cnt: 7, tq_cnt: 5, ext: 1, short: false, synced: true },
+        BitClock {
+            pre_cnt: 7,
+            tq_cnt: 5,
+            ext: 1,
+            short: false,
+            synced: true,
+        },
         // Shortened by SJW: its last quantum is 13.
-        BitClock { pre_cnt: 3, tq_cnt: 13, ext: 0, short: true, synced: false },
-        BitClock { pre_cnt: 19, tq_cnt: 15, ext: 0, short: false, synced: false },
+        BitClock {
+            pre_cnt: 3,
+            tq_cnt: 13,
+            ext: 0,
+            short: true,
+            synced: false,
+        },
+        BitClock {
+            pre_cnt: 19,
+            tq_cnt: 15,
+            ext: 0,
+            short: false,
+            synced: false,
+        },
         // Lengthened by SJW: its last quantum is 17.
-        BitClock { pre_cnt: 19, tq_cnt: 16, ext: 2, short: false, synced: false },
+        BitClock {
+            pre_cnt: 19,
+            tq_cnt: 16,
+            ext: 2,
+            short: false,
+            synced: false,
+        },
     ];
     for start in starts {
         let mut clock = start;
@@ -371,9 +543,15 @@ fn bit_clock_cycles_to_sample_is_where_stepping_samples() {
             let q = clock.cycles_to_sample(&t);
             let mut stepped = clock;
             for k in 0..q {
-                assert!(!stepped.step(&t, false, false, false).sample, "from {clock:?}: a sample point {k} cycles on, not {q}");
+                assert!(
+                    !stepped.step(&t, false, false, false).sample,
+                    "from {clock:?}: a sample point {k} cycles on, not {q}"
+                );
             }
-            assert!(stepped.step(&t, false, false, false).sample, "from {clock:?}: no sample point {q} cycles on");
+            assert!(
+                stepped.step(&t, false, false, false).sample,
+                "from {clock:?}: no sample point {q} cycles on"
+            );
             clock.step(&t, false, false, false);
         }
     }
@@ -383,7 +561,10 @@ fn bit_clock_cycles_to_sample_is_where_stepping_samples() {
 /// skip leaves it as stepping does; a dominant line or a frame to send ends it.
 #[test]
 fn idle_controller_skips_exactly() {
-    let cc = ControllerConfig { timing: BitTiming::for_rate(40_000_000, 500_000.0, 16, 0.875, 1).unwrap(), sync_stages: 2 };
+    let cc = ControllerConfig {
+        timing: BitTiming::for_rate(40_000_000, 500_000.0, 16, 0.875, 1).unwrap(),
+        sync_stages: 2,
+    };
     let mut c = Controller::new(cc).unwrap();
     let idle = In::default();
     // 11 recessive bits of bus integration, then idle.
@@ -403,19 +584,34 @@ fn idle_controller_skips_exactly() {
     assert_eq!(c.state(), stepped.state());
     assert_eq!(c.out(), stepped.out());
     // The two go on alike: a frame loaded into both is sent cycle for cycle the same.
-    let start = In { i_tx_start: true, i_tx_id: 0x123, i_tx_dlc: 1, i_tx_data: 0xA5 << 56, ..In::default() };
+    let start = In {
+        i_tx_start: true,
+        i_tx_id: 0x123,
+        i_tx_dlc: 1,
+        i_tx_data: 0xA5 << 56,
+        ..In::default()
+    };
     assert_eq!(c.step(&start), stepped.step(&start));
     // A frame waits: quiet only up to the next sample point, which starts it.
     let q = c.quiet(true);
-    assert!(q > 0 && q < cc.timing.clocks_per_bit(), "quiet {q} with a frame waiting");
+    assert!(
+        q > 0 && q < cc.timing.clocks_per_bit(),
+        "quiet {q} with a frame waiting"
+    );
     for _ in 0..q {
         stepped.step(&idle);
     }
     c.skip(q);
-    assert_eq!((c.clock(), c.state(), c.out()), (stepped.clock(), stepped.state(), stepped.out()));
+    assert_eq!(
+        (c.clock(), c.state(), c.out()),
+        (stepped.clock(), stepped.state(), stepped.out())
+    );
     let o = c.step(&idle);
     assert_eq!(o, stepped.step(&idle));
-    assert!(o.o_tx_busy && c.state() != State::Idle, "the sample point after the skip starts the frame");
+    assert!(
+        o.o_tx_busy && c.state() != State::Idle,
+        "the sample point after the skip starts the frame"
+    );
     // Through the frame, each cycle stepped and skipped alike: every skip
     // ends before a sample point, or a bit end that changes the level sent.
     let mut skipped = 0;
@@ -424,16 +620,28 @@ fn idle_controller_skips_exactly() {
         let q = c.quiet(rx);
         if q > 0 {
             for _ in 0..q {
-                stepped.step(&In { i_can_rx: rx, ..In::default() });
+                stepped.step(&In {
+                    i_can_rx: rx,
+                    ..In::default()
+                });
             }
             c.skip(q);
             skipped += q;
-            assert_eq!((c.clock(), c.state(), c.out()), (stepped.clock(), stepped.state(), stepped.out()));
+            assert_eq!(
+                (c.clock(), c.state(), c.out()),
+                (stepped.clock(), stepped.state(), stepped.out())
+            );
         }
-        let i = In { i_can_rx: c.out().o_can_tx, ..In::default() };
+        let i = In {
+            i_can_rx: c.out().o_can_tx,
+            ..In::default()
+        };
         assert_eq!(c.step(&i), stepped.step(&i));
     }
-    assert!(skipped > 20 * cc.timing.clocks_per_bit(), "only {skipped} cycles of the frame skipped");
+    assert!(
+        skipped > 20 * cc.timing.clocks_per_bit(),
+        "only {skipped} cycles of the frame skipped"
+    );
 }
 
 /// A bench with long idle gaps (frames of about half a millisecond 2 ms
@@ -443,26 +651,62 @@ fn idle_controller_skips_exactly() {
 #[test]
 fn bench_fast_forward_matches_stepping_through_idle_gaps() {
     let f = Frame::data(0x155, &[1, 2, 3]);
-    let mut slow = node("slow", 30.0, vec![(2000.0, Frame::data(0x0F0, &[9])), (6000.0, Frame { id: 0x0F1, ide: false, rtr: true, dlc: 2, data: vec![] })]);
+    let mut slow = node(
+        "slow",
+        30.0,
+        vec![
+            (2000.0, Frame::data(0x0F0, &[9])),
+            (
+                6000.0,
+                Frame {
+                    id: 0x0F1,
+                    ide: false,
+                    rtr: true,
+                    dlc: 2,
+                    data: vec![],
+                },
+            ),
+        ],
+    );
     slow.ppm = -3000.0;
-    let mut c = cfg(vec![(20.0, f.clone()), (4000.0, f.clone()), (8000.0, f)], vec![slow]);
-    c.timing = TimingSettings { bit_rate_kbps: 125.0, tq_per_bit: 16, sample_point: 0.875, sjw: 1 };
+    let mut c = cfg(
+        vec![(20.0, f.clone()), (4000.0, f.clone()), (8000.0, f)],
+        vec![slow],
+    );
+    c.timing = TimingSettings {
+        bit_rate_kbps: 125.0,
+        tq_per_bit: 16,
+        sample_point: 0.875,
+        sjw: 1,
+    };
     c.max_us = 12_000.0;
-    let run = model::testbench::lockstep("125 kbit/s bench", c.bench().unwrap(), c.bench().unwrap());
+    let run =
+        model::testbench::lockstep("125 kbit/s bench", c.bench().unwrap(), c.bench().unwrap());
     assert_eq!(run.skipping, run.stepped, "transcripts differ");
     let (cycles, skipped) = (run.cycles, run.skipped);
     // 5 frames of 50 to 90 bits (8 µs each) in some 8.6 ms: over two
     // thirds idle, skipped whole between frames and scheduled starts; in a
     // frame, a few cycles of each 320-cycle bit are stepped.
-    assert!(skipped * 100 > cycles * 95, "only {skipped} of {cycles} cycles skipped");
-    assert_eq!(model::testbench::run_to_end(c.bench().unwrap()), model::testbench::run_every_cycle(c.bench().unwrap()));
+    assert!(
+        skipped * 100 > cycles * 95,
+        "only {skipped} of {cycles} cycles skipped"
+    );
+    assert_eq!(
+        model::testbench::run_to_end(c.bench().unwrap()),
+        model::testbench::run_every_cycle(c.bench().unwrap())
+    );
     // The same with each part stepped on its own events only.
-    assert_eq!(c.bench().unwrap().run_to_end_compiled(), model::testbench::run_every_cycle(c.bench().unwrap()));
+    assert_eq!(
+        c.bench().unwrap().run_to_end_compiled(),
+        model::testbench::run_every_cycle(c.bench().unwrap())
+    );
 }
 
 /// The bus's delay from `i` to `j` in cycles, as `Bus::new` reckons it.
 fn stepped_delay(places: &[bus::Place], tb: &model::Timebase, i: usize, j: usize) -> usize {
-    let ns = places[i].loop_delay_ns / 2.0 + (places[i].position_m - places[j].position_m).abs() * 5.0 + places[j].loop_delay_ns / 2.0;
+    let ns = places[i].loop_delay_ns / 2.0
+        + (places[i].position_m - places[j].position_m).abs() * 5.0
+        + places[j].loop_delay_ns / 2.0;
     ((ns * 1e3 / tb.period_ps() as f64).round() as usize).max(1)
 }
 
@@ -549,9 +793,28 @@ proptest::proptest! {
 /// targets, or a stuck-dominant window), at a random bit timing.
 fn random_setup() -> impl proptest::strategy::Strategy<Value = BenchConfig> {
     use proptest::prelude::*;
-    let frame = (0u32..0x800, 0u8..=8, any::<bool>(), any::<u64>(), 0.0f64..1.0);
-    let node = (0.0f64..40.0, 0.0f64..300.0, -3000.0f64..3000.0, any::<bool>(), proptest::collection::vec(frame.clone(), 0..=3));
-    let fault = (any::<bool>(), proptest::collection::vec(0usize..4, 0..=2), 0u32..3, 0u32..80, 0.0f64..1.0, 1.0f64..30.0);
+    let frame = (
+        0u32..0x800,
+        0u8..=8,
+        any::<bool>(),
+        any::<u64>(),
+        0.0f64..1.0,
+    );
+    let node = (
+        0.0f64..40.0,
+        0.0f64..300.0,
+        -3000.0f64..3000.0,
+        any::<bool>(),
+        proptest::collection::vec(frame.clone(), 0..=3),
+    );
+    let fault = (
+        any::<bool>(),
+        proptest::collection::vec(0usize..4, 0..=2),
+        0u32..3,
+        0u32..80,
+        0.0f64..1.0,
+        1.0f64..30.0,
+    );
     (
         prop::sample::select(vec![125.0, 250.0, 500.0, 1000.0]),
         prop::sample::select(vec![8u32, 10, 20]),
@@ -562,51 +825,96 @@ fn random_setup() -> impl proptest::strategy::Strategy<Value = BenchConfig> {
         proptest::collection::vec(node, 1..=3),
         proptest::collection::vec(fault, 0..=2),
     )
-        .prop_map(|(kbps, ntq, sample_point, sjw, sync_stages, (dut_loop, dut_frames), nodes, faults)| {
-            let bit_us = 1000.0 / kbps;
-            // Room for every frame and its retransmissions.
-            let frames = 1 + dut_frames.len() + nodes.iter().map(|n| n.4.len()).sum::<usize>();
-            let span_us = frames as f64 * 150.0 * bit_us;
-            let scripted = |fs: &Vec<(u32, u8, bool, u64, f64)>, ide_ok: bool| -> Vec<Scripted> {
-                fs.iter()
-                    .map(|&(id, dlc, rtr, data, at)| {
-                        let bytes: Vec<u8> = data.to_be_bytes()[..dlc as usize].to_vec();
-                        let mut f = if rtr { Frame { id, ide: false, rtr: true, dlc, data: vec![] } } else { Frame::data(id, &bytes) };
-                        // Every other node frame extended (a 29-bit identifier from the data).
-                        if ide_ok && data % 2 == 1 {
-                            f.ide = true;
-                            f.id = (data >> 8) as u32 & 0x1FFF_FFFF;
-                        }
-                        Scripted::new(20.0 + at * span_us * 0.6, f)
+        .prop_map(
+            |(kbps, ntq, sample_point, sjw, sync_stages, (dut_loop, dut_frames), nodes, faults)| {
+                let bit_us = 1000.0 / kbps;
+                // Room for every frame and its retransmissions.
+                let frames = 1 + dut_frames.len() + nodes.iter().map(|n| n.4.len()).sum::<usize>();
+                let span_us = frames as f64 * 150.0 * bit_us;
+                let scripted =
+                    |fs: &Vec<(u32, u8, bool, u64, f64)>, ide_ok: bool| -> Vec<Scripted> {
+                        fs.iter()
+                            .map(|&(id, dlc, rtr, data, at)| {
+                                let bytes: Vec<u8> = data.to_be_bytes()[..dlc as usize].to_vec();
+                                let mut f = if rtr {
+                                    Frame {
+                                        id,
+                                        ide: false,
+                                        rtr: true,
+                                        dlc,
+                                        data: vec![],
+                                    }
+                                } else {
+                                    Frame::data(id, &bytes)
+                                };
+                                // Every other node frame extended (a 29-bit identifier from the data).
+                                if ide_ok && data % 2 == 1 {
+                                    f.ide = true;
+                                    f.id = (data >> 8) as u32 & 0x1FFF_FFFF;
+                                }
+                                Scripted::new(20.0 + at * span_us * 0.6, f)
+                            })
+                            .collect()
+                    };
+                let names = ["a", "b", "c"];
+                let mut c = cfg(vec![], vec![]);
+                c.timing = TimingSettings {
+                    bit_rate_kbps: kbps,
+                    tq_per_bit: ntq,
+                    sample_point,
+                    sjw,
+                };
+                c.sync_stages = sync_stages;
+                c.dut.loop_delay_ns = dut_loop;
+                c.dut.frames = scripted(&dut_frames, false);
+                c.nodes = nodes
+                    .iter()
+                    .enumerate()
+                    .map(|(k, (pos, lp, ppm, ack, fs))| NodeSettings {
+                        name: names[k].into(),
+                        position_m: *pos,
+                        loop_delay_ns: *lp,
+                        ppm: *ppm,
+                        ack: *ack || k > 0,
+                        frames: scripted(fs, true),
                     })
-                    .collect()
-            };
-            let names = ["a", "b", "c"];
-            let mut c = cfg(vec![], vec![]);
-            c.timing = TimingSettings { bit_rate_kbps: kbps, tq_per_bit: ntq, sample_point, sjw };
-            c.sync_stages = sync_stages;
-            c.dut.loop_delay_ns = dut_loop;
-            c.dut.frames = scripted(&dut_frames, false);
-            c.nodes = nodes
-                .iter()
-                .enumerate()
-                .map(|(k, (pos, lp, ppm, ack, fs))| NodeSettings { name: names[k].into(), position_m: *pos, loop_delay_ns: *lp, ppm: *ppm, ack: *ack || k > 0, frames: scripted(fs, true) })
-                .collect();
-            let all = ["dut", "a", "b", "c"];
-            c.faults = faults
-                .iter()
-                .map(|&(flip, ref targets, frame, bit, at, width)| {
-                    let targets = targets.iter().filter(|&&t| t <= nodes.len()).map(|&t| all[t].to_string()).collect();
-                    if flip {
-                        Fault { kind: FaultKind::Flip, targets, frame, count: 1, bit, at_us: 0.0, width_us: 0.0 }
-                    } else {
-                        Fault { kind: FaultKind::StuckDominant, targets: vec![], frame: 0, count: 1, bit: 0, at_us: 20.0 + at * span_us * 0.6, width_us: width * bit_us }
-                    }
-                })
-                .collect();
-            c.max_us = span_us + 40.0 * bit_us;
-            c
-        })
+                    .collect();
+                let all = ["dut", "a", "b", "c"];
+                c.faults = faults
+                    .iter()
+                    .map(|&(flip, ref targets, frame, bit, at, width)| {
+                        let targets = targets
+                            .iter()
+                            .filter(|&&t| t <= nodes.len())
+                            .map(|&t| all[t].to_string())
+                            .collect();
+                        if flip {
+                            Fault {
+                                kind: FaultKind::Flip,
+                                targets,
+                                frame,
+                                count: 1,
+                                bit,
+                                at_us: 0.0,
+                                width_us: 0.0,
+                            }
+                        } else {
+                            Fault {
+                                kind: FaultKind::StuckDominant,
+                                targets: vec![],
+                                frame: 0,
+                                count: 1,
+                                bit: 0,
+                                at_us: 20.0 + at * span_us * 0.6,
+                                width_us: width * bit_us,
+                            }
+                        }
+                    })
+                    .collect();
+                c.max_us = span_us + 40.0 * bit_us;
+                c
+            },
+        )
         // Some quanta and sample points give no segments within ISO 11898-1's limits.
         .prop_filter("a set-up the bench takes", |c| c.validate().is_ok())
 }

@@ -3,8 +3,8 @@
 //! own code (ported in `seed_reference.rs`), the `crc` crate and a
 //! polynomial long division.
 
-use model::crc::notation::{format_polynomial, generator_from_exponents, parse_polynomial};
 use crate::seed_reference::{make_crc_norm, make_crc_pos, modbus_crc_seed_steps};
+use model::crc::notation::{format_polynomial, generator_from_exponents, parse_polynomial};
 use model::crc::*;
 use proptest::prelude::*;
 

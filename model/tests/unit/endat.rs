@@ -8,7 +8,10 @@ use model::endat::*;
 use model::line::CableConfig;
 
 fn run(cfg: &BenchConfig) -> Vec<Transaction> {
-    Bench::new(cfg).expect("valid scenario").run_to_end().transactions
+    Bench::new(cfg)
+        .expect("valid scenario")
+        .run_to_end()
+        .transactions
 }
 
 fn commands(ts: &[Transaction]) -> Vec<&Transaction> {
@@ -23,7 +26,10 @@ fn fast(clock_khz: f64, f_sys: f64, cable_m: f64) -> BenchConfig {
     cfg.master.recovery_short = true;
     cfg.encoder.recovery_short = true;
     cfg.encoder.t_m_us = Some(2.0);
-    cfg.cable = CableConfig { length_m: cable_m, ..CableConfig::default() };
+    cfg.cable = CableConfig {
+        length_m: cable_m,
+        ..CableConfig::default()
+    };
     cfg
 }
 
@@ -42,11 +48,21 @@ fn endat_crc_helpers_agree_with_the_seeds_c_functions_on_random_inputs() {
     let mut rng = Pcg64Mcg::seed_from_u64(4);
     for _ in 0..20_000 {
         let (p8, p16): (u8, u16) = (rng.random(), rng.random());
-        assert_eq!(crc_norm(p8, p16) as u32, make_crc_norm(p8 as u32, p16 as u32));
+        assert_eq!(
+            crc_norm(p8, p16) as u32,
+            make_crc_norm(p8 as u32, p16 as u32)
+        );
         let bits = rng.random_range(1..=48u32);
         let v: u64 = rng.random::<u64>() & ((1u64 << bits) - 1);
         let (e1, e2, is22): (bool, bool, bool) = (rng.random(), rng.random(), rng.random());
-        let reference = make_crc_pos(bits, e1 as u32, e2 as u32, is22 as u32, (v >> 32) as u32, v as u32);
+        let reference = make_crc_pos(
+            bits,
+            e1 as u32,
+            e2 as u32,
+            is22 as u32,
+            (v >> 32) as u32,
+            v as u32,
+        );
         assert_eq!(crc_pos(e1, is22.then_some(e2), v, bits) as u32, reference);
     }
 }
@@ -73,11 +89,21 @@ fn a_type_21_position_read_returns_the_encoders_position() {
     // Seed 2.3.1.1: "Encoder send position values" 000111, F1, position LSB first, CRC.
     let mut cfg = BenchConfig::example();
     cfg.positions = vec![104_462, 0, (1 << 25) - 1];
-    cfg.commands = vec![HostCommand { repeat: 3, ..HostCommand::new(Command::Pos21) }];
+    cfg.commands = vec![HostCommand {
+        repeat: 3,
+        ..HostCommand::new(Command::Pos21)
+    }];
     let ts = run(&cfg);
-    assert_eq!(ts.iter().map(|t| t.position).collect::<Vec<_>>(), vec![Some(104_462), Some(0), Some((1 << 25) - 1)]);
+    assert_eq!(
+        ts.iter().map(|t| t.position).collect::<Vec<_>>(),
+        vec![Some(104_462), Some(0), Some((1 << 25) - 1)]
+    );
     assert!(ts.iter().all(|t| t.errors.is_empty()), "{ts:#?}");
-    assert_eq!(ts[0].f2, Some(true), "F2 is not sent with type 2.1 commands and reads inactive");
+    assert_eq!(
+        ts[0].f2,
+        Some(true),
+        "F2 is not sent with type 2.1 commands and reads inactive"
+    );
 }
 
 #[test]
@@ -110,14 +136,26 @@ fn delay_compensation_reads_without_error_at_8_mhz_through_0_to_100_m() {
             let mut cfg = fast(8000.0, 64.0, length);
             cfg.cable.ns_per_m = 5.0 * tolerance;
             cfg.encoder.output_delay_ns = 200.0 * tolerance;
-            cfg.positions = (0..6).map(|_| rng.random::<u64>() & ((1 << 25) - 1)).collect();
-            cfg.commands = vec![HostCommand { repeat: 6, ..HostCommand::new(Command::Pos22) }];
+            cfg.positions = (0..6)
+                .map(|_| rng.random::<u64>() & ((1 << 25) - 1))
+                .collect();
+            cfg.commands = vec![HostCommand {
+                repeat: 6,
+                ..HostCommand::new(Command::Pos22)
+            }];
             let ts = run(&cfg);
             assert_eq!(ts[0].kind, "delay_measurement");
-            assert_eq!(ts[0].delay_cycles, Some(cfg.expected_delay().unwrap()), "{length} m ×{tolerance}");
+            assert_eq!(
+                ts[0].delay_cycles,
+                Some(cfg.expected_delay().unwrap()),
+                "{length} m ×{tolerance}"
+            );
             let got: Vec<_> = commands(&ts).iter().map(|t| t.position.unwrap()).collect();
             assert_eq!(got, cfg.positions, "{length} m ×{tolerance}: {ts:#?}");
-            assert!(commands(&ts).iter().all(|t| t.errors.is_empty()), "{length} m: {ts:#?}");
+            assert!(
+                commands(&ts).iter().all(|t| t.errors.is_empty()),
+                "{length} m: {ts:#?}"
+            );
         }
     }
 }
@@ -126,7 +164,10 @@ fn delay_compensation_reads_without_error_at_8_mhz_through_0_to_100_m() {
 fn reading_word_13_gives_the_clocks_per_position() {
     // Seed 2.4.1, 2.5, 3.5.6: select 0xA1 (manufacturer parameters), read address 13 = 0x8000 | 25.
     let mut cfg = BenchConfig::example();
-    cfg.commands = vec![HostCommand::with(Command::Select21, 0xA1, 0), HostCommand::with(Command::Send21, 13, 0)];
+    cfg.commands = vec![
+        HostCommand::with(Command::Select21, 0xA1, 0),
+        HostCommand::with(Command::Send21, 13, 0),
+    ];
     let ts = run(&cfg);
     assert_eq!(ts[0].ack, Some((0xA1, 0)));
     assert_eq!(ts[1].ack, Some((13, 0x8019)));
@@ -137,26 +178,50 @@ fn reading_word_13_gives_the_clocks_per_position() {
 fn writing_protected_memory_is_answered_inverted_and_flagged_as_type_ii() {
     // Seed A2 4.2.2 (cause 9): write into the factory-protected manufacturer area.
     let mut cfg = BenchConfig::example();
-    cfg.commands = vec![HostCommand::with(Command::Select21, 0xA1, 0), HostCommand::with(Command::Receive21, 8, 0x1234)];
+    cfg.commands = vec![
+        HostCommand::with(Command::Select21, 0xA1, 0),
+        HostCommand::with(Command::Receive21, 8, 0x1234),
+    ];
     let ts = run(&cfg);
     assert_eq!(ts[1].ack, Some((!8u8, !0x1234u16)));
     assert_eq!(ts[1].errors, vec!["type_ii"]);
 }
 
 #[test]
-fn a_crc_valid_acknowledgement_with_other_content_is_type_ii_only_when_inverted_at_the_right_address() {
+fn a_crc_valid_acknowledgement_with_other_content_is_type_ii_only_when_inverted_at_the_right_address(
+) {
     // Seed A2 4.2.2: type II returns the address or the data inverted. A
     // select21 of 0xA1 with parameter 0x1234, acknowledged with a correct
     // CRC over: the data inverted at the right address (type II); the data
     // inverted under another address (a mismatch, not type II); one data bit
     // off (a mismatch); the address inverted (type II).
     let mut cfg = BenchConfig::example();
-    cfg.commands = vec![HostCommand { repeat: 4, ..HostCommand::with(Command::Select21, 0xA1, 0x1234) }];
-    let x = |request, address, data| AckXor { request, address, data };
-    cfg.faults.ack_xor = vec![x(0, 0, 0xFFFF), x(1, 0x01, 0xFFFF), x(2, 0, 0x0001), x(3, 0xFF, 0)];
+    cfg.commands = vec![HostCommand {
+        repeat: 4,
+        ..HostCommand::with(Command::Select21, 0xA1, 0x1234)
+    }];
+    let x = |request, address, data| AckXor {
+        request,
+        address,
+        data,
+    };
+    cfg.faults.ack_xor = vec![
+        x(0, 0, 0xFFFF),
+        x(1, 0x01, 0xFFFF),
+        x(2, 0, 0x0001),
+        x(3, 0xFF, 0),
+    ];
     let ts = run(&cfg);
     let acks: Vec<Option<(u8, u16)>> = ts.iter().map(|t| t.ack).collect();
-    assert_eq!(acks, vec![Some((0xA1, !0x1234)), Some((0xA0, !0x1234)), Some((0xA1, 0x1235)), Some((!0xA1, 0x1234))]);
+    assert_eq!(
+        acks,
+        vec![
+            Some((0xA1, !0x1234)),
+            Some((0xA0, !0x1234)),
+            Some((0xA1, 0x1235)),
+            Some((!0xA1, 0x1234))
+        ]
+    );
     let errors: Vec<Vec<String>> = ts.iter().map(|t| t.errors.clone()).collect();
     assert_eq!(errors[0], vec!["type_ii"]);
     assert_eq!(errors[1], vec!["acknowledgement_mismatch"]);
@@ -166,19 +231,32 @@ fn a_crc_valid_acknowledgement_with_other_content_is_type_ii_only_when_inverted_
     cfg.commands.push(HostCommand::new(Command::Pos21));
     cfg.faults.ack_xor = vec![x(4, 0, 1)];
     let e = Bench::new(&cfg).err().expect("refused").to_string();
-    assert!(e.contains("faults.ack_xor[0].request") && e.contains("pos21"), "{e}");
+    assert!(
+        e.contains("faults.ack_xor[0].request") && e.contains("pos21"),
+        "{e}"
+    );
 }
 
 #[test]
 fn an_invalid_mode_command_gets_no_start_bit_and_is_flagged_type_i() {
     // Seed A2 4.2.1: mode bits disrupted (000000 is no mode command) → no start bit; clock high, wait t_m.
     let mut cfg = BenchConfig::example();
-    cfg.commands = vec![HostCommand { raw_mode: Some(0), ..HostCommand::new(Command::Pos21) }, HostCommand::new(Command::Pos21)];
+    cfg.commands = vec![
+        HostCommand {
+            raw_mode: Some(0),
+            ..HostCommand::new(Command::Pos21)
+        },
+        HostCommand::new(Command::Pos21),
+    ];
     cfg.positions = vec![5, 6];
     let ts = run(&cfg);
     assert_eq!(ts[0].errors, vec!["no_start_bit"]);
     assert_eq!(ts[0].encoder_answer, "type_i");
-    assert_eq!(ts[1].position, Some(6), "the encoder answers again after t_m");
+    assert_eq!(
+        ts[1].position,
+        Some(6),
+        "the encoder answers again after t_m"
+    );
 }
 
 #[test]
@@ -188,15 +266,15 @@ fn a_type_22_access_answered_with_type_ii_is_flagged_when_its_acknowledgement_ar
     let mut cfg = fast(4000.0, 64.0, 10.0);
     cfg.encoder.t_ac_us = 100.0;
     cfg.commands = vec![
-        HostCommand::with(Command::Select22, 0x47, 0),      // I = 7: acknowledge MRS code
-        HostCommand::with(Command::Select22, 0xAD, 0),      // OEM area 3: not in this encoder (cause 7)
-        HostCommand::with(Command::Select22, 0xA1, 0),      // shows ~0xAD
-        HostCommand::with(Command::Select22, 0x45, 0),      // shows 0xA1; I = 5 from now on
-        HostCommand::with(Command::Receive22, 8, 0x1234),   // write-protected (cause 9)
-        HostCommand::with(Command::Select22, 0xA9, 0),      // shows ~8
-        HostCommand::with(Command::Receive22, 1, 0x00FF),   // accepted: busy for t_ac
-        HostCommand::with(Command::Receive22, 2, 0x0011),   // ignored while busy
-        HostCommand::new(Command::Pos22),                   // still acknowledges address 1
+        HostCommand::with(Command::Select22, 0x47, 0), // I = 7: acknowledge MRS code
+        HostCommand::with(Command::Select22, 0xAD, 0), // OEM area 3: not in this encoder (cause 7)
+        HostCommand::with(Command::Select22, 0xA1, 0), // shows ~0xAD
+        HostCommand::with(Command::Select22, 0x45, 0), // shows 0xA1; I = 5 from now on
+        HostCommand::with(Command::Receive22, 8, 0x1234), // write-protected (cause 9)
+        HostCommand::with(Command::Select22, 0xA9, 0), // shows ~8
+        HostCommand::with(Command::Receive22, 1, 0x00FF), // accepted: busy for t_ac
+        HostCommand::with(Command::Receive22, 2, 0x0011), // ignored while busy
+        HostCommand::new(Command::Pos22),              // still acknowledges address 1
     ];
     let ts = run(&cfg);
     let c = commands(&ts);
@@ -209,7 +287,11 @@ fn a_type_22_access_answered_with_type_ii_is_flagged_when_its_acknowledgement_ar
     assert_eq!(errors[5], vec!["type_ii"]);
     assert_eq!(errors[7], none, "address 1 acknowledged");
     assert_eq!(c[7].encoder_answer, "ignored");
-    assert_eq!(errors[8], vec!["acknowledgement_mismatch"], "the ignored write is not acknowledged");
+    assert_eq!(
+        errors[8],
+        vec!["acknowledgement_mismatch"],
+        "the ignored write is not acknowledged"
+    );
     assert_eq!(c[1].encoder_answer, "type_ii");
 }
 
@@ -221,7 +303,10 @@ fn word_3_selects_recovery_time_i_at_the_next_reset() {
     cfg.master.delay_comp = false;
     cfg.encoder.output_delay_ns = 120.0;
     cfg.host.gap_us = 8.0;
-    let reads = HostCommand { repeat: 2, ..HostCommand::new(Command::Pos22) };
+    let reads = HostCommand {
+        repeat: 2,
+        ..HostCommand::new(Command::Pos22)
+    };
     cfg.commands = vec![
         reads.clone(),
         HostCommand::with(Command::Select21, 0xB9, 0),
@@ -233,17 +318,28 @@ fn word_3_selects_recovery_time_i_at_the_next_reset() {
     let ts = run(&cfg);
     let errors: Vec<Vec<String>> = commands(&ts).iter().map(|t| t.errors.clone()).collect();
     let none: Vec<String> = Vec::new();
-    assert_eq!(errors[..6], vec![none.clone(); 6], "written but not yet active: still short");
+    assert_eq!(
+        errors[..6],
+        vec![none.clone(); 6],
+        "written but not yet active: still short"
+    );
     assert_eq!(errors[6], none, "the reset itself");
     assert_eq!(errors[7], none);
-    assert_eq!(errors[8], vec!["line_not_idle"], "8 µs after a 2.2 frame the encoder is still in its 15 µs t_m");
+    assert_eq!(
+        errors[8],
+        vec!["line_not_idle"],
+        "8 µs after a 2.2 frame the encoder is still in its 15 µs t_m"
+    );
 }
 
 #[test]
 fn an_impermissible_additional_datum_is_answered_with_i_31_type_iii() {
     // Seed A2 4.2.3 (cause 13): I = 26 is not assignable → I = 31 until a valid selection.
     let mut cfg = fast(4000.0, 64.0, 10.0);
-    cfg.commands = vec![HostCommand::with(Command::Select22, 0x5A, 0), HostCommand::new(Command::Pos22)];
+    cfg.commands = vec![
+        HostCommand::with(Command::Select22, 0x5A, 0),
+        HostCommand::new(Command::Pos22),
+    ];
     let ts = run(&cfg);
     let c = commands(&ts);
     assert_eq!(c[1].ad2.as_deref().map(|s| &s[..2]), Some("5f"));
@@ -256,26 +352,53 @@ fn a_continuous_clock_reads_successive_values_with_at_most_7_low_bits_between() 
     let mut cfg = BenchConfig::example();
     cfg.positions = vec![1000];
     cfg.step = 3;
-    cfg.commands = vec![HostCommand { cont_values: 4, ..HostCommand::new(Command::Pos21) }];
+    cfg.commands = vec![HostCommand {
+        cont_values: 4,
+        ..HostCommand::new(Command::Pos21)
+    }];
     let ts = run(&cfg);
-    assert_eq!(ts.iter().map(|t| t.position).collect::<Vec<_>>(), vec![Some(1000), Some(1003), Some(1006), Some(1009)], "{ts:#?}");
+    assert_eq!(
+        ts.iter().map(|t| t.position).collect::<Vec<_>>(),
+        vec![Some(1000), Some(1003), Some(1006), Some(1009)],
+        "{ts:#?}"
+    );
     assert!(ts.iter().all(|t| t.errors.is_empty()));
 }
 
 #[test]
 fn the_budget_equals_the_models_position_read_cycle() {
     // The RTL is tested against the model cycle for cycle; the model against the budget here.
-    for (clock, f_sys, cable, comp) in [(1000.0, 64.0, 10.0, false), (8000.0, 64.0, 100.0, true), (2000.0, 64.0, 0.0, false)] {
-        let mut cfg = if comp { fast(clock, f_sys, cable) } else { BenchConfig::example() };
+    for (clock, f_sys, cable, comp) in [
+        (1000.0, 64.0, 10.0, false),
+        (8000.0, 64.0, 100.0, true),
+        (2000.0, 64.0, 0.0, false),
+    ] {
+        let mut cfg = if comp {
+            fast(clock, f_sys, cable)
+        } else {
+            BenchConfig::example()
+        };
         cfg.master.clock_khz = clock;
         cfg.cable.length_m = cable;
-        cfg.commands = vec![HostCommand { repeat: 2, ..HostCommand::new(Command::Pos22) }];
+        cfg.commands = vec![HostCommand {
+            repeat: 2,
+            ..HostCommand::new(Command::Pos22)
+        }];
         let ts = run(&cfg);
         let c = commands(&ts);
         let b = budget::budget(&cfg, Command::Pos22).unwrap();
         assert!(c.iter().all(|t| t.errors.is_empty()), "{c:#?}");
-        assert_eq!(c[1].start_cycle - c[0].start_cycle, b.cycle_clocks, "{clock} kHz: {}", b.render());
-        assert_eq!(c[0].done_cycle - c[0].start_cycle, b.latency_clocks, "{clock} kHz");
+        assert_eq!(
+            c[1].start_cycle - c[0].start_cycle,
+            b.cycle_clocks,
+            "{clock} kHz: {}",
+            b.render()
+        );
+        assert_eq!(
+            c[0].done_cycle - c[0].start_cycle,
+            b.latency_clocks,
+            "{clock} kHz"
+        );
     }
 }
 
@@ -334,12 +457,16 @@ fn a_corruption_campaign_detects_every_1_bit_error_and_every_2_bit_error_the_crc
             by_flips[k].2 += 1;
         }
         if k == 2 {
-            let blind = field(chosen[0]) == field(chosen[1]) && double_error_undetectable(chosen[0].abs_diff(chosen[1]));
+            let blind = field(chosen[0]) == field(chosen[1])
+                && double_error_undetectable(chosen[0].abs_diff(chosen[1]));
             if blind {
                 double_blind.0 += 1;
                 double_blind.1 += !detected as u64;
             } else {
-                assert!(detected, "2-bit error at {chosen:?} escaped although its distance is no multiple of 15");
+                assert!(
+                    detected,
+                    "2-bit error at {chosen:?} escaped although its distance is no multiple of 15"
+                );
             }
         }
     }
@@ -348,7 +475,10 @@ fn a_corruption_campaign_detects_every_1_bit_error_and_every_2_bit_error_the_crc
     let mut more = (0u64, 0u64);
     for (k, (f, d, u)) in by_flips.iter().enumerate().skip(1) {
         if *f > 0 {
-            println!("{k:>12} | {f:>6} | {d:>8} | {u:>10} | {:.5}", *u as f64 / *f as f64);
+            println!(
+                "{k:>12} | {f:>6} | {d:>8} | {u:>10} | {:.5}",
+                *u as f64 / *f as f64
+            );
         }
         if k >= 3 {
             more.0 += f;
@@ -359,10 +489,20 @@ fn a_corruption_campaign_detects_every_1_bit_error_and_every_2_bit_error_the_crc
         "2-bit flips 15 apart inside one CRC field: {} of them, {} undetected (the generator's factor x^4+x^3+1 has period 15)",
         double_blind.0, double_blind.1
     );
-    println!("3 to 8 bits: undetected rate {:.5} (CRC-5 theoretical 2^-5 = {:.5})", more.1 as f64 / more.0 as f64, 1.0 / 32.0);
+    println!(
+        "3 to 8 bits: undetected rate {:.5} (CRC-5 theoretical 2^-5 = {:.5})",
+        more.1 as f64 / more.0 as f64,
+        1.0 / 32.0
+    );
     assert_eq!(by_flips[1].2, 0, "every single-bit error is detected");
-    assert_eq!(by_flips[2].2, double_blind.1, "the only 2-bit escapes are the ones 15 apart");
-    assert_eq!(double_blind.0, double_blind.1, "a 2-bit error 15 apart in one field always escapes");
+    assert_eq!(
+        by_flips[2].2, double_blind.1,
+        "the only 2-bit escapes are the ones 15 apart"
+    );
+    assert_eq!(
+        double_blind.0, double_blind.1,
+        "a 2-bit error 15 apart in one field always escapes"
+    );
     assert!(by_flips.iter().map(|x| x.0).sum::<u64>() >= 100_000);
     assert!((more.1 as f64 / more.0 as f64) < 1.0 / 32.0 * 1.5);
 }
@@ -399,10 +539,17 @@ fn a_selection_whose_frame_had_no_start_bit_is_not_taken_as_made() {
     assert!(judge.aborted(true).o_err_timeout);
     judge.end();
     judge.begin(Command::Pos22.code(), 0, 0);
-    assert_eq!(judge.frame_bits(), 32, "no additional datum after the aborted selection");
+    assert_eq!(
+        judge.frame_bits(),
+        32,
+        "no additional datum after the aborted selection"
+    );
     judge.begin(Command::Select22.code(), 0x41, 0);
     let out = judge.frame(&good);
-    assert!(out.o_done && !out.o_err_crc && out.o_position == 7, "{out:?}");
+    assert!(
+        out.o_done && !out.o_err_crc && out.o_position == 7,
+        "{out:?}"
+    );
     judge.end();
     judge.begin(Command::Pos22.code(), 0, 0);
     assert_eq!(judge.frame_bits(), 32 + 29, "diagnosis selected");
@@ -413,12 +560,21 @@ fn a_fault_in_a_request_the_run_never_makes_is_refused_with_the_count() {
     use model::Setup as _;
     let mut cfg = BenchConfig::example();
     let n = cfg.requests().len();
-    cfg.faults.flips = vec![Flip { request: n - 1, bits: vec![2] }];
+    cfg.faults.flips = vec![Flip {
+        request: n - 1,
+        bits: vec![2],
+    }];
     assert!(cfg.validate().is_ok());
     cfg.faults.flips[0].request = n + 36;
     let e = cfg.validate().unwrap_err();
     assert_eq!(e.field(), "faults.flips[0].request");
-    assert!(e.to_string().contains(&format!("request {}, but the commands make {n} requests", n + 36)), "{e}");
+    assert!(
+        e.to_string().contains(&format!(
+            "request {}, but the commands make {n} requests",
+            n + 36
+        )),
+        "{e}"
+    );
     cfg.faults.flips.clear();
     cfg.faults.dead_from = Some(n);
     assert_eq!(cfg.validate().unwrap_err().field(), "faults.dead_from");
@@ -434,7 +590,10 @@ fn recovery_short_alone_takes_a_short_t_m_instead_of_refusing_the_long_default()
     assert_eq!(cfg.validate(), Ok(()));
     cfg.encoder.t_m_us = Some(15.0);
     let e = cfg.validate().unwrap_err().to_string();
-    assert!(e.contains("15 µs with encoder.recovery_short = true") && e.contains("1.25 to 3.75"), "{e}");
+    assert!(
+        e.contains("15 µs with encoder.recovery_short = true") && e.contains("1.25 to 3.75"),
+        "{e}"
+    );
 }
 
 #[test]
@@ -442,7 +601,7 @@ fn after_a_type_i_error_the_line_is_high_again_t_m_after_the_last_clock_edge() {
     // Seed A2 4.2.1: after a type I error the control sets the clock high and waits t_m
     // ("the maximum t_m of 30 µs must at least be waited before the next command"), so the
     // encoder must be ready again t_m after the last clock edge, not t_m after noticing the
-    // clock stopped (which held the line low for about 2 t_m: issue 10).
+    // clock stopped (which held the line low for about 2 t_m).
     for t_m21_us in [10.0, 20.0, 30.0] {
         let mut bench = BenchConfig::example();
         bench.encoder.t_m21_us = t_m21_us;
@@ -453,8 +612,18 @@ fn after_a_type_i_error_the_line_is_high_again_t_m_after_the_last_clock_edge() {
         let half = 32; // 1 MHz at 64 MHz
         let mut clk = true;
         let mut now = 0u64;
-        let step = |enc: &mut Encoder, clk: bool, n: u64, now: &mut u64| -> Vec<(u64, model::line::Drive)> {
-            (0..n).map(|_| { let d = enc.step(clk, false); *now += 1; (*now - 1, d) }).collect()
+        let step = |enc: &mut Encoder,
+                    clk: bool,
+                    n: u64,
+                    now: &mut u64|
+         -> Vec<(u64, model::line::Drive)> {
+            (0..n)
+                .map(|_| {
+                    let d = enc.step(clk, false);
+                    *now += 1;
+                    (*now - 1, d)
+                })
+                .collect()
         };
         step(&mut enc, clk, 10, &mut now);
         // Mode bits 000000 (no mode command): type I; ten clock periods, then the clock stays high.
@@ -467,15 +636,28 @@ fn after_a_type_i_error_the_line_is_high_again_t_m_after_the_last_clock_edge() {
         let last_edge = now - half;
         let after = step(&mut enc, true, 3 * t_m, &mut now);
         assert_eq!(enc.answer, model::endat::Answer::TypeI);
-        assert!(after.iter().any(|(_, d)| d.enable && !d.level), "the line is held low in the recovery");
-        let high = after.iter().find(|(_, d)| d.enable && d.level).map(|(c, _)| *c).expect("released");
+        assert!(
+            after.iter().any(|(_, d)| d.enable && !d.level),
+            "the line is held low in the recovery"
+        );
+        let high = after
+            .iter()
+            .find(|(_, d)| d.enable && d.level)
+            .map(|(c, _)| *c)
+            .expect("released");
         let low_for = high - last_edge;
         assert!(low_for <= t_m + 2 && low_for >= t_m, "t_m21 = {t_m21_us} us ({t_m} cycles): line released {low_for} cycles after the last edge");
-        assert!(after.iter().skip_while(|(c, _)| *c < high).all(|(_, d)| d.enable && d.level), "stays high");
+        assert!(
+            after
+                .iter()
+                .skip_while(|(c, _)| *c < high)
+                .all(|(_, d)| d.enable && d.level),
+            "stays high"
+        );
     }
 }
 
-/// Issue 14 item 2: odd dividers for the EnDat clock and the measuring
+/// Odd dividers for the EnDat clock and the measuring
 /// clock. 4 MHz from 100 MHz (f_sys / 25) is 13 cycles high and 12 low; from
 /// 45 MHz both clocks are odd (3 MHz = f_sys / 15: 8 and 7; 200 kHz =
 /// f_sys / 225: 113 and 112). The delay measurement finds the expected
@@ -483,23 +665,59 @@ fn after_a_type_i_error_the_line_is_high_again_t_m_after_the_last_clock_edge() {
 #[test]
 fn odd_dividers_split_high_first_and_read_every_position() {
     use model::Setup;
-    for (mhz, khz, high, low, meas) in [(100.0, 4000.0, 13, 12, (250, 250)), (45.0, 3000.0, 8, 7, (113, 112))] {
+    for (mhz, khz, high, low, meas) in [
+        (100.0, 4000.0, 13, 12, (250, 250)),
+        (45.0, 3000.0, 8, 7, (113, 112)),
+    ] {
         let mut cfg = fast(khz, mhz, 50.0);
         cfg.master.meas_clock_khz = 200.0;
         cfg.positions = vec![0, 33554431, 104462, 16777216];
-        cfg.commands = vec![HostCommand { repeat: 4, ..HostCommand::new(Command::Pos22) }];
-        let m = cfg.master_config().unwrap_or_else(|e| panic!("{khz} kHz from {mhz} MHz refused: {e}"));
-        assert_eq!((m.high_clocks, m.low_clocks, m.meas_high_clocks, m.meas_low_clocks), (high, low, meas.0, meas.1));
+        cfg.commands = vec![HostCommand {
+            repeat: 4,
+            ..HostCommand::new(Command::Pos22)
+        }];
+        let m = cfg
+            .master_config()
+            .unwrap_or_else(|e| panic!("{khz} kHz from {mhz} MHz refused: {e}"));
+        assert_eq!(
+            (
+                m.high_clocks,
+                m.low_clocks,
+                m.meas_high_clocks,
+                m.meas_low_clocks
+            ),
+            (high, low, meas.0, meas.1)
+        );
         let params = cfg.verilog_parameters().unwrap();
-        assert!(params.contains(&("HIGH_CLOCKS", high)) && params.contains(&("LOW_CLOCKS", low)), "{params:?}");
-        assert_eq!(params.iter().any(|(n, _)| *n == "MEAS_HIGH_CLOCKS"), meas.0 != meas.1, "{params:?}");
+        assert!(
+            params.contains(&("HIGH_CLOCKS", high)) && params.contains(&("LOW_CLOCKS", low)),
+            "{params:?}"
+        );
+        assert_eq!(
+            params.iter().any(|(n, _)| *n == "MEAS_HIGH_CLOCKS"),
+            meas.0 != meas.1,
+            "{params:?}"
+        );
         let ts = run(&cfg);
         assert_eq!(ts[0].kind, "delay_measurement");
-        assert_eq!(ts[0].delay_cycles, Some(cfg.expected_delay().unwrap()), "{mhz} MHz");
+        assert_eq!(
+            ts[0].delay_cycles,
+            Some(cfg.expected_delay().unwrap()),
+            "{mhz} MHz"
+        );
         let got: Vec<_> = commands(&ts).iter().map(|t| t.position.unwrap()).collect();
         assert_eq!(got, cfg.positions, "{mhz} MHz: {ts:#?}");
-        assert!(commands(&ts).iter().all(|t| t.errors.is_empty()), "{mhz} MHz: {ts:#?}");
-        crate::phases::assert_split(Bench::new(&cfg).unwrap(), 0, high, low, &format!("EnDat {khz} kHz from {mhz} MHz"));
+        assert!(
+            commands(&ts).iter().all(|t| t.errors.is_empty()),
+            "{mhz} MHz: {ts:#?}"
+        );
+        crate::phases::assert_split(
+            Bench::new(&cfg).unwrap(),
+            0,
+            high,
+            low,
+            &format!("EnDat {khz} kHz from {mhz} MHz"),
+        );
     }
 }
 
@@ -513,7 +731,10 @@ fn odd_dividers_beyond_the_on_off_ratio_error_and_dividers_below_eight_are_refus
     let e = cfg.master_config().unwrap_err();
     assert_eq!(e.field(), "master.clock_khz");
     assert!(e.to_string().contains("10 %"), "{e}");
-    assert!(fast(8000.0, 88.0, 10.0).master_config().is_ok(), "f_sys / 11 is 4.5 % off");
+    assert!(
+        fast(8000.0, 88.0, 10.0).master_config().is_ok(),
+        "f_sys / 11 is 4.5 % off"
+    );
     let e = fast(16000.0, 64.0, 10.0).master_config().unwrap_err(); // f_sys / 4
     assert_eq!(e.field(), "master.clock_khz");
     assert!(e.to_string().contains("at least 8"), "{e}");
@@ -529,7 +750,10 @@ fn an_early_start_bit_ends_the_read_sooner_and_fools_the_delay_counter_into_satu
     cfg.faults.early_start = Some(2);
     let early = run(&cfg);
     // A polling master reads the same position, one clock period (64 cycles at 1 MHz) sooner.
-    assert_eq!((early[0].position, &early[0].errors), (plain[0].position, &plain[0].errors));
+    assert_eq!(
+        (early[0].position, &early[0].errors),
+        (plain[0].position, &plain[0].errors)
+    );
     assert_eq!(plain[0].done_cycle - early[0].done_cycle, 64);
     // Its power-on measurement: the start bit (at R9) reaches the master before R10 restarts the delay counter,
     // which after t_b (more than 1 ms at 257 MHz) and after reset holds its saturated 65535: four equal
@@ -537,16 +761,33 @@ fn an_early_start_bit_ends_the_read_sooner_and_fools_the_delay_counter_into_satu
     let cfg = BenchConfig {
         f_sys_mhz: 257.0,
         block_gap_clocks: 26,
-        master: MasterSettings { clock_khz: 100.0, delay_comp: true, meas_retries: 2, ..MasterSettings::default() },
-        faults: FaultSettings { early_start: Some(1), ..FaultSettings::default() },
+        master: MasterSettings {
+            clock_khz: 100.0,
+            delay_comp: true,
+            meas_retries: 2,
+            ..MasterSettings::default()
+        },
+        faults: FaultSettings {
+            early_start: Some(1),
+            ..FaultSettings::default()
+        },
         ..BenchConfig::default()
     };
     let t = run(&cfg);
-    assert_eq!((t[0].kind.as_str(), t[0].delay_cycles, t[0].errors.len()), ("delay_measurement", Some(65535), 0));
+    assert_eq!(
+        (t[0].kind.as_str(), t[0].delay_cycles, t[0].errors.len()),
+        ("delay_measurement", Some(65535), 0)
+    );
     assert!(t[1].errors.contains(&"crc".to_string()), "{:?}", t[1]);
     // Only 1 and 2 are early starts.
     for bad in [0, 3] {
-        let cfg = BenchConfig { faults: FaultSettings { early_start: Some(bad), ..FaultSettings::default() }, ..BenchConfig::example() };
+        let cfg = BenchConfig {
+            faults: FaultSettings {
+                early_start: Some(bad),
+                ..FaultSettings::default()
+            },
+            ..BenchConfig::example()
+        };
         let e = Bench::new(&cfg).err().expect("refused");
         assert_eq!(e.field(), "faults.early_start");
         assert!(e.to_string().contains("give 1 or 2"), "{e}");

@@ -16,7 +16,10 @@ fn pos21_line(pos: u64, jitter: impl Fn(usize) -> i64) -> (Signal, Signal) {
         clk.push(if k == 1 { f1 } else { rise(k - 1) + P / 2 }, false);
         clk.push(rise(k), true);
     }
-    for (k, bit) in [false, false, false, true, true, true].into_iter().enumerate() {
+    for (k, bit) in [false, false, false, true, true, true]
+        .into_iter()
+        .enumerate()
+    {
         data.push(rise(k + 2) - P / 2, bit); // the master drives the mode bits at F2..F7
     }
     data.push(rise(8) + RT, false); // the encoder drives low from R8
@@ -28,7 +31,10 @@ fn pos21_line(pos: u64, jitter: impl Fn(usize) -> i64) -> (Signal, Signal) {
     let mut last = false;
     for (c, &bit) in cells.iter().enumerate() {
         if bit != last {
-            data.push((rise(j + c) + RT).checked_add_signed(jitter(edge)).unwrap(), bit);
+            data.push(
+                (rise(j + c) + RT).checked_add_signed(jitter(edge)).unwrap(),
+                bit,
+            );
             edge += 1;
             last = bit;
         }
@@ -38,7 +44,15 @@ fn pos21_line(pos: u64, jitter: impl Fn(usize) -> i64) -> (Signal, Signal) {
 }
 
 fn position_read(clk: &Signal, data: &Signal) -> (Option<u64>, Option<Vec<String>>) {
-    let t = decode(clk, data, &Options { pos_bits: 25, meas_khz: None }).unwrap();
+    let t = decode(
+        clk,
+        data,
+        &Options {
+            pos_bits: 25,
+            meas_khz: None,
+        },
+    )
+    .unwrap();
     assert_eq!(t.len(), 1, "{t:#?}");
     (t[0].position, t[0].errors.clone())
 }

@@ -1,6 +1,6 @@
 //! The ESL host against the QS35 emulator: every Data ID, the 8-times
 //! commands, memory with busy and page change, daisy chain, baud error and
-//! the faults of issue 5.
+//! the faults the host must survive.
 
 use model::esl::frames::{self, Alarms, DataId};
 use model::esl::*;
@@ -585,29 +585,62 @@ fn the_transcript_carries_every_character_on_the_wire_at_the_host() {
     // Clean reads: the wire holds exactly the request sent and the answer
     // received; a command sent 8 times: 8 requests, 8 answers, in order,
     // the last the one the host kept.
-    let ts = clean(&BenchConfig { ops: vec![op(1), op(0xB), op(2)], ..BenchConfig::default() });
+    let ts = clean(&BenchConfig {
+        ops: vec![op(1), op(0xB), op(2)],
+        ..BenchConfig::default()
+    });
     for t in [&ts[0], &ts[2]] {
-        assert_eq!((&t.wire_requests, &t.wire_answers), (&vec![t.sent.clone()], &vec![t.received.clone()]), "{t:?}");
+        assert_eq!(
+            (&t.wire_requests, &t.wire_answers),
+            (&vec![t.sent.clone()], &vec![t.received.clone()]),
+            "{t:?}"
+        );
     }
     let t = &ts[1];
     assert_eq!((t.wire_requests.len(), t.wire_answers.len()), (8, 8));
     assert!(t.wire_requests.iter().all(|r| *r == t.sent), "{t:?}");
     assert_eq!(t.wire_answers[7], t.received);
-    assert!(t.wire_answers.windows(2).all(|w| w[0] != w[1]), "the sequence counters count: every answer differs");
+    assert!(
+        t.wire_answers.windows(2).all(|w| w[0] != w[1]),
+        "the sequence counters count: every answer differs"
+    );
     // A flipped request: the wire shows the bit as the line carried it (the
     // parity bit is CF data bit 7), the host's `sent` what it meant to send.
-    let flipped = BenchConfig { request_flips: vec![RequestFlip { request: 0, field: 0, bit: 8 }], ops: vec![op(1)], ..BenchConfig::default() };
+    let flipped = BenchConfig {
+        request_flips: vec![RequestFlip {
+            request: 0,
+            field: 0,
+            bit: 8,
+        }],
+        ops: vec![op(1)],
+        ..BenchConfig::default()
+    };
     let t = &run(&flipped).0[0];
     assert_eq!(t.wire_requests, [vec![t.sent[0] ^ 0x80, t.sent[1]]]);
-    assert_eq!(t.wire_answers, std::slice::from_ref(&t.received), "the CA0 answer");
+    assert_eq!(
+        t.wire_answers,
+        std::slice::from_ref(&t.received),
+        "the CA0 answer"
+    );
     // A second driver holds the line low from the stop bit of answer
     // character 1 into character 2 (0x00): the host stops at the framing
     // error; the wire keeps the rest of the answer, one character short (the
     // receiver waits for a high line after a low stop bit, and character 2
     // never gives one).
-    let intruder = BenchConfig { intruders: vec![Intruder { at_us: 8.0, length_us: 0.35 }], ops: vec![op(1), op(1)], ..BenchConfig::default() };
+    let intruder = BenchConfig {
+        intruders: vec![Intruder {
+            at_us: 8.0,
+            length_us: 0.35,
+        }],
+        ops: vec![op(1), op(1)],
+        ..BenchConfig::default()
+    };
     let ts = run(&intruder).0;
-    let whole = &clean(&BenchConfig { ops: vec![op(1)], ..BenchConfig::default() })[0].received;
+    let whole = &clean(&BenchConfig {
+        ops: vec![op(1)],
+        ..BenchConfig::default()
+    })[0]
+        .received;
     assert!(ts[0].errors.contains(&"frame"), "{:?}", ts[0]);
     assert_eq!(ts[0].received, whole[..2]);
     assert_eq!(ts[0].wire_answers, [[&whole[..2], &whole[3..]].concat()]);

@@ -1,5 +1,5 @@
-use model::esl::frames::*;
 use model::esl::frames::Field::*;
+use model::esl::frames::*;
 
 #[test]
 fn control_fields_carry_table_3_codes_and_odd_parity() {
@@ -30,9 +30,7 @@ fn control_fields_carry_table_3_codes_and_odd_parity() {
             );
             assert_eq!(cf & 7, address, "EAD0..2 in bits 0..2");
             let p = parse_control_field(cf);
-            assert!(
-                p.parity_ok && DataId::from_code(p.code) == Some(id) && p.address == address
-            );
+            assert!(p.parity_ok && DataId::from_code(p.code) == Some(id) && p.address == address);
         }
     }
     // Data ID 1 at address 0: CC = 1000, parity 0 (one 1 already odd).
@@ -148,9 +146,7 @@ fn both_crc16_channels_differ_only_by_their_init() {
     let a = with_crc(&data, CrcKind::Crc16, false);
     let b = with_crc(&data, CrcKind::Crc16, true);
     assert_ne!(a, b);
-    assert!(
-        channel_crc_ok(&a, CrcKind::Crc16, false) && !channel_crc_ok(&a, CrcKind::Crc16, true)
-    );
+    assert!(channel_crc_ok(&a, CrcKind::Crc16, false) && !channel_crc_ok(&a, CrcKind::Crc16, true));
     assert!(channel_crc_ok(&b, CrcKind::Crc16, true));
     // Nine fields are padded with 8 zero bits: the same as a tenth 0x00 field.
     assert_eq!(

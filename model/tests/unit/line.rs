@@ -8,7 +8,10 @@ fn run(line: &mut DelayLine, inputs: &[bool]) -> Vec<bool> {
 #[test]
 fn a_line_without_delay_passes_the_level_in_the_same_cycle() {
     let mut line = DelayLine::new(0, true);
-    assert_eq!(run(&mut line, &[true, false, false, true]), vec![true, false, false, true]);
+    assert_eq!(
+        run(&mut line, &[true, false, false, true]),
+        vec![true, false, false, true]
+    );
 }
 
 #[test]
@@ -16,13 +19,19 @@ fn a_line_of_three_cycles_shifts_every_edge_by_three() {
     let mut line = DelayLine::new(3, true);
     let input = [true, false, false, true, false, true, true, true, true];
     let out = run(&mut line, &input);
-    assert_eq!(out, vec![true, true, true, true, false, false, true, false, true]);
+    assert_eq!(
+        out,
+        vec![true, true, true, true, false, false, true, false, true]
+    );
 }
 
 #[test]
 fn a_hundred_metre_cable_at_fifty_megahertz_delays_twenty_five_cycles() {
     let tb = Timebase::from_mhz(50.0).unwrap();
-    let cable = CableConfig { length_m: 100.0, ..CableConfig::default() };
+    let cable = CableConfig {
+        length_m: 100.0,
+        ..CableConfig::default()
+    };
     assert_eq!(cable.delay_cycles(&tb), 25);
 }
 
@@ -56,21 +65,37 @@ fn jittered_edges_stay_in_order_and_within_the_bound() {
 #[test]
 fn half_duplex_receivers_see_the_far_driver_late_and_flag_two_drivers() {
     let mut pair = HalfDuplexLine::new(2, true);
-    let master = Drive { enable: true, level: false };
+    let master = Drive {
+        enable: true,
+        level: false,
+    };
     let device_off = Drive::default();
     let (a, b) = pair.step(master, device_off);
-    assert_eq!((a.level, b.level), (false, true), "device sees the master two cycles late");
+    assert_eq!(
+        (a.level, b.level),
+        (false, true),
+        "device sees the master two cycles late"
+    );
     pair.step(master, device_off);
     let (_, b) = pair.step(master, device_off);
     assert!(!b.level);
-    let device_on = Drive { enable: true, level: true };
+    let device_on = Drive {
+        enable: true,
+        level: true,
+    };
     let (a, b) = pair.step(master, device_on);
     assert!(b.contention && !a.contention);
     assert_eq!(pair.contention_cycles(), 1);
     let off = Drive::default();
     let (a, b) = pair.step(off, device_on);
-    assert!(!a.contention && b.contention, "the master's last driven bits are still on their way to the device");
+    assert!(
+        !a.contention && b.contention,
+        "the master's last driven bits are still on their way to the device"
+    );
     assert_eq!(pair.contention_cycles(), 2);
     let (a, _) = pair.step(off, device_on);
-    assert!(a.level && !a.contention, "the device's answer reaches the master two cycles after it drove");
+    assert!(
+        a.level && !a.contention,
+        "the device's answer reaches the master two cycles after it drove"
+    );
 }

@@ -8,7 +8,7 @@
 //! They are an integration test rather than `#[cfg(test)]` modules inside
 //! the library so that `make test`'s build compiles the model once: a
 //! library with unit tests is compiled a second time, whole, for its test
-//! harness (issue 15). They reach the library through its public API; the
+//! harness. They reach the library through its public API; the
 //! few internals they check directly are public and `#[doc(hidden)]`.
 
 mod angle;

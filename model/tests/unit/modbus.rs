@@ -11,11 +11,24 @@ fn run(cfg: &BenchConfig) -> Vec<Transaction> {
 }
 
 fn read(address: u8, count: u8) -> Operation {
-    Operation { op: OpKind::Read, address, count, gap_us: 100.0, new_address: 0 }
+    Operation {
+        op: OpKind::Read,
+        address,
+        count,
+        gap_us: 100.0,
+        new_address: 0,
+    }
 }
 
 fn fault(kind: FaultKind, byte: usize, bit: usize) -> FrameFault {
-    FrameFault { frame: 0, kind, byte, bit, gap_bits: 0.0, bytes: Vec::new() }
+    FrameFault {
+        frame: 0,
+        kind,
+        byte,
+        bit,
+        gap_bits: 0.0,
+        bytes: Vec::new(),
+    }
 }
 
 #[test]
@@ -51,7 +64,13 @@ fn seed_001_address_query_ff_a0_40_38() {
     // Seed 001, 3.1.7 (5) ③: FF A0 40 38 answered FF A0 <address> CRC.
     let mut cfg = BenchConfig::default();
     cfg.devices[0].address = 0x2A;
-    cfg.ops = vec![Operation { op: OpKind::Query, address: 0, count: 0, gap_us: 0.0, new_address: 0 }];
+    cfg.ops = vec![Operation {
+        op: OpKind::Query,
+        address: 0,
+        count: 0,
+        gap_us: 0.0,
+        new_address: 0,
+    }];
     let t = &run(&cfg)[0];
     assert_eq!(t.wire_requests, vec![vec![0xFF, 0xA0, 0x40, 0x38]]);
     assert_eq!(t.received, frames::address_answer(0x2A));
@@ -61,15 +80,31 @@ fn seed_001_address_query_ff_a0_40_38() {
 #[test]
 fn polling_at_19200_and_115200_keeps_t35_between_frames() {
     for (baud, t35_us) in [(19_200.0, 3.5 * 10.0 / 19_200.0 * 1e6), (115_200.0, 1750.0)] {
-        let mut cfg = BenchConfig { baud, ..BenchConfig::default() };
+        let mut cfg = BenchConfig {
+            baud,
+            ..BenchConfig::default()
+        };
         cfg.devices[0].positions = vec![10, 20, 30, 40];
-        cfg.ops = (0..4).map(|_| Operation { gap_us: 0.0, ..read(1, 1) }).collect();
+        cfg.ops = (0..4)
+            .map(|_| Operation {
+                gap_us: 0.0,
+                ..read(1, 1)
+            })
+            .collect();
         let bench = cfg.bench().unwrap();
         let m = cfg.master_config().unwrap();
-        assert!((m.t35_clocks as f64 / 10.0 - t35_us).abs() < 0.1, "{baud}: {}", m.t35_clocks);
+        assert!(
+            (m.t35_clocks as f64 / 10.0 - t35_us).abs() < 0.1,
+            "{baud}: {}",
+            m.t35_clocks
+        );
         let r = run_to_end(bench);
         let t = &r.transactions;
-        assert_eq!(t.iter().map(|t| t.value).collect::<Vec<_>>(), vec![Some(10), Some(20), Some(30), Some(40)], "{baud}");
+        assert_eq!(
+            t.iter().map(|t| t.value).collect::<Vec<_>>(),
+            vec![Some(10), Some(20), Some(30), Some(40)],
+            "{baud}"
+        );
         // A poll is the request (8 characters), the device's t3.5 and
         // 100 µs turnaround, the answer (7), and the master's t3.5; both
         // silences are timed from a stop-bit sample, half a bit early.
@@ -92,11 +127,20 @@ fn gray_positions_are_decoded() {
 
 #[test]
 fn exceptions_for_count_and_address_and_unknown_function() {
-    let mut cfg = BenchConfig { ops: vec![read(1, 3), read(1, 0), read(1, 1)], ..BenchConfig::default() };
+    let mut cfg = BenchConfig {
+        ops: vec![read(1, 3), read(1, 0), read(1, 1)],
+        ..BenchConfig::default()
+    };
     let t = run(&cfg);
-    assert_eq!((t[0].exception, t[0].errors.clone()), (Some(2), vec!["exception"]));
+    assert_eq!(
+        (t[0].exception, t[0].errors.clone()),
+        (Some(2), vec!["exception"])
+    );
     assert_eq!(t[0].received[..3], [0x01, 0x83, 0x02]);
-    assert_eq!((t[1].exception, t[1].errors.clone()), (Some(3), vec!["exception"]));
+    assert_eq!(
+        (t[1].exception, t[1].errors.clone()),
+        (Some(3), vec!["exception"])
+    );
     assert_eq!(t[2].value, Some(383));
     // One register cannot hold a 24-bit position: exception 03.
     cfg.devices[0].bits = 24;
@@ -105,7 +149,10 @@ fn exceptions_for_count_and_address_and_unknown_function() {
     // Function 04 is not supported: 01.
     let mut d = Device::new(cfg.device_config(0).unwrap()).unwrap();
     let (v, a) = d.respond(&frames::with_crc(&[0x01, 0x04, 0x00, 0x00, 0x00, 0x01]));
-    assert_eq!((v, a[..3].to_vec()), (Verdict::Answered, vec![0x01, 0x84, 0x01]));
+    assert_eq!(
+        (v, a[..3].to_vec()),
+        (Verdict::Answered, vec![0x01, 0x84, 0x01])
+    );
 }
 
 #[test]
@@ -115,12 +162,28 @@ fn the_address_change_by_function_06_takes_effect_from_the_next_request() {
     let write = frames::write_request(1, frames::ADDRESS_REGISTER, 7);
     assert_eq!(d.respond(&write), (Verdict::Answered, write.clone()));
     assert_eq!(d.address(), 7);
-    assert_eq!(d.respond(&frames::read_request(1, 1)).0, Verdict::NotAddressed);
-    assert_eq!(d.respond(&frames::read_request(7, 1)).1, frames::read_answer(7, 1, 383));
-    assert_eq!(d.respond(&frames::address_query()).1, frames::address_answer(7));
+    assert_eq!(
+        d.respond(&frames::read_request(1, 1)).0,
+        Verdict::NotAddressed
+    );
+    assert_eq!(
+        d.respond(&frames::read_request(7, 1)).1,
+        frames::read_answer(7, 1, 383)
+    );
+    assert_eq!(
+        d.respond(&frames::address_query()).1,
+        frames::address_answer(7)
+    );
     // Out of range, or another register: exceptions 03 and 02, address kept.
-    assert_eq!(d.respond(&frames::write_request(7, frames::ADDRESS_REGISTER, 248)).1[..3], [7, 0x86, 3]);
-    assert_eq!(d.respond(&frames::write_request(7, 0x0011, 5)).1[..3], [7, 0x86, 2]);
+    assert_eq!(
+        d.respond(&frames::write_request(7, frames::ADDRESS_REGISTER, 248))
+            .1[..3],
+        [7, 0x86, 3]
+    );
+    assert_eq!(
+        d.respond(&frames::write_request(7, 0x0011, 5)).1[..3],
+        [7, 0x86, 2]
+    );
     assert_eq!(d.address(), 7);
 }
 
@@ -134,8 +197,19 @@ fn no_answer_to_a_broadcast_another_address_or_a_bad_crc() {
     while !model::Testbench::finished(&bench) {
         model::Testbench::step(&mut bench, None);
     }
-    let seen: Vec<Verdict> = bench.devices()[0].seen().iter().map(|s| s.verdict.clone()).collect();
-    assert_eq!(seen, vec![Verdict::NotAddressed, Verdict::NotAddressed, Verdict::Answered]);
+    let seen: Vec<Verdict> = bench.devices()[0]
+        .seen()
+        .iter()
+        .map(|s| s.verdict.clone())
+        .collect();
+    assert_eq!(
+        seen,
+        vec![
+            Verdict::NotAddressed,
+            Verdict::NotAddressed,
+            Verdict::Answered
+        ]
+    );
     let t = model::Testbench::into_transactions(bench);
     assert_eq!(t[0].errors, vec!["timeout"]);
     assert_eq!(t[1].errors, vec!["timeout"]);
@@ -217,27 +291,49 @@ fn an_answer_from_the_wrong_address_no_answer_and_noise_are_flagged() {
 #[test]
 fn a_second_driver_on_the_line_is_flagged() {
     // The answer starts about 4.2 + 1.8 + 0.1 ms after reset at 19200 baud.
-    let cfg = BenchConfig { second_drivers: vec![SecondDriver { at_us: 6300.0, bytes: vec![0x00], ..SecondDriver::default() }], ..BenchConfig::default() };
+    let cfg = BenchConfig {
+        second_drivers: vec![SecondDriver {
+            at_us: 6300.0,
+            bytes: vec![0x00],
+            ..SecondDriver::default()
+        }],
+        ..BenchConfig::default()
+    };
     let mut bench = cfg.bench().unwrap();
     while !model::Testbench::finished(&bench) {
         model::Testbench::step(&mut bench, None);
     }
     assert!(bench.fault_contention_cycles() > 0);
     let t = model::Testbench::into_transactions(bench);
-    assert!(!t[0].errors.is_empty() && t[0].value.is_none(), "{:?}", t[0]);
+    assert!(
+        !t[0].errors.is_empty() && t[0].value.is_none(),
+        "{:?}",
+        t[0]
+    );
 }
 
 #[test]
-fn baud_mismatch_inside_plus_minus_3_percent_costs_nothing_and_well_outside_every_answer_is_flagged() {
+fn baud_mismatch_inside_plus_minus_3_percent_costs_nothing_and_well_outside_every_answer_is_flagged(
+) {
     for err in [-3.0, -1.5, 0.0, 1.5, 3.0] {
-        let mut cfg = BenchConfig { baud: 115_200.0, ..BenchConfig::default() };
+        let mut cfg = BenchConfig {
+            baud: 115_200.0,
+            ..BenchConfig::default()
+        };
         cfg.devices[0].baud_error_percent = err;
         cfg.devices[0].positions = vec![0x5AA5];
         let t = &run(&cfg)[0];
-        assert_eq!((t.value, t.errors.clone()), (Some(0x5AA5), vec![]), "{err} %");
+        assert_eq!(
+            (t.value, t.errors.clone()),
+            (Some(0x5AA5), vec![]),
+            "{err} %"
+        );
     }
     for err in [-8.0, 8.0] {
-        let mut cfg = BenchConfig { baud: 115_200.0, ..BenchConfig::default() };
+        let mut cfg = BenchConfig {
+            baud: 115_200.0,
+            ..BenchConfig::default()
+        };
         cfg.devices[0].baud_error_percent = err;
         cfg.devices[0].positions = vec![0x5AA5];
         let t = &run(&cfg)[0];
@@ -247,11 +343,22 @@ fn baud_mismatch_inside_plus_minus_3_percent_costs_nothing_and_well_outside_ever
 
 #[test]
 fn three_devices_on_one_bus_each_answer_their_own_address() {
-    let dev = |address: u8, p: u64| DeviceSettings { address, positions: vec![p], ..DeviceSettings::default() };
-    let cfg = BenchConfig { devices: vec![dev(1, 11), dev(2, 22), dev(3, 33)], ops: vec![read(1, 1), read(2, 1), read(3, 1), read(2, 2)], ..BenchConfig::default() };
+    let dev = |address: u8, p: u64| DeviceSettings {
+        address,
+        positions: vec![p],
+        ..DeviceSettings::default()
+    };
+    let cfg = BenchConfig {
+        devices: vec![dev(1, 11), dev(2, 22), dev(3, 33)],
+        ops: vec![read(1, 1), read(2, 1), read(3, 1), read(2, 2)],
+        ..BenchConfig::default()
+    };
     let bench = cfg.bench().unwrap();
     let r = run_to_end(bench);
-    assert_eq!(r.transactions.iter().map(|t| t.value).collect::<Vec<_>>(), vec![Some(11), Some(22), Some(33), Some(22)]);
+    assert_eq!(
+        r.transactions.iter().map(|t| t.value).collect::<Vec<_>>(),
+        vec![Some(11), Some(22), Some(33), Some(22)]
+    );
 }
 
 #[test]
@@ -259,10 +366,17 @@ fn a_campaign_of_100_000_random_corruptions_flags_every_one_the_frame_checks_can
     let report = campaign::run(100_000, 8, 2026);
     println!("Modbus RTU answers, corruption campaign:\n{report}");
     assert_eq!(report.total(), 100_000);
-    assert_eq!(report.disagreements, 0, "the master flags exactly what the checks can see");
+    assert_eq!(
+        report.disagreements, 0,
+        "the master flags exactly what the checks can see"
+    );
     // CRC-16 sees every 1, 2 and 3 inverted data bits; only a re-framed character could escape.
     for k in 1..=3 {
-        assert!(report.by_flips[&k].undetected * 10_000 < report.by_flips[&k].total(), "{k}: {:?}", report.by_flips[&k]);
+        assert!(
+            report.by_flips[&k].undetected * 10_000 < report.by_flips[&k].total(),
+            "{k}: {:?}",
+            report.by_flips[&k]
+        );
     }
 }
 
@@ -284,10 +398,19 @@ fn the_campaign_master_accepts_a_clean_answer_and_flags_one_inverted_bit() {
 #[test]
 fn the_master_changes_the_device_address_and_the_device_answers_at_the_new_one() {
     let mut cfg = BenchConfig::default();
-    let set = Operation { op: OpKind::SetAddress, address: 1, count: 1, gap_us: 100.0, new_address: 0x2A };
+    let set = Operation {
+        op: OpKind::SetAddress,
+        address: 1,
+        count: 1,
+        gap_us: 100.0,
+        new_address: 0x2A,
+    };
     cfg.ops = vec![set.clone(), read(0x2A, 1), read(1, 1)];
     let t = run(&cfg);
-    assert_eq!(t[0].request, vec![0x01, 0x06, 0x00, 0x10, 0x00, 0x2A, 0x09, 0xD0]);
+    assert_eq!(
+        t[0].request,
+        vec![0x01, 0x06, 0x00, 0x10, 0x00, 0x2A, 0x09, 0xD0]
+    );
     assert_eq!(t[0].received, t[0].request, "the echo");
     assert_eq!((t[0].station, t[0].errors.clone()), (Some(0x2A), vec![]));
     assert_eq!(t[1].value, Some(383));
@@ -295,9 +418,15 @@ fn the_master_changes_the_device_address_and_the_device_answers_at_the_new_one()
     // A device whose address register is elsewhere answers exception 02.
     cfg.devices[0].address_register = 0x0020;
     let t = run(&cfg);
-    assert_eq!((t[0].exception, t[0].errors.clone(), t[0].station), (Some(2), vec!["exception"], None));
+    assert_eq!(
+        (t[0].exception, t[0].errors.clone(), t[0].station),
+        (Some(2), vec!["exception"], None)
+    );
     // Outside 1..247 the scenario is refused by field.
-    cfg.ops = vec![Operation { new_address: 0, ..set }];
+    cfg.ops = vec![Operation {
+        new_address: 0,
+        ..set
+    }];
     let e = cfg.validate().unwrap_err().to_string();
     assert!(e.contains("ops[0].new_address"), "{e}");
 }
@@ -331,15 +460,28 @@ fn noise_inside_an_answer_a_wrong_function_and_a_wrong_byte_count_are_each_flagg
     let t = &run(&cfg)[0];
     assert_eq!((t.value, t.errors.clone()), (None, vec!["count"]));
     assert_eq!(t.wire_answers[0].len(), 8, "{:?}", t.wire_answers);
-    assert_eq!(&t.wire_answers[0][..4], &[0x01, 0x03, 0x00, 0x02], "{:?}", t.wire_answers);
+    assert_eq!(
+        &t.wire_answers[0][..4],
+        &[0x01, 0x03, 0x00, 0x02],
+        "{:?}",
+        t.wire_answers
+    );
     // Nothing can be inserted before the address or into the CRC.
     ins.byte = 0;
     cfg.devices[0].faults = vec![ins];
-    assert!(cfg.validate().unwrap_err().to_string().contains("devices[0].faults[0]"));
+    assert!(cfg
+        .validate()
+        .unwrap_err()
+        .to_string()
+        .contains("devices[0].faults[0]"));
     // The CRC itself cannot be replaced (the emulator recomputes it).
     f.byte = 8;
     cfg.devices[0].faults = vec![f];
-    assert!(cfg.validate().unwrap_err().to_string().contains("devices[0].faults[0]"));
+    assert!(cfg
+        .validate()
+        .unwrap_err()
+        .to_string()
+        .contains("devices[0].faults[0]"));
 }
 
 #[test]
@@ -348,12 +490,27 @@ fn noise_between_frames_is_no_answer_and_the_next_request_waits_for_t3_5_after_i
     // 20 ms, while the line is idle: not an answer (the master is idle),
     // and the next request starts t3.5 after the noise, never inside it.
     let cfg = BenchConfig {
-        ops: vec![read(1, 1), Operation { gap_us: 20_000.0, ..read(1, 1) }],
-        second_drivers: vec![SecondDriver { at_us: 20_000.0, bytes: vec![0x01, 0x03], ..SecondDriver::default() }],
+        ops: vec![
+            read(1, 1),
+            Operation {
+                gap_us: 20_000.0,
+                ..read(1, 1)
+            },
+        ],
+        second_drivers: vec![SecondDriver {
+            at_us: 20_000.0,
+            bytes: vec![0x01, 0x03],
+            ..SecondDriver::default()
+        }],
         ..BenchConfig::default()
     };
     let t = run(&cfg);
-    assert_eq!(t.iter().map(|t| (t.value, t.errors.clone())).collect::<Vec<_>>(), vec![(Some(383), vec![]), (Some(383), vec![])]);
+    assert_eq!(
+        t.iter()
+            .map(|t| (t.value, t.errors.clone()))
+            .collect::<Vec<_>>(),
+        vec![(Some(383), vec![]), (Some(383), vec![])]
+    );
 }
 
 #[test]

@@ -3,8 +3,14 @@ use model::modbus::frames::*;
 #[test]
 fn seed_001_read_requests_for_one_and_two_registers() {
     // Seed 001, 3.1.7 (5) ① and ②: 01 03 00 00 00 01 84 0A and 01 03 00 00 00 02 C4 0B.
-    assert_eq!(read_request(1, 1), [0x01, 0x03, 0x00, 0x00, 0x00, 0x01, 0x84, 0x0A]);
-    assert_eq!(read_request(1, 2), [0x01, 0x03, 0x00, 0x00, 0x00, 0x02, 0xC4, 0x0B]);
+    assert_eq!(
+        read_request(1, 1),
+        [0x01, 0x03, 0x00, 0x00, 0x00, 0x01, 0x84, 0x0A]
+    );
+    assert_eq!(
+        read_request(1, 2),
+        [0x01, 0x03, 0x00, 0x00, 0x00, 0x02, 0xC4, 0x0B]
+    );
     assert!(crc_ok(&read_request(1, 2)));
 }
 

@@ -18,7 +18,11 @@ pub fn runs<B: Testbench>(mut bench: B, line: usize) -> (BTreeMap<u64, u64>, BTr
         if Some(v) != level {
             match level {
                 // The first run (from reset) has no edge before it.
-                Some(l) if len > 0 => *(if l == 1 { &mut high } else { &mut low }).entry(len).or_insert(0) += 1,
+                Some(l) if len > 0 => {
+                    *(if l == 1 { &mut high } else { &mut low })
+                        .entry(len)
+                        .or_insert(0) += 1
+                }
                 _ => {}
             }
             level = Some(v);
@@ -33,7 +37,18 @@ pub fn runs<B: Testbench>(mut bench: B, line: usize) -> (BTreeMap<u64, u64>, BTr
 /// low run `low` cycles, each seen at least 8 times (a frame's worth).
 pub fn assert_split<B: Testbench>(bench: B, line: usize, high: u64, low: u64, what: &str) {
     let (h, l) = runs(bench, line);
-    assert_eq!(h.keys().next().copied(), Some(high), "{what}: shortest high phase; high runs {h:?}");
-    assert_eq!(l.keys().next().copied(), Some(low), "{what}: shortest low phase; low runs {l:?}");
-    assert!(h[&high] >= 8 && l[&low] >= 8, "{what}: too few clock phases; {h:?} {l:?}");
+    assert_eq!(
+        h.keys().next().copied(),
+        Some(high),
+        "{what}: shortest high phase; high runs {h:?}"
+    );
+    assert_eq!(
+        l.keys().next().copied(),
+        Some(low),
+        "{what}: shortest low phase; low runs {l:?}"
+    );
+    assert!(
+        h[&high] >= 8 && l[&low] >= 8,
+        "{what}: too few clock phases; {h:?} {l:?}"
+    );
 }

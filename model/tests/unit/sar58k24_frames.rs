@@ -1,5 +1,5 @@
-use model::sar58k24::frames::*;
 use model::angle::angle_deg;
+use model::sar58k24::frames::*;
 
 #[test]
 fn seed_001_bus_commands_bc_aa_b1_and_c1_and_the_answer_tag() {
@@ -17,7 +17,10 @@ fn seed_001_bus_commands_bc_aa_b1_and_c1_and_the_answer_tag() {
     let f = encode_tagged(383, 14, 0xB1);
     assert_eq!(f, [0xFF, 0xB1, 0x01, 0x7F, 0x30]);
     assert_eq!(decode_tagged(&f, 14, 0xB1), Ok(383));
-    assert_eq!(decode_tagged(&f, 14, 0xB2), Err(FrameError::Header(0xFF, 0xB1)));
+    assert_eq!(
+        decode_tagged(&f, 14, 0xB2),
+        Err(FrameError::Header(0xFF, 0xB1))
+    );
 }
 
 #[test]
@@ -41,7 +44,20 @@ fn frames_grow_with_resolution_as_the_seed_lists() {
 fn a_corrupted_byte_is_caught_by_the_checksum() {
     let mut frame = encode(383, 14);
     frame[3] ^= 0x10;
-    assert!(matches!(decode(&frame, 14), Err(FrameError::Checksum { .. })));
-    assert_eq!(decode(&frame[..4], 14), Err(FrameError::Length { bits: 14, expected: 5, got: 4 }));
-    assert_eq!(decode(&[0xFE, 0x81, 1, 0x7F, 0], 14), Err(FrameError::Header(0xFE, 0x81)));
+    assert!(matches!(
+        decode(&frame, 14),
+        Err(FrameError::Checksum { .. })
+    ));
+    assert_eq!(
+        decode(&frame[..4], 14),
+        Err(FrameError::Length {
+            bits: 14,
+            expected: 5,
+            got: 4
+        })
+    );
+    assert_eq!(
+        decode(&[0xFE, 0x81, 1, 0x7F, 0], 14),
+        Err(FrameError::Header(0xFE, 0x81))
+    );
 }

@@ -10,6 +10,9 @@ fn the_budget_of_the_docs_table() {
     assert_eq!(b[6].max_listed_refresh_hz, 20.0);
     let b = budget(17, Parity::None, 20.0);
     assert!((b[0].trigger_to_position_us - 536.5).abs() < 0.1);
-    assert_eq!(budget(32, Parity::Even, 0.0)[0].max_listed_refresh_hz, 1000.0);
+    assert_eq!(
+        budget(32, Parity::Even, 0.0)[0].max_listed_refresh_hz,
+        1000.0
+    );
     assert!(table(14, Parity::None, 20.0).contains("| 2400 | 20833.3 µs | 20 Hz |"));
 }

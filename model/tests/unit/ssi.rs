@@ -2,12 +2,15 @@
 
 use proptest::prelude::*;
 
-use model::ssi::*;
 use model::angle::angle_deg;
 use model::line::CableConfig;
+use model::ssi::*;
 
 fn read(cfg: &BenchConfig) -> Vec<Transaction> {
-    Bench::new(cfg).expect("valid scenario").run_to_end().transactions
+    Bench::new(cfg)
+        .expect("valid scenario")
+        .run_to_end()
+        .transactions
 }
 
 #[test]
@@ -55,7 +58,11 @@ fn eight_clocks_on_a_twelve_bit_encoder_give_the_top_bits_at_most_22_4121_degree
     let ts = read(&cfg);
     assert_eq!(ts[0].position, Some(255));
     assert_eq!(angle_deg(255, 12), 22.4121);
-    assert_eq!(ts[1].position, Some(495 >> 4), "the encoder let go after its monoflop and stored anew");
+    assert_eq!(
+        ts[1].position,
+        Some(495 >> 4),
+        "the encoder let go after its monoflop and stored anew"
+    );
 }
 
 #[test]
@@ -66,7 +73,10 @@ fn gray_encoder_and_gray_reader_agree() {
     cfg.positions = vec![495, 2048, 4095];
     let ts = read(&cfg);
     assert_eq!(ts[0].sent_bits, "000100011000");
-    assert_eq!(ts.iter().map(|t| t.position.unwrap()).collect::<Vec<_>>(), vec![495, 2048, 4095]);
+    assert_eq!(
+        ts.iter().map(|t| t.position.unwrap()).collect::<Vec<_>>(),
+        vec![495, 2048, 4095]
+    );
 }
 
 #[test]
@@ -84,11 +94,17 @@ fn wire_check_flags_a_line_stuck_high_and_a_start_on_a_low_line_is_refused() {
     let mut cfg = BenchConfig::seed_example();
     cfg.master.wire_check = true;
     cfg.positions = vec![1, 2, 3];
-    cfg.fault = Some(StuckFault { level: true, from_read: 1 });
+    cfg.fault = Some(StuckFault {
+        level: true,
+        from_read: 1,
+    });
     let ts = read(&cfg);
     assert!(ts[0].errors.is_empty());
     assert_eq!(ts[1].errors, vec!["wire_check_failed"]);
-    cfg.fault = Some(StuckFault { level: false, from_read: 2 });
+    cfg.fault = Some(StuckFault {
+        level: false,
+        from_read: 2,
+    });
     let ts = read(&cfg);
     assert!(ts[1].errors.is_empty());
     assert_eq!(ts[2].errors, vec!["line_not_idle"]);
@@ -109,7 +125,10 @@ fn a_long_cable_at_a_fast_clock_needs_the_sample_delay() {
     // 1 MHz through 50 m: 2 × 250 ns + 100 ns round trip exceeds the 500 ns half period.
     let mut cfg = BenchConfig::seed_example();
     cfg.master.clock_khz = 1000.0;
-    cfg.cable = CableConfig { length_m: 50.0, ..CableConfig::default() };
+    cfg.cable = CableConfig {
+        length_m: 50.0,
+        ..CableConfig::default()
+    };
     cfg.positions = vec![495];
     assert_ne!(read(&cfg)[0].position, Some(495));
     cfg.master.sample_delay_ns = 300.0;
@@ -157,7 +176,7 @@ proptest! {
     }
 }
 
-/// Issue 14 item 2: 4 MHz from 100 MHz is f_sys / 25, an odd divider. The
+/// 4 MHz from 100 MHz is f_sys / 25, an odd divider. The
 /// clock is 13 cycles high and 12 low (the high phase takes the extra cycle,
 /// `model::time::BitClock`), the capture stays 2 cycles into each low phase,
 /// the header names the split, and every value reads back.
@@ -170,19 +189,45 @@ fn an_odd_divider_is_13_cycles_high_and_12_low_and_reads_every_value() {
     cfg.master.t_cs_us = 1.0;
     cfg.master.pause_us = 30.0;
     cfg.encoder.monoflop_us = 25.0;
-    cfg.cable = CableConfig { length_m: 2.0, ..CableConfig::default() };
+    cfg.cable = CableConfig {
+        length_m: 2.0,
+        ..CableConfig::default()
+    };
     cfg.positions = vec![0, 4095, 495, 2730, 1365];
     let m = cfg.master_config().expect("f_sys / 25 is accepted");
-    assert_eq!((m.clocks_per_bit, m.high_clocks, m.low_clocks), (25, 13, 12));
+    assert_eq!(
+        (m.clocks_per_bit, m.high_clocks, m.low_clocks),
+        (25, 13, 12)
+    );
     let params = cfg.verilog_parameters().unwrap();
-    assert_eq!(&params[1..4], &[("CLOCKS_PER_BIT", 25), ("HIGH_CLOCKS", 13), ("LOW_CLOCKS", 12)]);
+    assert_eq!(
+        &params[1..4],
+        &[
+            ("CLOCKS_PER_BIT", 25),
+            ("HIGH_CLOCKS", 13),
+            ("LOW_CLOCKS", 12)
+        ]
+    );
     let ts = read(&cfg);
-    assert_eq!(ts.iter().map(|t| t.position).collect::<Vec<_>>(), cfg.positions.iter().map(|&p| Some(p)).collect::<Vec<_>>());
+    assert_eq!(
+        ts.iter().map(|t| t.position).collect::<Vec<_>>(),
+        cfg.positions.iter().map(|&p| Some(p)).collect::<Vec<_>>()
+    );
     assert!(ts.iter().all(|t| t.errors.is_empty()), "{ts:#?}");
-    crate::phases::assert_split(Bench::new(&cfg).unwrap(), 0, 13, 12, "SSI 4 MHz from 100 MHz");
+    crate::phases::assert_split(
+        Bench::new(&cfg).unwrap(),
+        0,
+        13,
+        12,
+        "SSI 4 MHz from 100 MHz",
+    );
     // An even divider keeps its header as it was: no phase parameters.
     let even = BenchConfig::seed_example();
-    assert!(even.verilog_parameters().unwrap().iter().all(|(n, _)| !n.ends_with("_CLOCKS") || n.starts_with("T_CS") || n.starts_with("PAUSE")));
+    assert!(even
+        .verilog_parameters()
+        .unwrap()
+        .iter()
+        .all(|(n, _)| !n.ends_with("_CLOCKS") || n.starts_with("T_CS") || n.starts_with("PAUSE")));
 }
 
 #[test]
@@ -193,6 +238,9 @@ fn a_divider_below_eight_is_refused_naming_the_clock_field_and_the_fastest_clock
         cfg.master.clock_khz = khz;
         let e = cfg.master_config().unwrap_err();
         assert_eq!(e.field(), "master.clock_khz");
-        assert!(e.to_string().contains("at least 8") && e.to_string().contains("12500 kHz (f_sys / 8)"), "{e}");
+        assert!(
+            e.to_string().contains("at least 8") && e.to_string().contains("12500 kHz (f_sys / 8)"),
+            "{e}"
+        );
     }
 }

@@ -25,14 +25,39 @@ fn line(bits: &str) -> (Signal, Signal) {
 #[test]
 fn the_seed_example_reads_495_and_a_wrong_width_says_what_fits() {
     let (clk, data) = line("000111101111");
-    let layout = Layout { bits: Some(12), gray: false, double_read: false, wire_check: false };
+    let layout = Layout {
+        bits: Some(12),
+        gray: false,
+        double_read: false,
+        wire_check: false,
+    };
     let reads = decode(&clk, &data, &layout).unwrap();
     assert_eq!(reads.len(), 1);
     assert_eq!(reads[0].received_bits, "000111101111");
     assert_eq!(reads[0].position, Some(495));
     assert_eq!(reads[0].start_ps, 10_000_000);
-    let e = decode(&clk, &data, &Layout { bits: Some(13), ..layout }).unwrap_err();
-    assert_eq!(e, "read 0 at 10000000 ps carries 12 bits, but --bits 13 reads 13: --bits 12 would fit");
-    let gray = decode(&clk, &data, &Layout { bits: Some(12), gray: true, ..layout }).unwrap();
+    let e = decode(
+        &clk,
+        &data,
+        &Layout {
+            bits: Some(13),
+            ..layout
+        },
+    )
+    .unwrap_err();
+    assert_eq!(
+        e,
+        "read 0 at 10000000 ps carries 12 bits, but --bits 13 reads 13: --bits 12 would fit"
+    );
+    let gray = decode(
+        &clk,
+        &data,
+        &Layout {
+            bits: Some(12),
+            gray: true,
+            ..layout
+        },
+    )
+    .unwrap();
     assert_eq!(model::gray::to_gray(gray[0].position.unwrap()), 495);
 }

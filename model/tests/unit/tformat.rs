@@ -1,13 +1,18 @@
 //! The T-format host against the Smart Abs emulator: every Data ID, EEPROM,
 //! resets, and the abnormal-request answers of Tables 5 and 6.
 
+use model::testbench::run_to_end;
 use model::tformat::frames::{Alarms, DataId};
 use model::tformat::*;
-use model::testbench::run_to_end;
 use model::Setup;
 
 fn op(data_id: u8) -> Operation {
-    Operation { data_id, address: 0, data: 0, gap_us: 5.0 }
+    Operation {
+        data_id,
+        address: 0,
+        data: 0,
+        gap_us: 5.0,
+    }
 }
 
 fn run(cfg: &BenchConfig) -> (Vec<Transaction>, u64) {
@@ -28,7 +33,11 @@ fn contention_free(cfg: &BenchConfig) -> Vec<Transaction> {
 #[test]
 fn readouts_0_1_2_3_decode_what_the_encoder_holds() {
     let cfg = BenchConfig {
-        encoder: EncoderSettings { single_turn: 0x1_ABCD, multi_turn: 0xBEEF, ..EncoderSettings::default() },
+        encoder: EncoderSettings {
+            single_turn: 0x1_ABCD,
+            multi_turn: 0xBEEF,
+            ..EncoderSettings::default()
+        },
         ops: vec![op(0), op(1), op(2), op(3)],
         ..BenchConfig::default()
     };
@@ -39,14 +48,20 @@ fn readouts_0_1_2_3_decode_what_the_encoder_holds() {
     assert_eq!(ts[1].abm, 0xBEEF);
     assert_eq!(ts[2].enid, 0x11, "ENID is fixed as 11H");
     assert_eq!(ts[2].received.len(), 4);
-    assert_eq!((ts[3].abs, ts[3].abm, ts[3].enid, ts[3].received.len()), (0x1_ABCD, 0xBEEF, 0x11, 11));
+    assert_eq!(
+        (ts[3].abs, ts[3].abm, ts[3].enid, ts[3].received.len()),
+        (0x1_ABCD, 0xBEEF, 0x11, 11)
+    );
 }
 
 #[test]
 fn the_answer_begins_3_us_after_the_request() {
     // Seed 002, 7.1: "The Data frame is transmitted at 3 micro-seconds (typ.)
     // after receiving the Delimiter signal of Request frame."
-    let cfg = BenchConfig { cable: model::line::CableConfig::default(), ..BenchConfig::default() };
+    let cfg = BenchConfig {
+        cable: model::line::CableConfig::default(),
+        ..BenchConfig::default()
+    };
     let bench = cfg.bench().unwrap();
     let mut b = bench;
     while !model::testbench::Testbench::finished(&b) {
@@ -60,12 +75,26 @@ fn the_answer_begins_3_us_after_the_request() {
 
 #[test]
 fn alarms_reach_almc_and_the_status_field() {
-    let alarms = Alarms { battery_alarm: true, counting_error: true, ..Alarms::default() };
-    let cfg = BenchConfig { encoder: EncoderSettings { alarms, ..EncoderSettings::default() }, ops: vec![op(3)], ..BenchConfig::default() };
+    let alarms = Alarms {
+        battery_alarm: true,
+        counting_error: true,
+        ..Alarms::default()
+    };
+    let cfg = BenchConfig {
+        encoder: EncoderSettings {
+            alarms,
+            ..EncoderSettings::default()
+        },
+        ops: vec![op(3)],
+        ..BenchConfig::default()
+    };
     let t = &run(&cfg).0[0];
     assert_eq!(t.almc, alarms.byte());
     assert_eq!(t.sf & 0x30, 0x30, "ea0 and ea1");
-    assert!(t.errors.is_empty(), "encoder errors are data, not communication errors");
+    assert!(
+        t.errors.is_empty(),
+        "encoder errors are data, not communication errors"
+    );
 }
 
 #[test]
@@ -73,11 +102,29 @@ fn eeprom_write_is_busy_then_reads_back() {
     // Table 4: a write is accepted (EDF echoed); requests during the write get
     // busy and 00; after it, the read returns the data.
     let cfg = BenchConfig {
-        encoder: EncoderSettings { eeprom_write_us: 100.0, ..EncoderSettings::default() },
+        encoder: EncoderSettings {
+            eeprom_write_us: 100.0,
+            ..EncoderSettings::default()
+        },
         ops: vec![
-            Operation { data_id: 6, address: 5, data: 0xA5, gap_us: 5.0 },
-            Operation { data_id: 0xD, address: 5, data: 0, gap_us: 5.0 },
-            Operation { data_id: 0xD, address: 5, data: 0, gap_us: 200.0 },
+            Operation {
+                data_id: 6,
+                address: 5,
+                data: 0xA5,
+                gap_us: 5.0,
+            },
+            Operation {
+                data_id: 0xD,
+                address: 5,
+                data: 0,
+                gap_us: 5.0,
+            },
+            Operation {
+                data_id: 0xD,
+                address: 5,
+                data: 0,
+                gap_us: 200.0,
+            },
         ],
         ..BenchConfig::default()
     };
@@ -91,16 +138,32 @@ fn eeprom_write_is_busy_then_reads_back() {
 #[test]
 fn an_eeprom_address_not_open_to_the_user_gets_data_id_3() {
     // Table 6 no. 2.
-    let cfg = BenchConfig { ops: vec![Operation { data_id: 0xD, address: 80, data: 0, gap_us: 5.0 }], ..BenchConfig::default() };
+    let cfg = BenchConfig {
+        ops: vec![Operation {
+            data_id: 0xD,
+            address: 80,
+            data: 0,
+            gap_us: 5.0,
+        }],
+        ..BenchConfig::default()
+    };
     let t = &run(&cfg).0[0];
     assert_eq!(t.received.len(), 11);
-    assert!(t.errors.contains(&"cf_mismatch") && t.errors.contains(&"frame"), "{:?}", t.errors);
+    assert!(
+        t.errors.contains(&"cf_mismatch") && t.errors.contains(&"frame"),
+        "{:?}",
+        t.errors
+    );
 }
 
 #[test]
 fn an_undefined_data_id_is_answered_with_data_id_3_and_flagged() {
     // Table 5 no. 2: Data ID 5 is not in Table 1.
-    let t = &run(&BenchConfig { ops: vec![op(5)], ..BenchConfig::default() }).0[0];
+    let t = &run(&BenchConfig {
+        ops: vec![op(5)],
+        ..BenchConfig::default()
+    })
+    .0[0];
     assert_eq!(t.received[0], DataId::Id3.control_field());
     assert!(t.errors.contains(&"cf_mismatch"), "{:?}", t.errors);
 }
@@ -110,11 +173,17 @@ fn ten_resets_40_ms_apart_clear_the_multi_turn_count() {
     // Seed 002, 9.: Data ID C, ten times, 40 ms or more apart. Scaled down:
     // the emulator's interval and the host's gap are both 400 µs here.
     let cfg = BenchConfig {
-        host: HostSettings { repeat_gap_us: 400.0, ..HostSettings::default() },
+        host: HostSettings {
+            repeat_gap_us: 400.0,
+            ..HostSettings::default()
+        },
         encoder: EncoderSettings {
             multi_turn: 777,
             reset_interval_us: 400.0,
-            alarms: Alarms { multi_turn_error: true, ..Alarms::default() },
+            alarms: Alarms {
+                multi_turn_error: true,
+                ..Alarms::default()
+            },
             ..EncoderSettings::default()
         },
         ops: vec![op(0xC), op(3)],
@@ -128,8 +197,15 @@ fn ten_resets_40_ms_apart_clear_the_multi_turn_count() {
 #[test]
 fn resets_sent_too_close_together_do_not_count() {
     let cfg = BenchConfig {
-        host: HostSettings { repeat_gap_us: 100.0, ..HostSettings::default() },
-        encoder: EncoderSettings { multi_turn: 777, reset_interval_us: 400.0, ..EncoderSettings::default() },
+        host: HostSettings {
+            repeat_gap_us: 100.0,
+            ..HostSettings::default()
+        },
+        encoder: EncoderSettings {
+            multi_turn: 777,
+            reset_interval_us: 400.0,
+            ..EncoderSettings::default()
+        },
         ops: vec![op(0xC), op(1)],
         ..BenchConfig::default()
     };
@@ -138,7 +214,13 @@ fn resets_sent_too_close_together_do_not_count() {
 
 #[test]
 fn no_encoder_on_the_line_times_out() {
-    let cfg = BenchConfig { encoder: EncoderSettings { answer_delay_us: 50.0, ..EncoderSettings::default() }, ..BenchConfig::default() };
+    let cfg = BenchConfig {
+        encoder: EncoderSettings {
+            answer_delay_us: 50.0,
+            ..EncoderSettings::default()
+        },
+        ..BenchConfig::default()
+    };
     let mut bench = cfg.bench().unwrap();
     while !model::testbench::Testbench::finished(&bench) {
         model::testbench::Testbench::step(&mut bench, None);
@@ -154,11 +236,21 @@ fn every_single_bit_flip_of_an_answer_is_flagged() {
     for field in 0..6 {
         for bit in 0..10u8 {
             let cfg = BenchConfig {
-                encoder: EncoderSettings { flips: vec![AnswerFlip { answer: 0, field, bit }], ..EncoderSettings::default() },
+                encoder: EncoderSettings {
+                    flips: vec![AnswerFlip {
+                        answer: 0,
+                        field,
+                        bit,
+                    }],
+                    ..EncoderSettings::default()
+                },
                 ..BenchConfig::default()
             };
             let t = &run(&cfg).0[0];
-            assert!(!t.errors.is_empty(), "field {field} bit {bit} went through: {t:?}");
+            assert!(
+                !t.errors.is_empty(),
+                "field {field} bit {bit} went through: {t:?}"
+            );
         }
     }
 }
@@ -169,15 +261,37 @@ fn after_an_answer_whose_framing_was_lost_the_host_waits_for_quiet_before_the_ne
     // while the encoder still sends; without the quiet wait the next request
     // would land on the rest of that answer (seed 002, 10.: "never transmit
     // any Request to Smart Abs while it transmits the data").
-    let flips = vec![AnswerFlip { answer: 0, field: 2, bit: 9 }, AnswerFlip { answer: 1, field: 4, bit: 0 }];
+    let flips = vec![
+        AnswerFlip {
+            answer: 0,
+            field: 2,
+            bit: 9,
+        },
+        AnswerFlip {
+            answer: 1,
+            field: 4,
+            bit: 0,
+        },
+    ];
     let cfg = BenchConfig {
-        encoder: EncoderSettings { flips, single_turn: 0x0F0F0, ..EncoderSettings::default() },
+        encoder: EncoderSettings {
+            flips,
+            single_turn: 0x0F0F0,
+            ..EncoderSettings::default()
+        },
         ops: vec![op(0), op(0), op(0)],
         ..BenchConfig::default()
     };
     let ts = contention_free(&cfg);
-    assert!(ts[0].errors.contains(&"frame") && ts[1].errors.contains(&"frame"), "{ts:?}");
-    assert!(ts[2].errors.is_empty() && ts[2].abs == 0x0F0F0, "{:?}", ts[2]);
+    assert!(
+        ts[0].errors.contains(&"frame") && ts[1].errors.contains(&"frame"),
+        "{ts:?}"
+    );
+    assert!(
+        ts[2].errors.is_empty() && ts[2].abs == 0x0F0F0,
+        "{:?}",
+        ts[2]
+    );
 }
 
 #[test]
@@ -192,13 +306,23 @@ fn every_two_bit_corruption_escapes_exactly_when_it_is_a_crc_blind_pair() {
     for id in [DataId::Id0, DataId::Id2, DataId::Id3, DataId::IdD] {
         let answer = random_answer(&mut rng, id);
         let bits = answer.len() * 10;
-        assert!(!detected(id, &answer, 0, &[]), "{id:?}: a clean answer passes");
+        assert!(
+            !detected(id, &answer, 0, &[]),
+            "{id:?}: a clean answer passes"
+        );
         let mut blind = 0;
         for a in 0..bits {
-            assert!(detected(id, &answer, 0, &[a]), "{id:?}: bit {a} alone went through");
+            assert!(
+                detected(id, &answer, 0, &[a]),
+                "{id:?}: bit {a} alone went through"
+            );
             for b in a + 1..bits {
                 let escaped = !detected(id, &answer, 0, &[a, b]);
-                assert_eq!(escaped, crc_blind_pair(id, a, b), "{id:?}: bits {a} and {b}");
+                assert_eq!(
+                    escaped,
+                    crc_blind_pair(id, a, b),
+                    "{id:?}: bits {a} and {b}"
+                );
                 blind += escaped as usize;
             }
         }
@@ -211,7 +335,8 @@ fn every_two_bit_corruption_escapes_exactly_when_it_is_a_crc_blind_pair() {
 }
 
 #[test]
-fn a_campaign_of_100_000_random_corruptions_flags_every_one_bit_error_and_every_pair_a_check_can_see() {
+fn a_campaign_of_100_000_random_corruptions_flags_every_one_bit_error_and_every_pair_a_check_can_see(
+) {
     use model::tformat::campaign::{self, crc_blind_pair};
     let report = campaign::run(100_000, 8, 2024);
     println!("T-format answers of every Data ID, one of them corrupted per operation, host at 6 clocks per bit:");
@@ -222,7 +347,10 @@ fn a_campaign_of_100_000_random_corruptions_flags_every_one_bit_error_and_every_
         .iter()
         .map(|&id| {
             let n = id.answer_fields() * 10;
-            let blind = (0..n).flat_map(|a| (a + 1..n).map(move |b| (a, b))).filter(|&(a, b)| crc_blind_pair(id, a, b)).count();
+            let blind = (0..n)
+                .flat_map(|a| (a + 1..n).map(move |b| (a, b)))
+                .filter(|&(a, b)| crc_blind_pair(id, a, b))
+                .count();
             blind as f64 / (n * (n - 1) / 2) as f64
         })
         .sum::<f64>()
@@ -230,23 +358,57 @@ fn a_campaign_of_100_000_random_corruptions_flags_every_one_bit_error_and_every_
     let two = report.by_flips[&2];
     let measured = two.undetected as f64 / two.total() as f64;
     println!("2 bits: undetected rate {measured:.5}, theoretical {theory:.5} (same column, two fields after the CF, not ca0/ca1)");
-    let more: (u64, u64) = report.by_flips.range(3..).fold((0, 0), |(n, u), (_, c)| (n + c.total(), u + c.undetected));
-    println!("3 to 8 bits: undetected rate {:.5} (X^8+1 on a long random pattern: 2^-8 = {:.5})", more.1 as f64 / more.0 as f64, 1.0 / 256.0);
+    let more: (u64, u64) = report
+        .by_flips
+        .range(3..)
+        .fold((0, 0), |(n, u), (_, c)| (n + c.total(), u + c.undetected));
+    println!(
+        "3 to 8 bits: undetected rate {:.5} (X^8+1 on a long random pattern: 2^-8 = {:.5})",
+        more.1 as f64 / more.0 as f64,
+        1.0 / 256.0
+    );
     assert!(report.total() >= 100_000);
-    assert_eq!(report.by_data_id.len(), DataId::ALL.len(), "every Data ID ran");
-    assert_eq!(report.by_flips[&1].undetected, 0, "every single-bit error is flagged");
-    assert_eq!(report.unexplained_pair_escapes, 0, "the only 2-bit escapes are CRC-blind pairs");
-    assert_eq!(report.blind_pairs.detected, 0, "a CRC-blind pair always escapes");
-    assert!(report.blind_pairs.undetected > 0, "the campaign met CRC-blind pairs");
-    assert!((measured - theory).abs() < 0.2 * theory, "2-bit rate {measured} far from {theory}");
-    assert!(more.1 as f64 / more.0 as f64 <= 1.0 / 256.0, "3 to 8 bits escape no more often than a random pattern");
+    assert_eq!(
+        report.by_data_id.len(),
+        DataId::ALL.len(),
+        "every Data ID ran"
+    );
+    assert_eq!(
+        report.by_flips[&1].undetected, 0,
+        "every single-bit error is flagged"
+    );
+    assert_eq!(
+        report.unexplained_pair_escapes, 0,
+        "the only 2-bit escapes are CRC-blind pairs"
+    );
+    assert_eq!(
+        report.blind_pairs.detected, 0,
+        "a CRC-blind pair always escapes"
+    );
+    assert!(
+        report.blind_pairs.undetected > 0,
+        "the campaign met CRC-blind pairs"
+    );
+    assert!(
+        (measured - theory).abs() < 0.2 * theory,
+        "2-bit rate {measured} far from {theory}"
+    );
+    assert!(
+        more.1 as f64 / more.0 as f64 <= 1.0 / 256.0,
+        "3 to 8 bits escape no more often than a random pattern"
+    );
 }
 
 /// Ten reads (Data IDs 0, 1, 2, 3, D twice) from an encoder whose answers run
 /// `error_percent` off the nominal rate with `jitter_ns` on every edge:
 /// (operations, operations flagged, operations passed with wrong fields).
 fn off_rate_reads(error_percent: f64, jitter_ns: f64, seed: u64) -> (usize, usize, usize) {
-    let ops = [0, 1, 2, 3, 0xD].iter().cycle().take(10).map(|&id| op(id)).collect();
+    let ops = [0, 1, 2, 3, 0xD]
+        .iter()
+        .cycle()
+        .take(10)
+        .map(|&id| op(id))
+        .collect();
     let cfg = BenchConfig {
         encoder: EncoderSettings {
             baud_error_percent: error_percent,
@@ -264,21 +426,38 @@ fn off_rate_reads(error_percent: f64, jitter_ns: f64, seed: u64) -> (usize, usiz
     while !model::testbench::Testbench::finished(&bench) {
         model::testbench::Testbench::step(&mut bench, None);
     }
-    assert_eq!(bench.contention_cycles(), 0, "two drivers at {error_percent} %");
-    let answers: Vec<Vec<u8>> = bench.encoder().answered().iter().map(|a| a.1.clone()).collect();
+    assert_eq!(
+        bench.contention_cycles(),
+        0,
+        "two drivers at {error_percent} %"
+    );
+    let answers: Vec<Vec<u8>> = bench
+        .encoder()
+        .answered()
+        .iter()
+        .map(|a| a.1.clone())
+        .collect();
     let ts = model::testbench::Testbench::into_transactions(bench);
     let flagged = ts.iter().filter(|t| !t.errors.is_empty()).count();
-    let wrong = ts.iter().zip(&answers).filter(|(t, a)| t.errors.is_empty() && &t.received != *a).count();
+    let wrong = ts
+        .iter()
+        .zip(&answers)
+        .filter(|(t, a)| t.errors.is_empty() && &t.received != *a)
+        .count();
     (ts.len(), flagged, wrong)
 }
 
 #[test]
-fn an_off_rate_or_jittery_encoder_is_read_without_error_inside_the_tolerance_and_always_flagged_beyond_it() {
+fn an_off_rate_or_jittery_encoder_is_read_without_error_inside_the_tolerance_and_always_flagged_beyond_it(
+) {
     // Seed 002, 6.1: 2.5 Mbps, "permissible jitter ±100 ns". The encoder's
     // answers run −8 % to +8 % off in 0.1 % steps, without jitter and with
     // ±100 ns (8 cycles at 80 MHz), ten reads a step.
     let (clocks_per_bit, always) = (32, model::tformat::always_flagged(32));
-    println!("always flagged below {:+.2} % and above {:+.2} %", always.0, always.1);
+    println!(
+        "always flagged below {:+.2} % and above {:+.2} %",
+        always.0, always.1
+    );
     for jitter_ns in [0.0, 100.0] {
         let (low, high) = model::tformat::tolerance(clocks_per_bit, jitter_ns / 12.5);
         println!("jitter ±{jitter_ns} ns: no error from {low:+.2} % to {high:+.2} %; between the bounds (error %: flagged, wrong but passed, of 10):");
@@ -287,13 +466,23 @@ fn an_off_rate_or_jittery_encoder_is_read_without_error_inside_the_tolerance_and
             let e = step as f64 / 10.0;
             let (n, flagged, wrong) = off_rate_reads(e, jitter_ns, (200 + step) as u64);
             if (low..=high).contains(&e) {
-                assert_eq!((flagged, wrong), (0, 0), "{e} % inside the tolerance, ±{jitter_ns} ns");
+                assert_eq!(
+                    (flagged, wrong),
+                    (0, 0),
+                    "{e} % inside the tolerance, ±{jitter_ns} ns"
+                );
             } else if e < always.0 || e > always.1 {
-                assert_eq!(flagged, n, "{e} % beyond the bounds, ±{jitter_ns} ns: every read flagged");
+                assert_eq!(
+                    flagged, n,
+                    "{e} % beyond the bounds, ±{jitter_ns} ns: every read flagged"
+                );
             } else {
                 between.push(format!("{e:+.1}: {flagged}, {wrong}"));
                 if jitter_ns == 0.0 {
-                    assert_eq!(wrong, 0, "{e} %: without jitter a misread breaks the framing");
+                    assert_eq!(
+                        wrong, 0,
+                        "{e} %: without jitter a misread breaks the framing"
+                    );
                 }
             }
         }
@@ -308,18 +497,36 @@ fn every_truncation_of_an_answer_is_flagged_unless_the_cut_tail_is_all_ones() {
     // ones at the end of the CRC) leaves the wire as it was: nothing can see
     // that. Every other cut is flagged.
     for id in [0u8, 2, 3] {
-        let clean = run(&BenchConfig { ops: vec![op(id)], ..BenchConfig::default() }).0;
+        let clean = run(&BenchConfig {
+            ops: vec![op(id)],
+            ..BenchConfig::default()
+        })
+        .0;
         let answer = &clean[0].received;
-        let bits: Vec<bool> = answer.iter().flat_map(|&b| model::tformat::frame_bits(b)).collect();
+        let bits: Vec<bool> = answer
+            .iter()
+            .flat_map(|&b| model::tformat::frame_bits(b))
+            .collect();
         for cut in 1..bits.len() {
             let cfg = BenchConfig {
-                encoder: EncoderSettings { truncate: Some(AnswerTruncation { answer: 0, bits: cut }), ..EncoderSettings::default() },
+                encoder: EncoderSettings {
+                    truncate: Some(AnswerTruncation {
+                        answer: 0,
+                        bits: cut,
+                    }),
+                    ..EncoderSettings::default()
+                },
                 ops: vec![op(id)],
                 ..BenchConfig::default()
             };
             let t = &contention_free(&cfg)[0];
             let visible = bits[cut..].contains(&false);
-            assert_eq!(!t.errors.is_empty(), visible, "Data ID {id} cut after {cut} bits: {:?}", t.errors);
+            assert_eq!(
+                !t.errors.is_empty(),
+                visible,
+                "Data ID {id} cut after {cut} bits: {:?}",
+                t.errors
+            );
         }
     }
 }
@@ -329,7 +536,12 @@ fn a_line_stuck_low_is_flagged_and_cannot_hang_the_host() {
     // Held low from the middle of the first answer to the end of the run:
     // every operation ends (o_done), every one flagged.
     let cfg = BenchConfig {
-        line_faults: vec![LineFault { kind: LineFaultKind::StuckLow, at_us: 15.0, width_us: 5000.0, bytes: vec![] }],
+        line_faults: vec![LineFault {
+            kind: LineFaultKind::StuckLow,
+            at_us: 15.0,
+            width_us: 5000.0,
+            bytes: vec![],
+        }],
         ops: vec![op(0), op(3), op(0xD)],
         ..BenchConfig::default()
     };
@@ -341,7 +553,12 @@ fn a_line_stuck_low_is_flagged_and_cannot_hang_the_host() {
 #[test]
 fn a_line_stuck_high_times_out_and_a_second_driver_is_flagged() {
     let stuck = BenchConfig {
-        line_faults: vec![LineFault { kind: LineFaultKind::StuckHigh, at_us: 10.0, width_us: 5000.0, bytes: vec![] }],
+        line_faults: vec![LineFault {
+            kind: LineFaultKind::StuckHigh,
+            at_us: 10.0,
+            width_us: 5000.0,
+            bytes: vec![],
+        }],
         ops: vec![op(0), op(3)],
         ..BenchConfig::default()
     };
@@ -350,14 +567,22 @@ fn a_line_stuck_high_times_out_and_a_second_driver_is_flagged() {
     // over the request (from 6 µs): the answer is flagged either way.
     for at_us in [6.0, 13.0, 20.0, 30.0] {
         let cfg = BenchConfig {
-            line_faults: vec![LineFault { kind: LineFaultKind::SecondDriver, at_us, width_us: 0.0, bytes: vec![0x00, 0x00] }],
+            line_faults: vec![LineFault {
+                kind: LineFaultKind::SecondDriver,
+                at_us,
+                width_us: 0.0,
+                bytes: vec![0x00, 0x00],
+            }],
             ..BenchConfig::default()
         };
         let mut bench = cfg.bench().unwrap();
         while !model::testbench::Testbench::finished(&bench) {
             model::testbench::Testbench::step(&mut bench, None);
         }
-        assert!(bench.fault_contention_cycles() > 0, "{at_us} µs: the second driver overlapped a driver");
+        assert!(
+            bench.fault_contention_cycles() > 0,
+            "{at_us} µs: the second driver overlapped a driver"
+        );
         let ts = model::testbench::Testbench::into_transactions(bench);
         assert!(!ts[0].errors.is_empty(), "{at_us} µs: {:?}", ts[0]);
     }
@@ -366,30 +591,78 @@ fn a_line_stuck_high_times_out_and_a_second_driver_is_flagged() {
 #[test]
 fn the_transcript_carries_every_character_on_the_wire_at_the_host() {
     // Clean reads: the wire holds exactly the request sent and the answer received.
-    let clean = run(&BenchConfig { ops: vec![op(0), op(3), Operation { data_id: 6, address: 5, data: 0xA5, gap_us: 5.0 }], ..BenchConfig::default() }).0;
+    let clean = run(&BenchConfig {
+        ops: vec![
+            op(0),
+            op(3),
+            Operation {
+                data_id: 6,
+                address: 5,
+                data: 0xA5,
+                gap_us: 5.0,
+            },
+        ],
+        ..BenchConfig::default()
+    })
+    .0;
     for t in &clean {
-        assert_eq!((&t.wire_requests, &t.wire_answers), (&vec![t.sent.clone()], &vec![t.received.clone()]), "{t:?}");
+        assert_eq!(
+            (&t.wire_requests, &t.wire_answers),
+            (&vec![t.sent.clone()], &vec![t.received.clone()]),
+            "{t:?}"
+        );
     }
     // A reset: ten requests, ten answers, in order.
     let cfg = BenchConfig {
-        host: HostSettings { repeat_gap_us: 400.0, ..HostSettings::default() },
-        encoder: EncoderSettings { reset_interval_us: 400.0, ..EncoderSettings::default() },
+        host: HostSettings {
+            repeat_gap_us: 400.0,
+            ..HostSettings::default()
+        },
+        encoder: EncoderSettings {
+            reset_interval_us: 400.0,
+            ..EncoderSettings::default()
+        },
         ops: vec![op(0xC)],
         ..BenchConfig::default()
     };
     let t = &run(&cfg).0[0];
     assert_eq!((t.wire_requests.len(), t.wire_answers.len()), (10, 10));
-    assert!(t.wire_requests.iter().all(|r| *r == t.sent) && t.wire_answers.iter().all(|a| *a == t.received));
+    assert!(
+        t.wire_requests.iter().all(|r| *r == t.sent)
+            && t.wire_answers.iter().all(|a| *a == t.received)
+    );
     // A start bit flipped in an answer: the host stops at the lost framing,
     // the wire keeps the rest of the answer.
-    let flipped = BenchConfig { encoder: EncoderSettings { flips: vec![AnswerFlip { answer: 0, field: 3, bit: 0 }], ..EncoderSettings::default() }, ..BenchConfig::default() };
+    let flipped = BenchConfig {
+        encoder: EncoderSettings {
+            flips: vec![AnswerFlip {
+                answer: 0,
+                field: 3,
+                bit: 0,
+            }],
+            ..EncoderSettings::default()
+        },
+        ..BenchConfig::default()
+    };
     let t = &run(&flipped).0[0];
-    assert!(t.wire_answers[0].len() > t.received.len() && t.wire_answers[0].starts_with(&t.received[..2]), "{t:?}");
+    assert!(
+        t.wire_answers[0].len() > t.received.len()
+            && t.wire_answers[0].starts_with(&t.received[..2]),
+        "{t:?}"
+    );
     // Another driver over the request: the wire shows what it forced, not what the host sent.
     let over_request = BenchConfig {
-        line_faults: vec![LineFault { kind: LineFaultKind::SecondDriver, at_us: 5.0, width_us: 0.0, bytes: vec![0x00] }],
+        line_faults: vec![LineFault {
+            kind: LineFaultKind::SecondDriver,
+            at_us: 5.0,
+            width_us: 0.0,
+            bytes: vec![0x00],
+        }],
         ..BenchConfig::default()
     };
     let t = &run(&over_request).0[0];
-    assert_eq!((t.sent.clone(), t.wire_requests.clone()), (vec![0x02], vec![vec![0x00]]));
+    assert_eq!(
+        (t.sent.clone(), t.wire_requests.clone()),
+        (vec![0x02], vec![vec![0x00]])
+    );
 }

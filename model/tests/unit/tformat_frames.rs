@@ -33,7 +33,10 @@ fn data_id_0_and_3_are_requested_with_0x02_and_0x1a() {
 fn a_flipped_parity_or_sink_bit_is_seen() {
     let cf = DataId::Id1.control_field();
     assert!(!parse_control_field(cf ^ 0x80).parity_ok);
-    assert!(!parse_control_field(cf ^ 0x08).parity_ok, "a code bit flip breaks parity");
+    assert!(
+        !parse_control_field(cf ^ 0x08).parity_ok,
+        "a code bit flip breaks parity"
+    );
     assert!(!parse_control_field(cf ^ 0x01).sink_ok);
 }
 
@@ -50,13 +53,34 @@ fn the_crc_is_the_xor_of_the_fields_as_in_a_published_capture() {
 
 #[test]
 fn alarms_map_onto_almc_and_the_status_field() {
-    let a = Alarms { battery_alarm: true, ..Alarms::default() };
+    let a = Alarms {
+        battery_alarm: true,
+        ..Alarms::default()
+    };
     assert_eq!(a.byte(), 0x80);
     assert_eq!(a.status().byte(), 0x20);
-    let a = Alarms { counting_error: true, over_speed: true, ..Alarms::default() };
+    let a = Alarms {
+        counting_error: true,
+        over_speed: true,
+        ..Alarms::default()
+    };
     assert_eq!(a.byte(), 0x05);
-    assert_eq!(a.status(), Status { ea0: true, ..Status::default() });
-    assert_eq!(Status::from_byte(0xF0), Status { ea0: true, ea1: true, ca0: true, ca1: true });
+    assert_eq!(
+        a.status(),
+        Status {
+            ea0: true,
+            ..Status::default()
+        }
+    );
+    assert_eq!(
+        Status::from_byte(0xF0),
+        Status {
+            ea0: true,
+            ea1: true,
+            ca0: true,
+            ca1: true
+        }
+    );
 }
 
 #[test]

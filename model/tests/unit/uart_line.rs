@@ -1,6 +1,6 @@
 use model::uart::line::*;
-use model::wire::Signal;
 use model::uart::Parity;
+use model::wire::Signal;
 fn line_of(levels: &[bool], bit_ps: u64) -> Signal {
     let mut changes = vec![(0, true)];
     for (i, &b) in levels.iter().enumerate() {
@@ -12,7 +12,10 @@ fn line_of(levels: &[bool], bit_ps: u64) -> Signal {
     if !changes.last().unwrap().1 {
         changes.push((1_000_000 + levels.len() as u64 * bit_ps, true));
     }
-    Signal { name: "line".into(), changes }
+    Signal {
+        name: "line".into(),
+        changes,
+    }
 }
 
 #[test]
@@ -31,7 +34,10 @@ fn every_byte_with_even_parity_reads_back_and_a_flipped_parity_or_stop_bit_is_na
     levels.extend([true; 3]);
     let got = chars(&line_of(&levels, bit_ps), None, bit_ps, Parity::Even);
     assert_eq!(got.len(), 258);
-    assert!(got[..256].iter().enumerate().all(|(v, c)| c.value == v as u8 && !c.parity_error && !c.framing_error));
+    assert!(got[..256]
+        .iter()
+        .enumerate()
+        .all(|(v, c)| c.value == v as u8 && !c.parity_error && !c.framing_error));
     assert!(got[256].parity_error && !got[256].framing_error && got[256].value == 0x81);
     assert!(got[257].framing_error && got[257].value == 0x55);
 }

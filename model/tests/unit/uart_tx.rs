@@ -5,9 +5,18 @@ use model::uart::{Parity, Tx, TxConfig, TxIn, TxState};
 /// skipped cycle holds the last output), and the same state after it.
 #[test]
 fn skipping_the_quiet_steps_of_a_character_matches_stepping() {
-    let cfg = TxConfig { clocks_per_bit: 7, parity: Parity::Even };
-    let go = TxIn { i_valid: true, i_data: 0xA5 };
-    let idle = TxIn { i_valid: false, i_data: 0 };
+    let cfg = TxConfig {
+        clocks_per_bit: 7,
+        parity: Parity::Even,
+    };
+    let go = TxIn {
+        i_valid: true,
+        i_data: 0xA5,
+    };
+    let idle = TxIn {
+        i_valid: false,
+        i_data: 0,
+    };
     let cycles = 7 * 11 + 3;
     let mut stepped = Tx::new(cfg).unwrap();
     let mut line = vec![stepped.step(&go)];
@@ -30,5 +39,8 @@ fn skipping_the_quiet_steps_of_a_character_matches_stepping() {
     }
     assert_eq!(line, line_ff);
     assert!(skips >= 11, "a skip in each of the 11 bits: {skips}");
-    assert_eq!((stepped.state(), stepped.out()), (skipping.state(), skipping.out()));
+    assert_eq!(
+        (stepped.state(), stepped.out()),
+        (skipping.state(), skipping.out())
+    );
 }

@@ -37,7 +37,11 @@ fn run(args: &[String]) -> Result<Vec<(String, u64)>, String> {
         .parse()
         .map_err(|e: toml::de::Error| format!("{path}: {}", e.to_string().trim()))?;
     // `sar_can` reads the [canopen] table (the SAR58K24's CAN mode shares the CANopen bus).
-    let table_name = if proto == "sar_can" { "canopen" } else { proto.as_str() };
+    let table_name = if proto == "sar_can" {
+        "canopen"
+    } else {
+        proto.as_str()
+    };
     let Some(toml::Value::Table(table)) = root.get(table_name) else {
         return Err(format!(
             "{path}: no [{table_name}] table; a closed-loop configuration is a scenario file"
@@ -97,8 +101,19 @@ fn sar_can(table: toml::Table, origin: &str) -> Result<Vec<(String, u64)>, Strin
     let Some(sar) = cfg.sar.first() else {
         return Err(format!("{origin}: field `sar`: no [[canopen.sar]]; give the SAR58K24 the testbench commands ([[canopen.sar]] with [canopen.sar.encoder] node = 0x20)"));
     };
-    let timing = ["F_SYS_HZ", "BRP", "PROP_SEG", "PHASE_SEG1", "PHASE_SEG2", "SJW", "SYNC_STAGES"];
-    let mut out: Vec<(String, u64)> = all.into_iter().filter(|(k, _)| timing.contains(&k.as_str())).collect();
+    let timing = [
+        "F_SYS_HZ",
+        "BRP",
+        "PROP_SEG",
+        "PHASE_SEG1",
+        "PHASE_SEG2",
+        "SJW",
+        "SYNC_STAGES",
+    ];
+    let mut out: Vec<(String, u64)> = all
+        .into_iter()
+        .filter(|(k, _)| timing.contains(&k.as_str()))
+        .collect();
     let e = &sar.encoder;
     let rate_code = match cfg.bit_rate_kbps {
         1000 => 0,
@@ -106,15 +121,21 @@ fn sar_can(table: toml::Table, origin: &str) -> Result<Vec<(String, u64)>, Strin
         250 => 3,
         other => return Err(format!("{origin}: field `bit_rate_kbps`: {other} kbit/s is no SAR58K24 rate; give 1000, 500 or 250 (seed 001 §3.4 ③)")),
     };
-    out.extend([
-        ("SAR_DEVICE", cfg.encoders.len() as u64),
-        ("SAR_NODE", e.node as u64),
-        ("SAR_BITS", e.bits as u64),
-        ("SAR_ANSWER_BASE", e.answer_base as u64),
-        ("SAR_CYCLE_MS", e.cycle_ms as u64),
-        ("SAR_DIRECTION_CODES", (e.direction == Direction::Codes22And23) as u64),
-        ("SAR_RATE_CODE", rate_code),
-    ].map(|(k, v)| (k.to_string(), v)));
+    out.extend(
+        [
+            ("SAR_DEVICE", cfg.encoders.len() as u64),
+            ("SAR_NODE", e.node as u64),
+            ("SAR_BITS", e.bits as u64),
+            ("SAR_ANSWER_BASE", e.answer_base as u64),
+            ("SAR_CYCLE_MS", e.cycle_ms as u64),
+            (
+                "SAR_DIRECTION_CODES",
+                (e.direction == Direction::Codes22And23) as u64,
+            ),
+            ("SAR_RATE_CODE", rate_code),
+        ]
+        .map(|(k, v)| (k.to_string(), v)),
+    );
     Ok(out)
 }
 

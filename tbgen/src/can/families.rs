@@ -1,4 +1,4 @@
-//! The scenario families issue 12 names, each held to what its name says
+//! The CAN scenario families, each held to what its name says
 //! (`cargo test -p tbgen can::families`): the model's transcript of every
 //! built-in CAN scenario, run here, must show the behaviour the scenario
 //! exists for. The RTL replays the same vectors, so the core is held to it too.

@@ -224,7 +224,7 @@ mod tests {
 
     #[test]
     fn the_rtls_cycle_in_the_committed_vectors_equals_the_budget_for_every_clean_request() {
-        // Issue 3: the RTL adds no clock to the minimal position-read cycle the budget computes. The RTL replays
+        // The RTL adds no clock to the minimal position-read cycle the budget computes. The RTL replays
         // these files cycle for cycle in Icarus and Verilator (make test), so their i_start / o_done spans are the
         // RTL's; here they are held to the budget, request by request, in every built-in EnDat scenario.
         let mut seen: Vec<(Command, u64)> = Vec::new();
