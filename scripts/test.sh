@@ -99,7 +99,7 @@ stage() {
 # (cosim, clippy, vectors and cocotb need lane 1's build), waiting only when none can.
 # The closed loops come first: the longest, they then run beside the cargo
 # tests, and the short checks fill both lanes' ends.
-shared_stages=(cosim gtkw clippy fusesoc wavedrom vectors cocotb)
+shared_stages=(cosim gtkw clippy fusesoc wavedrom vectors cocotb fmt)
 needs_build=" cosim clippy vectors cocotb "
 # after_build NAME COMMAND...: stage NAME once lane 1's build is done (tbgen,
 # the emulator library, the Python module), or a failed NAME if it failed.
@@ -123,6 +123,8 @@ run_shared() {
     # one (make soak: every configuration in Icarus too).
     cosim) after_build cosim scripts/cosim_regress.sh --transactions 1000 --quick --jobs 2 ;;
     cocotb) after_build cocotb scripts/cocotb.sh ;;
+    # Every Rust file as rustfmt writes it (cargo fmt --all fixes it).
+    fmt) stage fmt cargo fmt --all -- --check ;;
     esac
 }
 # take_shared: print the next shared stage that can start and claim it
