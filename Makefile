@@ -104,7 +104,7 @@ coverage:
 	@scripts/coverage.sh
 
 # Mutants of each core replayed against its vectors (long: not in make test):
-# 30 scored per core, seed 1, the figures in the README. modbus_master's
+# 30 scored per core, seed 1, the figures in docs/performance.md. modbus_master's
 # draw holds one mutant that does not build (a generate loop counting down
 # forever), so 31 are drawn there for 30 scored.
 mutate:
