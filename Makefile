@@ -43,10 +43,12 @@ demo: build
 vectors: build
 	$(TBGEN) gen --all --out vectors
 
-# Every check, stage by stage with its wall time (scripts/test.sh): the
-# cargo tests run beside the lint/replay/vector/GTKWave lane.
+# Every check, stage by stage with its wall and CPU time (xtask/: the stages,
+# their order and parallelism as code; `target/release/xtask test --list`),
+# two at a time, the replays beside the Rust build.
 test:
-	@scripts/test.sh
+	@$(CARGO) build --release --locked -q -p xtask
+	@target/release/xtask test
 
 # The release profile, the one tbgen is built with (make test compiles every
 # crate once); the workspace's crates keep overflow checks and debug
