@@ -10,13 +10,12 @@
 #   - the time window frames the first transaction that lasts (or the whole
 #     run if none does), from the transcript (.json) next to it: the transaction fills at least half of
 #     the window and lies inside it;
-#   - the state register shows a name (translate filter), not a number;
+#   - every state register shows a name (translate filter), not a number;
 #   - every trace of the `decoded` group is among the rows an 800-pixel-high
 #     window shows.
-# The window's end: under Xvfb, before the first expose, GTKWave's
-# getWindowEndTime counts a 4-pixel pane; the end is therefore computed from
-# what GTKWave reports as its zoom (getZoomFactor: 2^-zoom units per pixel)
-# and its waveform pane's width (getWaveWidth).
+# The window's edges are GTKWave's own answer (getWindowStartTime,
+# getWindowEndTime), not worked out here from the zoom: a check that shared
+# tbgen's zoom formula would pass a layout that opens on idle.
 # Default: every vectors/*/*.gtkw. Prints one line per failure and a summary.
 #
 # Speed: GTKWave starts once per layout for all of these checks (two
@@ -57,19 +56,25 @@ PY
 
 # query INDEX GTKW T0 T1: what GTKWave shows of one layout, to $work/out.INDEX.
 query() {
-    local i=$1 gtkw=$2 t0=$3 t1=$4 state
-    state=$(grep -m1 '^top\.decoded\.state' "$gtkw" || true)
+    local i=$1 gtkw=$2 t0=$3 t1=$4 named
     cat > "$work/q.$i.tcl" <<TCL
 puts "dump: [gtkwave::getDumpFileName]"
 puts "start: [gtkwave::getWindowStartTime]"
-puts "zoom: [gtkwave::getZoomFactor]"
+puts "window_end: [gtkwave::getWindowEndTime]"
 puts "width: [gtkwave::getWaveWidth]"
 puts "height: [gtkwave::getWaveHeight]"
 set n [gtkwave::getTotalNumTraces]
 for {set i 0} {\$i < \$n} {incr i} { puts "trace \$i: [gtkwave::getTraceNameFromIndex \$i]" }
 gtkwave::setMarker $(( (t0 + t1) / 2 ))
 TCL
-    [ -z "$state" ] || echo "puts \"state: [gtkwave::getTraceValueAtMarkerFromName {$state}]\"" >> "$work/q.$i.tcl"
+    # Every trace shown through a translate filter (the line after `^1 file`).
+    # (Answers are labelled by position: a name's [msb:lsb] inside a Tcl
+    # string would be a command.)
+    local k=0
+    for named in $(awk 'shown { print; shown = 0 } /^\^1 / { shown = 1 }' "$gtkw"); do
+        echo "puts \"named $k: [gtkwave::getTraceValueAtMarkerFromName {$named}]\"" >> "$work/q.$i.tcl"
+        k=$((k + 1))
+    done
     # The last line says GTKWave answered every query: one that died under
     # load said too little to judge the layout by.
     echo 'puts "end: answered"' >> "$work/q.$i.tcl"
@@ -102,7 +107,6 @@ for i, gtkw in enumerate(files):
     t0, t1 = spans[i]
     out = open(os.path.join(work, f"out.{i}"), errors="replace").read()
     lines = open(gtkw).read().splitlines()
-    state = next((l for l in lines if l.startswith("top.decoded.state")), "")
     val = lambda k: (re.search(rf"^{k}: (.*)$", out, re.M) or [None, None])[1]
     problems = []
     if not val("end"):
@@ -110,18 +114,23 @@ for i, gtkw in enumerate(files):
     elif not val("dump"):
         problems.append("GTKWave did not open the dump file from " + os.getcwd() + ": " + " ".join(out.split()[-12:]))
     else:
-        start, zoom, width = int(val("start")), float(val("zoom")), float(val("width"))
-        px = 2 ** (-zoom)
-        end = start + width * px
-        # One pixel of slack: the save file gives the zoom to 6 decimals.
+        start, end = int(val("start")), int(val("window_end"))
+        # One pixel of GTKWave's own (its window over its pane's width) of
+        # slack at the end: a run shown whole ends on its last pixel.
+        px = (end - start) / max(1, int(val("width")))
         if not (start <= t0 and t1 <= end + px):
-            problems.append(f"window {start}..{end:.0f} ps does not hold the first transaction {t0}..{t1} ps")
+            problems.append(f"window {start}..{end} ps does not hold the first transaction {t0}..{t1} ps")
         elif (t1 - t0) < 0.5 * (end - start):
-            problems.append(f"the first transaction {t0}..{t1} ps fills less than half the window {start}..{end:.0f} ps")
-        if state:
-            s = val("state") or ""
-            if not re.fullmatch(r"[A-Z][A-Z0-9_]*", s):
-                problems.append(f"state shows `{s}`, not a state name")
+            problems.append(f"the first transaction {t0}..{t1} ps fills less than half the window {start}..{end} ps")
+        # Every trace with a translate filter shows a name, not a number.
+        filtered = [lines[k + 1] for k, l in enumerate(lines[:-1]) if l.startswith("^1 ")]
+        unnamed = [l for l in lines if l.startswith("top.decoded.") and "state" in l and l not in filtered]
+        if unnamed:
+            problems.append(f"state registers shown as numbers (no translate filter): {', '.join(unnamed)}")
+        for k, name in enumerate(filtered):
+            shown_value = (re.search(rf"^named {k}: (.*)$", out, re.M) or [None, ""])[1]
+            if not re.fullmatch(r"[A-Z][A-Z0-9_]*", shown_value):
+                problems.append(f"{name} shows `{shown_value}`, not a state name")
         traces = [n for _, n in re.findall(r"^trace (\d+): (.*)$", out, re.M)]
         # The signals: those the layout names (top.scope.name[msb:lsb] ->
         # name[msb:lsb]) are exactly those GTKWave shows, less the group

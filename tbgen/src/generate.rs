@@ -273,6 +273,7 @@ fn write_outputs<S: crate::registry::Protocol>(
             dumpfile: &dumpfile,
             groups: &groups,
             window_ps: window,
+            dump_end_ps: tb.ps_at(run.cycles),
             scenario: &scenario.name,
             filters: &shown,
         },

@@ -29,6 +29,12 @@ const NAMES_PX: f64 = 300.0;
 /// The waveform pane's width that GTKWave 3.3 reports (`getWaveWidth`) for
 /// that window and those panes, under Xvfb: the zoom is computed for it.
 pub const WAVE_PX: f64 = 800.0;
+/// GTKWave's pixels per zoom frame: at zoom `z` one frame of `2^-z` time
+/// units spans this many pixels, so a pixel is `2^-z / 200` units
+/// (`pixelsperframe` in GTKWave's zoom code). Checked by
+/// `scripts/check_gtkw.sh`, which asks GTKWave for the time at the window's
+/// right edge (`getWindowEndTime`) rather than working it out from the zoom.
+const GTKWAVE_PIXELS_PER_FRAME: f64 = 200.0;
 
 /// `@22` plus GTKWave's file-translated flag (`TR_FTRANSLATED`, 0x2000).
 const FLAG_HEX_TRANSLATED: &str = "@2022";
@@ -52,6 +58,9 @@ pub struct Layout<'a> {
     pub groups: &'a [(String, Vec<String>)],
     /// The time window to show at start, in ps: `(start, end)`.
     pub window_ps: (u64, u64),
+    /// The dump's last time, ps: GTKWave opens a window that would run past
+    /// it at time 0 instead, so the window is moved to end there.
+    pub dump_end_ps: u64,
     /// Scenario name, for the comment line and `[savefile]`.
     pub scenario: &'a str,
     /// Full signal names shown through a filter file, and the file's name.
@@ -62,9 +71,16 @@ pub struct Layout<'a> {
 pub fn write(out: &mut impl Write, layout: &Layout) -> io::Result<()> {
     let (start, end) = layout.window_ps;
     let span = (end.saturating_sub(start)).max(1) as f64;
-    // GTKWave's zoom z shows 2^-z time units per pixel (checked under Xvfb
-    // by scripts/check_gtkw.sh).
-    let zoom = -(span / WAVE_PX).log2();
+    // The zoom at which WAVE_PX pixels show `span` time units, rounded
+    // down to the six decimals written, so that the window shows at least
+    // `span`; and what it then shows.
+    let zoom = (-(span * GTKWAVE_PIXELS_PER_FRAME / WAVE_PX).log2() * 1e6).floor() / 1e6;
+    let shown = 2f64.powf(-zoom) * WAVE_PX / GTKWAVE_PIXELS_PER_FRAME;
+    let start = if start as f64 + shown > layout.dump_end_ps as f64 {
+        (layout.dump_end_ps as f64 - shown).floor().max(0.0) as u64
+    } else {
+        start
+    };
     writeln!(out, "[*] tbgen layout for scenario {}", layout.scenario)?;
     writeln!(out, "[dumpfile] \"{}\"", layout.dumpfile)?;
     writeln!(out, "[savefile] \"{}.gtkw\"", layout.scenario)?;

@@ -548,12 +548,18 @@ mod tests {
         // of that value the same (`IDLE = 3'd0,`).
         let mut named = 0;
         for e in crate::PROTOCOLS {
-            let rtl = std::fs::read_to_string(format!(
-                "{}/../hdl/rtl/{}.v",
-                env!("CARGO_MANIFEST_DIR"),
-                e.core
-            ))
-            .unwrap();
+            // The core's own file, then the cores it instantiates (a
+            // CANopen layout names its can_controller's states too).
+            let dir = format!("{}/../hdl/rtl", env!("CARGO_MANIFEST_DIR"));
+            let mut rtl = std::fs::read_to_string(format!("{dir}/{}.v", e.core)).unwrap();
+            for f in std::fs::read_dir(&dir).unwrap() {
+                let path = f.unwrap().path();
+                let module = path.file_stem().unwrap().to_string_lossy().to_string();
+                let instantiated = rtl.lines().any(|l| l.starts_with(&format!("{module} #(")));
+                if module != e.core && instantiated {
+                    rtl.push_str(&std::fs::read_to_string(&path).unwrap());
+                }
+            }
             for (signal, names) in (e.wave_names)() {
                 assert!(!names.is_empty(), "{}: {signal}", e.core);
                 for (value, name) in names {

@@ -72,35 +72,40 @@ pub fn within_timing_limits(cfg: &BenchConfig) -> Option<bool> {
     Some(span <= t.max_bus_length_m(f_sys, t_loop, cfg.ns_per_m) && ppm * 1e-6 <= 2.0 * t.oscillator_tolerance())
 }
 
+/// can_controller's states by the RTL's `localparam` names, which keep the
+/// underscores (`CRC_DELIM`): the CAN layouts' and the CANopen layouts'
+/// (whose `can_state` and `monitor_state` are can_controller's).
+pub fn state_names() -> Vec<(u64, String)> {
+    use model::can::State as S;
+[
+        (S::Integrate, "INTEGRATE"),
+        (S::Idle, "IDLE"),
+        (S::Frame, "FRAME"),
+        (S::CrcDelim, "CRC_DELIM"),
+        (S::AckSlot, "ACK_SLOT"),
+        (S::AckDelim, "ACK_DELIM"),
+        (S::Eof, "EOF"),
+        (S::Intermission, "INTERMISSION"),
+        (S::Suspend, "SUSPEND"),
+        (S::ErrFlag, "ERR_FLAG"),
+        (S::OvlFlag, "OVL_FLAG"),
+        (S::ErrWait, "ERR_WAIT"),
+        (S::ErrDelim, "ERR_DELIM"),
+        (S::BusOff, "BUS_OFF"),
+    ]
+    .iter()
+    .map(|&(s, n)| (s as u64, n.to_string()))
+    .collect()
+}
+
 impl Protocol for BenchConfig {
     const TRANSACTION_SIGNALS: TransactionSignals = (&["o_tx_done", "o_rx_valid", "o_err_bit", "o_err_stuff", "o_err_crc", "o_err_form", "o_err_ack"], "o_rx_id", "rx_id");
     const SIGROK_DECODER: Option<&'static str> = Some("can");
     const SIGROK_MINIMUM: (usize, usize) = (17, 330);
 
-    /// The controller's state (and the listen-only monitor's) by the RTL's
-    /// `localparam` names, which keep the underscores (`CRC_DELIM`).
+    /// The controller's state (and the listen-only monitor's) by name.
     fn wave_names() -> WaveNames {
-        use model::can::State as S;
-        let names: Vec<(u64, String)> = [
-            (S::Integrate, "INTEGRATE"),
-            (S::Idle, "IDLE"),
-            (S::Frame, "FRAME"),
-            (S::CrcDelim, "CRC_DELIM"),
-            (S::AckSlot, "ACK_SLOT"),
-            (S::AckDelim, "ACK_DELIM"),
-            (S::Eof, "EOF"),
-            (S::Intermission, "INTERMISSION"),
-            (S::Suspend, "SUSPEND"),
-            (S::ErrFlag, "ERR_FLAG"),
-            (S::OvlFlag, "OVL_FLAG"),
-            (S::ErrWait, "ERR_WAIT"),
-            (S::ErrDelim, "ERR_DELIM"),
-            (S::BusOff, "BUS_OFF"),
-        ]
-        .iter()
-        .map(|&(s, n)| (s as u64, n.to_string()))
-        .collect();
-        vec![("state", names.clone()), ("monitor_state", names)]
+        vec![("state", state_names()), ("monitor_state", state_names())]
     }
 
     fn decode_command() -> Option<clap::Command> {

@@ -58,12 +58,16 @@ impl Protocol for BenchConfig {
     const SIGROK_DECODER: Option<&'static str> = Some("can");
     const SIGROK_MINIMUM: (usize, usize) = (6, 300);
 
-    /// The master's state by the RTL's names (`can_state` and
-    /// `monitor_state` are can_controller's codes: `docs/timing/can.md`).
+    /// The master's state by the RTL's names, and its can_controller's
+    /// (`can_state`, `monitor_state`) by that core's.
     fn wave_names() -> WaveNames {
         use model::canopen::master::State as M;
         let names = ["WAIT_BOOT", "SDO_SEND", "SDO_WAIT", "NMT_SEND", "RUN", "FAILED"];
-        vec![("state", [M::WaitBoot, M::SdoSend, M::SdoWait, M::NmtSend, M::Run, M::Failed].iter().map(|&s| (s as u64, names[s as usize].to_string())).collect())]
+        vec![
+            ("state", [M::WaitBoot, M::SdoSend, M::SdoWait, M::NmtSend, M::Run, M::Failed].iter().map(|&s| (s as u64, names[s as usize].to_string())).collect()),
+            ("can_state", crate::can::state_names()),
+            ("monitor_state", crate::can::state_names()),
+        ]
     }
 
     fn decode_command() -> Option<clap::Command> {
