@@ -11,12 +11,14 @@ use model::Setup;
 
 /// Bits of a frame from SOF to the end of EOF with no stuff bits, and the
 /// most stuff bits it can carry: the stuffed part (SOF to the last CRC bit)
-/// is 34 + 8n bits (standard) or 54 + 8n (extended); the first stuff bit
-/// needs five bits, each further one four (R. Davis et al., "Controller Area
-/// Network (CAN) schedulability analysis", Real-Time Systems 35, 2007).
+/// is 34 + 8n bits (standard) or 54 + 8n (extended), then the CRC
+/// delimiter, the ACK slot and delimiter and 7 EOF bits; the first stuff
+/// bit needs five bits, each further one four (R. Davis et al., "Controller
+/// Area Network (CAN) schedulability analysis", Real-Time Systems 35, 2007,
+/// whose 47 + 8n adds the 3-bit intermission to these 44 + 8n).
 pub fn frame_bits(ide: bool, n: u32) -> (u32, u32) {
     let stuffed = if ide { 54 } else { 34 } + 8 * n;
-    (stuffed + 13, (stuffed - 1) / 4)
+    (stuffed + 10, (stuffed - 1) / 4)
 }
 
 /// The report.
@@ -70,13 +72,44 @@ mod tests {
 
     #[test]
     fn worst_case_frame_lengths_are_the_published_ones() {
-        // Davis et al. 2007: 135 bits for 8 bytes standard, 160 extended.
+        // Davis et al. 2007: 135 bits for 8 bytes standard, 160 extended,
+        // each with its 3-bit intermission.
         let (b, s) = frame_bits(false, 8);
-        assert_eq!(b + s, 135);
+        assert_eq!(b + s + 3, 135);
         let (b, s) = frame_bits(true, 8);
-        assert_eq!(b + s, 160);
-        // The model's stuffing never exceeds the bound, e.g. on eight zero bytes.
+        assert_eq!(b + s + 3, 160);
+    }
+
+    #[test]
+    fn a_frame_on_the_wire_is_within_the_bounds_and_an_unstuffed_one_at_the_lower() {
+        // The model's frames, SOF to EOF: never shorter than the unstuffed
+        // length nor longer than the worst case, and one of them (no run of
+        // five equal bits) exactly the unstuffed length.
+        for n in [0u8, 1, 8] {
+            let (bits, stuff) = frame_bits(false, n as u32);
+            let lengths: Vec<u32> = (0..2048)
+                .flat_map(|id| [0x55u8, 0xAA, 0x2A, 0xD5, 0x4A, 0xB5].map(|b| (id, b)))
+                .map(|(id, b)| Frame::data(id, &vec![b; n as usize]).wire_bits(true).len() as u32)
+                .collect();
+            assert!(lengths.iter().all(|&w| (bits..=bits + stuff).contains(&w)), "{n} bytes");
+            if n == 8 {
+                // (Below 8 bytes DLC starts with a 0 after RTR, IDE and r0,
+                // five dominant bits in a row: every such frame has a stuff
+                // bit.)
+                assert_eq!(lengths.iter().min(), Some(&bits), "{n} bytes");
+            }
+        }
         let w = Frame::data(0, &[0; 8]).wire_bits(true).len() as u32;
-        assert!(w <= 135 && w > 111 + 10, "{w}");
+        assert_eq!(w, 124);
+    }
+
+    #[test]
+    fn the_bus_load_counts_the_intermission_once() {
+        // can_rate_250k: 250 kbit/s, 8 bytes at 1000 frames/s: 132 bits of
+        // worst-case frame and 3 of intermission, 4 µs each, per millisecond.
+        let (s, cfg) = crate::registry::scenario_of::<BenchConfig>("can_rate_250k", "timing can", "a CAN").unwrap();
+        let report = timing_report(&cfg, &s.name, 8, 1000.0).unwrap();
+        assert!(report.contains("108 bits + up to 24 stuff bits = 132 bits = 528.0 µs"), "{report}");
+        assert!(report.contains("the bus is 54.0 % loaded"), "{report}");
     }
 }
