@@ -330,15 +330,77 @@ fn tbgen_crc_prints_the_seed_biss_example_and_its_wire_bits() {
 
 #[test]
 fn tbgen_refuses_unknown_names_with_status_2() {
-    for args in [
-        vec!["crc", "crc-99", "0101"],
-        vec!["crc", "biss-crc6", "01x1"],
-        vec!["gen", "no_such_scenario", "--out", "x"],
+    let dir = tempfile::tempdir().unwrap();
+    let folder = dir.path().to_str().unwrap();
+    let missing = dir.path().join("missing.vcd");
+    for (args, says) in [
+        (vec!["crc", "crc-99", "0101"], "no CRC algorithm `crc-99`"),
+        (vec!["crc", "biss-crc6", "01x1"], "bits `01x1`"),
+        (
+            vec!["gen", "no_such_scenario", "--out", "x"],
+            "no scenario `no_such_scenario`",
+        ),
+        (
+            vec!["list", "no_such_protocol"],
+            "list: no protocol `no_such_protocol`; give one of: ssi,",
+        ),
+        // A path that is a folder, or missing: bad input like the rest, in words.
+        (vec!["decode", "ssi", folder], "is a folder; give a file"),
+        (
+            vec!["decode", "ssi", missing.to_str().unwrap()],
+            "no such capture file",
+        ),
     ] {
         let out = tbgen().args(&args).output().unwrap();
-        assert_eq!(out.status.code(), Some(2), "{args:?}");
-        assert!(!String::from_utf8_lossy(&out.stderr).is_empty());
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(says), "{args:?}: {err}");
     }
+}
+
+#[test]
+fn tbgen_list_takes_a_protocol() {
+    let out = tbgen().args(["list", "endat"]).output().unwrap();
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(out.status.success());
+    assert!(text.lines().count() > 10, "{text}");
+    assert!(text.lines().all(|l| l.contains("endat_master")), "{text}");
+}
+
+#[test]
+fn a_scenario_without_a_name_is_told_where_the_name_goes() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("noname.toml");
+    let text = fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../scenarios/endat/pos22_ad_8mhz_100m.toml"
+    ))
+    .unwrap();
+    fs::write(
+        &file,
+        text.lines()
+            .filter(|l| !l.starts_with("name"))
+            .collect::<Vec<_>>()
+            .join("\n"),
+    )
+    .unwrap();
+    let out = tbgen()
+        .args(["gen", file.to_str().unwrap(), "--out"])
+        .arg(dir.path().join("out"))
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains(
+            "missing field `name`; add `name = \"my_scenario\"` above the protocol's table"
+        ),
+        "{err}"
+    );
+    assert!(
+        !err.contains("field `#"),
+        "the comment line is named as a field: {err}"
+    );
 }
 
 #[test]

@@ -199,6 +199,36 @@ fn emulator_entries(key: &str, list: &[Value]) -> Vec<Value> {
     out
 }
 
+/// Refuses an expected transcript of another protocol's core (a model
+/// transcript names its `core`), naming the command that reads it: a field
+/// by field comparison would blame the first field the two protocols do not
+/// share instead.
+fn same_protocol(protocol: &str, path: &Path, doc: &Value) -> Result<()> {
+    let (Some(entry), Some(core)) = (
+        registry::by_table(protocol),
+        doc.get("core").and_then(Value::as_str),
+    ) else {
+        return Ok(());
+    };
+    if entry.core == core {
+        return Ok(());
+    }
+    let theirs: Vec<&str> = crate::PROTOCOLS
+        .iter()
+        .filter(|e| e.core == core)
+        .map(|e| e.table)
+        .collect();
+    let fix = match theirs.first() {
+        Some(t) => format!("compare it with `tbgen check {t}`, or give a {protocol} transcript"),
+        None => format!("give a {protocol} transcript"),
+    };
+    Err(Error::Decode(format!(
+        "{}: a transcript of {core}, not of {} (`{protocol}`); {fix}",
+        path.display(),
+        entry.core
+    )))
+}
+
 /// Reads a capture: a JSON transcript, or a VCD decoded by `protocol`'s decoder with `decoder_args`.
 fn capture(protocol: &str, path: &Path, decoder_args: &[String]) -> Result<Value> {
     let is_vcd = path
@@ -310,7 +340,9 @@ pub fn check(
             )));
         }
     }
-    let want = side(expect, read_json(expect)?)?;
+    let expected = read_json(expect)?;
+    same_protocol(protocol, expect, &expected)?;
+    let want = side(expect, expected)?;
     let got = side(capture_path, capture(protocol, capture_path, decoder_args)?)?;
     let fail = |text: String| Ok(Report { ok: false, text });
     for (k, (a, b)) in want.list.iter().zip(&got.list).enumerate() {
@@ -435,6 +467,19 @@ mod tests {
         );
         // The same capture in fs passes against the untouched transcript.
         assert!(check("biss", &json, &fs, &args(), None).unwrap().ok);
+    }
+
+    #[test]
+    fn a_transcript_of_another_protocol_is_refused_by_name() {
+        let dir = tempfile::tempdir().unwrap();
+        let (vcd, json) = decoded_seed(dir.path());
+        let e = check("endat", &json, &vcd, &[], None).unwrap_err();
+        let text = e.to_string();
+        assert!(
+            text.contains("a transcript of biss_master, not of endat_master (`endat`); compare it with `tbgen check biss`"),
+            "{text}"
+        );
+        assert_eq!(e.exit_code(), 2);
     }
 
     #[test]

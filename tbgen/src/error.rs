@@ -60,7 +60,7 @@ pub enum Error {
     #[error("{0}")]
     Fields(String),
     /// Reading or writing a file failed.
-    #[error("{path}: {source}")]
+    #[error("{path}: {}", io_cause(source))]
     Io {
         /// The file.
         path: PathBuf,
@@ -70,10 +70,12 @@ pub enum Error {
 }
 
 impl Error {
-    /// The process exit status for this error: 2 for bad input, 1 for the rest.
+    /// The process exit status for this error: 2 for bad input (a path the
+    /// user gave that is missing, a folder, or not readable included), 1
+    /// for the rest (a disk that is full, a device error).
     pub fn exit_code(&self) -> i32 {
         match self {
-            Error::Io { .. } => 1,
+            Error::Io { source, .. } if !names_bad_input(source) => 1,
             _ => 2,
         }
     }
@@ -89,3 +91,31 @@ impl Error {
 
 /// Result alias of `tbgen`.
 pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+/// True when the operating system's error says the path itself is wrong.
+fn names_bad_input(e: &std::io::Error) -> bool {
+    use std::io::ErrorKind as K;
+    matches!(
+        e.kind(),
+        K::NotFound
+            | K::IsADirectory
+            | K::NotADirectory
+            | K::PermissionDenied
+            | K::InvalidInput
+            | K::InvalidData
+    )
+}
+
+/// The operating system's error in words that say what to give instead.
+fn io_cause(e: &std::io::Error) -> String {
+    use std::io::ErrorKind as K;
+    match e.kind() {
+        K::NotFound => "no such file or folder".to_string(),
+        K::IsADirectory => "is a folder; give a file".to_string(),
+        K::NotADirectory => "a part of the path is a file, not a folder".to_string(),
+        K::PermissionDenied => {
+            "permission denied; give a path you can read (or write, for --out)".to_string()
+        }
+        _ => e.to_string(),
+    }
+}

@@ -39,9 +39,12 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// List the built-in scenarios.
-    #[command(after_help = "Example:\n  tbgen list")]
-    List,
+    /// List the built-in scenarios, of every protocol or of one.
+    #[command(after_help = "Examples:\n  tbgen list\n  tbgen list endat")]
+    List {
+        /// Only this protocol's (its table, as `tbgen protocols` names it).
+        protocol: Option<String>,
+    },
     /// Generate <name>.hex, .vcd, .json and .gtkw for scenarios.
     #[command(
         after_help = "Examples:\n  tbgen gen ssi_seed_12bit --out build/out\n  tbgen gen my_scenario.toml --out build/out\n  tbgen gen --all --out vectors        # every built-in, into vectors/<core>/"
@@ -161,8 +164,22 @@ fn main() -> ExitCode {
 
 fn run(command: Command) -> Result<(), Error> {
     match command {
-        Command::List => {
-            for s in builtin::all()? {
+        Command::List { protocol } => {
+            let all = builtin::all()?;
+            if let Some(p) = &protocol {
+                if !all.iter().any(|s| s.table() == p) {
+                    let mut tables: Vec<&str> = all.iter().map(|s| s.table()).collect();
+                    tables.dedup();
+                    return Err(Error::Decode(format!(
+                        "list: no protocol `{p}`; give one of: {}",
+                        tables.join(", ")
+                    )));
+                }
+            }
+            for s in all
+                .iter()
+                .filter(|s| protocol.as_deref().is_none_or(|p| s.table() == p))
+            {
                 outln!("{:<28} {:<12} {}", s.name, s.core(), s.description);
             }
         }

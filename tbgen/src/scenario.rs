@@ -71,6 +71,10 @@ impl Scenario {
                     message = format!("field `{field}`: {message}");
                 }
             }
+            // The top level's one required field: say where and how it goes.
+            if message == "missing field `name`" {
+                message.push_str("; add `name = \"my_scenario\"` above the protocol's table (it names the output files: lower-case letters, digits and `_`)");
+            }
             Error::ScenarioSyntax {
                 file: origin.into(),
                 line,
