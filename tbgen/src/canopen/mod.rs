@@ -4,6 +4,7 @@
 //! names, node guarding and heartbeat), `tbgen timing canopen` ([`timing`])
 //! and the electronic data sheet of the emulated encoder (`tbgen eds`, [`eds`]).
 
+mod closed_loop;
 pub mod decode;
 pub mod eds;
 pub mod timing;
@@ -57,6 +58,15 @@ impl Protocol for BenchConfig {
     const TRANSACTION_SIGNALS: TransactionSignals = (&["o_booted", "o_config_done", "o_sdo_abort", "o_node_lost", "o_pos_valid", "o_pos_timeout", "o_emcy_valid", "o_sync_sent"], "o_position", "position");
     const SIGROK_DECODER: Option<&'static str> = Some("can");
     const SIGROK_MINIMUM: (usize, usize) = (6, 300);
+
+    /// `canopen_master`'s loop: the core's parameters; `sar58k24_can`'s:
+    /// can_controller's bit timing and the SAR58K24 the harness commands.
+    fn closed_loop(name: &str, table: toml::Table, origin: &str) -> std::result::Result<crate::closed_loop::LoopParameters, String> {
+        match name {
+            "sar58k24_can" => closed_loop::sar58k24_can(table, origin),
+            _ => Ok(crate::closed_loop::LoopParameters { core: crate::closed_loop::core::<Self>(table, origin, &[])?, harness: Vec::new() }),
+        }
+    }
 
     /// The master's state by the RTL's names (`can_state` and
     /// `monitor_state` are can_controller's codes: `docs/timing/can.md`).

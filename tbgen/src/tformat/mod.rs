@@ -49,6 +49,12 @@ pub struct TimingArgs {
 impl Protocol for BenchConfig {
     const TRANSACTION_SIGNALS: TransactionSignals = (&["o_done"], "o_abs", "abs");
 
+    /// The emulator's `motion` is no field of the host.
+    fn closed_loop(name: &str, table: toml::Table, origin: &str) -> std::result::Result<crate::closed_loop::LoopParameters, String> {
+        let _ = name;
+        Ok(crate::closed_loop::LoopParameters { core: crate::closed_loop::core::<Self>(table, origin, &["motion"])?, harness: Vec::new() })
+    }
+
     /// The state register's values by the model's [`model::tformat::State`] (the RTL's state names).
     fn wave_names() -> WaveNames {
         use model::tformat::State as S;
