@@ -18,50 +18,36 @@ pub struct Kind {
     pub monitor: Open,
 }
 
-/// `kind!(module, Emulator type, Monitor type)`: one line of [`KINDS`].
+/// `kind!(module::Emulator, monitor module::Monitor)`: one line of
+/// [`KINDS`]; the emulator's module is the model's (`sar58k24`), whose
+/// descriptor names the kinds.
 macro_rules! kind {
-    ($module:ident, $emulator:ty, $monitor:ty) => {
+    ($module:ident :: $emulator:ident, $monitor_module:ident :: $monitor:ident) => {
         Kind {
             protocol: &model::$module::descriptor::PROTOCOL,
-            emulator: |t, o, f| Ok(Box::new(<$emulator>::from_toml(t, o, f)?)),
-            monitor: |t, o, f| Ok(Box::new(<$monitor>::from_toml(t, o, f)?)),
+            emulator: |t, o, f| Ok(Box::new(crate::$module::$emulator::from_toml(t, o, f)?)),
+            monitor: |t, o, f| {
+                Ok(Box::new(monitor::$monitor_module::$monitor::from_toml(
+                    t, o, f,
+                )?))
+            },
         }
     };
 }
 
 /// Every protocol with an emulator, in the model's listing order.
 pub static KINDS: &[Kind] = &[
-    kind!(ssi, crate::ssi::SsiEmulator, monitor::ssi::SsiMonitor),
-    kind!(
-        tformat,
-        crate::tformat::TformatEmulator,
-        monitor::tformat::TformatMonitor
-    ),
-    kind!(biss, crate::biss::BissEmulator, monitor::biss::BissMonitor),
-    kind!(
-        endat,
-        crate::endat::EndatEmulator,
-        monitor::endat::EndatMonitor
-    ),
-    kind!(esl, crate::esl::EslEmulator, monitor::esl::EslMonitor),
-    kind!(
-        sar58k24,
-        crate::sar58k24::SarEmulator,
-        monitor::sar::SarMonitor
-    ),
-    kind!(
-        modbus,
-        crate::modbus::ModbusEmulator,
-        monitor::modbus::ModbusMonitor
-    ),
-    kind!(can, crate::can::CanEmulator, monitor::can::CanMonitor),
+    kind!(ssi::SsiEmulator, ssi::SsiMonitor),
+    kind!(tformat::TformatEmulator, tformat::TformatMonitor),
+    kind!(biss::BissEmulator, biss::BissMonitor),
+    kind!(endat::EndatEmulator, endat::EndatMonitor),
+    kind!(esl::EslEmulator, esl::EslMonitor),
+    kind!(sar58k24::SarEmulator, sar::SarMonitor),
+    kind!(modbus::ModbusEmulator, modbus::ModbusMonitor),
+    kind!(can::CanEmulator, can::CanMonitor),
     // Its alias `sar58k24_can`: the SAR58K24 in CAN mode shares the CANopen
     // bus and its [canopen] table ([[canopen.sar]]).
-    kind!(
-        canopen,
-        crate::canopen::CanopenEmulator,
-        monitor::canopen::CanopenMonitor
-    ),
+    kind!(canopen::CanopenEmulator, canopen::CanopenMonitor),
 ];
 
 /// The emulator kind and its aliases of `k`.
