@@ -96,12 +96,11 @@ stage() {
 
 # The stages either lane may run: each lane, when its own stages are done,
 # takes the first one in this order that nobody took yet and that can start
-# (cosim, clippy, wavedrom, vectors and cocotb need lane 1's build: wavedrom
-# reads the diagrams from tbgen protocols), waiting only when none can.
+# (cosim, clippy, vectors and cocotb need lane 1's build), waiting only when none can.
 # The closed loops come first: the longest, they then run beside the cargo
 # tests, and the short checks fill both lanes' ends.
 shared_stages=(cosim gtkw clippy fusesoc wavedrom vectors cocotb fmt)
-needs_build=" cosim clippy wavedrom vectors cocotb "
+needs_build=" cosim clippy vectors cocotb "
 # after_build NAME COMMAND...: stage NAME once lane 1's build is done (tbgen,
 # the emulator library, the Python module), or a failed NAME if it failed.
 after_build() {
@@ -118,7 +117,7 @@ run_shared() {
     gtkw) stage gtkw scripts/check_gtkw.sh ;;
     clippy) after_build clippy scripts/clippy.sh ;;
     fusesoc) stage fusesoc scripts/check_fusesoc.sh ;;
-    wavedrom) after_build wavedrom .venv/bin/python scripts/timing_diagrams.py --check ;;
+    wavedrom) stage wavedrom .venv/bin/python scripts/timing_diagrams.py --check ;;
     vectors) after_build vectors scripts/check_vectors.sh ;;
     # Icarus on each core's cheapest configuration, Verilator on every
     # one (make soak: every configuration in Icarus too).

@@ -77,14 +77,6 @@ impl Protocol for BenchConfig {
     const SIGROK_DECODER: Option<&'static str> = Some("can");
     const SIGROK_MINIMUM: (usize, usize) = (17, 330);
 
-    /// The harness has one controller per emulated node (`NODES`).
-    fn closed_loop(name: &str, table: toml::Table, origin: &str) -> std::result::Result<crate::closed_loop::LoopParameters, String> {
-        let _ = name;
-        let nodes = table.get("nodes").and_then(|v| v.as_array()).map_or(0, |a| a.len());
-        let core = crate::closed_loop::core::<Self>(table, origin, &[])?;
-        Ok(crate::closed_loop::LoopParameters { core, harness: vec![("NODES".to_string(), nodes as u64)] })
-    }
-
     /// The controller's state (and the listen-only monitor's) by the RTL's
     /// `localparam` names, which keep the underscores (`CRC_DELIM`).
     fn wave_names() -> WaveNames {
@@ -176,5 +168,13 @@ impl Protocol for BenchConfig {
             annotation: "can=id:ext-id:dlc:data:crc-sequence:ack-slot",
             expected,
         })
+    }
+
+    /// The harness has one controller per emulated node (`NODES`).
+    fn closed_loop(name: &str, table: toml::Table, origin: &str) -> std::result::Result<crate::closed_loop::LoopParameters, String> {
+        let _ = name;
+        let nodes = table.get("nodes").and_then(|v| v.as_array()).map_or(0, |a| a.len());
+        let core = crate::closed_loop::core::<Self>(table, origin, &[])?;
+        Ok(crate::closed_loop::LoopParameters { core, harness: vec![("NODES".to_string(), nodes as u64)] })
     }
 }

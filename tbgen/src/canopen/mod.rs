@@ -59,15 +59,6 @@ impl Protocol for BenchConfig {
     const SIGROK_DECODER: Option<&'static str> = Some("can");
     const SIGROK_MINIMUM: (usize, usize) = (6, 300);
 
-    /// `canopen_master`'s loop: the core's parameters; `sar58k24_can`'s:
-    /// can_controller's bit timing and the SAR58K24 the harness commands.
-    fn closed_loop(name: &str, table: toml::Table, origin: &str) -> std::result::Result<crate::closed_loop::LoopParameters, String> {
-        match name {
-            "sar58k24_can" => closed_loop::sar58k24_can(table, origin),
-            _ => Ok(crate::closed_loop::LoopParameters { core: crate::closed_loop::core::<Self>(table, origin, &[])?, harness: Vec::new() }),
-        }
-    }
-
     /// The master's state by the RTL's names (`can_state` and
     /// `monitor_state` are can_controller's codes: `docs/timing/can.md`).
     fn wave_names() -> WaveNames {
@@ -131,6 +122,15 @@ impl Protocol for BenchConfig {
             }
         }
         Some(SigrokCheck { decoder, annotation: "can=id:ext-id:dlc:data:crc-sequence:ack-slot", expected })
+    }
+
+    /// `canopen_master`'s loop: the core's parameters; `sar58k24_can`'s:
+    /// can_controller's bit timing and the SAR58K24 the harness commands.
+    fn closed_loop(name: &str, table: toml::Table, origin: &str) -> std::result::Result<crate::closed_loop::LoopParameters, String> {
+        match name {
+            "sar58k24_can" => closed_loop::sar58k24_can(table, origin),
+            _ => Ok(crate::closed_loop::LoopParameters { core: crate::closed_loop::core::<Self>(table, origin, &[])?, harness: Vec::new() }),
+        }
     }
 }
 

@@ -53,12 +53,6 @@ pub struct TimingArgs {
 impl Protocol for BenchConfig {
     const TRANSACTION_SIGNALS: TransactionSignals = (&["o_done", "o_meas_done"], "o_position", "position");
 
-    /// The emulator's `motion` is no field of the master.
-    fn closed_loop(name: &str, table: toml::Table, origin: &str) -> std::result::Result<crate::closed_loop::LoopParameters, String> {
-        let _ = name;
-        Ok(crate::closed_loop::LoopParameters { core: crate::closed_loop::core::<Self>(table, origin, &["motion"])?, harness: Vec::new() })
-    }
-
     /// The state register's values by the model's [`model::endat::State`] (the RTL's state names).
     fn wave_names() -> WaveNames {
         use model::endat::State as S;
@@ -89,5 +83,11 @@ impl Protocol for BenchConfig {
         let TimingArgs { scenario, command, ads, diagram } = registry::parse_args(args)?;
         let s = builtin::resolve(&scenario)?;
         timing::report(&s, &command, ads, diagram)
+    }
+
+    /// The emulator's `motion` is no field of the master.
+    fn closed_loop(name: &str, table: toml::Table, origin: &str) -> std::result::Result<crate::closed_loop::LoopParameters, String> {
+        let _ = name;
+        Ok(crate::closed_loop::LoopParameters { core: crate::closed_loop::core::<Self>(table, origin, &["motion"])?, harness: Vec::new() })
     }
 }

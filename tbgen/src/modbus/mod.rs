@@ -94,14 +94,6 @@ impl Protocol for BenchConfig {
     const SIGROK_DECODER: Option<&'static str> = Some("uart");
     const SIGROK_MINIMUM: (usize, usize) = (2, 100);
 
-    /// The harness reads the first operation's station and register count.
-    fn closed_loop(name: &str, table: toml::Table, origin: &str) -> std::result::Result<crate::closed_loop::LoopParameters, String> {
-        let _ = name;
-        let harness = crate::closed_loop::first_op(&table, &[("address", "ADDRESS", 1), ("count", "COUNT", 1)]);
-        let core = crate::closed_loop::core::<Self>(table, origin, &[])?;
-        Ok(crate::closed_loop::LoopParameters { core, harness })
-    }
-
     fn wave_names() -> WaveNames {
         use model::modbus::State as S;
         vec![("state", crate::registry::enum_names(&[S::Idle, S::Silence, S::Send, S::Wait, S::Recv], |s| s as u64))]
@@ -144,5 +136,13 @@ impl Protocol for BenchConfig {
             annotation: "uart=rx-data",
             expected: crate::transcript::wire_bytes(transcript)?.into_iter().map(|b| Some(b as u128)).collect(),
         })
+    }
+
+    /// The harness reads the first operation's station and register count.
+    fn closed_loop(name: &str, table: toml::Table, origin: &str) -> std::result::Result<crate::closed_loop::LoopParameters, String> {
+        let _ = name;
+        let harness = crate::closed_loop::first_op(&table, &[("address", "ADDRESS", 1), ("count", "COUNT", 1)]);
+        let core = crate::closed_loop::core::<Self>(table, origin, &[])?;
+        Ok(crate::closed_loop::LoopParameters { core, harness })
     }
 }

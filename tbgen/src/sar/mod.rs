@@ -107,14 +107,6 @@ impl Protocol for BenchConfig {
     const SIGROK_DECODER: Option<&'static str> = Some("uart");
     const SIGROK_MINIMUM: (usize, usize) = (4, 100);
 
-    /// The harness polls the first operation's station.
-    fn closed_loop(name: &str, table: toml::Table, origin: &str) -> std::result::Result<crate::closed_loop::LoopParameters, String> {
-        let _ = name;
-        let harness = crate::closed_loop::first_op(&table, &[("address", "ADDRESS", 1)]);
-        let core = crate::closed_loop::core::<Self>(table, origin, &[])?;
-        Ok(crate::closed_loop::LoopParameters { core, harness })
-    }
-
     fn wave_names() -> WaveNames {
         use model::sar58k24::State as S;
         vec![("state", crate::registry::enum_names(&[S::Idle, S::Trigger, S::Clr, S::Send, S::Wait], |s| s as u64))]
@@ -159,6 +151,14 @@ impl Protocol for BenchConfig {
             annotation: "uart=rx-data",
             expected: crate::transcript::wire_bytes(transcript)?.into_iter().map(|b| Some(b as u128)).collect(),
         })
+    }
+
+    /// The harness polls the first operation's station.
+    fn closed_loop(name: &str, table: toml::Table, origin: &str) -> std::result::Result<crate::closed_loop::LoopParameters, String> {
+        let _ = name;
+        let harness = crate::closed_loop::first_op(&table, &[("address", "ADDRESS", 1)]);
+        let core = crate::closed_loop::core::<Self>(table, origin, &[])?;
+        Ok(crate::closed_loop::LoopParameters { core, harness })
     }
 }
 

@@ -49,12 +49,6 @@ pub struct TimingArgs {
 impl Protocol for BenchConfig {
     const TRANSACTION_SIGNALS: TransactionSignals = (&["o_done"], "o_abs", "abs");
 
-    /// The emulator's `motion` is no field of the host.
-    fn closed_loop(name: &str, table: toml::Table, origin: &str) -> std::result::Result<crate::closed_loop::LoopParameters, String> {
-        let _ = name;
-        Ok(crate::closed_loop::LoopParameters { core: crate::closed_loop::core::<Self>(table, origin, &["motion"])?, harness: Vec::new() })
-    }
-
     /// The state register's values by the model's [`model::tformat::State`] (the RTL's state names).
     fn wave_names() -> WaveNames {
         use model::tformat::State as S;
@@ -92,5 +86,11 @@ impl Protocol for BenchConfig {
     /// in order, every character the transcript says was on the wire.
     fn sigrok(&self, transcript: &serde_json::Value) -> Option<SigrokCheck> {
         crate::transcript::sigrok_wire_bytes(transcript, self.baud)
+    }
+
+    /// The emulator's `motion` is no field of the host.
+    fn closed_loop(name: &str, table: toml::Table, origin: &str) -> std::result::Result<crate::closed_loop::LoopParameters, String> {
+        let _ = name;
+        Ok(crate::closed_loop::LoopParameters { core: crate::closed_loop::core::<Self>(table, origin, &["motion"])?, harness: Vec::new() })
     }
 }
