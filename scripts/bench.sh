@@ -30,10 +30,10 @@
 #               over the time to write it from samples held in memory, no
 #               model running (the file is byte for byte `tbgen gen`'s)
 #
-# Part 2, closed loop (scripts/cosim.sh): one row per core with a closed-loop
-# testbench (hdl/tb_cosim/<core>/tb_cosim_<core>.v), on its seed_*.toml
+# Part 2, closed loop (scripts/cosim.sh): one row per closed loop of the
+# descriptors (hdl/tb_cosim/<core>/tb_cosim_<core>.v), on its seed_*.toml
 # configuration (else the first one); Icarus runs N transactions, Verilator
-# 10 N (the core's N is in the table below: each run takes seconds):
+# 10 N (N: the loop's bench_transactions in its descriptor; each run takes seconds):
 #   config      the configuration file
 #   V trans/s   transactions (reads, frames, operations, PDOs) per second
 #               in Verilator: transactions / wall time of the run
@@ -78,12 +78,14 @@ started=$(now)
 build_s=0
 timed_build() { local t0; t0=$(now); "$@"; build_s=$(calc "$build_s + $(now) - $t0"); }
 
-# Closed-loop transactions per core in Icarus (Verilator runs 10 times as
-# many): about 100 000 cycles of the core's bench configuration.
-declare -A cosim_n=(
-    [ssi_master]=50 [biss_master]=60 [endat_master]=100 [tformat_host]=100 [esl_host]=50
-    [sar_async_host]=40 [modbus_master]=30 [can_controller]=25 [canopen_master]=25
-)
+# The closed loops and each one's transactions in Icarus (Verilator runs 10
+# times as many): about 100 000 cycles of the core's bench configuration
+# (its descriptor's bench_transactions, tbgen protocols).
+# shellcheck source=scripts/protocols.sh
+. "$root/scripts/protocols.sh"
+loops=$(closed_loops)
+declare -A cosim_n=()
+while read -r name _ _ _ _ _ n; do cosim_n[$name]=$n; done <<< "$loops"
 
 # The Verilator replay rate of each core's bench row (for cl/replay).
 declare -A replay_rate=()
@@ -141,11 +143,7 @@ if want cosim; then
         "$root/scripts/cosim.sh" "$@" > "$log" 2>&1 || { echo "bench: closed loop failed: $* (see $log)" >&2; exit 1; }
         sed -n 's/^cosim: .*\.toml: \([0-9]*\) transactions, \([0-9]*\) cycles in \([0-9.]*\) s.*/\1 \2 \3/p' "$log" | head -n 1
     }
-    cores=()
-    for dir in "$root"/hdl/tb_cosim/*/; do
-        core=$(basename "$dir")
-        [ -f "$dir/tb_cosim_$core.v" ] && cores+=("$core")
-    done
+    read -ra cores <<< "$(cut -d' ' -f1 <<< "$loops" | paste -sd' ')"
     declare -A cfg_of=()
     for core in "${cores[@]}"; do
         cfg=$( (ls "$root"/hdl/tb_cosim/"$core"/configs/seed_*.toml 2> /dev/null || true) | head -n 1)
@@ -158,7 +156,7 @@ if want cosim; then
     echo "Part 2: closed loop (scripts/cosim.sh; Icarus N transactions, Verilator 10 N)"
     printf '%-15s %-28s %5s %9s %10s %9s %10s %9s\n' core config N "V trans/s" "V c/s" "I trans/s" "I c/s" cl/replay
     for core in "${cores[@]}"; do
-        n=${cosim_n[$core]:-20}
+        n=${cosim_n[$core]}
         read -r vt vc vs < <(cosim_run "$out/cosim.$core.verilator.log" "$core" verilator --config "${cfg_of[$core]}" --transactions $((10 * n)))
         read -r it ic is < <(cosim_run "$out/cosim.$core.icarus.log" "$core" icarus --config "${cfg_of[$core]}" --transactions "$n")
         vrate=$(calc "$vc / $vs")

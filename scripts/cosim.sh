@@ -35,22 +35,6 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 # same build in any clone is one ccache entry (verilator_ccache.sh).
 # shellcheck source=scripts/verilator_ccache.sh
 . "$root/scripts/verilator_ccache.sh"
-plusarg=""
-case "$core" in
-ssi_master) proto=ssi emu=ssi_encoder_emu ;;
-biss_master) proto=biss emu=biss_slave_emu ;;
-sar_async_host) proto=sar emu=sar58k24_encoder_emu plusarg=sar58k24 ;;
-modbus_master) proto=modbus emu=modbus_device_emu ;;
-can_controller) proto=can emu=can_node_emu ;;
-canopen_master) proto=canopen emu=canopen_encoder_emu ;;
-# Not a core of its own: can_controller and the testbench's command sequencer
-# read a SAR58K24 in CAN mode ([[canopen.sar]]) through the CANopen wrapper.
-sar58k24_can) proto=sar_can emu=canopen_encoder_emu plusarg=canopen ;;
-endat_master) proto=endat emu=endat_encoder_emu ;;
-tformat_host) proto=tformat emu=tformat_encoder_emu ;;
-esl_host) proto=esl emu=esl_encoder_emu ;;
-*) echo "cosim.sh: no closed-loop testbench for core '$core' (ssi_master, biss_master, endat_master, tformat_host, esl_host, sar_async_host, modbus_master, can_controller, canopen_master, sar58k24_can)" >&2; exit 2 ;;
-esac
 case "$sim" in icarus|verilator) ;; *) usage ;; esac
 tb="$root/hdl/tb_cosim/$core/tb_cosim_$core.v"
 if [ -n "$config" ]; then configs=("$config"); else configs=("$root"/hdl/tb_cosim/"$core"/configs/*.toml); fi
@@ -58,6 +42,13 @@ if [ -n "$config" ]; then configs=("$config"); else configs=("$root"/hdl/tb_cosi
 # The library, its VPI module and the parameter tool.
 eval "$("$root/scripts/emu_lib.sh")"
 params_tool="$EMU_LIB_DIR/cosim-params"
+# The loop's emulator (its kind names the wrapper's plusarg) from the
+# descriptors (tbgen protocols).
+# shellcheck source=scripts/protocols.sh
+. "$root/scripts/protocols.sh"
+loops=$(closed_loops)
+read -r _ _ _ kind emu _ < <(awk -v c="$core" '$1 == c' <<< "$loops") || {
+    echo "cosim.sh: no closed-loop testbench for core '$core' ($(cut -d' ' -f1 <<< "$loops" | paste -sd' '))" >&2; exit 2; }
 # The simulators load the library emu_lib.sh just built: under `cargo test`,
 # LD_LIBRARY_PATH names target/debug first, where an older libcosim.so may
 # lie (it would win over the Verilator binary's rpath and Icarus's search).
@@ -72,7 +63,7 @@ per=$(( (transactions + ${#configs[@]} - 1) / ${#configs[@]} ))
 rtl=("$root"/hdl/rtl/*.v)
 status=0 total=0
 for cfg in "${configs[@]}"; do
-    params=$("$params_tool" "$proto" "$cfg") || { status=1; continue; }
+    params=$("$params_tool" "$core" "$cfg") || { status=1; continue; }
     f_sys_hz=$(sed -n 's/^F_SYS_HZ=//p' <<< "$params")
     half_fs=$(( 500000000000000 / f_sys_hz ))
     key=$(printf '%s\n' "$params" "${vflags[@]}" | cat - "$tb" "$root/hdl/emu/$emu.v" "$root"/hdl/emu/*.vh "$root"/hdl/emu/*_monitor.v "${rtl[@]}" | sha1sum | cut -c1-12)
@@ -80,7 +71,7 @@ for cfg in "${configs[@]}"; do
     mkdir -p "$build"
     exec 9> "$build/.lock"
     flock 9
-    plusargs=("+${plusarg:-$proto}_emu_config=$cfg" "+transactions=$per" "+seed=$seed")
+    plusargs=("+${kind}_emu_config=$cfg" "+transactions=$per" "+seed=$seed")
     [ -n "$flip" ] && plusargs+=("+flip_bit=$flip")
     [ -n "$transcript" ] && plusargs+=("+transcript=$transcript")
     case "$sim" in

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# cosim_regress.sh: every core that has a closed-loop testbench
-# (hdl/tb_cosim/<core>/tb_cosim_<core>.v) run against its encoder emulator,
-# in each simulator, N transactions per core and simulator.
+# cosim_regress.sh: every closed loop of the protocol descriptors (`tbgen
+# protocols`: hdl/tb_cosim/<core>/tb_cosim_<core>.v, a core against its
+# encoder emulator), in each simulator, N transactions per core and simulator.
 #
 #   scripts/cosim_regress.sh [--transactions N] [--sim icarus|verilator] [--seed S]
 #                            [--quick] [--jobs J] [--core CORE]
@@ -9,8 +9,8 @@
 # Without --quick the N transactions of a core are split evenly over every
 # configuration in hdl/tb_cosim/<core>/configs/. With --quick (`make test`)
 # Verilator still runs every configuration, but Icarus runs all N on the
-# core's cheapest configuration (the table below: fewest Icarus seconds
-# per transaction, measured), so that Icarus spends its time on
+# core's cheapest configuration (its descriptor's `quick`: fewest Icarus
+# seconds per transaction, measured), so that Icarus spends its time on
 # transactions rather than on long cables, slow clocks and long idle gaps;
 # `make soak` runs every configuration in Icarus.
 # --jobs J runs J (core, simulator) pairs at once (default 1).
@@ -36,41 +36,14 @@ while [ $# -gt 0 ]; do
 done
 [[ "$jobs" =~ ^[1-9][0-9]*$ ]] || { echo "cosim_regress: --jobs takes a whole number of at least 1, not '$jobs'" >&2; exit 2; }
 
-# --quick: each core's cheapest configuration in Icarus. Icarus seconds per
-# transaction (60 transactions on each configuration, start-up included,
-# 2-core machine loaded about 3, after the cores' counters moved out of
-# their state machines' always @* blocks), the chosen one first:
-#   biss_master     chain_2500khz_100m 0.026, seed_10mhz_10m 0.021, wide_1mhz_50m 0.031
-#                   (the chain is kept: two slaves over 100 m, 0.005 s dearer)
-#   can_controller  one_node_500k_10tq 0.021, one_node_125k 0.045, two_nodes_1000k 0.053
-#   canopen_master  cyclic_250k_10tq 0.057, cyclic_250k 0.072, sync_1000k 0.081
-#   endat_master    pos22_1mhz_20m 0.018, pos22_500khz_50m 0.031, pos22_4mhz_100m_short 0.063
-#   esl_host        readout_0m 0.032, readout_50m_fast 0.032, readout_100m_slow 0.053
-#   modbus_master   read16_31250_8_clocks 0.023, read16_31250_fixed_t35 0.040, read32_15625_even_100m 0.052
-#                   (measured later, unloaded, after the register banks: docs/rtl.md)
-#   sar58k24_can    factory_250k_10tq 0.075, factory_250k 0.090, mixed_500k 0.087, node7f_1000k 0.102
-#                   (the three 10tq configurations, ten clock cycles per CAN bit, and
-#                   the rows they were set against re-measured on 300 transactions,
-#                   unloaded, 2026-11-24; their gain is smaller than their 1.6x to 3.2x
-#                   fewer cycles, since the emulator's work is per bit, not per cycle)
-#   sar_async_host  handshake_gray_31250_100m 0.013, bus_32bit_15625_10m 0.019, timed_16bit_115200 0.053
-#   ssi_master      fast_1mhz_50m 0.006, gray_100khz_100m 0.008, seed_250khz_10m 0.014
-#   tformat_host    readout_50m_fast 0.013, readout_0m 0.013, readout_100m_slow 0.023
-# A core not in the table (a new closed loop) runs every configuration.
-quick_config() {
-    case "$1" in
-    biss_master) echo chain_2500khz_100m ;;
-    can_controller) echo one_node_500k_10tq ;;
-    canopen_master) echo cyclic_250k_10tq ;;
-    endat_master) echo pos22_1mhz_20m ;;
-    esl_host) echo readout_0m ;;
-    modbus_master) echo read16_31250_8_clocks ;;
-    sar58k24_can) echo factory_250k_10tq ;;
-    sar_async_host) echo handshake_gray_31250_100m ;;
-    ssi_master) echo fast_1mhz_50m ;;
-    tformat_host) echo readout_50m_fast ;;
-    esac
-}
+# The closed loops and each one's --quick Icarus configuration (the fewest
+# Icarus seconds per transaction, measured: the figures are beside each
+# `quick` in model/src/<protocol>/descriptor.rs), from the descriptors.
+"$root/scripts/emu_lib.sh" > /dev/null
+# shellcheck source=scripts/protocols.sh
+. "$root/scripts/protocols.sh"
+loops=$(closed_loops)
+quick_config() { awk -v c="$1" '$1 == c { print $6 }' <<< "$loops"; }
 
 mkdir -p "$root/build/logs"
 results=$(mktemp -d)
@@ -105,9 +78,7 @@ run() {
 # Icarus runs first (the long ones), so that no long run starts last.
 running=0
 for sim in "${sims[@]}"; do
-    for dir in "$root"/hdl/tb_cosim/*/; do
-        core=$(basename "$dir")
-        [ -f "$dir/tb_cosim_$core.v" ] || continue
+    for core in $(cut -d' ' -f1 <<< "$loops"); do
         [ -z "$only" ] || [ "$only" = "$core" ] || continue
         if [ "$running" -ge "$jobs" ]; then
             wait -n || true
@@ -120,7 +91,7 @@ done
 wait || true
 passed=$(find "$results" -name 'pass.*' | wc -l)
 failed=$(find "$results" -name 'fail.*' | wc -l)
-[ $((passed + failed)) -gt 0 ] || { echo "cosim_regress: no closed-loop testbench found in hdl/tb_cosim/" >&2; exit 2; }
+[ $((passed + failed)) -gt 0 ] || { echo "cosim_regress: no closed loop${only:+ named '$only'} (tbgen protocols lists them)" >&2; exit 2; }
 echo "cosim: the 10 slowest configurations (wall seconds of the run alone):"
 for f in "$results"/*; do
     read -r _ sim core < "$f"

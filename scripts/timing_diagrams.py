@@ -19,31 +19,28 @@ link the SVGs.
 import argparse
 import filecmp
 import json
+import os
 import pathlib
+import subprocess
 import sys
 import tempfile
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 
-# (file stem, core, scenario, title with the seed document and section it follows)
-DIAGRAMS = [
-    ("ssi_read", "ssi_master", "ssi_seed_12bit",
-     "SSI: one 12-bit read, 495 (SAR58K24 user's manual, Synchronous serial, SSI (4))"),
-    ("biss_frame", "biss_master", "biss_seed_16bit",
-     "BiSS-C: one 16-bit frame (SAR58K24 user's manual, Synchronous serial, BiSS-C)"),
-    ("endat_position", "endat_master", "endat_pos21_1mhz",
-     "EnDat 2.1: position request and answer (HEIDENHAIN EnDat 2.2 D297403, position values)"),
-    ("tformat_request", "tformat_host", "tformat_readout_all_ids",
-     "T-format: Data ID 0 request and answer (Tamagawa Smart Abs TS5669 N127, communication)"),
-    ("esl_request", "esl_host", "esl_readout_all_ids",
-     "ESL: a request and its answer (QS35-M40M-E12F, ESL Safety serial protocol)"),
-    ("sar_timed", "sar_async_host", "sar_seed_timed_14bit",
-     "SAR58K24 asynchronous: one timed frame (SAR58K24 user's manual, 3.1.1 to 3.3.4)"),
-    ("modbus_read", "modbus_master", "modbus_seed_19200",
-     "Modbus RTU: function 03 request and answer (SAR58K24 user's manual, 3.1.7)"),
-    ("can_frame", "can_controller", "can_rate_250k",
-     "CAN 2.0: one data frame (Bosch CAN 2.0 / ISO 11898-1; SAR58K24 CAN mode)"),
-]
+
+
+def diagrams():
+    """(file stem, core, scenario, title with the seed document and section
+    it follows) of every protocol with a diagram, from the descriptors
+    (`tbgen protocols --json`)."""
+    target = pathlib.Path(os.environ.get("CARGO_TARGET_DIR", ROOT / "target"))
+    tbgen = target / "release" / "tbgen"
+    if not tbgen.is_file():
+        raise SystemExit(f"timing_diagrams: no {tbgen}: build it first (make build)")
+    out = subprocess.run([str(tbgen), "protocols", "--json"], check=True, capture_output=True, text=True).stdout
+    return [(p["diagram"]["file"], p["core"], p["diagram"]["scenario"], p["diagram"]["title"])
+            for p in json.loads(out) if p["diagram"]]
+
 
 MAX_STEPS = 400
 
@@ -139,12 +136,13 @@ def generate(out):
              "`vectors/<core>/<scenario>.vcd`), rendered with WaveDrom (`wavedrom` in",
              "`python/requirements.txt`); `make test` checks they are current. Do not edit: change",
              "the model, regenerate the vectors, then run `.venv/bin/python scripts/timing_diagrams.py`.", ""]
-    for stem, core, scenario, title in DIAGRAMS:
+    all_diagrams = diagrams()
+    for stem, core, scenario, title in all_diagrams:
         index += [f"## {title}", "", f"Scenario `{scenario}`, core `{core}` ([WaveJSON]({stem}.json)).", "", f"![{title}]({stem}.svg)", ""]
     (out / "README.md").write_text("\n".join(index))
-    for stem, core, scenario, title in DIAGRAMS:
+    for stem, core, scenario, title in all_diagrams:
         if not (ROOT / "vectors" / core / f"{scenario}.vcd").is_file():
-            raise SystemExit(f"wavedrom: no vectors/{core}/{scenario}.vcd (rename it in scripts/timing_diagrams.py)")
+            raise SystemExit(f"wavedrom: no vectors/{core}/{scenario}.vcd (rename it in the protocol's descriptor, model/src/<protocol>/descriptor.rs)")
         d = diagram(core, scenario, title)
         text = json.dumps(d, indent=1) + "\n"
         (out / f"{stem}.json").write_text(text)
@@ -158,7 +156,7 @@ def main():
     args = ap.parse_args()
     if not args.check:
         generate(pathlib.Path(args.out))
-        print(f"wavedrom: {len(DIAGRAMS)} diagrams in {args.out}")
+        print(f"wavedrom: {len(diagrams())} diagrams in {args.out}")
         return
     with tempfile.TemporaryDirectory() as tmp:
         generate(pathlib.Path(tmp))
@@ -170,7 +168,7 @@ def main():
         if bad:
             print(f"wavedrom: docs/wavedrom/ is not what scripts/timing_diagrams.py draws from the vectors: {', '.join(sorted(set(bad)))}; run scripts/timing_diagrams.py and commit")
             sys.exit(1)
-        print(f"wavedrom: {len(DIAGRAMS)} diagrams current")
+        print(f"wavedrom: {len(diagrams())} diagrams current")
 
 
 if __name__ == "__main__":

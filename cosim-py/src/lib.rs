@@ -25,7 +25,8 @@
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
-/// An emulator of `kind` (`ssi`, `biss`, `endat`, `tformat`, `esl`, `sar58k24`, `modbus`, `can`) made
+/// An emulator of `kind` (an emulator's kind or alias in `tbgen protocols`:
+/// `ssi`, `sar58k24`; `<kind>_monitor` for its monitor) made
 /// from TOML text (`origin` names it in errors) on an emulator clock of
 /// `f_emu_hz`. Errors (bad tables, a clock too slow) raise ValueError with
 /// the file, the field and the fix.

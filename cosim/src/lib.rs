@@ -41,6 +41,7 @@ pub mod modbus;
 pub mod monitor;
 pub mod motion;
 pub mod pair;
+pub mod registry;
 pub mod sar58k24;
 pub mod ssi;
 pub mod tformat;
@@ -139,56 +140,13 @@ pub trait Emulator: Send {
 
 /// Makes an emulator of protocol `kind` from TOML text (`origin` names the
 /// text in errors, normally its file, and a field's error its line),
-/// clocked at `f_emu_hz`.
+/// clocked at `f_emu_hz`. The kinds are the descriptors' (`tbgen
+/// protocols`): an emulator's kind or alias, or either followed by
+/// `_monitor` for its monitor ([`registry`]).
 pub fn open(kind: &str, toml: &str, origin: &str, f_emu_hz: u64) -> Result<Box<dyn Emulator>> {
-    // The protocol table each kind reads its fields from.
-    let table = match kind.trim_end_matches("_monitor") {
-        "canopen" | "sar58k24_can" => "canopen",
-        "sar58k24" => "sar",
-        other => other,
-    };
-    open_unplaced(kind, toml, origin, f_emu_hz).map_err(|e| e.placed(toml, table))
-}
-
-fn open_unplaced(kind: &str, toml: &str, origin: &str, f_emu_hz: u64) -> Result<Box<dyn Emulator>> {
-    match kind {
-        "ssi" => Ok(Box::new(ssi::SsiEmulator::from_toml(
-            toml, origin, f_emu_hz,
-        )?)),
-        "biss" => Ok(Box::new(biss::BissEmulator::from_toml(
-            toml, origin, f_emu_hz,
-        )?)),
-        "can" => Ok(Box::new(can::CanEmulator::from_toml(
-            toml, origin, f_emu_hz,
-        )?)),
-        // The SAR58K24 CAN mode shares the CANopen bus and its [canopen] table ([[canopen.sar]]).
-        "canopen" | "sar58k24_can" => Ok(Box::new(canopen::CanopenEmulator::from_toml(
-            toml, origin, f_emu_hz,
-        )?)),
-        "modbus" => Ok(Box::new(modbus::ModbusEmulator::from_toml(
-            toml, origin, f_emu_hz,
-        )?)),
-        "sar58k24" | "sar" => Ok(Box::new(sar58k24::SarEmulator::from_toml(
-            toml, origin, f_emu_hz,
-        )?)),
-        "endat" => Ok(Box::new(endat::EndatEmulator::from_toml(
-            toml, origin, f_emu_hz,
-        )?)),
-        "tformat" => Ok(Box::new(tformat::TformatEmulator::from_toml(
-            toml, origin, f_emu_hz,
-        )?)),
-        "esl" => Ok(Box::new(esl::EslEmulator::from_toml(toml, origin, f_emu_hz)?)),
-        "ssi_monitor" => Ok(Box::new(monitor::ssi::SsiMonitor::from_toml(toml, origin, f_emu_hz)?)),
-        "biss_monitor" => Ok(Box::new(monitor::biss::BissMonitor::from_toml(toml, origin, f_emu_hz)?)),
-        "tformat_monitor" => Ok(Box::new(monitor::tformat::TformatMonitor::from_toml(toml, origin, f_emu_hz)?)),
-        "esl_monitor" => Ok(Box::new(monitor::esl::EslMonitor::from_toml(toml, origin, f_emu_hz)?)),
-        "endat_monitor" => Ok(Box::new(monitor::endat::EndatMonitor::from_toml(toml, origin, f_emu_hz)?)),
-        "sar58k24_monitor" => Ok(Box::new(monitor::sar::SarMonitor::from_toml(toml, origin, f_emu_hz)?)),
-        "modbus_monitor" => Ok(Box::new(monitor::modbus::ModbusMonitor::from_toml(toml, origin, f_emu_hz)?)),
-        "can_monitor" => Ok(Box::new(monitor::can::CanMonitor::from_toml(toml, origin, f_emu_hz)?)),
-        "canopen_monitor" | "sar58k24_can_monitor" => Ok(Box::new(monitor::canopen::CanopenMonitor::from_toml(toml, origin, f_emu_hz)?)),
-        other => Err(Error::Usage(format!(
-            "no emulator `{other}`; give one of: ssi, biss, endat, tformat, esl, sar58k24, modbus, can, canopen (DS 406 encoders and SAR58K24s in CAN mode; alias sar58k24_can), or a monitor: ssi_monitor, biss_monitor, endat_monitor, tformat_monitor, esl_monitor, sar58k24_monitor, modbus_monitor, can_monitor, canopen_monitor"
-        ))),
-    }
+    let (k, monitor) = registry::find(kind)
+        .ok_or_else(|| Error::Usage(format!("no emulator `{kind}`; {}", registry::choices())))?;
+    let make = if monitor { k.monitor } else { k.emulator };
+    // The protocol's table, which each kind reads its fields from.
+    make(toml, origin, f_emu_hz).map_err(|e| e.placed(toml, k.protocol.stem))
 }

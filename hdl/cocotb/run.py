@@ -6,11 +6,14 @@ run by the example's `make cocotb`).
     .venv/bin/python hdl/cocotb/run.py [proto ...]
     .venv/bin/python hdl/cocotb/run.py --dir DIR --top TOP --config FILE [NAME=VALUE ...]
 
-Each entry below names the test module, the core, the scenario file the
-emulator and the core's parameters come from (cosim-params), and the
-cosim-params protocol.
+The tests are the closed loops' cocotb tests of the protocol descriptors
+(`tbgen protocols --json`: each loop's `cocotb` names the test module
+test_<cocotb>.py and its scenario file configs/<cocotb>.toml; the loop's
+`top` is the core; cosim-params reads the core's and the harness's
+parameters for the loop from that file).
 Exit status 0 only when every test passed."""
 
+import json
 import os
 import subprocess
 import sys
@@ -21,17 +24,16 @@ from cocotb.runner import get_results, get_runner
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent.parent
 
-TESTS = [
-    ("ssi", "ssi_master", "ssi.toml", "ssi"),
-    ("biss", "biss_master", "biss.toml", "biss"),
-    ("sar58k24", "sar_async_host", "sar58k24.toml", "sar"),
-    ("modbus", "modbus_master", "modbus.toml", "modbus"),
-    ("can", "can_controller", "can.toml", "can"),
-    ("sar58k24_can", "can_controller", "sar58k24_can.toml", "sar_can"),
-    ("endat", "endat_master", "endat.toml", "endat"),
-    ("tformat", "tformat_host", "tformat.toml", "tformat"),
-    ("esl", "esl_host", "esl.toml", "esl"),
-]
+
+def tests(lib_dir):
+    """(test name, core, closed loop) of every closed loop with a cocotb test, from the descriptors."""
+    tbgen = Path(lib_dir) / "tbgen"
+    if not tbgen.is_file():
+        raise SystemExit(f"run.py: no {tbgen}: build it first (make build)")
+    out = subprocess.run([str(tbgen), "protocols", "--json"], check=True, capture_output=True, text=True).stdout
+    return [(loop["cocotb"], loop["top"], loop["name"])
+            for protocol in json.loads(out) for loop in protocol["closed_loops"] if loop["cocotb"]]
+
 
 def run_master(argv):
     """`--dir DIR --top TOP --config FILE [NAME=VALUE ...]`: the test module
@@ -73,27 +75,32 @@ def run_master(argv):
     return fails if total > 0 else 1
 
 
-def params(tool, proto, config):
-    out = subprocess.run([tool, proto, str(config)], check=True, capture_output=True, text=True).stdout
-    values = dict(line.split("=", 1) for line in out.split())
-    return values
+def params(tool, part, closed_loop, config):
+    """cosim-params --part PART: the core's or the harness's parameters of the loop, as {NAME: value}."""
+    out = subprocess.run([tool, "--part", part, closed_loop, str(config)], check=True, capture_output=True,
+                         text=True).stdout
+    return dict(line.split("=", 1) for line in out.split())
 
 
 def main(argv):
     if argv and argv[0].startswith("--"):
         return 1 if run_master(argv) else 0
-    chosen = set(argv) or {t[0] for t in TESTS}
     lib_dir = os.environ.get("EMU_LIB_DIR", str(ROOT / "target" / "release"))
+    all_tests = tests(lib_dir)
+    chosen = set(argv) or {t[0] for t in all_tests}
+    unknown = chosen - {t[0] for t in all_tests}
+    if unknown:
+        raise SystemExit(f"run.py: no cocotb test {', '.join(sorted(unknown))}; give {', '.join(t[0] for t in all_tests)}")
     tool = str(Path(lib_dir) / "cosim-params")
     rtl = sorted(str(p) for p in (ROOT / "hdl" / "rtl").glob("*.v"))
     failed = 0
-    for name, core, config, proto in TESTS:
+    for name, core, closed_loop in all_tests:
         if name not in chosen:
             continue
-        cfg = HERE / "configs" / config
-        values = params(tool, proto, cfg)
+        cfg = HERE / "configs" / f"{name}.toml"
+        values = params(tool, "core", closed_loop, cfg)
         f_sys = values.pop("F_SYS_HZ")
-        harness = {k: values.pop(k) for k in list(values) if k in ("ADDRESS", "COUNT", "NODES") or k.startswith("SAR_")}
+        harness = params(tool, "harness", closed_loop, cfg)
         build = ROOT / "build" / "cocotb" / name
         runner = get_runner("icarus")
         runner.build(verilog_sources=rtl, hdl_toplevel=core, parameters=values, build_dir=build, always=True)

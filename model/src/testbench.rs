@@ -120,10 +120,12 @@ macro_rules! compiled_here {
 pub trait Setup: Clone + std::fmt::Debug {
     /// The running set-up this configuration builds.
     type Bench: Testbench;
+    /// The protocol's descriptor (`model/src/<module>/descriptor.rs`).
+    const PROTOCOL: &'static crate::protocol::Protocol;
     /// The Verilog core the vectors drive (`ssi_master`).
-    const CORE: &'static str;
-    /// The scenario file's table for this protocol (`ssi`).
-    const TABLE: &'static str;
+    const CORE: &'static str = Self::PROTOCOL.core;
+    /// The scenario file's table for this protocol (`ssi`): its stem.
+    const TABLE: &'static str = Self::PROTOCOL.stem;
     /// Checks every field; the error names the field within the table.
     fn validate(&self) -> Result<()>;
     /// The system clock.

@@ -24,13 +24,16 @@
 //! what is only its own: the [`registry::Protocol`] implementation of its
 //! model's `BenchConfig` and, if it has them, its decoder (`tbgen decode
 //! <table>`) and cycle budget (`tbgen timing <table>`). The protocols are
-//! listed once, below, one line each (see [`registry`]).
+//! listed once, in the model (`model::with_protocols!`, see [`registry`]).
 
 pub mod bench;
 pub mod builtin;
 pub mod capture;
 pub mod check;
+pub mod closed_loop;
 pub mod crc_cmd;
+#[cfg(test)]
+mod descriptor_tests;
 pub mod error;
 pub mod fields;
 pub mod generate;
@@ -45,17 +48,8 @@ pub use tracefile::{vectors, wave};
 
 pub use error::{Error, Result};
 
-// The protocol registry: `table => SetupVariant(model configuration)`, in
-// listing order. Adding a protocol is one line here.
-registry::protocols! {
-    ssi     => Ssi(model::ssi::BenchConfig),
-    uart    => Uart(model::uart::BenchConfig),
-    tformat => Tformat(model::tformat::BenchConfig),
-    biss    => Biss(model::biss::BenchConfig),
-    endat   => Endat(model::endat::BenchConfig),
-    esl     => Esl(model::esl::BenchConfig),
-    sar     => Sar(model::sar58k24::BenchConfig),
-    modbus  => Modbus(model::modbus::BenchConfig),
-    can     => Can(model::can::BenchConfig),
-    canopen => Canopen(model::canopen::BenchConfig),
-}
+// The protocol registry: the model's list (`model::with_protocols!`),
+// `stem => Variant(model module)`, made into this crate's modules, `Setup`
+// and `PROTOCOLS` by `registry::protocols!`.
+use registry::protocols;
+model::with_protocols!(protocols);

@@ -122,9 +122,15 @@ enum Command {
         #[arg(long, conflicts_with = "protocol")]
         all: bool,
     },
-    /// List the registered protocols: table, core, decoder, budget, sigrok decoder.
-    #[command(after_help = "Example:\n  tbgen protocols")]
-    Protocols,
+    /// List the registered protocols: stem, core, emulator, closed loops,
+    /// decoder, budget, sigrok decoder; with --json every descriptor whole
+    /// (what the scripts read their lists from).
+    #[command(after_help = "Examples:\n  tbgen protocols\n  tbgen protocols --json")]
+    Protocols {
+        /// The descriptors as JSON: an array, one object per protocol.
+        #[arg(long)]
+        json: bool,
+    },
     /// Compare what a master did (a VCD of any timescale, or a transcript) with what was expected, transaction by transaction; exit 1 at the first difference.
     #[command(
         after_help = "Timing fields (index, *_ps, *_ns, *_us, cycles, delays) are left out: another latency or clock rate passes.\n\nExamples:\n  tbgen check biss --expect vectors/biss_master/biss_seed_16bit.json capture.vcd -- --bits 16 --ma tb.ma --slo tb.slo\n  tbgen check ssi --expect expected.json emulator_transcript.json --timeout-us 600"
@@ -243,7 +249,8 @@ fn run(command: Command) -> Result<(), Error> {
             Some(p) if !all => out!("{}", tbgen::fields::protocol(&p)?),
             _ => out!("{}", tbgen::fields::document()?),
         },
-        Command::Protocols => out!("{}", registry::table()),
+        Command::Protocols { json: false } => out!("{}", registry::table()),
+        Command::Protocols { json: true } => out!("{}", registry::json()),
         Command::Eds { kind, serial, out } => {
             let kind: model::canopen::EncoderKind =
                 serde_json::from_value(serde_json::Value::String(kind.clone())).map_err(|_| {

@@ -1,18 +1,19 @@
-//! The protocol registry: the one place a protocol is made known to `tbgen`.
+//! The protocol registry: what `tbgen` knows of each protocol.
 //!
-//! The list itself is the [`protocols!`] invocation in `lib.rs`, one line per
-//! protocol:
+//! The list itself is the model's (`model::with_protocols!`, beside the
+//! descriptors in `model::protocol`), one line per protocol:
 //!
 //! ```text
-//! ssi => Ssi(model::ssi::BenchConfig),
+//! ssi => Ssi(ssi),
 //! ```
 //!
-//! `ssi` is the scenario file's table (and the folder `tbgen/src/ssi/`,
-//! `scenarios/ssi/`), `Ssi` the variant of [`crate::Setup`], and the type
-//! the model's configuration, which implements [`model::Setup`] (in
-//! `model/src/ssi/`) and [`Protocol`] (in `tbgen/src/ssi/`). From that line
-//! the macro makes the module `tbgen::ssi`, the scenario file's optional
-//! table, the `Setup` variant and its dispatch, and the entry in
+//! `ssi` is the protocol's stem: the scenario file's table (and the folders
+//! `tbgen/src/ssi/`, `scenarios/ssi/`), `Ssi` the variant of
+//! [`crate::Setup`], and `ssi` the model's module, whose `BenchConfig`
+//! implements [`model::Setup`] (in `model/src/ssi/`) and [`Protocol`] (in
+//! `tbgen/src/ssi/`). From that line the macro [`protocols!`] makes the
+//! module `tbgen::ssi`, the scenario file's optional table, the `Setup`
+//! variant and its dispatch, and the entry in
 //! [`PROTOCOLS`](crate::PROTOCOLS) that `tbgen decode`, `tbgen timing`,
 //! `tbgen protocols` and the tests read.
 
@@ -24,7 +25,9 @@ use crate::{Error, Result};
 /// protocol's folder `tbgen/src/<table>/` on the model's `BenchConfig`.
 /// Everything has a default, so a new protocol starts with
 /// `impl Protocol for BenchConfig { const TRANSACTION_SIGNALS: ... }`.
-pub trait Protocol: model::Setup + serde::Serialize + 'static {
+pub trait Protocol:
+    model::Setup + serde::Serialize + serde::de::DeserializeOwned + 'static
+{
     /// The output pulses that end a transaction, the output holding its
     /// result, and the transcript field that must equal it (the whole-flow
     /// test reads the VCD with them).
@@ -64,6 +67,22 @@ pub trait Protocol: model::Setup + serde::Serialize + 'static {
             "timing {}: this protocol has no cycle budget yet",
             Self::TABLE
         )))
+    }
+
+    /// The Verilog parameters of closed loop `name` (one of the
+    /// descriptor's, `hdl/tb_cosim/<name>/`) from the protocol's `table` of
+    /// scenario file `origin` (without the emulator's `emulator`, `checks`
+    /// and `random`): by default the core's, as `tbgen gen` writes them.
+    fn closed_loop(
+        name: &str,
+        table: toml::Table,
+        origin: &str,
+    ) -> std::result::Result<crate::closed_loop::LoopParameters, String> {
+        let _ = name;
+        Ok(crate::closed_loop::LoopParameters {
+            core: crate::closed_loop::core::<Self>(table, origin, &[])?,
+            harness: Vec::new(),
+        })
     }
 
     /// The names of the values of enumerated signals of the waveform's
@@ -149,6 +168,8 @@ impl SigrokCheck {
 
 /// One registered protocol, as the generic code sees it.
 pub struct Entry {
+    /// The protocol's descriptor: every name the tree knows it by.
+    pub protocol: &'static model::protocol::Protocol,
     /// The scenario file's table, the folder names and the `decode`/`timing` subcommand.
     pub table: &'static str,
     /// The Verilog core (`hdl/rtl/<core>.v`, `hdl/tb/<core>/`, `vectors/<core>/`).
@@ -169,6 +190,12 @@ pub struct Entry {
     pub timing: fn(&ArgMatches) -> Result<String>,
     /// See [`Protocol::wave_names`].
     pub wave_names: fn() -> WaveNames,
+    /// See [`Protocol::closed_loop`].
+    pub closed_loop: fn(
+        &str,
+        toml::Table,
+        &str,
+    ) -> std::result::Result<crate::closed_loop::LoopParameters, String>,
     /// The configuration's type path (`model::ssi::bench::BenchConfig`): `tbgen fields` reads its struct.
     pub config_type: fn() -> &'static str,
 }
@@ -177,6 +204,7 @@ impl Entry {
     /// The entry of protocol `P`.
     pub const fn of<P: Protocol>() -> Entry {
         Entry {
+            protocol: P::PROTOCOL,
             table: P::TABLE,
             core: P::CORE,
             transaction_signals: P::TRANSACTION_SIGNALS,
@@ -187,6 +215,7 @@ impl Entry {
             timing_command: P::timing_command,
             timing: P::timing,
             wave_names: P::wave_names,
+            closed_loop: P::closed_loop,
             config_type: std::any::type_name::<P>,
         }
     }
@@ -292,16 +321,25 @@ tool_family!(
     "`tbgen timing <protocol>`: one cycle budget per protocol that has one."
 );
 
-/// One line per registered protocol, for `tbgen protocols` (and scripts):
-/// table, core, whether it has a decoder and a budget, its sigrok decoder.
+/// One line per registered protocol, for `tbgen protocols`: stem, core,
+/// emulator, closed loops, whether it has a decoder and a budget, its
+/// sigrok decoder.
 pub fn table() -> String {
     let mut out = String::new();
     for e in crate::PROTOCOLS {
         let yes = |b: bool| if b { "yes" } else { "no" };
+        let p = e.protocol;
+        let loops: Vec<&str> = p.closed_loops.iter().map(|l| l.name).collect();
         out += &format!(
-            "{:<10} {:<14} decode={:<3} timing={:<3} sigrok={}\n",
+            "{:<10} {:<14} emulator={:<9} loops={:<29} decode={:<3} timing={:<3} sigrok={}\n",
             e.table,
             e.core,
+            p.emulator.as_ref().map_or("none", |m| m.kind),
+            if loops.is_empty() {
+                "none".to_string()
+            } else {
+                loops.join(",")
+            },
             yes((e.decode_command)().is_some()),
             yes((e.timing_command)().is_some()),
             e.sigrok_decoder.unwrap_or("none")
@@ -310,10 +348,33 @@ pub fn table() -> String {
     out
 }
 
+/// `tbgen protocols --json`: every descriptor (`model::protocol::Protocol`)
+/// with what `tbgen` adds (`decode`, `timing`: whether `tbgen decode|timing
+/// <stem>` exists; `sigrok`: the sigrok decoder or null), one object per
+/// protocol in registry order. The scripts read their lists from it.
+pub fn json() -> String {
+    let all: Vec<serde_json::Value> = crate::PROTOCOLS
+        .iter()
+        .map(|e| {
+            let mut v = serde_json::to_value(e.protocol).expect("a descriptor is plain data");
+            let o = v.as_object_mut().expect("a descriptor is a struct");
+            o.insert("decode".into(), (e.decode_command)().is_some().into());
+            o.insert("timing".into(), (e.timing_command)().is_some().into());
+            o.insert("sigrok".into(), e.sigrok_decoder.into());
+            v
+        })
+        .collect();
+    serde_json::to_string_pretty(&all).expect("JSON of plain data")
+}
+
 /// Makes the protocol list: modules, `Setup`, the scenario file's tables and
-/// [`PROTOCOLS`](crate::PROTOCOLS). Invoked once, in `lib.rs`.
+/// [`PROTOCOLS`](crate::PROTOCOLS). Invoked once, in `lib.rs`, on the
+/// model's list.
 macro_rules! protocols {
-    ($($table:ident => $variant:ident($config:ty)),+ $(,)?) => {
+    ($($table:ident => $variant:ident($module:ident)),+ $(,)?) => {
+        $crate::registry::protocols!(@ $($table => $variant(model::$module::BenchConfig)),+);
+    };
+    (@ $($table:ident => $variant:ident($config:ty)),+) => {
         $(pub mod $table;)+
 
         /// The set-up a scenario describes, one variant per registered protocol.
@@ -376,6 +437,8 @@ macro_rules! protocols {
             #[test]
             fn each_registry_name_is_the_models_table() {
                 $(assert_eq!(stringify!($table), <$config as model::Setup>::TABLE);)+
+                let stems: Vec<&str> = model::protocol::PROTOCOLS.iter().map(|p| p.stem).collect();
+                assert_eq!(stems, [$(stringify!($table)),+]);
             }
         }
     };

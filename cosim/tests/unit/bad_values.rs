@@ -26,19 +26,20 @@ use toml::Value;
 mod sweep;
 use sweep::{awkward_values, caught, dotted, leaf_mut, numeric_leaves, quiet_panics, shown, Rng};
 
-/// The emulator kind of each closed-loop core; `<kind>_monitor` is its monitor.
-const KINDS: &[(&str, &str)] = &[
-    ("ssi_master", "ssi"),
-    ("biss_master", "biss"),
-    ("endat_master", "endat"),
-    ("tformat_host", "tformat"),
-    ("esl_host", "esl"),
-    ("sar_async_host", "sar58k24"),
-    ("modbus_master", "modbus"),
-    ("can_controller", "can"),
-    ("canopen_master", "canopen"),
-    ("sar58k24_can", "sar58k24_can"),
-];
+/// Each closed loop (`hdl/tb_cosim/<loop>/`) and its protocol's emulator
+/// kind, from the descriptors; `<kind>_monitor` is its monitor.
+fn kinds() -> Vec<(&'static str, &'static str)> {
+    model::protocol::closed_loops()
+        .map(|(p, l)| {
+            let e = p.emulator.as_ref();
+            (
+                l.name,
+                e.unwrap_or_else(|| panic!("{}: a closed loop without an emulator", l.name))
+                    .kind,
+            )
+        })
+        .collect()
+}
 
 /// `cycles` cycles of random pins (bits 0 to 3), each level held 1 to 300 cycles.
 fn random_pins(emu: &mut dyn Emulator, rng: &mut Rng, cycles: u64) {
@@ -145,7 +146,7 @@ impl Tally {
 fn configs() -> Vec<(String, &'static str, String)> {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../hdl/tb_cosim");
     let mut out = Vec::new();
-    for &(core, kind) in KINDS {
+    for (core, kind) in kinds() {
         let dir = root.join(core).join("configs");
         let mut files: Vec<_> = std::fs::read_dir(&dir)
             .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))

@@ -44,7 +44,7 @@
 
 module tb_cosim_sar58k24_can;
 
-/* Core parameters (scripts/cosim.sh: from the scenario, by cosim-params sar_can) */
+/* Core parameters (scripts/cosim.sh: from the scenario, by cosim-params sar58k24_can) */
 parameter BRP = 1;
 parameter PROP_SEG = 8;
 parameter PHASE_SEG1 = 5;

@@ -538,8 +538,7 @@ impl BenchConfig {
 
 impl Setup for BenchConfig {
     type Bench = Bench;
-    const CORE: &'static str = "biss_master";
-    const TABLE: &'static str = "biss";
+    const PROTOCOL: &'static crate::protocol::Protocol = &super::descriptor::PROTOCOL;
 
     fn validate(&self) -> Result<()> {
         self.check()

@@ -94,6 +94,7 @@ mod bench;
 pub mod campaign;
 pub mod control;
 pub mod decode;
+pub mod descriptor;
 mod master;
 pub mod seed_timing;
 mod slave;

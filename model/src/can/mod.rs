@@ -26,6 +26,7 @@ pub mod campaign;
 
 pub mod controller;
 pub mod decode;
+pub mod descriptor;
 pub mod emulator;
 pub mod frame;
 pub mod timing;

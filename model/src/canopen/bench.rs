@@ -355,8 +355,7 @@ impl BenchConfig {
 
 impl Setup for BenchConfig {
     type Bench = Bench;
-    const CORE: &'static str = "canopen_master";
-    const TABLE: &'static str = "canopen";
+    const PROTOCOL: &'static crate::protocol::Protocol = &super::descriptor::PROTOCOL;
 
     fn validate(&self) -> Result<()> {
         self.check()

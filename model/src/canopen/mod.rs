@@ -22,6 +22,7 @@
 
 pub mod bench;
 pub mod cob;
+pub mod descriptor;
 pub mod encoder;
 pub mod interpret;
 pub mod master;

@@ -96,6 +96,7 @@
 mod bench;
 pub mod budget;
 pub mod decode;
+pub mod descriptor;
 pub mod diagram;
 mod encoder;
 mod master;

@@ -396,8 +396,7 @@ impl BenchConfig {
 
 impl Setup for BenchConfig {
     type Bench = Bench;
-    const CORE: &'static str = "esl_host";
-    const TABLE: &'static str = "esl";
+    const PROTOCOL: &'static crate::protocol::Protocol = &super::descriptor::PROTOCOL;
 
     fn validate(&self) -> Result<()> {
         self.check()

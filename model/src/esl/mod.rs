@@ -34,6 +34,7 @@
 mod bench;
 pub mod campaign;
 pub mod decode;
+pub mod descriptor;
 mod encoder;
 pub mod frames;
 mod host;

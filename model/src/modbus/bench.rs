@@ -237,8 +237,7 @@ impl BenchConfig {
 
 impl Setup for BenchConfig {
     type Bench = Bench;
-    const CORE: &'static str = "modbus_master";
-    const TABLE: &'static str = "modbus";
+    const PROTOCOL: &'static crate::protocol::Protocol = &super::descriptor::PROTOCOL;
 
     fn validate(&self) -> Result<()> {
         self.check()

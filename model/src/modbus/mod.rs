@@ -28,6 +28,7 @@
 mod bench;
 pub mod campaign;
 pub mod decode;
+pub mod descriptor;
 mod device;
 pub mod frames;
 mod master;

@@ -334,8 +334,7 @@ fn prefix(err: ConfigError, i: usize) -> ConfigError {
 
 impl Setup for BenchConfig {
     type Bench = Bench;
-    const CORE: &'static str = "sar_async_host";
-    const TABLE: &'static str = "sar";
+    const PROTOCOL: &'static crate::protocol::Protocol = &super::descriptor::PROTOCOL;
 
     fn validate(&self) -> Result<()> {
         self.check()

@@ -25,6 +25,7 @@
 mod bench;
 pub mod campaign;
 pub mod decode;
+pub mod descriptor;
 mod encoder;
 pub mod frames;
 mod host;

@@ -60,6 +60,7 @@
 
 mod bench;
 pub mod decode;
+pub mod descriptor;
 mod encoder;
 mod master;
 

@@ -200,8 +200,7 @@ impl BenchConfig {
 
 impl Setup for BenchConfig {
     type Bench = Bench;
-    const CORE: &'static str = "uart_rx";
-    const TABLE: &'static str = "uart";
+    const PROTOCOL: &'static crate::protocol::Protocol = &super::descriptor::PROTOCOL;
 
     fn validate(&self) -> Result<()> {
         self.check()

@@ -40,6 +40,7 @@
 
 mod bench;
 pub mod campaign;
+pub mod descriptor;
 mod fault;
 pub mod line;
 mod receiver;

@@ -174,4 +174,12 @@ impl Protocol for BenchConfig {
             expected,
         })
     }
+
+    /// The harness has one controller per emulated node (`NODES`).
+    fn closed_loop(name: &str, table: toml::Table, origin: &str) -> std::result::Result<crate::closed_loop::LoopParameters, String> {
+        let _ = name;
+        let nodes = table.get("nodes").and_then(|v| v.as_array()).map_or(0, |a| a.len());
+        let core = crate::closed_loop::core::<Self>(table, origin, &[])?;
+        Ok(crate::closed_loop::LoopParameters { core, harness: vec![("NODES".to_string(), nodes as u64)] })
+    }
 }

@@ -4,6 +4,7 @@
 //! names, node guarding and heartbeat), `tbgen timing canopen` ([`timing`])
 //! and the electronic data sheet of the emulated encoder (`tbgen eds`, [`eds`]).
 
+mod closed_loop;
 pub mod decode;
 pub mod eds;
 pub mod timing;
@@ -125,6 +126,15 @@ impl Protocol for BenchConfig {
             }
         }
         Some(SigrokCheck { decoder, annotation: "can=id:ext-id:dlc:data:crc-sequence:ack-slot", expected })
+    }
+
+    /// `canopen_master`'s loop: the core's parameters; `sar58k24_can`'s:
+    /// can_controller's bit timing and the SAR58K24 the harness commands.
+    fn closed_loop(name: &str, table: toml::Table, origin: &str) -> std::result::Result<crate::closed_loop::LoopParameters, String> {
+        match name {
+            "sar58k24_can" => closed_loop::sar58k24_can(table, origin),
+            _ => Ok(crate::closed_loop::LoopParameters { core: crate::closed_loop::core::<Self>(table, origin, &[])?, harness: Vec::new() }),
+        }
     }
 }
 

@@ -84,4 +84,10 @@ impl Protocol for BenchConfig {
         let s = builtin::resolve(&scenario)?;
         timing::report(&s, &command, ads, diagram)
     }
+
+    /// The emulator's `motion` is no field of the master.
+    fn closed_loop(name: &str, table: toml::Table, origin: &str) -> std::result::Result<crate::closed_loop::LoopParameters, String> {
+        let _ = name;
+        Ok(crate::closed_loop::LoopParameters { core: crate::closed_loop::core::<Self>(table, origin, &["motion"])?, harness: Vec::new() })
+    }
 }

@@ -94,4 +94,13 @@ impl Protocol for BenchConfig {
     fn sigrok(&self, transcript: &serde_json::Value) -> Option<SigrokCheck> {
         crate::transcript::sigrok_wire_bytes(transcript, self.baud)
     }
+
+    /// The emulator's `motion` and `broadcast_address` are no fields of the
+    /// host; the harness polls the first operation's address.
+    fn closed_loop(name: &str, table: toml::Table, origin: &str) -> std::result::Result<crate::closed_loop::LoopParameters, String> {
+        let _ = name;
+        let harness = crate::closed_loop::first_op(&table, &[("address", "ADDRESS", 0)]);
+        let core = crate::closed_loop::core::<Self>(table, origin, &["motion", "broadcast_address"])?;
+        Ok(crate::closed_loop::LoopParameters { core, harness })
+    }
 }

@@ -152,6 +152,14 @@ impl Protocol for BenchConfig {
             expected: crate::transcript::wire_bytes(transcript)?.into_iter().map(|b| Some(b as u128)).collect(),
         })
     }
+
+    /// The harness polls the first operation's station.
+    fn closed_loop(name: &str, table: toml::Table, origin: &str) -> std::result::Result<crate::closed_loop::LoopParameters, String> {
+        let _ = name;
+        let harness = crate::closed_loop::first_op(&table, &[("address", "ADDRESS", 1)]);
+        let core = crate::closed_loop::core::<Self>(table, origin, &[])?;
+        Ok(crate::closed_loop::LoopParameters { core, harness })
+    }
 }
 
 #[cfg(test)]

@@ -87,4 +87,10 @@ impl Protocol for BenchConfig {
     fn sigrok(&self, transcript: &serde_json::Value) -> Option<SigrokCheck> {
         crate::transcript::sigrok_wire_bytes(transcript, self.baud)
     }
+
+    /// The emulator's `motion` is no field of the host.
+    fn closed_loop(name: &str, table: toml::Table, origin: &str) -> std::result::Result<crate::closed_loop::LoopParameters, String> {
+        let _ = name;
+        Ok(crate::closed_loop::LoopParameters { core: crate::closed_loop::core::<Self>(table, origin, &["motion"])?, harness: Vec::new() })
+    }
 }
