@@ -4,9 +4,9 @@
 //! fit one SYNC cycle, at every bit rate of the gateway (seed 003 §5.5).
 //!
 //! ```text
-//!  frame bits (standard, n data bytes) = 47 + 8n, worst-case stuff bits = (34 + 8n − 1) / 4   (crate::can::timing)
+//!  frame bits (standard, n data bytes, SOF to EOF) = 44 + 8n, worst-case stuff bits = (34 + 8n − 1) / 4   (crate::can::timing)
 //!  slot        = frame bits + stuff bits + 3 (intermission)
-//!  TPDO (4 B)  = 79 + 16 + 3 = 98 bits;   SYNC (0 B) = 47 + 8 + 3 = 58 bits;   longest frame (8 B) = 111 + 24 + 3 = 138 bits
+//!  TPDO (4 B)  = 76 + 16 + 3 = 95 bits;   SYNC (0 B) = 44 + 8 + 3 = 55 bits;   longest frame (8 B) = 108 + 24 + 3 = 135 bits
 //!  latency     = one longest frame already on the bus (non-preemptive) + the TPDO itself
 //!  encoders per cycle = ⌊(cycle bits − SYNC slot) / TPDO slot⌋
 //! ```
@@ -47,17 +47,17 @@ pub fn report(period_ms: f64, cycle_us: f64) -> String {
 mod tests {
     use super::*;
 
-    /// The slot lengths, from the frame layout; at 1 Mbit/s a 1 ms SYNC cycle holds (1000 − 58) / 98 = 9 encoders.
+    /// The slot lengths, from the frame layout; at 1 Mbit/s a 1 ms SYNC cycle holds (1000 − 55) / 95 = 9 encoders.
     #[test]
     fn slots_and_encoders_per_millisecond() {
-        assert_eq!((slot_bits(4), slot_bits(0), slot_bits(8)), (98, 58, 138));
+        assert_eq!((slot_bits(4), slot_bits(0), slot_bits(8)), (95, 55, 135));
         assert_eq!(encoders_per_cycle(1000, 1000.0), 9);
         assert_eq!(encoders_per_cycle(500, 1000.0), 4);
-        assert_eq!(encoders_per_cycle(250, 1000.0), 1);
+        assert_eq!(encoders_per_cycle(250, 1000.0), 2);
         assert_eq!(encoders_per_cycle(125, 1000.0), 0);
         let r = report(10.0, 1000.0);
-        // The seed's 10 ms at 250 kbit/s: 392 µs per TPDO, 3.92 % of the bus.
-        assert!(r.contains("       250        392.0"), "{r}");
-        assert!(r.contains("3.920%"), "{r}");
+        // The seed's 10 ms at 250 kbit/s: 380 µs per TPDO, 3.8 % of the bus.
+        assert!(r.contains("       250        380.0"), "{r}");
+        assert!(r.contains("3.800%"), "{r}");
     }
 }
