@@ -436,3 +436,94 @@ impl<const MAX_FIELDS: usize> Link<MAX_FIELDS> {
         self.line.o_done = true;
     }
 }
+
+/// A protocol on the skeleton: its ports, its requests and its checks. A
+/// protocol's host is [`Host`] of it.
+pub trait Protocol<const MAX_FIELDS: usize> {
+    /// The host's inputs at one rising edge.
+    type In;
+    /// The host's registered outputs after one rising edge.
+    type Out: Copy + Default + std::fmt::Debug;
+    /// The start input (`i_start`) and the line input (`i_rx`) of `input`.
+    fn pins(input: &Self::In) -> (bool, bool);
+    /// Writes the skeleton's line outputs into `out`.
+    fn drive(out: &mut Self::Out, line: Line);
+    /// Latches the operation `input` asks for and clears the errors in
+    /// `next`; returns the request and how many times to send it.
+    fn start(&mut self, input: &Self::In, next: &mut Self::Out) -> (Vec<u8>, u8);
+    /// A field of the answer arrived.
+    fn field(&mut self, _byte: u8) {}
+    /// The answer (or the wait for it) ended: checks it, publishes it in
+    /// `next` and says what follows.
+    fn finish(&mut self, link: &Link<MAX_FIELDS>, next: &mut Self::Out, end: End) -> Then;
+}
+
+/// A half-duplex host: the skeleton and a protocol's side of it. One
+/// [`Host::step`] is one rising edge of the system clock.
+#[derive(Debug, Clone)]
+pub struct Host<P: Protocol<MAX_FIELDS>, const MAX_FIELDS: usize> {
+    link: Link<MAX_FIELDS>,
+    protocol: P,
+    out: P::Out,
+}
+
+impl<P: Protocol<MAX_FIELDS>, const MAX_FIELDS: usize> Host<P, MAX_FIELDS> {
+    /// A host in its reset state on a skeleton of `cfg` (the caller has
+    /// checked its times).
+    pub fn with(cfg: LinkConfig, protocol: P) -> Result<Self> {
+        let link = Link::new(cfg)?;
+        let mut out = P::Out::default();
+        P::drive(&mut out, link.line());
+        Ok(Host {
+            link,
+            protocol,
+            out,
+        })
+    }
+
+    /// The skeleton.
+    pub fn link(&self) -> &Link<MAX_FIELDS> {
+        &self.link
+    }
+
+    /// The protocol's side.
+    pub fn protocol(&self) -> &P {
+        &self.protocol
+    }
+
+    /// How many of the next steps with `input` only run counters
+    /// (fast-forward); see [`Link::quiet`].
+    pub fn quiet(&self, input: &P::In) -> u64 {
+        let (i_start, i_rx) = P::pins(input);
+        self.link.quiet(i_rx, i_start)
+    }
+
+    /// The same as `n` steps with the last input, for `n` up to [`Host::quiet`].
+    pub fn skip(&mut self, n: u64) {
+        self.link.skip(n);
+    }
+
+    /// One rising edge of the system clock.
+    pub fn step(&mut self, input: &P::In) -> P::Out {
+        let (i_start, i_rx) = P::pins(input);
+        // A start counts only in `Idle` at this edge, not in the step that
+        // ends an operation.
+        let start = i_start && self.link.state() == State::Idle;
+        let mut next = self.out;
+        match self.link.step(i_rx) {
+            Event::None => {}
+            Event::Field(byte) => self.protocol.field(byte),
+            Event::End(end) => {
+                let then = self.protocol.finish(&self.link, &mut next, end);
+                self.link.then(then);
+            }
+        }
+        if start {
+            let (request, repeats) = self.protocol.start(input, &mut next);
+            self.link.start(&request, repeats);
+        }
+        P::drive(&mut next, self.link.line());
+        self.out = next;
+        next
+    }
+}

@@ -4,7 +4,7 @@
 //! busy retries, sequence counters and checks.
 
 use super::frames::{self, DataId};
-use crate::half_duplex::{self, End, Event, Link, LinkConfig, Then};
+use crate::half_duplex::{self, End, Line, Link, LinkConfig, Then};
 use crate::uart::ReceiverConfig;
 use crate::{ConfigError, Result};
 
@@ -346,12 +346,11 @@ struct Sequence {
     sc2: u8,
 }
 
-/// The host. One [`Host::step`] is one rising edge of the system clock.
+/// ESL's side of the host: the operation, the busy retries, the page
+/// register and the sequence counters.
 #[derive(Debug, Clone)]
-pub struct Host {
+pub struct Side {
     cfg: HostConfig,
-    /// Request, turnaround, answer, gap, settle and quiet wait.
-    link: Link<MAX_FIELDS>,
     id: u8,
     address: u8,
     broadcast: bool,
@@ -362,41 +361,43 @@ pub struct Host {
     tries_left: u64,
     page: u8,
     seq: [Sequence; 8],
-    out: Out,
 }
+
+/// The host: the half-duplex skeleton (request, turnaround, answer, gap,
+/// settle time, quiet wait) with ESL's [`Side`]. One `step` is one rising
+/// edge of the system clock.
+pub type Host = half_duplex::Host<Side, MAX_FIELDS>;
 
 impl Host {
     /// A host in its reset state.
     pub fn new(cfg: HostConfig) -> Result<Self> {
         cfg.validate()?;
-        Ok(Host {
-            link: Link::new(LinkConfig {
+        half_duplex::Host::with(
+            LinkConfig {
                 clocks_per_bit: cfg.clocks_per_bit,
                 timeout_clocks: cfg.timeout_clocks,
                 repeat_gap_clocks: cfg.repeat_gap_clocks,
                 answer_limit_bits: None,
                 quiet_limit_bits: None,
-            })?,
-            cfg,
-            id: 0,
-            address: 0,
-            broadcast: false,
-            mem_address: 0,
-            wdata: 0,
-            req_cf: 0,
-            tries_left: 0,
-            page: frames::DEFAULT_PAGE,
-            seq: [Sequence::default(); 8],
-            out: Out {
-                o_tx: true,
-                ..Out::default()
             },
-        })
+            Side {
+                cfg,
+                id: 0,
+                address: 0,
+                broadcast: false,
+                mem_address: 0,
+                wdata: 0,
+                req_cf: 0,
+                tries_left: 0,
+                page: frames::DEFAULT_PAGE,
+                seq: [Sequence::default(); 8],
+            },
+        )
     }
 
     /// The state after the last step.
     pub fn state(&self) -> State {
-        match self.link.state() {
+        match self.link().state() {
             half_duplex::State::Idle => State::Idle,
             half_duplex::State::Send => State::Send,
             half_duplex::State::Wait => State::Wait,
@@ -409,53 +410,37 @@ impl Host {
 
     /// Fields received in the last answer.
     pub fn fields(&self) -> &[u8] {
-        self.link.fields()
+        self.link().fields()
     }
 
     /// The request frame set last sent.
     pub fn request(&self) -> &[u8] {
-        self.link.request()
+        self.link().request()
     }
 
     /// The page register as the host last wrote it.
     pub fn page(&self) -> u8 {
-        self.page
+        self.protocol().page
+    }
+}
+
+impl half_duplex::Protocol<MAX_FIELDS> for Side {
+    type In = In;
+    type Out = Out;
+
+    fn pins(input: &In) -> (bool, bool) {
+        (input.i_start, input.i_rx)
     }
 
-    /// How many of the next steps with `input` only run counters
-    /// (fast-forward); see [`Link::quiet`].
-    pub fn quiet(&self, input: &In) -> u64 {
-        self.link.quiet(input.i_rx, input.i_start)
+    fn drive(out: &mut Out, line: Line) {
+        out.o_tx = line.o_tx;
+        out.o_tx_en = line.o_tx_en;
+        out.o_busy = line.o_busy;
+        out.o_done = line.o_done;
     }
 
-    /// The same as `n` steps with the last input, for `n` up to [`Host::quiet`].
-    pub fn skip(&mut self, n: u64) {
-        self.link.skip(n);
-    }
-
-    /// One rising edge of the system clock.
-    pub fn step(&mut self, input: &In) -> Out {
-        let start = input.i_start && self.link.state() == half_duplex::State::Idle;
-        let mut next = self.out;
-        if let Event::End(end) = self.link.step(input.i_rx) {
-            let then = self.finish(&mut next, end);
-            self.link.then(then);
-        }
-        if start {
-            self.start(input, &mut next);
-        }
-        let line = self.link.line();
-        next.o_tx = line.o_tx;
-        next.o_tx_en = line.o_tx_en;
-        next.o_busy = line.o_busy;
-        next.o_done = line.o_done;
-        self.out = next;
-        next
-    }
-
-    /// Latches the operation `input` asks for, clears the errors and sends
-    /// the first request.
-    fn start(&mut self, input: &In, next: &mut Out) {
+    /// Latches the operation `input` asks for and clears the errors.
+    fn start(&mut self, input: &In, next: &mut Out) -> (Vec<u8>, u8) {
         self.id = input.i_data_id & 0xF;
         self.broadcast = input.i_broadcast;
         self.address = if input.i_broadcast {
@@ -482,15 +467,15 @@ impl Host {
         next.o_err_seq = false;
         next.o_err_rs = false;
         next.o_err_busy = false;
-        self.link.start(&set, repeats);
+        (set, repeats)
     }
 
     /// End of one request's answer (or of its timeout): check it, publish
     /// it, and say whether to retry, repeat, settle, wait for quiet or finish.
-    fn finish(&mut self, next: &mut Out, end: End) -> Then {
+    fn finish(&mut self, link: &Link<MAX_FIELDS>, next: &mut Out, end: End) -> Then {
         let timeout = end == End::Timeout;
         let id = DataId::from_code(self.id);
-        let bytes = self.link.fields();
+        let bytes = link.fields();
         let flawed;
         let mut settle = 0;
         if self.broadcast {
@@ -507,7 +492,7 @@ impl Host {
                 id,
                 self.req_cf,
                 bytes,
-                self.link.frame_err() || self.link.count() > MAX_FIELDS,
+                link.frame_err() || link.count() > MAX_FIELDS,
                 self.cfg.rs_tolerance as u16,
             );
             if id.is_memory() && !k.any() {

@@ -4,7 +4,7 @@
 //! this file holds T-format's requests, repeats and checks.
 
 use super::frames::{self, DataId};
-use crate::half_duplex::{self, End, Event, Link, LinkConfig, Then};
+use crate::half_duplex::{self, End, Line, Link, LinkConfig, Then};
 use crate::uart::{self, ReceiverConfig};
 use crate::{ConfigError, Result};
 
@@ -247,45 +247,46 @@ impl crate::Ports for Out {
     }
 }
 
-/// The host. One [`Host::step`] is one rising edge of the system clock.
+/// T-format's side of the host: the request's Data ID and control field,
+/// and the answer's CRC.
 #[derive(Debug, Clone)]
-pub struct Host {
-    /// Request, turnaround, answer with its limit, gap and quiet wait.
-    link: Link<MAX_FIELDS>,
+pub struct Side {
     id: u8,
     /// The request's control field, for the answer's check.
     req_cf: u8,
     /// The XOR of the answer's fields so far (all of them, also those past
     /// `MAX_FIELDS`).
     crc: u8,
-    out: Out,
 }
+
+/// The host: the half-duplex skeleton (request, turnaround, answer with its
+/// limit, gap, quiet wait with its limit) with T-format's [`Side`]. One
+/// `step` is one rising edge of the system clock.
+pub type Host = half_duplex::Host<Side, MAX_FIELDS>;
 
 impl Host {
     /// A host in its reset state.
     pub fn new(cfg: HostConfig) -> Result<Self> {
         cfg.validate()?;
-        Ok(Host {
-            link: Link::new(LinkConfig {
+        half_duplex::Host::with(
+            LinkConfig {
                 clocks_per_bit: cfg.clocks_per_bit,
                 timeout_clocks: cfg.timeout_clocks,
                 repeat_gap_clocks: cfg.repeat_gap_clocks,
                 answer_limit_bits: Some(ANSWER_LIMIT_BITS),
                 quiet_limit_bits: Some(QUIET_LIMIT_BITS),
-            })?,
-            id: 0,
-            req_cf: 0,
-            crc: 0,
-            out: Out {
-                o_tx: true,
-                ..Out::default()
             },
-        })
+            Side {
+                id: 0,
+                req_cf: 0,
+                crc: 0,
+            },
+        )
     }
 
     /// The state after the last step.
     pub fn state(&self) -> State {
-        match self.link.state() {
+        match self.link().state() {
             half_duplex::State::Idle => State::Idle,
             half_duplex::State::Send => State::Send,
             half_duplex::State::Wait => State::Wait,
@@ -299,47 +300,31 @@ impl Host {
 
     /// Fields received in the current answer: the first `MAX_FIELDS` of them.
     pub fn fields(&self) -> &[u8] {
-        self.link.fields()
+        self.link().fields()
+    }
+}
+
+impl half_duplex::Protocol<MAX_FIELDS> for Side {
+    type In = In;
+    type Out = Out;
+
+    fn pins(input: &In) -> (bool, bool) {
+        (input.i_start, input.i_rx)
     }
 
-    /// How many of the next steps with `input` only run counters
-    /// (fast-forward); see [`Link::quiet`].
-    pub fn quiet(&self, input: &In) -> u64 {
-        self.link.quiet(input.i_rx, input.i_start)
+    fn drive(out: &mut Out, line: Line) {
+        out.o_tx = line.o_tx;
+        out.o_tx_en = line.o_tx_en;
+        out.o_busy = line.o_busy;
+        out.o_done = line.o_done;
     }
 
-    /// The same as `n` steps with the last input, for `n` up to [`Host::quiet`].
-    pub fn skip(&mut self, n: u64) {
-        self.link.skip(n);
+    fn field(&mut self, byte: u8) {
+        self.crc ^= byte;
     }
 
-    /// One rising edge of the system clock.
-    pub fn step(&mut self, input: &In) -> Out {
-        let start = input.i_start && self.link.state() == half_duplex::State::Idle;
-        let mut next = self.out;
-        match self.link.step(input.i_rx) {
-            Event::None => {}
-            Event::Field(byte) => self.crc ^= byte,
-            Event::End(end) => {
-                let then = self.finish(&mut next, end);
-                self.link.then(then);
-            }
-        }
-        if start {
-            self.start(input, &mut next);
-        }
-        let line = self.link.line();
-        next.o_tx = line.o_tx;
-        next.o_tx_en = line.o_tx_en;
-        next.o_busy = line.o_busy;
-        next.o_done = line.o_done;
-        self.out = next;
-        next
-    }
-
-    /// Latches the operation `input` asks for, clears the errors and sends
-    /// the first request.
-    fn start(&mut self, input: &In, next: &mut Out) {
+    /// Latches the operation `input` asks for and clears the errors.
+    fn start(&mut self, input: &In, next: &mut Out) -> (Vec<u8>, u8) {
         self.id = input.i_data_id & 0xF;
         let id = DataId::from_code(self.id);
         let mut bytes = frames::request(id.unwrap_or(DataId::Id0), input.i_address, input.i_wdata);
@@ -357,15 +342,15 @@ impl Host {
         next.o_err_frame = false;
         next.o_err_cf = false;
         next.o_err_comm = false;
-        self.link.start(&bytes, repeats);
+        (bytes, repeats)
     }
 
     /// End of one request's answer: check it, publish it, repeat or finish.
-    fn finish(&mut self, next: &mut Out, end: End) -> Then {
+    fn finish(&mut self, link: &Link<MAX_FIELDS>, next: &mut Out, end: End) -> Then {
         let timeout = end == End::Timeout;
         let request_cf = self.req_cf;
         let expected = DataId::from_code(self.id).map_or(11, |d| d.answer_fields());
-        let f = *self.link.registers();
+        let f = *link.registers();
         let cf = f[0];
         if !timeout {
             next.o_cf = cf;
@@ -394,8 +379,8 @@ impl Host {
             && !DataId::from_code((cf >> 3) & 0xF).is_some_and(|d| d.is_eeprom())
             && f[1] & 0xC0 != 0;
         let crc_bad = !timeout && self.crc != 0;
-        let frame_bad = !timeout
-            && (end == End::Overlong || self.link.frame_err() || self.link.count() != expected);
+        let frame_bad =
+            !timeout && (end == End::Overlong || link.frame_err() || link.count() != expected);
         let cf_bad = !timeout && cf != request_cf;
         next.o_err_timeout |= timeout;
         next.o_err_crc |= crc_bad;
