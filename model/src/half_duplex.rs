@@ -63,24 +63,42 @@ pub struct LinkConfig {
     pub quiet_limit_bits: Option<u64>,
 }
 
-/// The skeleton's states. Each protocol host names them with its own
-/// enum, whose codes its RTL's `localparam`s carry.
+impl LinkConfig {
+    /// A skeleton of these times without an answer or quiet limit.
+    pub fn new(clocks_per_bit: u64, timeout_clocks: u64, repeat_gap_clocks: u64) -> Self {
+        LinkConfig {
+            clocks_per_bit,
+            timeout_clocks,
+            repeat_gap_clocks,
+            answer_limit_bits: None,
+            quiet_limit_bits: None,
+        }
+    }
+}
+
+/// The skeleton's states, with the codes of `hdl/rtl/esl_host.v`'s
+/// `localparam`s (ESL's host states are these). A host whose core numbers
+/// them otherwise names them with its own enum (T-format's core has no
+/// `SETTLE` and numbers `QUIET` 5).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum State {
-    /// Waiting for a start.
-    Idle,
+    /// Waiting for `i_start`.
+    Idle = 0,
     /// Driving the request.
-    Send,
+    Send = 1,
     /// Driver off, waiting for the answer's start bit.
-    Wait,
+    Wait = 2,
     /// Receiving the answer's fields.
-    Recv,
-    /// Between two requests of one operation.
-    Gap,
-    /// After an accepted answer, a time the operation still holds (a write).
-    Settle,
-    /// After a flawed answer: waiting for the line to fall quiet.
-    Quiet,
+    Recv = 3,
+    /// Between two requests of one operation (repeated commands, a busy
+    /// answer).
+    Gap = 4,
+    /// After an accepted answer, a time the operation still holds (an
+    /// EEPROM write or page change time).
+    Settle = 5,
+    /// After a flawed answer: waiting for the line to fall quiet, so that
+    /// the next request cannot land on the rest of an answer.
+    Quiet = 6,
 }
 
 /// How an answer (or the wait for it) ended.
@@ -457,6 +475,25 @@ pub trait Protocol<const MAX_FIELDS: usize> {
     /// `next` and says what follows.
     fn finish(&mut self, link: &Link<MAX_FIELDS>, next: &mut Self::Out, end: End) -> Then;
 }
+
+/// The `pins` and `drive` of a [`Protocol`] whose `In` and `Out` carry
+/// the ports every half-duplex host has, under their Verilog names:
+/// `i_start`, `i_rx`; `o_tx`, `o_tx_en`, `o_busy`, `o_done`.
+macro_rules! line_ports {
+    () => {
+        fn pins(input: &In) -> (bool, bool) {
+            (input.i_start, input.i_rx)
+        }
+
+        fn drive(out: &mut Out, line: $crate::half_duplex::Line) {
+            out.o_tx = line.o_tx;
+            out.o_tx_en = line.o_tx_en;
+            out.o_busy = line.o_busy;
+            out.o_done = line.o_done;
+        }
+    };
+}
+pub(crate) use line_ports;
 
 /// A half-duplex host: the skeleton and a protocol's side of it. One
 /// [`Host::step`] is one rising edge of the system clock.

@@ -4,11 +4,11 @@
 //! busy retries, sequence counters and checks.
 
 use super::frames::{self, DataId};
-use crate::half_duplex::{self, End, Line, Link, LinkConfig, Then};
+use crate::half_duplex::{self, End, Link, LinkConfig, Then};
 use crate::uart::ReceiverConfig;
 use crate::{ConfigError, Result};
 
-pub use crate::half_duplex::QUIET_BITS;
+pub use crate::half_duplex::{State, QUIET_BITS};
 
 /// The host's configuration in cycles; each field is the Verilog parameter
 /// of the same name in upper case.
@@ -121,26 +121,6 @@ impl HostConfig {
         }
         Ok(())
     }
-}
-
-/// The host's states; the RTL's `localparam`s carry the same names and codes.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum State {
-    /// Waiting for `i_start`.
-    Idle = 0,
-    /// Driving the request.
-    Send = 1,
-    /// Driver off, waiting for the answer's start bit.
-    Wait = 2,
-    /// Receiving the answer's fields.
-    Recv = 3,
-    /// Between two requests of one operation (8-times commands, busy memory).
-    Gap = 4,
-    /// After an accepted write: the EEPROM write or page change time.
-    Settle = 5,
-    /// After a flawed answer: waiting for the line to fall quiet, so that
-    /// the next request cannot land on the rest of an answer.
-    Quiet = 6,
 }
 
 /// Requests of one 8-times command (Table 4: "minimum 8 times consecutively").
@@ -373,13 +353,11 @@ impl Host {
     pub fn new(cfg: HostConfig) -> Result<Self> {
         cfg.validate()?;
         half_duplex::Host::with(
-            LinkConfig {
-                clocks_per_bit: cfg.clocks_per_bit,
-                timeout_clocks: cfg.timeout_clocks,
-                repeat_gap_clocks: cfg.repeat_gap_clocks,
-                answer_limit_bits: None,
-                quiet_limit_bits: None,
-            },
+            LinkConfig::new(
+                cfg.clocks_per_bit,
+                cfg.timeout_clocks,
+                cfg.repeat_gap_clocks,
+            ),
             Side {
                 cfg,
                 id: 0,
@@ -397,15 +375,7 @@ impl Host {
 
     /// The state after the last step.
     pub fn state(&self) -> State {
-        match self.link().state() {
-            half_duplex::State::Idle => State::Idle,
-            half_duplex::State::Send => State::Send,
-            half_duplex::State::Wait => State::Wait,
-            half_duplex::State::Recv => State::Recv,
-            half_duplex::State::Gap => State::Gap,
-            half_duplex::State::Settle => State::Settle,
-            half_duplex::State::Quiet => State::Quiet,
-        }
+        self.link().state()
     }
 
     /// Fields received in the last answer.
@@ -428,16 +398,7 @@ impl half_duplex::Protocol<MAX_FIELDS> for Side {
     type In = In;
     type Out = Out;
 
-    fn pins(input: &In) -> (bool, bool) {
-        (input.i_start, input.i_rx)
-    }
-
-    fn drive(out: &mut Out, line: Line) {
-        out.o_tx = line.o_tx;
-        out.o_tx_en = line.o_tx_en;
-        out.o_busy = line.o_busy;
-        out.o_done = line.o_done;
-    }
+    half_duplex::line_ports!();
 
     /// Latches the operation `input` asks for and clears the errors.
     fn start(&mut self, input: &In, next: &mut Out) -> (Vec<u8>, u8) {

@@ -4,7 +4,7 @@
 //! this file holds T-format's requests, repeats and checks.
 
 use super::frames::{self, DataId};
-use crate::half_duplex::{self, End, Line, Link, LinkConfig, Then};
+use crate::half_duplex::{self, End, Link, LinkConfig, Then};
 use crate::uart::{self, ReceiverConfig};
 use crate::{ConfigError, Result};
 
@@ -270,11 +270,13 @@ impl Host {
         cfg.validate()?;
         half_duplex::Host::with(
             LinkConfig {
-                clocks_per_bit: cfg.clocks_per_bit,
-                timeout_clocks: cfg.timeout_clocks,
-                repeat_gap_clocks: cfg.repeat_gap_clocks,
                 answer_limit_bits: Some(ANSWER_LIMIT_BITS),
                 quiet_limit_bits: Some(QUIET_LIMIT_BITS),
+                ..LinkConfig::new(
+                    cfg.clocks_per_bit,
+                    cfg.timeout_clocks,
+                    cfg.repeat_gap_clocks,
+                )
             },
             Side {
                 id: 0,
@@ -308,16 +310,7 @@ impl half_duplex::Protocol<MAX_FIELDS> for Side {
     type In = In;
     type Out = Out;
 
-    fn pins(input: &In) -> (bool, bool) {
-        (input.i_start, input.i_rx)
-    }
-
-    fn drive(out: &mut Out, line: Line) {
-        out.o_tx = line.o_tx;
-        out.o_tx_en = line.o_tx_en;
-        out.o_busy = line.o_busy;
-        out.o_done = line.o_done;
-    }
+    half_duplex::line_ports!();
 
     fn field(&mut self, byte: u8) {
         self.crc ^= byte;
