@@ -88,7 +88,7 @@ fn entry(node: &str, what: &'static str, cycle: u64, f: &Frame) -> Entry {
         ide: f.ide,
         rtr: f.rtr,
         dlc: f.dlc,
-        data: crate::sar58k24::hex(&f.data),
+        data: model::bits::hex(&f.data),
     }
 }
 

@@ -677,7 +677,7 @@ fn entry(
         what,
         cycle,
         id: f.id,
-        data: crate::sar58k24::hex(&f.data),
+        data: model::bits::hex(&f.data),
         meaning,
         position,
     }

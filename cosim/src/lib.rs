@@ -37,6 +37,7 @@ pub mod config;
 pub mod endat;
 pub mod esl;
 pub mod ffi;
+pub mod half_duplex;
 pub mod modbus;
 pub mod monitor;
 pub mod motion;

@@ -16,24 +16,20 @@
 //! Statuses readable with `last_status`: `answered`, `discarded`,
 //! `exception` (the last request the device saw).
 //!
-//! Pins as the SAR58K24's ([`crate::sar58k24`]): in bit 1 the master's
-//! driver level, bit 2 its enable; out bit 0 the devices' level at the
-//! master's end, bit 1 their enable, bit 2 the resolved line level.
+//! Pins as every half-duplex emulator's ([`crate::half_duplex`]): in bit 1
+//! the master's driver level, bit 2 its enable; out bit 0 the devices'
+//! level at the master's end, bit 1 their enable, bit 2 the resolved line
+//! level.
 
 use serde::{Deserialize, Serialize};
 
-use model::line::Drive;
+use model::bits::hex;
 use model::modbus::{BenchConfig, Device, Verdict};
 
-use crate::check::{Checks, VIOLATION_PENDING};
+use crate::check::Checks;
 use crate::config::Error;
-use crate::sar58k24::{
-    half_duplex_pins, hex, random_lists, uart_bench, HalfDuplex, RandomPositions, Shafts,
-};
+use crate::half_duplex::{randomize, uart_bench, wire, Bus, RandomPositions, IDLE};
 use crate::{Emulator, Pins, Result};
-
-/// 8 samples per bit at 115200 baud, as the SAR58K24 emulator.
-pub const MAX_LINE_KHZ: f64 = crate::sar58k24::MAX_LINE_KHZ;
 
 /// The limits the master is held to (`[checks]`).
 #[derive(Debug, Clone, PartialEq, Deserialize)]
@@ -94,16 +90,12 @@ pub struct ModbusEmulator {
     f_emu_hz: u64,
     devices: Vec<Device>,
     seen: Vec<usize>,
-    line: HalfDuplex,
-    drive: Drive,
-    own: Own,
-    cycle: u64,
+    bus: Bus,
+    /// Report a discarded request (`checks.discarded`).
+    discarded: bool,
     entries: Vec<Entry>,
     last: Vec<Option<usize>>,
     last_value: Vec<Option<u64>>,
-    checks: Checks,
-    in_contention: bool,
-    shafts: Shafts,
 }
 
 impl ModbusEmulator {
@@ -117,13 +109,13 @@ impl ModbusEmulator {
             "Modbus RTU",
             19_200.0,
         )?;
-        let bits: Vec<u32> = bench.devices.iter().map(|d| d.bits).collect();
-        let lists = random_lists(&own.random, &bits, origin, "devices", "[[devices]]")?;
-        for (d, list) in bench.devices.iter_mut().zip(lists) {
-            if let Some(list) = list {
-                d.positions = list;
-            }
-        }
+        let bits = randomize(
+            &own.random,
+            bench.devices.iter_mut().map(|d| (d.bits, &mut d.positions)),
+            origin,
+            "devices",
+            "[[devices]]",
+        )?;
         bench
             .cable
             .validate("cable")
@@ -141,19 +133,20 @@ impl ModbusEmulator {
             f_emu_hz,
             devices,
             seen: vec![0; n],
-            line: HalfDuplex::new(&bench.cable, &tb),
-            drive: Drive {
-                enable: false,
-                level: true,
-            },
-            own,
-            cycle: 0,
+            bus: Bus::new(
+                &bench.cable,
+                &tb,
+                bits,
+                "device",
+                own.checks.contention.then_some((
+                    "one driver at a time (seed 001, 3.1.7: half-duplex RS-485, the master releases the line after its request)",
+                    "the master and a device drive the line together",
+                )),
+            ),
+            discarded: own.checks.discarded,
             entries: Vec::new(),
             last: vec![None; n],
             last_value: vec![None; n],
-            checks: Checks::new(tb.period_ps()),
-            in_contention: false,
-            shafts: Shafts::new(&tb, bits, "device"),
         })
     }
 
@@ -180,41 +173,23 @@ impl Emulator for ModbusEmulator {
     }
 
     fn step(&mut self, pins: Pins) -> Pins {
-        let host = Drive {
-            enable: pins.0 & 4 != 0,
-            level: pins.0 & 2 != 0,
-        };
-        let ends = self.line.step(host, self.drive);
-        if ends.contention && !self.in_contention && self.own.checks.contention {
-            self.checks.push(
-                self.cycle,
-                "one driver at a time (seed 001, 3.1.7: half-duplex RS-485, the master releases the line after its request)",
-                "the master and a device drive the line together".into(),
-            );
-        }
-        self.in_contention = ends.contention;
-        for (i, p) in self.shafts.moving(self.cycle) {
+        let at_device = self.bus.begin(pins);
+        for (i, p) in self.bus.moving() {
             // A motion profile wraps at the device's resolution: always fits.
             let _ = self.devices[i].set_position(p);
         }
-        let mut drive = Drive {
-            enable: false,
-            level: true,
-        };
+        let mut drive = IDLE;
         for (i, d) in self.devices.iter_mut().enumerate() {
-            let out = d.step(ends.at_device);
-            if out.enable && !drive.enable {
-                drive = out;
-            }
+            drive = wire(drive, d.step(at_device));
             if d.seen().len() > self.seen[i] {
                 for s in &d.seen()[self.seen[i]..] {
                     let value = value_of(&s.answer);
                     if value.is_some() {
                         self.last_value[i] = value;
                     }
-                    if s.verdict == Verdict::Discarded && self.own.checks.discarded {
-                        self.checks.push(
-                            self.cycle,
+                    if s.verdict == Verdict::Discarded && self.discarded {
+                        self.bus.checks.push(
+                            self.bus.cycle,
                             "RTU framing (seed 001, 3.1.7 and Modbus over serial line 2.5.1.1: a frame is sent as a continuous stream, silences inside it under t1.5, CRC-16)",
                             format!("device {i} discarded the request {}", hex(&s.request)),
                         );
@@ -232,25 +207,17 @@ impl Emulator for ModbusEmulator {
                 self.seen[i] = d.seen().len();
             }
         }
-        self.drive = drive;
-        self.cycle += 1;
-        let flag = if self.checks.pending() {
-            VIOLATION_PENDING
-        } else {
-            0
-        };
-        Pins(half_duplex_pins(host, ends.far) | flag)
+        self.bus.end(drive)
     }
 
     fn set_position(&mut self, device: usize, position: u64) -> Result<()> {
-        self.shafts.set_position(device, position)?;
-        self.devices[device]
-            .set_position(position)
-            .map_err(|e| Error::Usage(e.to_string()))
+        let devices = &mut self.devices;
+        self.bus
+            .set_position(device, position, |p| devices[device].set_position(p))
     }
 
     fn set_motion(&mut self, device: usize, toml: &str) -> Result<()> {
-        self.shafts.set_motion(device, toml, self.cycle)
+        self.bus.set_motion(device, toml)
     }
 
     fn set_status(&mut self, _device: usize, name: &str, _value: bool) -> Result<()> {
@@ -295,12 +262,12 @@ impl Emulator for ModbusEmulator {
             "protocol": "modbus",
             "f_emu_hz": self.f_emu_hz,
             "requests": self.entries,
-            "contention_cycles": self.line.contention,
-            "violations": self.checks.all(),
+            "contention_cycles": self.bus.contention_cycles(),
+            "violations": self.bus.checks.all(),
         })
     }
 
     fn checks(&mut self) -> &mut Checks {
-        &mut self.checks
+        &mut self.bus.checks
     }
 }

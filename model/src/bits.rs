@@ -13,3 +13,14 @@ pub fn string_of(value: u128, width: u32) -> String {
         .map(|i| if (value >> i) & 1 == 1 { '1' } else { '0' })
         .collect()
 }
+
+/// Bytes in wire order as two hex digits each, space-separated
+/// (`[0xFF, 0x81, 0x01]` → `"FF 81 01"`), as the byte-oriented transcripts
+/// (SAR58K24, Modbus, CAN data) write them.
+pub fn hex(bytes: &[u8]) -> String {
+    bytes
+        .iter()
+        .map(|b| format!("{b:02X}"))
+        .collect::<Vec<_>>()
+        .join(" ")
+}

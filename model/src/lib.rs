@@ -28,6 +28,7 @@ pub mod endat;
 pub mod error;
 pub mod esl;
 pub mod gray;
+pub mod half_duplex;
 pub mod line;
 pub mod modbus;
 pub mod ports;

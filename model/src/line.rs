@@ -290,10 +290,7 @@ impl HalfDuplexLine {
     /// What the receivers at A and B see now with drives `a` and `b`, the
     /// far ends' levels as they left the lines in the last step.
     pub fn sensed(&self, a: Drive, b: Drive) -> (Sensed, Sensed) {
-        let far_a = Drive {
-            enable: self.b_to_a_enable.output,
-            level: self.b_to_a_level.output,
-        };
+        let far_a = self.b_at_a();
         let far_b = Drive {
             enable: self.a_to_b_enable.output,
             level: self.a_to_b_level.output,
@@ -304,6 +301,15 @@ impl HalfDuplexLine {
     /// Cycles in which two drivers were on at either end.
     pub fn contention_cycles(&self) -> u64 {
         self.contention_cycles
+    }
+
+    /// B's drive as it arrives at A after the last step: the level and the
+    /// enable a transceiver at A would show of the far driver.
+    pub fn b_at_a(&self) -> Drive {
+        Drive {
+            enable: self.b_to_a_enable.output,
+            level: self.b_to_a_level.output,
+        }
     }
 }
 

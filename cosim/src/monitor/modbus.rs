@@ -90,7 +90,7 @@ fn json(index: usize, t: decode::Transaction) -> Value {
 impl ModbusMonitor {
     /// A monitor from TOML text (`origin` names it in errors) at `f_mon_hz`.
     pub fn from_toml(text: &str, origin: &str, f_mon_hz: u64) -> Result<Self> {
-        let (_, _, cfg): (_, EmulatorOwn, BenchConfig) = crate::sar58k24::uart_bench(
+        let (_, _, cfg): (_, EmulatorOwn, BenchConfig) = crate::half_duplex::uart_bench(
             text,
             origin,
             f_mon_hz,

@@ -1,3 +1,4 @@
+use cosim::half_duplex::random_list;
 use cosim::sar58k24::*;
 use cosim::{Emulator, Pins};
 

@@ -1,8 +1,14 @@
 //! The ESL host, cycle by cycle: the machine `hdl/rtl/esl_host.v` mirrors.
+//! The request, turnaround, answer, gap, settle time and quiet wait are the
+//! shared [`half_duplex::Link`]; this file holds ESL's requests, repeats,
+//! busy retries, sequence counters and checks.
 
 use super::frames::{self, DataId};
-use crate::uart::{self, Receiver, ReceiverConfig};
+use crate::half_duplex::{self, End, Link, LinkConfig, Then};
+use crate::uart::ReceiverConfig;
 use crate::{ConfigError, Result};
+
+pub use crate::half_duplex::{State, QUIET_BITS};
 
 /// The host's configuration in cycles; each field is the Verilog parameter
 /// of the same name in upper case.
@@ -116,30 +122,6 @@ impl HostConfig {
         Ok(())
     }
 }
-
-/// The host's states; the RTL's `localparam`s carry the same names and codes.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum State {
-    /// Waiting for `i_start`.
-    Idle = 0,
-    /// Driving the request.
-    Send = 1,
-    /// Driver off, waiting for the answer's start bit.
-    Wait = 2,
-    /// Receiving the answer's fields.
-    Recv = 3,
-    /// Between two requests of one operation (8-times commands, busy memory).
-    Gap = 4,
-    /// After an accepted write: the EEPROM write or page change time.
-    Settle = 5,
-    /// After a flawed answer: waiting for the line to fall quiet, so that
-    /// the next request cannot land on the rest of an answer.
-    Quiet = 6,
-}
-
-/// Bit times of idle receiver that end `Quiet` (longer than any run of
-/// ones inside an answer: stop, a start bit turned 1, eight ones, stop).
-pub const QUIET_BITS: u64 = 20;
 
 /// Requests of one 8-times command (Table 4: "minimum 8 times consecutively").
 pub const REPEATS: u8 = 8;
@@ -344,15 +326,11 @@ struct Sequence {
     sc2: u8,
 }
 
-/// The host. One [`Host::step`] is one rising edge of the system clock.
+/// ESL's side of the host: the operation, the busy retries, the page
+/// register and the sequence counters.
 #[derive(Debug, Clone)]
-pub struct Host {
+pub struct Side {
     cfg: HostConfig,
-    state: State,
-    rx: Receiver,
-    /// The receiver's registered outputs, as the RTL's FSM sees them: the
-    /// values after the previous edge.
-    rx_out: uart::Out,
     id: u8,
     address: u8,
     broadcast: bool,
@@ -360,277 +338,106 @@ pub struct Host {
     wdata: u8,
     /// The request's control field, for the answer's check.
     req_cf: u8,
-    /// The request's bytes (CF [ADF [EDF]] CRC).
-    req: [u8; 4],
-    req_len: u8,
-    field_index: u8,
-    bit_index: u8,
-    cnt: u64,
-    repeats_left: u8,
     tries_left: u64,
-    fields: [u8; MAX_FIELDS],
-    count: u8,
-    frame_err: bool,
-    idle: u64,
     page: u8,
     seq: [Sequence; 8],
-    out: Out,
 }
+
+/// The host: the half-duplex skeleton (request, turnaround, answer, gap,
+/// settle time, quiet wait) with ESL's [`Side`]. One `step` is one rising
+/// edge of the system clock.
+pub type Host = half_duplex::Host<Side, MAX_FIELDS>;
 
 impl Host {
     /// A host in its reset state.
     pub fn new(cfg: HostConfig) -> Result<Self> {
         cfg.validate()?;
-        Ok(Host {
-            rx: Receiver::new(ReceiverConfig {
-                clocks_per_bit: cfg.clocks_per_bit,
-            })?,
-            rx_out: uart::Out::default(),
-            cfg,
-            state: State::Idle,
-            id: 0,
-            address: 0,
-            broadcast: false,
-            mem_address: 0,
-            wdata: 0,
-            req_cf: 0,
-            req: [0; 4],
-            req_len: 0,
-            field_index: 0,
-            bit_index: 0,
-            cnt: 0,
-            repeats_left: 0,
-            tries_left: 0,
-            fields: [0; MAX_FIELDS],
-            count: 0,
-            frame_err: false,
-            idle: 0,
-            page: frames::DEFAULT_PAGE,
-            seq: [Sequence::default(); 8],
-            out: Out {
-                o_tx: true,
-                ..Out::default()
+        half_duplex::Host::with(
+            LinkConfig::new(
+                cfg.clocks_per_bit,
+                cfg.timeout_clocks,
+                cfg.repeat_gap_clocks,
+            ),
+            Side {
+                cfg,
+                id: 0,
+                address: 0,
+                broadcast: false,
+                mem_address: 0,
+                wdata: 0,
+                req_cf: 0,
+                tries_left: 0,
+                page: frames::DEFAULT_PAGE,
+                seq: [Sequence::default(); 8],
             },
-        })
+        )
     }
 
     /// The state after the last step.
     pub fn state(&self) -> State {
-        self.state
+        self.link().state()
     }
 
     /// Fields received in the last answer.
     pub fn fields(&self) -> &[u8] {
-        &self.fields[..usize::from(self.count).min(MAX_FIELDS)]
+        self.link().fields()
     }
 
     /// The request frame set last sent.
     pub fn request(&self) -> &[u8] {
-        &self.req[..usize::from(self.req_len)]
+        self.link().request()
     }
 
     /// The page register as the host last wrote it.
     pub fn page(&self) -> u8 {
-        self.page
+        self.protocol().page
     }
+}
 
-    /// How many of the next steps with `input` only run counters
-    /// (fast-forward): idle, a bit of the request, the answer timeout, the
-    /// gap, the settle time or the quiet wait counting, with the receiver
-    /// between samples or idle. 0 on `o_done` or a start.
-    pub fn quiet(&self, input: &In) -> u64 {
-        if self.out.o_done || input.i_start {
-            return 0;
-        }
-        let rx_in = uart::In {
-            i_rx: input.i_rx || self.out.o_tx_en,
+impl half_duplex::Protocol<MAX_FIELDS> for Side {
+    type In = In;
+    type Out = Out;
+
+    half_duplex::line_ports!();
+
+    /// Latches the operation `input` asks for and clears the errors.
+    fn start(&mut self, input: &In, next: &mut Out) -> (Vec<u8>, u8) {
+        self.id = input.i_data_id & 0xF;
+        self.broadcast = input.i_broadcast;
+        self.address = if input.i_broadcast {
+            self.cfg.broadcast_address as u8
+        } else {
+            input.i_address & 7
         };
-        let rx = self.rx_out;
-        let c = self.cfg.clocks_per_bit;
-        let state = match self.state {
-            State::Idle => u64::MAX,
-            State::Send | State::Gap | State::Settle => self.cnt,
-            State::Wait if rx.o_busy => 0,
-            State::Wait => self.cnt,
-            State::Recv if rx.o_busy => u64::MAX,
-            State::Recv => (c - 1).saturating_sub(self.idle),
-            State::Quiet if rx.o_busy => u64::MAX,
-            State::Quiet => (QUIET_BITS * c - 1).saturating_sub(self.idle),
+        self.mem_address = input.i_mem_address & 0x7F;
+        self.wdata = input.i_wdata;
+        let set = frames::request(self.address, self.id, self.mem_address, self.wdata);
+        self.req_cf = set[0];
+        let repeats = if DataId::from_code(self.id).is_some_and(|d| d.is_repeated()) {
+            REPEATS
+        } else {
+            1
         };
-        state.min(self.rx.quiet(&rx_in))
-    }
-
-    /// The same as `n` steps with the last input, for `n` up to [`Host::quiet`].
-    pub fn skip(&mut self, n: u64) {
-        match self.state {
-            State::Send | State::Gap | State::Settle | State::Wait => self.cnt -= n,
-            State::Recv | State::Quiet if self.rx_out.o_busy => self.idle = 0,
-            State::Recv | State::Quiet => self.idle += n,
-            State::Idle => {}
-        }
-        self.rx.skip(n);
-    }
-
-    /// One rising edge of the system clock.
-    pub fn step(&mut self, input: &In) -> Out {
-        let c = self.cfg.clocks_per_bit;
-        let mut next = Out {
-            o_done: false,
-            ..self.out
-        };
-        let rx = self.rx_out;
-        match self.state {
-            State::Idle => {
-                if input.i_start {
-                    self.id = input.i_data_id & 0xF;
-                    self.broadcast = input.i_broadcast;
-                    self.address = if input.i_broadcast {
-                        self.cfg.broadcast_address as u8
-                    } else {
-                        input.i_address & 7
-                    };
-                    self.mem_address = input.i_mem_address & 0x7F;
-                    self.wdata = input.i_wdata;
-                    let set = frames::request(self.address, self.id, self.mem_address, self.wdata);
-                    self.req = [0; 4];
-                    self.req[..set.len()].copy_from_slice(&set);
-                    self.req_len = set.len() as u8;
-                    self.req_cf = set[0];
-                    self.repeats_left =
-                        if DataId::from_code(self.id).is_some_and(|d| d.is_repeated()) {
-                            REPEATS
-                        } else {
-                            1
-                        };
-                    self.tries_left = self.cfg.busy_tries;
-                    next.o_busy = true;
-                    next.o_err_crc1 = false;
-                    next.o_err_crc2 = false;
-                    next.o_err_timeout = false;
-                    next.o_err_frame = false;
-                    next.o_err_cf = false;
-                    next.o_err_comm = false;
-                    next.o_err_seq = false;
-                    next.o_err_rs = false;
-                    next.o_err_busy = false;
-                    self.begin_send(&mut next);
-                }
-            }
-            State::Send => {
-                if self.cnt == 0 {
-                    if self.bit_index == 9 && self.field_index + 1 == self.req_len {
-                        next.o_tx_en = false;
-                        next.o_tx = true;
-                        self.state = State::Wait;
-                        self.cnt = self.cfg.timeout_clocks - 1;
-                        self.count = 0;
-                        self.frame_err = false;
-                    } else {
-                        if self.bit_index == 9 {
-                            self.bit_index = 0;
-                            self.field_index += 1;
-                        } else {
-                            self.bit_index += 1;
-                        }
-                        next.o_tx = self.tx_bit();
-                        self.cnt = c - 1;
-                    }
-                } else {
-                    self.cnt -= 1;
-                }
-            }
-            State::Wait => {
-                if rx.o_busy {
-                    self.state = State::Recv;
-                    self.idle = 0;
-                } else if self.cnt == 0 {
-                    self.finish(&mut next, true);
-                } else {
-                    self.cnt -= 1;
-                }
-            }
-            State::Recv => {
-                if rx.o_valid || rx.o_frame_err {
-                    if usize::from(self.count) < MAX_FIELDS {
-                        self.fields[usize::from(self.count)] = rx.o_data;
-                    }
-                    self.count = self.count.saturating_add(1).min(MAX_FIELDS as u8 + 1);
-                    self.frame_err |= rx.o_frame_err;
-                    self.idle = 0;
-                } else if !rx.o_busy {
-                    self.idle += 1;
-                    if self.idle == c {
-                        self.finish(&mut next, false);
-                    }
-                } else {
-                    self.idle = 0;
-                }
-            }
-            State::Gap => {
-                if self.cnt == 0 {
-                    self.begin_send(&mut next);
-                } else {
-                    self.cnt -= 1;
-                }
-            }
-            State::Settle => {
-                if self.cnt == 0 {
-                    self.done(&mut next);
-                } else {
-                    self.cnt -= 1;
-                }
-            }
-            State::Quiet => {
-                if rx.o_busy {
-                    self.idle = 0;
-                } else {
-                    self.idle += 1;
-                    if self.idle == QUIET_BITS * c {
-                        self.done(&mut next);
-                    }
-                }
-            }
-        }
-        // The receiver listens only while the driver is off.
-        self.rx_out = self.rx.step(&uart::In {
-            i_rx: input.i_rx || self.out.o_tx_en,
-        });
-        self.out = next;
-        next
-    }
-
-    /// The request bit at (`field_index`, `bit_index`): start 0, data LSB first, stop 1.
-    fn tx_bit(&self) -> bool {
-        match self.bit_index {
-            0 => false,
-            9 => true,
-            b => self.req[usize::from(self.field_index)] >> (b - 1) & 1 == 1,
-        }
-    }
-
-    /// Drives the request's first start bit.
-    fn begin_send(&mut self, next: &mut Out) {
-        self.state = State::Send;
-        self.field_index = 0;
-        self.bit_index = 0;
-        self.cnt = self.cfg.clocks_per_bit - 1;
-        next.o_tx_en = true;
-        next.o_tx = false;
-    }
-
-    fn done(&mut self, next: &mut Out) {
-        self.state = State::Idle;
-        next.o_busy = false;
-        next.o_done = true;
+        self.tries_left = self.cfg.busy_tries;
+        next.o_err_crc1 = false;
+        next.o_err_crc2 = false;
+        next.o_err_timeout = false;
+        next.o_err_frame = false;
+        next.o_err_cf = false;
+        next.o_err_comm = false;
+        next.o_err_seq = false;
+        next.o_err_rs = false;
+        next.o_err_busy = false;
+        (set, repeats)
     }
 
     /// End of one request's answer (or of its timeout): check it, publish
-    /// it, then repeat, retry, settle, wait for quiet or finish.
-    fn finish(&mut self, next: &mut Out, timeout: bool) {
+    /// it, and say whether to retry, repeat, settle, wait for quiet or finish.
+    fn finish(&mut self, link: &Link<MAX_FIELDS>, next: &mut Out, end: End) -> Then {
+        let timeout = end == End::Timeout;
         let id = DataId::from_code(self.id);
-        let bytes = self.fields();
+        let bytes = link.fields();
         let flawed;
-        let mut retry = false;
         let mut settle = 0;
         if self.broadcast {
             // Nobody may answer a broadcast.
@@ -646,7 +453,7 @@ impl Host {
                 id,
                 self.req_cf,
                 bytes,
-                self.frame_err || usize::from(self.count) > MAX_FIELDS,
+                link.frame_err() || link.count() > MAX_FIELDS,
                 self.cfg.rs_tolerance as u16,
             );
             if id.is_memory() && !k.any() {
@@ -698,7 +505,11 @@ impl Host {
                 if busy && self.tries_left == 0 {
                     next.o_err_busy = true;
                 } else if busy {
-                    retry = true;
+                    return Then::Retry(if self.id == DataId::IdF.code() {
+                        self.cfg.write_wait_clocks
+                    } else {
+                        self.cfg.read_wait_clocks
+                    });
                 } else if id == DataId::IdF {
                     settle = if self.mem_address == frames::PAGE_REGISTER {
                         self.page = self.wdata & 0xF;
@@ -715,27 +526,6 @@ impl Host {
             next.o_err_cf = true;
             flawed = true;
         }
-        if retry {
-            self.state = State::Gap;
-            self.cnt = if self.id == DataId::IdF.code() {
-                self.cfg.write_wait_clocks
-            } else {
-                self.cfg.read_wait_clocks
-            } - 1;
-            return;
-        }
-        self.repeats_left -= 1;
-        if self.repeats_left > 0 {
-            self.state = State::Gap;
-            self.cnt = self.cfg.repeat_gap_clocks - 1;
-        } else if flawed {
-            self.state = State::Quiet;
-            self.idle = 0;
-        } else if settle > 0 {
-            self.state = State::Settle;
-            self.cnt = settle - 1;
-        } else {
-            self.done(next);
-        }
+        Then::Checked { flawed, settle }
     }
 }

@@ -1,10 +1,14 @@
 //! The T-format host, cycle by cycle: the machine `hdl/rtl/tformat_host.v`
-//! will mirror (the RTL is not written yet; this model already drives the
-//! encoder emulator in tests).
+//! mirrors. The request, turnaround, answer, gap and quiet wait are the
+//! shared [`half_duplex::Link`] (with an answer limit and a quiet limit);
+//! this file holds T-format's requests, repeats and checks.
 
 use super::frames::{self, DataId};
-use crate::uart::{self, Receiver, ReceiverConfig};
+use crate::half_duplex::{self, End, Link, LinkConfig, Then};
+use crate::uart::{self, ReceiverConfig};
 use crate::{ConfigError, Result};
+
+pub use crate::half_duplex::QUIET_BITS;
 
 /// The host's configuration in cycles; each field is the Verilog parameter
 /// of the same name in upper case.
@@ -62,11 +66,6 @@ pub enum State {
     /// was lost ("never transmit any Request while it transmits the data").
     Quiet = 5,
 }
-
-/// Bit times of idle receiver that end `Quiet`: two fields, longer than any
-/// run of ones inside an answer (a delimiter, a start bit turned 1, eight
-/// data ones and a delimiter).
-pub const QUIET_BITS: u64 = 20;
 
 /// The encoder baud errors (percent, positive = encoder fast) between which
 /// the host reads every answer without error, when every edge inside a
@@ -248,253 +247,103 @@ impl crate::Ports for Out {
     }
 }
 
-/// The host. One [`Host::step`] is one rising edge of the system clock.
+/// T-format's side of the host: the request's Data ID and control field,
+/// and the answer's CRC.
 #[derive(Debug, Clone)]
-pub struct Host {
-    cfg: HostConfig,
-    state: State,
-    rx: Receiver,
-    /// The receiver's registered outputs, as the RTL's FSM sees them: the
-    /// values after the previous edge.
-    rx_out: uart::Out,
+pub struct Side {
     id: u8,
     /// The request's control field, for the answer's check.
     req_cf: u8,
-    /// Every bit of the request as it goes on the line, first bit in bit 0
-    /// (start, data LSB first, delimiter per field; at most 4 fields).
-    req_bits: u64,
-    req_nbits: u8,
-    /// The bits still to send and how many.
-    shift: u64,
-    bits_left: u8,
-    cnt: u64,
-    repeats_left: u8,
-    fields: [u8; MAX_FIELDS],
-    count: u8,
+    /// The XOR of the answer's fields so far (all of them, also those past
+    /// `MAX_FIELDS`).
     crc: u8,
-    idle: u64,
-    errors: (bool, bool, bool),
-    out: Out,
 }
+
+/// The host: the half-duplex skeleton (request, turnaround, answer with its
+/// limit, gap, quiet wait with its limit) with T-format's [`Side`]. One
+/// `step` is one rising edge of the system clock.
+pub type Host = half_duplex::Host<Side, MAX_FIELDS>;
 
 impl Host {
     /// A host in its reset state.
     pub fn new(cfg: HostConfig) -> Result<Self> {
         cfg.validate()?;
-        Ok(Host {
-            rx: Receiver::new(ReceiverConfig {
-                clocks_per_bit: cfg.clocks_per_bit,
-            })?,
-            rx_out: uart::Out::default(),
-            cfg,
-            state: State::Idle,
-            id: 0,
-            req_cf: 0,
-            req_bits: 0,
-            req_nbits: 0,
-            shift: 0,
-            bits_left: 0,
-            cnt: 0,
-            repeats_left: 0,
-            fields: [0; MAX_FIELDS],
-            count: 0,
-            crc: 0,
-            idle: 0,
-            errors: (false, false, false),
-            out: Out {
-                o_tx: true,
-                ..Out::default()
+        half_duplex::Host::with(
+            LinkConfig {
+                answer_limit_bits: Some(ANSWER_LIMIT_BITS),
+                quiet_limit_bits: Some(QUIET_LIMIT_BITS),
+                ..LinkConfig::new(
+                    cfg.clocks_per_bit,
+                    cfg.timeout_clocks,
+                    cfg.repeat_gap_clocks,
+                )
             },
-        })
+            Side {
+                id: 0,
+                req_cf: 0,
+                crc: 0,
+            },
+        )
     }
 
     /// The state after the last step.
     pub fn state(&self) -> State {
-        self.state
+        match self.link().state() {
+            half_duplex::State::Idle => State::Idle,
+            half_duplex::State::Send => State::Send,
+            half_duplex::State::Wait => State::Wait,
+            half_duplex::State::Recv => State::Recv,
+            half_duplex::State::Gap => State::Gap,
+            // The T-format host holds no operation after an accepted
+            // answer: its `finish` never settles.
+            half_duplex::State::Quiet | half_duplex::State::Settle => State::Quiet,
+        }
     }
 
-    /// Fields received in the current answer: the first `MAX_FIELDS` of
-    /// them (`count` goes on counting past them, as the core's does).
+    /// Fields received in the current answer: the first `MAX_FIELDS` of them.
     pub fn fields(&self) -> &[u8] {
-        &self.fields[..(self.count as usize).min(MAX_FIELDS)]
+        self.link().fields()
+    }
+}
+
+impl half_duplex::Protocol<MAX_FIELDS> for Side {
+    type In = In;
+    type Out = Out;
+
+    half_duplex::line_ports!();
+
+    fn field(&mut self, byte: u8) {
+        self.crc ^= byte;
     }
 
-    /// How many of the next steps with `input` only run counters
-    /// (fast-forward): idle, a bit of the request, the answer timeout, the
-    /// answer limit, the gap or the quiet wait counting, with the receiver
-    /// between samples or idle. 0 on `o_done` or a start.
-    pub fn quiet(&self, input: &In) -> u64 {
-        if self.out.o_done || input.i_start {
-            return 0;
-        }
-        let rx_in = uart::In {
-            i_rx: input.i_rx || self.out.o_tx_en,
+    /// Latches the operation `input` asks for and clears the errors.
+    fn start(&mut self, input: &In, next: &mut Out) -> (Vec<u8>, u8) {
+        self.id = input.i_data_id & 0xF;
+        let id = DataId::from_code(self.id);
+        let mut bytes = frames::request(id.unwrap_or(DataId::Id0), input.i_address, input.i_wdata);
+        // An undefined code is sent as asked: the encoder answers it with
+        // Data ID 3 data (Table 5 no. 2).
+        bytes[0] = frames::control_field_for_code(self.id);
+        self.req_cf = bytes[0];
+        let repeats = if id.is_some_and(|d| d.is_reset()) {
+            10
+        } else {
+            1
         };
-        let busy = self.rx_out.o_busy;
-        let c = self.cfg.clocks_per_bit;
-        let state = match self.state {
-            State::Idle => u64::MAX,
-            State::Send | State::Gap => self.cnt,
-            State::Wait if busy => 0,
-            State::Wait => self.cnt,
-            State::Recv | State::Quiet if busy => self.cnt,
-            State::Recv => self.cnt.min((c - 1).saturating_sub(self.idle)),
-            State::Quiet => self.cnt.min((QUIET_BITS * c - 1).saturating_sub(self.idle)),
-        };
-        state.min(self.rx.quiet(&rx_in))
-    }
-
-    /// The same as `n` steps with the last input, for `n` up to [`Host::quiet`].
-    pub fn skip(&mut self, n: u64) {
-        if self.state != State::Idle {
-            self.cnt -= n;
-        }
-        if matches!(self.state, State::Recv | State::Quiet) {
-            self.idle = if self.rx_out.o_busy { 0 } else { self.idle + n };
-        }
-        self.rx.skip(n);
-    }
-
-    /// One rising edge of the system clock.
-    pub fn step(&mut self, input: &In) -> Out {
-        let c = self.cfg.clocks_per_bit;
-        let mut next = Out {
-            o_done: false,
-            ..self.out
-        };
-        let rx = self.rx_out;
-        match self.state {
-            State::Idle => {
-                if input.i_start {
-                    self.id = input.i_data_id & 0xF;
-                    let id = DataId::from_code(self.id);
-                    let set =
-                        frames::request(id.unwrap_or(DataId::Id0), input.i_address, input.i_wdata);
-                    // An undefined code is sent as asked: the encoder answers
-                    // it with Data ID 3 data (Table 5 no. 2).
-                    let mut bytes = set.clone();
-                    bytes[0] = frames::control_field_for_code(self.id);
-                    self.req_cf = bytes[0];
-                    self.req_bits = bytes
-                        .iter()
-                        .rev()
-                        .fold(0u64, |acc, &b| (acc << 10) | (1 << 9) | (u64::from(b) << 1));
-                    self.req_nbits = 10 * bytes.len() as u8;
-                    self.repeats_left = if id.is_some_and(|d| d.is_reset()) {
-                        10
-                    } else {
-                        1
-                    };
-                    self.errors = (false, false, false);
-                    next.o_busy = true;
-                    next.o_err_crc = false;
-                    next.o_err_timeout = false;
-                    next.o_err_frame = false;
-                    next.o_err_cf = false;
-                    next.o_err_comm = false;
-                    self.begin_send(&mut next);
-                }
-            }
-            State::Send => {
-                if self.cnt == 0 {
-                    if self.bits_left == 0 {
-                        next.o_tx_en = false;
-                        next.o_tx = true;
-                        self.state = State::Wait;
-                        self.cnt = self.cfg.timeout_clocks - 1;
-                        self.count = 0;
-                        self.crc = 0;
-                    } else {
-                        next.o_tx = self.shift & 1 == 1;
-                        self.shift >>= 1;
-                        self.bits_left -= 1;
-                        self.cnt = c - 1;
-                    }
-                } else {
-                    self.cnt -= 1;
-                }
-            }
-            State::Wait => {
-                if rx.o_busy {
-                    self.state = State::Recv;
-                    self.idle = 0;
-                    self.cnt = ANSWER_LIMIT_BITS * c - 1;
-                } else if self.cnt == 0 {
-                    self.errors.1 = true;
-                    self.finish(&mut next);
-                } else {
-                    self.cnt -= 1;
-                }
-            }
-            State::Recv if self.cnt == 0 => {
-                self.errors.2 = true;
-                self.finish(&mut next);
-            }
-            State::Recv => {
-                self.cnt -= 1;
-                if rx.o_valid || rx.o_frame_err {
-                    if (self.count as usize) < MAX_FIELDS {
-                        self.fields[self.count as usize] = rx.o_data;
-                    }
-                    self.count = self.count.saturating_add(1);
-                    self.crc ^= rx.o_data;
-                    self.errors.2 |= rx.o_frame_err;
-                    self.idle = 0;
-                } else if !rx.o_busy {
-                    self.idle += 1;
-                    if self.idle == c {
-                        self.finish(&mut next);
-                    }
-                } else {
-                    self.idle = 0;
-                }
-            }
-            State::Gap => {
-                if self.cnt == 0 {
-                    self.begin_send(&mut next);
-                } else {
-                    self.cnt -= 1;
-                }
-            }
-            State::Quiet => {
-                if rx.o_busy {
-                    self.idle = 0;
-                } else {
-                    self.idle += 1;
-                }
-                if self.idle == QUIET_BITS * c || self.cnt == 0 {
-                    self.state = State::Idle;
-                    next.o_busy = false;
-                    next.o_done = true;
-                } else {
-                    self.cnt -= 1;
-                }
-            }
-        }
-        // The receiver listens only while the driver is off.
-        self.rx_out = self.rx.step(&uart::In {
-            i_rx: input.i_rx || self.out.o_tx_en,
-        });
-        self.out = next;
-        next
-    }
-
-    /// Drives the request's first bit (the first start bit) and loads the rest.
-    fn begin_send(&mut self, next: &mut Out) {
-        self.state = State::Send;
-        self.shift = self.req_bits >> 1;
-        self.bits_left = self.req_nbits - 1;
-        self.cnt = self.cfg.clocks_per_bit - 1;
-        next.o_tx_en = true;
-        next.o_tx = self.req_bits & 1 == 1;
+        next.o_err_crc = false;
+        next.o_err_timeout = false;
+        next.o_err_frame = false;
+        next.o_err_cf = false;
+        next.o_err_comm = false;
+        (bytes, repeats)
     }
 
     /// End of one request's answer: check it, publish it, repeat or finish.
-    fn finish(&mut self, next: &mut Out) {
-        let timeout = self.errors.1;
+    fn finish(&mut self, link: &Link<MAX_FIELDS>, next: &mut Out, end: End) -> Then {
+        let timeout = end == End::Timeout;
         let request_cf = self.req_cf;
-        let expected = DataId::from_code(self.id).map_or(11, |d| d.answer_fields()) as u8;
-        let f = self.fields;
+        let expected = DataId::from_code(self.id).map_or(11, |d| d.answer_fields());
+        let f = *link.registers();
         let cf = f[0];
         if !timeout {
             next.o_cf = cf;
@@ -523,28 +372,21 @@ impl Host {
             && !DataId::from_code((cf >> 3) & 0xF).is_some_and(|d| d.is_eeprom())
             && f[1] & 0xC0 != 0;
         let crc_bad = !timeout && self.crc != 0;
-        let frame_bad = !timeout && (self.errors.2 || self.count != expected);
+        let frame_bad =
+            !timeout && (end == End::Overlong || link.frame_err() || link.count() != expected);
         let cf_bad = !timeout && cf != request_cf;
         next.o_err_timeout |= timeout;
         next.o_err_crc |= crc_bad;
         next.o_err_frame |= frame_bad;
         next.o_err_cf |= cf_bad;
         next.o_err_comm |= sf_comm;
-        self.errors = (false, false, false);
-        self.repeats_left -= 1;
-        if self.repeats_left == 0 && (timeout || crc_bad || frame_bad || cf_bad) {
-            self.state = State::Quiet;
-            self.idle = 0;
-            self.cnt = QUIET_LIMIT_BITS * self.cfg.clocks_per_bit - 1;
-        } else if self.repeats_left == 0 {
-            self.state = State::Idle;
-            next.o_busy = false;
-            next.o_done = true;
-        } else {
-            self.state = State::Gap;
-            // The gap runs from the end of this answer; the seed asks for 40 ms
-            // between requests, which this more than keeps.
-            self.cnt = self.cfg.repeat_gap_clocks - 1;
+        // The next answer's XOR starts from 0 (every answer ends here).
+        self.crc = 0;
+        // The gap runs from the end of this answer; the seed asks for 40 ms
+        // between requests, which this more than keeps.
+        Then::Checked {
+            flawed: timeout || crc_bad || frame_bad || cf_bad,
+            settle: 0,
         }
     }
 }

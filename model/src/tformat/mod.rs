@@ -1,7 +1,7 @@
 //! Tamagawa T-format (seed `002_088a60295d2565fd.txt`, Smart Abs TS5669 N127):
 //! 2.5 Mbps half-duplex RS-485, 10-bit fields, Data IDs, CRC `X^8 + 1`.
 //!
-//! [`Host`] is the master (the future `hdl/rtl/tformat_host.v`, built on
+//! [`Host`] is the master (`hdl/rtl/tformat_host.v`, built on
 //! `uart_rx`), [`Encoder`] the Smart Abs emulator, [`Bench`] both on a cable.
 //! [`frames`] holds the field layouts.
 //!
@@ -59,4 +59,4 @@ pub use encoder::frame_bits;
 pub use encoder::{
     AnswerFlip, AnswerTruncation, Encoder, EncoderConfig, EncoderSettings, EEPROM_SIZE,
 };
-pub use host::{always_flagged, tolerance, Host, HostConfig, In, Out, State};
+pub use host::{always_flagged, tolerance, Host, HostConfig, In, Out, State, QUIET_BITS};

@@ -27,6 +27,7 @@ mod endat_master;
 mod esl;
 mod esl_frames;
 mod gray;
+mod half_duplex;
 mod line;
 mod modbus;
 mod modbus_campaign;
