@@ -31,6 +31,7 @@ pub mod gray;
 pub mod line;
 pub mod modbus;
 pub mod ports;
+pub mod rules;
 pub mod sar58k24;
 pub mod ssi;
 pub mod testbench;

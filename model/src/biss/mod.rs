@@ -95,6 +95,7 @@ pub mod campaign;
 pub mod control;
 pub mod decode;
 mod master;
+pub mod rules;
 pub mod seed_timing;
 mod slave;
 

@@ -62,6 +62,7 @@ mod bench;
 pub mod decode;
 mod encoder;
 mod master;
+pub mod rules;
 
 pub use bench::{
     Bench, BenchConfig, EncoderSettings, HostSettings, MasterSettings, StuckFault, Transaction,
