@@ -138,6 +138,7 @@ impl BissMonitor {
                 bits: slaves.iter().map(|s| s.bits).collect(),
                 crc_width: slaves.iter().map(|s| s.crc_width).collect(),
                 crc_poly: slaves.iter().map(|s| s.crc_poly).collect(),
+                timeout_ps: Some(limits.timeout),
             },
             decoder: Decoder::default(),
             ma: Signal::named("ma"),
@@ -188,7 +189,9 @@ impl Emulator for BissMonitor {
         for b in &seen.breaches {
             self.base.breach(b);
         }
-        self.ma.push(now, ma);
+        // Before the line clock is seen idle high (a master in reset), the
+        // decoder sees it idle, as the emulator's device does.
+        self.ma.push(now, ma || !self.watch.seen_idle());
         self.slo.push(now, slo);
         self.base.step_out()
     }

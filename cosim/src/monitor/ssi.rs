@@ -175,7 +175,9 @@ impl Emulator for SsiMonitor {
         for b in &seen.breaches {
             self.base.breach(b);
         }
-        self.clk.push(now, clk);
+        // Before the line clock is seen idle high (a master in reset), the
+        // decoder sees it idle, as the emulator's device does.
+        self.clk.push(now, clk || !self.watch.seen_idle());
         self.data.push(now, data);
         self.base.step_out()
     }

@@ -22,6 +22,7 @@ mod monitor_can;
 mod monitor_half_duplex;
 mod monitor_uart;
 mod motion;
+mod rules;
 mod sar58k24;
 mod ssi;
 mod tformat;

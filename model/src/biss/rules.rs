@@ -171,6 +171,12 @@ impl Watch {
         &self.limits
     }
 
+    /// MA has been seen idle high (before that, the master is taken to be
+    /// in reset and the slaves see MA idle).
+    pub fn seen_idle(&self) -> bool {
+        self.ma.seen_idle()
+    }
+
     /// A frame is in progress (the slave has not timed out).
     pub fn in_frame(&self) -> bool {
         self.frame.is_some()

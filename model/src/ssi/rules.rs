@@ -14,9 +14,11 @@
 //! ```
 //!
 //! The clock range is a frequency, so it is held on whole periods (rising
-//! edge to rising edge), whatever the duty cycle. A high phase longer than
-//! the slowest period is the master's pause: the falling edge after it
-//! starts a new read, which the encoder takes for one only after `T_m`.
+//! edge to rising edge), whatever the duty cycle. A high phase as long as
+//! the slowest period or longer (no clock of a legal read has one: its low
+//! phase takes a part of the period) is the master's pause: the falling
+//! edge after it starts a new read, which the encoder takes for one only
+//! after `T_m`.
 //!
 //! The watcher (and the emulator) expects the clock idle high before the
 //! first read: until the clock has been seen high, nothing is a read, so a
@@ -64,7 +66,7 @@ pub static T_M: Rule = Rule {
     seed_words: "T_m > 500µs",
     quantity: "clock high before a new read",
     bound: Bound::AtLeast(500.0, Unit::Us),
-    measured: "the last clock edge of a read to the falling edge that starts the next, when that high phase is longer than the slowest clock period",
+    measured: "the last clock edge of a read to the falling edge that starts the next, when that high phase is at least the slowest clock period (10 us)",
     reading: "the bound is the encoder's monoflop time (`encoder.monoflop_us`, the seed's 500 us by default), a device property: the seed says \"T_cs f_clk T_m varies according to the actual situation and products\"",
     settable: None,
     label: OnceLock::new(),
@@ -193,7 +195,7 @@ impl Watch {
                 self.read = Some(Read::default());
             }
             None => {}
-            Some(_) if !edge.rose && len > lim.period_max => {
+            Some(_) if !edge.rose && len >= lim.period_max => {
                 step.breaches.push(T_M.breach(
                     t_ps,
                     format!(
