@@ -205,6 +205,23 @@ pub struct Breach {
     pub detail: String,
 }
 
+/// What one sample showed a watcher.
+#[derive(Debug, Clone, Default)]
+pub struct Step {
+    /// Rules broken at this sample.
+    pub breaches: Vec<Breach>,
+    /// A transaction (frame, read) began at this sample: a monitor hands
+    /// the line before it to its decoder.
+    pub started: bool,
+}
+
+/// A transaction (frame, read) as a watcher follows it.
+#[derive(Debug, Clone, Default)]
+pub struct Transaction {
+    /// Its last rising clock edge, ps.
+    pub last_rise: Option<u64>,
+}
+
 /// Every rule of every protocol with a rule book, protocol by protocol.
 pub fn all() -> Vec<&'static Rule> {
     [crate::biss::rules::RULES, crate::ssi::rules::RULES].concat()

@@ -261,7 +261,7 @@ fn ssi_probes() -> Vec<Probe> {
         p("f_clk", true, "250 kHz, the fastest clock: periods of 4 us", ssi(&[at(250, 600 * US)]), &[495]),
         p("f_clk", true, "100 kHz, the slowest clock: periods of 10 us", ssi(&[at(100, 600 * US)]), &[495]),
         p("f_clk", true, "200 kHz with the clock low 1.5 us, high 3.5 us", ssi(&[read(4 * US, 3_500 * NS, 1_500 * NS, 600 * US)]), &[495]),
-        p("f_clk", true, "100 kHz with the clock high 9 us, low 1 us", ssi(&[read(4 * US, 9 * US, 1 * US, 600 * US)]), &[495]),
+        p("f_clk", true, "100 kHz with the clock high 9 us, low 1 us", ssi(&[read(4 * US, 9 * US, US, 600 * US)]), &[495]),
         p("f_clk", false, "periods of 3.9 us (256 kHz)", ssi(&[read(4 * US, 2 * US, 1_900 * NS, 600 * US)]), &[495]),
         p("f_clk", false, "periods of 10.1 us (99 kHz)", ssi(&[read(4 * US, 5 * US, 5_100 * NS, 600 * US)]), &[495]),
         p("f_clk", false, "83 kHz, 50 % duty", ssi(&[read(4 * US, 6 * US, 6 * US, 600 * US)]), &[495]),

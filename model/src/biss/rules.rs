@@ -30,7 +30,7 @@
 
 use std::sync::OnceLock;
 
-use crate::rules::{self, Bound, Breach, Line, Rule, Settable, Unit};
+use crate::rules::{self, Bound, Line, Rule, Settable, Step, Transaction, Unit};
 
 const SECTION: &str = "seed 001 SAR58K24 manual, BiSS-C timing";
 
@@ -132,28 +132,12 @@ impl Limits {
     }
 }
 
-/// One frame as the watcher follows it.
-#[derive(Debug, Clone, Default)]
-struct Frame {
-    /// The last rising MA edge, ps.
-    last_rise: Option<u64>,
-}
-
-/// What one sample showed.
-#[derive(Debug, Clone, Default)]
-pub struct Step {
-    /// Rules broken at this sample.
-    pub breaches: Vec<Breach>,
-    /// A frame began at this sample (its first falling MA edge).
-    pub started: bool,
-}
-
 /// The BiSS-C edge watcher: MA as the master drives it, SLO at the master.
 #[derive(Debug, Clone)]
 pub struct Watch {
     limits: Limits,
     ma: Line,
-    frame: Option<Frame>,
+    frame: Option<Transaction>,
 }
 
 impl Watch {
@@ -195,7 +179,7 @@ impl Watch {
         let Some(f) = self.frame.as_mut() else {
             if !edge.rose {
                 step.started = true;
-                self.frame = Some(Frame::default());
+                self.frame = Some(Transaction::default());
                 if !slo {
                     step.breaches.push(TIMEOUT.breach(
                         t_ps,

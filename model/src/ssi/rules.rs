@@ -26,7 +26,7 @@
 
 use std::sync::OnceLock;
 
-use crate::rules::{self, Bound, Breach, Line, Rule, Settable, Unit};
+use crate::rules::{self, Bound, Line, Rule, Settable, Step, Transaction, Unit};
 
 const SECTION: &str = "seed 001 SAR58K24 manual, SSI (2)";
 
@@ -134,27 +134,12 @@ impl Limits {
     }
 }
 
-/// One read as the watcher follows it.
-#[derive(Debug, Clone, Default)]
-struct Read {
-    last_rise: Option<u64>,
-}
-
-/// What one sample showed.
-#[derive(Debug, Clone, Default)]
-pub struct Step {
-    /// Rules broken at this sample.
-    pub breaches: Vec<Breach>,
-    /// A read began at this sample (its storing falling edge).
-    pub started: bool,
-}
-
 /// The SSI edge watcher: the clock as the master drives it.
 #[derive(Debug, Clone)]
 pub struct Watch {
     limits: Limits,
     clk: Line,
-    read: Option<Read>,
+    read: Option<Transaction>,
 }
 
 impl Watch {
@@ -192,7 +177,7 @@ impl Watch {
         match self.read.as_mut() {
             None if !edge.rose => {
                 step.started = true;
-                self.read = Some(Read::default());
+                self.read = Some(Transaction::default());
             }
             None => {}
             Some(_) if !edge.rose && len >= lim.period_max => {
@@ -205,7 +190,7 @@ impl Watch {
                     ),
                 ));
                 step.started = true;
-                self.read = Some(Read::default());
+                self.read = Some(Transaction::default());
             }
             Some(_) if !edge.rose => {}
             Some(r) => {
