@@ -8,6 +8,11 @@
 //! `positions[k % len] + k × step` until the testbench sets one, and its
 //! error and warning bits are the scenario's until the testbench sets them.
 //!
+//! The master's timing is held to the rule book [`model::biss::rules`] (the
+//! monitor holds it to the same). The emulator expects MA idle high before
+//! the first frame: until it has seen MA high, the slaves see MA idle, so a
+//! master holding reset (MA at 0) from time 0 starts no frame.
+//!
 //! Each emulator cycle: MA crosses the cable to the chain, the chain steps
 //! (SLO changes after the first slave's `output_delay_ns`), SLO crosses the
 //! cable back (plus a `delay_step`'s extra delay from its frame on). A stuck
@@ -15,11 +20,13 @@
 
 use serde::{Deserialize, Serialize};
 
+use model::biss::rules::{self, Limits, Watch};
 use model::biss::{
     BenchConfig, Chain, DelayStep, FlipFault, Slave, SlaveSettings, StuckFault, MAX_SLAVES,
 };
 use model::bits;
 use model::line::{CableConfig, DelayLine};
+use model::rules::Unit;
 use model::Timebase;
 
 use crate::check::{Checks, VIOLATION_PENDING};
@@ -48,30 +55,43 @@ pub struct BissConfig {
     pub checks: BissChecks,
 }
 
-/// The master's timing limits (`[checks]`), by default the seed's (seed 001,
-/// BiSS-C: `TMAS > 100 ns`; the master starts a frame only when the slave
-/// has ended its timeout, SLO high again).
+/// The master's timing limits (`[checks]`), by default the seed's
+/// ([`model::biss::rules`]): each may be set within the seed's range only
+/// (a tighter limit for a slower slave), never looser.
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct BissChecks {
-    /// Least MA period within a frame, ns.
+    /// Least MA period within a frame, ns (`TMAS`, seed: 100).
     pub min_tmas_ns: f64,
+    /// Least MA high phase within a frame, ns, exclusive (`TMASH`, seed: 25).
+    pub min_tmash_ns: f64,
+    /// Least MA low phase within a frame, ns, exclusive (`TMASL`, seed: 25).
+    pub min_tmasl_ns: f64,
 }
 
 impl Default for BissChecks {
     fn default() -> Self {
-        BissChecks { min_tmas_ns: 100.0 }
+        BissChecks {
+            min_tmas_ns: 100.0,
+            min_tmash_ns: 25.0,
+            min_tmasl_ns: 25.0,
+        }
     }
 }
 
-/// The checker's state: MA as it leaves the master.
-#[derive(Debug, Clone, Default)]
-struct Watch {
-    last_ma: bool,
-    last_edge: u64,
-    last_rise: Option<u64>,
-    in_frame: bool,
-    last_low: u64,
+/// The rule limits in force for slaves that time out after `timeout_us`,
+/// the MA phase limits given as `(field, ns)` for `TMAS`, `TMASH` and
+/// `TMASL`, each refused outside the seed's range.
+pub fn limits(
+    timeout_us: f64,
+    given: [(&str, f64); 3],
+) -> std::result::Result<Limits, model::ConfigError> {
+    let mut l = Limits::seed(timeout_us);
+    let [tmas, tmash, tmasl] = given;
+    l.tmas = Unit::Ns.ps(rules::TMAS.setting(tmas.0, tmas.1)?);
+    l.tmash = Unit::Ns.ps(rules::TMASH.setting(tmash.0, tmash.1)?);
+    l.tmasl = Unit::Ns.ps(rules::TMASL.setting(tmasl.0, tmasl.1)?);
+    Ok(l)
 }
 
 impl Default for BissConfig {
@@ -140,9 +160,9 @@ pub struct BissEmulator {
     stuck: Option<bool>,
     cycle: u64,
     entries: Vec<Entry>,
-    timeout: u64,
-    min_tmas: f64,
-    slo_at_slaves: bool,
+    /// The master's MA has been seen idle high: before that (a master in
+    /// reset), the slaves see MA idle.
+    ma_seen_idle: bool,
     watch: Watch,
     checks: Checks,
     motions: Motions,
@@ -213,25 +233,21 @@ impl BissEmulator {
         let chain = Chain::new(slaves, tb.cycles_nearest_ns(cfg.slaves[0].output_delay_ns));
         let (to_slaves, to_master) = cfg.cable.lines(&tb, true);
         let owned = vec![Owned::default(); cfg.slaves.len()];
-        if !(cfg.checks.min_tmas_ns >= 0.0 && cfg.checks.min_tmas_ns < 1e9) {
-            return Err(Error::field(
-                origin,
-                "checks.min_tmas_ns",
-                format!("{}", cfg.checks.min_tmas_ns),
-                "give the least MA period in ns (seed: 100)",
-            ));
+        let longest = cfg.slaves.iter().map(|s| s.timeout_us).fold(0.0, f64::max);
+        let c = &cfg.checks;
+        let limits = limits(
+            longest,
+            [
+                ("checks.min_tmas_ns", c.min_tmas_ns),
+                ("checks.min_tmash_ns", c.min_tmash_ns),
+                ("checks.min_tmasl_ns", c.min_tmasl_ns),
+            ],
+        )
+        .map_err(|e| Error::config(origin, e))?;
+        let mut checks = Checks::for_clock(&tb);
+        for note in model::rules::resolution_notes(f_emu_hz, &limits.least()) {
+            checks.note(note);
         }
-        let mut timeout = 1;
-        for i in 0..cfg.slaves.len() {
-            timeout = timeout.max(
-                bench
-                    .slave_config(i)
-                    .map_err(|e| Error::config(origin, e))?
-                    .timeout_clocks,
-            );
-        }
-        let checks = Checks::for_clock(&tb);
-        let min_tmas = checks.cycles_of_ns(cfg.checks.min_tmas_ns) - 1.0;
         let mut emu = BissEmulator {
             f_emu_hz,
             tb,
@@ -244,13 +260,8 @@ impl BissEmulator {
             stuck: None,
             cycle: 0,
             entries: Vec::new(),
-            timeout,
-            min_tmas,
-            slo_at_slaves: true,
-            watch: Watch {
-                last_ma: true,
-                ..Watch::default()
-            },
+            ma_seen_idle: false,
+            watch: Watch::new(limits),
             checks,
             motions: Motions::default(),
         };
@@ -307,50 +318,6 @@ impl BissEmulator {
         &self.entries
     }
 
-    /// Holds the master's MA (at its own pin) to the seed's limits.
-    fn check(&mut self, ma: bool) {
-        let now = self.cycle;
-        let w = &mut self.watch;
-        if ma != w.last_ma {
-            // MA high for more than 4 of the frame's half periods has stopped:
-            // the next falling edge is the master's new start.
-            let stopped = w.in_frame && now - w.last_edge > 4 * w.last_low.max(1);
-            if ma {
-                w.last_low = now - w.last_edge;
-            }
-            if !ma && (!w.in_frame || stopped) {
-                w.in_frame = true;
-                w.last_rise = None;
-                if !self.slo_at_slaves {
-                    self.checks.push(
-                        now,
-                        "frame start (seed 001, BiSS-C: start a frame only after the slave's timeout, SLO high)",
-                        "MA fell while the slave still held SLO low".to_string(),
-                    );
-                }
-            }
-            if ma {
-                if let Some(r) = w.last_rise {
-                    if ((now - r) as f64) < self.min_tmas {
-                        self.checks.push(
-                            now,
-                            "TMAS (seed 001, BiSS-C: TMAS > 100 ns)",
-                            format!(
-                                "MA period {:.1} ns within a frame",
-                                self.checks.us(now - r) * 1e3
-                            ),
-                        );
-                    }
-                }
-                w.last_rise = Some(now);
-            }
-            w.last_ma = ma;
-            w.last_edge = now;
-        } else if w.in_frame && now - w.last_edge >= self.timeout {
-            w.in_frame = false;
-        }
-    }
-
     fn slave_index(&self, device: usize) -> Result<usize> {
         if device < self.owned.len() {
             Ok(device)
@@ -403,7 +370,8 @@ impl Emulator for BissEmulator {
     }
 
     fn step(&mut self, pins: Pins) -> Pins {
-        self.check(pins.data());
+        let ma_at_master = pins.data();
+        self.ma_seen_idle |= ma_at_master;
         if self.motions.any() {
             for i in 0..self.cfg.slaves.len() {
                 if let Some(p) =
@@ -414,11 +382,10 @@ impl Emulator for BissEmulator {
                 }
             }
         }
-        let ma = self.to_slaves.step(pins.data());
+        let ma = self.to_slaves.step(ma_at_master || !self.ma_seen_idle);
         let latches = self.chain.latches();
         let frames = self.chain.frames();
         let slo = self.chain.step(ma);
-        self.slo_at_slaves = slo;
         if self.chain.latches() != latches {
             let slaves = self
                 .chain
@@ -451,13 +418,20 @@ impl Emulator for BissEmulator {
         if let Some(extra) = self.extra.as_mut() {
             at_master = extra.step(at_master);
         }
+        let slo_at_master = self.stuck.unwrap_or(at_master);
+        let seen = self
+            .watch
+            .sample(self.tb.ps_at(self.cycle), ma_at_master, slo_at_master);
+        for b in &seen.breaches {
+            self.checks.breach(self.cycle, b);
+        }
         self.cycle += 1;
         let flag = if self.checks.pending() {
             VIOLATION_PENDING
         } else {
             0
         };
-        Pins(self.stuck.unwrap_or(at_master) as u32 | flag)
+        Pins(slo_at_master as u32 | flag)
     }
 
     fn set_position(&mut self, device: usize, position: u64) -> Result<()> {
@@ -541,6 +515,7 @@ impl Emulator for BissEmulator {
             "f_emu_hz": self.f_emu_hz,
             "frames": self.entries,
             "violations": self.checks.all(),
+            "notes": self.checks.notes(),
         })
     }
 

@@ -3,10 +3,12 @@
 //! records each violation with its time and the seed's rule.
 //!
 //! Limits are named fields of a `[checks]` table (defaults: the seed's
-//! numbers), because a master may run outside the seed's encoder on purpose
-//! (an SSI reader at 1 MHz) and must say so. A measured time is allowed one
-//! emulator cycle of tolerance either way: the master's clock and the
-//! emulator's need not be the same.
+//! numbers). Where a protocol has a rule book (`model::<proto>::rules`, see
+//! [`model::rules`]), the emulator and the monitor both feed its watcher and
+//! record its breaches here ([`Checks::breach`]); a limit is then the seed's
+//! bound measured at the emulator clock's resolution, with no cycle of
+//! slack, and what that clock cannot resolve is noted once at time 0
+//! ([`Checks::note`]).
 
 use serde::Serialize;
 
@@ -31,6 +33,7 @@ pub struct Checks {
     period_ps: f64,
     list: Vec<Violation>,
     shown: usize,
+    notes: Vec<String>,
 }
 
 impl Checks {
@@ -50,6 +53,7 @@ impl Checks {
             period_ps,
             list: Vec::new(),
             shown: 0,
+            notes: Vec::new(),
         }
     }
 
@@ -62,6 +66,23 @@ impl Checks {
             rule,
             detail,
         });
+    }
+
+    /// Records a breach of a rule of the rule book seen at `cycle`.
+    pub fn breach(&mut self, cycle: u64, b: &model::rules::Breach) {
+        self.push(cycle, b.rule.label(), b.detail.clone());
+    }
+
+    /// A remark on the checks themselves (not a violation of the master),
+    /// printed once when made: a limit the clock cannot resolve.
+    pub fn note(&mut self, text: String) {
+        eprintln!("NOTE: {text}");
+        self.notes.push(text);
+    }
+
+    /// The remarks so far.
+    pub fn notes(&self) -> &[String] {
+        &self.notes
     }
 
     /// Cycles to microseconds.

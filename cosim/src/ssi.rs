@@ -6,6 +6,12 @@
 //! scenario's `[ssi]` table; `[master]`, `[host]`, `f_sys_mhz` and `reads`
 //! are ignored, so a whole scenario file can be given.
 //!
+//! The master's timing is held to the rule book [`model::ssi::rules`] (the
+//! monitor holds it to the same). The emulator expects the clock idle high
+//! before the first read: until it has seen the clock high, the encoder
+//! sees it idle, so a master holding reset (its clock at 0) from time 0
+//! starts no read and the first read stores the first position.
+//!
 //! Each emulator cycle: the clock crosses the cable to the encoder, the
 //! encoder steps (and after its output delay drives data), the data crosses
 //! the cable back. A stuck fault holds the data at the master's end from the
@@ -16,6 +22,8 @@ use serde::{Deserialize, Serialize};
 use model::bits;
 use model::gray::from_gray;
 use model::line::{CableConfig, DelayLine};
+use model::rules::Unit;
+use model::ssi::rules::{self, Limits, Watch};
 use model::ssi::{BenchConfig, Encoder, EncoderSettings, StuckFault};
 
 use crate::check::{Checks, VIOLATION_PENDING};
@@ -58,16 +66,18 @@ impl Default for SsiConfig {
 }
 
 /// The master's timing limits (`[checks]`), by default the seed's
-/// (SAR58K24 manual, SSI: `100 kHz < f_clk < 250 kHz`, `T_cs > 4 µs`,
-/// `T_m > 500 µs`; the monoflop is the encoder's own `monoflop_us`).
+/// ([`model::ssi::rules`]; the monoflop `T_m` is the encoder's own
+/// `monoflop_us`): each may be set within its rule's settable range (the
+/// seed lets these vary by product; a reader beyond the seed's encoder says
+/// so here).
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct SsiChecks {
-    /// Slowest clock: no half period of a read may exceed half its period.
+    /// Slowest clock, kHz (seed: 100), held on every period of a read.
     pub min_clock_khz: f64,
-    /// Fastest clock: no half period of a read may be shorter than half its period.
+    /// Fastest clock, kHz (seed: 250), held on every period of a read.
     pub max_clock_khz: f64,
-    /// Least first low phase (the storing edge to the first rising edge), µs.
+    /// Least first low phase (the storing edge to the first rising edge), µs (seed: 4).
     pub t_cs_min_us: f64,
 }
 
@@ -81,14 +91,19 @@ impl Default for SsiChecks {
     }
 }
 
-/// The checker's state: the master's clock as it leaves the master.
-#[derive(Debug, Clone, Default)]
-struct Watch {
-    last_clk: bool,
-    last_edge: u64,
-    in_read: bool,
-    first_low: bool,
-    read_end: Option<u64>,
+impl SsiChecks {
+    /// The rule limits in force with the encoder's monoflop time `t_m_us`,
+    /// each limit refused outside the seed's range.
+    pub fn limits(&self, t_m_us: f64) -> std::result::Result<Limits, model::ConfigError> {
+        let mut l = Limits::seed(t_m_us);
+        l.t_cs = Unit::Us.ps(rules::T_CS.setting("checks.t_cs_min_us", self.t_cs_min_us)?);
+        l.set_clock(
+            ["checks.min_clock_khz", "checks.max_clock_khz"],
+            self.min_clock_khz,
+            self.max_clock_khz,
+        )?;
+        Ok(l)
+    }
 }
 
 /// Faults a testbench schedules at run time (the scenario's `[fault]` table).
@@ -128,8 +143,6 @@ pub struct SsiEmulator {
     stuck: Option<bool>,
     cycle: u64,
     entries: Vec<Entry>,
-    monoflop: u64,
-    limits: (f64, f64, f64),
     watch: Watch,
     checks: Checks,
     motions: Motions,
@@ -172,36 +185,17 @@ impl SsiEmulator {
             ));
         }
         let (to_encoder, to_master) = cfg.cable.lines(&tb, true);
-        let (gray, bits, monoflop) = (enc_cfg.gray, enc_cfg.bits, enc_cfg.monoflop_clocks);
-        let c = &cfg.checks;
-        if !(c.min_clock_khz > 0.0 && c.min_clock_khz <= c.max_clock_khz && c.max_clock_khz < 1e6) {
-            return Err(Error::field(
-                origin,
-                "checks.min_clock_khz",
-                format!("{} to {} kHz", c.min_clock_khz, c.max_clock_khz),
-                "give 0 < min_clock_khz <= max_clock_khz (seed: 100 and 250)",
-            ));
+        let (gray, bits) = (enc_cfg.gray, enc_cfg.bits);
+        let limits = cfg
+            .checks
+            .limits(cfg.encoder.monoflop_us)
+            .map_err(|e| Error::config(origin, e))?;
+        let mut checks = Checks::for_clock(&tb);
+        for note in model::rules::resolution_notes(f_emu_hz, &limits.least()) {
+            checks.note(note);
         }
-        if !(c.t_cs_min_us >= 0.0 && c.t_cs_min_us < 1e6) {
-            return Err(Error::field(
-                origin,
-                "checks.t_cs_min_us",
-                format!("{}", c.t_cs_min_us),
-                "give the least T_cs in µs (seed: 4)",
-            ));
-        }
-        let checks = Checks::for_clock(&tb);
-        // Half periods and T_cs in emulator cycles, one cycle of tolerance.
-        let limits = (
-            checks.cycles_of_ns(1e6 / (2.0 * c.max_clock_khz)) - 1.0,
-            checks.cycles_of_ns(1e6 / (2.0 * c.min_clock_khz)) + 1.0,
-            checks.cycles_of_ns(c.t_cs_min_us * 1e3) - 1.0,
-        );
         let encoder = Encoder::new(enc_cfg).map_err(|e| Error::config(origin, e))?;
-        let watch = Watch {
-            last_clk: true,
-            ..Watch::default()
-        };
+        let watch = Watch::new(limits);
         let mut emu = SsiEmulator {
             f_emu_hz,
             tb,
@@ -215,8 +209,6 @@ impl SsiEmulator {
             stuck: None,
             cycle: 0,
             entries: Vec::new(),
-            monoflop,
-            limits,
             watch,
             checks,
             motions: Motions::default(),
@@ -254,59 +246,6 @@ impl SsiEmulator {
     pub fn entries(&self) -> &[Entry] {
         &self.entries
     }
-
-    /// Holds the master's clock (at its own pin) to the seed's limits.
-    fn check(&mut self, clk: bool) {
-        let (half_min, half_max, t_cs_min) = self.limits;
-        let now = self.cycle;
-        let w = &mut self.watch;
-        if clk != w.last_clk {
-            let len = now - w.last_edge;
-            let lasted = self.checks.us(len);
-            if !clk {
-                if !w.in_read {
-                    if let Some(end) = w.read_end {
-                        if now - end < self.monoflop {
-                            self.checks.push(
-                                now,
-                                "T_m (seed 001, SSI: a new read only after the monoflop time T_m)",
-                                format!("read started {:.3} us after the last clock edge of the previous read; the encoder's T_m is {:.3} us", self.checks.us(now - end), self.checks.us(self.monoflop)),
-                            );
-                        }
-                    }
-                    w.in_read = true;
-                    w.first_low = true;
-                } else if (len as f64) < half_min || (len as f64) > half_max {
-                    self.checks.push(
-                        now,
-                        "clock range (seed 001, SSI: 100 kHz < f_clk < 250 kHz)",
-                        format!("clock high for {lasted:.3} us within a read"),
-                    );
-                }
-            } else if w.first_low {
-                w.first_low = false;
-                if (len as f64) < t_cs_min {
-                    self.checks.push(
-                        now,
-                        "T_cs (seed 001, SSI: T_cs > 4 us)",
-                        format!("first low phase {lasted:.3} us"),
-                    );
-                }
-            } else if (len as f64) < half_min || (len as f64) > half_max {
-                self.checks.push(
-                    now,
-                    "clock range (seed 001, SSI: 100 kHz < f_clk < 250 kHz)",
-                    format!("clock low for {lasted:.3} us within a read"),
-                );
-            }
-            w.last_clk = clk;
-            w.last_edge = now;
-        } else if clk && w.in_read && (now - w.last_edge) as f64 > half_max {
-            // A high phase longer than any half period: the read is over.
-            w.in_read = false;
-            w.read_end = Some(w.last_edge);
-        }
-    }
 }
 
 impl Emulator for SsiEmulator {
@@ -315,13 +254,18 @@ impl Emulator for SsiEmulator {
     }
 
     fn step(&mut self, pins: Pins) -> Pins {
-        self.check(pins.data());
+        let seen = self.watch.sample(self.tb.ps_at(self.cycle), pins.data());
+        for b in &seen.breaches {
+            self.checks.breach(self.cycle, b);
+        }
         if self.motions.any() {
             if let Some(p) = self.motions.position_on(0, self.cycle, &self.tb, self.bits) {
                 self.encoder.set_position(p);
             }
         }
-        let clk = self.to_encoder.step(pins.data());
+        // Before the clock has been seen idle high (a master in reset), the
+        // encoder sees it idle.
+        let clk = self.to_encoder.step(pins.data() || !self.watch.seen_idle());
         let reads = self.encoder.reads();
         let data = self.encoder.step(clk);
         if self.encoder.reads() != reads {
@@ -408,6 +352,7 @@ impl Emulator for SsiEmulator {
             "f_emu_hz": self.f_emu_hz,
             "reads": self.entries,
             "violations": self.checks.all(),
+            "notes": self.checks.notes(),
         })
     }
 

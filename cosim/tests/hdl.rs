@@ -264,7 +264,7 @@ fn bad_configuration_stops_at_time_zero(sim: &str) {
     // first low phase far below the seed's T_cs, reported by the checker.
     assert!(out.contains("PROTOCOL VIOLATION by the master on"), "{out}");
     assert!(
-        out.contains("T_cs (seed 001, SSI: T_cs > 4 us): first low phase 0.100 us"),
+        out.contains("T_cs (seed 001 SAR58K24 manual, SSI (2): first low phase >= 4 us): first low phase 0.100 us"),
         "{out}"
     );
 }

@@ -2,6 +2,7 @@
 PyO3 module built from the cosim crate by scripts/cocotb.sh) stepped on every
 rising edge of the clock, with the master's pins in and the emulator's out."""
 
+import logging
 import os
 
 import cocotb
@@ -23,11 +24,29 @@ def open_emulator(kind, f_emu_hz):
         return encoder_emu.Emulator(kind, f.read(), f_emu_hz, path)
 
 
+# A driver enable is a pin whose name ends so (o_tx_en, o_endat_data_oe,
+# dout_en): X or Z there means the master does not drive.
+ENABLE_SUFFIXES = ("_en", "_oe", "_de", "_enable")
+_x_enables_warned = set()
+
+
 def bit(signal):
-    """A 1-bit signal as 0/1 (X or Z read as 1, the idle level; the HDL
-    wrappers report it, a cocotb test asserts it away at reset)."""
+    """A 1-bit signal as 0/1. X or Z on a driver enable (a name ending in
+    _en, _oe, _de or _enable) reads as 0, not driving, with one warning per
+    pin and never a protocol report (a master before its reset); on any other
+    pin as 1, the idle level of the line (a clock held X in reset reads idle;
+    the HDL wrappers report it, a cocotb test asserts it away at reset)."""
     v = signal.value
-    return int(v) if v.is_resolvable else 1
+    if v.is_resolvable:
+        return int(v)
+    name = signal._name
+    if name.lower().endswith(ENABLE_SUFFIXES):
+        if name not in _x_enables_warned:
+            _x_enables_warned.add(name)
+            logging.getLogger("cocotb").warning(
+                "X or Z on the driver enable %s: read as 0, the master not driving (warned once)", name)
+        return 0
+    return 1
 
 
 async def start(dut, f_hz):

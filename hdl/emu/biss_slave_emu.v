@@ -31,6 +31,10 @@
 // breaks (limits in the TOML's [checks] table) is printed as
 // "PROTOCOL VIOLATION by the master on ... at <ns> (emulator cycle N): <rule>: <measured>"
 // and counted (u_emu.violations(0)); STOP_ON_VIOLATION = 1 stops the run.
+// The rules are the rule book of docs/rules.md, the monitor's too. The
+// emulator expects i_ma idle high before the first frame: until it has seen
+// it high (a master holding reset with it at 0 from time 0), the device sees
+// it idle and nothing is checked.
 
 `default_nettype none
 

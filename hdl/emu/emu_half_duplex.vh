@@ -9,7 +9,9 @@
 // and drives its outputs from emu_out[0] (the device's driver level at the
 // master's end), emu_out[1] (its enable there) and emu_out[2] (the resolved
 // line level: the master's own driver, else the device's, else high),
-// registered.
+// registered. X or Z on the driver enable (bit 2) reads as not driving, and
+// the driver's level is then not read: one warning, never a protocol report;
+// X or Z on another pin holds its last level (an error, STOP_ON_X).
 
 `EMU_STR config_path;
 
@@ -46,7 +48,19 @@ always @(posedge i_emu_clk) begin
         for (k = 0; k < 4; k = k + 1)
             if (emu_pins_in[k] === 1'b0 || emu_pins_in[k] === 1'b1)
                 pins_level[k] = emu_pins_in[k];
-        if (pins_known && !x_reported) begin
+        // X or Z on the driver enable (bit 2) reads as not driving (as
+        // before the master's reset), and the level of that driver (bit 1)
+        // is then not read: one warning, never a protocol report.
+        if (emu_pins_in[2] !== 1'b0 && emu_pins_in[2] !== 1'b1
+                && ((^{emu_pins_in[3], emu_pins_in[0]}) === 1'b0 || (^{emu_pins_in[3], emu_pins_in[0]}) === 1'b1)) begin
+            pins_level[2] = 1'b0;
+            if (emu_pins_in[1] !== 1'b0 && emu_pins_in[1] !== 1'b1)
+                pins_level[1] = EMU_IDLE[1];
+            if (pins_known && !x_reported)
+                $display("WARNING: %m: X or Z on the driver enable of %0s = %b at time %0t, emulator cycle %0d: read as not driving",
+                         EMU_PINS, emu_pins_in, $time, emu_cycle);
+            x_reported = 1'b1;
+        end else if (pins_known && !x_reported) begin
             $display("ERROR: %m: X or Z on emulator input %0s = %b at time %0t, emulator cycle %0d (held at %b, not read as data)",
                      EMU_PINS, emu_pins_in, $time, emu_cycle, pins_level);
             x_reported = 1'b1;

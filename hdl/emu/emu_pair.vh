@@ -6,6 +6,9 @@
 //   wire emu_clk_in = i_endat_clk;      the master's clock (1'b1 when there is none)
 //   wire emu_data_in = i_endat_data;    the level the master's driver puts on the pair
 //   wire emu_oe_in = i_endat_data_oe;   the master's driver enable
+// X or Z on the driver enable reads as 0 (the master not driving: one
+// warning, never a protocol report), and the data of a driver that is not on
+// is not read; X or Z on the clock or on driven data holds the last level.
 // and drives its outputs from emu_data_out (the device's level at the master's
 // end of the cable, the fail-safe idle high while it does not drive) and
 // emu_oe_out (its driver enable there), both registered. No tristate: the
@@ -51,6 +54,17 @@ always @(posedge i_emu_clk) begin
             pin_level[k] = pins_now[k];
             pin_known[k] = 1'b1;
             x_reported[k] = 1'b0;
+        end else if (k == 2) begin
+            // X or Z on the driver enable: the master does not drive (as
+            // before its reset); one warning, never a protocol report.
+            pin_level[2] = 1'b0;
+            if (pin_known[2] && !x_reported[2])
+                $display("WARNING: %m: X or Z on the driver enable %0s at time %0t, emulator cycle %0d: read as 0, the master not driving",
+                         EMU_PIN2, $time, emu_cycle);
+            x_reported[2] = 1'b1;
+        end else if (k == 1 && pins_now[2] !== 1'b0 && pins_now[2] !== 1'b1) begin
+            // The data of a driver whose enable is X or Z is not read.
+            pin_level[1] = 1'b1;
         end else if (pin_known[k] && !x_reported[k]) begin
             $display("ERROR: %m: X or Z on emulator input %0s at time %0t, emulator cycle %0d (held at %b, not read as data)",
                      k == 0 ? EMU_PIN0 : (k == 1 ? EMU_PIN1 : EMU_PIN2), $time, emu_cycle, pin_level[k]);

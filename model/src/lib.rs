@@ -33,6 +33,7 @@ pub mod line;
 pub mod modbus;
 pub mod ports;
 pub mod protocol;
+pub mod rules;
 pub mod sar58k24;
 pub mod ssi;
 pub mod testbench;

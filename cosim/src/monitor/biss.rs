@@ -2,27 +2,15 @@
 //!
 //! Pins in: bit 0 MA at the master, bit 1 SLO at the master's receiver.
 //! Frames are decoded by [`model::biss::decode`] (control frames, register
-//! accesses and commands included). The checks (seed 001, SAR58K24 manual,
-//! BiSS-C, "the maximum transmission timing": "TMAS: the allowed clock
-//! cycle is > 100 ns; TMASH: high level duration > 25 ns; TMASL: low level
-//! duration > 25 ns; ... Timeout: BiSS timeout 16 µs"), each with one monitor
-//! cycle of tolerance, within a frame (its first falling MA edge to its last
-//! MA edge):
+//! accesses and commands included). The master's timing is held to the rule
+//! book [`model::biss::rules`] (`TMAS`, `TMASH`, `TMASL`, `timeout`; the
+//! emulator holds it to the same), the limits from `[monitor]`, else
+//! `[checks]` ([`crate::biss::BissChecks`]), each within the seed's range:
+//! `min_tmas_ns`, `min_tmash_ns`, `min_tmasl_ns`, and `monitor.timeout_us`
+//! (default the slaves' longest `timeout_us`, the seed's 16 µs).
 //!
-//! * `TMAS`: every MA period (rising edge to rising edge) at least
-//!   `monitor.min_tmas_ns` (default `checks.min_tmas_ns`, 100 ns);
-//! * `TMASH`: every MA high phase at least `monitor.min_tmash_ns` (25 ns);
-//! * `TMASL`: every MA low phase, the first included, at least
-//!   `monitor.min_tmasl_ns` (25 ns);
-//! * timeout: a frame starts only `monitor.timeout_us` (default the
-//!   slaves' longest `timeout_us`, the seed's 16 µs) after the previous
-//!   frame's last MA edge, and only while SLO is high at the master (the
-//!   slave has ended its timeout, as the master can see it).
-//!
-//! The seed gives no longest TMAS: a pause longer than the slave's timeout
-//! ends the frame at the slave, which the decoder then reports (a short
-//! frame, no start bit or a failed CRC). A frame ends when MA has not
-//! changed for more than three of its half periods (the decoder's rule).
+//! A frame is handed to the decoder when the next one starts (the slave's
+//! timeout over, the rule book's frame).
 
 use serde::Deserialize;
 use serde_json::Value;
@@ -31,19 +19,12 @@ use model::biss::decode::{Decoder, Layout};
 use model::biss::SlaveSettings;
 use model::wire::Signal;
 
-use super::{limit, listens_only, proto_table, us, Base};
-use crate::biss::{BissChecks, MAX_CLOCK_KHZ};
+use model::biss::rules::Watch;
+
+use super::{first_given, limit, listens_only, proto_table, Base};
+use crate::biss::{limits, BissChecks, MAX_CLOCK_KHZ};
 use crate::config::{self, Error};
 use crate::{Emulator, Pins, Result};
-
-/// The rules, as the seed states them.
-pub const RULE_TMAS: &str = "TMAS (seed 001 SAR58K24 manual, BiSS-C timing: TMAS > 100 ns)";
-/// See [`RULE_TMAS`].
-pub const RULE_TMASH: &str = "TMASH (seed 001 SAR58K24 manual, BiSS-C timing: MA high > 25 ns)";
-/// See [`RULE_TMAS`].
-pub const RULE_TMASL: &str = "TMASL (seed 001 SAR58K24 manual, BiSS-C timing: MA low > 25 ns)";
-/// See [`RULE_TMAS`].
-pub const RULE_TIMEOUT: &str = "timeout (seed 001 SAR58K24 manual, BiSS-C timing: BiSS timeout 16 us; the master starts a frame only after it, SLO high)";
 
 /// The monitor's own table (`[monitor]`), every field optional.
 #[derive(Debug, Clone, Default, Deserialize)]
@@ -55,29 +36,13 @@ struct MonitorTable {
     timeout_us: Option<f64>,
 }
 
-#[derive(Debug, Clone, Default)]
-struct Watch {
-    ma: bool,
-    last_edge: u64,
-    last_rise: Option<u64>,
-    in_frame: bool,
-    half: Option<u64>,
-    frame_end: Option<u64>,
-}
-
 /// A BiSS-C monitor.
 pub struct BissMonitor {
     base: Base,
     layout: Layout,
     decoder: Decoder,
-    /// Least TMAS, TMASH, TMASL and timeout, ps (less one cycle of tolerance).
-    tmas: u64,
-    tmash: u64,
-    tmasl: u64,
-    timeout: u64,
     ma: Signal,
     slo: Signal,
-    slo_now: bool,
     watch: Watch,
 }
 
@@ -131,52 +96,54 @@ impl BissMonitor {
             }
         }
         let longest = slaves.iter().map(|s| s.timeout_us).fold(0.0, f64::max);
-        let base = Base::new(f_mon_hz);
-        let tol = base.period_ps;
-        let ps = |ns: f64| ((ns * 1e3).round() as u64).saturating_sub(tol);
-        let tmas = limit(
-            origin,
-            "monitor.min_tmas_ns",
-            mon.min_tmas_ns.unwrap_or(checks.min_tmas_ns),
-            "give the least MA period in ns (seed: 100)",
-        )?;
-        let tmash = limit(
-            origin,
-            "monitor.min_tmash_ns",
-            mon.min_tmash_ns.unwrap_or(25.0),
-            "give the least MA high time in ns (seed: 25)",
-        )?;
-        let tmasl = limit(
-            origin,
-            "monitor.min_tmasl_ns",
-            mon.min_tmasl_ns.unwrap_or(25.0),
-            "give the least MA low time in ns (seed: 25)",
-        )?;
         let timeout = limit(
             origin,
             "monitor.timeout_us",
             mon.timeout_us.unwrap_or(longest),
             "give the slaves' BiSS timeout in µs (seed: 16)",
         )?;
+        let given = |field: &'static str, m: Option<f64>, c: f64, checks_field: &'static str| {
+            first_given([(field, m), (checks_field, Some(c))], c)
+        };
+        let tmas = given(
+            "monitor.min_tmas_ns",
+            mon.min_tmas_ns,
+            checks.min_tmas_ns,
+            "checks.min_tmas_ns",
+        );
+        let tmash = given(
+            "monitor.min_tmash_ns",
+            mon.min_tmash_ns,
+            checks.min_tmash_ns,
+            "checks.min_tmash_ns",
+        );
+        let tmasl = given(
+            "monitor.min_tmasl_ns",
+            mon.min_tmasl_ns,
+            checks.min_tmasl_ns,
+            "checks.min_tmasl_ns",
+        );
+        let limits = limits(
+            timeout,
+            [(tmas.1, tmas.0), (tmash.1, tmash.0), (tmasl.1, tmasl.0)],
+        )
+        .map_err(|e| Error::config(origin, e))?;
+        let mut base = Base::new(f_mon_hz);
+        for note in model::rules::resolution_notes(f_mon_hz, &limits.least()) {
+            base.checks.note(note);
+        }
         Ok(BissMonitor {
-            tmas: ps(tmas),
-            tmash: ps(tmash),
-            tmasl: ps(tmasl),
-            timeout: ps(timeout * 1e3),
             base,
             layout: Layout {
                 bits: slaves.iter().map(|s| s.bits).collect(),
                 crc_width: slaves.iter().map(|s| s.crc_width).collect(),
                 crc_poly: slaves.iter().map(|s| s.crc_poly).collect(),
+                timeout_ps: Some(limits.timeout),
             },
             decoder: Decoder::default(),
             ma: Signal::named("ma"),
             slo: Signal::named("slo"),
-            slo_now: true,
-            watch: Watch {
-                ma: true,
-                ..Watch::default()
-            },
+            watch: Watch::new(limits),
         })
     }
 
@@ -200,63 +167,6 @@ impl BissMonitor {
         self.slo.forget_before(now);
     }
 
-    fn check(&mut self, now: u64, ma: bool) {
-        let w = &mut self.watch;
-        if ma == w.ma {
-            if w.in_frame && w.half.is_some_and(|h| now - w.last_edge > 3 * h) {
-                w.in_frame = false;
-                w.frame_end = Some(w.last_edge);
-            }
-            return;
-        }
-        let len = now - w.last_edge;
-        w.ma = ma;
-        w.last_edge = now;
-        if !w.in_frame {
-            if ma {
-                return; // MA back high after a CDM = 1 hold
-            }
-            let gap = w.frame_end.map(|end| now - end);
-            *w = Watch {
-                ma,
-                last_edge: now,
-                in_frame: true,
-                frame_end: w.frame_end,
-                ..Watch::default()
-            };
-            if let Some(gap) = gap.filter(|&g| g < self.timeout) {
-                self.base.violation(now, RULE_TIMEOUT, format!("frame started {:.3} us after the previous frame's last MA edge; the slave's timeout is {:.3} us", us(gap), us(self.timeout + self.base.period_ps)));
-            } else if !self.slo_now {
-                self.base.violation(now, RULE_TIMEOUT, "frame started while SLO was still low at the master (the slave's timeout not over)".to_string());
-            }
-            return;
-        }
-        w.half.get_or_insert(len);
-        if ma {
-            if len < self.tmasl {
-                self.base.violation(
-                    now,
-                    RULE_TMASL,
-                    format!("MA low for {:.1} ns within a frame", len as f64 / 1e3),
-                );
-            }
-            if let Some(r) = w.last_rise.filter(|&r| now - r < self.tmas) {
-                self.base.violation(
-                    now,
-                    RULE_TMAS,
-                    format!("MA period {:.1} ns within a frame", (now - r) as f64 / 1e3),
-                );
-            }
-            self.watch.last_rise = Some(now);
-        } else if len < self.tmash {
-            self.base.violation(
-                now,
-                RULE_TMASH,
-                format!("MA high for {:.1} ns within a frame", len as f64 / 1e3),
-            );
-        }
-    }
-
     fn last(&self) -> Option<Value> {
         self.pending()
             .pop()
@@ -272,12 +182,16 @@ impl Emulator for BissMonitor {
     fn step(&mut self, pins: Pins) -> Pins {
         let now = self.base.now_ps();
         let (ma, slo) = (pins.0 & 1 != 0, pins.0 & 2 != 0);
-        if !ma && self.watch.ma && !self.watch.in_frame {
+        let seen = self.watch.sample(self.base.exact_ps(), ma, slo);
+        if seen.started {
             self.flush(now);
         }
-        self.check(now, ma);
-        self.slo_now = slo;
-        self.ma.push(now, ma);
+        for b in &seen.breaches {
+            self.base.breach(b);
+        }
+        // Before the line clock is seen idle high (a master in reset), the
+        // decoder sees it idle, as the emulator's device does.
+        self.ma.push(now, ma || !self.watch.seen_idle());
         self.slo.push(now, slo);
         self.base.step_out()
     }

@@ -71,6 +71,20 @@ impl Base {
         self.checks.push(t_ps / self.period_ps, rule, detail);
     }
 
+    /// A breach of a rule of the rule book.
+    pub fn breach(&mut self, b: &model::rules::Breach) {
+        let ps = model::time::PS_PER_S as u128;
+        let cycle = (b.at_ps as u128 * self.f_mon_hz as u128 + ps / 2) / ps;
+        self.checks
+            .push(cycle as u64, b.rule.label(), b.detail.clone());
+    }
+
+    /// The time of the current cycle, ps, exact to the picosecond (a
+    /// rule book's watcher measures with it).
+    pub fn exact_ps(&self) -> u64 {
+        model::rules::ps_at(self.cycle, self.f_mon_hz)
+    }
+
     /// The pins out after a step: only the violation flag.
     pub fn step_out(&mut self) -> crate::Pins {
         self.cycle += 1;
@@ -92,6 +106,7 @@ impl Base {
             "f_mon_hz": self.f_mon_hz,
             "transactions": list,
             "violations": self.checks.all(),
+            "notes": self.checks.notes(),
         })
     }
 }

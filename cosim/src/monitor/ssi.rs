@@ -2,22 +2,11 @@
 //!
 //! Pins in: bit 0 the SSI clock at the master, bit 1 the data at the
 //! master's receiver. Reads are decoded by [`model::ssi::decode`]; the
-//! checks (seed 001, SAR58K24 manual, SSI section (2): "T_cs > 4 µs;
-//! 100 kHz < f_clk < 250 kHz; T_m > 500 µs"), each with one monitor cycle of
-//! tolerance, on the clock as it leaves the master:
-//!
-//! * `T_cs`: the first low phase of a read (storing falling edge to the
-//!   first rising edge) at least `checks.t_cs_min_us` (4 µs);
-//! * clock range: every later half period of a read within
-//!   `checks.min_clock_khz` to `checks.max_clock_khz` (100 to 250 kHz);
-//! * `T_m`: a read starts only when the previous read's last rising edge is
-//!   at least `monitor.t_m_us` back (default the encoder's `monoflop_us`,
-//!   the seed's 500 µs when there is no `[encoder]`), so the monoflop has
-//!   run out.
-//!
-//! A read ends when the clock has stayed high for more than three of its
-//! half periods (the decoder's rule); before its first bit, three of the
-//! slowest allowed half periods.
+//! master's timing is held to the rule book [`model::ssi::rules`] (`T_cs`,
+//! `f_clk`, `T_m`; the emulator holds it to the same), with the limits of
+//! `[checks]` ([`crate::ssi::SsiChecks`]) and `T_m` from `monitor.t_m_us`
+//! (default the encoder's `monoflop_us`, the seed's 500 µs when there is no
+//! `[encoder]`). A read is handed to the decoder when the next one starts.
 //!
 //! Configuration (a whole scenario file will do): `[monitor]` with `bits`,
 //! `code`, `double_read`, `wire_check` (default: the `[master]` table's,
@@ -31,18 +20,12 @@ use model::ssi::decode::{self, Layout};
 use model::ssi::{Code, EncoderSettings};
 use model::wire::Signal;
 
-use super::{field, first_given, limit, listens_only, proto_table, sub, us, Base};
+use model::ssi::rules::Watch;
+
+use super::{field, first_given, limit, listens_only, proto_table, sub, Base};
 use crate::config::{self, Error};
 use crate::ssi::{SsiChecks, MAX_CLOCK_KHZ};
 use crate::{Emulator, Pins, Result};
-
-/// The rules, as the seed states them.
-pub const RULE_T_CS: &str = "T_cs (seed 001 SAR58K24 manual, SSI (2): T_cs > 4 us)";
-/// See [`RULE_T_CS`].
-pub const RULE_CLOCK: &str =
-    "clock range (seed 001 SAR58K24 manual, SSI (2): 100 kHz < f_clk < 250 kHz)";
-/// See [`RULE_T_CS`].
-pub const RULE_T_M: &str = "T_m (seed 001 SAR58K24 manual, SSI (2): T_m > 500 us; a new read only after the monoflop time)";
 
 /// The monitor's own table (`[monitor]`), every field optional.
 #[derive(Debug, Clone, Default, Deserialize)]
@@ -55,25 +38,10 @@ struct MonitorTable {
     t_m_us: Option<f64>,
 }
 
-#[derive(Debug, Clone, Default)]
-struct Watch {
-    clk: bool,
-    last_edge: u64,
-    in_read: bool,
-    edges: u32,
-    half: Option<u64>,
-    read_end: Option<u64>,
-}
-
 /// An SSI monitor.
 pub struct SsiMonitor {
     base: Base,
     layout: Layout,
-    /// Limits in ps: least and most half period, least T_cs, least T_m.
-    half_min: u64,
-    half_max: u64,
-    t_cs: u64,
-    t_m: u64,
     clk: Signal,
     data: Signal,
     watch: Watch,
@@ -143,28 +111,14 @@ impl SsiMonitor {
             t_m_us,
             "give the encoder's monoflop time in µs (seed: 500)",
         )?;
-        if !(checks.min_clock_khz > 0.0 && checks.min_clock_khz <= checks.max_clock_khz) {
-            return Err(Error::field(
-                origin,
-                "checks.min_clock_khz",
-                format!("{} to {} kHz", checks.min_clock_khz, checks.max_clock_khz),
-                "give 0 < min_clock_khz <= max_clock_khz (seed: 100 and 250)",
-            ));
+        let limits = checks
+            .limits(t_m_us)
+            .map_err(|e| Error::config(origin, e))?;
+        let mut base = Base::new(f_mon_hz);
+        for note in model::rules::resolution_notes(f_mon_hz, &limits.least()) {
+            base.checks.note(note);
         }
-        let t_cs_us = limit(
-            origin,
-            "checks.t_cs_min_us",
-            checks.t_cs_min_us,
-            "give the least T_cs in µs (seed: 4)",
-        )?;
-        let base = Base::new(f_mon_hz);
-        let tol = base.period_ps;
-        let ps = |us: f64| (us * 1e6).round() as u64;
         Ok(SsiMonitor {
-            half_min: ps(1e3 / (2.0 * checks.max_clock_khz)).saturating_sub(tol),
-            half_max: ps(1e3 / (2.0 * checks.min_clock_khz)) + tol,
-            t_cs: ps(t_cs_us).saturating_sub(tol),
-            t_m: ps(t_m_us).saturating_sub(tol),
             base,
             layout: Layout {
                 bits: Some(bits),
@@ -174,10 +128,7 @@ impl SsiMonitor {
             },
             clk: Signal::named("clk"),
             data: Signal::named("data"),
-            watch: Watch {
-                clk: true,
-                ..Watch::default()
-            },
+            watch: Watch::new(limits),
         })
     }
 
@@ -202,62 +153,6 @@ impl SsiMonitor {
         self.data.forget_before(now);
     }
 
-    fn check(&mut self, now: u64, clk: bool) {
-        let w = &mut self.watch;
-        if clk == w.clk {
-            let half = w.half.unwrap_or(self.half_max);
-            if clk && w.in_read && now - w.last_edge > 3 * half {
-                w.in_read = false;
-                w.read_end = Some(w.last_edge);
-            }
-            return;
-        }
-        let len = now - w.last_edge;
-        w.clk = clk;
-        w.last_edge = now;
-        if !clk && !w.in_read {
-            let gap = w.read_end.map(|end| now - end);
-            *w = Watch {
-                clk,
-                last_edge: now,
-                in_read: true,
-                edges: 1,
-                half: None,
-                read_end: w.read_end,
-            };
-            if let Some(gap) = gap.filter(|&g| g < self.t_m) {
-                let want = self.t_m + self.base.period_ps;
-                self.base.violation(now, RULE_T_M, format!("read started {:.3} us after the last clock edge of the previous read; T_m is {:.3} us", us(gap), us(want)));
-            }
-            return;
-        }
-        if !w.in_read {
-            return;
-        }
-        w.edges += 1;
-        if w.edges == 2 {
-            if len < self.t_cs {
-                self.base
-                    .violation(now, RULE_T_CS, format!("first low phase {:.3} us", us(len)));
-            }
-            return;
-        }
-        w.half.get_or_insert(len);
-        if len < self.half_min || len > self.half_max {
-            let phase = if clk { "low" } else { "high" };
-            self.base.violation(
-                now,
-                RULE_CLOCK,
-                format!(
-                    "clock {phase} for {:.3} us within a read (half period {:.3} to {:.3} us)",
-                    us(len),
-                    us(self.half_min + self.base.period_ps),
-                    us(self.half_max - self.base.period_ps)
-                ),
-            );
-        }
-    }
-
     fn last(&self) -> Option<Value> {
         self.pending()
             .pop()
@@ -273,12 +168,16 @@ impl Emulator for SsiMonitor {
     fn step(&mut self, pins: Pins) -> Pins {
         let now = self.base.now_ps();
         let (clk, data) = (pins.0 & 1 != 0, pins.0 & 2 != 0);
-        let starts = !clk && self.watch.clk && !self.watch.in_read;
-        if starts {
+        let seen = self.watch.sample(self.base.exact_ps(), clk);
+        if seen.started {
             self.flush(now);
         }
-        self.check(now, clk);
-        self.clk.push(now, clk);
+        for b in &seen.breaches {
+            self.base.breach(b);
+        }
+        // Before the line clock is seen idle high (a master in reset), the
+        // decoder sees it idle, as the emulator's device does.
+        self.clk.push(now, clk || !self.watch.seen_idle());
         self.data.push(now, data);
         self.base.step_out()
     }

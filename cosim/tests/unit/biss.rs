@@ -41,25 +41,44 @@ fn frame(emu: &mut BissEmulator, periods: u32, half: u64, rest: u64) {
 }
 
 #[test]
-fn tmas_below_100_ns_and_a_start_in_the_slaves_timeout_are_reported() {
-    // 80 MHz: 10 MHz MA = 4 cycles per half; the 16 us timeout is 1280 cycles.
-    let mut emu = BissEmulator::from_toml("", "s.toml", 80_000_000).unwrap();
-    frame(&mut emu, 40, 4, 1400);
+fn tmas_below_100_ns_and_a_start_before_slo_is_high_again_are_reported() {
+    // 80 MHz: 10 MHz MA = 4 cycles per half; the 16 us timeout is 1280
+    // cycles; 100 m of cable, about 1 us each way, so SLO high after the
+    // timeout reaches the master some 160 cycles after it.
+    let mut emu =
+        BissEmulator::from_toml("[cable]\nlength_m = 100\n", "s.toml", 80_000_000).unwrap();
+    // MA idle high first: the emulator takes no frame before it has seen MA high.
+    frame(&mut emu, 0, 4, 8);
+    frame(&mut emu, 40, 4, 1500);
     assert!(emu.violations().is_empty(), "{:?}", emu.violations());
-    // 13.3 MHz (3 cycles per half), then a new frame 200 cycles after it: inside the timeout.
+    // 13.3 MHz (3 cycles per half); 200 cycles later more clocks: for the
+    // slave (its timeout not over) the same frame, so no new frame and no
+    // timeout report, only TMAS.
     frame(&mut emu, 40, 3, 200);
-    frame(&mut emu, 40, 4, 1400);
+    frame(&mut emu, 40, 4, 1500);
     let rules: Vec<&str> = emu
         .violations()
         .iter()
         .map(|v| v.rule.split(' ').next().unwrap())
         .collect();
-    assert_eq!(rules.first(), Some(&"TMAS"));
-    assert!(rules.contains(&"frame"), "{rules:?}");
+    assert!(
+        !rules.is_empty() && rules.iter().all(|r| *r == "TMAS"),
+        "{rules:?}"
+    );
     assert!(emu
         .take_violation()
         .unwrap()
         .contains("MA period 75.0 ns within a frame"));
+    // A frame 1290 cycles after the last edge: the slave's timeout is over,
+    // but its SLO high has not reached the master yet.
+    let before = emu.violations().len();
+    frame(&mut emu, 40, 4, 1290);
+    frame(&mut emu, 40, 4, 1500);
+    let late: Vec<&str> = emu.violations()[before..]
+        .iter()
+        .map(|v| v.rule.split(' ').next().unwrap())
+        .collect();
+    assert_eq!(late, vec!["timeout"], "{:?}", emu.violations());
 }
 
 #[test]

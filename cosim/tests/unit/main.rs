@@ -23,6 +23,7 @@ mod monitor_half_duplex;
 mod monitor_uart;
 mod motion;
 mod registry;
+mod rules;
 mod sar58k24;
 mod ssi;
 mod tformat;

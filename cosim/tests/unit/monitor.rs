@@ -113,15 +113,16 @@ fn each_ssi_rule_fires_once_with_its_time_and_the_seed_reference() {
         v[0].rule.contains("seed 001") && v[0].detail.contains("2.500 us"),
         "{v:?}"
     );
-    // 500 kHz (4 cycles a half period) > 250 kHz: every half period after T_cs.
+    // 500 kHz (4 cycles a half period) > 250 kHz: every period (rising
+    // edge to rising edge) after T_cs.
     let (r, _) = run(&[ssi_read(200, 18, 4, 12)]);
-    assert_eq!(r.len(), 24, "{r:?}");
-    assert!(r.iter().all(|(_, n)| n == "clock"));
-    assert_eq!(r[0].0, (200 + 18 + 4) as f64 * 250.0);
+    assert_eq!(r.len(), 12, "{r:?}");
+    assert!(r.iter().all(|(_, n)| n == "f_clk"));
+    assert_eq!(r[0].0, (200 + 18 + 4 + 4) as f64 * 250.0);
     // 62.5 kHz (32 cycles) < 100 kHz.
     let (r, _) = run(&[ssi_read(200, 18, 32, 4)]);
     assert!(
-        !r.is_empty() && r.iter().all(|(_, n)| n == "clock"),
+        !r.is_empty() && r.iter().all(|(_, n)| n == "f_clk"),
         "{r:?}"
     );
     // T_m: the second read starts 2 us + idle after the first; the encoder's monoflop is 20 us.
@@ -230,17 +231,15 @@ fn each_biss_rule_fires_with_its_time_and_the_seed_reference() {
     assert_eq!(r.len(), 39, "{r:?}");
     assert!(r.iter().all(|x| x.1 == "TMAS"));
     assert_eq!(r[0].0, (4000 + 6 + 6 + 6) as f64 * 5.0);
-    // The next frame 5 us after the last MA edge (the seed's timeout is 16 us).
-    let (r, v) = run(&[clean.clone(), biss_frame(1000, 40, 10, 10)], None);
-    assert_eq!(
-        r,
-        vec![((4000 + 800 + 1000) as f64 * 5.0, "timeout".to_string())]
-    );
-    assert!(v[0].detail.contains("5.050 us after"), "{v:?}");
+    // More clocks 5 us after the last MA edge (the seed's timeout is 16
+    // us): for the slave the same frame, so no report.
+    let (r, _) = run(&[clean.clone(), biss_frame(1000, 40, 10, 10)], None);
+    assert!(r.is_empty(), "{r:?}");
     // Late enough but SLO still low at the master.
     let (r, v) = run(&[clean.clone(), clean.clone()], Some(4000 + 800 + 10));
     assert_eq!(r.len(), 1, "{r:?}");
-    assert!(v[0].detail.contains("SLO was still low"), "{v:?}");
+    assert_eq!(r[0].1, "timeout");
+    assert!(v[0].detail.contains("SLO still low"), "{v:?}");
 }
 
 #[test]

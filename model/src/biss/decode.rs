@@ -115,6 +115,11 @@ pub struct Layout {
     pub crc_width: Vec<u32>,
     /// CRC polynomial per slave.
     pub crc_poly: Vec<u64>,
+    /// The slaves' timeout, ps, when known: a frame ends when MA has not
+    /// changed for it (the slave's meaning, as [`super::rules`] follows
+    /// frames). Unknown (a capture without its configuration), a burst ends
+    /// at a gap of more than three of its first half periods.
+    pub timeout_ps: Option<u64>,
 }
 
 /// The decoder's state between frames: the frame count and the control
@@ -141,12 +146,17 @@ impl Decoder {
                 i += 1; // MA returning high after a CDM = 1 timeout
                 continue;
             }
-            // A burst: edges no further apart than 3 half periods.
+            // A burst: edges closer than the slaves' timeout, or, that
+            // unknown, no further apart than 3 half periods.
             let mut j = i + 1;
             let mut half = None;
             while j < edges.len() {
                 let gap = edges[j].0 - edges[j - 1].0;
-                if gap > 3 * *half.get_or_insert(gap) {
+                let ends = match layout.timeout_ps {
+                    Some(t) => gap >= t,
+                    None => gap > 3 * *half.get_or_insert(gap),
+                };
+                if ends {
                     break;
                 }
                 j += 1;

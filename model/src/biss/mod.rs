@@ -96,6 +96,7 @@ pub mod control;
 pub mod decode;
 pub mod descriptor;
 mod master;
+pub mod rules;
 pub mod seed_timing;
 mod slave;
 

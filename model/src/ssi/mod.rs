@@ -63,6 +63,7 @@ pub mod decode;
 pub mod descriptor;
 mod encoder;
 mod master;
+pub mod rules;
 
 pub use bench::{
     Bench, BenchConfig, EncoderSettings, HostSettings, MasterSettings, StuckFault, Transaction,

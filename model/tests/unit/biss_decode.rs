@@ -24,6 +24,7 @@ fn a_frame_stopped_just_after_its_start_bit_counts_no_cells_and_does_not_panic()
         bits: vec![12],
         crc_width: vec![6],
         crc_poly: vec![0x43],
+        timeout_ps: None,
     };
     let frames = Decoder::default().feed(&ma, &slo, &layout);
     assert_eq!(frames.len(), 1, "{frames:?}");

@@ -64,7 +64,7 @@ impl Protocol for BenchConfig {
         if crc_width.len() != n || crc_poly.len() != n || bits.iter().any(|b| !(1..=64).contains(b)) || crc_width.iter().any(|w| !(1..=8).contains(w)) {
             return Err(Error::Decode("decode biss: give --bits (1..64 each) and, if any, one --crc-width (1..8) and --crc-poly per slave".into()));
         }
-        let layout = tools::Layout { bits, crc_width, crc_poly };
+        let layout = tools::Layout { bits, crc_width, crc_poly, timeout_ps: None };
         let frames = tools::decode(&file, &ma, &slo, &layout)?;
         let decoded = crate::transcript::Decoded::new("biss", &file, &[("ma", &ma), ("slo", &slo)], &frames);
         serde_json::to_string_pretty(&decoded).map_err(|e| Error::Decode(e.to_string()))

@@ -113,7 +113,7 @@ mod tests {
 
     fn layout_of(cfg: &BenchConfig) -> Layout {
         let mc = cfg.master_config().unwrap();
-        Layout { bits: mc.slave_bits, crc_width: mc.slave_crc_width, crc_poly: mc.slave_crc_poly }
+        Layout { bits: mc.slave_bits, crc_width: mc.slave_crc_width, crc_poly: mc.slave_crc_poly, timeout_ps: None }
     }
 
     /// Decodes the VCD `gen` writes for `name`; returns the decoded frames,
@@ -150,7 +150,7 @@ mod tests {
         let (s, _) = biss("biss_seed_16bit");
         let dir = tempfile::tempdir().unwrap();
         let summary = generate::generate(&s, dir.path()).unwrap();
-        let layout = Layout { bits: vec![12], crc_width: vec![6], crc_poly: vec![3] };
+        let layout = Layout { bits: vec![12], crc_width: vec![6], crc_poly: vec![3], timeout_ps: None };
         let msg = decode(&summary.files[1], "top.line.ma_master", "top.line.slo_master", &layout).unwrap_err().to_string();
         assert!(msg.contains("biss_seed_16bit.vcd: the frames carry 25 bits after the start bit, but --bits 12 with --crc-width 6 read 21"), "{msg}");
         assert!(msg.ends_with("--bits 16 would fit"), "{msg}");
