@@ -188,6 +188,35 @@ mod tests {
         assert_eq!(t[3].overloads, 1, "the dominant first intermission bit is an overload");
     }
 
+    /// Rule 9: "An error condition letting a node become 'error passive'
+    /// causes the node to send an ACTIVE ERROR FLAG." In `can_passive_suspend`
+    /// the ACK error that takes TEC from 120 to 128 is followed on the core's
+    /// TXD by six dominant bits (a passive flag would be recessive).
+    #[test]
+    fn the_error_that_makes_the_core_error_passive_sends_an_active_flag() {
+        use model::testbench::Testbench;
+        let s = builtin::find("can_passive_suspend").unwrap();
+        let cfg = s.setup.get::<BenchConfig>().unwrap();
+        let bit = cfg.bit_timing().unwrap().clocks_per_bit() as usize;
+        let mut bench = model::Setup::bench(cfg).unwrap();
+        let layout = bench.layout().clone();
+        let col = |name: &str| layout.outputs.iter().position(|p| p.name == name).unwrap();
+        let (tx, tec) = (col("o_can_tx"), col("o_tec"));
+        let mut sample = model::trace::Sample::for_layout(&layout);
+        let mut after: Option<Vec<bool>> = None;
+        while !bench.finished() {
+            bench.step(Some(&mut sample));
+            match after.as_mut() {
+                None if sample.outputs[tec] == 128 => after = Some(Vec::new()),
+                Some(levels) if levels.len() < 8 * bit => levels.push(sample.outputs[tx] != 0),
+                _ => {}
+            }
+        }
+        let levels = after.expect("TEC reaches 128");
+        let longest = levels.split(|&l| l).map(<[bool]>::len).max().unwrap();
+        assert_eq!(longest, 6 * bit, "a flag of six dominant bits after the error that made the core error-passive");
+    }
+
     /// Bus-off reached between two attempts of one frame, through an overload
     /// frame the core sends as its transmitter (rules 4 and 10), then rule 12.
     #[test]
