@@ -368,7 +368,6 @@ reg        go_idle;
 reg        go_inter;
 reg        go_ovl;
 reg        go_flag_done;
-reg        passive_n;
 reg  [8:0] rec_sum;
 reg  [6:0] cs_n;
 reg  [6:0] ds_n;
@@ -426,7 +425,6 @@ always @* begin
     go_inter = 1'b0;
     go_ovl = 1'b0;
     go_flag_done = 1'b0;
-    passive_n = 1'b0;
     rec_sum = 9'd0;
     cs_n = 7'd0;
     ds_n = 7'd0;
@@ -546,6 +544,11 @@ always @* begin
                 if (tx_active_reg && b) e_kind = E_ACK;
                 else if (!tx_active_reg && !sent && b) e_kind = E_BIT;
                 else begin
+                    // Rule 8: received without error up to the ACK slot and the ACK bit sent.
+                    if (!tx_active_reg && !sent) begin
+                        if (rec_reg > 8'd127) rec_next = REC_RESTORE;
+                        else if (rec_reg != 8'd0) rec_next = rec_reg - 8'd1;
+                    end
                     state_next = ACK_DELIM;
                     tx_bit_next = 1'b1;
                 end
@@ -563,8 +566,6 @@ always @* begin
                 else begin
                     if (bit_cnt_reg == 4'd5 && !tx_active_reg) begin
                         // The receiver's frame is valid at the last but one EOF bit.
-                        if (rec_reg > 8'd127) rec_next = REC_RESTORE;
-                        else if (rec_reg != 8'd0) rec_next = rec_reg - 8'd1;
                         if (accepted) begin
                             rx_valid_next = 1'b1;
                             o_rx_id_next = rx_id_reg;
@@ -636,7 +637,6 @@ always @* begin
             end
             ERR_DELIM: begin
                 if (!b && bit_cnt_reg == 4'd6) begin
-                    tx_active_next = 1'b0;
                     go_ovl = 1'b1;
                 end else if (!b) e_kind = E_FORM;
                 else if (bit_cnt_reg == 4'd6) go_inter = 1'b1;
@@ -653,8 +653,8 @@ always @* begin
 
         /* Actions shared by several states, in the model's order */
         if (go_inter) begin
+            // A transmitter stays one until the bus is idle.
             suspend_needed_next = tx_active_next && ((tec_next > 9'd127) || (rec_next > 8'd127));
-            tx_active_next = 1'b0;
             state_next = INTERMISSION;
             bit_cnt_next = 4'd0;
             tx_bit_next = 1'b1;
@@ -697,7 +697,9 @@ always @* begin
                 tx_bit_next = 1'b0;
             end
         end else if (go_idle) begin
+            // The bus is idle: the transmitter of the last frame is one no more.
             state_next = IDLE;
+            tx_active_next = 1'b0;
             tx_bit_next = 1'b1;
         end
         if (e_kind != E_NONE || e_flag_bit) begin
@@ -723,15 +725,14 @@ always @* begin
                     rec_next = rec_sum[8] ? 8'd255 : rec_sum[7:0];
                 end
             end
-            // start_flag
+            // start_flag: passive only if error-passive before this error (rule 9).
             if (tec_next > 9'd255) go_bus_off = 1'b1;
             else begin
-                passive_n = (tec_next > 9'd127) || (rec_next > 8'd127);
                 state_next = ERR_FLAG;
                 bit_cnt_next = 4'd0;
                 flag_ovl_next = 1'b0;
-                flag_passive_next = passive_n;
-                tx_bit_next = passive_n;
+                flag_passive_next = passive_now;
+                tx_bit_next = passive_now;
             end
         end
         if (go_bus_off) begin

@@ -100,12 +100,21 @@ localparam [31:0] RECV_LAST_32 = RECV_CLOCKS - 1;
 localparam [CNT_W-1:0] TIMEOUT_LAST = TIMEOUT_LAST_32[CNT_W-1:0];
 localparam [CNT_W-1:0] RECV_LAST = RECV_LAST_32[CNT_W-1:0];
 localparam integer GAP_W = $clog2(T35_CLOCKS + 1);
-localparam [31:0] T35_32 = T35_CLOCKS;
 localparam [31:0] T15_32 = T15_CLOCKS;
-localparam [GAP_W-1:0] T35 = T35_32[GAP_W-1:0];
 localparam [GAP_W-1:0] T15 = T15_32[GAP_W-1:0];
 localparam [31:0] T35_LAST_32 = T35_CLOCKS - 1;
 localparam [GAP_W-1:0] T35_LAST = T35_LAST_32[GAP_W-1:0];
+// From the cycle that reads uart_rx's stop-bit pulse to the end of that stop bit on the
+// line: the sample is CLOCKS_PER_BIT/2 into the stop bit, the start edge reached uart_rx's
+// state machine through two synchroniser flops, and its pulse is read one cycle after it
+// rose (model::uart::stop_rest_clocks). The silence before a request counts from there.
+localparam integer STOP_REST = CLOCKS_PER_BIT - CLOCKS_PER_BIT / 2 - 3;
+localparam integer LINE_QUIET_CLOCKS = T35_CLOCKS + STOP_REST;
+localparam integer IDLE_W = $clog2(LINE_QUIET_CLOCKS + 1);
+localparam [31:0] STOP_REST_32 = STOP_REST;
+localparam [31:0] LINE_QUIET_32 = LINE_QUIET_CLOCKS;
+localparam [IDLE_W-1:0] STOP_REST_W = STOP_REST_32[IDLE_W-1:0];
+localparam [IDLE_W-1:0] LINE_QUIET = LINE_QUIET_32[IDLE_W-1:0];
 
 // States: the same names and codes as model::modbus::State.
 localparam [2:0]
@@ -202,8 +211,9 @@ always @* begin
     else if (gap_count) gap_next = gap_reg + 1'b1;
     else gap_next = gap_reg;
 end
-// The line counts as quiet for t3.5 at reset.
-reg [GAP_W-1:0] line_idle_reg = T35, line_idle_next;
+// Cycles since the last stop-bit pulse (STOP_REST before that stop bit ends); the
+// line counts as quiet for t3.5 at reset.
+reg [IDLE_W-1:0] line_idle_reg = LINE_QUIET, line_idle_next;
 
 reg        busy_reg = 1'b0, busy_next;
 reg        done_reg = 1'b0, done_next;
@@ -297,13 +307,22 @@ wire       bad_length = (nbytes_reg < 4'd4) || (nbytes_reg > 4'd9);
 wire [3:0] two_count = {1'b0, count_reg, 1'b0};
 wire [3:0] expected_len = 4'd5 + two_count;
 
-// Silence on the line since the last character in either direction. It steps on most
-// idle cycles, so it is computed here, not in the state machine's block (Icarus re-runs
-// an always @* on any change of what it reads), which reads only line_quiet.
-wire       line_quiet = line_idle_reg >= T35;
+// Silence on the line since the last character in either direction, t3.5 counted from
+// the end of its stop bit: a stop-bit pulse restarts the count STOP_REST before that
+// end; the own driver on puts the end at this cycle. It steps on
+// most idle cycles, so it is computed here, not in the state machine's block (Icarus
+// re-runs an always @* on any change of what it reads), which reads only line_quiet.
+wire       line_quiet = line_idle_reg >= LINE_QUIET;
 always @* begin
-    if (tx_en_reg || rx_busy || char_end) begin
+    if (tx_en_reg) begin
+        line_idle_next = STOP_REST_W;
+    end else if (char_end) begin
         line_idle_next = 0;
+    end else if (rx_busy) begin
+        // Busy (a character, or a low stop bit's line still low): the silence has not
+        // begun; the count stops at STOP_REST, so it runs from the later of the stop
+        // bit's end and the line's rise.
+        line_idle_next = (line_idle_reg < STOP_REST_W) ? line_idle_reg + 1'b1 : STOP_REST_W;
     end else if (!line_quiet) begin
         line_idle_next = line_idle_reg + 1'b1;
     end else begin
@@ -435,7 +454,7 @@ always @* begin
             end else begin
                 gap_count = 1'b1;
             end
-            // The silence reaches t3.5 (gap_next == T35) only by a step.
+            // The silence reaches t3.5 (gap_next == T35_CLOCKS) only by a step.
             if (cnt_zero || (gap_count && gap_step_t35)) begin
                 state_next = IDLE;
                 busy_next = 1'b0;
@@ -550,7 +569,7 @@ always @(posedge i_clk) begin
         framing_seen_reg <= 1'b0;
         gap_seen_reg <= 1'b0;
         gap_reg <= 0;
-        line_idle_reg <= T35;
+        line_idle_reg <= LINE_QUIET;
         busy_reg <= 1'b0;
         done_reg <= 1'b0;
         valid_reg <= 1'b0;

@@ -27,8 +27,11 @@
 //!   master's `timeout_us` (`[master] timeout_us`, `monitor.timeout_us`).
 //!
 //! t1.5 and t3.5 are the fixed 750 and 1750 µs above 19200 baud
-//! ([`model::modbus::frames`]), both measured from a stop bit's middle, as
-//! the master and the devices measure them.
+//! ([`model::modbus::frames`]). t1.5 is measured from a stop bit's middle,
+//! where a receiver has seen the character end; t3.5 before a request from
+//! the end of the last stop bit, the silence on the line the serial-line
+//! specification asks for (a master counting from the middle leaves half a
+//! bit less).
 
 use serde::Deserialize;
 use serde_json::Value;

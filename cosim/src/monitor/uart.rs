@@ -16,7 +16,9 @@
 //!   previous stop bit's middle, where a receiver has seen the character
 //!   end, to the next start edge) at most `max_gap_ps`;
 //! * silence: a request begins only `min_silence_ps` after the last
-//!   character on the line, either direction (from its stop bit's middle);
+//!   character on the line, either direction, counted from the end of its
+//!   stop bit (half a bit after its middle, at the configured baud): the
+//!   silence on the line the Modbus serial-line specification asks for;
 //! * release: DE off within `release_ps` of the request's last stop bit
 //!   (reported when it falls);
 //! * answer: never both drivers on (R low for a quarter bit or more while
@@ -351,9 +353,9 @@ impl Watch {
                 .flatten()
                 .fold(None, |a: Option<f64>, b| Some(a.map_or(b, |a| a.max(b))));
             if let Some(l) = last.filter(|_| self.limits.min_silence_ps > 0.0) {
-                let quiet = now as f64 - l;
+                let quiet = now as f64 - (l + self.limits.bit_ps / 2.0);
                 if quiet + (base.period_ps as f64) < self.limits.min_silence_ps {
-                    base.violation(now, self.rules.silence, format!("a request began {:.1} us after the last character on the line (from its stop bit's middle); at least {:.1} us", quiet / 1e6, self.limits.min_silence_ps / 1e6));
+                    base.violation(now, self.rules.silence, format!("a request began {:.1} us after the last character on the line (from the end of its stop bit); at least {:.1} us", quiet / 1e6, self.limits.min_silence_ps / 1e6));
                 }
             }
             self.check_wait(base, now, "a request");

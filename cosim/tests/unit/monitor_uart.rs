@@ -196,6 +196,35 @@ fn each_modbus_rule_fires_once_with_its_time() {
     );
 }
 
+/// t3.5 before a request counts from the end of the last stop bit on the
+/// line, not from its middle: a broadcast (no answer, no timeout to wait
+/// for), then the read `silence` cycles after the broadcast's last stop bit
+/// ended. t3.5 is 616 cycles (3.5 × 11 bits × 16); the monitor allows one
+/// cycle, so 615 passes and 614 does not. Counted from the stop bit's
+/// middle, 614 cycles would pass as 622.
+#[test]
+fn the_modbus_t35_rule_counts_from_the_end_of_the_stop_bit() {
+    let mut broadcast = READ2;
+    broadcast[0] = 0;
+    let crc = model::modbus::frames::crc_bytes(&broadcast[..6]);
+    broadcast[6..].copy_from_slice(&crc);
+    for (silence, violations) in [(616, 0), (615, 0), (614, 1)] {
+        let mut r = modbus();
+        r.send(&broadcast, 0, 0);
+        // `send` ends with one cycle DE off; the next `send` drives DE a bit before its start bit.
+        r.idle(silence - 1 - r.cpb, false);
+        r.send(&READ2, 0, 0);
+        r.quiet(T35);
+        let v = r.violations();
+        assert_eq!(v.len(), violations, "{silence} cycles: {v:?}");
+        assert!(
+            v.iter()
+                .all(|v| v.starts_with(cosim::monitor::modbus::RULE_T35)),
+            "{v:?}"
+        );
+    }
+}
+
 const SAR_BUS: &str = "[sar]\nbaud = 15625.0\nmode = \"bus\"\n[sar.host]\ntimeout_us = 20000.0\n[[sar.encoders]]\naddress = 1\nbits = 32\nanswer_delay_us = 100.0\n[sar.random]\ncount = 100\nseed = 5\n[sar.cable]\nlength_m = 10\n";
 const SAR_HS: &str = "[sar]\nbaud = 31250.0\nparity = \"odd\"\nmode = \"handshake\"\n[sar.host]\ntimeout_us = 10000.0\n[[sar.encoders]]\nbits = 24\ncode = \"gray\"\n[sar.random]\ncount = 100\nseed = 6\n";
 

@@ -30,11 +30,17 @@
 //! 4. a transmitter's bit error in its active error or overload flag: TEC + 8;
 //! 6. 8 consecutive dominant bits after a flag (the 14th after an active
 //!    flag, the 8th after a passive one), and each further 8: TEC or REC + 8;
-//! 7. a successful transmission: TEC − 1; 8. a successful reception: REC − 1,
-//!    or back to [`REC_RESTORE`] from above 127.
+//! 7. a successful transmission: TEC − 1; 8. a successful reception (no
+//!    error up to the ACK slot and the ACK bit sent): REC − 1 at the ACK
+//!    slot, or back to [`REC_RESTORE`] from above 127;
+//! 9. error-passive above 127, but the error that makes a node
+//!    error-passive is still signalled with an active flag.
 //!
-//! Error-passive above 127, bus-off above 255 (TEC); bus-off ends after 128
-//! sequences of 11 recessive bits with both counters 0.
+//! The node is the transmitter (`tx_active`) from its SOF until the bus is
+//! idle (or it loses arbitration): through the error, overload and
+//! intermission fields after its frame, and an error-passive node's
+//! suspend. Bus-off above 255 (TEC); bus-off ends after 128 sequences of 11
+//! recessive bits with both counters 0. `docs/timing/can.md` quotes each rule.
 
 use super::frame::{arbitration_end, data_len, data_start, header_bit};
 use super::timing::{BitClock, BitTiming};
@@ -592,6 +598,15 @@ impl Controller {
         self.tec > 127 || self.rec > 127
     }
 
+    /// Rule 8: REC − 1 from 1..=127, [`REC_RESTORE`] from above 127.
+    fn rec_success(&mut self) {
+        if self.rec > 127 {
+            self.rec = REC_RESTORE;
+        } else if self.rec > 0 {
+            self.rec -= 1;
+        }
+    }
+
     fn add_rec(&mut self, n: u16) {
         self.rec = (self.rec + n).min(255);
     }
@@ -640,6 +655,7 @@ impl Controller {
     /// An error detected at this sample point: pulse, counters, then an
     /// error flag from the next bit (or bus-off).
     fn error(&mut self, kind: ErrorKind, tec_exempt: bool) {
+        let was_passive = self.passive();
         match kind {
             ErrorKind::Bit => self.out.o_err_bit = true,
             ErrorKind::Stuff => self.out.o_err_stuff = true,
@@ -657,11 +673,13 @@ impl Controller {
         } else {
             self.add_rec(1);
         }
-        self.start_flag();
+        self.start_flag(was_passive);
     }
 
-    /// Starts an error flag in the next bit (bus-off instead when TEC > 255).
-    fn start_flag(&mut self) {
+    /// Starts an error flag in the next bit (bus-off instead when TEC > 255):
+    /// passive if the node was error-passive before this error (rule 9: the
+    /// error that makes a node error-passive is still signalled actively).
+    fn start_flag(&mut self, was_passive: bool) {
         if self.listen_only {
             // A listener sends no flag: it waits for 11 recessive bits, the
             // end of any error frame and intermission, and then for SOF.
@@ -676,7 +694,7 @@ impl Controller {
         self.state = State::ErrFlag;
         self.bit_cnt = 0;
         self.flag_ovl = false;
-        self.flag_passive = self.passive();
+        self.flag_passive = was_passive;
         self.tx_bit = self.flag_passive;
     }
 
@@ -696,10 +714,10 @@ impl Controller {
         self.tx_bit = false;
     }
 
-    /// End of a frame or error frame: intermission from the next bit.
+    /// End of a frame, error or overload frame: intermission from the next
+    /// bit. A transmitter stays one through it ("until the bus is idle").
     fn enter_intermission(&mut self) {
         self.suspend_needed = self.tx_active && self.passive();
-        self.tx_active = false;
         self.state = State::Intermission;
         self.bit_cnt = 0;
         self.tx_bit = true;
@@ -711,6 +729,8 @@ impl Controller {
             self.start_tx();
             self.tx_bit = false;
         } else {
+            // The bus is idle: the transmitter of the last frame is one no more.
+            self.tx_active = false;
             self.state = State::Idle;
             self.tx_bit = true;
         }
@@ -810,6 +830,11 @@ impl Controller {
                 } else if !self.tx_active && !sent && b {
                     self.error(ErrorKind::Bit, false);
                 } else {
+                    if !self.tx_active && !sent {
+                        // Rule 8: received without error up to the ACK slot
+                        // and the ACK bit sent (dominant, read back dominant).
+                        self.rec_success();
+                    }
                     self.state = State::AckDelim;
                     self.tx_bit = true;
                 }
@@ -832,11 +857,6 @@ impl Controller {
                 }
                 if self.bit_cnt == 5 && !self.tx_active {
                     // The receiver's frame is valid at the last but one EOF bit.
-                    if self.rec > 127 {
-                        self.rec = REC_RESTORE;
-                    } else if self.rec > 0 {
-                        self.rec -= 1;
-                    }
                     if (self.rx_id ^ i.i_filter_id) & i.i_filter_mask & 0x1FFF_FFFF == 0 {
                         let o = &mut self.out;
                         o.o_rx_valid = true;
@@ -928,7 +948,6 @@ impl Controller {
             }
             State::ErrDelim => {
                 if !b && self.bit_cnt == 6 {
-                    self.tx_active = false;
                     self.start_overload();
                 } else if !b {
                     self.error(ErrorKind::Form, false);
@@ -943,13 +962,14 @@ impl Controller {
 
     /// A bit error in an active error flag or an overload flag: + 8, a new error flag.
     fn flag_bit_error(&mut self) {
+        let was_passive = self.passive();
         self.out.o_err_bit = true;
         if self.tx_active {
             self.tec += 8;
         } else {
             self.add_rec(8);
         }
-        self.start_flag();
+        self.start_flag(was_passive);
     }
 
     fn flag_done(&mut self) {

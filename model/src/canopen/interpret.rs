@@ -130,10 +130,16 @@ pub fn interpret(f: &Frame) -> Meaning {
         },
         Service::Sync => "SYNC".into(),
         Service::Emcy(n) if d.is_empty() && !f.rtr => format!("boot-up of node {n} (gateway form)"),
-        Service::Emcy(_) if d.len() >= 3 => format!(
+        // DS 301 lays an EMCY over 8 bytes (error code, error register,
+        // 5 manufacturer bytes); the master takes only those (DLC 8).
+        Service::Emcy(_) if d.len() == 8 && !f.rtr => format!(
             "EMCY code {:04X}h, error register {:02X}h",
             d[0] as u16 | (d[1] as u16) << 8,
             d[2]
+        ),
+        Service::Emcy(n) => format!(
+            "not an EMCY: {} bytes on node {n}'s EMCY identifier (an EMCY has 8)",
+            d.len()
         ),
         Service::Tpdo1(_) | Service::Tpdo2(_) if d.len() >= 4 => format!("position {}", le32(d)),
         Service::Rpdo1(n) => format!("RPDO1 to node {n}, {} bytes", d.len()),

@@ -10,7 +10,10 @@
 //!  o_done    _____________________________________________________________________/‾\_
 //! ```
 //! * `SILENCE` holds the request until the line has been quiet for t3.5
-//!   (`T35_CLOCKS`) since the last character, in either direction.
+//!   (`T35_CLOCKS`) since the last character, in either direction, counted
+//!   from the end of its stop bit on the line: `line_idle` counts from the
+//!   receiver's stop-bit pulse, and the line is quiet at t3.5 plus the rest
+//!   of the stop bit (`STOP_REST`, [`uart::stop_rest_clocks`]).
 //! * `WAIT` ends at the answer's first start bit, or after `TIMEOUT_CLOCKS`
 //!   with `o_err_timeout`.
 //! * `RECV` stores up to 9 characters; t3.5 of silence ends it (measured
@@ -94,6 +97,13 @@ impl MasterConfig {
     /// Cycles of one character.
     pub fn char_clocks(&self) -> u64 {
         self.parity.frame_bits() as u64 * self.clocks_per_bit
+    }
+
+    /// `line_idle` at which the line has been silent for t3.5: t3.5 after the
+    /// end of the last stop bit, which `line_idle` counts from the stop-bit
+    /// pulse (`STOP_REST` cycles before that end).
+    pub fn line_quiet_clocks(&self) -> u64 {
+        self.t35_clocks + uart::stop_rest_clocks(self.clocks_per_bit)
     }
 }
 
@@ -313,7 +323,7 @@ impl Master {
             framing_seen: false,
             gap_seen: false,
             gap: 0,
-            line_idle: cfg.t35_clocks,
+            line_idle: cfg.line_quiet_clocks(),
             cnt: 0,
             state: State::Idle,
             out: Out::default(),
@@ -417,11 +427,12 @@ impl Master {
             };
         }
         let t35 = self.cfg.t35_clocks;
+        let quiet_line = self.cfg.line_quiet_clocks();
         let fsm = match self.state {
             State::Idle if input.i_start || input.i_query || input.i_write => return 0,
             State::Idle => u64::MAX,
             State::Silence if rx.o_busy || o.o_tx_en => u64::MAX,
-            State::Silence => t35.saturating_sub(self.line_idle),
+            State::Silence => quiet_line.saturating_sub(self.line_idle),
             State::Send => return 0,
             State::Wait if rx.o_busy => return 0,
             State::Wait => self.cnt,
@@ -451,10 +462,14 @@ impl Master {
             }
             State::Idle | State::Silence | State::Send => {}
         }
-        if rx.o_busy || self.out.o_tx_en {
-            self.line_idle = 0;
+        let quiet_line = self.cfg.line_quiet_clocks();
+        let stop_rest = uart::stop_rest_clocks(self.cfg.clocks_per_bit);
+        if self.out.o_tx_en {
+            self.line_idle = stop_rest;
+        } else if rx.o_busy {
+            self.line_idle = (self.line_idle + n).min(stop_rest);
         } else {
-            self.line_idle = (self.line_idle + n).min(self.cfg.t35_clocks);
+            self.line_idle = (self.line_idle + n).min(quiet_line);
         }
         self.rx.skip(n);
         self.tx.skip(n);
@@ -517,7 +532,7 @@ impl Master {
                 }
             }
             State::Silence => {
-                if self.line_idle >= cfg.t35_clocks {
+                if self.line_idle >= cfg.line_quiet_clocks() {
                     self.state = State::Send;
                     next.o_tx_en = true;
                 }
@@ -594,9 +609,17 @@ impl Master {
                 }
             }
         }
-        if rx.o_busy || char_end {
+        // A stop-bit pulse: the stop bit ends STOP_REST cycles later. While
+        // the receiver is busy (a character, a low stop bit's line still
+        // low) the silence has not begun: the count stops at STOP_REST, so
+        // it runs from the later of the stop bit's end and the line's rise.
+        let quiet_line = cfg.line_quiet_clocks();
+        let stop_rest = uart::stop_rest_clocks(cfg.clocks_per_bit);
+        if char_end {
             self.line_idle = 0;
-        } else if self.line_idle < cfg.t35_clocks {
+        } else if rx.o_busy {
+            self.line_idle = (self.line_idle + 1).min(stop_rest);
+        } else if self.line_idle < quiet_line {
             self.line_idle += 1;
         }
         self.tx_out = self.tx.step(&self.tx_in);
@@ -607,7 +630,7 @@ impl Master {
         });
         if self.out.o_tx_en {
             // The master's own request counts as line activity for t3.5.
-            self.line_idle = 0;
+            self.line_idle = stop_rest;
         }
         self.out = next;
         next

@@ -53,7 +53,7 @@ use serde::{Deserialize, Serialize};
 
 pub use bench::{Bench, BenchConfig, LowPulse, Transaction};
 pub use fault::{send_with_faults, FaultKind, FrameFault};
-pub use receiver::{In, Out, Receiver, ReceiverConfig, State};
+pub use receiver::{stop_rest_clocks, In, Out, Receiver, ReceiverConfig, State};
 pub use second_driver::{bench_quiet, SecondDriver};
 pub use transmitter::{first_cycle_at, Transmitter};
 pub use tx::{Tx, TxConfig, TxIn, TxOut, TxState};

@@ -85,6 +85,17 @@ impl Ports for Out {
     }
 }
 
+/// Cycles from the step that sees a character's stop-bit pulse
+/// (`o_valid`, `o_parity_err`, `o_frame_err`, one cycle after the receiver
+/// raised it) to the first cycle after that stop bit on the line, for a
+/// sender at the nominal rate: the stop bit ends `frame_bits` bits after the
+/// start edge, the sample is `⌊C/2⌋` into it, and the start edge reached the
+/// receiver's state machine two synchroniser flops late and its pulse is
+/// read one cycle after it rose, so `C − ⌊C/2⌋ − 3`.
+pub fn stop_rest_clocks(clocks_per_bit: u64) -> u64 {
+    clocks_per_bit - clocks_per_bit / 2 - 3
+}
+
 /// The receiver. One [`Receiver::step`] is one rising edge of the system clock.
 #[derive(Debug, Clone)]
 pub struct Receiver {

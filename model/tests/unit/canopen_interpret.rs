@@ -29,3 +29,19 @@ fn setup_example_in_words() {
         Service::Tpdo1(12)
     );
 }
+
+/// DS 301: an EMCY is 8 bytes (error code, error register, 5 manufacturer
+/// bytes); a frame of another length on the EMCY identifier is not one.
+#[test]
+fn only_an_eight_byte_frame_on_the_emcy_identifier_is_an_emcy() {
+    let t = |d: &[u8]| interpret(&Frame::data(0x85, d)).text;
+    assert_eq!(
+        t(&[0x00, 0x10, 0x01, 0, 0, 0, 0, 0]),
+        "EMCY code 1000h, error register 01h"
+    );
+    assert_eq!(
+        t(&[0x00, 0x10, 0x01, 0x00]),
+        "not an EMCY: 4 bytes on node 5's EMCY identifier (an EMCY has 8)"
+    );
+    assert_eq!(t(&[]), "boot-up of node 5 (gateway form)");
+}

@@ -106,8 +106,9 @@ fn polling_at_19200_and_115200_keeps_t35_between_frames() {
             "{baud}"
         );
         // A poll is the request (8 characters), the device's t3.5 and
-        // 100 µs turnaround, the answer (7), and the master's t3.5; both
-        // silences are timed from a stop-bit sample, half a bit early.
+        // 100 µs turnaround, the answer (7), and the master's t3.5; the
+        // device and the master end a frame t3.5 after its last stop-bit
+        // sample, half a bit early.
         let char_us = 10.0 / baud * 1e6;
         let min_us = 8.0 * char_us + t35_us + 100.0 + 7.0 * char_us + t35_us - char_us / 10.0;
         for w in t.windows(2) {

@@ -73,7 +73,11 @@ mod tests {
         // Errors inside flags and delimiters (the core receiving, then sending).
         let (_, t) = run("can_err_in_flags");
         assert_eq!(outcomes(&t)[..7], ["err_bit", "err_bit", "err_form", "err_form", "err_form", "err_bit", "rx_valid"]);
-        assert_eq!([t[0].rec, t[1].rec], [1, 9], "a bit error in its own error flag: REC + 8 (rule 4)");
+        assert_eq!([t[0].rec, t[1].rec], [1, 9], "a bit error in its own error flag: REC + 8 (rule 5)");
+        // Frame 1 acknowledged (REC − 1 at the ACK slot, rule 8), then a dominant EOF bit (+ 1):
+        // 9, not the 10 of a decrement at the sixth EOF bit the error never reaches.
+        let recs: Vec<u16> = t[..7].iter().map(|t| t.rec).collect();
+        assert_eq!(recs, [1, 9, 9, 18, 26, 42, 41], "REC after every outcome");
         assert_eq!(t[5].overloads, 1, "a dominant last error delimiter bit: overload");
         let (_, t) = run("can_err_in_flags_tx");
         assert_eq!([t[0].tec, t[1].tec, t[2].tec], [8, 16, 15], "a bit error in its own error flag: TEC + 8 (rule 4)");
@@ -134,6 +138,100 @@ mod tests {
             assert_eq!((last.outcome, last.tec, last.rec, last.err_state), ("tx_done", 0, 0, 0), "{name}: recovered after bus-off");
             assert!(last.sof_cycle - e.cycle >= 128 * 11 * bit, "{name}: bus-off, then 128 x 11 recessive bits");
         }
+    }
+
+    /// (outcome, TEC, REC) of every transaction: the counters at each outcome pulse.
+    fn counters(t: &[Transaction]) -> Vec<(&'static str, u16, u16)> {
+        t.iter().map(|t| (t.outcome, t.tec, t.rec)).collect()
+    }
+
+    /// The fault confinement rules of CAN 2.0 part B §8 (ISO 11898-1), as
+    /// transmitter: each expected count below is the previous one plus what
+    /// the rule named beside it adds, read off the scenario's faults (the
+    /// comment of `scenarios/can/confinement_tx.toml` places them).
+    #[test]
+    fn fault_confinement_as_transmitter_counter_by_counter() {
+        let (_, t) = run("can_confinement_tx");
+        assert_eq!(
+            counters(&t),
+            [
+                ("err_bit", 8, 0),    // rule 3: a transmitter sends an error flag
+                ("err_bit", 16, 0),   // rule 4: a bit error in its own active error flag
+                ("tx_done", 15, 0),   // rule 7: the retransmission succeeds
+                ("err_bit", 23, 0),   // rule 4: a bit error in its overload flag, still the transmitter
+                ("err_form", 31, 0),  // rule 3: a form error in its error delimiter, still the transmitter
+                ("err_stuff", 39, 0), // rule 3 (rule 2 before it counted nothing: a transmitter)
+                ("tx_done", 54, 0),   // rule 6 twice (+ 16), rule 7 (− 1)
+            ]
+        );
+        assert_eq!(t[3].overloads, 1, "the dominant first intermission bit is an overload");
+    }
+
+    /// The same rules as receiver (`scenarios/can/confinement_rx.toml`).
+    #[test]
+    fn fault_confinement_as_receiver_counter_by_counter() {
+        let (_, t) = run("can_confinement_rx");
+        assert_eq!(
+            counters(&t),
+            [
+                ("err_bit", 0, 1),    // rule 1: its own ACK read recessive
+                ("err_bit", 0, 9),    // rule 5: a bit error in its own active error flag
+                ("rx_valid", 0, 8),   // rule 8: received and acknowledged
+                ("err_bit", 0, 16),   // rule 5: a bit error in its overload flag
+                ("err_form", 0, 17),  // rule 1: a dominant error delimiter bit
+                ("err_form", 0, 25),  // rule 2 (+ 8), rule 8 at the ACK slot (− 1), rule 1 at an EOF bit (+ 1)
+                ("rx_valid", 0, 32),  // rule 2 (+ 8), rule 8 (− 1)
+                ("err_stuff", 0, 33), // rule 1: the bus stuck dominant
+                ("rx_valid", 0, 56),  // rule 2 (+ 8), rule 6 twice (+ 16), rule 8 (− 1)
+            ]
+        );
+        assert_eq!(t[3].overloads, 1, "the dominant first intermission bit is an overload");
+    }
+
+    /// Rule 9: "An error condition letting a node become 'error passive'
+    /// causes the node to send an ACTIVE ERROR FLAG." In `can_passive_suspend`
+    /// the ACK error that takes TEC from 120 to 128 is followed on the core's
+    /// TXD by six dominant bits (a passive flag would be recessive).
+    #[test]
+    fn the_error_that_makes_the_core_error_passive_sends_an_active_flag() {
+        use model::testbench::Testbench;
+        let s = builtin::find("can_passive_suspend").unwrap();
+        let cfg = s.setup.get::<BenchConfig>().unwrap();
+        let bit = cfg.bit_timing().unwrap().clocks_per_bit() as usize;
+        let mut bench = model::Setup::bench(cfg).unwrap();
+        let layout = bench.layout().clone();
+        let col = |name: &str| layout.outputs.iter().position(|p| p.name == name).unwrap();
+        let (tx, tec) = (col("o_can_tx"), col("o_tec"));
+        let mut sample = model::trace::Sample::for_layout(&layout);
+        let mut after: Option<Vec<bool>> = None;
+        while !bench.finished() {
+            bench.step(Some(&mut sample));
+            match after.as_mut() {
+                None if sample.outputs[tec] == 128 => after = Some(Vec::new()),
+                Some(levels) if levels.len() < 8 * bit => levels.push(sample.outputs[tx] != 0),
+                _ => {}
+            }
+        }
+        let levels = after.expect("TEC reaches 128");
+        let longest = levels.split(|&l| l).map(<[bool]>::len).max().unwrap();
+        assert_eq!(longest, 6 * bit, "a flag of six dominant bits after the error that made the core error-passive");
+    }
+
+    /// Bus-off reached between two attempts of one frame, through an overload
+    /// frame the core sends as its transmitter (rules 4 and 10), then rule 12.
+    #[test]
+    fn bus_off_while_the_frame_waits_to_be_sent_again() {
+        let (cfg, t) = run("can_bus_off_retransmit");
+        assert_eq!(t.len(), 33, "{:?}", outcomes(&t));
+        let tecs: Vec<u16> = t[..31].iter().map(|t| t.tec).collect();
+        assert_eq!(tecs, (1..=31).map(|k| 8 * k).collect::<Vec<_>>(), "rule 3: + 8 per bit error");
+        assert!(t[..31].iter().all(|t| t.outcome == "err_bit" && t.rec == 0));
+        let off = &t[31];
+        assert_eq!((off.outcome, off.tec, off.rec, off.err_state, off.overloads), ("err_bit", 256, 0, 2, 1), "the overload flag's bit error takes TEC to 256: bus-off");
+        let last = &t[32];
+        assert_eq!((last.outcome, last.tec, last.rec, last.err_state), ("tx_done", 0, 0, 0), "the pending frame sent after recovery");
+        let bit = cfg.bit_timing().unwrap().clocks_per_bit();
+        assert!(last.sof_cycle - off.cycle >= 128 * 11 * bit, "bus-off, then 128 x 11 recessive bits");
     }
 
     #[test]

@@ -273,6 +273,31 @@ mod tests {
         assert!(sigrok_check_of("canopen_other_bit_rate").is_none(), "no sigrok comparison over error frames");
     }
 
+    /// The same scenario at the master's CAN controller: after its NMT frame
+    /// the bus carries only error flags and is never idle, so the master
+    /// stays that frame's transmitter (CAN 2.0: "A unit stays TRANSMITTER
+    /// until the bus is idle or the unit loses ARBITRATION"), each error
+    /// flag it sends costs TEC 8 (rule 3), and it goes bus-off (rule 10,
+    /// measured at 4 136.15 µs) and drives nothing more to the run's end.
+    #[test]
+    fn a_master_whose_frame_meets_only_error_flags_goes_bus_off_and_falls_silent() {
+        let mut b = model::Setup::bench(&config("canopen_other_bit_rate")).unwrap();
+        let mut off = None;
+        while !b.finished() {
+            b.step(None);
+            let o = b.master().controller().out();
+            if off.is_none() && o.o_err_state == 2 {
+                assert!(o.o_tec > 255, "bus-off with TEC {}", o.o_tec);
+                off = Some(b.cycle());
+            }
+            if let Some(at) = off {
+                assert!(o.o_can_tx, "TXD dominant at cycle {} after bus-off at {at}", b.cycle());
+            }
+        }
+        let at = off.expect("the master goes bus-off");
+        assert!(b.cycle() - at > 100_000, "silent for the rest of the run: {} cycles", b.cycle() - at);
+    }
+
     fn sigrok_check_of(name: &str) -> Option<SigrokCheck> {
         let s = builtin::find(name).unwrap();
         let dir = tempfile::tempdir().unwrap();

@@ -5,6 +5,7 @@
 
 pub mod decode;
 pub mod sigrok_fields;
+mod silence;
 
 use std::path::PathBuf;
 
@@ -79,7 +80,7 @@ pub fn timing_report(cfg: &BenchConfig, name: &str, registers: u8) -> std::resul
         let us = |c: u64| c as f64 * tb.period_ps() as f64 / 1e6;
         let _ = writeln!(
             s,
-            "model: start to o_done {:.1} µs, start to start {:.1} µs = {:.0} polls/s (the master's silences are timed from stop-bit samples, half a bit early){}",
+            "model: start to o_done {:.1} µs, start to start {:.1} µs = {:.0} polls/s (the master ends an answer t3.5 after its last stop-bit sample, half a bit before the stop bit ends){}",
             us(a.done_cycle - a.start_cycle),
             us(b.start_cycle - a.start_cycle),
             1e6 / us(b.start_cycle - a.start_cycle),
