@@ -61,11 +61,16 @@ impl Staged {
         &self.pairs[i].0
     }
 
+    /// The file the user asked for, which errors name (not the hidden
+    /// temporary one being written).
+    fn dest(&self, i: usize) -> &Path {
+        &self.pairs[i].1
+    }
+
     fn create(&self, i: usize) -> Result<BufWriter<File>> {
-        let path = self.temp(i);
-        File::create(path)
+        File::create(self.temp(i))
             .map(|f| BufWriter::with_capacity(1 << 20, f))
-            .map_err(|e| Error::io(path, e))
+            .map_err(|e| Error::io(self.dest(i), e))
     }
 
     /// Renames the four files into place, all or none: a destination taken
@@ -164,7 +169,8 @@ fn write_outputs<S: crate::registry::Protocol>(
     if out_dir.exists() && !out_dir.is_dir() {
         return Err(Error::io(
             out_dir,
-            std::io::Error::other(
+            std::io::Error::new(
+                std::io::ErrorKind::InvalidInput,
                 "--out names a file, not a folder: give a folder (it is created if missing)",
             ),
         ));
@@ -202,7 +208,7 @@ fn write_outputs<S: crate::registry::Protocol>(
         scenario.name,
         tb.f_sys_hz()
     );
-    let vcd_path = staged.temp(1).to_path_buf();
+    let vcd_path = staged.dest(1).to_path_buf();
     let mut waves = Waves::new(staged.create(1)?, core, &layout, tb, &comment)
         .map_err(|e| Error::io(&vcd_path, e))?;
     let run = testbench::run(
@@ -227,7 +233,7 @@ fn write_outputs<S: crate::registry::Protocol>(
     let records = vectors
         .finish(&header, &mut hex)
         .and_then(|r| hex.flush().map(|_| r))
-        .map_err(|e| Error::io(staged.temp(0), e))?;
+        .map_err(|e| Error::io(staged.dest(0), e))?;
 
     let doc = transcript::Transcript {
         format: transcript::FORMAT,
@@ -243,7 +249,7 @@ fn write_outputs<S: crate::registry::Protocol>(
         .map_err(std::io::Error::from)
         .and_then(|_| json.write_all(b"\n"))
         .and_then(|_| json.flush())
-        .map_err(|e| Error::io(staged.temp(2), e))?;
+        .map_err(|e| Error::io(staged.dest(2), e))?;
 
     // Frame the first transaction that lasts (not a zero-length one such as
     // EnDat's delay measurement), with a little idle line on either side; a
@@ -279,9 +285,9 @@ fn write_outputs<S: crate::registry::Protocol>(
         },
     )
     .and_then(|_| gtkw_out.flush())
-    .map_err(|e| Error::io(staged.temp(3), e))?;
+    .map_err(|e| Error::io(staged.dest(3), e))?;
     for (i, (_, _, text)) in filters.iter().enumerate() {
-        fs::write(staged.temp(4 + i), text).map_err(|e| Error::io(staged.temp(4 + i), e))?;
+        fs::write(staged.temp(4 + i), text).map_err(|e| Error::io(staged.dest(4 + i), e))?;
     }
 
     drop((hex, json, gtkw_out));
@@ -347,7 +353,20 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let file = dir.path().join("afile");
         fs::write(&file, "").unwrap();
-        let msg = generate(&seed(), &file).unwrap_err().to_string();
+        let e = generate(&seed(), &file).unwrap_err();
+        let msg = e.to_string();
         assert!(msg.contains("--out names a file, not a folder"), "{msg}");
+        assert_eq!(e.exit_code(), 2, "bad input, like every other");
+    }
+
+    #[test]
+    fn a_file_that_cannot_be_written_is_named_as_the_user_asked_for_it() {
+        // A folder where the vector file's hidden temporary one would go
+        // makes its creation fail: the error names the .hex the user wants.
+        let dir = tempfile::tempdir().unwrap();
+        fs::create_dir(dir.path().join(".ssi_seed_12bit.hex.partial")).unwrap();
+        let msg = generate(&seed(), dir.path()).unwrap_err().to_string();
+        assert!(msg.contains("ssi_seed_12bit.hex: is a folder"), "{msg}");
+        assert!(!msg.contains(".partial"), "{msg}");
     }
 }
