@@ -172,6 +172,33 @@ pub fn limit(origin: &str, path: &str, v: f64, fix: &str) -> Result<f64> {
     }
 }
 
+/// The host's answer timeout, µs, of a half-duplex monitor: the
+/// monitor's own `timeout_us`, else the `[host]` table's, else `default_us`
+/// (the protocol's), refused unless a finite non-negative time.
+pub fn host_timeout_us(
+    monitor: Option<f64>,
+    host: &toml::Table,
+    origin: &str,
+    default_us: f64,
+) -> Result<f64> {
+    let (timeout, from) = first_given(
+        [
+            ("monitor.timeout_us", monitor),
+            (
+                "host.timeout_us",
+                field(host, "timeout_us", origin, "host.timeout_us")?,
+            ),
+        ],
+        default_us,
+    );
+    limit(
+        origin,
+        from,
+        timeout,
+        "give the host's answer timeout in µs",
+    )
+}
+
 /// The protocol's table of a configuration (`[<proto>]` of a scenario file,
 /// else the top level), whole: a monitor also reads the `[master]` table
 /// the emulators leave alone (the layout the master reads).

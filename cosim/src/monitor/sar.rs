@@ -42,7 +42,7 @@ use model::sar58k24::{BenchConfig, Mode};
 
 use super::modbus::EmulatorOwn;
 use super::uart::{self, Limits, Line, Rules, Watch};
-use super::{field, first_given, limit, listens_only, proto_table, sub, Base};
+use super::{field, first_given, host_timeout_us, limit, listens_only, proto_table, sub, Base};
 use crate::config::{self, Error};
 use crate::{Emulator, Pins, Result};
 
@@ -121,22 +121,7 @@ impl SarMonitor {
         let mon: MonitorTable = config::decode_in(&whole, "monitor", origin)?;
         let host = sub(&whole, "host", origin)?;
         let enc = cfg.encoders.first().cloned().unwrap_or_default();
-        let (timeout, timeout_field) = first_given(
-            [
-                ("monitor.timeout_us", mon.timeout_us),
-                (
-                    "host.timeout_us",
-                    field(&host, "timeout_us", origin, "host.timeout_us")?,
-                ),
-            ],
-            5000.0,
-        );
-        let timeout = limit(
-            origin,
-            timeout_field,
-            timeout,
-            "give the host's answer timeout in µs",
-        )?;
+        let timeout = host_timeout_us(mon.timeout_us, &host, origin, 5000.0)?;
         let gap_bits: f64 = field(&host, "gap_bits", origin, "host.gap_bits")?.unwrap_or(15.0);
         let tol = limit(
             origin,

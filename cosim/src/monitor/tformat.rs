@@ -43,7 +43,7 @@ use model::tformat::frames::{self, DataId};
 use model::wire::uart_bytes;
 
 use super::half_duplex::{ExchangeDecoder, Exchanges, Limits, Request, Rules, Side, Window};
-use super::{field, first_given, limit, listens_only, proto_table, sub, Base};
+use super::{field, host_timeout_us, limit, listens_only, proto_table, sub, Base};
 use crate::config::{self, Error};
 use crate::{Emulator, Pins, Result};
 
@@ -141,22 +141,7 @@ impl TformatMonitor {
         let mon: MonitorTable = config::decode_in(&whole, "monitor", origin)?;
         let host = sub(&whole, "host", origin)?;
         let encoder = sub(&whole, "encoder", origin)?;
-        let (timeout, timeout_field) = first_given(
-            [
-                ("monitor.timeout_us", mon.timeout_us),
-                (
-                    "host.timeout_us",
-                    field(&host, "timeout_us", origin, "host.timeout_us")?,
-                ),
-            ],
-            10.0,
-        );
-        let timeout = limit(
-            origin,
-            timeout_field,
-            timeout,
-            "give the host's answer timeout in µs",
-        )?;
+        let timeout = host_timeout_us(mon.timeout_us, &host, origin, 10.0)?;
         let jitter = limit(
             origin,
             "monitor.jitter_ns",
