@@ -187,7 +187,7 @@ pub struct EslEmulator {
 }
 
 /// The ALM flags by name (Table 7) and their bit in ALM.
-const ALARMS: [(&str, u8); 9] = [
+pub(crate) const ALARMS: [(&str, u8); 9] = [
     ("xc", 0),
     ("mt", 1),
     ("led", 2),

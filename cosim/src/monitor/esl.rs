@@ -52,6 +52,8 @@ use model::wire::uart_bytes;
 use super::half_duplex::{ExchangeDecoder, Exchanges, Limits, Request, Rules, Side, Window};
 use super::{field, limit, listens_only, proto_table, sub, Base};
 use crate::config::{self, Error};
+// The ALM flags by name, as the emulator takes them.
+use crate::esl::ALARMS;
 use crate::{Emulator, Pins, Result};
 
 /// The rules, as the seed states them.
@@ -76,19 +78,6 @@ pub const RULE_WRITE: &str =
     "request spacing (seed 000: wait more than 6 ms between each memory write operation)";
 /// See [`RULE_CHARACTER`].
 pub const RULE_PAGE: &str = "request spacing (seed 000 Table 11 note 3: once the page value is changed, allow a 18 ms delay)";
-
-/// The ALM flags by name (Table 7) and their bit in ALM1 (the emulator's names).
-const ALARMS: [(&str, u8); 9] = [
-    ("xc", 0),
-    ("mt", 1),
-    ("led", 2),
-    ("lis", 2),
-    ("overspeed", 3),
-    ("mem", 4),
-    ("st", 5),
-    ("uv", 6),
-    ("ov", 7),
-];
 
 /// The error names of an operation (`model::esl::error_names`).
 const ERRORS: [&str; 9] = [
