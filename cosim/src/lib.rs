@@ -42,6 +42,7 @@ pub mod modbus;
 pub mod monitor;
 pub mod motion;
 pub mod pair;
+pub mod probe;
 pub mod registry;
 pub mod sar58k24;
 pub mod ssi;

@@ -42,6 +42,10 @@ pub struct Protocol {
     pub diagram: Option<Diagram>,
     /// The names that do not follow the stem, and why each stays.
     pub historical: &'static [Historical],
+    /// The protocol's rule book (`model::<module>::rules::RULES`): every
+    /// timing limit its seed states for a master ([`crate::rules`]).
+    #[serde(skip)]
+    pub rules: &'static [&'static crate::rules::Rule],
 }
 
 /// A `cosim` emulator and the monitor beside it.

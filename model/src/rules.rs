@@ -222,9 +222,13 @@ pub struct Transaction {
     pub last_rise: Option<u64>,
 }
 
-/// Every rule of every protocol with a rule book, protocol by protocol.
+/// Every rule of every protocol, protocol by protocol in listing order
+/// (each descriptor's [`crate::protocol::Protocol::rules`]).
 pub fn all() -> Vec<&'static Rule> {
-    [crate::biss::rules::RULES, crate::ssi::rules::RULES].concat()
+    crate::protocol::PROTOCOLS
+        .iter()
+        .flat_map(|p| p.rules.iter().copied())
+        .collect()
 }
 
 /// The time in ps of sample `n` of a clock of `f_hz`: `n × 10^12 / f`,

@@ -32,4 +32,5 @@ pub const PROTOCOL: Protocol = Protocol {
         title: "BiSS-C: one 16-bit frame (SAR58K24 user's manual, Synchronous serial, BiSS-C)",
     }),
     historical: &[],
+    rules: crate::biss::rules::RULES,
 };

@@ -45,4 +45,5 @@ pub const PROTOCOL: Protocol = Protocol {
             why: "the Verilog monitor and its plusargs (`+sar58k24_monitor_config`), which users' testbenches set",
         },
     ],
+    rules: &[],
 };

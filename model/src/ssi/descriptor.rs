@@ -31,4 +31,5 @@ pub const PROTOCOL: Protocol = Protocol {
         title: "SSI: one 12-bit read, 495 (SAR58K24 user's manual, Synchronous serial, SSI (4))",
     }),
     historical: &[],
+    rules: crate::ssi::rules::RULES,
 };

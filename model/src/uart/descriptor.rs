@@ -13,4 +13,5 @@ pub const PROTOCOL: Protocol = Protocol {
     closed_loops: &[],
     diagram: None,
     historical: &[],
+    rules: &[],
 };

@@ -1,0 +1,231 @@
+//! The rule probes: for every rule of the rule book ([`model::rules::all`]),
+//! pin-level stimuli of a master that meet its limit by a small margin and
+//! that break it by a small margin, and the harness that runs them through
+//! a protocol's emulator and monitor as a simulator would: one step per
+//! rising edge of their clock, the emulator seeing the master's pins, the
+//! monitor the master's pins and the emulator's answer.
+//!
+//! The probes are data ([`Probe`]: the master's pins as timed segments), so
+//! that the same stimuli run here through the [`Emulator`] trait (the suite
+//! `cosim/tests/unit/rules.rs`, which writes `docs/rules.md`) and can be
+//! written out for the simulators' and cocotb's probe runs.
+//!
+//! A protocol's probes live in `probe/<kind>.rs` with its [`Kit`]: how the
+//! master's pins of a stimulus reach the emulator and the monitor
+//! ([`Kit::wire`]), the same wiring the protocol's Verilog wrappers have.
+
+pub mod biss;
+pub mod ssi;
+
+use serde_json::Value;
+
+use crate::{open, Emulator, Pins};
+use model::rules;
+
+/// Nanoseconds in ps.
+pub const NS: u64 = 1_000;
+/// Microseconds in ps.
+pub const US: u64 = 1_000_000;
+
+/// The master's pins as `(levels, ps)` segments, in the layout of the
+/// protocol's [`Kit::wire`].
+pub type Stimulus = Vec<(u32, u64)>;
+
+/// One stimulus: what it shows, the rule it probes, whether it must pass.
+#[derive(Debug, Clone)]
+pub struct Probe {
+    /// The emulator kind (`cosim::open`), `<kind>_monitor` its monitor.
+    pub protocol: &'static str,
+    /// The rule's name in the protocol's rule book.
+    pub rule: &'static str,
+    /// The stimulus meets the rule (no report from either side) or breaks
+    /// it (exactly that rule from both).
+    pub legal: bool,
+    /// What the stimulus is, as `docs/rules.md` says it.
+    pub what: &'static str,
+    /// The emulator's (and monitor's) configuration.
+    pub toml: &'static str,
+    /// The emulator and monitor clock.
+    pub f_hz: u64,
+    /// The master's pins.
+    pub line: Stimulus,
+    /// Positions the emulator must have latched and the monitor decoded, in
+    /// order (none: not checked).
+    pub reads: &'static [u64],
+}
+
+/// A protocol's probes and wiring.
+#[derive(Debug, Clone, Copy)]
+pub struct Kit {
+    /// The emulator kind.
+    pub protocol: &'static str,
+    /// The master's pins of a stimulus and the emulator's last output at
+    /// the master's end of the line, to `(emulator in, monitor in)`.
+    pub wire: fn(u32, Pins) -> (Pins, Pins),
+    /// The emulator's output before its first step (its line idle).
+    pub idle: Pins,
+    /// The probes.
+    pub probes: fn() -> Vec<Probe>,
+}
+
+/// Every protocol's kit.
+pub fn kits() -> Vec<Kit> {
+    vec![ssi::KIT, biss::KIT]
+}
+
+/// Every probe of every protocol.
+pub fn all() -> Vec<Probe> {
+    kits().iter().flat_map(|k| (k.probes)()).collect()
+}
+
+/// The kit of the emulator kind `protocol`.
+pub fn kit(protocol: &str) -> Option<Kit> {
+    kits().into_iter().find(|k| k.protocol == protocol)
+}
+
+/// What the emulator and the monitor reported, as `(rule name, text)`, and
+/// the positions each saw.
+#[derive(Debug, Clone)]
+pub struct Outcome {
+    /// The emulator's reports.
+    pub emulator: Vec<(String, String)>,
+    /// The monitor's reports.
+    pub monitor: Vec<(String, String)>,
+    /// Positions the emulator latched.
+    pub latched: Vec<u64>,
+    /// Positions the monitor decoded (`None`: a transaction without one).
+    pub decoded: Vec<Option<u64>>,
+}
+
+/// The rule of the book a report's label names; `Err` with the label when
+/// the book holds no such rule (a report without a rule).
+pub fn named(label: &str) -> Result<String, String> {
+    rules::all()
+        .iter()
+        .find(|r| r.label() == label)
+        .map(|r| r.name.to_string())
+        .ok_or_else(|| format!("a report names no rule of the rule book: `{label}`"))
+}
+
+/// The position of a transcript entry: its own, or its first slave's.
+fn position(x: &Value) -> Option<u64> {
+    x.get("position")
+        .or_else(|| x.get("slaves").and_then(|s| s.get(0)?.get("position")))
+        .and_then(Value::as_u64)
+}
+
+/// The list of a transcript: the first of `keys` it has.
+fn entries<'a>(t: &'a Value, keys: &[&str]) -> &'a [Value] {
+    keys.iter()
+        .find_map(|k| t.get(*k).and_then(Value::as_array))
+        .map(Vec::as_slice)
+        .unwrap_or(&[])
+}
+
+/// Runs `p` through the library: every sample of the emulator clock, the
+/// monitor first (it sees the answer the master sees now), then the
+/// emulator.
+pub fn run(p: &Probe) -> Result<Outcome, String> {
+    let kit = kit(p.protocol).ok_or_else(|| format!("no probe kit for `{}`", p.protocol))?;
+    let mut emu = open(p.protocol, p.toml, "probe.toml", p.f_hz).map_err(|e| e.to_string())?;
+    let mut mon = open(
+        &format!("{}_monitor", p.protocol),
+        p.toml,
+        "probe.toml",
+        p.f_hz,
+    )
+    .map_err(|e| e.to_string())?;
+    let total: u64 = p.line.iter().map(|s| s.1).sum();
+    let (mut seg, mut seg_end) = (0, p.line.first().map_or(0, |s| s.1));
+    let mut answer = kit.idle;
+    for n in 0.. {
+        let t = rules::ps_at(n, p.f_hz);
+        if t >= total {
+            break;
+        }
+        while t >= seg_end {
+            seg += 1;
+            seg_end += p.line[seg].1;
+        }
+        let (to_emu, to_mon) = (kit.wire)(p.line[seg].0, answer);
+        mon.step(to_mon);
+        answer = emu.step(to_emu);
+    }
+    let reports = |e: &mut Box<dyn Emulator>| -> Result<Vec<(String, String)>, String> {
+        e.violations()
+            .iter()
+            .map(|v| Ok((named(v.rule)?, v.detail.clone())))
+            .collect()
+    };
+    let decoded = entries(&mon.transcript(), &["transactions"])
+        .iter()
+        .map(position)
+        .collect();
+    let latched = entries(&emu.transcript(), &["reads", "frames", "transactions"])
+        .iter()
+        .filter_map(position)
+        .collect();
+    Ok(Outcome {
+        emulator: reports(&mut emu)?,
+        monitor: reports(&mut mon)?,
+        latched,
+        decoded,
+    })
+}
+
+/// Checks `o` against `p`: a legal probe draws no report from either side,
+/// an illegal one exactly its rule from both, with the same text; the
+/// positions are the ones the probe names. `Err` says what differs.
+pub fn verdict(p: &Probe, o: &Outcome) -> Result<(), String> {
+    let label = format!("{} {} `{}`", p.protocol, p.rule, p.what);
+    if !rules::all()
+        .iter()
+        .any(|r| r.protocol == p.protocol && r.name == p.rule)
+    {
+        return Err(format!(
+            "{label}: names `{}`, which the {} rule book lacks",
+            p.rule, p.protocol
+        ));
+    }
+    if p.legal {
+        if !o.emulator.is_empty() {
+            return Err(format!("{label}: the emulator reported {:?}", o.emulator));
+        }
+        if !o.monitor.is_empty() {
+            return Err(format!("{label}: the monitor reported {:?}", o.monitor));
+        }
+    } else {
+        for (side, list) in [("emulator", &o.emulator), ("monitor", &o.monitor)] {
+            if list.is_empty() {
+                return Err(format!("{label}: the {side} saw no break"));
+            }
+            if list.iter().any(|(r, _)| r != p.rule) {
+                return Err(format!(
+                    "{label}: the {side} reported other rules: {list:?}"
+                ));
+            }
+        }
+        if o.emulator != o.monitor {
+            return Err(format!(
+                "{label}: the emulator and the monitor say it differently: {:?} against {:?}",
+                o.emulator, o.monitor
+            ));
+        }
+    }
+    if !p.reads.is_empty() {
+        if o.latched != p.reads {
+            return Err(format!(
+                "{label}: the emulator latched {:?}, not {:?}",
+                o.latched, p.reads
+            ));
+        }
+        let want: Vec<Option<u64>> = p.reads.iter().map(|&v| Some(v)).collect();
+        if o.decoded != want {
+            return Err(format!(
+                "{label}: the monitor decoded {:?}, not {:?}",
+                o.decoded, want
+            ));
+        }
+    }
+    Ok(())
+}
