@@ -48,8 +48,12 @@ pub enum Unit {
     Ns,
     /// Microseconds.
     Us,
+    /// Milliseconds.
+    Ms,
     /// Kilohertz (a clock frequency, measured as its period).
     KHz,
+    /// Megahertz (a clock frequency, measured as its period).
+    MHz,
 }
 
 impl Unit {
@@ -58,7 +62,9 @@ impl Unit {
         match self {
             Unit::Ns => "ns",
             Unit::Us => "us",
+            Unit::Ms => "ms",
             Unit::KHz => "kHz",
+            Unit::MHz => "MHz",
         }
     }
 
@@ -67,7 +73,9 @@ impl Unit {
         let ps = match self {
             Unit::Ns => value * 1e3,
             Unit::Us => value * 1e6,
+            Unit::Ms => value * 1e9,
             Unit::KHz => PS_PER_S as f64 / (value * 1e3),
+            Unit::MHz => PS_PER_S as f64 / (value * 1e6),
         };
         ps.round().max(0.0) as u64
     }
@@ -81,16 +89,25 @@ pub enum Bound {
     /// The length must reach the value (the seed's `>` where the house
     /// reads it inclusively: [`Rule::reading`] says why).
     AtLeast(f64, Unit),
+    /// The length must not exceed the value (the seed's `<=`, "at most").
+    AtMost(f64, Unit),
     /// A clock frequency from the first value to the second, both
     /// included, measured as its period.
     Within(f64, f64, Unit),
+    /// A rule of a frame's form or of the order of transactions, with no
+    /// figure: what the seed asks, in the rule's `seed_words`.
+    Form,
 }
 
 impl Bound {
-    /// The unit of the bound.
-    pub fn unit(self) -> Unit {
+    /// The unit of the bound (`None`: a rule of form).
+    pub fn unit(self) -> Option<Unit> {
         match self {
-            Bound::MoreThan(_, u) | Bound::AtLeast(_, u) | Bound::Within(_, _, u) => u,
+            Bound::MoreThan(_, u)
+            | Bound::AtLeast(_, u)
+            | Bound::AtMost(_, u)
+            | Bound::Within(_, _, u) => Some(u),
+            Bound::Form => None,
         }
     }
 }
@@ -100,7 +117,9 @@ impl fmt::Display for Bound {
         match *self {
             Bound::MoreThan(v, u) => write!(f, "> {v} {}", u.symbol()),
             Bound::AtLeast(v, u) => write!(f, ">= {v} {}", u.symbol()),
+            Bound::AtMost(v, u) => write!(f, "<= {v} {}", u.symbol()),
             Bound::Within(lo, hi, u) => write!(f, "{lo} to {hi} {}", u.symbol()),
+            Bound::Form => write!(f, "form"),
         }
     }
 }
@@ -143,23 +162,22 @@ pub struct Rule {
 
 impl Rule {
     /// The rule as reports print it: name, section and bound,
-    /// `TMASH (seed 001 SAR58K24 manual, BiSS-C timing: MA high > 25 ns)`.
+    /// `TMASH (seed 001 SAR58K24 manual, BiSS-C timing: MA high > 25 ns)`
+    /// (a rule of form: its quantity alone).
     pub fn label(&'static self) -> &'static str {
         self.label.get_or_init(|| {
-            Box::leak(
-                format!(
-                    "{} ({}: {} {})",
-                    self.name, self.section, self.quantity, self.bound
-                )
-                .into_boxed_str(),
-            )
+            let what = match self.bound {
+                Bound::Form => self.quantity.to_string(),
+                b => format!("{} {b}", self.quantity),
+            };
+            Box::leak(format!("{} ({}: {what})", self.name, self.section).into_boxed_str())
         })
     }
 
     /// A configured bound `value` (in the rule's unit, from `field`),
     /// refused outside [`Rule::settable`] with the seed's range.
     pub fn setting(&'static self, field: &str, value: f64) -> Result<f64, ConfigError> {
-        let unit = self.bound.unit().symbol();
+        let unit = self.bound.unit().map_or("", Unit::symbol);
         let Some(range) = self.settable else {
             return Err(ConfigError::invalid(
                 field,

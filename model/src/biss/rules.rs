@@ -111,7 +111,7 @@ impl Limits {
     pub fn seed(timeout_us: f64) -> Self {
         let ps = |r: &Rule| match r.bound {
             Bound::MoreThan(v, u) | Bound::AtLeast(v, u) => u.ps(v),
-            Bound::Within(..) => 0,
+            Bound::AtMost(..) | Bound::Within(..) | Bound::Form => 0,
         };
         Limits {
             tmas: ps(&TMAS),
