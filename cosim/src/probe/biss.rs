@@ -1,13 +1,13 @@
 //! The BiSS-C probes: MA as the master drives it (bit 0 of the stimulus);
 //! the emulator sees MA, the monitor MA and SLO at the master (bits 0, 1).
 
-use super::{Kit, Probe, Stimulus, NS, US};
+use super::{Kit, Probe, Src, Stimulus, NS, US};
 use crate::Pins;
 
 /// BiSS-C's kit.
 pub const KIT: Kit = Kit {
     protocol: "biss",
-    wire: |ma, slo| (Pins(ma & 1), Pins(ma & 1 | (slo.data() as u32) << 1)),
+    monitor: &[Src::Master(0), Src::Emulator(0)],
     idle: Pins(1),
     probes,
 };
@@ -57,6 +57,8 @@ fn probes() -> Vec<Probe> {
         toml: BISS,
         f_hz: BISS_HZ,
         line,
+        unknown: 0,
+        unknown_ps: 0,
         reads,
     };
     let clean = || frame(40, 50 * NS, 50 * NS, 20 * US);

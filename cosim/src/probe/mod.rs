@@ -10,9 +10,12 @@
 //! `cosim/tests/unit/rules.rs`, which writes `docs/rules.md`) and can be
 //! written out for the simulators' and cocotb's probe runs.
 //!
-//! A protocol's probes live in `probe/<kind>.rs` with its [`Kit`]: how the
-//! master's pins of a stimulus reach the emulator and the monitor
-//! ([`Kit::wire`]), the same wiring the protocol's Verilog wrappers have.
+//! A protocol's probes live in `probe/<kind>.rs` with its [`Kit`]. A
+//! stimulus is the master's pins in the emulator's input layout
+//! ([`Pins`]: bit 0 the line clock, bit 1 the master's data, bit 2 its
+//! driver enable); the monitor's pins are wired from it and from the
+//! emulator's answer as [`Kit::monitor`] lists, data that the simulators'
+//! testbenches read too, so the wiring is written once.
 
 pub mod biss;
 pub mod ssi;
@@ -49,9 +52,47 @@ pub struct Probe {
     pub f_hz: u64,
     /// The master's pins.
     pub line: Stimulus,
+    /// Pins the master leaves unknown (X in a four-state simulator) from
+    /// time 0 until [`Probe::unknown_ps`], a master in reset before it
+    /// drives them: the library run reads them as 0, as the wrappers read
+    /// X or Z on a driver enable (not driving).
+    pub unknown: u32,
+    /// The end of the unknown stretch, ps.
+    pub unknown_ps: u64,
     /// Positions the emulator must have latched and the monitor decoded, in
     /// order (none: not checked).
     pub reads: &'static [u64],
+}
+
+/// Where a monitor pin comes from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Src {
+    /// A pin of the master (a bit of the stimulus).
+    Master(u32),
+    /// A pin of the emulator's output at the master's end of the line
+    /// (bit 0 its data, bit 1 its driver enable).
+    Emulator(u32),
+    /// The half-duplex line at the master's receiver: the emulator's data
+    /// while it drives, else the master's data (bit 1) while the master
+    /// drives (bit 2), else high (the RS-485 fail-safe bias of an idle line).
+    Bus,
+    /// A wired-AND bus (CAN, dominant low): the master's pin `n` and the
+    /// emulator's data.
+    WiredAnd(u32),
+}
+
+impl Src {
+    /// The level of the source, given the master's and the emulator's pins.
+    pub fn level(self, master: u32, answer: Pins) -> bool {
+        let bit = |v: u32, n: u32| v >> n & 1 != 0;
+        match self {
+            Src::Master(n) => bit(master, n),
+            Src::Emulator(n) => bit(answer.0, n),
+            Src::Bus if answer.enable() => answer.data(),
+            Src::Bus => !bit(master, 2) || bit(master, 1),
+            Src::WiredAnd(n) => bit(master, n) && answer.data(),
+        }
+    }
 }
 
 /// A protocol's probes and wiring.
@@ -59,13 +100,25 @@ pub struct Probe {
 pub struct Kit {
     /// The emulator kind.
     pub protocol: &'static str,
-    /// The master's pins of a stimulus and the emulator's last output at
-    /// the master's end of the line, to `(emulator in, monitor in)`.
-    pub wire: fn(u32, Pins) -> (Pins, Pins),
+    /// The monitor's pins, bit 0 first: where each comes from.
+    pub monitor: &'static [Src],
     /// The emulator's output before its first step (its line idle).
     pub idle: Pins,
     /// The probes.
     pub probes: fn() -> Vec<Probe>,
+}
+
+impl Kit {
+    /// The monitor's pins, given the master's and the emulator's.
+    pub fn monitor_pins(&self, master: u32, answer: Pins) -> Pins {
+        Pins(
+            self.monitor
+                .iter()
+                .enumerate()
+                .map(|(i, s)| (s.level(master, answer) as u32) << i)
+                .sum(),
+        )
+    }
 }
 
 /// Every protocol's kit.
@@ -147,9 +200,13 @@ pub fn run(p: &Probe) -> Result<Outcome, String> {
             seg += 1;
             seg_end += p.line[seg].1;
         }
-        let (to_emu, to_mon) = (kit.wire)(p.line[seg].0, answer);
-        mon.step(to_mon);
-        answer = emu.step(to_emu);
+        let master = if t < p.unknown_ps {
+            p.line[seg].0 & !p.unknown
+        } else {
+            p.line[seg].0
+        };
+        mon.step(kit.monitor_pins(master, answer));
+        answer = emu.step(Pins(master));
     }
     let reports = |e: &mut Box<dyn Emulator>| -> Result<Vec<(String, String)>, String> {
         e.violations()

@@ -2,13 +2,13 @@
 //! stimulus); the emulator sees the clock, the monitor the clock and the
 //! data at the master (bits 0, 1).
 
-use super::{Kit, Probe, Stimulus, NS, US};
+use super::{Kit, Probe, Src, Stimulus, NS, US};
 use crate::Pins;
 
 /// SSI's kit.
 pub const KIT: Kit = Kit {
     protocol: "ssi",
-    wire: |clk, data| (Pins(clk & 1), Pins(clk & 1 | (data.data() as u32) << 1)),
+    monitor: &[Src::Master(0), Src::Emulator(0)],
     idle: Pins(1),
     probes,
 };
@@ -48,6 +48,8 @@ fn probes() -> Vec<Probe> {
         toml: SSI,
         f_hz: SSI_HZ,
         line,
+        unknown: 0,
+        unknown_ps: 0,
         reads,
     };
     let at = |khz: u64, rest| read(4 * US, 500 * US / khz, 500 * US / khz, rest);
