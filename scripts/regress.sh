@@ -68,8 +68,12 @@ for core in "${cores[@]}"; do
     esac
 done
 
-# The header line "// core: X" of a vector file.
-header_core() { sed -n 's#^// core: ##p' "$1" | head -n 1; }
+# The vector files' headers, read by the files' own reader (vectorfile,
+# through `xtask vector-headers`): "<core> <cycles> <params@f_sys> <file>"
+# per file. Built here when missing (make test builds it first).
+xtask="${CARGO_TARGET_DIR:-$root/target}/release/xtask"
+[ -x "$xtask" ] || (cd "$root" && ${CARGO:-cargo} build --release --locked -q -p xtask) || die "could not build xtask"
+headers() { "$xtask" vector-headers "$@" || exit 2; }
 
 # A scenario given as a file: generate (.toml) or take (.hex) one vector file.
 file=""
@@ -114,8 +118,8 @@ if [ -n "$scenario" ]; then
         file=${hexes[0]}
     fi
     if [ -n "$file" ]; then
-        fcore=$(header_core "$file")
-        [ -n "$fcore" ] || die "$file has no tbgen header (// core: ...)"
+        read -r fcore _ < <(headers "$file")
+        [ -n "$fcore" ] || exit 2
         if [ ${#cores[@]} -gt 0 ] && [ "${cores[0]}" != "$fcore" ]; then
             die "$scenario is a scenario of core '$fcore', not '${cores[0]}' (leave CORE out, or CORE=$fcore)"
         fi
@@ -167,17 +171,15 @@ for core in "${cores[@]}"; do
         files=("$root/vectors/$core"/*.hex)
         [ -e "${files[0]}" ] || { echo "regress: no vectors in vectors/$core/ (run make vectors)" >&2; exit 2; }
     fi
-    for f in "${files[@]}"; do
+    summary=$(headers "${files[@]}") || exit 2
+    while read -r _ cycles build f; do
         name=$(basename "$f" .hex)
         [ -z "$file" ] && [ -n "$scenario" ] && [ "$name" != "$scenario" ] && continue
-        cycles=$(sed -n 's#^// cycles: ##p' "$f" | head -n 1)
-        cycles=${cycles:-0}
-        group=$(sed -n -e 's#^// params: ##p' -e 's#^// f_sys_hz: ##p' "$f" | tr '\n ' '__' | sha1sum | cut -c1-12)
-        group="$core.$group"
+        group="$core.$(printf '%s' "$build" | sha1sum | cut -c1-12)"
         group_cycles[$group]=$(( ${group_cycles[$group]:-0} + cycles ))
         group_files[$group]=$(( ${group_files[$group]:-0} + 1 ))
         entries+=("$cycles $core $group $f")
-    done
+    done <<< "$summary"
     # The core's representative Icarus set (--icarus-budget): the cheapest
     # file of each parameter set, cheapest set first, within the budget.
     if [ -n "$icarus_budget" ]; then
@@ -187,10 +189,8 @@ for core in "${cores[@]}"; do
             if [ "$spent" -gt 0 ] && [ $((spent + cycles)) -gt "$icarus_budget" ]; then break; fi
             icarus_files[$f]=1
             spent=$((spent + cycles))
-        done < <(for f in "${files[@]}"; do
-                     printf '%s %s %s\n' "$(sed -n 's#^// params: ##p' "$f" | head -n 1 | tr ' ' '_')" \
-                         "$(sed -n 's#^// cycles: ##p' "$f" | head -n 1)" "$f"
-                 done | sort -k1,1 -k2,2n | awk '!seen[$1]++' | sort -n -k2,2)
+        done < <(awk '{ split($3, b, "@"); print b[1], $2, $4 }' <<< "$summary" \
+                 | sort -k1,1 -k2,2n | awk '!seen[$1]++' | sort -n -k2,2)
     fi
 done
 

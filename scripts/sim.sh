@@ -63,47 +63,14 @@ icarus|verilator) ;;
 esac
 [ -f "$vectors" ] || { echo "sim.sh: no vector file $vectors" >&2; exit 2; }
 
-header() { sed -n "s#^// $1: ##p" "$vectors" | head -n 1; }
-records=$(header records)
-params=$(header params)
-f_sys_hz=$(header f_sys_hz)
-header_core=$(header core)
-[ -n "$records" ] && [ -n "$f_sys_hz" ] || { echo "sim.sh: $vectors has no tbgen header (records:, f_sys_hz:)" >&2; exit 2; }
-[ "$header_core" = "$core" ] || { echo "sim.sh: $vectors is for core '$header_core', not '$core'" >&2; exit 2; }
-
-# The header sizes the simulator's memory and clock and sets the core's
-# parameters: a damaged one is refused here, naming its line and the fix,
-# before a simulator sizes an array by it (Icarus aborts on a huge one) or
-# bash divides by it.
-bad_header() {
-    local line
-    line=$(grep -n "^// $1: " "$vectors" | head -n 1 | cut -d: -f1)
-    echo "sim.sh: $vectors:${line:-1}: $1: $2; $3" >&2
-    exit 2
-}
-fix_regen="regenerate the file with tbgen gen (or make vectors), which writes the header"
-[[ "$f_sys_hz" =~ ^[1-9][0-9]{0,9}$ ]] && [ "$f_sys_hz" -le 1000000000 ] \
-    || bad_header f_sys_hz "'$f_sys_hz' is not a clock from 1 Hz to 1 GHz" "$fix_regen"
-words_hdr=$(header words_per_record)
-[[ "$words_hdr" =~ ^[1-9][0-9]{0,3}$ ]] \
-    || bad_header words_per_record "'$words_hdr' is not a word count" "$fix_regen"
-# One pass over the records (26 MB for every committed file: a fraction of
-# a second): how many, and the first whose word count is not the header's
-# (a file cut inside its last record reads as zeros in Verilator, which
-# would compare nothing there).
-read -r held bad_line bad_words < <(awk -v w="$words_hdr" '
-    /^[0-9a-fA-F]/ { n++; if (NF != w && !bad) { bad = NR; nf = NF } }
-    END { print n + 0, bad + 0, nf + 0 }' "$vectors")
-[[ "$records" =~ ^[1-9][0-9]{0,9}$ ]] && [ "$records" -le "$held" ] \
-    || bad_header records "'$records', but the file holds $held records" "$fix_regen"
-if [ "$bad_line" -gt 0 ]; then
-    echo "sim.sh: $vectors:$bad_line: a record of $bad_words words, where words_per_record is $words_hdr; the file is cut or damaged: $fix_regen" >&2
-    exit 2
-fi
-for p in $params; do
-    [[ "$p" =~ ^[A-Z][A-Z0-9_]*=[0-9]{1,19}$ ]] \
-        || bad_header params "'$p' is not NAME=number" "give each of the core's parameters as NAME=decimal (tbgen gen writes them)"
-done
+# The header, read and checked by the vector file's own reader
+# (vectorfile::Replay, through `xtask vector-header`): records, f_sys_hz,
+# words_per_record, params and group_cycles, or exit 2 naming the file, its
+# line and the fix. Built here when missing (make test builds it first).
+xtask="${CARGO_TARGET_DIR:-$root/target}/release/xtask"
+[ -x "$xtask" ] || cargo build --release --quiet --manifest-path "$root/Cargo.toml" -p xtask >&2
+header_vars=$("$xtask" vector-header "$core" "$vectors") || exit 2
+eval "$header_vars"
 
 # Half a system-clock period in femtoseconds (the testbench timescale is 1 fs).
 half_fs=$(( 500000000000000 / f_sys_hz ))
@@ -112,7 +79,7 @@ half_fs=$(( 500000000000000 / f_sys_hz ))
 # benches still fit. Icarus builds in a second but allocates the whole
 # memory at every start (4 Mi words: 170 MB, about 1 s of a short replay on
 # a loaded machine): the smallest power of two from 4 Ki words that fits.
-words=$words_hdr
+words=$words_per_record
 max_words=$(( 1 << 22 ))
 [ "$sim" = icarus ] && max_words=$(( 1 << 12 ))
 while [ $(( records * words )) -gt "$max_words" ]; do max_words=$(( max_words * 2 )); done
@@ -134,24 +101,8 @@ cov_key=() cov_files=()
 vflags=()
 if [ "$sim" = verilator ]; then
     if [ -z "${VERILATOR_OPT:-}" ]; then
-        # The cycles of the committed files that share this build (their
-        # headers only: the first 40 lines of each file); a file of another
-        # parameter set (a custom scenario) counts alone. One awk reads all
-        # the headers: a process per file cost 3 ms a file, on every replay.
-        committed=()
-        for g in "$root/vectors/$core"/*.hex; do [ -f "$g" ] && committed+=("$g"); done
-        read -r my_c group_cycles <<< "$(awk -F': ' '
-            function flush() {
-                if (p == "") p = "-"
-                if (files++ == 0) { mine = p " " h; my_c = c } else if (p " " h == mine) group += c
-            }
-            FNR == 1 { if (NR > 1) flush(); p = ""; h = ""; c = 0 }
-            FNR > 40 { nextfile }
-            /^\/\/ params: / { p = $2; gsub(/ /, "_", p) }
-            /^\/\/ f_sys_hz: / { h = $2 }
-            /^\/\/ cycles: / { c = $2 + 0 }
-            END { flush(); print my_c + 0, group + 0 }' "$vectors" "${committed[@]}")"
-        [ "$group_cycles" -gt 0 ] || group_cycles=$my_c
+        # group_cycles: the cycles of the committed files that share this
+        # build (xtask vector-header reads their headers).
         export VERILATOR_OPT=1
         [ "$group_cycles" -lt "${VERILATOR_O0_CYCLES:-100000}" ] && VERILATOR_OPT=0
     fi

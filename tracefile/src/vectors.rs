@@ -19,21 +19,7 @@ use std::io::Write;
 use model::trace::{Sample, Sink};
 use model::Port;
 
-/// Format version written in the header; readers refuse other versions.
-pub const FORMAT: &str = "tbgen-vectors 1";
-
-/// What the header of a vector file says.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct Header {
-    /// The core (`ssi_master`).
-    pub core: String,
-    /// The scenario name.
-    pub scenario: String,
-    /// The system clock in Hz.
-    pub f_sys_hz: u64,
-    /// Verilog parameters of the core, in order.
-    pub params: Vec<(String, u64)>,
-}
+pub use vectorfile::{Header, VectorFile, FORMAT};
 
 /// Collects records from a bench run; [`VectorWriter::finish`] writes the file.
 pub struct VectorWriter {
@@ -93,35 +79,21 @@ impl VectorWriter {
                 self.record(last, &prev);
             }
         }
-        let cycles = self.last_cycle.map_or(0, |c| c + 1);
-        writeln!(out, "// {FORMAT}")?;
-        writeln!(out, "// core: {}", header.core)?;
-        writeln!(out, "// scenario: {}", header.scenario)?;
-        writeln!(out, "// f_sys_hz: {}", header.f_sys_hz)?;
-        writeln!(out, "// records: {}", self.records)?;
-        writeln!(out, "// cycles: {cycles}")?;
-        let params: Vec<String> = header
-            .params
-            .iter()
-            .map(|(k, v)| format!("{k}={v}"))
-            .collect();
-        writeln!(out, "// params: {}", params.join(" "))?;
-        writeln!(
-            out,
-            "// words_per_record: {}",
-            1 + self.inputs.len() + 2 * self.outputs.len()
-        )?;
         let ins: Vec<String> = self.inputs.iter().map(port_label).collect();
         let outs: Vec<String> = self
             .outputs
             .iter()
             .map(|p| format!("{} mask", port_label(p)))
             .collect();
-        writeln!(
+        let layout = format!("cycle | {} | {}", ins.join(" "), outs.join(" "));
+        header.write(
+            &vectorfile::Records {
+                records: self.records,
+                cycles: self.last_cycle.map_or(0, |c| c + 1),
+                words_per_record: 1 + self.inputs.len() + 2 * self.outputs.len(),
+                layout: &layout,
+            },
             out,
-            "// record: cycle | {} | {}",
-            ins.join(" "),
-            outs.join(" ")
         )?;
         out.write_all(self.body.as_bytes())?;
         Ok(self.records)
@@ -168,76 +140,5 @@ fn port_label(p: &Port) -> String {
         p.name.to_string()
     } else {
         format!("{}[{}:0]", p.name, p.width - 1)
-    }
-}
-
-/// A vector file read back: its header fields and records (for tests and tools).
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct VectorFile {
-    /// `key: value` lines of the header, in order.
-    pub header: Vec<(String, String)>,
-    /// The records, each as its words.
-    pub records: Vec<Vec<u64>>,
-}
-
-impl VectorFile {
-    /// Parses a vector file's text.
-    pub fn parse(text: &str) -> Result<VectorFile, String> {
-        let mut header = Vec::new();
-        let mut records = Vec::new();
-        for (i, line) in text.lines().enumerate() {
-            if let Some(comment) = line.strip_prefix("// ") {
-                if let Some((k, v)) = comment.split_once(": ") {
-                    header.push((k.to_string(), v.to_string()));
-                }
-                continue;
-            }
-            let words: Result<Vec<u64>, _> = line
-                .split_whitespace()
-                .map(|w| u64::from_str_radix(w, 16))
-                .collect();
-            records.push(words.map_err(|e| format!("line {}: {e}", i + 1))?);
-        }
-        Ok(VectorFile { header, records })
-    }
-
-    /// A header field.
-    pub fn get(&self, key: &str) -> Option<&str> {
-        self.header
-            .iter()
-            .find(|(k, _)| k == key)
-            .map(|(_, v)| v.as_str())
-    }
-
-    /// The word index of port `name` in a record (an output's value word; its mask follows), from the
-    /// `record:` header line.
-    pub fn column(&self, name: &str) -> Option<usize> {
-        let layout = self.get("record")?;
-        layout
-            .split_whitespace()
-            .filter(|w| *w != "|")
-            .position(|w| w.split('[').next() == Some(name))
-    }
-
-    /// The value of the word at `column` in cycle `cycle` (records hold until the next one).
-    pub fn value_at(&self, column: usize, cycle: u64) -> Option<u64> {
-        let i = self
-            .records
-            .partition_point(|r| r.first().is_some_and(|c| *c <= cycle));
-        self.records.get(i.checked_sub(1)?)?.get(column).copied()
-    }
-
-    /// The cycles in which the word at `column` rises from 0 to non-zero (a strobe's pulses).
-    pub fn rises(&self, column: usize) -> Vec<u64> {
-        let mut last = 0;
-        let mut out = Vec::new();
-        for r in &self.records {
-            let v = r.get(column).copied().unwrap_or(0);
-            if v != 0 && last == 0 {
-                out.push(r[0]);
-            }
-            last = v;
-        }
-        out
     }
 }

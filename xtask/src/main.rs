@@ -6,11 +6,14 @@
 //! ```text
 //! xtask test [--jobs N] [--only STAGE[,STAGE...]]   run the stages (and what they wait for)
 //! xtask test --list                                 the stages, in the order they are taken
+//! xtask vector-header <core> <file.hex>             a vector file's header, checked, as shell variables
+//! xtask vector-headers <file.hex>...                core, cycles and build of each file, one line each
 //! ```
 //!
 //! Exit status: 0 when every stage passed, 1 when one failed, 2 for a bad
 //! command line.
 
+mod header;
 mod plan;
 mod run;
 mod schedule;
@@ -21,7 +24,7 @@ use std::time::Instant;
 
 use schedule::Board;
 
-const USAGE: &str = "usage: xtask test [--jobs N] [--only STAGE[,STAGE...]] | xtask test --list";
+const USAGE: &str = "usage: xtask test [--jobs N] [--only STAGE[,STAGE...]] | xtask test --list | xtask vector-header <core> <file.hex>";
 
 /// The command line of `xtask test`.
 #[derive(Debug, Default, PartialEq)]
@@ -78,6 +81,11 @@ fn root() -> PathBuf {
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
+    match args.first().map(String::as_str) {
+        Some("vector-header") => return header::main(&root(), &args[1..]),
+        Some("vector-headers") => return header::summaries(&args[1..]),
+        _ => {}
+    }
     let args = match parse(&args) {
         Ok(a) => a,
         Err(e) => {
