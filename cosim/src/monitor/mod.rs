@@ -61,22 +61,29 @@ impl Base {
         }
     }
 
-    /// The time of the current cycle, ps.
+    /// The time of the current cycle, ps: `cycle x 10^12 / f_mon`, exact
+    /// (a period rounded to whole ps would drift a cycle from the line's
+    /// own bit times within a few thousand bits at a baud-rate clock).
     pub fn now_ps(&self) -> u64 {
-        self.cycle * self.period_ps
+        self.exact_ps()
+    }
+
+    /// The monitor cycle nearest `t_ps`.
+    fn cycle_at(&self, t_ps: u64) -> u64 {
+        let ps = model::time::PS_PER_S as u128;
+        ((t_ps as u128 * self.f_mon_hz as u128 + ps / 2) / ps) as u64
     }
 
     /// A violation at time `t_ps` (the edge that broke the rule).
     pub fn violation(&mut self, t_ps: u64, rule: &'static str, detail: String) {
-        self.checks.push(t_ps / self.period_ps, rule, detail);
+        let cycle = self.cycle_at(t_ps);
+        self.checks.push(cycle, rule, detail);
     }
 
     /// A breach of a rule of the rule book.
     pub fn breach(&mut self, b: &model::rules::Breach) {
-        let ps = model::time::PS_PER_S as u128;
-        let cycle = (b.at_ps as u128 * self.f_mon_hz as u128 + ps / 2) / ps;
-        self.checks
-            .push(cycle as u64, b.rule.label(), b.detail.clone());
+        let cycle = self.cycle_at(b.at_ps);
+        self.checks.push(cycle, b.rule.label(), b.detail.clone());
     }
 
     /// The time of the current cycle, ps, exact to the picosecond (a
