@@ -14,8 +14,15 @@ target=${CARGO_TARGET_DIR:-$root/target}
 # same features (-p cosim alone builds the proc-macros' syn without "full",
 # then serde and everything above it again) and finds everything already
 # built.
-(cd "$root" && cargo build -q --release --locked -p tbgen -p cosim -p cosim-py -j 2) >&2
 lib_dir="$target/release"
+# The first build of a clone takes minutes: said, with cargo's own progress;
+# later ones, when there is little or nothing to rebuild, quietly.
+quiet=-q
+if [ ! -f "$lib_dir/libcosim.so" ]; then
+    echo "emu_lib.sh: building the emulator library in $root (the first time takes a few minutes)" >&2
+    quiet=
+fi
+(cd "$root" && cargo build $quiet --release --locked -p tbgen -p cosim -p cosim-py -j 2) >&2
 vpi_dir="$root/build/emu"
 mkdir -p "$vpi_dir"
 exec 8> "$vpi_dir/.lock"

@@ -4,6 +4,7 @@
 //! with the minimum, and X on an emulator input is reported with time and
 //! pin. Needs the simulators that `make deps` installs.
 
+use std::fs;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::Mutex;
@@ -412,4 +413,67 @@ fn tformat_host_closed_loop_with_its_monitor_in_verilator_and_icarus() {
 #[test]
 fn esl_host_closed_loop_with_its_monitor_in_verilator_and_icarus() {
     closed_loop_with_monitor("esl_host");
+}
+
+/// The examples' testbenches drive and sample on the falling clock edge
+/// with blocking assignments, so that a copy runs the same cycles in Icarus
+/// and Verilator: a non-blocking assignment in an initial block (Verilator's
+/// INITIALDLY) ran a cycle apart in the two. Verilator's lint of each
+/// testbench with its master and the wrappers reports no INITIALDLY.
+#[test]
+fn the_examples_testbenches_assign_no_delayed_values_in_initial_blocks() {
+    let root = root();
+    for (example, _, _) in EXAMPLES {
+        let dir = root.join("examples").join(example);
+        let mut sources: Vec<PathBuf> = fs::read_dir(&dir)
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            .filter(|p| p.extension().is_some_and(|x| x == "v"))
+            .collect();
+        sources.sort();
+        let (tbs, masters): (Vec<_>, Vec<_>) = sources
+            .iter()
+            .partition(|p| p.file_name().unwrap().to_str().unwrap().starts_with("tb_"));
+        for tb in tbs {
+            let top = tb.file_stem().unwrap().to_str().unwrap();
+            let (_, out) = run(Command::new("verilator")
+                .args([
+                    "--lint-only",
+                    "--timing",
+                    "-Wall",
+                    "-Wno-fatal",
+                    "--top-module",
+                    top,
+                ])
+                .arg(format!("-I{}", root.join("hdl/emu").display()))
+                .arg("-y")
+                .arg(root.join("hdl/emu"))
+                .arg(tb)
+                .args(&masters));
+            assert!(
+                !out.contains("%Error"),
+                "{example}/{top}: the lint did not run:\n{out}"
+            );
+            assert!(
+                !out.contains("INITIALDLY"),
+                "{example}/{top}: a delayed assignment in an initial block:\n{out}"
+            );
+        }
+    }
+}
+
+/// An example copied out of the tree without `ENCODER_TB` stops at once,
+/// naming the variable and the fix (it used to stop at "No rule to make
+/// target '/ssi_encoder_emu.v'", the wrappers' folder empty).
+#[test]
+fn an_example_without_its_checkout_names_encoder_tb() {
+    for (example, _, _) in EXAMPLES {
+        let (ok, out) = make_example(example, &["ENCODER_TB=/nonexistent".into()], &[]);
+        assert!(!ok, "{example}:\n{out}");
+        assert!(
+            out.contains("ENCODER_TB=/nonexistent is not an encoder-tb checkout")
+                && out.contains("make ENCODER_TB=/path/to/encoder-tb"),
+            "{example}:\n{out}"
+        );
+    }
 }

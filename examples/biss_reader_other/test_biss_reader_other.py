@@ -29,7 +29,9 @@ READS = int(os.environ.get("COSIM_TRANSACTIONS", "100"))
 async def frames_equal_what_the_emulator_sent(dut):
     path = os.environ["COSIM_CONFIG"]
     with open(path, encoding="utf-8") as f:
-        emu = encoder_emu.Emulator("biss", f.read(), F_HZ, path)
+        text = f.read()
+        emu = encoder_emu.Emulator("biss", text, F_HZ, path)
+        mon = encoder_emu.Monitor("biss", text, F_HZ, path)
     cocotb.start_soon(Clock(dut.clk, round(1e12 / F_HZ), units="ps").start())
     dut.reset_n.value = 0
     dut.go.value = 0
@@ -39,6 +41,7 @@ async def frames_equal_what_the_emulator_sent(dut):
         # Pins in: bit 0 MA; out: bit 0 SLO at the master.
         while True:
             await RisingEdge(dut.clk)
+            mon.step(bit(dut.ma) | bit(dut.slo) << 1)  # MA, SLO at the master
             dut.slo.value = emu.step(bit(dut.ma)) & 1
 
     cocotb.start_soon(wire())
@@ -68,6 +71,7 @@ async def frames_equal_what_the_emulator_sent(dut):
         assert bit(dut.crc_good) == 1, f"frame {n}: the reader's CRC check failed"
         assert bit(dut.n_error) == (not error) and bit(dut.n_warning) == (not warning), \
             f"frame {n}: nE {bit(dut.n_error)} nW {bit(dut.n_warning)}, the emulator sent error {error} warning {warning}"
-    v = emu.violations()
+    assert mon.count() == READS, f"the monitor decoded {mon.count()} transactions on the line, expected {READS}"
+    v = emu.violations() + mon.violations()
     assert not v, "the reader broke the seed's timing rules:\n" + "\n".join(v)
     dut._log.info("PASS biss_reader: %d frames equal to what the emulator sent", READS)

@@ -25,6 +25,10 @@ module tb_can_node;
 localparam CLKS_PER_BIT = 32;        // 4 MHz / 125 kbit/s
 reg clk = 1'b0;
 always #125 clk = ~clk;
+// The stimulus below drives and samples on the falling edge, the reader
+// and the emulator work on the rising one: no race between them, the same
+// cycles in Icarus and Verilator (a non-blocking assignment in an initial
+// block is not: Verilator warns INITIALDLY and runs it a cycle apart).
 
 reg rst_n = 1'b0;
 reg send = 1'b0;
@@ -50,6 +54,11 @@ can_node_emu #(.CONFIG("node.toml"), .F_EMU_HZ(4000000), .TRANSCRIPT("build/can_
     .i_emu_clk(clk), .i_can_tx(txd), .o_can_rx(rxd)
 );
 
+// The pin-level monitor and protocol checker: it only listens.
+can_monitor #(.CONFIG("node.toml"), .F_MON_HZ(4000000), .TRANSCRIPT("build/can_monitor.json")) u_mon (
+    .i_mon_clk(clk), .i_can_tx(txd), .i_can_rx(rxd)
+);
+
 /* what the controller received, in order; its reports */
 reg [10:0] rx_id [0:3];
 reg [3:0] rx_len [0:3];
@@ -61,13 +70,13 @@ always @(posedge clk) begin
         rx_len[rx_n % 4] <= got_len;
         rx_data[rx_n % 4] <= (flip_bit >= 0) ? got_bytes ^ (64'd1 << flip_bit) : got_bytes;
         rx_n <= rx_n + 1;
-        if (got_rtr) $fatal(1, "a remote frame at %0t", $time);
+        if (got_rtr) $fatal(1, "a remote frame at %t", $realtime);
     end
     if (sent) sent_n <= sent_n + 1;
     if (lost) lost_n <= lost_n + 1;
     if (fault || tx_fail) begin
         faults = faults + 1;
-        $display("controller: CAN error kind %0d (tx_fail %b) at %0t", fault_kind, tx_fail, $time);
+        $display("controller: CAN error kind %0d (tx_fail %b) at %t", fault_kind, tx_fail, $realtime);
     end
 end
 
@@ -83,18 +92,21 @@ reg [10:0] id, id2;
 reg [3:0] dlc, dlc2;
 reg [63:0] data, data2, mask;
 
-`include "tb_rnd.vh"
+// Random numbers that are the same in both simulators (emu_random.vh says
+// why not $random).
+`include "emu_random.vh"
+reg [31:0] r1, r2;
 
 /* a random frame: identifier, DLC 0..8, data left-aligned (byte 0 in [63:56]) */
 task random_frame(output [10:0] f_id, output [3:0] f_len, output [63:0] f_data);
     begin
-        rnd(r1);
+        r1 = random32(0);
         f_id = r1[10:0];
-        rnd(r1);
+        r1 = random32(0);
         f_len = r1 % 9;
         mask = (f_len == 0) ? 64'd0 : ~64'd0 << (64 - 8 * f_len);
-        rnd(r1);
-        rnd(r2);
+        r1 = random32(0);
+        r2 = random32(0);
         f_data = {r1, r2} & mask;
     end
 endtask
@@ -122,23 +134,23 @@ task wait_for(input integer what, input integer target);    // 0: rx_n, 1: sent_
     begin
         waited = 0;
         while ((what == 0 ? rx_n : sent_n) < target) begin
-            @(posedge clk);
+            @(negedge clk);
             waited = waited + 1;
             if (waited > 400 * CLKS_PER_BIT)
-                $fatal(1, "transaction %0d: no %0s within 400 bits (at %0t)", n, what == 0 ? "frame received" : "frame sent", $time);
+                $fatal(1, "transaction %0d: no %0s within 400 bits (at %t)", n, what == 0 ? "frame received" : "frame sent", $realtime);
         end
-        repeat (2 * CLKS_PER_BIT) @(posedge clk);      // the node counts a frame at its end
+        repeat (2 * CLKS_PER_BIT) @(negedge clk);      // the node counts a frame at its end
     end
 endtask
 
 task request(input [10:0] f_id, input [3:0] f_len, input [63:0] f_data);
     begin
-        while (busy) @(posedge clk);
-        send_id <= f_id;
-        send_len <= f_len;
-        send_bytes <= f_data;
-        send <= 1'b1;
-        @(posedge clk) send <= 1'b0;
+        while (busy) @(negedge clk);
+        send_id = f_id;
+        send_len = f_len;
+        send_bytes = f_data;
+        send = 1'b1;
+        @(negedge clk) send = 1'b0;
     end
 endtask
 
@@ -149,7 +161,7 @@ task node_got(input [10:0] f_id, input [3:0] f_len, input [63:0] f_data);
         d = u_emu.last_value(0);                           // byte 0 in [63:56]
         if (flip_bit >= 0) d = d ^ (64'd1 << flip_bit);
         if (u_emu.last_value(16) != f_id || u_emu.last_value(32) != f_len || d !== f_data)
-            $fatal(1, "transaction %0d at %0t: controller sent %h [%0d] %h, node received %h [%0d] %h", n, $time,
+            $fatal(1, "transaction %0d at %t: controller sent %h [%0d] %h, node received %h [%0d] %h", n, $realtime,
                    f_id, f_len, f_data, u_emu.last_value(16), u_emu.last_value(32), d);
     end
 endtask
@@ -158,21 +170,21 @@ endtask
 task ctrl_got(input integer k, input [10:0] f_id, input [3:0] f_len, input [63:0] f_data);
     begin
         if (rx_id[k % 4] != f_id || rx_len[k % 4] != f_len || rx_data[k % 4] !== f_data)
-            $fatal(1, "transaction %0d at %0t: node sent %h [%0d] %h, controller received %h [%0d] %h", n, $time,
+            $fatal(1, "transaction %0d at %t: node sent %h [%0d] %h, controller received %h [%0d] %h", n, $realtime,
                    f_id, f_len, f_data, rx_id[k % 4], rx_len[k % 4], rx_data[k % 4]);
     end
 endtask
 
 initial begin
-    $timeformat(-9, 0, " ns", 0);
+    $timeformat(-9, 3, " ns", 0);    // %t in ns, whatever the simulator's precision
     if (!$value$plusargs("reads=%d", reads)) reads = 100;
     if (!$value$plusargs("seed=%d", seed)) seed = 3;
-    rnd_state = 32'h9E3779B9 ^ seed;
+    random_seed(seed);
     if (!$value$plusargs("flip_bit=%d", flip_bit)) flip_bit = -1;
     wins = 0; losses = 0;
-    repeat (4) @(posedge clk);
-    rst_n <= 1'b1;
-    repeat (12 * CLKS_PER_BIT) @(posedge clk);          // bus integration: 11 recessive bits
+    repeat (4) @(negedge clk);
+    rst_n = 1'b1;
+    repeat (12 * CLKS_PER_BIT) @(negedge clk);          // bus integration: 11 recessive bits
     for (n = 0; n < reads; n = n + 1) begin
         rx_before = rx_n; sent_before = sent_n; lost_before = lost_n;
         case (n % 3)
@@ -187,11 +199,11 @@ initial begin
             frame_toml(cmd, id, dlc, data);
             u_emu.schedule_fault(cmd);
             if (n == 1 && $test$plusargs("glitch")) begin
-                while (rxd) @(posedge clk);
-                repeat (20 * CLKS_PER_BIT) @(posedge clk);
-                glitch <= 1'b1;
-                repeat (CLKS_PER_BIT) @(posedge clk);
-                glitch <= 1'b0;
+                while (rxd) @(negedge clk);
+                repeat (20 * CLKS_PER_BIT) @(negedge clk);
+                glitch = 1'b1;
+                repeat (CLKS_PER_BIT) @(negedge clk);
+                glitch = 1'b0;
             end
             wait_for(0, rx_before + 1);
             ctrl_got(rx_before, id, dlc, data);
@@ -206,8 +218,8 @@ initial begin
             random_frame(send_id, send_len, send_bytes);
             if (send_id == id2) send_id = send_id ^ 11'h001;
             // ours is asked for once the node's first frame is on the bus
-            while (rxd) @(posedge clk);
-            repeat (4 * CLKS_PER_BIT) @(posedge clk);   // past its SOF: not joined, waits for the bus
+            while (rxd) @(negedge clk);
+            repeat (4 * CLKS_PER_BIT) @(negedge clk);   // past its SOF: not joined, waits for the bus
             request(send_id, send_len, send_bytes);
             wait_for(0, rx_before + 2);
             wait_for(1, sent_before + 1);
@@ -220,8 +232,8 @@ initial begin
         end
         endcase
     end
-    if (u_emu.violations(0) != 0)
-        $fatal(1, "the node saw %0d error(s) in the controller's frames (PROTOCOL VIOLATION lines above)", u_emu.violations(0));
+    if (u_emu.violations(0) != 0 || u_mon.violations(0) != 0)
+        $fatal(1, "the node saw %0d and the monitor %0d error(s) in the controller's frames (PROTOCOL VIOLATION lines above)", u_emu.violations(0), u_mon.violations(0));
     if (faults != 0)
         $fatal(1, "the controller reported %0d CAN error(s)", faults);
     $display("PASS mini_can: %0d transactions with can_node_emu equal on both sides (%0d arbitrations won, %0d lost and resent)", reads, wins, losses);

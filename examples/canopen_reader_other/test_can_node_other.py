@@ -31,7 +31,7 @@ def send_toml(ident, n, data):
 class Bench:
     def __init__(self, dut):
         self.dut = dut
-        self.emu = open_emulator("can")
+        self.emu, self.mon = open_emulator("can")
         self.received, self.sent, self.lost = [], 0, 0
 
     def watch(self):
@@ -78,7 +78,7 @@ async def frames_both_ways_and_arbitration(dut):
     for s, v in (("rst_n", 0), ("send", 0), ("send_id", 0), ("send_len", 0), ("send_bytes", 0), ("can_rxd", 1)):
         getattr(dut, s).value = v
     cocotb.start_soon(Clock(dut.clk, 250, units="ns").start())
-    cocotb.start_soon(step_bus(dut, bench.emu, bench.watch))
+    cocotb.start_soon(step_bus(dut, bench.emu, bench.mon, bench.watch))
     await bench.clocks(4)
     dut.rst_n.value = 1
     await bench.clocks(12 * CLKS_PER_BIT)  # bus integration: 11 recessive bits
@@ -112,6 +112,6 @@ async def frames_both_ways_and_arbitration(dut):
             bench.node_got(ours)
             assert bench.lost - lost == (1 if ours[0] > second[0] else 0), f"identifiers {ours[0]:03x} (ours) and {second[0]:03x}: {bench.lost - lost} losses"
             wins, losses = (wins, losses + 1) if ours[0] > second[0] else (wins + 1, losses)
-    v = bench.emu.violations()
+    v = bench.emu.violations() + bench.mon.violations()
     assert not v, "the node saw errors in the controller's frames:\n" + "\n".join(v)
     dut._log.info("%d transactions equal on both sides (%d arbitrations won, %d lost and resent)", reads, wins, losses)

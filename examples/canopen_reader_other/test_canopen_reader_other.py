@@ -22,7 +22,7 @@ CLKS_PER_BIT = 16
 class Bench:
     def __init__(self, dut):
         self.dut = dut
-        self.emu = open_emulator("canopen")
+        self.emu, self.mon = open_emulator("canopen")
 
     async def clocks(self, n):
         for _ in range(n):
@@ -52,7 +52,7 @@ async def canopen_reader_reads_what_the_emulator_sent(dut):
     emu = bench.emu
     dut.rst_n.value, dut.go.value, dut.op.value, dut.arg.value, dut.can_rxd.value = 0, 0, 0, 0, 1
     cocotb.start_soon(Clock(dut.clk, 250, units="ns").start())
-    cocotb.start_soon(step_bus(dut, emu))
+    cocotb.start_soon(step_bus(dut, emu, bench.mon))
     await bench.clocks(4)
     dut.rst_n.value = 1
     await bench.op(0)  # boot-up: 0x85, no data (seed 003 §2.2)
@@ -98,6 +98,6 @@ async def canopen_reader_reads_what_the_emulator_sent(dut):
             got = await bench.op(4, sar_node)
             assert got == p == emu.last_value(1), f"read {n}: SAR58K24 click gave {got}, set {p}, sent {emu.last_value(1)}"
             counts["click"] += 1
-    v = emu.violations()
+    v = emu.violations() + bench.mon.violations()
     assert not v, "the emulator saw errors in the reader's frames:\n" + "\n".join(v)
     dut._log.info("%d reads equal to what the emulator sent: %s; SAR58K24 at node 0x%02x", reads, counts, sar_node)

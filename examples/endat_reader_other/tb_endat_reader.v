@@ -17,6 +17,10 @@ module tb_endat_reader;
 
 reg clk = 1'b0;
 always #125 clk = ~clk;              // 4 MHz: the reader's clock and the emulator's
+// The stimulus below drives and samples on the falling edge, the reader
+// and the emulator work on the rising one: no race between them, the same
+// cycles in Icarus and Verilator (a non-blocking assignment in an initial
+// block is not: Verilator warns INITIALDLY and runs it a cycle apart).
 
 reg arst_n = 1'b0;
 reg trig = 1'b0;
@@ -38,27 +42,32 @@ endat_monitor #(.CONFIG("encoder.toml"), .F_MON_HZ(4000000), .TRANSCRIPT("build/
     .i_mon_clk(clk), .i_endat_clk(ck), .i_endat_data(dout), .i_endat_data_oe(dout_en), .i_endat_data_in(din)
 );
 
+// Random numbers that are the same in both simulators (emu_random.vh says
+// why not $random).
+`include "emu_random.vh"
 integer reads, n, seed, f1;
 reg [63:0] position;
 
 initial begin
+    $timeformat(-9, 3, " ns", 0);    // %t in ns, whatever the simulator's precision
     if (!$value$plusargs("reads=%d", reads)) reads = 1000;
     seed = 13;
-    repeat (3) @(posedge clk);
-    arst_n <= 1'b1;
+    random_seed(seed);
+    repeat (3) @(negedge clk);
+    arst_n = 1'b1;
     for (n = 0; n < reads; n = n + 1) begin
-        position = $random(seed) & 25'h1FFFFFF;
-        f1 = $random(seed) & 1;
+        position = random32(0) & 25'h1FFFFFF;
+        f1 = random32(0) & 1;
         u_emu.set_position(0, position);
         u_emu.set_status(0, "f1", f1);
-        while (!ready) @(posedge clk);
-        @(posedge clk) trig <= 1'b1;
-        @(posedge clk) trig <= 1'b0;
-        while (!got && !no_start) @(posedge clk);
+        while (!ready) @(negedge clk);
+        @(negedge clk) trig = 1'b1;
+        @(negedge clk) trig = 1'b0;
+        while (!got && !no_start) @(negedge clk);
         if (no_start || pos !== u_emu.last_value(0) || pos !== position[24:0] || !crc_ok || err1 !== f1[0])
-            $fatal(1, "read %0d at %0t ps: reader %0d F1 %b crc_ok %b no_start %b; emulator sent %0d F1 %0d",
+            $fatal(1, "read %0d at %t: reader %0d F1 %b crc_ok %b no_start %b; emulator sent %0d F1 %0d",
                    n, $time, pos, err1, crc_ok, no_start, u_emu.last_value(0), f1);
-        @(posedge clk);
+        @(negedge clk);
     end
     // The monitor decodes a transfer at the next one's start or 10 us after its last edge: long since.
     if (u_mon.count(0) != reads || u_mon.last_value(0) !== pos)

@@ -30,7 +30,9 @@ READS = int(os.environ.get("COSIM_TRANSACTIONS", "20"))
 async def reads_equal_what_the_emulator_sent(dut):
     path = os.environ["COSIM_CONFIG"]
     with open(path, encoding="utf-8") as f:
-        emu = encoder_emu.Emulator("endat", f.read(), F_HZ, path)
+        text = f.read()
+        emu = encoder_emu.Emulator("endat", text, F_HZ, path)
+        mon = encoder_emu.Monitor("endat", text, F_HZ, path)
     cocotb.start_soon(Clock(dut.clk, round(1e12 / F_HZ), units="ps").start())
     dut.arst_n.value = 0
     dut.trig.value = 0
@@ -41,6 +43,7 @@ async def reads_equal_what_the_emulator_sent(dut):
         # out: bit 0 the line at the master's receiver (R).
         while True:
             await RisingEdge(dut.clk)
+            mon.step(bit(dut.ck) | bit(dut.dout) << 1 | bit(dut.dout_en) << 2 | bit(dut.din) << 3)  # the clock, D, DE, R
             dut.din.value = emu.step(bit(dut.ck) | bit(dut.dout) << 1 | bit(dut.dout_en) << 2) & 1
 
     cocotb.start_soon(wire())
@@ -71,6 +74,7 @@ async def reads_equal_what_the_emulator_sent(dut):
         assert bit(dut.crc_ok) == 1, f"read {n}: the reader's CRC check failed"
         assert bit(dut.err1_out) == f1 == emu.last_status(0, "f1"), f"read {n}: reader F1 {bit(dut.err1_out)}, set {f1}"
         await RisingEdge(dut.clk)
-    v = emu.violations()
+    assert mon.count() == READS, f"the monitor decoded {mon.count()} transactions on the line, expected {READS}"
+    v = emu.violations() + mon.violations()
     assert not v, "the reader broke the seed's timing rules:\n" + "\n".join(v)
     dut._log.info("PASS endat_reader: %d reads equal to what the emulator sent", READS)

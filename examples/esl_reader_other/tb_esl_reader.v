@@ -19,6 +19,10 @@ module tb_esl_reader;
 
 reg clk = 1'b0;
 always #8.333 clk = ~clk;           // 60 MHz: the reader's clock and the emulator's
+// The stimulus below drives and samples on the falling edge, the reader
+// and the emulator work on the rising one: no race between them, the same
+// cycles in Icarus and Verilator (a non-blocking assignment in an initial
+// block is not: Verilator warns INITIALDLY and runs it a cycle apart).
 
 reg rst_n = 1'b0;
 reg trigger = 1'b0;
@@ -38,25 +42,25 @@ esl_encoder_emu #(.CONFIG("encoder.toml"), .F_EMU_HZ(60000000), .TRANSCRIPT("bui
     .i_emu_clk(clk), .i_esl_data(txd), .i_esl_data_oe(txd_en), .o_esl_data(rxd), .o_esl_data_oe(rx_en)
 );
 
+// The pin-level monitor and protocol checker: it only listens.
+esl_monitor #(.CONFIG("encoder.toml"), .F_MON_HZ(60000000), .TRANSCRIPT("build/monitor.json")) u_mon (
+    .i_mon_clk(clk), .i_esl_data(txd), .i_esl_data_oe(txd_en), .i_esl_rx(rxd)
+);
+
 integer reads, n, flip_bit, wire_flip;
 reg [63:0] position, got;
 reg [9:0] alm;                      // xc mt led lis overspeed mem st uv ov temp_warning
 reg ea0, ea1;
 reg [8*64-1:0] fault;
 
-// xorshift64: the testbench's own random numbers, the same in both
-// simulators (in Verilator 5.006, $random(seed) gives runs of ones).
-reg [63:0] rng = 64'h9E37_79B9_7F4A_7C15;
-task next_random;
-    begin
-        rng = rng ^ (rng << 13);
-        rng = rng ^ (rng >> 7);
-        rng = rng ^ (rng << 17);
-    end
-endtask
+// Random numbers that are the same in both simulators (emu_random.vh says
+// why not $random).
+`include "emu_random.vh"
+reg [63:0] rng;
 
 initial begin
-    $timeformat(-9, 0, " ns", 0);
+    $timeformat(-9, 3, " ns", 0);    // %t in ns, whatever the simulator's precision
+    random_seed(1);
     if (!$value$plusargs("reads=%d", reads)) reads = 1000;
     if (!$value$plusargs("flip_bit=%d", flip_bit)) flip_bit = -1;
     if (!$value$plusargs("wire_flip=%d", wire_flip)) wire_flip = -1;
@@ -65,10 +69,10 @@ initial begin
         $sformat(fault, "flips = [{ answer = %0d, field = 3, bit = 3 }]", wire_flip);
         u_emu.schedule_fault(fault);
     end
-    repeat (3) @(posedge clk);
-    rst_n <= 1'b1;
+    repeat (3) @(negedge clk);
+    rst_n = 1'b1;
     for (n = 0; n < reads; n = n + 1) begin
-        next_random;
+        rng = random64(0);
         position = rng & 64'hFF_FFFF_FFFF;
         alm = rng[63:54];
         u_emu.set_position(0, position);
@@ -84,9 +88,9 @@ initial begin
         u_emu.set_status(0, "temp_warning", alm[9]);
         ea0 = alm[6] | alm[5] | alm[8] | alm[7] | alm[2];    // ST MEM OV UV LED: safety error
         ea1 = alm[1] | alm[0] | alm[3] | alm[4];             // MT XC LIS OVSP: non-safety error
-        @(posedge clk) trigger <= 1'b1;
-        @(posedge clk) trigger <= 1'b0;
-        while (!fresh && !fail) @(posedge clk);
+        @(negedge clk) trigger = 1'b1;
+        @(negedge clk) trigger = 1'b0;
+        while (!fresh && !fail) @(negedge clk);
         if (fail)
             $fatal(1, "read %0d at %t: the reader failed (why %0d: 1 timeout, 2 frame, 3 CRC, 4 CF, 5 CA); the emulator sent %0h",
                    n, $realtime, fail_why, u_emu.last_value(0));
@@ -99,8 +103,10 @@ initial begin
     end
     if (u_emu.count(0) != reads)
         $fatal(1, "the emulator answered %0d requests, expected %0d", u_emu.count(0), reads);
-    if (u_emu.violations(0) != 0)
-        $fatal(1, "the reader broke %0d timing rule(s) of ESL (PROTOCOL VIOLATION lines above)", u_emu.violations(0));
+    if (u_mon.count(0) != reads || u_mon.last_value(0) !== got)
+        $fatal(1, "the monitor decoded %0d readouts, the last position %0h; the reader read %0h", u_mon.count(0), u_mon.last_value(0), got);
+    if (u_emu.violations(0) != 0 || u_mon.violations(0) != 0)
+        $fatal(1, "the reader broke %0d + %0d timing rule(s) of ESL (PROTOCOL VIOLATION lines above)", u_emu.violations(0), u_mon.violations(0));
     $display("PASS esl_reader: %0d reads equal to what the emulator sent", reads);
     $finish;
 end

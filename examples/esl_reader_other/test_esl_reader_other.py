@@ -40,6 +40,7 @@ async def reads_equal_what_the_encoder_sent(dut):
 
     config = HERE / "encoder.toml"
     emu = encoder_emu.Emulator("esl", config.read_text(), F_HZ, str(config))
+    mon = encoder_emu.Monitor("esl", config.read_text(), F_HZ, str(config))  # the pin-level monitor: it only listens
     dut.rst_n.value = 0
     dut.trigger.value = 0
     dut.enc_addr.value = 6
@@ -50,6 +51,7 @@ async def reads_equal_what_the_encoder_sent(dut):
         # pins in: bit 1 the reader's DI, bit 2 its DE; out: bit 0 its RO
         while True:
             await RisingEdge(dut.clk)
+            mon.step(level(dut.rxd) | level(dut.txd) << 1 | level(dut.txd_en) << 2)  # RO, DI, DE
             dut.rxd.value = emu.step(level(dut.txd) << 1 | level(dut.txd_en) << 2) & 1
 
     cocotb.start_soon(pair())
@@ -81,7 +83,8 @@ async def reads_equal_what_the_encoder_sent(dut):
         status = int(dut.status.value)
         assert (status >> 2 & 1, status >> 3 & 1) == (st_err, xc_err), f"read {n}: SF {status:08b}, flags st {st_err} xc {xc_err}"
     assert emu.count() == READS, f"the emulator answered {emu.count()} requests for {READS} reads"
-    violations = emu.violations()
+    assert mon.count() == READS, f"the monitor decoded {mon.count()} transactions on the line, expected {READS}"
+    violations = emu.violations() + mon.violations()
     assert not violations, "the reader broke the seed's timing rules:\n" + "\n".join(violations)
 
 

@@ -39,6 +39,7 @@ async def bus_reads_equal_what_the_encoder_sent(dut):
 
     config = HERE / "encoder.toml"
     emu = encoder_emu.Emulator("sar58k24", config.read_text(), F_HZ, str(config))
+    mon = encoder_emu.Monitor("sar58k24", config.read_text(), F_HZ, str(config))  # the pin-level monitor: it only listens
     dut.reset_b.value = 0
     dut.ask.value = 0
     dut.station.value = 5
@@ -52,6 +53,7 @@ async def bus_reads_equal_what_the_encoder_sent(dut):
         while True:
             await RisingEdge(dut.clock)
             pins = 1 | level(dut.tx_line) << 1 | level(dut.tx_drive) << 2 | 1 << 3
+            mon.step(level(dut.rx_line) | level(dut.tx_line) << 1 | level(dut.tx_drive) << 2 | 1 << 3 | 1 << 4)  # R, D, DE, trigger and CLR idle high
             dut.rx_line.value = emu.step(pins) >> 2 & 1
 
     cocotb.start_soon(line())
@@ -77,7 +79,8 @@ async def bus_reads_equal_what_the_encoder_sent(dut):
         assert got == emu.last_value(0) == position, f"read {n}: the reader took {got}, the emulator sent {emu.last_value(0)} (set {position})"
         assert emu.count() == n + 1, f"read {n}: the emulator sent {emu.count()} frames in all"
         await ClockCycles(dut.clock, 80)
-    violations = emu.violations()
+    assert mon.count() == READS, f"the monitor decoded {mon.count()} transactions on the line, expected {READS}"
+    violations = emu.violations() + mon.violations()
     assert not violations, "the reader broke the line's rules:\n" + "\n".join(violations)
 
 

@@ -31,7 +31,9 @@ READS = int(os.environ.get("COSIM_TRANSACTIONS", "100"))
 async def reads_equal_what_the_emulator_sent(dut):
     path = os.environ["COSIM_CONFIG"]
     with open(path, encoding="utf-8") as f:
-        emu = encoder_emu.Emulator("ssi", f.read(), F_HZ, path)
+        text = f.read()
+        emu = encoder_emu.Emulator("ssi", text, F_HZ, path)
+        mon = encoder_emu.Monitor("ssi", text, F_HZ, path)
     cocotb.start_soon(Clock(dut.clk, round(1e12 / F_HZ), units="ps").start())
     dut.reset_n.value = 0
     dut.read_req.value = 0
@@ -41,6 +43,7 @@ async def reads_equal_what_the_emulator_sent(dut):
         # Pins in: bit 0 the master's clock; out: bit 0 the data at its input.
         while True:
             await RisingEdge(dut.clk)
+            mon.step(bit(dut.sclk) | bit(dut.sdata) << 1)  # the clock, the data at the master
             dut.sdata.value = emu.step(bit(dut.sclk)) & 1
 
     cocotb.start_soon(wire())
@@ -64,6 +67,7 @@ async def reads_equal_what_the_emulator_sent(dut):
         got = planted(int(dut.value.value))
         assert emu.count() == n + 1, f"read {n}: the emulator answered {emu.count()} reads"
         assert got == emu.last_value(0) == p, f"read {n}: reader {got}, the emulator sent {emu.last_value(0)} (set {p})"
-    v = emu.violations()
+    assert mon.count() == READS, f"the monitor decoded {mon.count()} transactions on the line, expected {READS}"
+    v = emu.violations() + mon.violations()
     assert not v, "the reader broke the seed's timing rules:\n" + "\n".join(v)
     dut._log.info("PASS ssi_reader: %d reads equal to what the emulator sent", READS)

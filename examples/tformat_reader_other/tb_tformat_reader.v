@@ -18,6 +18,10 @@ module tb_tformat_reader;
 
 reg clk = 1'b0;
 always #25 clk = ~clk;               // 20 MHz: the reader's clock and the emulator's
+// The stimulus below drives and samples on the falling edge, the reader
+// and the emulator work on the rising one: no race between them, the same
+// cycles in Icarus and Verilator (a non-blocking assignment in an initial
+// block is not: Verilator warns INITIALDLY and runs it a cycle apart).
 
 reg nreset = 1'b0;
 reg go = 1'b0;
@@ -42,20 +46,25 @@ tformat_monitor #(.CONFIG("encoder.toml"), .F_MON_HZ(20000000), .TRANSCRIPT("bui
     .i_mon_clk(clk), .i_tf_data(tx), .i_tf_data_oe(tx_en), .i_tf_rx(rx)
 );
 
+// Random numbers that are the same in both simulators (emu_random.vh says
+// why not $random).
+`include "emu_random.vh"
 integer reads, n, seed, k;
 reg [16:0] want_st;
 reg [15:0] want_mt;
 reg [7:0] want_almc;
 
 initial begin
+    $timeformat(-9, 3, " ns", 0);    // %t in ns, whatever the simulator's precision
     if (!$value$plusargs("reads=%d", reads)) reads = 1000;
     seed = 17;
-    repeat (3) @(posedge clk);
-    nreset <= 1'b1;
+    random_seed(seed);
+    repeat (3) @(negedge clk);
+    nreset = 1'b1;
     for (n = 0; n < reads; n = n + 1) begin
-        want_st = $random(seed);
-        want_mt = $random(seed);
-        want_almc = $random(seed) & 8'hEF;           // bit 4 is always 0 (Table 3)
+        want_st = random32(0);
+        want_mt = random32(0);
+        want_almc = random32(0) & 8'hEF;           // bit 4 is always 0 (Table 3)
         u_emu.set_position(0, {want_mt, want_st});
         u_emu.set_status(0, "over_speed", want_almc[0]);
         u_emu.set_status(0, "full_absolute", want_almc[1]);
@@ -64,18 +73,18 @@ initial begin
         u_emu.set_status(0, "multi_turn_error", want_almc[5]);
         u_emu.set_status(0, "battery_error", want_almc[6]);
         u_emu.set_status(0, "battery_alarm", want_almc[7]);
-        while (!idle) @(posedge clk);
-        repeat (20) @(posedge clk);                 // 1 us between the answer's end and the next request
-        id <= (n % 4 == 3) ? 4'd0 : 4'd3;
-        @(posedge clk) go <= 1'b1;
-        @(posedge clk) go <= 1'b0;
-        while (!fresh && !bad) @(posedge clk);
+        while (!idle) @(negedge clk);
+        repeat (20) @(negedge clk);                 // 1 us between the answer's end and the next request
+        id = (n % 4 == 3) ? 4'd0 : 4'd3;
+        @(negedge clk) go = 1'b1;
+        @(negedge clk) go = 1'b0;
+        while (!fresh && !bad) @(negedge clk);
         // last_value: ABM << 17 | ABS of the last answer, ABS alone when it carried no ABM (Data ID 0).
         if (bad || st !== want_st || u_emu.last_value(0) !== (id == 4'd3 ? {want_mt, want_st} : want_st)
             || (id == 4'd3 && (mt !== want_mt || almc !== want_almc)))
-            $fatal(1, "read %0d (Data ID %0d) at %0t ps: reader ABS %0d ABM %0d ALMC %h bad %b (why %0d); emulator sent ABS %0d ABM %0d ALMC %h",
+            $fatal(1, "read %0d (Data ID %0d) at %t: reader ABS %0d ABM %0d ALMC %h bad %b (why %0d); emulator sent ABS %0d ABM %0d ALMC %h",
                    n, id, $time, st, mt, almc, bad, why, want_st, want_mt, want_almc);
-        @(posedge clk);
+        @(negedge clk);
     end
     if (u_mon.count(0) != reads || u_mon.last_value(0) !== {mt, st})   // both hold ABM through a Data ID 0 answer
         $fatal(1, "the monitor decoded %0d readouts, the last ABM << 17 | ABS %0d; the reader read %0d", u_mon.count(0), u_mon.last_value(0), {mt, st});

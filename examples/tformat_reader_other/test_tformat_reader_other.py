@@ -32,7 +32,9 @@ FLAGS = ("over_speed", "full_absolute", "counting_error", "counter_overflow", No
 async def reads_equal_what_the_emulator_sent(dut):
     path = os.environ["COSIM_CONFIG"]
     with open(path, encoding="utf-8") as f:
-        emu = encoder_emu.Emulator("tformat", f.read(), F_HZ, path)
+        text = f.read()
+        emu = encoder_emu.Emulator("tformat", text, F_HZ, path)
+        mon = encoder_emu.Monitor("tformat", text, F_HZ, path)
     cocotb.start_soon(Clock(dut.sys_clk, round(1e12 / F_HZ), units="ps").start())
     dut.nreset.value = 0
     dut.go.value = 0
@@ -43,6 +45,7 @@ async def reads_equal_what_the_emulator_sent(dut):
         # Pins in: bit 1 the host's driver level (D), bit 2 its enable (DE); out: bit 0 its receiver (R).
         while True:
             await RisingEdge(dut.sys_clk)
+            mon.step(bit(dut.rx) | bit(dut.tx) << 1 | bit(dut.tx_en) << 2)  # R, D, DE
             dut.rx.value = emu.step(bit(dut.tx) << 1 | bit(dut.tx_en) << 2) & 1
 
     cocotb.start_soon(wire())
@@ -81,6 +84,7 @@ async def reads_equal_what_the_emulator_sent(dut):
             assert int(dut.multi_turn.value) == mt, f"read {n}: reader ABM {int(dut.multi_turn.value):#x}, the emulator sent {mt:#x}"
             assert int(dut.alarms.value) == almc, f"read {n}: reader ALMC {int(dut.alarms.value):#x}, the emulator sent {almc:#x}"
         await RisingEdge(dut.sys_clk)
-    v = emu.violations()
+    assert mon.count() == READS, f"the monitor decoded {mon.count()} transactions on the line, expected {READS}"
+    v = emu.violations() + mon.violations()
     assert not v, "the reader broke the seed's timing rules:\n" + "\n".join(v)
     dut._log.info("PASS tformat_reader: %d reads equal to what the emulator sent", READS)

@@ -36,29 +36,34 @@ def tests(lib_dir):
 
 
 def run_master(argv):
-    """`--dir DIR --top TOP --config FILE [NAME=VALUE ...]`: the test module
-    DIR/test_<DIR's name>.py drives TOP (every .v in DIR but the tb_*.v, with
-    the parameters NAME=VALUE) against the emulator made from DIR/FILE. This
-    is how an example's Makefile (`make cocotb`) runs its master, in this
-    checkout or in a copy anywhere else. Returns the number of failed tests."""
+    """`--dir DIR --top TOP --config FILE [--test FILE.py] [NAME=VALUE ...]`:
+    the test module DIR/FILE.py (by default DIR/test_<DIR's name>.py) drives
+    TOP (every .v in DIR but the tb_*.v, with the parameters NAME=VALUE)
+    against the emulator made from DIR/FILE. This is how an example's
+    Makefile (`make cocotb`) runs its master, in this checkout or in a copy
+    anywhere else; DIR comes first on the simulator's Python path, so a
+    module of the same name elsewhere does not shadow the test. Returns the
+    number of failed tests."""
     opts, parameters = {}, {}
     it = iter(argv)
     for a in it:
-        if a in ("--dir", "--top", "--config"):
+        if a in ("--dir", "--top", "--config", "--test"):
             opts[a[2:]] = next(it, None)
         elif "=" in a:
             k, v = a.split("=", 1)
             parameters[k] = v
         else:
-            raise SystemExit(f"run.py: `{a}`: give --dir DIR --top TOP --config FILE and parameters as NAME=VALUE")
-    if None in opts.values() or set(opts) != {"dir", "top", "config"}:
-        raise SystemExit("run.py: give --dir DIR --top TOP --config FILE (and parameters as NAME=VALUE)")
+            raise SystemExit(f"run.py: `{a}`: give --dir DIR --top TOP --config FILE [--test FILE.py] and parameters as NAME=VALUE")
+    if None in opts.values() or not {"dir", "top", "config"} <= set(opts):
+        raise SystemExit("run.py: give --dir DIR --top TOP --config FILE [--test FILE.py] (and parameters as NAME=VALUE)")
     src = Path(opts["dir"]).resolve()
-    test = src / f"test_{src.name}.py"
+    test = src / opts.get("test", f"test_{src.name}.py")
     config = src / opts["config"]
-    for f in (test, config):
+    if test.suffix != ".py" or test.parent != src:
+        raise SystemExit(f"run.py: --test {opts['test']}: give the test module's file name in {src}, e.g. test_{src.name}.py")
+    for f, what in ((test, "the test module (--test FILE.py; by default test_<directory name>.py)"), (config, "the configuration (--config FILE)")):
         if not f.is_file():
-            raise SystemExit(f"run.py: {f}: no such file (the test module is test_<directory name>.py)")
+            raise SystemExit(f"run.py: {f}: no such file: {what}")
     sources = sorted(str(p) for p in src.glob("*.v") if not p.name.startswith("tb_"))
     build = src / "build" / "cocotb"
     runner = get_runner("icarus")
