@@ -26,6 +26,7 @@ done
 # shellcheck source=scripts/verilator_ccache.sh
 . "$root/scripts/verilator_ccache.sh"
 eval "$("$root/scripts/emu_lib.sh")"
+export EMU_LIB_DIR
 export LD_LIBRARY_PATH="$EMU_LIB_DIR${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
 tbgen="$EMU_LIB_DIR/tbgen"
 (cd "$root" && "$tbgen" probes --out "$out")
@@ -89,7 +90,7 @@ for sim in "${sims[@]}"; do
     icarus|verilator) run_hdl "$sim" || { status=1; continue; } ;;
     cocotb)
         [ -x "$root/.venv/bin/python" ] || { echo "run.sh: .venv has no Python; run: make deps" >&2; exit 2; }
-        "$root/.venv/bin/python" "$root/hdl/cocotb/test_probes.py" "$out" || true
+        "$root/.venv/bin/python" "$root/hdl/cocotb/test_probes.py" "$out" > "$out/cocotb.log" 2>&1 || true
         ;;
     esac
     end=$(date +%s.%N)

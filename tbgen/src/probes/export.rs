@@ -93,6 +93,7 @@ fn files(hdl: &Path) -> Result<Files> {
             "monitor": w.monitor,
             "inputs": w.inputs.iter().map(|(b, p)| serde_json::json!({"bit": b, "port": p})).collect::<Vec<_>>(),
             "monitor_sources": table,
+            "idle": kit.idle.0,
         });
         out.push((dir.join("wiring.json"), format!("{json:#}\n")));
         // Padded to the testbench's 8 pins (0xff: none) and its stimulus
