@@ -39,7 +39,10 @@ groups=$(awk -F'\t' '!/^#/ { print $1, $2, $3 }' "$out/probes.tsv" | sort -u)
 run_hdl() {
     local sim=$1 kind f depth build key
     local vflags=()
-    [ "$sim" = verilator ] && read -ra vflags <<< "$("$root/scripts/verilator_make_flags.sh")"
+    # The model at -O0 unless asked otherwise: the probes are short (a few
+    # thousand cycles each, the library's work), the compile is what costs
+    # (scripts/verilator_make_flags.sh: the measures).
+    [ "$sim" = verilator ] && read -ra vflags <<< "$(VERILATOR_OPT=${VERILATOR_OPT:-0} "$root/scripts/verilator_make_flags.sh")"
     while read -r kind f depth; do
         key=$(printf '%s\n' "$kind" "$f" "$depth" "${vflags[@]}" \
             | cat - "$tb" "$out/$kind/probe_wiring.vh" "$root"/hdl/emu/*.vh "$root"/hdl/emu/*.v | sha1sum | cut -c1-12)
