@@ -87,33 +87,42 @@ if cocotb is not None and os.environ.get("PROBES_KIND"):
         sources = wiring["monitor_sources"]
         log = logging.getLogger("cocotb")
         for pd in probe_dirs(out, kind):
-            p = json.loads((pd / "probe.json").read_text())
-            toml = (pd / "probe.toml").read_text()
-            emu = encoder_emu.Emulator(kind, toml, p["f_hz"], str(pd / "probe.toml"))
-            mon = encoder_emu.Monitor(kind, toml, p["f_hz"], str(pd / "probe.toml"))
-            period_ps = 1e12 / p["f_hz"]
+            run = pd / "cocotb"
+            run.mkdir(exist_ok=True)
+            for f in ("emulator.json", "monitor.json"):
+                (run / f).unlink(missing_ok=True)
             # One warning per pin per probe, as each probe is a simulation
             # of its own in Icarus and Verilator.
             emu_common._x_enables_warned.clear()
             collect = Collect()
             log.addHandler(collect)
-            answer = wiring["idle"]
             try:
-                for cycles, unknown, levels in runs(pd / "stimulus.mem"):
-                    for b, sig in inputs:
-                        sig.value = cocotb.binary.BinaryValue("x" if unknown >> b & 1 else str(levels >> b & 1))
-                    await Timer(round(cycles * period_ps), units="ps")
-                    master = sum(emu_common.bit(sig) << b for b, sig in inputs)
-                    for _ in range(cycles):
-                        mon.step(sum(source_level(s, master, answer) << i for i, s in enumerate(sources)))
-                        answer = emu.step(master)
+                emu, mon = await replay(pd, inputs, sources, wiring["idle"], kind)
+                (run / "emulator.json").write_text(emu.transcript())
+                (run / "monitor.json").write_text(mon.transcript())
+            except Exception as e:  # the probe's failure, judged by tbgen probes --check
+                collect.lines.append(f"ERROR: {e}")
             finally:
                 log.removeHandler(collect)
-            run = pd / "cocotb"
-            run.mkdir(exist_ok=True)
-            (run / "emulator.json").write_text(emu.transcript())
-            (run / "monitor.json").write_text(mon.transcript())
             (run / "sim.log").write_text("".join(line + "\n" for line in collect.lines))
+
+    async def replay(pd, inputs, sources, idle, kind):
+        """Runs the probe of folder `pd`; returns its emulator and monitor."""
+        p = json.loads((pd / "probe.json").read_text())
+        toml = (pd / "probe.toml").read_text()
+        emu = encoder_emu.Emulator(kind, toml, p["f_hz"], str(pd / "probe.toml"))
+        mon = encoder_emu.Monitor(kind, toml, p["f_hz"], str(pd / "probe.toml"))
+        period_ps = 1e12 / p["f_hz"]
+        answer = idle
+        for cycles, unknown, levels in runs(pd / "stimulus.mem"):
+            for b, sig in inputs:
+                sig.value = cocotb.binary.BinaryValue("x" if unknown >> b & 1 else str(levels >> b & 1))
+            await Timer(round(cycles * period_ps), units="ps")
+            master = sum(emu_common.bit(sig) << b for b, sig in inputs)
+            for _ in range(cycles):
+                mon.step(sum(source_level(s, master, answer) << i for i, s in enumerate(sources)))
+                answer = emu.step(master)
+        return emu, mon
 
 
 def main(argv):

@@ -80,7 +80,13 @@ pub fn check(dir: &Path, sim: &str) -> Result<Report> {
             SIMULATORS.join(", ")
         )));
     }
-    let manifest = read(&dir.join(MANIFEST))?;
+    let manifest = fs::read_to_string(dir.join(MANIFEST)).map_err(|e| {
+        Error::Probes(format!(
+            "{}: {e}: export the probes there first (tbgen probes --out {})",
+            dir.join(MANIFEST).display(),
+            dir.display()
+        ))
+    })?;
     let mut text = String::new();
     let (mut passed, mut total) = (0, 0);
     let mut per_kind: Vec<(String, usize, usize)> = Vec::new();
@@ -164,4 +170,46 @@ pub fn check(dir: &Path, sim: &str) -> Result<Report> {
         text,
         ok: passed == total && total > 0,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_run_that_left_no_transcripts_fails_and_a_stale_export_is_refused() {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("probes");
+        let hdl = Path::new(env!("CARGO_MANIFEST_DIR")).join("../hdl/emu");
+        let n = super::super::export(&out, &hdl).unwrap();
+        let r = check(&out, "icarus").unwrap();
+        assert!(!r.ok);
+        assert_eq!(r.text.matches("FAIL: ").count(), n, "{}", r.text);
+        assert!(
+            r.text.contains("the simulator did not finish"),
+            "{}",
+            r.text
+        );
+        let e = check(&out, "modelsim").unwrap_err().to_string();
+        assert!(e.contains("icarus, verilator, cocotb"), "{e}");
+        let first = fs::read_to_string(out.join(MANIFEST)).unwrap();
+        let rel = first
+            .lines()
+            .nth(1)
+            .unwrap()
+            .split('\t')
+            .nth(3)
+            .unwrap()
+            .to_string();
+        fs::write(out.join(&rel).join("stimulus.mem"), "0000000100000001\n").unwrap();
+        let e = check(&out, "icarus").unwrap_err().to_string();
+        assert!(e.contains(&rel) && e.contains("export again"), "{e}");
+        let e = check(&dir.path().join("none"), "icarus")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("probes.tsv") && e.contains("tbgen probes --out"),
+            "{e}"
+        );
+    }
 }

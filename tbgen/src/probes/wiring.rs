@@ -108,7 +108,12 @@ pub fn read(hdl: &Path, emulator: &str, monitor: &str) -> Result<Wiring> {
         let path = hdl.join(format!("{m}.v"));
         std::fs::read_to_string(&path)
             .map(|t| (code(&t), path.display().to_string()))
-            .map_err(|e| Error::io(&path, e))
+            .map_err(|e| {
+                Error::Probes(format!(
+                    "{}: {e}: run from the repository's root, or give --hdl the folder of the wrappers (hdl/emu)",
+                    path.display()
+                ))
+            })
     };
     let (emu, emu_file) = load(emulator)?;
     let (mon, mon_file) = load(monitor)?;
@@ -385,6 +390,6 @@ mod tests {
         let e = read(dir.path(), "e", "m").unwrap_err().to_string();
         assert!(e.contains("e.v") && e.contains("`i_typo`"), "{e}");
         let e = read(dir.path(), "nope", "m").unwrap_err().to_string();
-        assert!(e.contains("nope.v") && e.contains("no such file"), "{e}");
+        assert!(e.contains("nope.v") && e.contains("--hdl"), "{e}");
     }
 }
