@@ -95,9 +95,7 @@ fn ports(code: &str, dir: &str) -> Vec<String> {
         .filter_map(|d| {
             let mut w = d.split_whitespace();
             (w.next()? == dir).then_some(())?;
-            w.filter(|t| *t != "wire" && *t != "reg")
-                .last()
-                .map(str::to_string)
+            w.rfind(|t| *t != "wire" && *t != "reg").map(str::to_string)
         })
         .collect()
 }
