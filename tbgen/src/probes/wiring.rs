@@ -368,23 +368,18 @@ mod tests {
     #[test]
     fn a_wrapper_without_its_pin_list_is_refused_with_the_file_and_the_line_it_needs() {
         let dir = tempfile::tempdir().unwrap();
-        std::fs::write(
-            dir.path().join("e.v"),
+        let write = |f: &str, t: &str| std::fs::write(dir.path().join(f), t).unwrap();
+        write(
+            "e.v",
             "module e(input wire i_a, output wire o_b);\nendmodule\n",
-        )
-        .unwrap();
-        std::fs::write(
-            dir.path().join("m.v"),
-            "module m(input wire i_a);\nendmodule\n",
-        )
-        .unwrap();
+        );
+        write("m.v", "module m(input wire i_a);\nendmodule\n");
         let e = read(dir.path(), "e", "m").unwrap_err().to_string();
         assert!(e.contains("e.v") && e.contains("emu_line_in"), "{e}");
-        std::fs::write(
-            dir.path().join("e.v"),
+        write(
+            "e.v",
             "module e(input wire i_a, output wire o_b);\nwire emu_line_in = i_typo;\nendmodule\n",
-        )
-        .unwrap();
+        );
         let e = read(dir.path(), "e", "m").unwrap_err().to_string();
         assert!(e.contains("e.v") && e.contains("`i_typo`"), "{e}");
         let e = read(dir.path(), "nope", "m").unwrap_err().to_string();
