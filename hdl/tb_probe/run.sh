@@ -9,7 +9,7 @@
 # testbench hdl/tb_probe/tb_probe.v is built once per kind and emulator
 # clock for each simulator (the kit's wrappers come from DIR/<kind>/
 # probe_wiring.vh) and run in each probe's folder DIR/<kind>/<probe>/<sim>/;
-# hdl/cocotb/test_probes.py runs each kit's probes in one cocotb simulation.
+# hdl/cocotb/rule_probes.py runs each kit's probes in one cocotb simulation.
 # Exit status 0 only when every probe passed in every simulator asked for.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
@@ -93,7 +93,7 @@ for sim in "${sims[@]}"; do
     icarus|verilator) run_hdl "$sim" || { status=1; continue; } ;;
     cocotb)
         [ -x "$root/.venv/bin/python" ] || { echo "run.sh: .venv has no Python; run: make deps" >&2; exit 2; }
-        "$root/.venv/bin/python" "$root/hdl/cocotb/test_probes.py" "$out" > "$out/cocotb.log" 2>&1 || true
+        "$root/.venv/bin/python" "$root/hdl/cocotb/rule_probes.py" "$out" > "$out/cocotb.log" 2>&1 || true
         ;;
     esac
     end=$(date +%s.%N)

@@ -133,7 +133,7 @@ enum Command {
     },
     /// Write the rule probes (cosim/src/probe/) for the simulators, or judge a simulator's run of them.
     #[command(
-        after_help = "The probe testbench hdl/tb_probe/ replays them in Icarus and Verilator, hdl/cocotb/test_probes.py from cocotb;\nhdl/tb_probe/run.sh does all three.\n\nExamples:\n  tbgen probes --out build/probes\n  tbgen probes --check build/probes --sim icarus"
+        after_help = "The probe testbench hdl/tb_probe/ replays them in Icarus and Verilator, hdl/cocotb/rule_probes.py from cocotb;\nhdl/tb_probe/run.sh does all three.\n\nExamples:\n  tbgen probes --out build/probes\n  tbgen probes --check build/probes --sim icarus"
     )]
     Probes {
         /// Write every kit's probes into this folder (new, empty, or an earlier export, which is replaced).

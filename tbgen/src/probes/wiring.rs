@@ -306,7 +306,7 @@ impl Wiring {
             .collect();
         format!(
             "// probe_pins: the master's pins of the {kind} probes under the emulator's port names\n\
-             // (hdl/emu/{}.v), for the cocotb probe run (hdl/cocotb/test_probes.py); written by\n\
+             // (hdl/emu/{}.v), for the cocotb probe run (hdl/cocotb/rule_probes.py); written by\n\
              // `tbgen probes`, do not edit.\n\n\
              `default_nettype none\n\n\
              module probe_pins (\n{}\n);\nendmodule\n\n\

@@ -8,7 +8,7 @@ the kit's table. Each probe's transcripts and warnings go to
 DIR/<kind>/<probe>/cocotb/, where `tbgen probes --check DIR --sim cocotb`
 judges them with the library's verdict.
 
-    .venv/bin/python hdl/cocotb/test_probes.py DIR     (hdl/tb_probe/run.sh does this)
+    .venv/bin/python hdl/cocotb/rule_probes.py DIR     (hdl/tb_probe/run.sh does this)
 
 The pins are held for a run of the stimulus (cycles of the emulator
 clock), read once at its end and stepped through the emulator once per
@@ -128,7 +128,7 @@ if cocotb is not None and os.environ.get("PROBES_KIND"):
 def main(argv):
     """Runs every kit's probes of the export `argv[0]`, one simulation a kit."""
     if len(argv) != 1 or not (Path(argv[0]) / "probes.tsv").is_file():
-        raise SystemExit("test_probes.py: give the folder `tbgen probes --out DIR` wrote (it has probes.tsv)")
+        raise SystemExit("rule_probes.py: give the folder `tbgen probes --out DIR` wrote (it has probes.tsv)")
     from cocotb.runner import get_runner
 
     out = Path(argv[0]).resolve()
@@ -152,7 +152,7 @@ def main(argv):
         runner = get_runner("icarus")
         runner.build(verilog_sources=[str(out / kind / "probe_pins.v")], hdl_toplevel="probe_pins",
                      build_dir=build, always=True, timescale=("1ps", "1ps"))
-        runner.test(hdl_toplevel="probe_pins", test_module="test_probes", test_dir=build, build_dir=build,
+        runner.test(hdl_toplevel="probe_pins", test_module="rule_probes", test_dir=build, build_dir=build,
                     extra_env={"PROBES_DIR": str(out), "PROBES_KIND": kind},
                     results_xml=str(build / "results.xml"))
 
