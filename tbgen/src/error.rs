@@ -59,6 +59,10 @@ pub enum Error {
     /// `tbgen fields`: an unknown protocol, or a configuration field the reference cannot document.
     #[error("{0}")]
     Fields(String),
+    /// `tbgen probes`: a wrapper the probe testbench cannot be wired to, an
+    /// export folder that is not one, or a probe that failed in a simulator.
+    #[error("{0}")]
+    Probes(String),
     /// Reading or writing a file failed.
     #[error("{path}: {}", io_cause(source))]
     Io {

@@ -131,6 +131,29 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Write the rule probes (cosim/src/probe/) for the simulators, or judge a simulator's run of them.
+    #[command(
+        after_help = "The probe testbench hdl/tb_probe/ replays them in Icarus and Verilator, hdl/cocotb/rule_probes.py from cocotb;\nhdl/tb_probe/run.sh does all three.\n\nExamples:\n  tbgen probes --out build/probes\n  tbgen probes --check build/probes --sim icarus"
+    )]
+    Probes {
+        /// Write every kit's probes into this folder (new, empty, or an earlier export, which is replaced).
+        #[arg(
+            long,
+            short,
+            required_unless_present = "check",
+            conflicts_with = "check"
+        )]
+        out: Option<PathBuf>,
+        /// The emulator and monitor wrappers, which the probe testbench is wired to.
+        #[arg(long, default_value = "hdl/emu")]
+        hdl: PathBuf,
+        /// Judge the runs of the probes exported into this folder: exit 1 unless every probe passed.
+        #[arg(long, requires = "sim")]
+        check: Option<PathBuf>,
+        /// The simulator whose runs --check judges: icarus, verilator or cocotb.
+        #[arg(long, requires = "check")]
+        sim: Option<String>,
+    },
     /// Compare what a master did (a VCD of any timescale, or a transcript) with what was expected, transaction by transaction; exit 1 at the first difference.
     #[command(
         after_help = "Timing fields (index, *_ps, *_ns, *_us, cycles, delays) are left out: another latency or clock rate passes.\n\nExamples:\n  tbgen check biss --expect vectors/biss_master/biss_seed_16bit.json capture.vcd -- --bits 16 --ma tb.ma --slo tb.slo\n  tbgen check ssi --expect expected.json emulator_transcript.json --timeout-us 600"
@@ -270,6 +293,25 @@ fn run(command: Command) -> Result<(), Error> {
                 None => out!("{text}"),
             }
         }
+        Command::Probes {
+            out,
+            hdl,
+            check,
+            sim,
+        } => match (out, check) {
+            (Some(out), _) => {
+                let n = tbgen::probes::export(&out, &hdl)?;
+                outln!("{n} probes -> {}", out.display());
+            }
+            (None, Some(dir)) => {
+                let r = tbgen::probes::check(&dir, sim.as_deref().unwrap_or_default())?;
+                out!("{}", r.text);
+                if !r.ok {
+                    std::process::exit(1);
+                }
+            }
+            (None, None) => unreachable!("clap requires --out or --check"),
+        },
         Command::Check {
             protocol,
             expect,

@@ -140,6 +140,15 @@ pub const STAGES: &[Stage] = &[
         what: "the cocotb tests of our cores, the emulators from Python",
     },
     Stage {
+        name: "probes",
+        // Every kit's rule probes replayed through the Verilog wrappers
+        // (one build per kind and simulator) and the Python module, each
+        // judged by the library run's verdict (`tbgen probes --check`).
+        argv: &["hdl/tb_probe/run.sh"],
+        after: &["build"],
+        what: "every rule probe in Icarus, Verilator and cocotb, judged as the library's run is",
+    },
+    Stage {
         name: "fmt",
         argv: &["cargo", "fmt", "--all", "--", "--check"],
         after: &[],

@@ -22,7 +22,7 @@ pub mod ssi;
 
 use serde_json::Value;
 
-use crate::{open, Emulator, Pins};
+use crate::{open, Pins};
 use model::rules;
 
 /// Nanoseconds in ps.
@@ -188,46 +188,13 @@ pub fn run(p: &Probe) -> Result<Outcome, String> {
         p.f_hz,
     )
     .map_err(|e| e.to_string())?;
-    let total: u64 = p.line.iter().map(|s| s.1).sum();
-    let (mut seg, mut seg_end) = (0, p.line.first().map_or(0, |s| s.1));
     let mut answer = kit.idle;
-    for n in 0.. {
-        let t = rules::ps_at(n, p.f_hz);
-        if t >= total {
-            break;
-        }
-        while t >= seg_end {
-            seg += 1;
-            seg_end += p.line[seg].1;
-        }
-        let master = if t < p.unknown_ps {
-            p.line[seg].0 & !p.unknown
-        } else {
-            p.line[seg].0
-        };
+    for (levels, unknown) in samples(p) {
+        let master = if unknown { levels & !p.unknown } else { levels };
         mon.step(kit.monitor_pins(master, answer));
         answer = emu.step(Pins(master));
     }
-    let reports = |e: &mut Box<dyn Emulator>| -> Result<Vec<(String, String)>, String> {
-        e.violations()
-            .iter()
-            .map(|v| Ok((named(v.rule)?, v.detail.clone())))
-            .collect()
-    };
-    let decoded = entries(&mon.transcript(), &["transactions"])
-        .iter()
-        .map(position)
-        .collect();
-    let latched = entries(&emu.transcript(), &["reads", "frames", "transactions"])
-        .iter()
-        .filter_map(position)
-        .collect();
-    Ok(Outcome {
-        emulator: reports(&mut emu)?,
-        monitor: reports(&mut mon)?,
-        latched,
-        decoded,
-    })
+    outcome(&emu.transcript(), &mon.transcript())
 }
 
 /// Checks `o` against `p`: a legal probe draws no report from either side,
@@ -285,4 +252,53 @@ pub fn verdict(p: &Probe, o: &Outcome) -> Result<(), String> {
         }
     }
     Ok(())
+}
+
+/// The master's pins at each sample of the emulator clock (sample `n` at
+/// [`rules::ps_at`]`(n, f_hz)`, the level of the segment holding that
+/// instant) and whether the probe's `unknown` pins are still unknown
+/// there: the one sampling of a probe, which [`run`] steps the library
+/// through and the simulators' stimulus files are written from.
+pub fn samples(p: &Probe) -> impl Iterator<Item = (u32, bool)> + '_ {
+    let total: u64 = p.line.iter().map(|s| s.1).sum();
+    let (mut seg, mut seg_end) = (0, p.line.first().map_or(0, |s| s.1));
+    (0..)
+        .map(move |n| rules::ps_at(n, p.f_hz))
+        .take_while(move |&t| t < total)
+        .map(move |t| {
+            while t >= seg_end {
+                seg += 1;
+                seg_end += p.line[seg].1;
+            }
+            (p.line[seg].0, t < p.unknown_ps)
+        })
+}
+
+/// The [`Outcome`] of a run from the emulator's and the monitor's
+/// transcripts (the JSON the library, the Verilog wrappers and the Python
+/// module write alike): their `violations` as `(rule name, detail)`, the
+/// positions latched and decoded. `Err` names a report whose rule is not in
+/// the rule book.
+pub fn outcome(emulator: &Value, monitor: &Value) -> Result<Outcome, String> {
+    let reports = |t: &Value| -> Result<Vec<(String, String)>, String> {
+        entries(t, &["violations"])
+            .iter()
+            .map(|v| {
+                let field = |k: &str| v.get(k).and_then(Value::as_str).unwrap_or_default();
+                Ok((named(field("rule"))?, field("detail").to_string()))
+            })
+            .collect()
+    };
+    Ok(Outcome {
+        emulator: reports(emulator)?,
+        monitor: reports(monitor)?,
+        latched: entries(emulator, &["reads", "frames", "transactions"])
+            .iter()
+            .filter_map(position)
+            .collect(),
+        decoded: entries(monitor, &["transactions"])
+            .iter()
+            .map(position)
+            .collect(),
+    })
 }
