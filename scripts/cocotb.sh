@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # cocotb.sh: the cocotb examples (hdl/cocotb/test_<proto>.py) under Icarus,
-# each running one of our cores against its emulator from Python.
+# each running one of our cores against its emulator from Python, one pytest
+# test per closed loop (hdl/cocotb/closed_loops_test.py).
 #
 #   scripts/cocotb.sh [proto ...]        (default: every example)
 #   scripts/cocotb.sh --dir DIR --top TOP --config FILE [NAME=VALUE ...]
@@ -36,4 +37,15 @@ if [ -d "$site/encoder_emu" ]; then
     rm -rf "$site/encoder_emu" "$site"/encoder_emu-*.dist-info
 fi
 cd "$root/hdl/cocotb"
+first=${1:-}
+if [ "${first#--}" = "$first" ]; then
+    # The closed loops: pytest, a test per loop (-k picks the named ones);
+    # -p no:cacheprovider leaves no .pytest_cache in the tree.
+    select=()
+    if [ $# -gt 0 ]; then
+        expr=$(printf ' or %s' "$@")
+        select=(-k "${expr# or }")
+    fi
+    exec "$venv/bin/python" -m pytest -p no:cacheprovider -rA -q closed_loops_test.py "${select[@]}"
+fi
 exec "$venv/bin/python" run.py "$@"

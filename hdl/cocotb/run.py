@@ -1,12 +1,13 @@
-"""Runs the cocotb examples under Icarus: one test module per protocol
-(test_<proto>.py) against our own core, with the emulator from encoder_emu;
-or, with --dir, a master we did not write (examples/<dir>/test_<dir>.py,
-run by the example's `make cocotb`).
+"""Runs cocotb tests under Icarus through cocotb's runner: one test module
+per protocol (test_<proto>.py) against our own core, with the emulator from
+encoder_emu (pytest collects them from closed_loops_test.py, one pytest test
+per closed loop); or, with --dir, a master we did not write
+(examples/<dir>/test_<dir>.py, run by the example's `make cocotb`).
 
-    .venv/bin/python hdl/cocotb/run.py [proto ...]
-    .venv/bin/python hdl/cocotb/run.py --dir DIR --top TOP --config FILE [NAME=VALUE ...]
+    .venv/bin/python -m pytest hdl/cocotb/closed_loops_test.py [-k proto]
+    .venv/bin/python hdl/cocotb/run.py --dir DIR --top TOP --config FILE [--test FILE.py] [NAME=VALUE ...]
 
-The tests are the closed loops' cocotb tests of the protocol descriptors
+The closed loops are the cocotb tests of the protocol descriptors
 (`tbgen protocols --json`: each loop's `cocotb` names the test module
 test_<cocotb>.py and its scenario file configs/<cocotb>.toml; the loop's
 `top` is the core; cosim-params reads the core's and the harness's
@@ -87,37 +88,40 @@ def params(tool, part, closed_loop, config):
     return dict(line.split("=", 1) for line in out.split())
 
 
-def main(argv):
-    if argv and argv[0].startswith("--"):
-        return 1 if run_master(argv) else 0
-    lib_dir = os.environ.get("EMU_LIB_DIR", str(ROOT / "target" / "release"))
-    all_tests = tests(lib_dir)
-    chosen = set(argv) or {t[0] for t in all_tests}
-    unknown = chosen - {t[0] for t in all_tests}
-    if unknown:
-        raise SystemExit(f"run.py: no cocotb test {', '.join(sorted(unknown))}; give {', '.join(t[0] for t in all_tests)}")
-    tool = str(Path(lib_dir) / "cosim-params")
+def lib_dir():
+    """Where tbgen, cosim-params and the emulator library are (scripts/emu_lib.sh's EMU_LIB_DIR)."""
+    return os.environ.get("EMU_LIB_DIR", str(ROOT / "target" / "release"))
+
+
+def run_closed_loop(name, core, closed_loop):
+    """The cocotb test test_<name>.py against the core `core` of the closed
+    loop `closed_loop`, on configs/<name>.toml: (tests, failures)."""
+    tool = str(Path(lib_dir()) / "cosim-params")
     rtl = sorted(str(p) for p in (ROOT / "hdl" / "rtl").glob("*.v"))
-    failed = 0
-    for name, core, closed_loop in all_tests:
-        if name not in chosen:
-            continue
-        cfg = HERE / "configs" / f"{name}.toml"
-        values = params(tool, "core", closed_loop, cfg)
-        f_sys = values.pop("F_SYS_HZ")
-        harness = params(tool, "harness", closed_loop, cfg)
-        build = ROOT / "build" / "cocotb" / name
-        runner = get_runner("icarus")
-        runner.build(verilog_sources=rtl, hdl_toplevel=core, parameters=values, build_dir=build, always=True)
-        env = {"COSIM_CONFIG": str(cfg), "F_SYS_HZ": f_sys, "PYTHONPATH": str(HERE),
-               **{f"COSIM_{k}": v for k, v in harness.items()}}
-        results = runner.test(hdl_toplevel=core, test_module=f"test_{name}", test_dir=build, build_dir=build,
-                              extra_env=env, results_xml=str(build / "results.xml"))
-        total, fails = get_results(results)
-        print(f"cocotb: {name} ({core}, Icarus): {total - fails} of {total} passed")
-        failed += fails
-    print(f"cocotb: {'pass' if failed == 0 else 'FAIL'}")
-    return 1 if failed else 0
+    cfg = HERE / "configs" / f"{name}.toml"
+    values = params(tool, "core", closed_loop, cfg)
+    f_sys = values.pop("F_SYS_HZ")
+    harness = params(tool, "harness", closed_loop, cfg)
+    build = ROOT / "build" / "cocotb" / name
+    runner = get_runner("icarus")
+    runner.build(verilog_sources=rtl, hdl_toplevel=core, parameters=values, build_dir=build, always=True)
+    env = {"COSIM_CONFIG": str(cfg), "F_SYS_HZ": f_sys, "PYTHONPATH": str(HERE),
+           **{f"COSIM_{k}": v for k, v in harness.items()}}
+    # Under pytest the runner names the results file by the pytest test and
+    # raises on a failed cocotb test itself (it refuses a results_xml then).
+    under_pytest = os.getenv("PYTEST_CURRENT_TEST") is not None
+    results = runner.test(hdl_toplevel=core, test_module=f"test_{name}", test_dir=build, build_dir=build,
+                          extra_env=env, results_xml=None if under_pytest else str(build / "results.xml"))
+    total, fails = get_results(results)
+    print(f"cocotb: {name} ({core}, Icarus): {total - fails} of {total} passed")
+    return total, fails
+
+
+def main(argv):
+    if not argv or not argv[0].startswith("--"):
+        raise SystemExit("run.py: the closed loops run under pytest: .venv/bin/python -m pytest "
+                         "hdl/cocotb/closed_loops_test.py [-k proto]; run.py itself takes --dir DIR --top TOP --config FILE")
+    return 1 if run_master(argv) else 0
 
 
 if __name__ == "__main__":
