@@ -16,10 +16,25 @@ pub fn decode(file: &Path, line: &str, bit_rate: u64, sample_point: f64) -> Resu
     Ok(model::can::decode::frames(&sig, 1_000_000_000_000 / bit_rate, sample_point))
 }
 
-/// The frames as JSON.
+/// The frames as JSON, the identifier, data and CRC in hex as CAN tools
+/// and datasheets write them (`"id": "0x123"`, an extended one in 8 digits;
+/// `"data": "DE AD BE EF"`; `"crc": "0x1A2B"`). The transcripts and the
+/// monitors keep numbers (`tbgen check` compares those).
 pub fn to_json(file: &Path, bit_rate: u64, sample_point: f64, frames: &[Decoded]) -> Result<String> {
+    let frames: Vec<serde_json::Value> = frames.iter().map(in_hex).collect::<Result<_>>()?;
     let doc = serde_json::json!({ "file": file.display().to_string(), "bit_rate": bit_rate, "sample_point": sample_point, "frames": frames });
     serde_json::to_string_pretty(&doc).map_err(|e| Error::Decode(e.to_string()))
+}
+
+/// One frame's JSON with its identifier, data and CRC in hex.
+fn in_hex(f: &Decoded) -> Result<serde_json::Value> {
+    let mut v = serde_json::to_value(f).map_err(|e| Error::Decode(e.to_string()))?;
+    let id = if f.ide { format!("0x{:08X}", f.id) } else { format!("0x{:03X}", f.id) };
+    let data: Vec<String> = f.data.iter().map(|b| format!("{b:02X}")).collect();
+    v["id"] = id.into();
+    v["data"] = data.join(" ").into();
+    v["crc"] = f.crc.map(|c| format!("0x{c:04X}")).into();
+    Ok(v)
 }
 
 #[cfg(test)]
@@ -51,5 +66,31 @@ mod tests {
             }
         }
         assert!(compared >= 70, "{compared}");
+    }
+
+    #[test]
+    fn identifiers_data_and_crc_are_printed_in_hex() {
+        let f = Decoded {
+            sof_ps: 0,
+            id: 0x1AB,
+            ide: false,
+            rtr: false,
+            dlc: 2,
+            data: vec![0xDE, 0x0A],
+            crc: Some(0x145B),
+            ack: true,
+            error: None,
+            bits: 0,
+        };
+        let ext = Decoded { id: 0x1ABCDEF, ide: true, crc: None, ..f.clone() };
+        let text = to_json(Path::new("x.vcd"), 250_000, 0.875, &[f, ext]).unwrap();
+        let doc: serde_json::Value = serde_json::from_str(&text).unwrap();
+        let frames = doc["frames"].as_array().unwrap();
+        assert_eq!(frames[0]["id"], "0x1AB");
+        assert_eq!(frames[0]["data"], "DE 0A");
+        assert_eq!(frames[0]["crc"], "0x145B");
+        assert_eq!(frames[1]["id"], "0x01ABCDEF");
+        assert!(frames[1]["crc"].is_null());
+        assert_eq!(frames[0]["dlc"], 2);
     }
 }
