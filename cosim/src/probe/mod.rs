@@ -18,6 +18,7 @@
 //! testbenches read too, so the wiring is written once.
 
 pub mod biss;
+pub mod endat;
 pub mod ssi;
 
 use serde_json::Value;
@@ -123,7 +124,7 @@ impl Kit {
 
 /// Every protocol's kit.
 pub fn kits() -> Vec<Kit> {
-    vec![ssi::KIT, biss::KIT]
+    vec![ssi::KIT, biss::KIT, endat::KIT]
 }
 
 /// Every probe of every protocol.
@@ -218,10 +219,13 @@ pub fn run(p: &Probe) -> Result<Outcome, String> {
         .iter()
         .map(position)
         .collect();
-    let latched = entries(&emu.transcript(), &["reads", "frames", "transactions"])
-        .iter()
-        .filter_map(position)
-        .collect();
+    let latched = entries(
+        &emu.transcript(),
+        &["reads", "frames", "transfers", "transactions"],
+    )
+    .iter()
+    .filter_map(position)
+    .collect();
     Ok(Outcome {
         emulator: reports(&mut emu)?,
         monitor: reports(&mut mon)?,
