@@ -37,6 +37,9 @@ const COMP_HZ: u64 = 64_000_000;
 /// With delay compensation at the 16 MHz of special applications.
 const SPECIAL: &str = "positions = [104462, 33554431, 0, 4242]\n[emulator]\nmax_line_clock_khz = 16000\n[checks]\nmax_clock_khz = 16000\n[master]\ndelay_comp = true\n[encoder]\nt_cal_us = 0\noutput_delay_ns = 0\n[cable]\nlength_m = 0\n";
 
+/// The plain encoder behind 30 m of cable: a round trip of 300 ns.
+const CABLE: &str = "positions = [104462, 33554431, 0, 4242]\n[encoder]\nt_cal_us = 0\noutput_delay_ns = 0\n[cable]\nlength_m = 30\n";
+
 /// Falling edges of a type 2.2 position read (`111000`), the last sampling the CRC's last bit.
 const POS22_FALLS: u32 = 44;
 /// The same of a type 2.1 one (`000111`).
@@ -245,6 +248,14 @@ fn probes() -> Vec<Probe> {
         p("t_R", false, "the line high at the master (no cable) 495 ns before the next read", endat(&[pos22(T_M_T_R - 5 * NS), pos22(wait)]), &[]),
         p("t_R", false, "a t_R of 0: the next read as the line rises at the master (no cable)", endat(&[pos22(T_M_T_R - 500 * NS), pos22(wait)]), &[]),
         p("t_R", true, "the line high at the master (no cable) exactly 500 ns before the next read", endat(&[pos22(T_M_T_R), pos22(wait)]), &[104462, 33554431]),
+        Probe {
+            toml: CABLE,
+            ..p("t_R", true, "behind 30 m of cable (a round trip of 300 ns): the line high at the master 200 ns before the next read, 500 ns at the encoder", endat(&[pos22(T_M_T_R), pos22(wait)]), &[])
+        },
+        Probe {
+            toml: CABLE,
+            ..p("t_R", false, "a t_R of 0 at the master behind 30 m of cable: 300 ns at the encoder", endat(&[pos22(T_M_T_R - 200 * NS), pos22(wait)]), &[])
+        },
         p("t_m after an error", true, "after a mode word that is no command (no start bit), the next read 30 us after the last clock edge", endat(&[Xfer::new(0, 2 * US, 250 * NS, 250 * NS, 30 * US), pos22(wait)]), &[]),
         p("t_m after an error", false, "after a mode word that is no command, the next read 29.99 us after the last clock edge", endat(&[Xfer::new(0, 2 * US, 250 * NS, 250 * NS, 29_990 * NS), pos22(wait)]), &[]),
         p("t_b", true, "after a type 2.1 read (000111), the next 1.00001 ms after the last clock edge", endat(&[Xfer::new(0b000111, 2 * US, 250 * NS, 250 * NS, 1_000_010 * NS), pos22(wait)]), &[104462, 33554431]),

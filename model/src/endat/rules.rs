@@ -507,22 +507,20 @@ impl Watch {
         let line_low = !p.de && !line;
         self.line = line;
         match edge {
-            Some(e) if e.rose => {
-                if self.cur.is_some() {
-                    self.check_edge(t_ps, true, &mut step);
-                    let de = p.de;
-                    if let Some(c) = self.cur.as_mut() {
-                        c.burst.rises.push(t_ps);
-                        let k = c.burst.rises.len();
-                        if (2..=7).contains(&k) {
-                            c.mode_bits.push(line);
-                        }
-                        if k == c.r_off() && !de && !line && c.low.is_none() {
-                            c.low = Some(t_ps);
-                        }
+            Some(e) if e.rose && self.cur.is_some() => {
+                self.check_edge(t_ps, true, &mut step);
+                if let Some(c) = self.cur.as_mut() {
+                    c.burst.rises.push(t_ps);
+                    let k = c.burst.rises.len();
+                    if (2..=7).contains(&k) {
+                        c.mode_bits.push(line);
+                    }
+                    if k == c.r_off() && !p.de && !line && c.low.is_none() {
+                        c.low = Some(t_ps);
                     }
                 }
             }
+            Some(e) if e.rose => {}
             Some(_) => {
                 if self
                     .cur
