@@ -20,19 +20,30 @@
 //! whatever F1 is), `warning` (the warning word: WRN of the additional data),
 //! `busy` (the busy bit of the additional data).
 //!
-//! Checks of the master: a falling clock edge within the encoder's recovery
-//! time I (seed 004, 2.3.2 and appendix A2: the next transfer only after
-//! `t_m`), and both drivers on the data pair at once (contention: the master
-//! must switch its driver off with the first falling edge, t_ST).
+//! The master's timing is held to the rule book [`model::endat::rules`]
+//! (the monitor holds it to the same, from the same limits: [`rule_config`]):
+//! the watcher sees the master's pins and the encoder's level at the
+//! master's end as the master's receiver had it, the answer of the cycle
+//! before, which is what the monitor beside the master sees. Both drivers on
+//! the pair at once is the send-block rule's break, reported by it (the
+//! transcript counts the cycles, `contention_cycles`). The emulator expects
+//! the clock idle high before the first transfer: until it has seen the
+//! clock high, the encoder sees its clock idle, so a master holding reset
+//! (its clock at 0) from time 0 starts no transfer.
 
 use serde::{Deserialize, Serialize};
 
 use model::bits;
-use model::endat::{frame_kind, BenchConfig, Encoder, EncoderSettings, FaultSettings, FrameKind};
+use model::endat::rules::{self, Limits, Watch};
+use model::endat::{
+    frame_kind, BenchConfig, Encoder, EncoderSettings, FaultSettings, FrameKind, MasterSettings,
+};
 use model::line::{CableConfig, DelayLine, Drive};
+use model::rules::Unit;
 
 use crate::check::Checks;
 use crate::config::{self, Error};
+use crate::monitor::{first_given, limit, proto_table};
 use crate::motion::{Motion, Running};
 use crate::pair::Pair;
 use crate::{Emulator, Pins, Result};
@@ -41,9 +52,6 @@ use crate::{Emulator, Pins, Result};
 /// compensation (seed 004, 2.3.2: `f_c` up to 8 MHz; 16 MHz with the
 /// encoders that support it: set `emulator.max_line_clock_khz`).
 pub const MAX_CLOCK_KHZ: f64 = 8000.0;
-
-/// Both drivers on the data pair.
-const CONTENTION: &str = "t_ST / bus contention (seed 004, 2.2: the master switches its data driver off with the first falling edge and on only while the encoder does not drive)";
 
 /// The emulator's configuration (the scenario's EnDat device tables).
 #[derive(Debug, Clone, PartialEq, Deserialize)]
@@ -67,15 +75,16 @@ pub struct EndatConfig {
     pub checks: EndatChecks,
 }
 
-/// The master's timing limits (`[checks]`), by default the seed's (seed 004,
-/// 2.3.2: `t_b > 1 ms` between EnDat 2.1 commands; `f_c` up to 8 MHz with
-/// delay compensation, 16 MHz for the encoders that support it).
+/// The master's timing limits (`[checks]`), by default the seed's
+/// ([`model::endat::rules`]): each may be set within the seed's range only.
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct EndatChecks {
-    /// Least time between a type 2.1 transfer's last clock edge and the next transfer, µs.
+    /// Time between a type 2.1 transfer's last clock edge and the next transfer, µs, exclusive
+    /// (`t_b`, seed: more than 1000).
     pub t_b_us: f64,
-    /// Fastest clock: no clock phase within a transfer shorter than half its period, kHz.
+    /// Fastest clock with delay compensation, kHz: no clock phase within a transfer shorter than
+    /// `1 / (2 f_c)` (`f_c`, seed: 8000, 16000 for special applications).
     pub max_clock_khz: f64,
 }
 
@@ -102,6 +111,166 @@ impl Default for EndatConfig {
             checks: EndatChecks::default(),
         }
     }
+}
+
+/// The limits' own table (`[monitor]`), every field optional: a monitor's
+/// settings, read by the emulator too, so that both hold the master to the
+/// same limits.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct MonitorTable {
+    pos_bits: Option<u32>,
+    delay_comp: Option<bool>,
+    max_clock_khz: Option<f64>,
+    min_clock_khz: Option<f64>,
+    on_off_percent: Option<f64>,
+    t_st_us: Option<f64>,
+    t_m_us: Option<f64>,
+    t_m21_us: Option<f64>,
+    t_r_us: Option<f64>,
+    round_trip_ns: Option<f64>,
+    t_err_us: Option<f64>,
+    t_b_us: Option<f64>,
+    meas_clock_khz: Option<f64>,
+    meas_frame_below_khz: Option<f64>,
+    meas_frames_min: Option<u32>,
+}
+
+/// The rule limits of a configuration and what a decoder of the line needs.
+#[derive(Debug, Clone)]
+pub struct RuleConfig {
+    /// The limits in force.
+    pub limits: Limits,
+    /// Position bits (`monitor.pos_bits`, else the encoder's), not checked.
+    pub pos_bits: u32,
+    /// The master's measuring clock, kHz (`monitor.meas_clock_khz`, else `master.meas_clock_khz`).
+    pub meas_clock_khz: f64,
+}
+
+/// The rule limits a configuration sets (a whole scenario file will do):
+/// `[monitor]` first, then `[checks]`, `[master]` (`delay_comp`,
+/// `meas_clock_khz`), `[encoder]` (`t_m_us`, `t_m21_us`, `recovery_short`,
+/// `output_delay_ns`) and `[cable]`; every bound the seed states refused
+/// outside the seed's range, naming the field.
+pub fn rule_config(text: &str, origin: &str) -> Result<RuleConfig> {
+    let whole = proto_table(text, origin, "endat")?;
+    let checks: EndatChecks = config::decode_in(&whole, "checks", origin)?;
+    let encoder: EncoderSettings = config::decode_in(&whole, "encoder", origin)?;
+    let master: MasterSettings = config::decode_in(&whole, "master", origin)?;
+    let cable: CableConfig = config::decode_in(&whole, "cable", origin)?;
+    let mon: MonitorTable = config::decode_in(&whole, "monitor", origin)?;
+    let cfg = |e| Error::config(origin, e);
+    let short = encoder.recovery_short;
+    let (t_m22, t_m22_field) = first_given(
+        [
+            ("monitor.t_m_us", mon.t_m_us),
+            ("encoder.t_m_us", encoder.t_m_us),
+        ],
+        if short { 2.0 } else { 15.0 },
+    );
+    let t_m22 = limit(origin, t_m22_field, t_m22, "give the encoder's recovery time I of type 2.2 frames in µs (seed: 10 to 30, or 1.25 to 3.75)")?;
+    let (t_m21, t_m21_field) = first_given(
+        [
+            ("monitor.t_m21_us", mon.t_m21_us),
+            ("encoder.t_m21_us", Some(encoder.t_m21_us)),
+        ],
+        0.0,
+    );
+    let t_m21 = limit(
+        origin,
+        t_m21_field,
+        t_m21,
+        "give the encoder's recovery time I of type 2.1 frames in µs (seed: 10 to 30)",
+    )?;
+    let round_trip = mon
+        .round_trip_ns
+        .unwrap_or(2.0 * cable.length_m * cable.ns_per_m + encoder.output_delay_ns);
+    let round_trip = limit(
+        origin,
+        "monitor.round_trip_ns",
+        round_trip,
+        "give the round trip (cable both ways and the encoder's output delay) in ns",
+    )?;
+    let delay_comp = mon.delay_comp.unwrap_or(master.delay_comp);
+    let mut l = Limits::seed(delay_comp, t_m22, t_m21, round_trip);
+    // The fastest clock: `[checks]` holds the one with delay compensation.
+    let max = first_given(
+        [
+            ("monitor.max_clock_khz", mon.max_clock_khz),
+            (
+                "checks.max_clock_khz",
+                delay_comp.then_some(checks.max_clock_khz),
+            ),
+        ],
+        l.max_clock_khz,
+    );
+    l.set_max_clock(max.1, max.0).map_err(cfg)?;
+    if let Some(khz) = mon.min_clock_khz {
+        let khz = rules::F_C_MIN
+            .setting("monitor.min_clock_khz", khz)
+            .map_err(cfg)?;
+        if khz > l.max_clock_khz {
+            return Err(Error::field(
+                origin,
+                "monitor.min_clock_khz",
+                format!("{khz} kHz above the fastest clock, {} kHz", l.max_clock_khz),
+                "give min_clock_khz <= max_clock_khz (seed: 100 kHz, and 2000 without or 8000 with delay compensation)",
+            ));
+        }
+        l.period_max = Unit::KHz.ps(khz);
+    }
+    if let Some(v) = mon.on_off_percent {
+        l.on_off = rules::ON_OFF
+            .setting("monitor.on_off_percent", v)
+            .map_err(cfg)?
+            / 100.0;
+    }
+    if let Some(v) = mon.t_st_us {
+        l.t_st = Some(Unit::Us.ps(rules::T_ST.setting("monitor.t_st_us", v).map_err(cfg)?));
+    }
+    if let Some(v) = mon.t_r_us {
+        l.t_r = Unit::Us.ps(rules::T_R.setting("monitor.t_r_us", v).map_err(cfg)?);
+    }
+    if let Some(v) = mon.t_err_us {
+        l.t_err = Unit::Us.ps(rules::T_ERR.setting("monitor.t_err_us", v).map_err(cfg)?);
+    }
+    let t_b = first_given(
+        [
+            ("monitor.t_b_us", mon.t_b_us),
+            ("checks.t_b_us", Some(checks.t_b_us)),
+        ],
+        checks.t_b_us,
+    );
+    l.t_b = Unit::Us.ps(rules::T_B.setting(t_b.1, t_b.0).map_err(cfg)?);
+    if let Some(v) = mon.meas_frame_below_khz {
+        l.meas_below_khz = limit(
+            origin,
+            "monitor.meas_frame_below_khz",
+            v,
+            "give the clock below which a 000111 transfer is a delay measurement, kHz",
+        )?;
+    }
+    if let Some(n) = mon.meas_frames_min {
+        l.meas_frames_min = rules::MEAS_COUNT
+            .setting("monitor.meas_frames_min", n as f64)
+            .map_err(cfg)? as u32;
+    }
+    let meas_clock_khz = mon.meas_clock_khz.unwrap_or(master.meas_clock_khz);
+    if !(meas_clock_khz > 0.0 && meas_clock_khz < 1e6) {
+        return Err(Error::field(
+            origin,
+            "monitor.meas_clock_khz",
+            format!("{meas_clock_khz} kHz"),
+            "give the master's measuring clock in kHz (seed: 100 to 200)",
+        ));
+    }
+    Ok(RuleConfig {
+        limits: l,
+        pos_bits: mon
+            .pos_bits
+            .unwrap_or(encoder.singleturn_bits + encoder.multiturn_bits),
+        meas_clock_khz,
+    })
 }
 
 /// One transfer as the emulator saw and answered it.
@@ -145,16 +314,15 @@ pub struct EndatEmulator {
     entries: Vec<Entry>,
     warning: bool,
     busy: bool,
-    seen_violations: u64,
-    reported_violations: u64,
-    reported_at_latch: u64,
     seen_decodes: u64,
     seen_answer: &'static str,
-    last_clk: bool,
-    last_clk_edge: u64,
-    after_21: bool,
-    limits: (f64, f64),
+    watch: Watch,
+    /// The pins out of the cycle before: the encoder's level the master's
+    /// receiver has now.
+    last_out: Pins,
     checks: Checks,
+    /// Where the pair records contention: the send-block rule reports it.
+    contention: Checks,
 }
 
 impl EndatEmulator {
@@ -206,21 +374,11 @@ impl EndatEmulator {
             .motion
             .clone()
             .map(|motion| Running { motion, since: 0 });
-        let c = &cfg.checks;
-        if !(c.t_b_us >= 0.0 && c.t_b_us < 1e7 && c.max_clock_khz > 0.0 && c.max_clock_khz < 1e6) {
-            return Err(Error::field(
-                origin,
-                "checks",
-                format!("t_b_us = {}, max_clock_khz = {}", c.t_b_us, c.max_clock_khz),
-                "give t_b_us >= 0 (seed: 1000) and max_clock_khz > 0 (seed: 8000)",
-            ));
+        let limits = rule_config(text, origin)?.limits;
+        let mut checks = Checks::for_clock(&tb);
+        for note in model::rules::resolution_notes(f_emu_hz, &limits.least()) {
+            checks.note(note);
         }
-        let checks = Checks::for_clock(&tb);
-        // t_b and the shortest half period in emulator cycles, one cycle of tolerance.
-        let limits = (
-            checks.cycles_of_ns(c.t_b_us * 1e3) - 1.0,
-            checks.cycles_of_ns(1e6 / (2.0 * c.max_clock_khz)) - 1.0,
-        );
         let mut emu = EndatEmulator {
             f_emu_hz,
             tb,
@@ -239,16 +397,12 @@ impl EndatEmulator {
             stuck: None,
             cycle: 0,
             entries: Vec::new(),
-            seen_violations: 0,
-            reported_violations: 0,
-            reported_at_latch: u64::MAX,
             seen_decodes: 0,
             seen_answer: "ok",
-            last_clk: true,
-            last_clk_edge: 0,
-            after_21: false,
-            limits,
+            watch: Watch::new(limits),
+            last_out: Pins(1),
             checks,
+            contention: Checks::for_clock(&tb),
         };
         emu.prepare(0);
         Ok(emu)
@@ -341,57 +495,6 @@ impl EndatEmulator {
             FrameKind::Param21 => {}
         }
     }
-
-    /// The master's clock as the encoder sees it (the cable shifts every edge alike):
-    /// `t_b` after a type 2.1 transfer, and the fastest clock within a transfer.
-    fn check_clock(&mut self, clk: bool, gap: u64, latched: bool) {
-        let (t_b, half_min) = self.limits;
-        if latched {
-            if self.after_21 && (gap as f64) < t_b {
-                self.checks.push(
-                    self.cycle,
-                    "t_b (seed 004, 2.3.2: t_b > 1 ms between EnDat 2.1 commands)",
-                    format!(
-                        "next transfer {:.3} us after the last clock edge of a type 2.1 transfer",
-                        self.checks.us(gap)
-                    ),
-                );
-            }
-        } else if (gap as f64) < half_min {
-            self.checks.push(
-                self.cycle,
-                "f_c (seed 004, 2.3.2: clock frequency up to 8 MHz with delay compensation)",
-                format!(
-                    "clock {} for {:.3} us within a transfer",
-                    if clk { "low" } else { "high" },
-                    self.checks.us(gap)
-                ),
-            );
-        }
-        if latched {
-            self.after_21 = false;
-        }
-        self.last_clk = clk;
-        self.last_clk_edge = self.cycle;
-    }
-
-    fn watch(&mut self) {
-        if self.encoder.violations != self.seen_violations {
-            self.seen_violations = self.encoder.violations;
-        }
-        // One report per recovery time, however many edges fell into it.
-        if self.seen_violations != self.reported_violations
-            && self.encoder.latches != self.reported_at_latch
-        {
-            self.reported_violations = self.seen_violations;
-            self.reported_at_latch = self.encoder.latches;
-            self.checks.push(
-                self.cycle,
-                "t_m (seed 004, 2.3.2 and appendix A2 4.2.1: a new transfer only after the recovery time I t_m)",
-                "falling clock edge at the encoder while it still held the data line low for t_m".into(),
-            );
-        }
-    }
 }
 
 impl Emulator for EndatEmulator {
@@ -401,25 +504,37 @@ impl Emulator for EndatEmulator {
 
     fn step(&mut self, pins: Pins) -> Pins {
         let master = Pair::master_drive(pins);
+        let seen = self.watch.sample(
+            self.tb.ps_at(self.cycle),
+            rules::Pins {
+                clk: pins.data(),
+                d: master.level,
+                de: master.enable,
+                r: self.last_out.data(),
+            },
+        );
+        for b in &seen.breaches {
+            let cycle = (b.at_ps as u128 * self.f_emu_hz as u128
+                + model::time::PS_PER_S as u128 / 2)
+                / model::time::PS_PER_S as u128;
+            self.checks.breach(cycle as u64, b);
+        }
         if let Some(m) = &self.motion {
             let p = m.position_on(self.cycle, &self.tb, self.bits());
             self.encoder.set_position(p);
         }
-        let clk = self.clk_line.step(pins.data());
-        let edge = (clk != self.last_clk).then(|| self.cycle - self.last_clk_edge);
+        // Before the clock is seen idle high (a master in reset), the encoder sees it idle.
+        let clk = self.clk_line.step(pins.data() || !self.watch.seen_idle());
         let at_encoder = self.pair.step(
             master,
             self.enc_drive,
             self.cycle,
-            &mut self.checks,
-            CONTENTION,
+            &mut self.contention,
+            rules::SEND_BLOCK.label(),
         );
         let latches = self.encoder.latches;
         self.enc_drive = self.encoder.step(clk, at_encoder);
         let latched = self.encoder.latches != latches;
-        if let Some(gap) = edge {
-            self.check_clock(clk, gap, latched);
-        }
         if latched {
             self.on_latch();
         }
@@ -433,16 +548,14 @@ impl Emulator for EndatEmulator {
             self.seen_decodes = self.encoder.decodes;
             self.seen_answer = self.encoder.answer_name();
             let mode = bits::string_of(self.encoder.mode() as u128, 6);
-            self.after_21 = model::endat::Command::from_code(self.encoder.mode())
-                .is_some_and(|c| !c.is_type22());
             if let Some(e) = self.entries.last_mut() {
                 e.mode = mode;
                 e.answer = self.seen_answer;
             }
         }
-        self.watch();
         self.cycle += 1;
-        self.pair.pins_out(self.enc_drive, &self.checks, self.stuck)
+        self.last_out = self.pair.pins_out(self.enc_drive, &self.checks, self.stuck);
+        self.last_out
     }
 
     fn set_position(&mut self, device: usize, position: u64) -> Result<()> {
@@ -560,6 +673,7 @@ impl Emulator for EndatEmulator {
             "transfers": self.entries,
             "contention_cycles": self.pair.contention_cycles(),
             "violations": self.checks.all(),
+            "notes": self.checks.notes(),
         })
     }
 

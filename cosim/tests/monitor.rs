@@ -470,18 +470,67 @@ fn each_endat_rule_fires_once_and_the_clean_master_passes(sim: &str) {
     )
     .unwrap();
     let cmd = bench_of(sim, "tb_endat_monitor_rules");
-    let cases: [(u32, usize, usize, &[&str]); 11] = [
-        (0, 0, 2, &[]),
-        (1, 2, 2, &["f_c (seed 004 EnDat 2.2, 2.3.2 and 2.1.1: f_c up to 2 MHz without, 8 MHz with delay compensation; with deviating duty cycle f_c = 1/(2 t_min)): clock high for 0.250 us", "clock low for 0.250 us"]),
-        (2, 1, 2, &["on-off ratio (seed 004 EnDat 2.2, 2.3.2: on-off ratio error within 10 %): clock high 0.750 us and low 0.250 us"]),
-        (3, 1, 2, &["t_ST (seed 004 EnDat 2.2, 2.3 and 2.3.2 note 8: the first clock's low level t_ST = 2 us for f_c = 2 to 8 MHz, 1 us at 16 MHz): first low phase 0.250 us at a 2000 kHz clock"]),
-        (4, 2, 2, &["send block (seed 004 EnDat 2.2, 2.3: the master drives the data line from the second falling clock edge", "switched its data driver on outside a transfer", "still on at R8"]),
-        (5, 1, 2, &["t_m (seed 004 EnDat 2.2, 2.3.2: recovery time I; the next transfer only after the encoder's t_m): next transfer 10.500 us after"]),
-        (6, 1, 2, &["t_R (seed 004 EnDat 2.2, 2.3.2: recovery time II t_R >= 500 ns, time before the next query can be received): the line rose at the master 0.250 us before"]),
-        (7, 1, 2, &["t_m after an error (seed 004 EnDat 2.2, appendix A2 4.2.1: after an error handling the maximum t_m of 30 us must at least be waited before the next command): next transfer 20.500 us after"]),
-        (8, 1, 2, &["t_b (seed 004 EnDat 2.2, 2.3.2: t_b > 1 ms between EnDat 2.1 commands): next transfer 500.500 us after"]),
-        (9, 3, 4, &["measurement clock (seed 004 EnDat 2.2, 2.1.2: the propagation time is measured with a reduced clock of 100 kHz to 200 kHz)"]),
-        (10, 1, 2, &["delay measurement (seed 004 EnDat 2.2, 2.1.2: measured at least three times", "a delay measurement of 2 frame(s)"]),
+    // The rule texts as the rule book prints them.
+    use model::endat::rules as r;
+    let at =
+        |rule: &'static model::rules::Rule, detail: &str| format!("{}: {detail}", rule.label());
+    let cases: [(u32, usize, usize, Vec<String>); 11] = [
+        (0, 0, 2, vec![]),
+        (
+            1,
+            2,
+            2,
+            vec![
+                at(&r::F_C, "clock high for 0.250 us"),
+                "clock low for 0.250 us".into(),
+            ],
+        ),
+        (
+            2,
+            1,
+            2,
+            vec![at(&r::ON_OFF, "clock high 0.750 us and low 0.250 us")],
+        ),
+        (
+            3,
+            1,
+            2,
+            vec![at(&r::T_ST, "first low phase 0.250 us at a 2000 kHz clock")],
+        ),
+        (
+            4,
+            2,
+            2,
+            vec![
+                r::SEND_BLOCK.label().into(),
+                "switched its data driver on outside a transfer".into(),
+                "still on at R8".into(),
+            ],
+        ),
+        (5, 1, 2, vec![at(&r::T_M, "next transfer 10.500 us after")]),
+        (
+            6,
+            1,
+            2,
+            vec![at(&r::T_R, "the line rose at the master 0.250 us before")],
+        ),
+        (
+            7,
+            1,
+            2,
+            vec![at(&r::T_ERR, "next transfer 20.500 us after")],
+        ),
+        (8, 1, 2, vec![at(&r::T_B, "next transfer 500.500 us after")]),
+        (9, 3, 4, vec![r::MEAS_CLOCK.label().into()]),
+        (
+            10,
+            1,
+            2,
+            vec![
+                r::MEAS_COUNT.label().into(),
+                "a delay measurement of 2 frame(s)".into(),
+            ],
+        ),
     ];
     for (case, n, transfers, rules) in cases {
         let t = dir.join(format!("endat_{case}.json"));
@@ -508,8 +557,11 @@ fn each_endat_rule_fires_once_and_the_clean_master_passes(sim: &str) {
             n,
             "case {case} in {sim}:\n{out}"
         );
-        for r in rules {
-            assert!(out.contains(r), "case {case} in {sim}: no `{r}` in\n{out}");
+        for r in &rules {
+            assert!(
+                out.contains(r.as_str()),
+                "case {case} in {sim}: no `{r}` in\n{out}"
+            );
         }
         let t: serde_json::Value =
             serde_json::from_str(&std::fs::read_to_string(&t).unwrap()).unwrap();

@@ -15,13 +15,15 @@
 // `tbgen decode endat` (model/src/endat/decode.rs: mode bits, the master's
 // blocks, the encoder's frames judged by the master's own check logic) and
 // holds the master to the timing of seed 004 (HEIDENHAIN EnDat 2.2): f_c
-// (100 kHz to 2 MHz, 8 MHz with delay compensation, per phase), the on-off
-// ratio (10 %), t_ST (first low phase, 2 us from 2 to 8 MHz), the send
+// (100 kHz to 2 MHz, 8 MHz with delay compensation, the shorter phase), the
+// on-off ratio (10 %), t_ST (first low phase, 2 us from 2 to 8 MHz), the send
 // block (driver on only from F2, off at R8), the recovery times t_m and t_R
 // before the next transfer, 30 us after an error (appendix A2), t_b > 1 ms
 // after type 2.1 commands, and the delay measurement (100 to 200 kHz, at
-// least three frames, before compensated transfers). Each violation is
-// printed with its time and rule:
+// least three frames, before compensated transfers): the rule book
+// model/src/endat/rules.rs, which endat_encoder_emu holds the master to as
+// well, with the same texts. Each violation is printed with its time and
+// rule:
 //   PROTOCOL VIOLATION by the master on tb.u_mon.emu_show_violations at <ns> ns (emulator cycle N): t_ST (...): first low phase 0.500 us ...
 // and counted (u_mon.violations(0)); STOP_ON_VIOLATION = 1 stops the run.
 //
@@ -66,7 +68,24 @@ module endat_monitor #(
 localparam EMU_KIND = "endat_monitor";
 localparam MON_PIN_NAMES = "i_endat_clk, i_endat_data, i_endat_data_oe, i_endat_data_in";
 localparam [7:0] MON_IDLE = 8'b0000_1011;
-wire [7:0] mon_pins_now = {4'd0, i_endat_data_in, i_endat_data_oe, i_endat_data, i_endat_clk};
+// X or Z on the master's driver enable reads as 0, the master not driving
+// (a master before its reset), as endat_encoder_emu reads it (emu_pair.vh),
+// and the data of a driver that is not on is not read: one warning, never a
+// protocol report.
+wire mon_oe = i_endat_data_oe === 1'b1;
+wire mon_data = mon_oe ? i_endat_data : 1'b1;
+reg mon_oe_known = 1'b0;
+reg mon_oe_warned = 1'b0;
+always @(posedge i_mon_clk) begin
+    if (i_endat_data_oe === 1'b0 || i_endat_data_oe === 1'b1)
+        mon_oe_known <= 1'b1;
+    else if (mon_oe_known && !mon_oe_warned) begin
+        $display("WARNING: %m: X or Z on the driver enable i_endat_data_oe at time %0t: read as 0, the master not driving",
+                 $time);
+        mon_oe_warned <= 1'b1;
+    end
+end
+wire [7:0] mon_pins_now = {4'd0, i_endat_data_in, mon_oe, mon_data, i_endat_clk};
 
 `include "emu_monitor.vh"
 

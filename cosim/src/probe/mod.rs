@@ -18,6 +18,7 @@
 //! testbenches read too, so the wiring is written once.
 
 pub mod biss;
+pub mod endat;
 pub mod ssi;
 
 use serde_json::Value;
@@ -123,7 +124,7 @@ impl Kit {
 
 /// Every protocol's kit.
 pub fn kits() -> Vec<Kit> {
-    vec![ssi::KIT, biss::KIT]
+    vec![ssi::KIT, biss::KIT, endat::KIT]
 }
 
 /// Every probe of every protocol.
@@ -292,7 +293,7 @@ pub fn outcome(emulator: &Value, monitor: &Value) -> Result<Outcome, String> {
     Ok(Outcome {
         emulator: reports(emulator)?,
         monitor: reports(monitor)?,
-        latched: entries(emulator, &["reads", "frames", "transactions"])
+        latched: entries(emulator, &["reads", "frames", "transfers", "transactions"])
             .iter()
             .filter_map(position)
             .collect(),

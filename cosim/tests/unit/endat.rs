@@ -1,18 +1,29 @@
 use cosim::endat::*;
 use cosim::{Emulator, Pins};
 
-/// Clocks one EnDat transfer as a master at `half` cycles per half period would:
-/// mode bits driven from F2, released at F8, then `clocks` more periods; returns the
-/// levels the master samples just before each rising edge after the release.
+fn pins(clk: bool, oe: bool, d: bool) -> Pins {
+    Pins(clk as u32 | (d as u32) << 1 | (oe as u32) << 2)
+}
+
+/// The clock idle high for `cycles`: a master out of reset before its first transfer.
+fn idle(emu: &mut EndatEmulator, cycles: u64) {
+    for _ in 0..cycles {
+        emu.step(pins(true, false, true));
+    }
+}
+
+/// Clocks one EnDat transfer as a master at `half` cycles per half period would,
+/// the first low phase (t_ST) 2 us at 64 MHz: mode bits driven from F2, released at
+/// F8, then `clocks` more periods; returns the levels the master samples just before
+/// each rising edge after the release.
 fn transfer(emu: &mut EndatEmulator, mode: u8, half: u64, clocks: u32, rest: u64) -> Vec<bool> {
     let mut seen = Vec::new();
-    let pins = |clk: bool, oe: bool, d: bool| Pins(clk as u32 | (d as u32) << 1 | (oe as u32) << 2);
     let mut out = Pins(1);
     for f in 1..=(8 + clocks) {
         // Bit driven at falling edge f (F2..F7: the six mode bits, MSB first).
         let oe = (2..8).contains(&f);
         let d = oe && (mode >> (7 - f)) & 1 == 1;
-        for _ in 0..half {
+        for _ in 0..if f == 1 { 128 } else { half } {
             out = emu.step(pins(false, oe, d));
         }
         if f >= 8 {
@@ -35,6 +46,7 @@ fn a_position_read_returns_the_position_set_and_f2_differs_from_f1_when_told() {
     let mut emu = EndatEmulator::from_toml(toml, "e.toml", 64_000_000).unwrap();
     emu.set_position(0, 0x1AB_CDEF).unwrap();
     emu.set_status(0, "f2", true).unwrap();
+    idle(&mut emu, 64);
     let seen = transfer(&mut emu, 0b111000, 16, 36, 64 * 40);
     assert_eq!(emu.count(), 1);
     assert_eq!(emu.last_value(0), Some(0x1AB_CDEF));
@@ -60,6 +72,7 @@ fn a_position_read_returns_the_position_set_and_f2_differs_from_f1_when_told() {
 fn clocking_within_the_recovery_time_and_driving_into_the_encoder_are_reported() {
     let toml = "[encoder]\noutput_delay_ns = 0\n";
     let mut emu = EndatEmulator::from_toml(toml, "e.toml", 64_000_000).unwrap();
+    idle(&mut emu, 64);
     // Type 2.2 position reads (a falling edge in the recovery of a 2.1 read is a continuous clock).
     transfer(&mut emu, 0b111000, 16, 40, 64); // 1 µs later: t_m is 15 µs
     transfer(&mut emu, 0b111000, 16, 40, 64 * 40);
@@ -75,6 +88,7 @@ fn clocking_within_the_recovery_time_and_driving_into_the_encoder_are_reported()
 fn a_type_21_transfer_before_t_b_is_reported_and_one_after_it_is_not() {
     let toml = "[encoder]\noutput_delay_ns = 0\n";
     let mut emu = EndatEmulator::from_toml(toml, "e.toml", 64_000_000).unwrap();
+    idle(&mut emu, 64);
     transfer(&mut emu, 0b000111, 16, 33, 64 * 500); // 500 µs later: t_b is 1 ms
     transfer(&mut emu, 0b000111, 16, 33, 64 * 1010); // 1.01 ms later
     transfer(&mut emu, 0b000111, 16, 33, 64 * 40);

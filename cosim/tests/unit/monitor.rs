@@ -519,17 +519,20 @@ fn each_endat_rule_fires_with_its_time_and_the_seed_reference() {
         &|i, k, h| (i == 0 && (k == 19 && h || k == 20 && !h)).then_some(2),
         None,
     );
+    // Each short phase also makes its period's phases 250 and 500 ns: the on-off ratio, exact since
+    // the rule book (it had two monitor cycles of slack).
     assert_eq!(
         r.iter().map(|x| x.1.as_str()).collect::<Vec<_>>(),
-        ["f_c", "f_c"],
+        ["f_c", "on-off", "f_c", "on-off"],
         "{v:?}"
     );
     assert_eq!(r[0].0, (50 + 4 + 18 * 8 + 2) as f64 * 125.0);
     assert!(
-        v[0].rule.contains("2 MHz without") && v[0].detail.contains("clock high for 0.250 us"),
+        v[0].rule.contains("without delay compensation <= 2000 kHz")
+            && v[0].detail.contains("clock high for 0.250 us"),
         "{v:?}"
     );
-    assert!(v[1].detail.contains("clock low for 0.250 us"), "{v:?}");
+    assert!(v[2].detail.contains("clock low for 0.250 us"), "{v:?}");
     // f_c at least 100 kHz: 5.5 us half periods (44 cycles) throughout, every period from F3 on.
     let slow = [(0b111000u8, 44, 44, 120, 248)];
     let (r, _) = endat_rules(ENDAT_TOML, 8_000_000, &slow, &no, None);

@@ -32,5 +32,5 @@ pub const PROTOCOL: Protocol = Protocol {
             "EnDat 2.1: position request and answer (HEIDENHAIN EnDat 2.2 D297403, position values)",
     }),
     historical: &[],
-    rules: &[],
+    rules: super::rules::RULES,
 };

@@ -100,6 +100,7 @@ pub mod descriptor;
 pub mod diagram;
 mod encoder;
 mod master;
+pub mod rules;
 
 pub use bench::{
     error_names, AckXor, Bench, BenchConfig, CableFaults, EncoderSettings, FaultSettings, Flip,
