@@ -513,26 +513,25 @@ reg             finish_timeout;
 // the operation then holds for the write or page time.
 reg             flawed;
 reg             retry;
-reg             settle;
-reg [2:0]       settle_sel;
+reg [2:0]       settle;        // the wait the operation then holds for (LOAD_NONE: none)
 
 /* The skeleton's two counters (half_duplex_timer: every bit and wait;
    half_duplex_idle: the receiver's idle time in RECV and QUIET). The state
    machine asks for a load or a step and reads their registered flags
    cnt_zero, idle_end and idle_quiet. A load names its wait by a code. */
-localparam [2:0] LOAD_BIT = 3'd0, LOAD_TIMEOUT = 3'd1, LOAD_GAP = 3'd2, LOAD_READ = 3'd3,
-    LOAD_WRITE = 3'd4, LOAD_PAGE = 3'd5;
-// Requests: load the wait cnt_load_sel names, or count down; clear the idle
-// count, or count it up.
-reg             cnt_load, cnt_count, idle_clear, idle_count;
-reg [2:0]       cnt_load_sel;
+localparam [2:0] LOAD_NONE = 3'd0, LOAD_BIT = 3'd1, LOAD_TIMEOUT = 3'd2, LOAD_GAP = 3'd3,
+    LOAD_READ = 3'd4, LOAD_WRITE = 3'd5, LOAD_PAGE = 3'd6;
+// Requests: load the wait cnt_load names (LOAD_NONE: none), or count down;
+// clear the idle count, or count it up.
+reg [2:0]       cnt_load;
+reg             cnt_count, idle_clear, idle_count;
 wire            cnt_zero, idle_end, idle_quiet;
 
 half_duplex_timer #(
-    .CLOCKS_0(CLOCKS_PER_BIT), .CLOCKS_1(TIMEOUT_CLOCKS), .CLOCKS_2(REPEAT_GAP_CLOCKS),
-    .CLOCKS_3(READ_WAIT_CLOCKS), .CLOCKS_4(WRITE_WAIT_CLOCKS), .CLOCKS_5(PAGE_WAIT_CLOCKS)
+    .CLOCKS_1(CLOCKS_PER_BIT), .CLOCKS_2(TIMEOUT_CLOCKS), .CLOCKS_3(REPEAT_GAP_CLOCKS),
+    .CLOCKS_4(READ_WAIT_CLOCKS), .CLOCKS_5(WRITE_WAIT_CLOCKS), .CLOCKS_6(PAGE_WAIT_CLOCKS)
 ) cnt_inst (
-    .i_clk(i_clk), .i_rst(i_rst), .i_load(cnt_load), .i_load_sel(cnt_load_sel), .i_count(cnt_count), .o_zero(cnt_zero)
+    .i_clk(i_clk), .i_rst(i_rst), .i_load(cnt_load), .i_count(cnt_count), .o_zero(cnt_zero)
 );
 
 half_duplex_idle #(.CLOCKS_PER_BIT(CLOCKS_PER_BIT)) idle_inst (
@@ -549,8 +548,7 @@ always @* begin
     wdata_next = wdata_reg;
     field_index_next = field_index_reg;
     bit_index_next = bit_index_reg;
-    cnt_load = 1'b0;
-    cnt_load_sel = LOAD_BIT;
+    cnt_load = LOAD_NONE;
     cnt_count = 1'b0;
     idle_clear = 1'b0;
     idle_count = 1'b0;
@@ -622,8 +620,7 @@ always @* begin
     finish_timeout = 1'b0;
     flawed = 1'b0;
     retry = 1'b0;
-    settle = 1'b0;
-    settle_sel = LOAD_WRITE;
+    settle = LOAD_NONE;
 
     // The answer's layout and where the next field falls in it.
     known_next = known_id(id_reg);
@@ -748,8 +745,7 @@ always @* begin
                 state_next = SEND;
                 field_index_next = 2'd0;
                 bit_index_next = 4'd0;
-                cnt_load = 1'b1;
-                cnt_load_sel = LOAD_BIT;
+                cnt_load = LOAD_BIT;
                 req_crc_next = 8'd0;
                 tx_en_next = 1'b1;
                 tx_next = 1'b0;
@@ -761,8 +757,7 @@ always @* begin
                     tx_en_next = 1'b0;
                     tx_next = 1'b1;
                     state_next = WAIT;
-                    cnt_load = 1'b1;
-                    cnt_load_sel = LOAD_TIMEOUT;
+                    cnt_load = LOAD_TIMEOUT;
                     count_next = 5'd0;
                     frame_err_next = 1'b0;
                     crc_next = 16'd0;
@@ -784,8 +779,7 @@ always @* begin
                     field_index_next = nfield;
                     tx_next = tx_bit;
                     if (n_data && !n_is_crc) req_crc_next = req_crc_step;
-                    cnt_load = 1'b1;
-                    cnt_load_sel = LOAD_BIT;
+                    cnt_load = LOAD_BIT;
                 end
             end else begin
                 cnt_count = 1'b1;
@@ -845,8 +839,7 @@ always @* begin
                 state_next = SEND;
                 field_index_next = 2'd0;
                 bit_index_next = 4'd0;
-                cnt_load = 1'b1;
-                cnt_load_sel = LOAD_BIT;
+                cnt_load = LOAD_BIT;
                 req_crc_next = 8'd0;
                 tx_en_next = 1'b1;
                 tx_next = 1'b0;
@@ -934,10 +927,9 @@ always @* begin
                 end else if (id_reg == ID_F) begin
                     if ({1'b0, mem_address_reg} == PAGE_REGISTER) begin
                         page_next = wdata_reg[3:0];
-                        settle = 1'b1;
-                        settle_sel = LOAD_PAGE;
+                        settle = LOAD_PAGE;
                     end else if (page_reg != REGISTER_PAGE) begin
-                        settle = 1'b1;
+                        settle = LOAD_WRITE;
                     end
                 end
             end
@@ -948,21 +940,18 @@ always @* begin
         end
         if (retry) begin
             state_next = GAP;
-            cnt_load = 1'b1;
-            cnt_load_sel = (id_reg == ID_F) ? LOAD_WRITE : LOAD_READ;
+            cnt_load = (id_reg == ID_F) ? LOAD_WRITE : LOAD_READ;
         end else begin
             repeats_left_next = repeats_after;
             if (repeats_after != 4'd0) begin
                 state_next = GAP;
-                cnt_load = 1'b1;
-                cnt_load_sel = LOAD_GAP;
+                cnt_load = LOAD_GAP;
             end else if (flawed) begin
                 state_next = QUIET;
                 idle_clear = 1'b1;
-            end else if (settle) begin
+            end else if (settle != LOAD_NONE) begin
                 state_next = SETTLE;
-                cnt_load = 1'b1;
-                cnt_load_sel = settle_sel;
+                cnt_load = settle;
             end else begin
                 state_next = IDLE;
                 busy_next = 1'b0;

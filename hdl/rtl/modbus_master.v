@@ -152,13 +152,13 @@ half_duplex_tx #(.CLOCKS_PER_BIT(CLOCKS_PER_BIT), .PARITY(PARITY)) tx_inst (
 reg [2:0]       state_reg = IDLE, state_next;
 // The skeleton's down-counter (half_duplex_timer) times WAIT and RECV: the
 // state machine asks for a load or a step and reads cnt_zero.
-localparam [2:0] LOAD_TIMEOUT = 3'd0, LOAD_RECV = 3'd1;
-reg             cnt_load, cnt_dec;
-reg [2:0]       cnt_load_sel;
+localparam [2:0] LOAD_NONE = 3'd0, LOAD_TIMEOUT = 3'd1, LOAD_RECV = 3'd2;
+reg [2:0]       cnt_load;        // the wait to load (LOAD_NONE: none)
+reg             cnt_dec;
 wire            cnt_zero;
 
-half_duplex_timer #(.CLOCKS_0(TIMEOUT_CLOCKS), .CLOCKS_1(RECV_CLOCKS)) cnt_inst (
-    .i_clk(i_clk), .i_rst(i_rst), .i_load(cnt_load), .i_load_sel(cnt_load_sel), .i_count(cnt_dec), .o_zero(cnt_zero)
+half_duplex_timer #(.CLOCKS_1(TIMEOUT_CLOCKS), .CLOCKS_2(RECV_CLOCKS)) cnt_inst (
+    .i_clk(i_clk), .i_rst(i_rst), .i_load(cnt_load), .i_count(cnt_dec), .o_zero(cnt_zero)
 );
 
 reg [1:0]       op_reg = OP_READ, op_next;
@@ -305,8 +305,7 @@ end
 
 always @* begin
     state_next = state_reg;
-    cnt_load = 1'b0;
-    cnt_load_sel = LOAD_TIMEOUT;
+    cnt_load = LOAD_NONE;
     cnt_dec = 1'b0;
     tx_drive = 1'b0;
     tx_release = 1'b0;
@@ -368,8 +367,7 @@ always @* begin
                 if (req_index_reg == data_len + 4'd2) begin
                     tx_release = 1'b1;
                     state_next = WAIT;
-                    cnt_load = 1'b1;
-                    cnt_load_sel = LOAD_TIMEOUT;
+                    cnt_load = LOAD_TIMEOUT;
                 end else begin
                     tx_valid = 1'b1;
                     if (req_index_reg < data_len) begin
@@ -394,8 +392,7 @@ always @* begin
                 gap_seen_next = 1'b0;
                 gap_clear = 1'b1;
                 crc_next = 16'hFFFF;
-                cnt_load = 1'b1;
-                cnt_load_sel = LOAD_RECV;
+                cnt_load = LOAD_RECV;
             end else if (cnt_zero) begin
                 err_timeout_next = 1'b1;
                 state_next = IDLE;

@@ -153,15 +153,15 @@ half_duplex_tx #(.CLOCKS_PER_BIT(CLOCKS_PER_BIT), .PARITY(PARITY)) tx_inst (
 reg [2:0]         state_reg = IDLE, state_next;
 // The skeleton's down-counter (half_duplex_timer) times TRIGGER, CLR and
 // WAIT: the state machine asks for a load or a step and reads cnt_zero.
-localparam [2:0]  LOAD_TIMEOUT = 3'd0, LOAD_TRIGGER = 3'd1, LOAD_CLR = 3'd2;
-reg               cnt_load, cnt_dec;
-reg [2:0]         cnt_load_sel;
+localparam [2:0]  LOAD_NONE = 3'd0, LOAD_TIMEOUT = 3'd1, LOAD_TRIGGER = 3'd2, LOAD_CLR = 3'd3;
+reg [2:0]         cnt_load;      // the wait to load (LOAD_NONE: none)
+reg               cnt_dec;
 wire              cnt_zero;
 
 half_duplex_timer #(
-    .CLOCKS_0(TIMEOUT_CLOCKS), .CLOCKS_1(TRIGGER_LOW_CLOCKS), .CLOCKS_2(CLR_LOW_CLOCKS)
+    .CLOCKS_1(TIMEOUT_CLOCKS), .CLOCKS_2(TRIGGER_LOW_CLOCKS), .CLOCKS_3(CLR_LOW_CLOCKS)
 ) cnt_inst (
-    .i_clk(i_clk), .i_rst(i_rst), .i_load(cnt_load), .i_load_sel(cnt_load_sel), .i_count(cnt_dec), .o_zero(cnt_zero)
+    .i_clk(i_clk), .i_rst(i_rst), .i_load(cnt_load), .i_count(cnt_dec), .o_zero(cnt_zero)
 );
 
 reg [23:0]        cmd_reg = 24'd0, cmd_next;
@@ -254,8 +254,7 @@ wire       other_address = IS_BUS && (TAG_ADDRESS != 0) && (win_b0 == 8'hFF) && 
 
 always @* begin
     state_next = state_reg;
-    cnt_load = 1'b0;
-    cnt_load_sel = LOAD_TIMEOUT;
+    cnt_load = LOAD_NONE;
     cnt_dec = 1'b0;
     tx_drive = 1'b0;
     tx_release = 1'b0;
@@ -347,13 +346,11 @@ always @* begin
                 if (i_start && IS_TIMED) begin
                     // Timed modes: a read is "the next frame event".
                     state_next = WAIT;
-                    cnt_load = 1'b1;
-                    cnt_load_sel = LOAD_TIMEOUT;
+                    cnt_load = LOAD_TIMEOUT;
                     busy_next = 1'b1;
                 end else if (i_start && IS_HANDSHAKE) begin
                     state_next = TRIGGER;
-                    cnt_load = 1'b1;
-                    cnt_load_sel = LOAD_TRIGGER;
+                    cnt_load = LOAD_TRIGGER;
                     trigger_next = 1'b0;
                     busy_next = 1'b1;
                 end else if ((i_start && IS_BUS) || (i_zero && BUS_CLEAR)) begin
@@ -366,8 +363,7 @@ always @* begin
                     busy_next = 1'b1;
                 end else if (i_zero && HAS_CLR) begin
                     state_next = CLR;
-                    cnt_load = 1'b1;
-                    cnt_load_sel = LOAD_CLR;
+                    cnt_load = LOAD_CLR;
                     clr_next = 1'b0;
                     busy_next = 1'b1;
                 end
@@ -376,8 +372,7 @@ always @* begin
                 if (cnt_zero) begin
                     trigger_next = 1'b1;
                     state_next = WAIT;
-                    cnt_load = 1'b1;
-                    cnt_load_sel = LOAD_TIMEOUT;
+                    cnt_load = LOAD_TIMEOUT;
                 end else begin
                     cnt_dec = 1'b1;
                 end
@@ -398,8 +393,7 @@ always @* begin
                         tx_release = 1'b1;
                         if (expect_answer_reg) begin
                             state_next = WAIT;
-                            cnt_load = 1'b1;
-                            cnt_load_sel = LOAD_TIMEOUT;
+                            cnt_load = LOAD_TIMEOUT;
                         end else begin
                             state_next = IDLE;
                             busy_next = 1'b0;
@@ -412,6 +406,10 @@ always @* begin
                 end
             end
             WAIT: begin
+                // The count steps whatever ends WAIT: IDLE does not read
+                // it, and every state after IDLE loads it first. So the
+                // frame finder's event does not reach the counter.
+                cnt_dec = 1'b1;
                 if (event_now) begin
                     state_next = IDLE;
                     busy_next = 1'b0;
@@ -421,8 +419,6 @@ always @* begin
                     state_next = IDLE;
                     busy_next = 1'b0;
                     done_next = 1'b1;
-                end else begin
-                    cnt_dec = 1'b1;
                 end
             end
             // Codes 5 to 7 are never entered (no state assigns them); coverage counts reachable code only.

@@ -131,17 +131,17 @@ reg [5:0]        bits_left_reg = 6'd0, bits_left_next;
    their registered flags cnt_zero, idle_end and idle_quiet. A load wins
    over a step (RECV steps on every cycle; an answer's end may load the
    limit or the gap in the same cycle). */
-localparam [2:0] LOAD_BIT = 3'd0, LOAD_TIMEOUT = 3'd1, LOAD_LIMIT = 3'd2, LOAD_GAP = 3'd3;
-// Requests: load the wait cnt_load_sel names, or count down; clear the idle
-// count, or count it up.
-reg              cnt_load, cnt_dec, idle_clear, idle_count;
-reg [2:0]        cnt_load_sel;
+localparam [2:0] LOAD_NONE = 3'd0, LOAD_BIT = 3'd1, LOAD_TIMEOUT = 3'd2, LOAD_LIMIT = 3'd3, LOAD_GAP = 3'd4;
+// Requests: load the wait cnt_load names (LOAD_NONE: none), or count down;
+// clear the idle count, or count it up.
+reg [2:0]        cnt_load;
+reg              cnt_dec, idle_clear, idle_count;
 wire             cnt_zero, idle_end, idle_quiet;
 
 half_duplex_timer #(
-    .CLOCKS_0(CLOCKS_PER_BIT), .CLOCKS_1(TIMEOUT_CLOCKS), .CLOCKS_2(LIMIT_CLOCKS), .CLOCKS_3(REPEAT_GAP_CLOCKS)
+    .CLOCKS_1(CLOCKS_PER_BIT), .CLOCKS_2(TIMEOUT_CLOCKS), .CLOCKS_3(LIMIT_CLOCKS), .CLOCKS_4(REPEAT_GAP_CLOCKS)
 ) cnt_inst (
-    .i_clk(i_clk), .i_rst(i_rst), .i_load(cnt_load), .i_load_sel(cnt_load_sel), .i_count(cnt_dec), .o_zero(cnt_zero)
+    .i_clk(i_clk), .i_rst(i_rst), .i_load(cnt_load), .i_count(cnt_dec), .o_zero(cnt_zero)
 );
 
 half_duplex_idle #(.CLOCKS_PER_BIT(CLOCKS_PER_BIT)) idle_inst (
@@ -243,8 +243,7 @@ always @* begin
     req_nbits_next = req_nbits_reg;
     shift_next = shift_reg;
     bits_left_next = bits_left_reg;
-    cnt_load = 1'b0;
-    cnt_load_sel = LOAD_BIT;
+    cnt_load = LOAD_NONE;
     cnt_dec = 1'b0;
     idle_clear = 1'b0;
     idle_count = 1'b0;
@@ -300,8 +299,7 @@ always @* begin
                 state_next = SEND;
                 shift_next = req_bits_next >> 1;
                 bits_left_next = req_nbits_next - 1'b1;
-                cnt_load = 1'b1;
-                cnt_load_sel = LOAD_BIT;
+                cnt_load = LOAD_BIT;
                 tx_en_next = 1'b1;
                 tx_next = 1'b0;
             end
@@ -312,16 +310,14 @@ always @* begin
                     tx_en_next = 1'b0;
                     tx_next = 1'b1;
                     state_next = WAIT;
-                    cnt_load = 1'b1;
-                    cnt_load_sel = LOAD_TIMEOUT;
+                    cnt_load = LOAD_TIMEOUT;
                     count_next = 8'd0;
                     crc_next = 8'd0;
                 end else begin
                     tx_next = shift_reg[0];
                     shift_next = shift_reg >> 1;
                     bits_left_next = bits_left_reg - 1'b1;
-                    cnt_load = 1'b1;
-                    cnt_load_sel = LOAD_BIT;
+                    cnt_load = LOAD_BIT;
                 end
             end else begin
                 cnt_dec = 1'b1;
@@ -331,8 +327,7 @@ always @* begin
             if (rx_busy) begin
                 state_next = RECV;
                 idle_clear = 1'b1;
-                cnt_load = 1'b1;
-                cnt_load_sel = LOAD_LIMIT;
+                cnt_load = LOAD_LIMIT;
             end else if (cnt_zero) begin
                 finish = 1'b1;
                 finish_timeout = 1'b1;
@@ -364,8 +359,7 @@ always @* begin
                 state_next = SEND;
                 shift_next = req_bits_reg >> 1;
                 bits_left_next = req_nbits_reg - 1'b1;
-                cnt_load = 1'b1;
-                cnt_load_sel = LOAD_BIT;
+                cnt_load = LOAD_BIT;
                 tx_en_next = 1'b1;
                 tx_next = req_bits_reg[0];
             end else begin
@@ -430,16 +424,14 @@ always @* begin
         if (repeats_reg == 4'd1 && (finish_timeout || crc_bad || frame_bad || cf_bad)) begin
             state_next = QUIET;
             idle_clear = 1'b1;
-            cnt_load = 1'b1;
-            cnt_load_sel = LOAD_LIMIT;
+            cnt_load = LOAD_LIMIT;
         end else if (repeats_reg == 4'd1) begin
             state_next = IDLE;
             busy_next = 1'b0;
             done_next = 1'b1;
         end else begin
             state_next = GAP;
-            cnt_load = 1'b1;
-            cnt_load_sel = LOAD_GAP;
+            cnt_load = LOAD_GAP;
         end
     end
 end
