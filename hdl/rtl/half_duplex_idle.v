@@ -59,23 +59,26 @@ localparam [31:0] QUIET_LAST_32 = QUIET_CLOCKS - 1;
 localparam [W-1:0] END_LAST = END_LAST_32[W-1:0];
 localparam [W-1:0] QUIET_LAST = QUIET_LAST_32[W-1:0];
 
-reg [W-1:0] idle_reg = 0, idle_next;
+reg [W-1:0] idle_reg = 0;
 reg         answer_end_reg = 1'b0;
 reg         quiet_reg = 1'b0;
 
 assign o_answer_end = answer_end_reg;
 assign o_quiet = quiet_reg;
 
-always @* begin
-    idle_next = idle_reg;
-    if (i_clear) idle_next = 0;
-    else if (i_count) idle_next = idle_reg + 1'b1;
-end
-
+// One clocked block and no `always @*`: the count steps on most cycles,
+// and a simulator pays for every process it wakes. Each flag is its count
+// compared with a constant; a count compares its value before the step.
 always @(posedge i_clk) begin
-    idle_reg <= idle_next;
-    answer_end_reg <= idle_next == END_LAST;
-    quiet_reg <= idle_next == QUIET_LAST;
+    if (i_clear) begin
+        idle_reg <= 0;
+        answer_end_reg <= END_LAST == 0;
+        quiet_reg <= QUIET_LAST == 0;
+    end else if (i_count) begin
+        idle_reg <= idle_reg + 1'b1;
+        answer_end_reg <= idle_reg == END_LAST - 1'b1;
+        quiet_reg <= idle_reg == QUIET_LAST - 1'b1;
+    end
 
     if (i_rst) begin
         idle_reg <= 0;

@@ -58,26 +58,21 @@ initial begin
         $error("half_duplex_timer: every CLOCKS_n must be at least 1");
 end
 
-reg [W-1:0] cnt_reg = 0, cnt_next;
-reg         zero_reg = 1'b1, zero_next;
+reg [W-1:0] cnt_reg = 0;
+reg         zero_reg = 1'b1;
 
 assign o_zero = zero_reg;
 
-always @* begin
-    cnt_next = cnt_reg;
-    zero_next = zero_reg;
-    if (i_load != 3'd0) begin
-        cnt_next = LASTS[32 * i_load +: W];
-        zero_next = LASTS[32 * i_load +: 32] == 32'd0;
-    end else if (i_count) begin
-        cnt_next = cnt_reg - 1'b1;
-        zero_next = cnt_reg == 1;
-    end
-end
-
+// One clocked block and no `always @*`: the counter steps on most cycles,
+// and a simulator pays for every process it wakes.
 always @(posedge i_clk) begin
-    cnt_reg <= cnt_next;
-    zero_reg <= zero_next;
+    if (i_load != 3'd0) begin
+        cnt_reg <= LASTS[32 * i_load +: W];
+        zero_reg <= LASTS[32 * i_load +: 32] == 32'd0;
+    end else if (i_count) begin
+        cnt_reg <= cnt_reg - 1'b1;
+        zero_reg <= cnt_reg == 1;
+    end
 
     if (i_rst) begin
         cnt_reg <= 0;

@@ -49,11 +49,11 @@ module half_duplex_tx #(
     output wire       o_tx_en
 );
 
-reg       tx_en_reg = 1'b0, tx_en_next;
+reg       tx_en_reg = 1'b0;
 reg       valid_reg = 1'b0;
 reg [7:0] data_reg = 8'd0;
 // An offered character uart_tx has not taken yet (its o_busy has not risen).
-reg       pending_reg = 1'b0, pending_next;
+reg       pending_reg = 1'b0;
 wire      tx_busy;
 
 uart_tx #(.CLOCKS_PER_BIT(CLOCKS_PER_BIT), .PARITY(PARITY)) tx_inst (
@@ -64,20 +64,18 @@ uart_tx #(.CLOCKS_PER_BIT(CLOCKS_PER_BIT), .PARITY(PARITY)) tx_inst (
 assign o_ready = !pending_reg && !tx_busy;
 assign o_tx_en = tx_en_reg;
 
-always @* begin
-    tx_en_next = tx_en_reg;
-    if (i_drive) tx_en_next = 1'b1;
-    else if (i_release) tx_en_next = 1'b0;
-    pending_next = pending_reg;
-    if (i_valid) pending_next = 1'b1;
-    else if (tx_busy) pending_next = 1'b0;
-end
-
+// One clocked block and no `always @*`: a simulator pays for every process
+// it wakes.
 always @(posedge i_clk) begin
-    tx_en_reg <= tx_en_next;
+    if (i_drive) tx_en_reg <= 1'b1;
+    else if (i_release) tx_en_reg <= 1'b0;
     valid_reg <= i_valid;
-    if (i_valid) data_reg <= i_data;
-    pending_reg <= pending_next;
+    if (i_valid) begin
+        data_reg <= i_data;
+        pending_reg <= 1'b1;
+    end else if (tx_busy) begin
+        pending_reg <= 1'b0;
+    end
 
     if (i_rst) begin
         tx_en_reg <= 1'b0;
