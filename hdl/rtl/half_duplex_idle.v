@@ -25,9 +25,10 @@
 //   idle_reg      x  | 0 | 1 | 2 | 3 | 4
 //   o_answer_end  ___________________/‾‾‾\_   (the state machine ends the answer here)
 //
-// The flags are registered with the count (compared on idle_next), so that
-// the end of an answer reaches the state machine and the result enables from
-// a flop, not through the adder's carry chain. A clear wins over a step.
+// The flags are registered with the count (a step sets each to the count
+// before it compared with its constant less one), so that the end of an
+// answer reaches the state machine and the result enables from a flop, not
+// through the adder's carry chain. A clear wins over a step.
 
 `resetall
 `timescale 1ns / 1ps
