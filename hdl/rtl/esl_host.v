@@ -105,27 +105,9 @@ module esl_host #(
     input  wire        i_rx
 );
 
-localparam integer CNT_W = 24;
-localparam integer QUIET_CLOCKS = 20 * CLOCKS_PER_BIT; // model::esl::QUIET_BITS
-localparam [31:0] BIT_LAST_32 = CLOCKS_PER_BIT - 1;
-localparam [31:0] TIMEOUT_LAST_32 = TIMEOUT_CLOCKS - 1;
-localparam [31:0] GAP_LAST_32 = REPEAT_GAP_CLOCKS - 1;
-localparam [31:0] READ_LAST_32 = READ_WAIT_CLOCKS - 1;
-localparam [31:0] WRITE_LAST_32 = WRITE_WAIT_CLOCKS - 1;
-localparam [31:0] PAGE_LAST_32 = PAGE_WAIT_CLOCKS - 1;
-localparam [31:0] CPB_32 = CLOCKS_PER_BIT;
-localparam [31:0] QUIET_32 = QUIET_CLOCKS;
 localparam [31:0] TRIES_32 = BUSY_TRIES;
 localparam [31:0] TOL_32 = RS_TOLERANCE;
 localparam [31:0] BCAST_32 = BROADCAST_ADDRESS;
-localparam [CNT_W-1:0] BIT_LAST = BIT_LAST_32[CNT_W-1:0];
-localparam [CNT_W-1:0] TIMEOUT_LAST = TIMEOUT_LAST_32[CNT_W-1:0];
-localparam [CNT_W-1:0] GAP_LAST = GAP_LAST_32[CNT_W-1:0];
-localparam [CNT_W-1:0] READ_LAST = READ_LAST_32[CNT_W-1:0];
-localparam [CNT_W-1:0] WRITE_LAST = WRITE_LAST_32[CNT_W-1:0];
-localparam [CNT_W-1:0] PAGE_LAST = PAGE_LAST_32[CNT_W-1:0];
-localparam [31:0] END_LAST_32 = CPB_32 - 1;
-localparam [31:0] QUIET_LAST_32 = QUIET_32 - 1;
 localparam [3:0] TRIES = TRIES_32[3:0];
 localparam [15:0] TOL = TOL_32[15:0];
 localparam [2:0] BCAST = BCAST_32[2:0];
@@ -259,31 +241,20 @@ function [4:0] field_kind(input [3:0] code, input ch2, input [4:0] idx);
     end
 endfunction
 
-/* The shared frame receiver; its outputs are registers, read here as they
-   stand before each edge. Deaf while this host drives the line. */
+/* The skeleton's receiver (half_duplex_rx): its outputs are registers,
+   read here as they stand before each edge. */
 wire [7:0] rx_data;
 wire       rx_valid;
 wire       rx_frame_err;
 wire       rx_busy;
-// A glitch on the line is not an answer; the frame set simply goes on or ends.
 /* verilator lint_off UNUSEDSIGNAL */
-wire       rx_start_err;
 wire       rx_parity_err; // always 0: 10-bit frames (PARITY = 0)
 /* verilator lint_on UNUSEDSIGNAL */
 reg        tx_en_reg = 1'b0, tx_en_next;
 
-uart_rx #(
-    .CLOCKS_PER_BIT(CLOCKS_PER_BIT)
-) rx_inst (
-    .i_clk(i_clk),
-    .i_rst(i_rst),
-    .i_rx(i_rx | tx_en_reg),
-    .o_data(rx_data),
-    .o_valid(rx_valid),
-    .o_frame_err(rx_frame_err),
-    .o_start_err(rx_start_err),
-    .o_busy(rx_busy),
-    .o_parity_err(rx_parity_err)
+half_duplex_rx #(.CLOCKS_PER_BIT(CLOCKS_PER_BIT)) rx_inst (
+    .i_clk(i_clk), .i_rst(i_rst), .i_tx_en(tx_en_reg), .i_rx(i_rx),
+    .o_data(rx_data), .o_valid(rx_valid), .o_frame_err(rx_frame_err), .o_parity_err(rx_parity_err), .o_busy(rx_busy)
 );
 
 reg [2:0]       state_reg = IDLE, state_next;
@@ -294,21 +265,6 @@ reg [6:0]       mem_address_reg = 7'd0, mem_address_next;
 reg [7:0]       wdata_reg = 8'd0, wdata_next;
 reg [1:0]       field_index_reg = 2'd0, field_index_next;
 reg [3:0]       bit_index_reg = 4'd0, bit_index_next;
-// cnt_next, cnt_zero_next and idle_next come from the counters' own blocks
-// just before the state machine's (which only requests a load or a step).
-reg [CNT_W-1:0] cnt_reg = 0, cnt_next;
-// cnt_reg is zero: kept beside the counter (every load is at least one), so
-// the state machine tests a flop instead of a 24-input AND.
-reg             cnt_zero_reg = 1'b1, cnt_zero_next;
-localparam integer IDLE_W = $clog2(QUIET_CLOCKS + 1);
-reg [IDLE_W-1:0] idle_reg = 0, idle_next;
-// The end tests compare the count before its increment with a constant,
-// and that comparison is registered with the count (idle_end_reg is
-// idle_reg == END_LAST, compared on idle_next), so that the end of an
-// answer reaches finish and the result enables from a flop.
-localparam [IDLE_W-1:0] END_LAST = END_LAST_32[IDLE_W-1:0];
-localparam [IDLE_W-1:0] QUIET_LAST = QUIET_LAST_32[IDLE_W-1:0];
-reg             idle_end_reg = 1'b0, idle_quiet_reg = 1'b0;
 reg [3:0]       repeats_left_reg = 4'd0, repeats_left_next;
 reg [3:0]       tries_left_reg = 4'd0, tries_left_next;
 reg [4:0]       count_reg = 5'd0, count_next;
@@ -557,46 +513,31 @@ reg             finish_timeout;
 // the operation then holds for the write or page time.
 reg             flawed;
 reg             retry;
-reg [CNT_W-1:0] settle;
+reg [2:0]       settle;        // the wait the operation then holds for (LOAD_NONE: none)
 
-/* The two counters that change on most cycles (cnt_reg through every wait
-   and bit, idle_reg while the receiver is idle) are stepped here, outside
-   the state machine's block: Icarus re-runs an always @* whenever anything
-   it reads changes, and that block only sets a request and reads the
-   registered flags cnt_zero_reg, idle_end_reg and idle_quiet_reg. A load
-   names its value by a code (the value stays here), not a new 24-bit
-   signal whose top bits would never toggle. */
-localparam [2:0] LOAD_BIT = 3'd0, LOAD_TIMEOUT = 3'd1, LOAD_GAP = 3'd2, LOAD_RETRY = 3'd3,
-    LOAD_SETTLE = 3'd4;
-reg             cnt_load;      // load the value cnt_load_sel names (wins over a count)
-reg [2:0]       cnt_load_sel;
-reg             cnt_count;     // count down one
-reg             idle_clear;    // back to 0 (wins over a count)
-reg             idle_count;    // count up one
+/* The skeleton's two counters (half_duplex_timer: every bit and wait;
+   half_duplex_idle: the receiver's idle time in RECV and QUIET). The state
+   machine asks for a load or a step and reads their registered flags
+   cnt_zero, idle_end and idle_quiet. A load names its wait by a code. */
+localparam [2:0] LOAD_NONE = 3'd0, LOAD_BIT = 3'd1, LOAD_TIMEOUT = 3'd2, LOAD_GAP = 3'd3,
+    LOAD_READ = 3'd4, LOAD_WRITE = 3'd5, LOAD_PAGE = 3'd6;
+// Requests: load the wait cnt_load names (LOAD_NONE: none), or count down;
+// clear the idle count, or count it up.
+reg [2:0]       cnt_load;
+reg             cnt_count, idle_clear, idle_count;
+wire            cnt_zero, idle_end, idle_quiet;
 
-always @* begin
-    cnt_next = cnt_reg;
-    cnt_zero_next = cnt_zero_reg;
-    if (cnt_load) begin
-        case (cnt_load_sel)
-            LOAD_BIT: cnt_next = BIT_LAST;
-            LOAD_TIMEOUT: cnt_next = TIMEOUT_LAST;
-            LOAD_GAP: cnt_next = GAP_LAST;
-            LOAD_RETRY: cnt_next = (id_reg == ID_F) ? WRITE_LAST : READ_LAST;
-            default: cnt_next = settle - 1'b1; // LOAD_SETTLE
-        endcase
-        cnt_zero_next = 1'b0;
-    end else if (cnt_count) begin
-        cnt_next = cnt_reg - 1'b1;
-        cnt_zero_next = cnt_reg == 1;
-    end
-end
+half_duplex_timer #(
+    .CLOCKS_1(CLOCKS_PER_BIT), .CLOCKS_2(TIMEOUT_CLOCKS), .CLOCKS_3(REPEAT_GAP_CLOCKS),
+    .CLOCKS_4(READ_WAIT_CLOCKS), .CLOCKS_5(WRITE_WAIT_CLOCKS), .CLOCKS_6(PAGE_WAIT_CLOCKS)
+) cnt_inst (
+    .i_clk(i_clk), .i_rst(i_rst), .i_load(cnt_load), .i_count(cnt_count), .o_zero(cnt_zero)
+);
 
-always @* begin
-    idle_next = idle_reg;
-    if (idle_clear) idle_next = 0;
-    else if (idle_count) idle_next = idle_reg + 1'b1;
-end
+half_duplex_idle #(.CLOCKS_PER_BIT(CLOCKS_PER_BIT)) idle_inst (
+    .i_clk(i_clk), .i_rst(i_rst), .i_clear(idle_clear), .i_count(idle_count),
+    .o_answer_end(idle_end), .o_quiet(idle_quiet)
+);
 
 always @* begin
     state_next = state_reg;
@@ -607,8 +548,7 @@ always @* begin
     wdata_next = wdata_reg;
     field_index_next = field_index_reg;
     bit_index_next = bit_index_reg;
-    cnt_load = 1'b0;
-    cnt_load_sel = LOAD_BIT;
+    cnt_load = LOAD_NONE;
     cnt_count = 1'b0;
     idle_clear = 1'b0;
     idle_count = 1'b0;
@@ -680,7 +620,7 @@ always @* begin
     finish_timeout = 1'b0;
     flawed = 1'b0;
     retry = 1'b0;
-    settle = 0;
+    settle = LOAD_NONE;
 
     // The answer's layout and where the next field falls in it.
     known_next = known_id(id_reg);
@@ -729,7 +669,7 @@ always @* begin
     end
 
     // The shadows (the enables are one-hot: at most one write per field).
-    answer_clear_next = state_reg == SEND && cnt_zero_reg && send_last;
+    answer_clear_next = state_reg == SEND && cnt_zero && send_last;
     if (answer_clear_reg) begin
         s_cf_next = 8'd0; s_sf_next = 8'd0; s_sf2_next = 8'd0; s_alm1_next = 8'd0; s_alm2_next = 8'd0;
         s_abs_next = 24'd0; s_abm_next = 16'd0; s_rs_next = 16'd0; s_sc1_next = 8'd0; s_sc2_next = 7'd0;
@@ -805,21 +745,19 @@ always @* begin
                 state_next = SEND;
                 field_index_next = 2'd0;
                 bit_index_next = 4'd0;
-                cnt_load = 1'b1;
-                cnt_load_sel = LOAD_BIT;
+                cnt_load = LOAD_BIT;
                 req_crc_next = 8'd0;
                 tx_en_next = 1'b1;
                 tx_next = 1'b0;
             end
         end
         SEND: begin
-            if (cnt_zero_reg) begin
+            if (cnt_zero) begin
                 if (send_last) begin
                     tx_en_next = 1'b0;
                     tx_next = 1'b1;
                     state_next = WAIT;
-                    cnt_load = 1'b1;
-                    cnt_load_sel = LOAD_TIMEOUT;
+                    cnt_load = LOAD_TIMEOUT;
                     count_next = 5'd0;
                     frame_err_next = 1'b0;
                     crc_next = 16'd0;
@@ -841,8 +779,7 @@ always @* begin
                     field_index_next = nfield;
                     tx_next = tx_bit;
                     if (n_data && !n_is_crc) req_crc_next = req_crc_step;
-                    cnt_load = 1'b1;
-                    cnt_load_sel = LOAD_BIT;
+                    cnt_load = LOAD_BIT;
                 end
             end else begin
                 cnt_count = 1'b1;
@@ -852,7 +789,7 @@ always @* begin
             if (rx_busy) begin
                 state_next = RECV;
                 idle_clear = 1'b1;
-            end else if (cnt_zero_reg) begin
+            end else if (cnt_zero) begin
                 finish = 1'b1;
                 finish_timeout = 1'b1;
             end else begin
@@ -892,18 +829,17 @@ always @* begin
                 end
             end else if (!rx_busy) begin
                 idle_count = 1'b1;
-                if (idle_end_reg) finish = 1'b1;
+                if (idle_end) finish = 1'b1;
             end else begin
                 idle_clear = 1'b1;
             end
         end
         GAP: begin
-            if (cnt_zero_reg) begin
+            if (cnt_zero) begin
                 state_next = SEND;
                 field_index_next = 2'd0;
                 bit_index_next = 4'd0;
-                cnt_load = 1'b1;
-                cnt_load_sel = LOAD_BIT;
+                cnt_load = LOAD_BIT;
                 req_crc_next = 8'd0;
                 tx_en_next = 1'b1;
                 tx_next = 1'b0;
@@ -912,7 +848,7 @@ always @* begin
             end
         end
         SETTLE: begin
-            if (cnt_zero_reg) begin
+            if (cnt_zero) begin
                 state_next = IDLE;
                 busy_next = 1'b0;
                 done_next = 1'b1;
@@ -925,7 +861,7 @@ always @* begin
                 idle_clear = 1'b1;
             end else begin
                 idle_count = 1'b1;
-                if (idle_quiet_reg) begin
+                if (idle_quiet) begin
                     state_next = IDLE;
                     busy_next = 1'b0;
                     done_next = 1'b1;
@@ -991,11 +927,9 @@ always @* begin
                 end else if (id_reg == ID_F) begin
                     if ({1'b0, mem_address_reg} == PAGE_REGISTER) begin
                         page_next = wdata_reg[3:0];
-                        settle = PAGE_LAST + 1'b1;
-                    end else if (page_reg == REGISTER_PAGE) begin
-                        settle = 0;
-                    end else begin
-                        settle = WRITE_LAST + 1'b1;
+                        settle = LOAD_PAGE;
+                    end else if (page_reg != REGISTER_PAGE) begin
+                        settle = LOAD_WRITE;
                     end
                 end
             end
@@ -1006,21 +940,18 @@ always @* begin
         end
         if (retry) begin
             state_next = GAP;
-            cnt_load = 1'b1;
-            cnt_load_sel = LOAD_RETRY;
+            cnt_load = (id_reg == ID_F) ? LOAD_WRITE : LOAD_READ;
         end else begin
             repeats_left_next = repeats_after;
             if (repeats_after != 4'd0) begin
                 state_next = GAP;
-                cnt_load = 1'b1;
-                cnt_load_sel = LOAD_GAP;
+                cnt_load = LOAD_GAP;
             end else if (flawed) begin
                 state_next = QUIET;
                 idle_clear = 1'b1;
-            end else if (settle != 0) begin
+            end else if (settle != LOAD_NONE) begin
                 state_next = SETTLE;
-                cnt_load = 1'b1;
-                cnt_load_sel = LOAD_SETTLE;
+                cnt_load = settle;
             end else begin
                 state_next = IDLE;
                 busy_next = 1'b0;
@@ -1040,7 +971,6 @@ always @(posedge i_clk) begin
     wdata_reg <= wdata_next;
     field_index_reg <= field_index_next;
     bit_index_reg <= bit_index_next;
-    cnt_zero_reg <= cnt_zero_next;
     repeats_left_reg <= repeats_left_next;
     tries_left_reg <= tries_left_next;
     count_reg <= count_next;
@@ -1141,10 +1071,6 @@ always @(posedge i_clk) begin
     err_seq_reg <= err_seq_next;
     err_rs_reg <= err_rs_next;
     err_busy_reg <= err_busy_next;
-    cnt_reg <= cnt_next;
-    idle_reg <= idle_next;
-    idle_end_reg <= idle_next == END_LAST;
-    idle_quiet_reg <= idle_next == QUIET_LAST;
     if (seq_write) begin
         seq_sc1_reg[address_reg] <= s_sc1_reg;
         seq_sc2_reg[address_reg] <= s_sc2_reg;

@@ -93,12 +93,6 @@ localparam integer MAX_CHARS = 9;   // model::modbus::MAX_CHARS (the 4'd9 compar
 localparam integer RECV_LIMIT_CHARS = 2 * MAX_CHARS;
 localparam integer CHAR_CLOCKS = ((PARITY == 0) ? 10 : 11) * CLOCKS_PER_BIT;
 localparam integer RECV_CLOCKS = RECV_LIMIT_CHARS * CHAR_CLOCKS + T35_CLOCKS;
-localparam integer CNT_MAX = (RECV_CLOCKS > TIMEOUT_CLOCKS) ? RECV_CLOCKS : TIMEOUT_CLOCKS;
-localparam integer CNT_W = $clog2(CNT_MAX + 1);
-localparam [31:0] TIMEOUT_LAST_32 = TIMEOUT_CLOCKS - 1;
-localparam [31:0] RECV_LAST_32 = RECV_CLOCKS - 1;
-localparam [CNT_W-1:0] TIMEOUT_LAST = TIMEOUT_LAST_32[CNT_W-1:0];
-localparam [CNT_W-1:0] RECV_LAST = RECV_LAST_32[CNT_W-1:0];
 localparam integer GAP_W = $clog2(T35_CLOCKS + 1);
 localparam [31:0] T15_32 = T15_CLOCKS;
 localparam [GAP_W-1:0] T15 = T15_32[GAP_W-1:0];
@@ -135,59 +129,38 @@ initial begin
     if (TIMEOUT_CLOCKS < 1) $error("modbus_master: TIMEOUT_CLOCKS must be positive");
 end
 
-/* Receiver and sender */
+/* The skeleton's receiver and sender (half_duplex_rx, half_duplex_tx):
+   the request goes out as characters, and the receiver is deaf while the
+   driver is on. */
 wire [7:0] rx_data;
 wire       rx_valid, rx_frame_err, rx_parity_err, rx_busy;
-// A glitch on the line is not a character.
-/* verilator lint_off UNUSEDSIGNAL */
-wire       rx_start_err;
-/* verilator lint_on UNUSEDSIGNAL */
-reg        tx_en_reg = 1'b0, tx_en_next;
-reg        tx_valid_reg = 1'b0, tx_valid_next;
-reg [7:0]  tx_data_reg = 8'd0, tx_data_next;
-wire       tx_busy;
+wire       tx_en;
+wire       tx_ready;
+reg        tx_drive, tx_release, tx_valid;
+reg [7:0]  tx_data;
 
-uart_rx #(
-    .CLOCKS_PER_BIT(CLOCKS_PER_BIT),
-    .PARITY(PARITY)
-) rx_inst (
-    .i_clk(i_clk),
-    .i_rst(i_rst),
-    .i_rx(i_rx | tx_en_reg),
-    .o_data(rx_data),
-    .o_valid(rx_valid),
-    .o_frame_err(rx_frame_err),
-    .o_start_err(rx_start_err),
-    .o_busy(rx_busy),
-    .o_parity_err(rx_parity_err)
+half_duplex_rx #(.CLOCKS_PER_BIT(CLOCKS_PER_BIT), .PARITY(PARITY)) rx_inst (
+    .i_clk(i_clk), .i_rst(i_rst), .i_tx_en(tx_en), .i_rx(i_rx),
+    .o_data(rx_data), .o_valid(rx_valid), .o_frame_err(rx_frame_err), .o_parity_err(rx_parity_err), .o_busy(rx_busy)
 );
 
-uart_tx #(
-    .CLOCKS_PER_BIT(CLOCKS_PER_BIT),
-    .PARITY(PARITY)
-) tx_inst (
-    .i_clk(i_clk),
-    .i_rst(i_rst),
-    .i_valid(tx_valid_reg),
-    .i_data(tx_data_reg),
-    .o_tx(o_tx),
-    .o_busy(tx_busy)
+half_duplex_tx #(.CLOCKS_PER_BIT(CLOCKS_PER_BIT), .PARITY(PARITY)) tx_inst (
+    .i_clk(i_clk), .i_rst(i_rst), .i_drive(tx_drive), .i_release(tx_release),
+    .i_valid(tx_valid), .i_data(tx_data), .o_ready(tx_ready), .o_tx(o_tx), .o_tx_en(tx_en)
 );
 
 reg [2:0]       state_reg = IDLE, state_next;
-reg [CNT_W-1:0] cnt_reg = 0, cnt_next;
-// The timeout counter steps on every cycle of WAIT and RECV. Icarus re-runs an always @*
-// whenever anything it reads changes, so the state machine's block does not read it (it
-// would re-run every cycle): it asks for a load or a step and reads cnt_zero.
-reg             cnt_load_timeout, cnt_load_recv, cnt_dec;
-wire            cnt_zero = cnt_reg == 0;
-always @* begin
-    if (cnt_load_timeout) cnt_next = TIMEOUT_LAST;
-    else if (cnt_load_recv) cnt_next = RECV_LAST;
-    else if (cnt_dec) cnt_next = cnt_reg - 1'b1;
-    else cnt_next = cnt_reg;
-end
-reg             tx_pending_reg = 1'b0, tx_pending_next;
+// The skeleton's down-counter (half_duplex_timer) times WAIT and RECV: the
+// state machine asks for a load or a step and reads cnt_zero.
+localparam [2:0] LOAD_NONE = 3'd0, LOAD_TIMEOUT = 3'd1, LOAD_RECV = 3'd2;
+reg [2:0]       cnt_load;        // the wait to load (LOAD_NONE: none)
+reg             cnt_dec;
+wire            cnt_zero;
+
+half_duplex_timer #(.CLOCKS_1(TIMEOUT_CLOCKS), .CLOCKS_2(RECV_CLOCKS)) cnt_inst (
+    .i_clk(i_clk), .i_rst(i_rst), .i_load(cnt_load), .i_count(cnt_dec), .o_zero(cnt_zero)
+);
+
 reg [1:0]       op_reg = OP_READ, op_next;
 reg [7:0]       address_reg = 8'd0, address_next;
 reg [7:0]       new_address_reg = 8'd0, new_address_next;
@@ -232,7 +205,7 @@ reg        err_function_reg = 1'b0, err_function_next;
 reg        err_count_reg = 1'b0, err_count_next;
 reg        err_timeout_reg = 1'b0, err_timeout_next;
 
-assign o_tx_en = tx_en_reg;
+assign o_tx_en = tx_en;
 assign o_busy = busy_reg;
 assign o_done = done_reg;
 assign o_valid = valid_reg;
@@ -314,7 +287,7 @@ wire [3:0] expected_len = 4'd5 + two_count;
 // re-runs an always @* on any change of what it reads), which reads only line_quiet.
 wire       line_quiet = line_idle_reg >= LINE_QUIET;
 always @* begin
-    if (tx_en_reg) begin
+    if (tx_en) begin
         line_idle_next = STOP_REST_W;
     end else if (char_end) begin
         line_idle_next = 0;
@@ -332,13 +305,12 @@ end
 
 always @* begin
     state_next = state_reg;
-    cnt_load_timeout = 1'b0;
-    cnt_load_recv = 1'b0;
+    cnt_load = LOAD_NONE;
     cnt_dec = 1'b0;
-    tx_en_next = tx_en_reg;
-    tx_valid_next = 1'b0;
-    tx_data_next = tx_data_reg;
-    tx_pending_next = tx_pending_reg;
+    tx_drive = 1'b0;
+    tx_release = 1'b0;
+    tx_valid = 1'b0;
+    tx_data = 8'd0;
     op_next = op_reg;
     address_next = address_reg;
     new_address_next = new_address_reg;
@@ -387,32 +359,27 @@ always @* begin
         SILENCE: begin
             if (line_quiet) begin
                 state_next = SEND;
-                tx_en_next = 1'b1;
+                tx_drive = 1'b1;
             end
         end
         SEND: begin
-            if (tx_pending_reg) begin
-                if (tx_busy) begin
-                    tx_pending_next = 1'b0;
-                end
-            end else if (!tx_busy) begin
+            if (tx_ready) begin
                 if (req_index_reg == data_len + 4'd2) begin
-                    tx_en_next = 1'b0;
+                    tx_release = 1'b1;
                     state_next = WAIT;
-                    cnt_load_timeout = 1'b1;
+                    cnt_load = LOAD_TIMEOUT;
                 end else begin
-                    tx_valid_next = 1'b1;
+                    tx_valid = 1'b1;
                     if (req_index_reg < data_len) begin
-                        tx_data_next = req_byte;
+                        tx_data = req_byte;
                         crc_byte = req_byte;
                         crc_next = crc_chain[8];
                     end else if (req_index_reg == data_len) begin
-                        tx_data_next = crc_reflected[7:0];
+                        tx_data = crc_reflected[7:0];
                     end else begin
-                        tx_data_next = crc_reflected[15:8];
+                        tx_data = crc_reflected[15:8];
                     end
                     req_index_next = req_index_reg + 1'b1;
-                    tx_pending_next = 1'b1;
                 end
             end
         end
@@ -425,7 +392,7 @@ always @* begin
                 gap_seen_next = 1'b0;
                 gap_clear = 1'b1;
                 crc_next = 16'hFFFF;
-                cnt_load_recv = 1'b1;
+                cnt_load = LOAD_RECV;
             end else if (cnt_zero) begin
                 err_timeout_next = 1'b1;
                 state_next = IDLE;
@@ -515,10 +482,6 @@ end
 // The register bank: every register takes its next value at each clock edge.
 always @(posedge i_clk) begin
     state_reg <= state_next;
-    tx_en_reg <= tx_en_next;
-    tx_valid_reg <= tx_valid_next;
-    tx_data_reg <= tx_data_next;
-    tx_pending_reg <= tx_pending_next;
     op_reg <= op_next;
     address_reg <= address_next;
     new_address_reg <= new_address_next;
@@ -546,17 +509,11 @@ always @(posedge i_clk) begin
     err_function_reg <= err_function_next;
     err_count_reg <= err_count_next;
     err_timeout_reg <= err_timeout_next;
-    cnt_reg <= cnt_next;
     gap_reg <= gap_next;
     line_idle_reg <= line_idle_next;
 
     if (i_rst) begin
         state_reg <= IDLE;
-        cnt_reg <= 0;
-        tx_en_reg <= 1'b0;
-        tx_valid_reg <= 1'b0;
-        tx_data_reg <= 8'd0;
-        tx_pending_reg <= 1'b0;
         op_reg <= OP_READ;
         address_reg <= 8'd0;
         new_address_reg <= 8'd0;

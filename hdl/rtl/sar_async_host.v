@@ -102,17 +102,6 @@ localparam IS_BUS = (MODE == 4 || MODE == 5);
 localparam HAS_CLR = (MODE == 1 || MODE == 3);
 localparam BUS_CLEAR = (MODE == 5);
 
-// One down-counter serves TRIGGER, CLR and WAIT.
-localparam integer CNT_MAX = (TIMEOUT_CLOCKS > TRIGGER_LOW_CLOCKS)
-    ? ((TIMEOUT_CLOCKS > CLR_LOW_CLOCKS) ? TIMEOUT_CLOCKS : CLR_LOW_CLOCKS)
-    : ((TRIGGER_LOW_CLOCKS > CLR_LOW_CLOCKS) ? TRIGGER_LOW_CLOCKS : CLR_LOW_CLOCKS);
-localparam integer CNT_W = $clog2(CNT_MAX + 1);
-localparam [31:0] TIMEOUT_LAST_32 = TIMEOUT_CLOCKS - 1;
-localparam [31:0] TRIGGER_LAST_32 = TRIGGER_LOW_CLOCKS - 1;
-localparam [31:0] CLR_LAST_32 = CLR_LOW_CLOCKS - 1;
-localparam [CNT_W-1:0] TIMEOUT_LAST = TIMEOUT_LAST_32[CNT_W-1:0];
-localparam [CNT_W-1:0] TRIGGER_LAST = TRIGGER_LAST_32[CNT_W-1:0];
-localparam [CNT_W-1:0] CLR_LAST = CLR_LAST_32[CNT_W-1:0];
 localparam integer IDLE_W = $clog2(GAP_CLOCKS + 1);
 localparam [31:0] GAP_32 = GAP_CLOCKS;
 localparam [IDLE_W-1:0] GAP = GAP_32[IDLE_W-1:0];
@@ -141,68 +130,45 @@ initial begin
     if (TIMEOUT_CLOCKS < 1 || TRIGGER_LOW_CLOCKS < 1 || CLR_LOW_CLOCKS < 1) $error("sar_async_host: zero timeout or pulse width");
 end
 
-/* Receiver and sender */
+/* The skeleton's receiver and sender (half_duplex_rx, half_duplex_tx):
+   the bus commands go out as characters, and the receiver is deaf while
+   the driver is on. */
 wire [7:0] rx_data;
 wire       rx_valid, rx_frame_err, rx_parity_err, rx_busy;
-// A glitch on the line is not a character; the frame finder does not see it.
-/* verilator lint_off UNUSEDSIGNAL */
-wire       rx_start_err;
-/* verilator lint_on UNUSEDSIGNAL */
-reg        tx_en_reg = 1'b0, tx_en_next;
-reg        tx_valid_reg = 1'b0, tx_valid_next;
-reg [7:0]  tx_data_reg = 8'd0, tx_data_next;
-wire       tx_busy;
+wire       tx_en;
+wire       tx_ready;
+reg        tx_drive, tx_release, tx_valid;
+reg [7:0]  tx_data;
 
-uart_rx #(
-    .CLOCKS_PER_BIT(CLOCKS_PER_BIT),
-    .PARITY(PARITY)
-) rx_inst (
-    .i_clk(i_clk),
-    .i_rst(i_rst),
-    .i_rx(i_rx | tx_en_reg),
-    .o_data(rx_data),
-    .o_valid(rx_valid),
-    .o_frame_err(rx_frame_err),
-    .o_start_err(rx_start_err),
-    .o_busy(rx_busy),
-    .o_parity_err(rx_parity_err)
+half_duplex_rx #(.CLOCKS_PER_BIT(CLOCKS_PER_BIT), .PARITY(PARITY)) rx_inst (
+    .i_clk(i_clk), .i_rst(i_rst), .i_tx_en(tx_en), .i_rx(i_rx),
+    .o_data(rx_data), .o_valid(rx_valid), .o_frame_err(rx_frame_err), .o_parity_err(rx_parity_err), .o_busy(rx_busy)
 );
 
-uart_tx #(
-    .CLOCKS_PER_BIT(CLOCKS_PER_BIT),
-    .PARITY(PARITY)
-) tx_inst (
-    .i_clk(i_clk),
-    .i_rst(i_rst),
-    .i_valid(tx_valid_reg),
-    .i_data(tx_data_reg),
-    .o_tx(o_tx),
-    .o_busy(tx_busy)
+half_duplex_tx #(.CLOCKS_PER_BIT(CLOCKS_PER_BIT), .PARITY(PARITY)) tx_inst (
+    .i_clk(i_clk), .i_rst(i_rst), .i_drive(tx_drive), .i_release(tx_release),
+    .i_valid(tx_valid), .i_data(tx_data), .o_ready(tx_ready), .o_tx(o_tx), .o_tx_en(tx_en)
 );
 
 reg [2:0]         state_reg = IDLE, state_next;
-reg [CNT_W-1:0]   cnt_reg = 0, cnt_next;
-// The down-counter steps on every cycle of TRIGGER, CLR and WAIT. Icarus re-runs an
-// always @* whenever anything it reads changes, so the state machine's block does not
-// read it (it would re-run every cycle): it asks for a load or a step and reads cnt_zero.
-// A load names its value by a code (one request line for the three loads).
-localparam [1:0]  LOAD_TIMEOUT = 2'd0, LOAD_TRIGGER = 2'd1, LOAD_CLR = 2'd2;
-reg               cnt_load, cnt_dec;
-reg [1:0]         cnt_load_sel;
-wire              cnt_zero = cnt_reg == 0;
-always @* begin
-    if (cnt_load) begin
-        case (cnt_load_sel)
-            LOAD_TRIGGER: cnt_next = TRIGGER_LAST;
-            LOAD_CLR: cnt_next = CLR_LAST;
-            default: cnt_next = TIMEOUT_LAST;
-        endcase
-    end else if (cnt_dec) cnt_next = cnt_reg - 1'b1;
-    else cnt_next = cnt_reg;
-end
-reg               tx_pending_reg = 1'b0, tx_pending_next;
+// The skeleton's down-counter (half_duplex_timer) times TRIGGER, CLR and
+// WAIT: the state machine asks for a load or a step and reads cnt_zero.
+localparam [2:0]  LOAD_NONE = 3'd0, LOAD_TIMEOUT = 3'd1, LOAD_TRIGGER = 3'd2, LOAD_CLR = 3'd3;
+reg [2:0]         cnt_load;      // the wait to load (LOAD_NONE: none)
+reg               cnt_dec;
+wire              cnt_zero;
+
+half_duplex_timer #(
+    .CLOCKS_1(TIMEOUT_CLOCKS), .CLOCKS_2(TRIGGER_LOW_CLOCKS), .CLOCKS_3(CLR_LOW_CLOCKS)
+) cnt_inst (
+    .i_clk(i_clk), .i_rst(i_rst), .i_load(cnt_load), .i_count(cnt_dec), .o_zero(cnt_zero)
+);
+
 reg [23:0]        cmd_reg = 24'd0, cmd_next;
 reg [1:0]         cmd_index_reg = 2'd0, cmd_index_next;
+// The command byte to offer next (BC, AA, then Bx or Cx; the sender is
+// released after the third).
+wire [7:0]        cmd_byte = (cmd_index_reg == 2'd0) ? cmd_reg[23:16] : (cmd_index_reg == 2'd1) ? cmd_reg[15:8] : cmd_reg[7:0];
 reg               expect_answer_reg = 1'b0, expect_answer_next;
 reg [7:0]         tag_reg = 8'h81, tag_next;
 
@@ -237,7 +203,7 @@ reg        err_address_reg = 1'b0, err_address_next;
 reg        err_timeout_reg = 1'b0, err_timeout_next;
 reg        err_stale_reg = 1'b0, err_stale_next;
 
-assign o_tx_en = tx_en_reg;
+assign o_tx_en = tx_en;
 assign o_trigger = trigger_reg;
 assign o_clr = clr_reg;
 assign o_busy = busy_reg;
@@ -288,13 +254,12 @@ wire       other_address = IS_BUS && (TAG_ADDRESS != 0) && (win_b0 == 8'hFF) && 
 
 always @* begin
     state_next = state_reg;
-    cnt_load = 1'b0;
-    cnt_load_sel = LOAD_TIMEOUT;
+    cnt_load = LOAD_NONE;
     cnt_dec = 1'b0;
-    tx_en_next = tx_en_reg;
-    tx_valid_next = 1'b0;
-    tx_data_next = tx_data_reg;
-    tx_pending_next = tx_pending_reg;
+    tx_drive = 1'b0;
+    tx_release = 1'b0;
+    tx_valid = 1'b0;
+    tx_data = cmd_byte;
     cmd_next = cmd_reg;
     cmd_index_next = cmd_index_reg;
     expect_answer_next = expect_answer_reg;
@@ -381,13 +346,11 @@ always @* begin
                 if (i_start && IS_TIMED) begin
                     // Timed modes: a read is "the next frame event".
                     state_next = WAIT;
-                    cnt_load = 1'b1;
-                    cnt_load_sel = LOAD_TIMEOUT;
+                    cnt_load = LOAD_TIMEOUT;
                     busy_next = 1'b1;
                 end else if (i_start && IS_HANDSHAKE) begin
                     state_next = TRIGGER;
-                    cnt_load = 1'b1;
-                    cnt_load_sel = LOAD_TRIGGER;
+                    cnt_load = LOAD_TRIGGER;
                     trigger_next = 1'b0;
                     busy_next = 1'b1;
                 end else if ((i_start && IS_BUS) || (i_zero && BUS_CLEAR)) begin
@@ -396,12 +359,11 @@ always @* begin
                     tag_next = (TAG_ADDRESS != 0) ? {4'hB, i_address} : 8'h81;
                     cmd_index_next = 2'd0;
                     state_next = SEND;
-                    tx_en_next = 1'b1;
+                    tx_drive = 1'b1;
                     busy_next = 1'b1;
                 end else if (i_zero && HAS_CLR) begin
                     state_next = CLR;
-                    cnt_load = 1'b1;
-                    cnt_load_sel = LOAD_CLR;
+                    cnt_load = LOAD_CLR;
                     clr_next = 1'b0;
                     busy_next = 1'b1;
                 end
@@ -410,8 +372,7 @@ always @* begin
                 if (cnt_zero) begin
                     trigger_next = 1'b1;
                     state_next = WAIT;
-                    cnt_load = 1'b1;
-                    cnt_load_sel = LOAD_TIMEOUT;
+                    cnt_load = LOAD_TIMEOUT;
                 end else begin
                     cnt_dec = 1'b1;
                 end
@@ -427,31 +388,28 @@ always @* begin
                 end
             end
             SEND: begin
-                if (tx_pending_reg) begin
-                    if (tx_busy) begin
-                        tx_pending_next = 1'b0;
-                    end
-                end else if (!tx_busy) begin
+                if (tx_ready) begin
                     if (cmd_index_reg == 2'd3) begin
-                        tx_en_next = 1'b0;
+                        tx_release = 1'b1;
                         if (expect_answer_reg) begin
                             state_next = WAIT;
-                            cnt_load = 1'b1;
-                            cnt_load_sel = LOAD_TIMEOUT;
+                            cnt_load = LOAD_TIMEOUT;
                         end else begin
                             state_next = IDLE;
                             busy_next = 1'b0;
                             done_next = 1'b1;
                         end
                     end else begin
-                        tx_valid_next = 1'b1;
-                        tx_data_next = cmd_reg[23 - 8 * cmd_index_reg -: 8];
+                        tx_valid = 1'b1;
                         cmd_index_next = cmd_index_reg + 1'b1;
-                        tx_pending_next = 1'b1;
                     end
                 end
             end
             WAIT: begin
+                // The count steps whatever ends WAIT: IDLE does not read
+                // it, and every state after IDLE loads it first. So the
+                // frame finder's event does not reach the counter.
+                cnt_dec = 1'b1;
                 if (event_now) begin
                     state_next = IDLE;
                     busy_next = 1'b0;
@@ -461,8 +419,6 @@ always @* begin
                     state_next = IDLE;
                     busy_next = 1'b0;
                     done_next = 1'b1;
-                end else begin
-                    cnt_dec = 1'b1;
                 end
             end
             // Codes 5 to 7 are never entered (no state assigns them); coverage counts reachable code only.
@@ -478,10 +434,6 @@ end
 // The register bank: every register takes its next value at each clock edge.
 always @(posedge i_clk) begin
     state_reg <= state_next;
-    tx_en_reg <= tx_en_next;
-    tx_valid_reg <= tx_valid_next;
-    tx_data_reg <= tx_data_next;
-    tx_pending_reg <= tx_pending_next;
     cmd_reg <= cmd_next;
     cmd_index_reg <= cmd_index_next;
     expect_answer_reg <= expect_answer_next;
@@ -501,17 +453,11 @@ always @(posedge i_clk) begin
     err_address_reg <= err_address_next;
     err_timeout_reg <= err_timeout_next;
     err_stale_reg <= err_stale_next;
-    cnt_reg <= cnt_next;
     idle_reg <= idle_next;
     stale_reg <= stale_next;
 
     if (i_rst) begin
         state_reg <= IDLE;
-        cnt_reg <= 0;
-        tx_en_reg <= 1'b0;
-        tx_valid_reg <= 1'b0;
-        tx_data_reg <= 8'd0;
-        tx_pending_reg <= 1'b0;
         cmd_reg <= 24'd0;
         cmd_index_reg <= 2'd0;
         expect_answer_reg <= 1'b0;

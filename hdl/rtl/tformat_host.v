@@ -80,28 +80,6 @@ module tformat_host #(
 // (model::tformat::ANSWER_LIMIT_BITS, QUIET_LIMIT_BITS: the longest answer
 // and one field more), so a stuck line or a second driver cannot hang the host.
 localparam integer LIMIT_CLOCKS = 120 * CLOCKS_PER_BIT;
-localparam integer CNT_MAX0 = (REPEAT_GAP_CLOCKS > TIMEOUT_CLOCKS) ? REPEAT_GAP_CLOCKS : TIMEOUT_CLOCKS;
-localparam integer CNT_MAX = (CNT_MAX0 > LIMIT_CLOCKS) ? CNT_MAX0 : LIMIT_CLOCKS;
-localparam integer CNT_W = $clog2(CNT_MAX + 1);
-// The idle counter also times QUIET: 20 bit times (model::tformat::QUIET_BITS).
-localparam integer QUIET_CLOCKS = 20 * CLOCKS_PER_BIT;
-localparam integer IDLE_W = $clog2(QUIET_CLOCKS + 1);
-localparam [31:0] BIT_LAST_32 = CLOCKS_PER_BIT - 1;
-localparam [31:0] TIMEOUT_LAST_32 = TIMEOUT_CLOCKS - 1;
-localparam [31:0] GAP_LAST_32 = REPEAT_GAP_CLOCKS - 1;
-localparam [CNT_W-1:0] BIT_LAST = BIT_LAST_32[CNT_W-1:0];
-localparam [CNT_W-1:0] TIMEOUT_LAST = TIMEOUT_LAST_32[CNT_W-1:0];
-localparam [CNT_W-1:0] GAP_LAST = GAP_LAST_32[CNT_W-1:0];
-localparam [31:0] LIMIT_LAST_32 = LIMIT_CLOCKS - 1;
-localparam [CNT_W-1:0] LIMIT_LAST = LIMIT_LAST_32[CNT_W-1:0];
-// The idle counts are compared at their last value, before the increment:
-// `idle_reg + 1 == N` put the adder's carry chain in front of `finish` and
-// the output registers' enables (77 MHz on iCE40 HX8K); `idle_reg == N - 1`
-// is the same condition without it.
-localparam [31:0] END_IDLE_LAST_32 = CLOCKS_PER_BIT - 1;
-localparam [31:0] QUIET_IDLE_LAST_32 = QUIET_CLOCKS - 1;
-localparam [IDLE_W-1:0] END_IDLE_LAST = END_IDLE_LAST_32[IDLE_W-1:0];
-localparam [IDLE_W-1:0] QUIET_IDLE_LAST = QUIET_IDLE_LAST_32[IDLE_W-1:0];
 
 // Sink code in bits 0..2 of every control field (model::tformat::frames::SINK_CODE).
 localparam [2:0] SINK_CODE = 3'b010;
@@ -121,31 +99,20 @@ initial begin
     if (REPEAT_GAP_CLOCKS < 20 * CLOCKS_PER_BIT) $error("tformat_host: REPEAT_GAP_CLOCKS must be at least 20 bits");
 end
 
-/* The shared frame receiver; its outputs are registers, read here as they
-   stand before each edge. Deaf while this host drives the line. */
+/* The skeleton's receiver (half_duplex_rx): its outputs are registers,
+   read here as they stand before each edge. */
 wire [7:0] rx_data;
 wire       rx_valid;
 wire       rx_frame_err;
 wire       rx_busy;
-// A glitch on the line is not an answer; the frame set simply goes on or ends.
 /* verilator lint_off UNUSEDSIGNAL */
-wire       rx_start_err;
 wire       rx_parity_err; // always 0: 10-bit frames (PARITY = 0)
 /* verilator lint_on UNUSEDSIGNAL */
 reg        tx_en_reg = 1'b0, tx_en_next;
 
-uart_rx #(
-    .CLOCKS_PER_BIT(CLOCKS_PER_BIT)
-) rx_inst (
-    .i_clk(i_clk),
-    .i_rst(i_rst),
-    .i_rx(i_rx | tx_en_reg),
-    .o_data(rx_data),
-    .o_valid(rx_valid),
-    .o_frame_err(rx_frame_err),
-    .o_start_err(rx_start_err),
-    .o_busy(rx_busy),
-    .o_parity_err(rx_parity_err)
+half_duplex_rx #(.CLOCKS_PER_BIT(CLOCKS_PER_BIT)) rx_inst (
+    .i_clk(i_clk), .i_rst(i_rst), .i_tx_en(tx_en_reg), .i_rx(i_rx),
+    .o_data(rx_data), .o_valid(rx_valid), .o_frame_err(rx_frame_err), .o_parity_err(rx_parity_err), .o_busy(rx_busy)
 );
 
 reg [2:0]        state_reg = IDLE, state_next;
@@ -158,27 +125,33 @@ reg [39:0]       req_bits_reg = 40'd0, req_bits_next;
 reg [5:0]        req_nbits_reg = 6'd0, req_nbits_next;
 reg [39:0]       shift_reg = 40'd0, shift_next;
 reg [5:0]        bits_left_reg = 6'd0, bits_left_next;
-reg [CNT_W-1:0]  cnt_reg = 0, cnt_next;
-// The counter steps on every cycle of a bit, a wait, an answer and a gap. Icarus re-runs
-// an always @* whenever anything it reads changes, so the state machine's block does not
-// read it (it would re-run every cycle): it asks for a load or a step and reads cnt_zero.
-// A load wins over a step (RECV steps on every cycle; an answer's end may load the limit
-// or the gap in the same cycle). One request per load value: a 2-bit code instead cost
-// 20 MHz on iCE40 HX8K.
-reg              cnt_load_bit, cnt_load_timeout, cnt_load_limit, cnt_load_gap, cnt_dec;
-wire             cnt_zero = cnt_reg == 0;
-always @* begin
-    if (cnt_load_bit) cnt_next = BIT_LAST;
-    else if (cnt_load_timeout) cnt_next = TIMEOUT_LAST;
-    else if (cnt_load_limit) cnt_next = LIMIT_LAST;
-    else if (cnt_load_gap) cnt_next = GAP_LAST;
-    else if (cnt_dec) cnt_next = cnt_reg - 1'b1;
-    else cnt_next = cnt_reg;
-end
+/* The skeleton's two counters (half_duplex_timer: every bit and wait, the
+   answer and quiet limits; half_duplex_idle: the receiver's idle time in
+   RECV and QUIET). The state machine asks for a load or a step and reads
+   their registered flags cnt_zero, idle_end and idle_quiet. A load wins
+   over a step (RECV steps on every cycle; an answer's end may load the
+   limit or the gap in the same cycle). */
+localparam [2:0] LOAD_NONE = 3'd0, LOAD_BIT = 3'd1, LOAD_TIMEOUT = 3'd2, LOAD_LIMIT = 3'd3, LOAD_GAP = 3'd4;
+// Requests: load the wait cnt_load names (LOAD_NONE: none), or count down;
+// clear the idle count, or count it up.
+reg [2:0]        cnt_load;
+reg              cnt_dec, idle_clear, idle_count;
+wire             cnt_zero, idle_end, idle_quiet;
+
+half_duplex_timer #(
+    .CLOCKS_1(CLOCKS_PER_BIT), .CLOCKS_2(TIMEOUT_CLOCKS), .CLOCKS_3(LIMIT_CLOCKS), .CLOCKS_4(REPEAT_GAP_CLOCKS)
+) cnt_inst (
+    .i_clk(i_clk), .i_rst(i_rst), .i_load(cnt_load), .i_count(cnt_dec), .o_zero(cnt_zero)
+);
+
+half_duplex_idle #(.CLOCKS_PER_BIT(CLOCKS_PER_BIT)) idle_inst (
+    .i_clk(i_clk), .i_rst(i_rst), .i_clear(idle_clear), .i_count(idle_count),
+    .o_answer_end(idle_end), .o_quiet(idle_quiet)
+);
+
 reg [3:0]        repeats_reg = 4'd0, repeats_next;
 reg [7:0]        count_reg = 8'd0, count_next;
 reg [7:0]        crc_reg = 8'd0, crc_next;
-reg [IDLE_W-1:0] idle_reg = 0, idle_next;
 reg              frame_bad_reg = 1'b0, frame_bad_next;
 
 // The answer's fields, CF first (Data ID 3 has eleven). Only what the
@@ -270,15 +243,13 @@ always @* begin
     req_nbits_next = req_nbits_reg;
     shift_next = shift_reg;
     bits_left_next = bits_left_reg;
-    cnt_load_bit = 1'b0;
-    cnt_load_timeout = 1'b0;
-    cnt_load_limit = 1'b0;
-    cnt_load_gap = 1'b0;
+    cnt_load = LOAD_NONE;
     cnt_dec = 1'b0;
+    idle_clear = 1'b0;
+    idle_count = 1'b0;
     repeats_next = repeats_reg;
     count_next = count_reg;
     crc_next = crc_reg;
-    idle_next = idle_reg;
     frame_bad_next = frame_bad_reg;
     store = 1'b0;
     tx_next = tx_reg;
@@ -328,7 +299,7 @@ always @* begin
                 state_next = SEND;
                 shift_next = req_bits_next >> 1;
                 bits_left_next = req_nbits_next - 1'b1;
-                cnt_load_bit = 1'b1;
+                cnt_load = LOAD_BIT;
                 tx_en_next = 1'b1;
                 tx_next = 1'b0;
             end
@@ -339,14 +310,14 @@ always @* begin
                     tx_en_next = 1'b0;
                     tx_next = 1'b1;
                     state_next = WAIT;
-                    cnt_load_timeout = 1'b1;
+                    cnt_load = LOAD_TIMEOUT;
                     count_next = 8'd0;
                     crc_next = 8'd0;
                 end else begin
                     tx_next = shift_reg[0];
                     shift_next = shift_reg >> 1;
                     bits_left_next = bits_left_reg - 1'b1;
-                    cnt_load_bit = 1'b1;
+                    cnt_load = LOAD_BIT;
                 end
             end else begin
                 cnt_dec = 1'b1;
@@ -355,8 +326,8 @@ always @* begin
         WAIT: begin
             if (rx_busy) begin
                 state_next = RECV;
-                idle_next = 0;
-                cnt_load_limit = 1'b1;
+                idle_clear = 1'b1;
+                cnt_load = LOAD_LIMIT;
             end else if (cnt_zero) begin
                 finish = 1'b1;
                 finish_timeout = 1'b1;
@@ -373,14 +344,14 @@ always @* begin
                 count_next = (count_reg == 8'hFF) ? count_reg : count_reg + 1'b1;
                 crc_next = crc_reg ^ rx_data;
                 frame_bad_next = frame_bad_reg | rx_frame_err;
-                idle_next = 0;
+                idle_clear = 1'b1;
             end else if (!rx_busy) begin
-                idle_next = idle_reg + 1'b1;
-                if (idle_reg == END_IDLE_LAST) begin
+                idle_count = 1'b1;
+                if (idle_end) begin
                     finish = 1'b1;
                 end
             end else begin
-                idle_next = 0;
+                idle_clear = 1'b1;
             end
         end
         GAP: begin
@@ -388,7 +359,7 @@ always @* begin
                 state_next = SEND;
                 shift_next = req_bits_reg >> 1;
                 bits_left_next = req_nbits_reg - 1'b1;
-                cnt_load_bit = 1'b1;
+                cnt_load = LOAD_BIT;
                 tx_en_next = 1'b1;
                 tx_next = req_bits_reg[0];
             end else begin
@@ -402,11 +373,11 @@ always @* begin
             // A line that never falls quiet (stuck low, a second driver)
             // ends QUIET after 120 bit times: the errors are flagged already.
             if (rx_busy) begin
-                idle_next = 0;
+                idle_clear = 1'b1;
             end else begin
-                idle_next = idle_reg + 1'b1;
+                idle_count = 1'b1;
             end
-            if ((!rx_busy && idle_reg == QUIET_IDLE_LAST) || cnt_zero) begin
+            if ((!rx_busy && idle_quiet) || cnt_zero) begin
                 state_next = IDLE;
                 busy_next = 1'b0;
                 done_next = 1'b1;
@@ -452,15 +423,15 @@ always @* begin
         repeats_next = repeats_reg - 1'b1;
         if (repeats_reg == 4'd1 && (finish_timeout || crc_bad || frame_bad || cf_bad)) begin
             state_next = QUIET;
-            idle_next = 0;
-            cnt_load_limit = 1'b1;
+            idle_clear = 1'b1;
+            cnt_load = LOAD_LIMIT;
         end else if (repeats_reg == 4'd1) begin
             state_next = IDLE;
             busy_next = 1'b0;
             done_next = 1'b1;
         end else begin
             state_next = GAP;
-            cnt_load_gap = 1'b1;
+            cnt_load = LOAD_GAP;
         end
     end
 end
@@ -495,8 +466,6 @@ always @(posedge i_clk) begin
     err_frame_reg <= err_frame_next;
     err_cf_reg <= err_cf_next;
     err_comm_reg <= err_comm_next;
-    cnt_reg <= cnt_next;
-    idle_reg <= idle_next;
     if (store) begin
         case (count_reg[3:0])
             4'd0: f0_reg <= rx_data;
@@ -520,11 +489,9 @@ always @(posedge i_clk) begin
         req_nbits_reg <= 6'd0;
         shift_reg <= 40'd0;
         bits_left_reg <= 6'd0;
-        cnt_reg <= 0;
         repeats_reg <= 4'd0;
         count_reg <= 8'd0;
         crc_reg <= 8'd0;
-        idle_reg <= 0;
         frame_bad_reg <= 1'b0;
         tx_reg <= 1'b1;
         tx_en_reg <= 1'b0;
