@@ -215,8 +215,15 @@ const TRAILING_CELLS: u64 = 2;
 /// A layout that fits no frame (every frame clocked a different number of
 /// cells after its start bit than the layout reads, and every CRC failed) is
 /// the wrong `--bits` or `--crc-width`, not a line full of errors: say so,
-/// and what would fit.
-pub fn check_layout(frames: &[FrameSeen], layout: &Layout) -> Result<(), String> {
+/// and what would fit. `reread` decodes the line again with another layout:
+/// the hint is the last slave's data width with which every frame's every
+/// CRC passes (the MA clocks alone cannot tell it: a master compensating a
+/// long line clocks a cell more per period of delay).
+pub fn check_layout(
+    frames: &[FrameSeen],
+    layout: &Layout,
+    reread: impl Fn(&Layout) -> Vec<FrameSeen>,
+) -> Result<(), String> {
     let read: Vec<&FrameSeen> = frames.iter().filter(|f| f.cells.is_some()).collect();
     let misfit = |f: &&FrameSeen| {
         f.cells.is_some_and(|(clocked, need)| clocked != need) && f.slaves.iter().all(|s| !s.crc_ok)
@@ -224,22 +231,27 @@ pub fn check_layout(frames: &[FrameSeen], layout: &Layout) -> Result<(), String>
     if read.is_empty() || !read.iter().all(misfit) {
         return Ok(());
     }
-    let (clocked, need) = read[0].cells.expect("filtered on cells");
+    let (_, need) = read[0].cells.expect("filtered on cells");
     let list = |v: &[u32]| v.iter().map(u32::to_string).collect::<Vec<_>>().join(",");
-    let last_w = *layout.crc_width.last().unwrap_or(&6) as u64;
-    let others = need - (1 + *layout.bits.last().unwrap_or(&0) as u64 + 2 + last_w);
-    let hint = match clocked.checked_sub(others + 3 + last_w) {
-        Some(n) if (1..=64).contains(&n) => {
-            format!("; with the same CRC widths, --bits {} would fit", {
-                let mut b = layout.bits.clone();
-                *b.last_mut().expect("at least one slave") = n as u32;
-                list(&b)
-            })
-        }
-        _ => String::new(),
+    let fits = |l: &Layout| {
+        let again = reread(l);
+        let read: Vec<&FrameSeen> = again.iter().filter(|f| f.cells.is_some()).collect();
+        !read.is_empty()
+            && read
+                .iter()
+                .all(|f| !f.slaves.is_empty() && f.slaves.iter().all(|s| s.crc_ok))
     };
+    let hint = (1..=64u32)
+        .map(|n| {
+            let mut l = layout.clone();
+            *l.bits.last_mut().expect("at least one slave") = n;
+            l
+        })
+        .find(|l| l.bits != layout.bits && fits(l))
+        .map(|l| format!("; with the same CRC widths, --bits {} would fit (every CRC passes)", list(&l.bits)))
+        .unwrap_or_else(|| "; no data width of the last slave from 1 to 64 makes every CRC pass with these CRC widths: check --crc-width and the lines".to_string());
     Err(format!(
-        "the frames carry {clocked} bits after the start bit, but --bits {} with --crc-width {} read {need} (per slave: CDS, data, nE, nW, CRC), and every CRC fails{hint}",
+        "--bits {} with --crc-width {} read {need} bits after the start bit (per slave: CDS, data, nE, nW, CRC), and every frame's CRC fails{hint}",
         list(&layout.bits),
         list(&layout.crc_width),
     ))

@@ -95,8 +95,9 @@ pub fn timing_report(cfg: &BenchConfig, name: &str) -> std::result::Result<Strin
 /// core ([`model::biss::decode`], which the co-simulation monitor shares).
 pub fn decode(path: &Path, ma: &str, slo: &str, layout: &Layout) -> Result<Vec<FrameSeen>> {
     let signals = capture::read(path, &[(ma, "--ma"), (slo, "--slo")])?;
-    let frames = decode::Decoder::default().feed(&signals[0], &signals[1], layout);
-    decode::check_layout(&frames, layout).map_err(|e| Error::Decode(format!("{}: {e}", path.display())))?;
+    let read = |l: &Layout| decode::Decoder::default().feed(&signals[0], &signals[1], l);
+    let frames = read(layout);
+    decode::check_layout(&frames, layout, read).map_err(|e| Error::Decode(format!("{}: {e}", path.display())))?;
     Ok(frames)
 }
 
@@ -152,10 +153,26 @@ mod tests {
         let summary = generate::generate(&s, dir.path()).unwrap();
         let layout = Layout { bits: vec![12], crc_width: vec![6], crc_poly: vec![3], timeout_ps: None };
         let msg = decode(&summary.files[1], "top.line.ma_master", "top.line.slo_master", &layout).unwrap_err().to_string();
-        assert!(msg.contains("biss_seed_16bit.vcd: the frames carry 25 bits after the start bit, but --bits 12 with --crc-width 6 read 21"), "{msg}");
-        assert!(msg.ends_with("--bits 16 would fit"), "{msg}");
+        assert!(msg.contains("biss_seed_16bit.vcd: --bits 12 with --crc-width 6 read 21 bits after the start bit"), "{msg}");
+        assert!(msg.ends_with("--bits 16 would fit (every CRC passes)"), "{msg}");
         let right = Layout { bits: vec![16], ..layout };
         assert!(decode(&summary.files[1], "top.line.ma_master", "top.line.slo_master", &right).is_ok());
+    }
+
+    /// On a long line the master clocks a cell more per period of delay:
+    /// 100 m at 10 MHz (9 cells) once drew "--bits 25 would fit" for a
+    /// 16-bit frame, 0 m at 5 MHz "--bits 15". The hint is the width with
+    /// which every CRC passes.
+    #[test]
+    fn the_bits_hint_is_right_on_a_long_line_and_a_short_one() {
+        for name in ["biss_clock_10mhz_100m", "biss_clock_5mhz_0m"] {
+            let (s, _) = biss(name);
+            let dir = tempfile::tempdir().unwrap();
+            let summary = generate::generate(&s, dir.path()).unwrap();
+            let layout = Layout { bits: vec![12], crc_width: vec![6], crc_poly: vec![3], timeout_ps: None };
+            let msg = decode(&summary.files[1], "top.line.ma_master", "top.line.slo_master", &layout).unwrap_err().to_string();
+            assert!(msg.ends_with("--bits 16 would fit (every CRC passes)"), "{name}: {msg}");
+        }
     }
 
     #[test]
