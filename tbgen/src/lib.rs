@@ -40,6 +40,7 @@ pub mod generate;
 pub mod gtkw;
 pub mod probes;
 pub mod registry;
+pub mod rule_verdict;
 pub mod scenario;
 pub mod transcript;
 
