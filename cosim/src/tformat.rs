@@ -20,13 +20,19 @@
 //! `multi_turn_error`, `battery_error`, `battery_alarm` (ea0 and ea1 of the
 //! status field follow from them, seed 002 6.3.2).
 //!
-//! Checks of the master: both drivers on the pair at once (the host must
-//! release the line before the encoder answers: turnaround).
+//! Checks of the master: the rule book [`model::tformat::rules`], whose
+//! watcher this emulator and the T-format monitor both feed with the host's
+//! transceiver pins (its driver's level and enable, and what its receiver
+//! hears: the encoder's answer at the host's end while the encoder drives),
+//! so both report the same rule with the same text.
 
 use serde::{Deserialize, Serialize};
 
+use model::half_duplex::watch::heard;
 use model::line::{CableConfig, Drive};
+use model::rules::ps_at;
 use model::tformat::frames::{Alarms, DataId};
+use model::tformat::rules::{Limits, Watch};
 use model::tformat::{AnswerFlip, BenchConfig, Encoder, EncoderSettings};
 
 use crate::check::Checks;
@@ -37,10 +43,6 @@ use crate::{Emulator, Pins, Result};
 
 /// The T-format bit rate (seed 002: 2.5 Mbps), the emulator's "line clock".
 pub const MAX_CLOCK_KHZ: f64 = 2500.0;
-
-/// Both drivers on the pair.
-const TURNAROUND: &str =
-    "turnaround (seed 002: the host releases the line before the encoder answers)";
 
 /// The emulator's configuration (the scenario's T-format device tables).
 #[derive(Debug, Clone, PartialEq, Deserialize)]
@@ -97,6 +99,9 @@ pub struct TformatEmulator {
     cycle: u64,
     entries: Vec<Entry>,
     checks: Checks,
+    watch: Watch,
+    /// The pins out of the last step: the encoder at the host's end.
+    out: Pins,
 }
 
 fn le(bytes: &[u8]) -> u32 {
@@ -135,6 +140,11 @@ impl TformatEmulator {
             _ => Error::config(origin, e),
         })?;
         let delay = cfg.cable.delay_cycles(&tb);
+        let limits = Limits::seed(cfg.baud, cfg.encoder.reset_interval_us);
+        let mut checks = Checks::new(tb.period_ps());
+        for note in model::rules::resolution_notes(f_emu_hz, &limits.least()) {
+            checks.note(note);
+        }
         Ok(TformatEmulator {
             f_emu_hz,
             period_ps: tb.period_ps(),
@@ -147,7 +157,9 @@ impl TformatEmulator {
             motions: Motions::default(),
             cycle: 0,
             entries: Vec::new(),
-            checks: Checks::new(tb.period_ps()),
+            checks,
+            watch: Watch::new(limits),
+            out: Pins(1),
         })
     }
 
@@ -230,12 +242,24 @@ impl Emulator for TformatEmulator {
                     .set_position((p & 0x1_FFFF) as u32, (p >> 17) as u16);
             }
         }
+        // The host as the rule book sees it: its pins, and what its
+        // receiver hears (the encoder's answer as this emulator put it at
+        // the host's end in the step before, as the monitor sees it).
+        let answer = self.out.enable().then_some(self.out.data());
+        let rx = heard(host.level, host.enable, answer);
+        let t = ps_at(self.cycle, self.f_emu_hz);
+        for b in self.watch.sample(t, host.level, host.enable, rx) {
+            self.checks.breach(self.cycle, &b);
+        }
+        // Both drivers on at once is the rule book's (its watcher sees it
+        // at the host's pins, as the monitor does): the pair's own report
+        // of it is not kept.
         let at_encoder = self.pair.step(
             host,
             self.enc_drive,
             self.cycle,
-            &mut self.checks,
-            TURNAROUND,
+            &mut Checks::default(),
+            model::tformat::rules::ANSWER.label(),
         );
         let answers = self.encoder.answered().len();
         self.enc_drive = self.encoder.step(at_encoder);
@@ -243,7 +267,8 @@ impl Emulator for TformatEmulator {
             self.on_answer();
         }
         self.cycle += 1;
-        self.pair.pins_out(self.enc_drive, &self.checks, None)
+        self.out = self.pair.pins_out(self.enc_drive, &self.checks, None);
+        self.out
     }
 
     fn set_position(&mut self, device: usize, position: u64) -> Result<()> {
@@ -343,6 +368,7 @@ impl Emulator for TformatEmulator {
             "answers": self.entries,
             "contention_cycles": self.pair.contention_cycles(),
             "violations": self.checks.all(),
+            "notes": self.checks.notes(),
         })
     }
 

@@ -18,7 +18,10 @@
 //! testbenches read too, so the wiring is written once.
 
 pub mod biss;
+pub mod esl;
+mod half_duplex;
 pub mod ssi;
+pub mod tformat;
 
 use serde_json::Value;
 
@@ -123,7 +126,7 @@ impl Kit {
 
 /// Every protocol's kit.
 pub fn kits() -> Vec<Kit> {
-    vec![ssi::KIT, biss::KIT]
+    vec![ssi::KIT, biss::KIT, esl::KIT, tformat::KIT]
 }
 
 /// Every probe of every protocol.
