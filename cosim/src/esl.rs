@@ -38,14 +38,13 @@
 use serde::{Deserialize, Serialize};
 
 use model::esl::frames::{self, Alarms, DataId, Field};
-use model::esl::rules::{Limits, Spacing, Watch};
+use model::esl::rules::{watch, Limits, Spacing, Watch};
 use model::esl::{BenchConfig, Encoder, EncoderSettings};
-use model::half_duplex::watch::heard;
 use model::line::{CableConfig, Drive};
-use model::rules::ps_at;
 
 use crate::check::Checks;
 use crate::config::{self, Error};
+use crate::monitor::half_duplex::emulator_step;
 use crate::motion::Motions;
 use crate::pair::Pair;
 use crate::{Emulator, Pins, Result};
@@ -274,7 +273,7 @@ impl EslEmulator {
             entries: Vec::new(),
             last: vec![None; n],
             checks,
-            watch: Watch::new(limits),
+            watch: watch(limits),
             out: Pins(1),
         })
     }
@@ -343,24 +342,15 @@ impl Emulator for EslEmulator {
                 }
             }
         }
-        // The host as the rule book sees it: its pins, and what its
-        // receiver hears (the encoders' answer as this emulator put it at
-        // the host's end in the step before, as the monitor sees it).
-        let answer = self.out.enable().then_some(self.out.data());
-        let rx = heard(host.level, host.enable, answer);
-        let t = ps_at(self.cycle, self.f_emu_hz);
-        for b in self.watch.sample(t, host.level, host.enable, rx) {
-            self.checks.breach(self.cycle, &b);
-        }
-        // Both drivers on at once is the rule book's (its watcher sees it
-        // at the host's pins, as the monitor does): the pair's own report
-        // of it is not kept.
-        let at_encoder = self.pair.step(
+        let at_encoder = emulator_step(
+            &mut self.watch,
+            &mut self.pair,
+            &mut self.checks,
+            self.cycle,
+            self.f_emu_hz,
             host,
             self.bus,
-            self.cycle,
-            &mut Checks::default(),
-            model::esl::rules::HALF_DUPLEX.label(),
+            self.out,
         );
         // Two drivers on the bus: a low wins (as the model's bench).
         let (mut enable, mut level) = (false, true);

@@ -28,15 +28,14 @@
 
 use serde::{Deserialize, Serialize};
 
-use model::half_duplex::watch::heard;
 use model::line::{CableConfig, Drive};
-use model::rules::ps_at;
 use model::tformat::frames::{Alarms, DataId};
-use model::tformat::rules::{Limits, Watch};
+use model::tformat::rules::{watch, Limits, Watch};
 use model::tformat::{AnswerFlip, BenchConfig, Encoder, EncoderSettings};
 
 use crate::check::Checks;
 use crate::config::{self, Error};
+use crate::monitor::half_duplex::emulator_step;
 use crate::motion::Motions;
 use crate::pair::Pair;
 use crate::{Emulator, Pins, Result};
@@ -158,7 +157,7 @@ impl TformatEmulator {
             cycle: 0,
             entries: Vec::new(),
             checks,
-            watch: Watch::new(limits),
+            watch: watch(limits),
             out: Pins(1),
         })
     }
@@ -242,24 +241,15 @@ impl Emulator for TformatEmulator {
                     .set_position((p & 0x1_FFFF) as u32, (p >> 17) as u16);
             }
         }
-        // The host as the rule book sees it: its pins, and what its
-        // receiver hears (the encoder's answer as this emulator put it at
-        // the host's end in the step before, as the monitor sees it).
-        let answer = self.out.enable().then_some(self.out.data());
-        let rx = heard(host.level, host.enable, answer);
-        let t = ps_at(self.cycle, self.f_emu_hz);
-        for b in self.watch.sample(t, host.level, host.enable, rx) {
-            self.checks.breach(self.cycle, &b);
-        }
-        // Both drivers on at once is the rule book's (its watcher sees it
-        // at the host's pins, as the monitor does): the pair's own report
-        // of it is not kept.
-        let at_encoder = self.pair.step(
+        let at_encoder = emulator_step(
+            &mut self.watch,
+            &mut self.pair,
+            &mut self.checks,
+            self.cycle,
+            self.f_emu_hz,
             host,
             self.enc_drive,
-            self.cycle,
-            &mut Checks::default(),
-            model::tformat::rules::ANSWER.label(),
+            self.out,
         );
         let answers = self.encoder.answered().len();
         self.enc_drive = self.encoder.step(at_encoder);

@@ -366,17 +366,75 @@ fn each_half_duplex_rule_fires_once(sim: &str) {
     use model::tformat::rules as t;
     let cases: [(u32, usize, usize, String); 12] = [
         (0, 0, 0, String::new()),
-        (1, 1, 0, format!("{}: an edge 1400.0 ns after the field's start edge, 3.50 bits", t::JITTER.label())),
+        (
+            1,
+            1,
+            0,
+            format!(
+                "{}: an edge 1400.0 ns after the field's start edge, 3.50 bits",
+                t::JITTER.label()
+            ),
+        ),
         (2, 1, 0, format!("{}: 2.00 bits", t::END_OF_FRAME.label())),
         (3, 1, 0, format!("{}: driver enable on", t::RELEASE.label())),
-        (4, 1, 0, format!("{}: the host switched its driver on 2.00 bits", t::ANSWER.label())),
-        (5, 1, 0, format!("{}: request 2 of reset Data ID 7 0.104", t::RESET.label())),
-        (6, 0, 1, format!("{}: an edge 350.0 ns after the field's start edge", e::BIT_RATE.label())),
-        (7, 0, 1, format!("{}: 1.50 bits", e::END_OF_FRAME_SET.label())),
-        (8, 0, 1, format!("{}: a request of 1 frame(s) for Data ID 1, which takes 2", e::FRAMES.label())),
+        (
+            4,
+            1,
+            0,
+            format!(
+                "{}: the host switched its driver on 2.00 bits",
+                t::ANSWER.label()
+            ),
+        ),
+        (
+            5,
+            1,
+            0,
+            format!("{}: request 2 of reset Data ID 7 0.104", t::RESET.label()),
+        ),
+        (
+            6,
+            0,
+            1,
+            format!(
+                "{}: an edge 350.0 ns after the field's start edge",
+                e::BIT_RATE.label()
+            ),
+        ),
+        (
+            7,
+            0,
+            1,
+            format!("{}: 1.50 bits", e::END_OF_FRAME_SET.label()),
+        ),
+        (
+            8,
+            0,
+            1,
+            format!(
+                "{}: a request of 1 frame(s) for Data ID 1, which takes 2",
+                e::FRAMES.label()
+            ),
+        ),
         (9, 0, 1, format!("{}: driver enable on", e::RELEASE.label())),
-        (10, 0, 1, format!("{}: Data ID B sent 1 time(s) to address 3, then Data ID 1", e::REPEAT.label())),
-        (11, 0, 1, format!("{}: the host switched its driver on 2.00 bits", e::HALF_DUPLEX.label())),
+        (
+            10,
+            0,
+            1,
+            format!(
+                "{}: Data ID B sent 1 time(s) to address 3, then Data ID 1",
+                e::REPEAT.label()
+            ),
+        ),
+        (
+            11,
+            0,
+            1,
+            format!(
+                "{}: the host switched its driver on 2.00 bits",
+                e::HALF_DUPLEX.label()
+            ),
+        ),
     ];
     for (case, n_tf, n_esl, rule) in cases {
         let (mon_t, mon_e) = (

@@ -25,11 +25,11 @@ use serde::Deserialize;
 use serde_json::Value;
 
 use model::esl::decode::{DecodeOptions, DecodedOp, Decoder};
-use model::esl::rules::{Limits, Spacing, Watch};
+use model::esl::rules::{watch, Limits, Spacing, Watch};
 use model::esl::EncoderSettings;
 use model::wire::uart_bytes;
 
-use super::half_duplex::{transceiver, ExchangeDecoder, Exchanges, Side, Window};
+use super::half_duplex::{line_settings, transceiver, ExchangeDecoder, Exchanges, Side, Window};
 use super::{field, limit, listens_only, proto_table, sub, Base};
 use crate::config::{self, Error};
 // The ALM flags by name, as the emulator takes them.
@@ -159,19 +159,14 @@ impl EslMonitor {
                 "give a broadcast address 0..7 and busy_tries 1..15",
             ));
         }
-        let bad = |e: model::ConfigError| Error::config(origin, e);
         let mut limits = Limits::seed(baud, tolerance);
-        if let Some(us) = mon.release_us {
-            limits.set_release("monitor.release_us", us).map_err(bad)?;
-        }
-        if let Some(bits) = mon.max_gap_bits {
-            limits.set_gap_bits(limit(
-                origin,
-                "monitor.max_gap_bits",
-                bits,
-                "give the longest idle line between two frames of a request, in bits",
-            )?);
-        }
+        line_settings(
+            &mut limits.line,
+            &model::esl::rules::RELEASE,
+            mon.release_us,
+            mon.max_gap_bits,
+            origin,
+        )?;
         let d = EncoderSettings::default();
         let encoders: Vec<toml::Table> =
             field(&whole, "encoders", origin, "encoders")?.unwrap_or_default();
@@ -218,7 +213,7 @@ impl EslMonitor {
                     bit_ps,
                 ),
             ),
-            watch: Watch::new(limits),
+            watch: watch(limits),
         })
     }
 }

@@ -4,18 +4,74 @@
 //! (from one rise of DE to the next) for the protocol's decoder. The timing
 //! rules are the protocol's rule book's ([`model::esl::rules`],
 //! [`model::tformat::rules`], over [`model::half_duplex::watch`]), which
-//! the monitor and the emulator both feed.
+//! the monitor and the emulator both feed ([`emulator_step`]: the
+//! emulators' side of it).
 
+use model::half_duplex::watch;
+use model::rules::Rule;
 use model::wire::Signal;
 use serde_json::Value;
 
-use super::Base;
-use crate::Pins;
+use super::{limit, Base};
+use crate::check::Checks;
+use crate::config::Error;
+use crate::pair::Pair;
+use crate::{Pins, Result};
 
 /// The host's transceiver pins of a monitor's input (bit 0 R, bit 1 D,
 /// bit 2 DE), as `(tx, de, rx)`.
 pub fn transceiver(pins: Pins) -> (bool, bool, bool) {
     (pins.0 & 2 != 0, pins.0 & 4 != 0, pins.0 & 1 != 0)
+}
+
+/// One step of a T-format or ESL emulator's host side at its `cycle` of
+/// `f_hz`: the rule book's watcher sees the host as a monitor at the host's
+/// pins does (its driver `host`, and the answer `out` the emulator put at
+/// the host's end the step before), its breaches go to `checks`; then the
+/// pair carries `host` and the device's `drive`. Both drivers on is the
+/// watcher's rule, so the pair's own report of it is not kept. Returns the
+/// level at the device's receiver.
+#[allow(clippy::too_many_arguments)]
+pub fn emulator_step<P: watch::Requests>(
+    watch: &mut watch::Host<P>,
+    pair: &mut Pair,
+    checks: &mut Checks,
+    cycle: u64,
+    f_hz: u64,
+    host: model::line::Drive,
+    drive: model::line::Drive,
+    out: Pins,
+) -> bool {
+    let answer = out.enable().then_some(out.data());
+    for b in watch.sample_n(cycle, f_hz, host.level, host.enable, answer) {
+        checks.breach(cycle, &b);
+    }
+    pair.step(host, drive, cycle, &mut Checks::default(), "")
+}
+
+/// The `[monitor]` settings of the shared checks into `line`: the release
+/// (`release_us`, refused outside `release`'s range) and the longest pause
+/// between a request's characters (`max_gap_bits`).
+pub fn line_settings(
+    line: &mut watch::Limits,
+    release: &'static Rule,
+    release_us: Option<f64>,
+    gap_bits: Option<f64>,
+    origin: &str,
+) -> Result<()> {
+    if let Some(us) = release_us {
+        line.set_release(release, "monitor.release_us", us)
+            .map_err(|e| Error::config(origin, e))?;
+    }
+    if let Some(bits) = gap_bits {
+        line.set_gap_bits(limit(
+            origin,
+            "monitor.max_gap_bits",
+            bits,
+            "give the longest idle line between two characters of a request, in bits",
+        )?);
+    }
+    Ok(())
 }
 
 /// The line since the exchange not yet decoded: the wire at the host (its

@@ -20,10 +20,10 @@ use serde::Deserialize;
 use serde_json::Value;
 
 use model::tformat::decode::{Decoder, Transaction};
-use model::tformat::rules::{Limits, Watch};
+use model::tformat::rules::{watch, Limits, Watch};
 use model::wire::uart_bytes;
 
-use super::half_duplex::{transceiver, ExchangeDecoder, Exchanges, Side, Window};
+use super::half_duplex::{line_settings, transceiver, ExchangeDecoder, Exchanges, Side, Window};
 use super::{field, host_timeout_us, limit, listens_only, proto_table, sub, Base};
 use crate::config::{self, Error};
 use crate::{Emulator, Pins, Result};
@@ -118,17 +118,13 @@ impl TformatMonitor {
         if let Some(ns) = mon.jitter_ns {
             limits.set_jitter("monitor.jitter_ns", ns).map_err(bad)?;
         }
-        if let Some(us) = mon.release_us {
-            limits.set_release("monitor.release_us", us).map_err(bad)?;
-        }
-        if let Some(bits) = mon.max_gap_bits {
-            limits.set_gap_bits(limit(
-                origin,
-                "monitor.max_gap_bits",
-                bits,
-                "give the longest idle line between two fields of a request, in bits",
-            )?);
-        }
+        line_settings(
+            &mut limits.line,
+            &model::tformat::rules::RELEASE,
+            mon.release_us,
+            mon.max_gap_bits,
+            origin,
+        )?;
         let mut base = Base::new(f_mon_hz);
         for note in model::rules::resolution_notes(f_mon_hz, &limits.least()) {
             base.checks.note(note);
@@ -140,7 +136,7 @@ impl TformatMonitor {
                 limits.line.bit_ps,
                 Decode(Decoder::new(baud.round() as u64, timeout), bit_ps),
             ),
-            watch: Watch::new(limits),
+            watch: watch(limits),
         })
     }
 }

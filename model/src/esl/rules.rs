@@ -258,13 +258,7 @@ impl Limits {
 
     /// The release set to `us` (field `field`), within [`RELEASE`]'s range.
     pub fn set_release(&mut self, field: &str, us: f64) -> Result<(), ConfigError> {
-        self.line.release_ps = Unit::Us.ps(RELEASE.setting(field, us)?);
-        Ok(())
-    }
-
-    /// The longest pause between a request's frames set to `bits` bits.
-    pub fn set_gap_bits(&mut self, bits: f64) {
-        self.line.max_gap_ps = bits * self.line.bit_ps;
+        self.line.set_release(&RELEASE, field, us)
     }
 
     /// The least lengths, for [`rules::resolution_notes`]: the drift the
@@ -291,40 +285,30 @@ struct Follow {
     page_write: Option<u64>,
 }
 
-/// The ESL watcher: the host's transceiver pins.
+/// The ESL checks of whole requests: the frame count, the spacing per address.
 #[derive(Debug, Clone)]
-pub struct Watch {
-    line: watch::Watch,
+pub struct Requests {
     spacing: [Spacing; 8],
     follow: [Follow; 8],
 }
 
-impl Watch {
-    /// A watcher holding the host to `limits`.
-    pub fn new(limits: Limits) -> Self {
-        let follow = Follow {
-            page: frames::DEFAULT_PAGE,
-            ..Follow::default()
-        };
-        Watch {
-            line: watch::Watch::new(limits.line, SHARED),
-            spacing: limits.spacing,
-            follow: std::array::from_fn(|_| follow.clone()),
-        }
-    }
+/// The ESL watcher: the host's transceiver pins ([`watch::Host::sample`]).
+pub type Watch = watch::Host<Requests>;
 
-    /// One sample at `t_ps`: the host's driver input `tx`, its enable
-    /// `de`, its receiver's output `rx` ([`watch::heard`]).
-    pub fn sample(&mut self, t_ps: u64, tx: bool, de: bool, rx: bool) -> Vec<Breach> {
-        let seen = self.line.sample(t_ps, tx, de, rx);
-        let mut out = seen.breaches;
-        if let Some(r) = seen.request {
-            self.request(&r, &mut out);
-        }
-        out
-    }
+/// A watcher holding the host to `limits`.
+pub fn watch(limits: Limits) -> Watch {
+    let follow = Follow {
+        page: frames::DEFAULT_PAGE,
+        ..Follow::default()
+    };
+    let requests = Requests {
+        spacing: limits.spacing,
+        follow: std::array::from_fn(|_| follow.clone()),
+    };
+    watch::Host::with(limits.line, SHARED, requests)
+}
 
-    /// The checks of one request the host sent.
+impl watch::Requests for Requests {
     fn request(&mut self, r: &Request, out: &mut Vec<Breach>) {
         let Some(&byte) = r.fields.first() else {
             return;

@@ -26,7 +26,8 @@
 //! holding its driver on and low in reset from time 0 draws no report, nor
 //! one whose enable is unknown (read as off).
 
-use crate::rules::{Breach, Rule};
+use crate::rules::{ps_at, Breach, Rule, Unit};
+use crate::ConfigError;
 
 /// The rules a protocol reports the shared checks under.
 #[derive(Debug, Clone, Copy)]
@@ -54,6 +55,75 @@ pub struct Limits {
     pub max_gap_ps: f64,
     /// Longest time from the last stop bit's end to the driver enable's fall.
     pub release_ps: u64,
+}
+
+impl Limits {
+    /// The release set to `us` (field `field`), within `rule`'s range.
+    pub fn set_release(
+        &mut self,
+        rule: &'static Rule,
+        field: &str,
+        us: f64,
+    ) -> Result<(), ConfigError> {
+        self.release_ps = Unit::Us.ps(rule.setting(field, us)?);
+        Ok(())
+    }
+
+    /// The longest pause between a request's characters set to `bits` bits.
+    pub fn set_gap_bits(&mut self, bits: f64) {
+        self.max_gap_ps = bits * self.bit_ps;
+    }
+}
+
+/// A protocol's checks of each whole request (its field count, the spacing
+/// of requests).
+pub trait Requests: Clone + std::fmt::Debug {
+    /// The checks of one request the host sent; breaches into `out`.
+    fn request(&mut self, r: &Request, out: &mut Vec<Breach>);
+}
+
+/// A protocol's watcher: the shared checks of every sample and the
+/// protocol's of every request.
+#[derive(Debug, Clone)]
+pub struct Host<P> {
+    line: Watch,
+    requests: P,
+}
+
+impl<P: Requests> Host<P> {
+    /// A watcher with `limits`, the shared checks reported under `rules`.
+    pub fn with(limits: Limits, rules: Rules, requests: P) -> Self {
+        Host {
+            line: Watch::new(limits, rules),
+            requests,
+        }
+    }
+
+    /// One sample at `t_ps`: the host's driver input `tx`, its enable
+    /// `de`, its receiver's output `rx`.
+    pub fn sample(&mut self, t_ps: u64, tx: bool, de: bool, rx: bool) -> Vec<Breach> {
+        let seen = self.line.sample(t_ps, tx, de, rx);
+        let mut out = seen.breaches;
+        if let Some(r) = seen.request {
+            self.requests.request(&r, &mut out);
+        }
+        out
+    }
+
+    /// Sample `n` of a clock of `f_hz` as an emulator sees the host: its
+    /// driver's input `tx` and enable `de`, and the encoder's driver at the
+    /// host's end (`Some(level)` while it drives), which the host's
+    /// receiver hears ([`heard`]) as a monitor at the host's pins does.
+    pub fn sample_n(
+        &mut self,
+        n: u64,
+        f_hz: u64,
+        tx: bool,
+        de: bool,
+        encoder: Option<bool>,
+    ) -> Vec<Breach> {
+        self.sample(ps_at(n, f_hz), tx, de, heard(tx, de, encoder))
+    }
 }
 
 /// One request as the host's driver sent it.

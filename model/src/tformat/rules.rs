@@ -166,13 +166,7 @@ impl Limits {
 
     /// The release set to `us` (field `field`), within [`RELEASE`]'s range.
     pub fn set_release(&mut self, field: &str, us: f64) -> Result<(), ConfigError> {
-        self.line.release_ps = Unit::Us.ps(RELEASE.setting(field, us)?);
-        Ok(())
-    }
-
-    /// The longest pause between a request's fields set to `bits` bits.
-    pub fn set_gap_bits(&mut self, bits: f64) {
-        self.line.max_gap_ps = bits * self.line.bit_ps;
+        self.line.set_release(&RELEASE, field, us)
     }
 
     /// The least lengths, for [`rules::resolution_notes`].
@@ -185,37 +179,27 @@ impl Limits {
     }
 }
 
-/// The T-format watcher: the host's transceiver pins.
+/// The T-format checks of whole requests: the field count, a reset's spacing.
 #[derive(Debug, Clone)]
-pub struct Watch {
-    line: watch::Watch,
+pub struct Requests {
     reset_interval_ps: u64,
     /// A reset sequence in progress: Data ID, requests so far, start of the last.
     reset: Option<(u8, u32, u64)>,
 }
 
-impl Watch {
-    /// A watcher holding the host to `limits`.
-    pub fn new(limits: Limits) -> Self {
-        Watch {
-            line: watch::Watch::new(limits.line, SHARED),
-            reset_interval_ps: limits.reset_interval_ps,
-            reset: None,
-        }
-    }
+/// The T-format watcher: the host's transceiver pins ([`watch::Host::sample`]).
+pub type Watch = watch::Host<Requests>;
 
-    /// One sample at `t_ps`: the host's driver input `tx`, its enable
-    /// `de`, its receiver's output `rx` ([`watch::heard`]).
-    pub fn sample(&mut self, t_ps: u64, tx: bool, de: bool, rx: bool) -> Vec<Breach> {
-        let seen = self.line.sample(t_ps, tx, de, rx);
-        let mut out = seen.breaches;
-        if let Some(r) = seen.request {
-            self.request(&r, &mut out);
-        }
-        out
-    }
+/// A watcher holding the host to `limits`.
+pub fn watch(limits: Limits) -> Watch {
+    let requests = Requests {
+        reset_interval_ps: limits.reset_interval_ps,
+        reset: None,
+    };
+    watch::Host::with(limits.line, SHARED, requests)
+}
 
-    /// The checks of one request the host sent.
+impl watch::Requests for Requests {
     fn request(&mut self, r: &Request, out: &mut Vec<Breach>) {
         let Some(&cf) = r.fields.first() else { return };
         let code = frames::parse_control_field(cf).code;
