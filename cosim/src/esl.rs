@@ -27,52 +27,27 @@
 //! follow from them, Table 5), and `temp_warning` (DD0). `last_status` also
 //! reads `ea0`, `ea1`, `ready` of the last answer's SF.
 //!
-//! Checks of the host (the rules seed 000 states, limits in `[checks]`):
-//! * turnaround: never both drivers on the pair (the host releases the line
-//!   after its request; the encoder answers 2 µs later);
-//! * character timing: every edge of the host's request on the bit grid of
-//!   the 10-bit fields (start, 8 data, stop; Figure 1), within
-//!   `bit_tolerance_percent` of the time since the field's start edge plus
-//!   one emulator cycle, and the fields of a request back to back: a frame
-//!   set of a defined Data ID with another field count than Table 3's (CF and
-//!   CRC; E adds ADF, F adds ADF and EDF) was split by a pause;
-//! * request spacing: the 8 requests of B, C, D "consecutively at a typical
-//!   interval of 40 µs" (each within the encoder's `repeat_window_us` of the
-//!   one before, not interrupted by another request before the 8th);
-//!   "more than 200 µs between each memory read operation" and "more than
-//!   6 ms between each memory write operation" for the EEPROM (the
-//!   encoder's `eeprom_read_us`, `eeprom_write_us`); no memory access within
-//!   the page change time after a write to the page register.
+//! Checks of the host: the rule book [`model::esl::rules`], whose watcher
+//! this emulator and the ESL monitor both feed with the host's transceiver
+//! pins (its driver's level and enable, and what its receiver hears: the
+//! encoders' answer at the host's end while one drives), so both report the
+//! same rule with the same text; `[checks] bit_tolerance_percent` (3) is the
+//! drift allowed on the host's bit edges, and each encoder's times bound the
+//! spacing of the requests to its address.
 
 use serde::{Deserialize, Serialize};
 
 use model::esl::frames::{self, Alarms, DataId, Field};
+use model::esl::rules::{watch, Limits, Spacing, Watch};
 use model::esl::{BenchConfig, Encoder, EncoderSettings};
 use model::line::{CableConfig, Drive};
 
 use crate::check::Checks;
 use crate::config::{self, Error};
+use crate::monitor::half_duplex::emulator_step;
 use crate::motion::Motions;
 use crate::pair::Pair;
 use crate::{Emulator, Pins, Result};
-
-/// Both drivers on the pair.
-pub const TURNAROUND: &str = "turnaround (seed 000: half duplex; the host releases the line after its request, the encoder answers 2 us later)";
-/// An edge of the request off the bit grid.
-pub const CHARACTER: &str = "character timing (seed 000 Figure 1: 10-bit fields, start, 8 data LSB first, stop, at the bit rate)";
-/// A request split by a pause.
-pub const BACK_TO_BACK: &str = "character timing (seed 000 Table 3: a request's fields back to back; a frame set ends when no start bit follows a stop bit)";
-/// B, C, D not 8 times consecutively.
-pub const REPEAT: &str = "request spacing (seed 000 Table 4: B, C, D minimum 8 times consecutively at a typical interval of 40 us)";
-/// EEPROM reads too close.
-pub const READ_SPACING: &str =
-    "request spacing (seed 000: wait more than 200 us between each memory read operation)";
-/// EEPROM writes too close.
-pub const WRITE_SPACING: &str =
-    "request spacing (seed 000: wait more than 6 ms between each memory write operation)";
-/// Memory access during a page change.
-pub const PAGE_SPACING: &str =
-    "request spacing (seed 000 Table 11: a page change takes 18 ms before the next memory access)";
 
 /// The emulator's own limits (`[checks]`).
 #[derive(Debug, Clone, PartialEq, Deserialize)]
@@ -148,42 +123,21 @@ pub struct Entry {
     pub sc: Option<(u8, u8)>,
 }
 
-/// The host's request bits seen at the encoders' end: the field being timed.
-#[derive(Debug, Clone, Copy, Default)]
-struct CharTimer {
-    /// Cycle of the field's start edge.
-    start: Option<u64>,
-    last: bool,
-}
-
-/// Spacing state per encoder.
-#[derive(Debug, Clone, Default)]
-struct Spacing {
-    seen: u64,
-    /// B/C/D in progress: (Data ID, count so far, end cycle of the last).
-    repeat: Option<(u8, u32, u64)>,
-    last_read: Option<u64>,
-    last_write: Option<u64>,
-    page_write: Option<u64>,
-}
-
 /// ESL encoders and their cable, on the emulator clock.
 pub struct EslEmulator {
     f_emu_hz: u64,
     period_ps: u64,
-    bit_cycles: f64,
-    tolerance: f64,
     encoders: Vec<Encoder>,
-    windows: Vec<(u64, u64, u64, u64)>,
-    spacing: Vec<Spacing>,
     pair: Pair,
     bus: Drive,
     motions: Motions,
     cycle: u64,
-    chars: CharTimer,
     entries: Vec<Entry>,
     last: Vec<Option<usize>>,
     checks: Checks,
+    watch: Watch,
+    /// The pins out of the last step: the encoders at the host's end.
+    out: Pins,
 }
 
 /// The ALM flags by name (Table 7) and their bit in ALM.
@@ -290,30 +244,25 @@ impl EslEmulator {
             ..BenchConfig::default()
         };
         let mut encoders = Vec::new();
-        let mut windows = Vec::new();
-        for i in 0..cfg.encoders.len() {
+        let mut limits = Limits::seed(cfg.baud, cfg.checks.bit_tolerance_percent);
+        for (i, e) in cfg.encoders.iter().enumerate() {
             let mut c = bench
                 .encoder_config(i)
                 .map_err(|e| Error::config(origin, e))?;
             c.broadcast_address = cfg.broadcast_address;
-            windows.push((
-                c.repeat_window,
-                c.eeprom_read,
-                c.eeprom_write,
-                c.page_change,
-            ));
             encoders.push(Encoder::new(c));
+            limits.spacing[usize::from(e.address & 7)] = Spacing::of(e);
+        }
+        let mut checks = Checks::new(tb.period_ps());
+        for note in model::rules::resolution_notes(f_emu_hz, &limits.least()) {
+            checks.note(note);
         }
         let delay = cfg.cable.delay_cycles(&tb);
         let n = encoders.len();
         Ok(EslEmulator {
             f_emu_hz,
             period_ps: tb.period_ps(),
-            bit_cycles: tb.f_sys_hz() as f64 / cfg.baud,
-            tolerance: cfg.checks.bit_tolerance_percent / 100.0,
             encoders,
-            windows,
-            spacing: vec![Spacing::default(); n],
             pair: Pair::new(delay),
             bus: Drive {
                 enable: false,
@@ -321,13 +270,11 @@ impl EslEmulator {
             },
             motions: Motions::default(),
             cycle: 0,
-            chars: CharTimer {
-                start: None,
-                last: true,
-            },
             entries: Vec::new(),
             last: vec![None; n],
-            checks: Checks::new(tb.period_ps()),
+            checks,
+            watch: watch(limits),
+            out: Pins(1),
         })
     }
 
@@ -379,138 +326,6 @@ impl EslEmulator {
             sc: has(|f| matches!(f, Field::Sc1)).then_some((d.sc1, d.sc2)),
         });
     }
-
-    /// Character timing of the host's request, on its own pins (the cable
-    /// shifts every edge alike).
-    fn time_characters(&mut self, host: Drive) {
-        let level = host.level || !host.enable;
-        let t = &mut self.chars;
-        if level == t.last {
-            return;
-        }
-        t.last = level;
-        let bit = self.bit_cycles;
-        let now = self.cycle;
-        let Some(start) = t.start else {
-            if !level {
-                t.start = Some(now);
-            }
-            return;
-        };
-        let o = (now - start) as f64;
-        let slack = self.tolerance * o + 1.0;
-        if o >= 9.5 * bit {
-            // After the stop bit's middle: a falling edge starts the next field.
-            if !level {
-                if o < 10.0 * bit - slack {
-                    let us = self.checks.us(now - start);
-                    self.checks.push(now, CHARACTER, format!("stop bit short: next start bit {us:.3} us after the field's start edge ({:.3} us for 10 bits)", 10.0 * bit * self.period_ps as f64 / 1e6));
-                }
-                t.start = Some(now);
-            } else {
-                t.start = None;
-            }
-            return;
-        }
-        let n = (o / bit).round();
-        if n < 1.0 || (o - n * bit).abs() > slack {
-            let ns = o * self.period_ps as f64 / 1e3;
-            self.checks.push(now, CHARACTER, format!("an edge {ns:.1} ns after the field's start edge, {:.2} bits: off the bit grid by more than {:.1} % + 1 cycle", o / bit, self.tolerance * 100.0));
-            // Resynchronise on the next falling edge after idle.
-            t.start = None;
-        }
-    }
-
-    /// Request field count and spacing, once per frame set an encoder received.
-    fn on_request(&mut self, device: usize) {
-        let Some(r) = self.encoders[device].last_request().cloned() else {
-            return;
-        };
-        let s = &mut self.spacing[device];
-        s.seen = self.encoders[device].requests();
-        // Field count: once per request on the bus (from encoder 0's receiver).
-        let cf = frames::parse_control_field(r.fields[0]);
-        let id = DataId::from_code(cf.code);
-        if device == 0 {
-            if let Some(id) = id {
-                let want = match id {
-                    DataId::IdE => 3,
-                    DataId::IdF => 4,
-                    _ => 2,
-                };
-                if r.fields.len() != want && cf.parity_ok && !r.stop_error {
-                    self.checks.push(
-                        r.end,
-                        BACK_TO_BACK,
-                        format!(
-                            "a frame set of {} field(s) for Data ID {:X}, which takes {want}",
-                            r.fields.len(),
-                            cf.code
-                        ),
-                    );
-                }
-            }
-        }
-        if !r.for_me || !cf.parity_ok {
-            return;
-        }
-        let (window, read, write, page) = self.windows[device];
-        let since = |t: Option<u64>| t.map(|t| r.end.saturating_sub(t));
-        let us = |c: u64| c as f64 * self.period_ps as f64 / 1e6;
-        let s = &mut self.spacing[device];
-        // B, C, D: 8 consecutive requests.
-        match (s.repeat, id.filter(|d| d.is_repeated())) {
-            (Some((rid, k, at)), Some(_)) if rid == cf.code => {
-                if r.end.saturating_sub(at) > window + 1 {
-                    self.checks.push(r.end, REPEAT, format!("request {} of Data ID {:X} came {:.1} us after the one before, beyond the encoder's repeat window of {:.1} us (the count starts again)", k + 1, cf.code, us(r.end - at), us(window)));
-                    s.repeat = Some((rid, 1, r.end));
-                } else {
-                    s.repeat = if k + 1 >= 8 {
-                        None
-                    } else {
-                        Some((rid, k + 1, r.end))
-                    };
-                }
-            }
-            (prev, now_id) => {
-                if let Some((rid, k, _)) = prev {
-                    self.checks.push(r.end, REPEAT, format!("Data ID {rid:X} sent {k} time(s), then Data ID {:X}: the command was not executed", cf.code));
-                }
-                s.repeat = now_id.map(|_| (cf.code, 1, r.end));
-            }
-        }
-        if let Some(id) = id.filter(|d| d.is_memory()) {
-            let address = r.fields.get(1).map_or(0, |a| a >> 1);
-            if let Some(c) = since(s.page_write).filter(|&c| c + 1 < page) {
-                self.checks.push(r.end, PAGE_SPACING, format!("a memory access {:.1} us after a write to the page register (page change {:.1} us)", us(c), us(page)));
-            }
-            let eeprom = address != frames::PAGE_REGISTER && r.page != frames::REGISTER_PAGE;
-            if id == DataId::IdE && eeprom {
-                if let Some(c) = since(s.last_read).filter(|&c| c + 1 < read) {
-                    self.checks.push(
-                        r.end,
-                        READ_SPACING,
-                        format!(
-                            "an EEPROM read {:.1} us after the one before (read time {:.1} us)",
-                            us(c),
-                            us(read)
-                        ),
-                    );
-                }
-                s.last_read = Some(r.end);
-            }
-            if id == DataId::IdF {
-                if address == frames::PAGE_REGISTER {
-                    s.page_write = Some(r.end);
-                } else if eeprom {
-                    if let Some(c) = since(s.last_write).filter(|&c| c + 1 < write) {
-                        self.checks.push(r.end, WRITE_SPACING, format!("an EEPROM write {:.1} us after the one before (write time {:.1} us)", us(c), us(write)));
-                    }
-                    s.last_write = Some(r.end);
-                }
-            }
-        }
-    }
 }
 
 impl Emulator for EslEmulator {
@@ -527,10 +342,16 @@ impl Emulator for EslEmulator {
                 }
             }
         }
-        self.time_characters(host);
-        let at_encoder = self
-            .pair
-            .step(host, self.bus, self.cycle, &mut self.checks, TURNAROUND);
+        let at_encoder = emulator_step(
+            &mut self.watch,
+            &mut self.pair,
+            &mut self.checks,
+            self.cycle,
+            self.f_emu_hz,
+            host,
+            self.bus,
+            self.out,
+        );
         // Two drivers on the bus: a low wins (as the model's bench).
         let (mut enable, mut level) = (false, true);
         for i in 0..self.encoders.len() {
@@ -543,13 +364,11 @@ impl Emulator for EslEmulator {
             if self.encoders[i].answered().len() != answers {
                 self.on_answer(i);
             }
-            if self.encoders[i].requests() != self.spacing[i].seen {
-                self.on_request(i);
-            }
         }
         self.bus = Drive { enable, level };
         self.cycle += 1;
-        self.pair.pins_out(self.bus, &self.checks, None)
+        self.out = self.pair.pins_out(self.bus, &self.checks, None);
+        self.out
     }
 
     fn set_position(&mut self, device: usize, position: u64) -> Result<()> {
@@ -688,6 +507,7 @@ impl Emulator for EslEmulator {
             "answers": self.entries,
             "contention_cycles": self.pair.contention_cycles(),
             "violations": self.checks.all(),
+            "notes": self.checks.notes(),
         })
     }
 

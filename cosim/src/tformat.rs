@@ -20,27 +20,28 @@
 //! `multi_turn_error`, `battery_error`, `battery_alarm` (ea0 and ea1 of the
 //! status field follow from them, seed 002 6.3.2).
 //!
-//! Checks of the master: both drivers on the pair at once (the host must
-//! release the line before the encoder answers: turnaround).
+//! Checks of the master: the rule book [`model::tformat::rules`], whose
+//! watcher this emulator and the T-format monitor both feed with the host's
+//! transceiver pins (its driver's level and enable, and what its receiver
+//! hears: the encoder's answer at the host's end while the encoder drives),
+//! so both report the same rule with the same text.
 
 use serde::{Deserialize, Serialize};
 
 use model::line::{CableConfig, Drive};
 use model::tformat::frames::{Alarms, DataId};
+use model::tformat::rules::{watch, Limits, Watch};
 use model::tformat::{AnswerFlip, BenchConfig, Encoder, EncoderSettings};
 
 use crate::check::Checks;
 use crate::config::{self, Error};
+use crate::monitor::half_duplex::emulator_step;
 use crate::motion::Motions;
 use crate::pair::Pair;
 use crate::{Emulator, Pins, Result};
 
 /// The T-format bit rate (seed 002: 2.5 Mbps), the emulator's "line clock".
 pub const MAX_CLOCK_KHZ: f64 = 2500.0;
-
-/// Both drivers on the pair.
-const TURNAROUND: &str =
-    "turnaround (seed 002: the host releases the line before the encoder answers)";
 
 /// The emulator's configuration (the scenario's T-format device tables).
 #[derive(Debug, Clone, PartialEq, Deserialize)]
@@ -97,6 +98,9 @@ pub struct TformatEmulator {
     cycle: u64,
     entries: Vec<Entry>,
     checks: Checks,
+    watch: Watch,
+    /// The pins out of the last step: the encoder at the host's end.
+    out: Pins,
 }
 
 fn le(bytes: &[u8]) -> u32 {
@@ -135,6 +139,11 @@ impl TformatEmulator {
             _ => Error::config(origin, e),
         })?;
         let delay = cfg.cable.delay_cycles(&tb);
+        let limits = Limits::seed(cfg.baud, cfg.encoder.reset_interval_us);
+        let mut checks = Checks::new(tb.period_ps());
+        for note in model::rules::resolution_notes(f_emu_hz, &limits.least()) {
+            checks.note(note);
+        }
         Ok(TformatEmulator {
             f_emu_hz,
             period_ps: tb.period_ps(),
@@ -147,7 +156,9 @@ impl TformatEmulator {
             motions: Motions::default(),
             cycle: 0,
             entries: Vec::new(),
-            checks: Checks::new(tb.period_ps()),
+            checks,
+            watch: watch(limits),
+            out: Pins(1),
         })
     }
 
@@ -230,12 +241,15 @@ impl Emulator for TformatEmulator {
                     .set_position((p & 0x1_FFFF) as u32, (p >> 17) as u16);
             }
         }
-        let at_encoder = self.pair.step(
+        let at_encoder = emulator_step(
+            &mut self.watch,
+            &mut self.pair,
+            &mut self.checks,
+            self.cycle,
+            self.f_emu_hz,
             host,
             self.enc_drive,
-            self.cycle,
-            &mut self.checks,
-            TURNAROUND,
+            self.out,
         );
         let answers = self.encoder.answered().len();
         self.enc_drive = self.encoder.step(at_encoder);
@@ -243,7 +257,8 @@ impl Emulator for TformatEmulator {
             self.on_answer();
         }
         self.cycle += 1;
-        self.pair.pins_out(self.enc_drive, &self.checks, None)
+        self.out = self.pair.pins_out(self.enc_drive, &self.checks, None);
+        self.out
     }
 
     fn set_position(&mut self, device: usize, position: u64) -> Result<()> {
@@ -343,6 +358,7 @@ impl Emulator for TformatEmulator {
             "answers": self.entries,
             "contention_cycles": self.pair.contention_cycles(),
             "violations": self.checks.all(),
+            "notes": self.checks.notes(),
         })
     }
 

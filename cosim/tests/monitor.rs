@@ -362,19 +362,79 @@ fn each_half_duplex_rule_fires_once(sim: &str) {
         ),
     ];
     let cmd = bench_of(sim, "tb_half_duplex_rules");
-    let cases: [(u32, usize, usize, &str); 12] = [
-        (0, 0, 0, ""),
-        (1, 1, 0, "character timing (seed 002 6.1: 2.5 Mbps, permissible jitter +-100 ns; 6.3: 10-bit fields, start, 8 data LSB first, delimiter): an edge 1400.0 ns after the field's start edge, 3.50 bits"),
-        (2, 1, 0, "request frame (seed 002 7.2, 8.2: no start bit after a delimiter ends the frame; a request's fields back to back): 2.00 bits of idle line"),
-        (3, 1, 0, "turnaround (seed 002 7.1: the answer comes 3 us (typ.) after the request's delimiter; the host releases the line before): driver enable still on"),
-        (4, 1, 0, "turnaround (seed 002 10: never transmit any request while the encoder transmits its data): the host switched its driver on 2.00 bits after"),
-        (5, 1, 0, "request spacing (seed 002 9: resets 7, 8, C: 10 times in one sequence, with the interval of 40 ms or more): request 2 of reset Data ID 7 0.104 ms after"),
-        (6, 0, 1, "character timing (seed 000 Table 1, Figure 1: 10 Mbps, 10-bit frames, start, 8 data, stop): an edge 350.0 ns after the field's start edge"),
-        (7, 0, 1, "request frame (seed 000 Figure 1: a frame set ends when no start bit follows a stop bit; a request's frames back to back): 1.50 bits of idle line"),
-        (8, 0, 1, "request frame (seed 000 Table 12: a request is RCF and CRC; Data ID E adds ADF, F adds ADF and EDF): a request of 1 frame(s) for Data ID 1, which takes 2"),
-        (9, 0, 1, "turnaround (seed 000 Figure 2: the encoder answers 2.0 us (typ.) after the request; half duplex, the host releases the line before): driver enable still on"),
-        (10, 0, 1, "request spacing (seed 000 Table 4: B, C, D minimum 8 times consecutively at a typical interval of 40 us): Data ID B sent 1 time(s) to address 3, then Data ID 1"),
-        (11, 0, 1, "turnaround (seed 000 Table 1: half duplex; the host does not drive while an encoder answers): the host switched its driver on 2.00 bits after"),
+    use model::esl::rules as e;
+    use model::tformat::rules as t;
+    let cases: [(u32, usize, usize, String); 12] = [
+        (0, 0, 0, String::new()),
+        (
+            1,
+            1,
+            0,
+            format!(
+                "{}: an edge 1400.0 ns after the field's start edge, 3.50 bits",
+                t::JITTER.label()
+            ),
+        ),
+        (2, 1, 0, format!("{}: 2.00 bits", t::END_OF_FRAME.label())),
+        (3, 1, 0, format!("{}: driver enable on", t::RELEASE.label())),
+        (
+            4,
+            1,
+            0,
+            format!(
+                "{}: the host switched its driver on 2.00 bits",
+                t::ANSWER.label()
+            ),
+        ),
+        (
+            5,
+            1,
+            0,
+            format!("{}: request 2 of reset Data ID 7 0.104", t::RESET.label()),
+        ),
+        (
+            6,
+            0,
+            1,
+            format!(
+                "{}: an edge 350.0 ns after the field's start edge",
+                e::BIT_RATE.label()
+            ),
+        ),
+        (
+            7,
+            0,
+            1,
+            format!("{}: 1.50 bits", e::END_OF_FRAME_SET.label()),
+        ),
+        (
+            8,
+            0,
+            1,
+            format!(
+                "{}: a request of 1 frame(s) for Data ID 1, which takes 2",
+                e::FRAMES.label()
+            ),
+        ),
+        (9, 0, 1, format!("{}: driver enable on", e::RELEASE.label())),
+        (
+            10,
+            0,
+            1,
+            format!(
+                "{}: Data ID B sent 1 time(s) to address 3, then Data ID 1",
+                e::REPEAT.label()
+            ),
+        ),
+        (
+            11,
+            0,
+            1,
+            format!(
+                "{}: the host switched its driver on 2.00 bits",
+                e::HALF_DUPLEX.label()
+            ),
+        ),
     ];
     for (case, n_tf, n_esl, rule) in cases {
         let (mon_t, mon_e) = (
@@ -403,7 +463,7 @@ fn each_half_duplex_rule_fires_once(sim: &str) {
             "case {case} in {sim}:\n{out}"
         );
         assert!(
-            out.contains(rule),
+            out.contains(&rule),
             "case {case} in {sim}: no `{rule}` in\n{out}"
         );
         // The transcripts: two transactions each (a reset's requests and B then a readout are one).

@@ -30,6 +30,8 @@
 //!   next request cannot land on the rest of an answer whose framing was
 //!   lost), at most the quiet limit if there is one.
 
+pub mod watch;
+
 use crate::uart::{self, Receiver, ReceiverConfig};
 use crate::Result;
 

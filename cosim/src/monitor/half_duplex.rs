@@ -1,299 +1,77 @@
 //! What the T-format and ESL monitors share: the host's side of a
 //! half-duplex RS-485 pair, watched at its transceiver (the driver's input
-//! D, its enable DE, the receiver's output R), and the timing rules of a
-//! host that sends 10-bit characters (start 0, 8 data LSB first, stop 1)
-//! and then listens:
-//!
-//! * character timing: every edge of a request field on the bit grid from
-//!   the field's start edge, within `tolerance × (time since the start
-//!   edge) + jitter + one monitor cycle`; the stop bit high at its middle and
-//!   a full bit long; a request's fields back to back (the next start bit
-//!   within `max_gap` of the stop bit's end while the driver stays on); the
-//!   driver enable not released inside a field;
-//! * turnaround: the driver enable off within `release` of the request's
-//!   last stop bit; the host's driver never on while the encoder drives its
-//!   receiver low while its own driver sends a 1 (both drivers on; a
-//!   receiver that echoes the host's driver is low whenever the host sends
-//!   a 0, so only a low against a 1 is another driver), and never switched on inside the
-//!   encoder's answer (before a bit time of idle line has followed the
-//!   answer's last character).
-//!
-//! A request (its fields as the host's driver sent them) is handed back when
-//! the driver enable falls, for the protocol's own checks (field count,
-//! request spacing).
+//! D, its enable DE, the receiver's output R): the line kept per exchange
+//! (from one rise of DE to the next) for the protocol's decoder. The timing
+//! rules are the protocol's rule book's ([`model::esl::rules`],
+//! [`model::tformat::rules`], over [`model::half_duplex::watch`]), which
+//! the monitor and the emulator both feed ([`emulator_step`]: the
+//! emulators' side of it).
 
+use model::half_duplex::watch;
+use model::rules::Rule;
 use model::wire::Signal;
 use serde_json::Value;
 
-use super::Base;
-use crate::Pins;
+use super::{limit, Base};
+use crate::check::Checks;
+use crate::config::Error;
+use crate::pair::Pair;
+use crate::{Pins, Result};
 
-/// The rule names of one protocol, as its seed states them.
-#[derive(Debug, Clone, Copy)]
-pub struct Rules {
-    /// An edge off the bit grid, a low or short stop bit, DE released in a field.
-    pub character: &'static str,
-    /// A pause between the fields of one request.
-    pub gap: &'static str,
-    /// DE still on too long after the request.
-    pub release: &'static str,
-    /// The host drove while the encoder answered.
-    pub answer: &'static str,
+/// The host's transceiver pins of a monitor's input (bit 0 R, bit 1 D,
+/// bit 2 DE), as `(tx, de, rx)`.
+pub fn transceiver(pins: Pins) -> (bool, bool, bool) {
+    (pins.0 & 2 != 0, pins.0 & 4 != 0, pins.0 & 1 != 0)
 }
 
-/// The limits, in ps.
-#[derive(Debug, Clone, Copy)]
-pub struct Limits {
-    /// One bit.
-    pub bit_ps: f64,
-    /// Drift allowed per ps since the field's start edge.
-    pub tolerance: f64,
-    /// Jitter allowed on every edge, ps.
-    pub jitter_ps: f64,
-    /// Longest idle line between two fields of a request (from the stop bit's end).
-    pub max_gap_ps: f64,
-    /// Longest time from the last stop bit's end to the driver enable's fall.
-    pub release_ps: u64,
+/// One step of a T-format or ESL emulator's host side at its `cycle` of
+/// `f_hz`: the rule book's watcher sees the host as a monitor at the host's
+/// pins does (its driver `host`, and the answer `out` the emulator put at
+/// the host's end the step before), its breaches go to `checks`; then the
+/// pair carries `host` and the device's `drive`. Both drivers on is the
+/// watcher's rule, so the pair's own report of it is not kept. Returns the
+/// level at the device's receiver.
+#[allow(clippy::too_many_arguments)]
+pub fn emulator_step<P: watch::Requests>(
+    watch: &mut watch::Host<P>,
+    pair: &mut Pair,
+    checks: &mut Checks,
+    cycle: u64,
+    f_hz: u64,
+    host: model::line::Drive,
+    drive: model::line::Drive,
+    out: Pins,
+) -> bool {
+    let answer = out.enable().then_some(out.data());
+    for b in watch.sample_n(cycle, f_hz, host.level, host.enable, answer) {
+        checks.breach(cycle, &b);
+    }
+    pair.step(host, drive, cycle, &mut Checks::default(), "")
 }
 
-/// One request as the host's driver sent it.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct Request {
-    /// The first start edge, ps.
-    pub start_ps: u64,
-    /// The last stop bit's end (nominal), ps.
-    pub end_ps: u64,
-    /// The fields' values (sampled mid-bit), in order.
-    pub fields: Vec<u8>,
-    /// A character-timing violation in it (its fields are not all known).
-    pub damaged: bool,
-}
-
-/// The watcher's state.
-#[derive(Debug, Clone)]
-pub struct Watch {
-    limits: Limits,
-    rules: Rules,
-    de: bool,
-    drive: bool,
-    field: Option<u64>,
-    bits: u32,
-    value: u8,
-    stop_checked: bool,
-    request: Option<Request>,
-    last_end: Option<u64>,
-    release_reported: bool,
-    rx: bool,
-    rx_char_end: u64,
-    answer_until: Option<u64>,
-    answer_last: u64,
-    both: bool,
-    /// After a character-timing violation: edges are not timed until the
-    /// line has been high for more than a bit or the driver is off.
-    lost: bool,
-    last_edge: u64,
-}
-
-impl Watch {
-    /// A watcher with `limits`, reporting under `rules`.
-    pub fn new(limits: Limits, rules: Rules) -> Self {
-        Watch {
-            limits,
-            rules,
-            de: false,
-            drive: true,
-            field: None,
-            bits: 0,
-            value: 0,
-            stop_checked: false,
-            request: None,
-            last_end: None,
-            release_reported: false,
-            rx: true,
-            rx_char_end: 0,
-            answer_until: None,
-            answer_last: 0,
-            both: false,
-            lost: false,
-            last_edge: 0,
-        }
+/// The `[monitor]` settings of the shared checks into `line`: the release
+/// (`release_us`, refused outside `release`'s range) and the longest pause
+/// between a request's characters (`max_gap_bits`).
+pub fn line_settings(
+    line: &mut watch::Limits,
+    release: &'static Rule,
+    release_us: Option<f64>,
+    gap_bits: Option<f64>,
+    origin: &str,
+) -> Result<()> {
+    if let Some(us) = release_us {
+        line.set_release(release, "monitor.release_us", us)
+            .map_err(|e| Error::config(origin, e))?;
     }
-
-    /// A character-timing violation: the field is abandoned.
-    fn lose(&mut self) {
-        self.lost = true;
-        self.field = None;
-        if let Some(r) = &mut self.request {
-            r.damaged = true;
-        }
+    if let Some(bits) = gap_bits {
+        line.set_gap_bits(limit(
+            origin,
+            "monitor.max_gap_bits",
+            bits,
+            "give the longest idle line between two characters of a request, in bits",
+        )?);
     }
-
-    fn at(&self, start: u64, bits: f64) -> u64 {
-        start + (bits * self.limits.bit_ps).round() as u64
-    }
-
-    /// One monitor cycle at `now`: the host's driver input `tx`, its enable
-    /// `de`, its receiver's output `rx`. Returns the request that ended
-    /// (the driver enable fell).
-    pub fn step(
-        &mut self,
-        base: &mut Base,
-        now: u64,
-        tx: bool,
-        de: bool,
-        rx: bool,
-    ) -> Option<Request> {
-        let bit = self.limits.bit_ps;
-        let cycle = base.period_ps as f64;
-        let r = self.rules;
-        // The encoder's answer on the host's receiver.
-        if rx != self.rx {
-            self.rx = rx;
-            if !rx && !de && now >= self.rx_char_end {
-                // The next start bit is looked for from this one's stop-bit
-                // middle on, as a UART receiver does (an encoder off rate
-                // sends characters shorter or longer than 10 bits).
-                self.rx_char_end = self.at(now, 9.5);
-                self.answer_last = now;
-                self.answer_until = Some(self.at(now, 11.0));
-            }
-        }
-        // Low at the receiver while the host drives high: another driver.
-        // (Only then: a receiver that echoes the host's own driver is low
-        // whenever the host sends a 0.)
-        let both = de && tx && !rx;
-        if both && !self.both {
-            base.violation(
-                now,
-                r.answer,
-                "the host's driver was on while the encoder drove the line low (both drivers on)"
-                    .to_string(),
-            );
-        }
-        self.both = both;
-        if de && !self.de && self.answer_until.is_some_and(|u| now < u) {
-            base.violation(now, r.answer, format!("the host switched its driver on {:.2} bits after the start bit of the encoder's last character, inside its answer (a frame set ends when a bit time of idle line follows a character)", (now - self.answer_last) as f64 / bit));
-        }
-        // The host's request, as its driver puts it on the line.
-        let level = tx || !de;
-        let mut ended = None;
-        if self.lost && ((level && self.drive && now - self.last_edge > bit as u64) || !de) {
-            self.lost = false;
-        }
-        if self.lost {
-            // not timed
-        } else if let Some(s) = self.field {
-            let o = (now - s) as f64;
-            let slack = self.limits.tolerance * o + self.limits.jitter_ps + cycle;
-            while self.bits < 8 && now >= self.at(s, self.bits as f64 + 1.5) {
-                if level {
-                    self.value |= 1 << self.bits;
-                }
-                self.bits += 1;
-            }
-            if !self.stop_checked && now >= self.at(s, 9.5) {
-                self.stop_checked = true;
-                self.request
-                    .get_or_insert(Request {
-                        start_ps: s,
-                        end_ps: 0,
-                        fields: Vec::new(),
-                        damaged: false,
-                    })
-                    .fields
-                    .push(self.value);
-                if !level {
-                    base.violation(
-                        now,
-                        r.character,
-                        "stop bit low at its middle (framing error)".to_string(),
-                    );
-                    self.lose();
-                }
-            }
-            if self.lost {
-                // the stop bit was low
-            } else if !de && self.de && !self.stop_checked {
-                base.violation(
-                    now,
-                    r.character,
-                    format!("driver enable released {:.2} bits into a field", o / bit),
-                );
-                self.lose();
-            } else if level != self.drive {
-                if self.stop_checked {
-                    if !level {
-                        if o < 10.0 * bit - slack {
-                            base.violation(now, r.character, format!("stop bit short: the next start bit {:.3} us after the field's start edge ({:.3} us for 10 bits)", o / 1e6, 10.0 * bit / 1e6));
-                        }
-                        self.last_end = Some(self.at(s, 10.0));
-                        self.start_field(now);
-                    } else {
-                        self.last_end = Some(self.at(s, 10.0));
-                        self.field = None;
-                    }
-                } else {
-                    let n = (o / bit).round();
-                    if n < 1.0 || (o - n * bit).abs() > slack {
-                        base.violation(now, r.character, format!("an edge {:.1} ns after the field's start edge, {:.2} bits: off the bit grid by more than {} ns", o / 1e3, o / bit, ((slack - cycle) / 1e3).round()));
-                        self.lose();
-                    }
-                }
-            } else if self.stop_checked && o >= 10.0 * bit {
-                self.last_end = Some(self.at(s, 10.0));
-                self.field = None;
-            }
-        } else if level != self.drive && !level {
-            if let (Some(end), Some(_)) = (self.last_end, &self.request) {
-                let gap = now.saturating_sub(end) as f64;
-                if gap > self.limits.max_gap_ps + self.limits.jitter_ps + cycle {
-                    base.violation(now, r.gap, format!("{:.2} bits of idle line between two fields of one request (the driver stayed on); at most {:.2}", gap / bit, self.limits.max_gap_ps / bit));
-                }
-            }
-            self.start_field(now);
-        }
-        if level != self.drive {
-            self.last_edge = now;
-        }
-        self.drive = level;
-        // The end of the request: the driver enable falls.
-        if de && self.field.is_none() && !self.release_reported {
-            if let Some(end) = self.last_end.filter(|&e| {
-                self.request.is_some() && now > e + self.limits.release_ps + base.period_ps
-            }) {
-                self.release_reported = true;
-                base.violation(now, r.release, format!("driver enable still on {:.3} us after the request's last stop bit; at most {:.3} us", (now - end) as f64 / 1e6, self.limits.release_ps as f64 / 1e6));
-            }
-        }
-        if !de && self.de {
-            if let Some(mut req) = self.request.take() {
-                req.end_ps = self.last_end.unwrap_or(now);
-                ended = Some(req);
-            }
-            self.field = None;
-            self.last_end = None;
-            self.release_reported = false;
-            self.lost = false;
-        }
-        self.de = de;
-        ended
-    }
-
-    fn start_field(&mut self, now: u64) {
-        self.field = Some(now);
-        self.bits = 0;
-        self.value = 0;
-        self.stop_checked = false;
-        self.release_reported = false;
-        if self.request.is_none() {
-            self.request = Some(Request {
-                start_ps: now,
-                end_ps: 0,
-                fields: Vec::new(),
-                damaged: false,
-            });
-        }
-    }
+    Ok(())
 }
 
 /// The line since the exchange not yet decoded: the wire at the host (its
@@ -414,39 +192,45 @@ pub trait ExchangeDecoder: Clone {
     fn finish(&mut self) -> Option<Value>;
 }
 
-/// The host's side of the pair as a monitor sees it: the timing watch, the
-/// line not yet decoded and the decoder; what the T-format and ESL monitors
-/// share but their own request checks.
+/// The host's side of the pair as a monitor sees it: the line not yet
+/// decoded and the decoder; what the T-format and ESL monitors share but
+/// their rule books.
 pub struct Side<D> {
     /// Clock, violations, decoded transactions.
     pub base: Base,
-    watch: Watch,
     line: Exchanges,
     decoder: D,
 }
 
 impl<D: ExchangeDecoder> Side<D> {
-    /// A side at `base`'s clock with `limits` and `rules`; an exchange is
-    /// decoded 12 bits after the next one began.
-    pub fn new(base: Base, limits: Limits, rules: Rules, decoder: D) -> Self {
-        let settle = (12.0 * limits.bit_ps).round() as u64;
+    /// A side at `base`'s clock for a line of `bit_ps` a bit; an exchange
+    /// is decoded 12 bits after the next one began.
+    pub fn new(base: Base, bit_ps: f64, decoder: D) -> Self {
+        let settle = (12.0 * bit_ps).round() as u64;
         Side {
             base,
-            watch: Watch::new(limits, rules),
             line: Exchanges::new(settle),
             decoder,
         }
     }
 
-    /// One monitor cycle (pins: bit 0 R, bit 1 D, bit 2 DE); the request that ended, if any.
-    pub fn step(&mut self, pins: Pins) -> Option<Request> {
+    /// One monitor cycle (pins: bit 0 R, bit 1 D, bit 2 DE): the line
+    /// kept, exchanges decoded as they complete. The monitor's cycle count
+    /// is the caller's to advance ([`Base::step_out`]).
+    pub fn step(&mut self, pins: Pins) {
         let now = self.base.now_ps();
-        let (rx, tx, de) = (pins.0 & 1 != 0, pins.0 & 2 != 0, pins.0 & 4 != 0);
+        let (tx, de, rx) = transceiver(pins);
         let (decoder, done) = (&mut self.decoder, &mut self.base.done);
         self.line.step(now, tx, de, rx, |line, w| {
             done.extend(decoder.exchange(line, w))
         });
-        self.watch.step(&mut self.base, now, tx, de, rx)
+    }
+
+    /// Records the breaches a rule book's watcher returned.
+    pub fn breaches(&mut self, list: &[model::rules::Breach]) {
+        for b in list {
+            self.base.breach(b);
+        }
     }
 
     /// The transactions not yet in `base.done` (the decoder's state is not changed).

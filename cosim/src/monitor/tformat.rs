@@ -4,31 +4,12 @@
 //! hears it), bit 1 its driver input (D), bit 2 its driver enable (DE).
 //! Transactions are decoded by [`model::tformat::decode`] (the decoder of
 //! `tbgen decode tformat`) from the wire at the host (D while DE is on, else
-//! R) and DE. The checks (seed 002, Tamagawa TS5669 N127), each with one
-//! monitor cycle of tolerance, at the host's pins
-//! ([`super::half_duplex`] for the shared ones):
-//!
-//! * character timing (6.1: "Transmission rate 2.5 Mbps, permissible
-//!   jitter ±100 ns"; 6.3: 10-bit fields, start, 8 data LSB first,
-//!   delimiter): every edge of a request field within `monitor.jitter_ns`
-//!   (100) of the bit grid from the field's start edge, the delimiter high
-//!   and a full bit, DE not released inside a field;
-//! * a request's fields back to back (7.2, 8.2: "if there is no Start bit
-//!   after the Delimiter, End of Frame is judged"): the next start bit
-//!   within `monitor.max_gap_bits` (0.5) of the delimiter's end, and the
-//!   request has the fields its Data ID takes (CF; Data ID 6: CF ADF EDF
-//!   CRC; D: CF ADF CRC);
-//! * turnaround (7.1: the answer comes "3 µs (typ.) after receiving the
-//!   Delimiter"; 10: "Never transmit any Request to Smart Abs while it
-//!   transmits the data"): DE off within `monitor.release_us` (1.5, half the
-//!   typical answer delay) of the last delimiter's end; never DE on while
-//!   the encoder drives R low against a 1 of the host, never DE switched on
-//!   inside the encoder's answer;
-//! * request spacing (9: resets 7, 8, C "10 times in one sequence ... with
-//!   the interval of 40 ms or more"): each request of a reset at least
-//!   `monitor.reset_interval_us` (default the encoder's
-//!   `reset_interval_us`, 40 000) after the one before, and ten of them
-//!   before another Data ID.
+//! R) and DE. The rules are the rule book's, [`model::tformat::rules`]
+//! (seed 002, Tamagawa TS5669 N127), decided by its watcher, which the
+//! emulator feeds too: the jitter of every request edge (6.1), the fields
+//! back to back (7.2) and as many as the Data ID takes, DE released within
+//! 1.5 µs of the last delimiter (7.1), no request during the answer (10),
+//! and a reset's ten requests 40 ms or more apart (9).
 //!
 //! Configuration (the emulator's file or a whole scenario will do): `baud`,
 //! `[host] timeout_us` (the answer timeout the decoder applies, 10),
@@ -39,27 +20,13 @@ use serde::Deserialize;
 use serde_json::Value;
 
 use model::tformat::decode::{Decoder, Transaction};
-use model::tformat::frames::{self, DataId};
+use model::tformat::rules::{watch, Limits, Watch};
 use model::wire::uart_bytes;
 
-use super::half_duplex::{ExchangeDecoder, Exchanges, Limits, Request, Rules, Side, Window};
+use super::half_duplex::{line_settings, transceiver, ExchangeDecoder, Exchanges, Side, Window};
 use super::{field, host_timeout_us, limit, listens_only, proto_table, sub, Base};
 use crate::config::{self, Error};
 use crate::{Emulator, Pins, Result};
-
-/// The rules, as the seed states them.
-pub const RULE_CHARACTER: &str = "character timing (seed 002 6.1: 2.5 Mbps, permissible jitter +-100 ns; 6.3: 10-bit fields, start, 8 data LSB first, delimiter)";
-/// See [`RULE_CHARACTER`].
-pub const RULE_GAP: &str = "request frame (seed 002 7.2, 8.2: no start bit after a delimiter ends the frame; a request's fields back to back)";
-/// See [`RULE_CHARACTER`].
-pub const RULE_FIELDS: &str = "request frame (seed 002 6.2, 6.3: a readout or reset request is CF alone, Data ID 6 CF ADF EDF CRC, Data ID D CF ADF CRC)";
-/// See [`RULE_CHARACTER`].
-pub const RULE_RELEASE: &str = "turnaround (seed 002 7.1: the answer comes 3 us (typ.) after the request's delimiter; the host releases the line before)";
-/// See [`RULE_CHARACTER`].
-pub const RULE_ANSWER: &str =
-    "turnaround (seed 002 10: never transmit any request while the encoder transmits its data)";
-/// See [`RULE_CHARACTER`].
-pub const RULE_RESET: &str = "request spacing (seed 002 9: resets 7, 8, C: 10 times in one sequence, with the interval of 40 ms or more)";
 
 /// The ALMC flags by name and their bit (seed 002 6.3.4; the emulator's names).
 const ALMC: [(&str, u8); 7] = [
@@ -110,9 +77,7 @@ fn json(t: Transaction) -> Value {
 /// A T-format monitor.
 pub struct TformatMonitor {
     side: Side<Decode>,
-    reset_interval: u64,
-    /// A reset sequence in progress: Data ID, requests so far, start of the last.
-    reset: Option<(u8, u32, u64)>,
+    watch: Watch,
 }
 
 impl TformatMonitor {
@@ -142,90 +107,37 @@ impl TformatMonitor {
         let host = sub(&whole, "host", origin)?;
         let encoder = sub(&whole, "encoder", origin)?;
         let timeout = host_timeout_us(mon.timeout_us, &host, origin, 10.0)?;
-        let jitter = limit(
-            origin,
-            "monitor.jitter_ns",
-            mon.jitter_ns.unwrap_or(100.0),
-            "give the jitter allowed on a request's edges in ns (seed 002: 100)",
-        )?;
-        let gap = limit(
-            origin,
-            "monitor.max_gap_bits",
-            mon.max_gap_bits.unwrap_or(0.5),
-            "give the longest idle line between two fields of a request, in bits",
-        )?;
-        let release = limit(
-            origin,
-            "monitor.release_us",
-            mon.release_us.unwrap_or(1.5),
-            "give the longest time from the request's last delimiter to DE off, in µs",
-        )?;
         let reset = limit(
             origin,
             "monitor.reset_interval_us",
             mon.reset_interval_us.or(field(&encoder, "reset_interval_us", origin, "encoder.reset_interval_us")?).unwrap_or(40_000.0),
             "give the least interval between the requests of a reset in µs (seed 002: 40 ms = 40000)",
         )?;
-        let base = Base::new(f_mon_hz);
+        let bad = |e: model::ConfigError| Error::config(origin, e);
+        let mut limits = Limits::seed(baud, reset);
+        if let Some(ns) = mon.jitter_ns {
+            limits.set_jitter("monitor.jitter_ns", ns).map_err(bad)?;
+        }
+        line_settings(
+            &mut limits.line,
+            &model::tformat::rules::RELEASE,
+            mon.release_us,
+            mon.max_gap_bits,
+            origin,
+        )?;
+        let mut base = Base::new(f_mon_hz);
+        for note in model::rules::resolution_notes(f_mon_hz, &limits.least()) {
+            base.checks.note(note);
+        }
         let bit_ps = (1e12 / baud).round() as u64;
-        let limits = Limits {
-            bit_ps: 1e12 / baud,
-            tolerance: 0.0,
-            jitter_ps: jitter * 1e3,
-            max_gap_ps: gap * 1e12 / baud,
-            release_ps: (release * 1e6).round() as u64,
-        };
-        let rules = Rules {
-            character: RULE_CHARACTER,
-            gap: RULE_GAP,
-            release: RULE_RELEASE,
-            answer: RULE_ANSWER,
-        };
         Ok(TformatMonitor {
-            reset_interval: ((reset * 1e6).round() as u64).saturating_sub(base.period_ps),
             side: Side::new(
                 base,
-                limits,
-                rules,
+                limits.line.bit_ps,
                 Decode(Decoder::new(baud.round() as u64, timeout), bit_ps),
             ),
-            reset: None,
+            watch: watch(limits),
         })
-    }
-
-    fn on_request(&mut self, r: Request) {
-        let Some(&cf) = r.fields.first() else { return };
-        let code = (cf >> 3) & 0xF;
-        let id = DataId::from_code(code);
-        if let Some(id) = id.filter(|_| !r.damaged) {
-            let want = frames::request(id, 0, 0).len();
-            if r.fields.len() != want {
-                self.side.base.violation(
-                    r.end_ps,
-                    RULE_FIELDS,
-                    format!(
-                        "a request of {} field(s) for Data ID {code:X}, which takes {want}",
-                        r.fields.len()
-                    ),
-                );
-            }
-        }
-        let reset = id.is_some_and(|d| d.is_reset());
-        match self.reset {
-            Some((rid, k, last)) if reset && rid == code => {
-                let gap = r.start_ps - last;
-                if gap < self.reset_interval {
-                    self.side.base.violation(r.start_ps, RULE_RESET, format!("request {} of reset Data ID {code:X} {:.3} ms after the one before; at least {:.3} ms", k + 1, gap as f64 / 1e9, (self.reset_interval + self.side.base.period_ps) as f64 / 1e9));
-                }
-                self.reset = (k + 1 < 10).then_some((rid, k + 1, r.start_ps));
-            }
-            prev => {
-                if let Some((rid, k, _)) = prev {
-                    self.side.base.violation(r.start_ps, RULE_RESET, format!("reset Data ID {rid:X} sent {k} time(s), then Data ID {code:X}: a reset takes 10 requests in one sequence"));
-                }
-                self.reset = reset.then_some((code, 1, r.start_ps));
-            }
-        }
     }
 }
 
@@ -235,9 +147,10 @@ impl Emulator for TformatMonitor {
     }
 
     fn step(&mut self, pins: Pins) -> Pins {
-        if let Some(r) = self.side.step(pins) {
-            self.on_request(r);
-        }
+        self.side.step(pins);
+        let (tx, de, rx) = transceiver(pins);
+        let seen = self.watch.sample(self.side.base.exact_ps(), tx, de, rx);
+        self.side.breaches(&seen);
         self.side.base.step_out()
     }
 

@@ -19,7 +19,10 @@
 
 pub mod biss;
 pub mod endat;
+pub mod esl;
+mod half_duplex;
 pub mod ssi;
+pub mod tformat;
 
 use serde_json::Value;
 
@@ -124,7 +127,7 @@ impl Kit {
 
 /// Every protocol's kit.
 pub fn kits() -> Vec<Kit> {
-    vec![ssi::KIT, biss::KIT, endat::KIT]
+    vec![ssi::KIT, tformat::KIT, biss::KIT, endat::KIT, esl::KIT]
 }
 
 /// Every probe of every protocol.

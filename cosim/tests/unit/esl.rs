@@ -1,6 +1,7 @@
 use cosim::esl::*;
 use cosim::{Emulator, Pins};
 use model::esl::frames::request;
+use model::esl::rules::{FRAMES, READ};
 
 const F: u64 = 80_000_000;
 
@@ -15,6 +16,14 @@ fn send(emu: &mut EslEmulator, fields: &[u8], bit: usize, listen: usize) -> Vec<
         }
     }
     (0..listen).map(|_| emu.step(Pins(2))).collect()
+}
+
+/// The bus idle a character and more (the rule book times a host from
+/// its first request after idle).
+fn lead(emu: &mut EslEmulator) {
+    for _ in 0..200 {
+        emu.step(Pins(2));
+    }
 }
 
 fn rules(emu: &mut EslEmulator) -> Vec<String> {
@@ -86,32 +95,38 @@ fn an_emulator_clock_below_four_times_the_bit_rate_is_refused_with_the_minimum()
 #[test]
 fn a_host_that_keeps_driving_into_the_answer_is_reported() {
     let mut emu = EslEmulator::from_toml("[cable]\nlength_m = 0\n", "e.toml", F).unwrap();
+    lead(&mut emu);
     send(&mut emu, &request(0, 1, 0, 0), 8, 0);
     for _ in 0..3000 {
         emu.step(Pins(2 | 4));
     }
-    assert_eq!(rules(&mut emu), vec!["turnaround"]);
+    // DE held past the release, then the answer's first low against the host's 1.
+    let r = rules(&mut emu);
+    assert_eq!(r[..2], ["release", "half duplex"], "{r:?}");
+    assert!(r[2..].iter().all(|x| x == "half duplex"), "{r:?}");
 }
 
 #[test]
-fn a_slow_host_bit_and_a_split_request_are_character_timing_violations() {
+fn a_slow_host_bit_breaks_the_bit_rate_and_a_split_request_the_frame_count() {
     // 9 cycles per bit instead of 8: 12.5 % slow.
     let mut emu = EslEmulator::from_toml("[cable]\nlength_m = 0\n", "e.toml", F).unwrap();
+    lead(&mut emu);
     send(&mut emu, &request(0, 1, 0, 0), 9, 3000);
     assert!(
-        rules(&mut emu).iter().any(|r| r == "character timing"),
+        rules(&mut emu).iter().any(|r| r == "bit rate"),
         "{:?}",
         emu.violations()
     );
-    // CF, a pause of 3 bits, then the CRC: two frame sets of one field.
+    // CF, DE off 3 bits, then the CRC: two frame sets of one field.
     let mut emu = EslEmulator::from_toml("[cable]\nlength_m = 0\n", "e.toml", F).unwrap();
+    lead(&mut emu);
     let r = request(0, 1, 0, 0);
     send(&mut emu, &r[..1], 8, 24);
     send(&mut emu, &r[1..], 8, 3000);
     let v = emu
         .violations()
         .iter()
-        .filter(|v| v.rule == BACK_TO_BACK)
+        .filter(|v| v.rule == FRAMES.label())
         .count();
     assert!(v >= 1, "{:?}", emu.violations());
     assert_eq!(emu.count(), 0);
@@ -121,6 +136,7 @@ fn a_slow_host_bit_and_a_split_request_are_character_timing_violations() {
 fn clear_commands_must_come_8_times_within_the_repeat_window() {
     let mut emu = EslEmulator::from_toml("[cable]\nlength_m = 0\n", "e.toml", F).unwrap();
     let gap = 40 * 80; // 40 µs
+    lead(&mut emu);
     for _ in 0..8 {
         send(&mut emu, &request(0, 0xC, 0, 0), 8, gap);
     }
@@ -129,12 +145,13 @@ fn clear_commands_must_come_8_times_within_the_repeat_window() {
         send(&mut emu, &request(0, 0xC, 0, 0), 8, gap);
     }
     send(&mut emu, &request(0, 1, 0, 0), 8, gap);
-    assert_eq!(rules(&mut emu), vec!["request spacing"]);
+    assert_eq!(rules(&mut emu), vec!["repeat"]);
     // Two EEPROM reads 50 µs apart (page 0).
     let mut emu = EslEmulator::from_toml("[cable]\nlength_m = 0\n", "e.toml", F).unwrap();
+    lead(&mut emu);
     send(&mut emu, &request(0, 0xF, 0x7F, 0), 8, 18_100 * 80);
     send(&mut emu, &request(0, 0xE, 0x10, 0), 8, 50 * 80);
     send(&mut emu, &request(0, 0xE, 0x10, 0), 8, 50 * 80);
     let r: Vec<&str> = emu.violations().iter().map(|v| v.rule).collect();
-    assert_eq!(r, vec![READ_SPACING]);
+    assert_eq!(r, vec![READ.label()]);
 }

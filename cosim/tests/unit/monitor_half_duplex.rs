@@ -204,7 +204,7 @@ fn each_tformat_rule_fires_with_its_time_and_the_seed_reference() {
     );
     assert!(l.mon.violations().is_empty(), "{:?}", l.details());
     assert_eq!(l.mon.count(), 2);
-    // Bit 3 of the control field 4 cycles (200 ns) long: the next edge is off the grid by 4 cycles (100 ns jitter + 1 cycle).
+    // Bit 1 of the control field 12 cycles (600 ns) long: the next edge is off the grid by 4 cycles (200 ns; 100 ns of jitter allowed).
     let mut l = alone("tformat", TF_TOML, TF_HZ);
     let t0 = 80u64;
     l.run(
@@ -217,12 +217,13 @@ fn each_tformat_rule_fires_with_its_time_and_the_seed_reference() {
     // CF 0x02: bits 0 1 0 0 0 0 0 0 -> start(0) b0=0 b1=1: the first edge after the start is the rise at bit 2, now at 20 cycles.
     assert_eq!(
         l.rules(),
-        vec![((t0 + 20) as f64 * 50.0, "character timing".to_string())],
+        vec![((t0 + 20) as f64 * 50.0, "jitter".to_string())],
         "{:?}",
         l.details()
     );
     assert!(
-        l.details()[0].contains("seed 002 6.1") && l.details()[0].contains("+-100 ns"),
+        l.details()[0].contains("seed 002 TS5669 N127, 6.1")
+            && l.details()[0].contains("<= 100 ns"),
         "{:?}",
         l.details()
     );
@@ -238,7 +239,7 @@ fn each_tformat_rule_fires_with_its_time_and_the_seed_reference() {
     );
     assert_eq!(
         l.rules().iter().map(|r| r.1.as_str()).collect::<Vec<_>>(),
-        vec!["character timing"],
+        vec!["jitter"],
         "{:?}",
         l.details()
     );
@@ -256,7 +257,7 @@ fn each_tformat_rule_fires_with_its_time_and_the_seed_reference() {
     );
     assert_eq!(
         l.rules(),
-        vec![((80 + 80 + 16) as f64 * 50.0, "request frame".to_string())],
+        vec![((80 + 80 + 16) as f64 * 50.0, "end of frame".to_string())],
         "{:?}",
         l.details()
     );
@@ -287,7 +288,7 @@ fn each_tformat_rule_fires_with_its_time_and_the_seed_reference() {
     );
     assert_eq!(
         l.rules().iter().map(|r| r.1.as_str()).collect::<Vec<_>>(),
-        vec!["turnaround"],
+        vec!["release"],
         "{:?}",
         l.details()
     );
@@ -309,14 +310,14 @@ fn each_tformat_rule_fires_with_its_time_and_the_seed_reference() {
     );
     let r = l.rules();
     assert!(
-        !r.is_empty() && r.iter().all(|x| x.1 == "turnaround"),
+        !r.is_empty() && r.iter().all(|x| x.1 == "no request during the answer"),
         "{:?}",
         l.details()
     );
     assert!(
         l.details()
             .iter()
-            .any(|d| d.contains("seed 002 10") && d.contains("inside its answer")),
+            .any(|d| d.contains("N127, 10:") && d.contains("inside its answer")),
         "{:?}",
         l.details()
     );
@@ -334,8 +335,8 @@ fn each_tformat_rule_fires_with_its_time_and_the_seed_reference() {
     }
     assert_eq!(l.rules().len(), 9, "{:?}", l.details());
     assert!(
-        l.details()[0].contains("seed 002 9")
-            && l.details()[0].contains("request 2 of reset Data ID 7 0.100 ms after"),
+        l.details()[0].contains("N127, 9:")
+            && l.details()[0].contains("request 2 of reset Data ID 7 0.100000 ms after"),
         "{:?}",
         l.details()
     );
@@ -433,7 +434,7 @@ fn each_esl_rule_fires_with_its_time_and_the_seed_reference() {
             .as_slice(),
     );
     assert!(l.mon.violations().is_empty(), "{:?}", l.details());
-    // Bit 1 of the control field 12 cycles: off the grid by 4 cycles (3 % + 1 cycle allowed).
+    // Bit 1 of the control field 12 cycles: off the grid by 4 cycles (3 % of the time since the start edge allowed).
     let mut l = alone("esl", ESL_TOML, ESL_HZ);
     l.run(
         h.idle(10)
@@ -443,9 +444,9 @@ fn each_esl_rule_fires_with_its_time_and_the_seed_reference() {
             .take()
             .as_slice(),
     );
-    assert_eq!(names(&mut l)[0], "character timing", "{:?}", l.details());
+    assert_eq!(names(&mut l)[0], "bit rate", "{:?}", l.details());
     assert!(
-        l.details()[0].contains("seed 000 Table 1, Figure 1")
+        l.details()[0].contains("seed 000 QS35 ESL, Table 1 and Figure 1")
             && l.details()[0].contains("off the bit grid"),
         "{:?}",
         l.details()
@@ -460,7 +461,7 @@ fn each_esl_rule_fires_with_its_time_and_the_seed_reference() {
             .take()
             .as_slice(),
     );
-    assert_eq!(names(&mut l), vec!["character timing"], "{:?}", l.details());
+    assert_eq!(names(&mut l), vec!["bit rate"], "{:?}", l.details());
     assert!(l.details()[0].contains("stop bit low"), "{:?}", l.details());
     // A 1.5-bit pause inside the request.
     let mut l = alone("esl", ESL_TOML, ESL_HZ);
@@ -475,16 +476,16 @@ fn each_esl_rule_fires_with_its_time_and_the_seed_reference() {
     );
     assert_eq!(
         l.rules(),
-        vec![((80 + 80 + 12) as f64 * 12.5, "request frame".to_string())],
+        vec![((80 + 80 + 12) as f64 * 12.5, "end of frame set".to_string())],
         "{:?}",
         l.details()
     );
     // A readout without its CRC frame.
     let mut l = alone("esl", ESL_TOML, ESL_HZ);
     l.run(h.idle(10).request(&rd1[..1]).idle(100).take().as_slice());
-    assert_eq!(names(&mut l), vec!["request frame"], "{:?}", l.details());
+    assert_eq!(names(&mut l), vec!["request frames"], "{:?}", l.details());
     assert!(
-        l.details()[0].contains("Table 12")
+        l.details()[0].contains("Figures 1, 3 and 5")
             && l.details()[0].contains("1 frame(s) for Data ID 1, which takes 2"),
         "{:?}",
         l.details()
@@ -499,7 +500,7 @@ fn each_esl_rule_fires_with_its_time_and_the_seed_reference() {
             .take()
             .as_slice(),
     );
-    assert_eq!(names(&mut l), vec!["turnaround"], "{:?}", l.details());
+    assert_eq!(names(&mut l), vec!["release"], "{:?}", l.details());
     // The next request 25 bits after a Data ID 1 request: inside the answer (18 frames).
     let mut l = with_emulator("esl", ESL_TOML, ESL_HZ);
     l.run(
@@ -514,8 +515,7 @@ fn each_esl_rule_fires_with_its_time_and_the_seed_reference() {
     assert!(
         l.details()
             .iter()
-            .any(|d| d.contains("half duplex; the host does not drive")
-                && d.contains("inside its answer")),
+            .any(|d| d.contains("half duplex (seed 000") && d.contains("inside its answer")),
         "{:?}",
         l.details()
     );
@@ -531,7 +531,7 @@ fn each_esl_rule_fires_with_its_time_and_the_seed_reference() {
                 .as_slice(),
         );
     }
-    assert_eq!(names(&mut l), vec!["request spacing"], "{:?}", l.details());
+    assert_eq!(names(&mut l), vec!["repeat"], "{:?}", l.details());
     assert!(
         l.details()[0].contains("Table 4") && l.details()[0].contains("request 4 of Data ID B"),
         "{:?}",
@@ -549,7 +549,7 @@ fn each_esl_rule_fires_with_its_time_and_the_seed_reference() {
         );
     }
     l.run(h.request(&rd1).idle(400).take().as_slice());
-    assert_eq!(names(&mut l), vec!["request spacing"], "{:?}", l.details());
+    assert_eq!(names(&mut l), vec!["repeat"], "{:?}", l.details());
     assert!(
         l.details()[0].contains("Data ID C sent 3 time(s)"),
         "{:?}",
@@ -597,11 +597,11 @@ fn each_esl_rule_fires_with_its_time_and_the_seed_reference() {
         "{d:?}"
     );
     assert!(
-        d[1].contains("200 us between each memory read") && d[1].contains("EEPROM read 10"),
+        d[1].contains("EEPROM reads > 200 us") && d[1].contains("EEPROM read 10"),
         "{d:?}"
     );
     assert!(
-        d[2].contains("6 ms between each memory write") && d[2].contains("EEPROM write 10"),
+        d[2].contains("EEPROM writes > 6 ms") && d[2].contains("EEPROM write 10"),
         "{d:?}"
     );
 }
@@ -653,4 +653,66 @@ fn a_half_duplex_monitor_refuses_controls_and_a_bad_table_names_file_and_field()
     )
     .is_ok());
     assert!(open("esl", "[monitor]\nrelease_us = 2\n", "t.toml", 80_000_000).is_ok());
+}
+
+/// A rule bound a configuration sets outside the seed's range is refused
+/// with that range (T-format jitter and release, ESL release); one inside
+/// it is taken; a clock too coarse for the jitter says so once.
+#[test]
+fn a_half_duplex_bound_outside_the_seeds_range_is_refused_with_the_range() {
+    for (kind, toml, field, seed) in [
+        (
+            "tformat_monitor",
+            "[monitor]\njitter_ns = 101\n",
+            "monitor.jitter_ns",
+            "seed 002",
+        ),
+        (
+            "tformat_monitor",
+            "[monitor]\nrelease_us = 3.5\n",
+            "monitor.release_us",
+            "seed 002",
+        ),
+        (
+            "esl_monitor",
+            "[monitor]\nrelease_us = 2.5\n",
+            "monitor.release_us",
+            "seed 000",
+        ),
+    ] {
+        let e = open(kind, toml, "r.toml", 80_000_000)
+            .err()
+            .unwrap_or_else(|| panic!("{kind} took {toml}"))
+            .to_string();
+        assert!(
+            e.contains("r.toml")
+                && e.contains(field)
+                && e.contains("outside the seed's range")
+                && e.contains(seed),
+            "{kind}: {e}"
+        );
+    }
+    assert!(open(
+        "tformat_monitor",
+        "[monitor]\njitter_ns = 50\nrelease_us = 3\n",
+        "r.toml",
+        80_000_000
+    )
+    .is_ok());
+    // 10 MHz samples every 100 ns: the jitter of 100 ns needs 20 MHz.
+    for kind in ["tformat", "tformat_monitor"] {
+        let notes = open(kind, "", "r.toml", 10_000_000).unwrap().transcript()["notes"].clone();
+        let notes = notes.as_array().unwrap();
+        assert!(
+            notes.len() == 1
+                && notes[0].as_str().unwrap().starts_with("jitter (")
+                && notes[0]
+                    .as_str()
+                    .unwrap()
+                    .contains("needs at least 20000000 Hz"),
+            "{kind}: {notes:?}"
+        );
+        let quiet = open(kind, "", "r.toml", 20_000_000).unwrap().transcript()["notes"].clone();
+        assert_eq!(quiet.as_array().map(Vec::len), Some(0), "{kind}: {quiet}");
+    }
 }

@@ -62,6 +62,10 @@ fn an_emulator_clock_that_is_no_multiple_of_the_baud_rate_is_refused() {
 fn a_host_that_keeps_driving_into_the_answer_is_reported() {
     let mut emu =
         TformatEmulator::from_toml("[cable]\nlength_m = 0\n", "t.toml", 80_000_000).unwrap();
+    // The line idle a character and more: the rule book times a host from its first request after idle.
+    for _ in 0..400 {
+        emu.step(Pins(2));
+    }
     for b in frame_bits(control_field_for_code(0)) {
         for _ in 0..32 {
             emu.step(Pins((b as u32) << 1 | 4));
@@ -70,10 +74,21 @@ fn a_host_that_keeps_driving_into_the_answer_is_reported() {
     for _ in 0..4000 {
         emu.step(Pins(2 | 4)); // still driving idle high
     }
+    // DE held past the release, then the answer's first low against the host's 1.
     let rules: Vec<&str> = emu
         .violations()
         .iter()
-        .map(|v| v.rule.split(' ').next().unwrap())
+        .map(|v| v.rule.split(" (").next().unwrap())
         .collect();
-    assert_eq!(rules, vec!["turnaround"]);
+    assert_eq!(
+        rules[..2],
+        ["release", "no request during the answer"],
+        "{rules:?}"
+    );
+    assert!(
+        rules[2..]
+            .iter()
+            .all(|r| *r == "no request during the answer"),
+        "{rules:?}"
+    );
 }

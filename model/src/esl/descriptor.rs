@@ -31,5 +31,5 @@ pub const PROTOCOL: Protocol = Protocol {
         title: "ESL: a request and its answer (QS35-M40M-E12F, ESL Safety serial protocol)",
     }),
     historical: &[],
-    rules: &[],
+    rules: super::rules::RULES,
 };

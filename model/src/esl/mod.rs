@@ -38,6 +38,7 @@ pub mod descriptor;
 mod encoder;
 pub mod frames;
 mod host;
+pub mod rules;
 
 pub use bench::{
     error_names, request_for, Bench, BenchConfig, HostSettings, Intruder, Operation, RequestFlip,

@@ -32,5 +32,5 @@ pub const PROTOCOL: Protocol = Protocol {
             "T-format: Data ID 0 request and answer (Tamagawa Smart Abs TS5669 N127, communication)",
     }),
     historical: &[],
-    rules: &[],
+    rules: super::rules::RULES,
 };

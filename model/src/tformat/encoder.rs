@@ -402,7 +402,7 @@ impl Encoder {
         let counts = last_id == Some(id) && self.now >= last_at + self.cfg.reset_interval;
         let count = if counts { count + 1 } else { 1 };
         self.reset_count = (Some(id), count, self.now);
-        if count == 10 {
+        if count == super::rules::RESET_REQUESTS {
             self.reset_count = (None, 0, 0);
             let delay = if id == DataId::Id8 {
                 self.cfg.eeprom_write

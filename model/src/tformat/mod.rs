@@ -50,6 +50,7 @@ pub mod descriptor;
 mod encoder;
 pub mod frames;
 mod host;
+pub mod rules;
 
 pub use bench::{
     Bench, BenchConfig, HostSettings, LineFault, LineFaultKind, Operation, Transaction,

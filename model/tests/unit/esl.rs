@@ -646,3 +646,22 @@ fn the_transcript_carries_every_character_on_the_wire_at_the_host() {
     assert_eq!(ts[0].wire_answers, [[&whole[..2], &whole[3..]].concat()]);
     assert_eq!(ts[1].wire_answers, [ts[1].received.clone()]);
 }
+
+/// The rule book's seed limits in ps: the bit, the release, and the
+/// encoder times of every address (seed 000 Table 1, Figures 2, 3, 5, Table 4, Table 11).
+#[test]
+fn the_esl_rule_books_seed_limits_in_ps() {
+    use model::esl::rules::{Limits, Spacing};
+    let l = Limits::seed(10e6, 3.0);
+    assert_eq!(l.line.bit_ps, 100_000.0);
+    assert_eq!(l.line.release_ps, 1_000_000);
+    assert_eq!(
+        l.spacing[5],
+        Spacing {
+            repeat_window: 200_000_000,
+            read: 200_000_000,
+            write: 6_000_000_000,
+            page_change: 18_000_000_000,
+        }
+    );
+}

@@ -666,3 +666,14 @@ fn the_transcript_carries_every_character_on_the_wire_at_the_host() {
         (vec![0x02], vec![vec![0x00]])
     );
 }
+
+/// The rule book's seed limits in ps (seed 002 6.1: 2.5 Mbps, jitter 100
+/// ns; 7.1; 9: 40 ms).
+#[test]
+fn the_tformat_rule_books_seed_limits_in_ps() {
+    let l = model::tformat::rules::Limits::seed(2.5e6, 40_000.0);
+    assert_eq!(l.line.bit_ps, 400_000.0);
+    assert_eq!(l.line.jitter_ps, 100_000.0);
+    assert_eq!(l.line.release_ps, 1_500_000);
+    assert_eq!(l.reset_interval_ps, 40_000_000_000);
+}
