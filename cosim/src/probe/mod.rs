@@ -88,8 +88,7 @@ impl Src {
         match self {
             Src::Master(n) => bit(master, n),
             Src::Emulator(n) => bit(answer.0, n),
-            Src::Bus if answer.enable() => answer.data(),
-            Src::Bus => !bit(master, 2) || bit(master, 1),
+            Src::Bus => crate::half_duplex::receiver(bit(master, 1), bit(master, 2), answer),
             Src::WiredAnd(n) => bit(master, n) && answer.data(),
         }
     }
