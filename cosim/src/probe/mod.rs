@@ -18,7 +18,10 @@
 //! testbenches read too, so the wiring is written once.
 
 pub mod biss;
+pub mod modbus;
+pub mod sar;
 pub mod ssi;
+mod uart;
 
 use serde_json::Value;
 
@@ -122,7 +125,7 @@ impl Kit {
 
 /// Every protocol's kit.
 pub fn kits() -> Vec<Kit> {
-    vec![ssi::KIT, biss::KIT]
+    vec![ssi::KIT, biss::KIT, sar::KIT, modbus::KIT]
 }
 
 /// Every probe of every protocol.

@@ -341,3 +341,83 @@ fn each_sar_rule_fires_once_with_its_time() {
         "{v:?}"
     );
 }
+
+/// A limit of the SAR58K24 or Modbus rule book that a configuration sets
+/// outside its rule's range is refused with that range, by the emulator
+/// and the monitor alike (the two read one set of limits).
+#[test]
+fn a_sar_or_modbus_bound_outside_the_rules_range_is_refused_with_the_range() {
+    for (kind, toml, field) in [
+        (
+            "sar58k24",
+            "[checks]\nbaud_tolerance_percent = 3\n",
+            "checks.baud_tolerance_percent",
+        ),
+        (
+            "sar58k24_monitor",
+            "[monitor]\nt2_us = 9.5\n",
+            "monitor.t2_us",
+        ),
+        (
+            "sar58k24",
+            "[[encoders]]\ntrigger_min_low_us = 5\n",
+            "encoders[0].trigger_min_low_us",
+        ),
+        (
+            "sar58k24_monitor",
+            "[monitor]\nrelease_bits = 1.5\n",
+            "monitor.release_bits",
+        ),
+        (
+            "modbus",
+            "[checks]\nbaud_tolerance_percent = 2.5\n",
+            "checks.baud_tolerance_percent",
+        ),
+        (
+            "modbus_monitor",
+            "[monitor]\nrelease_bits = 2\n",
+            "monitor.release_bits",
+        ),
+    ] {
+        let e = open(kind, toml, "r.toml", 20_000_000)
+            .err()
+            .unwrap_or_else(|| panic!("{kind} took {toml}"))
+            .to_string();
+        assert!(
+            e.contains("r.toml")
+                && e.contains(field)
+                && e.contains("outside the seed's range")
+                && e.contains("seed 001"),
+            "{kind}: {e}"
+        );
+    }
+    assert!(open(
+        "modbus",
+        "[checks]\nbaud_tolerance_percent = 1.5\n",
+        "r.toml",
+        20_000_000
+    )
+    .is_ok());
+}
+
+/// A clock too coarse for 2 % of a bit says so once, at time 0, on both
+/// sides, with the clock it needs; a fine one says nothing.
+#[test]
+fn a_clock_too_coarse_for_the_baud_tolerance_says_so_once() {
+    for kind in ["sar58k24", "sar58k24_monitor"] {
+        let e = open(kind, "", "r.toml", 2_304_000).unwrap();
+        let notes = e.transcript()["notes"].as_array().unwrap().clone();
+        assert_eq!(notes.len(), 1, "{kind}: {notes:?}");
+        let n = notes[0].as_str().unwrap();
+        assert!(
+            n.starts_with(model::sar58k24::rules::CHARACTER.label())
+                && n.contains("needs at least 11520008 Hz"),
+            "{kind}: {n}"
+        );
+        let fine = open(kind, "", "r.toml", 11_980_800).unwrap();
+        assert!(
+            fine.transcript()["notes"].as_array().unwrap().is_empty(),
+            "{kind}"
+        );
+    }
+}
