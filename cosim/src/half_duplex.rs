@@ -122,6 +122,51 @@ where
     Ok((tb, own, config::decode(device, origin)?))
 }
 
+/// A rule limit of a half-duplex emulator or monitor: the first value
+/// `sources` give (`[monitor]`'s, `[checks]`', then the device's or the
+/// host's field), else `default`, with the field it came from, refused
+/// unless finite and non-negative (the rule book then holds it to its
+/// rule's range).
+pub(crate) fn rule_limit(
+    origin: &str,
+    sources: [(&'static str, Option<f64>); 3],
+    default: f64,
+) -> Result<(&'static str, f64)> {
+    let (v, f) = crate::monitor::first_given(sources, default);
+    crate::monitor::limit(origin, f, v, "give a finite non-negative number").map(|v| (f, v))
+}
+
+/// The character rules' limits both half-duplex rule books take, with the
+/// fields they came from: the baud rate tolerance (%, 2 by default) and
+/// the release after the request (bit times, 1), each `[monitor]`'s
+/// (`mon`), else `[checks]`' (`chk`).
+pub(crate) fn character_limits(
+    origin: &str,
+    mon: [Option<f64>; 2],
+    chk: [Option<f64>; 2],
+) -> Result<[(&'static str, f64); 2]> {
+    Ok([
+        rule_limit(
+            origin,
+            [
+                ("monitor.baud_tolerance_percent", mon[0]),
+                ("checks.baud_tolerance_percent", chk[0]),
+                ("checks.baud_tolerance_percent", None),
+            ],
+            2.0,
+        )?,
+        rule_limit(
+            origin,
+            [
+                ("monitor.release_bits", mon[1]),
+                ("checks.release_bits", chk[1]),
+                ("checks.release_bits", None),
+            ],
+            1.0,
+        )?,
+    ])
+}
+
 /// Gives each device (its resolution and its `positions` list) the random
 /// positions `[random]` asks for (none: it keeps its list); returns the
 /// devices' resolutions. `field` and `table` name the devices in errors.

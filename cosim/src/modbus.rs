@@ -32,8 +32,10 @@ use model::modbus::{BenchConfig, Device, Verdict};
 
 use crate::check::Checks;
 use crate::config::{self, Error};
-use crate::half_duplex::{randomize, receiver, uart_bench, wire, Bus, RandomPositions, IDLE};
-use crate::monitor::{field, first_given, limit, proto_table};
+use crate::half_duplex::{
+    character_limits, randomize, receiver, rule_limit, uart_bench, wire, Bus, RandomPositions, IDLE,
+};
+use crate::monitor::{field, proto_table};
 use crate::{Emulator, Pins, Result};
 
 /// The limits the master is held to (`[checks]`, and `[monitor]` for a
@@ -65,11 +67,8 @@ pub(crate) fn rule_limits(text: &str, origin: &str, cfg: &BenchConfig) -> Result
     let mon: ModbusChecks = config::decode_in(&whole, "monitor", origin)?;
     let chk: ModbusChecks = config::decode_in(&whole, "checks", origin)?;
     let master = config::sub(&whole, "master", origin)?;
-    let pick = |sources: [(&'static str, Option<f64>); 3], default: f64| {
-        let (v, f) = first_given(sources, default);
-        limit(origin, f, v, "give a finite non-negative number").map(|v| (f, v))
-    };
-    let timeout = pick(
+    let timeout = rule_limit(
+        origin,
         [
             ("monitor.timeout_us", mon.timeout_us),
             ("checks.timeout_us", chk.timeout_us),
@@ -80,25 +79,16 @@ pub(crate) fn rule_limits(text: &str, origin: &str, cfg: &BenchConfig) -> Result
         ],
         5000.0,
     )?;
+    let [tolerance_percent, release_bits] = character_limits(
+        origin,
+        [mon.baud_tolerance_percent, mon.release_bits],
+        [chk.baud_tolerance_percent, chk.release_bits],
+    )?;
     let settings = Settings {
         baud: cfg.baud,
         parity: cfg.parity,
-        tolerance_percent: pick(
-            [
-                ("monitor.baud_tolerance_percent", mon.baud_tolerance_percent),
-                ("checks.baud_tolerance_percent", chk.baud_tolerance_percent),
-                ("checks.baud_tolerance_percent", None),
-            ],
-            2.0,
-        )?,
-        release_bits: pick(
-            [
-                ("monitor.release_bits", mon.release_bits),
-                ("checks.release_bits", chk.release_bits),
-                ("checks.release_bits", None),
-            ],
-            1.0,
-        )?,
+        tolerance_percent,
+        release_bits,
         timeout_us: timeout.1,
     };
     Limits::new(&settings).map_err(|e| Error::config(origin, e))

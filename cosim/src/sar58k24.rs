@@ -36,8 +36,10 @@ use model::sar58k24::{BenchConfig, Encoder, EncoderIn, Mode};
 
 use crate::check::Checks;
 use crate::config::{self, Error};
-use crate::half_duplex::{randomize, receiver, uart_bench, wire, Bus, RandomPositions, IDLE};
-use crate::monitor::{first_given, host_timeout_us, limit, proto_table};
+use crate::half_duplex::{
+    character_limits, randomize, receiver, rule_limit, uart_bench, wire, Bus, RandomPositions, IDLE,
+};
+use crate::monitor::{host_timeout_us, proto_table};
 use crate::{Emulator, Pins, Result};
 
 /// The limits the host is held to (`[checks]`, and `[monitor]` for a
@@ -70,28 +72,22 @@ pub(crate) fn rule_limits(text: &str, origin: &str, cfg: &BenchConfig) -> Result
     let enc = cfg.encoders.first().cloned().unwrap_or_default();
     let timeout = host_timeout_us(mon.timeout_us.or(chk.timeout_us), &host, origin, 5000.0)?;
     let pick =
-        |m: (&'static str, Option<f64>), c: (&'static str, Option<f64>), d: (&'static str, f64)| {
-            let (v, f) = first_given([m, c, (d.0, Some(d.1))], d.1);
-            limit(origin, f, v, "give a finite non-negative number").map(|v| (f, v))
-        };
+        |m, c, (field, v): (&'static str, f64)| rule_limit(origin, [m, c, (field, Some(v))], v);
+    let [tolerance_percent, release_bits] = character_limits(
+        origin,
+        [mon.baud_tolerance_percent, mon.release_bits],
+        [chk.baud_tolerance_percent, chk.release_bits],
+    )?;
     let settings = Settings {
         baud: cfg.baud,
         parity: cfg.parity,
-        tolerance_percent: pick(
-            ("monitor.baud_tolerance_percent", mon.baud_tolerance_percent),
-            ("checks.baud_tolerance_percent", chk.baud_tolerance_percent),
-            ("checks.baud_tolerance_percent", 2.0),
-        )?,
+        tolerance_percent,
         command_gap_bits: pick(
             ("monitor.command_gap_bits", mon.command_gap_bits),
             ("checks.command_gap_bits", chk.command_gap_bits),
             ("encoders[0].command_gap_bits", enc.command_gap_bits),
         )?,
-        release_bits: pick(
-            ("monitor.release_bits", mon.release_bits),
-            ("checks.release_bits", chk.release_bits),
-            ("checks.release_bits", 1.0),
-        )?,
+        release_bits,
         timeout_us: timeout,
         t2_us: pick(
             ("monitor.t2_us", mon.t2_us),

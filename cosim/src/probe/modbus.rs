@@ -56,13 +56,7 @@ fn master(baud: f64) -> Host {
 
 /// The read request with every bit `scale` bit times, then 100 µs idle.
 fn skewed(baud: f64, scale: f64) -> Stimulus {
-    let mut h = master(baud);
-    let bit = h.bit();
-    h.hold(bit);
-    for b in READ {
-        h.char(b, scale);
-    }
-    h.idle(100.0 * US).line()
+    master(baud).skewed(&READ, scale).idle(100.0 * US).line()
 }
 
 /// t1.5 and t3.5 at `baud`, ps.

@@ -58,13 +58,7 @@ fn host(baud: f64) -> Host {
 
 /// The read command with every bit `scale` bit times, then 1.2 ms idle (the answer).
 fn skewed(baud: f64, scale: f64) -> Stimulus {
-    let mut h = host(baud);
-    let bit = h.bit();
-    h.hold(bit);
-    for b in READ {
-        h.char(b, scale);
-    }
-    h.idle(1200.0 * US).line()
+    host(baud).skewed(&READ, scale).idle(1200.0 * US).line()
 }
 
 /// `READ`'s first character, then the host's driver on and high for
@@ -76,6 +70,16 @@ fn gap(silence: f64) -> Stimulus {
         .hold(silence * bit)
         .chars(&READ[1..])
         .idle(1200.0 * US)
+        .line()
+}
+
+/// Two triggers of 12 µs, at 20 µs and `second_us`.
+fn triggers(second_us: f64) -> Stimulus {
+    host(115_200.0)
+        .pulse(TRIG, 12.0 * US)
+        .idle((second_us - 32.0) * US)
+        .pulse(TRIG, 12.0 * US)
+        .idle(700.0 * US)
         .line()
 }
 
@@ -145,23 +149,10 @@ fn probes() -> Vec<Probe> {
                 .idle(700.0 * US)
                 .line()
         }),
-        p("T1-T3", true, "the next trigger 30 us after the frame's last stop bit", HS, BUS_HZ, {
-            // The frame: 20 µs of acquisition after the trigger, five characters (434 µs).
-            host(115_200.0)
-                .pulse(TRIG, 12.0 * US)
-                .idle(472.0 * US)
-                .pulse(TRIG, 12.0 * US)
-                .idle(700.0 * US)
-                .line()
-        }),
-        p("T1-T3", false, "the next trigger 200 us into the frame", HS, BUS_HZ, {
-            host(115_200.0)
-                .pulse(TRIG, 12.0 * US)
-                .idle(208.0 * US)
-                .pulse(TRIG, 12.0 * US)
-                .idle(700.0 * US)
-                .line()
-        }),
+        // The frame: 20 µs of acquisition after the trigger's falling
+        // edge, five characters (434 µs): 40 to 474 µs.
+        p("T1-T3", true, "the next trigger 30 us after the frame's last stop bit", HS, BUS_HZ, triggers(504.0)),
+        p("T1-T3", false, "the next trigger 200 us into the frame", HS, BUS_HZ, triggers(240.0)),
         p("CLR", true, "CLR low 10.1 us", BUS, BUS_HZ, {
             host(115_200.0).pulse(CLR, 10.1 * US).idle(20.0 * US).line()
         }),

@@ -89,6 +89,16 @@ impl Host {
         self.hold(self.bit_ps).chars(bytes)
     }
 
+    /// A request of `bytes` with every bit `scale` bit times (a host off
+    /// its baud rate), the driver off at the end of the last stop bit.
+    pub fn skewed(&mut self, bytes: &[u8], scale: f64) -> &mut Self {
+        self.hold(self.bit_ps);
+        for &b in bytes {
+            self.char(b, scale);
+        }
+        self
+    }
+
     /// Pin `mask` low for `ps` (the driver off, D high).
     pub fn pulse(&mut self, mask: u32, ps: f64) -> &mut Self {
         self.push((self.rest | D) & !mask, ps)
