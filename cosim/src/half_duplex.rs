@@ -1,9 +1,10 @@
 //! What the half-duplex UART emulators (SAR58K24, Modbus RTU) share: one
 //! to three devices of a model behind one RS-485 cable to the host, set up
 //! from the scenario's protocol table, with random position lists, run-time
-//! positions and motion, the cable's two delay lines each way, the
-//! contention check and the output pins. A protocol's emulator keeps only
-//! its devices' model, its transcript entries and its own checks.
+//! positions and motion, the cable's two delay lines each way, the line at
+//! the host's receiver and the output pins. A protocol's emulator keeps
+//! only its devices' model, its transcript entries and its rule book's
+//! watcher (which judges contention: one driver at a time).
 //!
 //! Pins: in bit 1 the host's driver level, bit 2 its enable; out bit 0 the
 //! devices' level at the host's end of the cable, bit 1 their enable there,
@@ -121,6 +122,51 @@ where
     Ok((tb, own, config::decode(device, origin)?))
 }
 
+/// A rule limit of a half-duplex emulator or monitor: the first value
+/// `sources` give (`[monitor]`'s, `[checks]`', then the device's or the
+/// host's field), else `default`, with the field it came from, refused
+/// unless finite and non-negative (the rule book then holds it to its
+/// rule's range).
+pub(crate) fn rule_limit(
+    origin: &str,
+    sources: [(&'static str, Option<f64>); 3],
+    default: f64,
+) -> Result<(&'static str, f64)> {
+    let (v, f) = crate::monitor::first_given(sources, default);
+    crate::monitor::limit(origin, f, v, "give a finite non-negative number").map(|v| (f, v))
+}
+
+/// The character rules' limits both half-duplex rule books take, with the
+/// fields they came from: the baud rate tolerance (%, 2 by default) and
+/// the release after the request (bit times, 1), each `[monitor]`'s
+/// (`mon`), else `[checks]`' (`chk`).
+pub(crate) fn character_limits(
+    origin: &str,
+    mon: [Option<f64>; 2],
+    chk: [Option<f64>; 2],
+) -> Result<[(&'static str, f64); 2]> {
+    Ok([
+        rule_limit(
+            origin,
+            [
+                ("monitor.baud_tolerance_percent", mon[0]),
+                ("checks.baud_tolerance_percent", chk[0]),
+                ("checks.baud_tolerance_percent", None),
+            ],
+            2.0,
+        )?,
+        rule_limit(
+            origin,
+            [
+                ("monitor.release_bits", mon[1]),
+                ("checks.release_bits", chk[1]),
+                ("checks.release_bits", None),
+            ],
+            1.0,
+        )?,
+    ])
+}
+
 /// Gives each device (its resolution and its `positions` list) the random
 /// positions `[random]` asks for (none: it keeps its list); returns the
 /// devices' resolutions. `field` and `table` name the devices in errors.
@@ -231,10 +277,6 @@ pub(crate) struct Bus {
     drive: Drive,
     /// The line level at the host's end in this step.
     at_host: bool,
-    in_contention: bool,
-    /// Report contention (the emulator's `checks.contention`), under this
-    /// rule, with this detail.
-    contention: Option<(&'static str, &'static str)>,
     /// The emulator cycle.
     pub(crate) cycle: u64,
     pub(crate) checks: Checks,
@@ -243,21 +285,17 @@ pub(crate) struct Bus {
 
 impl Bus {
     /// The bus of devices of `bits` (named `what` in errors) on `cable`, on
-    /// the emulator clock `tb`; `contention` is the rule and detail a
-    /// contention is reported under (`None`: not reported).
+    /// the emulator clock `tb`.
     pub(crate) fn new(
         cable: &CableConfig,
         tb: &Timebase,
         bits: Vec<u32>,
         what: &'static str,
-        contention: Option<(&'static str, &'static str)>,
     ) -> Self {
         Bus {
             cable: HalfDuplexLine::new(cable.delay_cycles(tb), true),
             drive: IDLE,
             at_host: true,
-            in_contention: false,
-            contention,
             cycle: 0,
             checks: Checks::new(tb.period_ps()),
             shafts: Shafts::new(tb, bits, what),
@@ -276,13 +314,6 @@ impl Bus {
         // The devices answer after this step: the cable carries what they
         // drove in the last one.
         let (at_host, at_device) = self.cable.step(host, self.drive);
-        let contention = at_host.contention || at_device.contention;
-        if let Some((rule, detail)) = self.contention {
-            if contention && !self.in_contention {
-                self.checks.push(self.cycle, rule, detail.into());
-            }
-        }
-        self.in_contention = contention;
         self.at_host = at_host.level;
         at_device.level
     }
@@ -323,6 +354,14 @@ impl Bus {
         self.shafts.set_motion(device, toml, self.cycle)
     }
 
+    /// A breach of the rule book, at the emulator cycle of its time
+    /// (`f_hz` the emulator clock).
+    pub(crate) fn breach(&mut self, f_hz: u64, b: &model::rules::Breach) {
+        let ps = model::time::PS_PER_S as u128;
+        let cycle = (b.at_ps as u128 * f_hz as u128 + ps / 2) / ps;
+        self.checks.breach(cycle as u64, b);
+    }
+
     /// Cycles in which two drivers were on at one end.
     pub(crate) fn contention_cycles(&self) -> u64 {
         self.cable.contention_cycles()
@@ -334,6 +373,20 @@ pub(crate) const IDLE: Drive = Drive {
     enable: false,
     level: true,
 };
+
+/// The line at the host's receiver: the devices' level while they drive
+/// at the host's end (`out`, the emulator's last pins out: bit 0 their
+/// level, bit 1 their enable), else the host's own driver (`tx` while `de`),
+/// else high (the fail-safe bias of an idle RS-485 pair). The rule books'
+/// watchers read it here in the emulator, and the probes wire a monitor's
+/// receiver from it.
+pub fn receiver(tx: bool, de: bool, out: Pins) -> bool {
+    if out.enable() {
+        out.data()
+    } else {
+        !de || tx
+    }
+}
 
 /// The devices' drive on the shared line: the first device that drives wins
 /// (`drive` so far, then device `d`).

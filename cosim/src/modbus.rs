@@ -5,7 +5,10 @@
 //! `[[devices]]`, `[cable]`; `[master]` gives the t1.5/t3.5 the devices keep,
 //! as in the scenario); `[[ops]]`, `[[second_drivers]]` and `f_sys_mhz` are
 //! ignored. The emulator's own tables are `[random]` (as for the SAR58K24:
-//! `count` random positions per device from `seed`) and `[checks]`.
+//! `count` random positions per device from `seed`) and `[checks]`, the
+//! limits of the rule book [`model::modbus::rules`], whose watcher the
+//! emulator feeds every cycle exactly as the monitor does, so both print
+//! the same rule and text.
 //!
 //! As in the model, a device answers the next entry of its `positions`
 //! list (the last holding), until a testbench calls `set_position(device,
@@ -24,38 +27,71 @@
 use serde::{Deserialize, Serialize};
 
 use model::bits::hex;
+use model::modbus::rules::{Limits, Settings, Watch};
 use model::modbus::{BenchConfig, Device, Verdict};
 
 use crate::check::Checks;
-use crate::config::Error;
-use crate::half_duplex::{randomize, uart_bench, wire, Bus, RandomPositions, IDLE};
+use crate::config::{self, Error};
+use crate::half_duplex::{
+    character_limits, randomize, receiver, rule_limit, uart_bench, wire, Bus, RandomPositions, IDLE,
+};
+use crate::monitor::{field, proto_table};
 use crate::{Emulator, Pins, Result};
 
-/// The limits the master is held to (`[checks]`).
-#[derive(Debug, Clone, PartialEq, Deserialize)]
+/// The limits the master is held to (`[checks]`, and `[monitor]` for a
+/// monitor's own: the first given wins), each optional.
+#[derive(Debug, Clone, PartialEq, Deserialize, Default)]
 #[serde(deny_unknown_fields, default)]
 pub struct ModbusChecks {
-    /// Two drivers on the line at once is a violation.
-    pub contention: bool,
-    /// A request the device discards (a silence over t1.5 inside it, a bad
-    /// CRC, a parity or framing error) is a violation.
-    pub discarded: bool,
-}
-
-impl Default for ModbusChecks {
-    fn default() -> Self {
-        ModbusChecks {
-            contention: true,
-            discarded: true,
-        }
-    }
+    /// The master's answer timeout, µs (else `[master] timeout_us`, 5000).
+    pub timeout_us: Option<f64>,
+    /// The baud rate tolerance of the master's characters, % (2).
+    pub baud_tolerance_percent: Option<f64>,
+    /// The longest time from the request's last stop bit to DE off, bit times (1).
+    pub release_bits: Option<f64>,
 }
 
 #[derive(Debug, Clone, PartialEq, Deserialize, Default)]
 #[serde(deny_unknown_fields, default)]
 struct Own {
     random: RandomPositions,
+    /// Checked here for unknown fields; [`rule_limits`] reads it.
+    #[allow(dead_code)]
     checks: ModbusChecks,
+}
+
+/// The rule limits of the configuration `text`, set up as `cfg`: what the
+/// emulator and the monitor both hold the master to.
+pub(crate) fn rule_limits(text: &str, origin: &str, cfg: &BenchConfig) -> Result<Limits> {
+    let whole = proto_table(text, origin, "modbus")?;
+    let mon: ModbusChecks = config::decode_in(&whole, "monitor", origin)?;
+    let chk: ModbusChecks = config::decode_in(&whole, "checks", origin)?;
+    let master = config::sub(&whole, "master", origin)?;
+    let timeout = rule_limit(
+        origin,
+        [
+            ("monitor.timeout_us", mon.timeout_us),
+            ("checks.timeout_us", chk.timeout_us),
+            (
+                "master.timeout_us",
+                field(&master, "timeout_us", origin, "master.timeout_us")?,
+            ),
+        ],
+        5000.0,
+    )?;
+    let [tolerance_percent, release_bits] = character_limits(
+        origin,
+        [mon.baud_tolerance_percent, mon.release_bits],
+        [chk.baud_tolerance_percent, chk.release_bits],
+    )?;
+    let settings = Settings {
+        baud: cfg.baud,
+        parity: cfg.parity,
+        tolerance_percent,
+        release_bits,
+        timeout_us: timeout.1,
+    };
+    Limits::new(&settings).map_err(|e| Error::config(origin, e))
 }
 
 /// One request a device saw, and its answer.
@@ -91,11 +127,13 @@ pub struct ModbusEmulator {
     devices: Vec<Device>,
     seen: Vec<usize>,
     bus: Bus,
-    /// Report a discarded request (`checks.discarded`).
-    discarded: bool,
     entries: Vec<Entry>,
     last: Vec<Option<usize>>,
     last_value: Vec<Option<u64>>,
+    /// The rule book's watcher, fed the master's pins.
+    watch: Watch,
+    /// The pins out of the last step (the line at the master's receiver).
+    out: Pins,
 }
 
 impl ModbusEmulator {
@@ -129,24 +167,21 @@ impl ModbusEmulator {
             })
             .collect::<Result<Vec<_>>>()?;
         let n = devices.len();
+        let limits = rule_limits(text, origin, &bench)?;
+        let mut bus = Bus::new(&bench.cable, &tb, bits, "device");
+        for note in model::rules::resolution_notes(f_emu_hz, &limits.least()) {
+            bus.checks.note(note);
+        }
         Ok(ModbusEmulator {
             f_emu_hz,
             devices,
             seen: vec![0; n],
-            bus: Bus::new(
-                &bench.cable,
-                &tb,
-                bits,
-                "device",
-                own.checks.contention.then_some((
-                    "one driver at a time (seed 001, 3.1.7: half-duplex RS-485, the master releases the line after its request)",
-                    "the master and a device drive the line together",
-                )),
-            ),
-            discarded: own.checks.discarded,
+            bus,
             entries: Vec::new(),
             last: vec![None; n],
             last_value: vec![None; n],
+            watch: Watch::new(limits),
+            out: Pins(IDLE.level as u32),
         })
     }
 
@@ -173,6 +208,11 @@ impl Emulator for ModbusEmulator {
     }
 
     fn step(&mut self, pins: Pins) -> Pins {
+        let (tx, de) = (pins.0 & 2 != 0, pins.0 & 4 != 0);
+        let t_ps = model::rules::ps_at(self.bus.cycle, self.f_emu_hz);
+        for b in self.watch.sample(t_ps, receiver(tx, de, self.out), tx, de) {
+            self.bus.breach(self.f_emu_hz, &b);
+        }
         let at_device = self.bus.begin(pins);
         for (i, p) in self.bus.moving() {
             // A motion profile wraps at the device's resolution: always fits.
@@ -187,13 +227,6 @@ impl Emulator for ModbusEmulator {
                     if value.is_some() {
                         self.last_value[i] = value;
                     }
-                    if s.verdict == Verdict::Discarded && self.discarded {
-                        self.bus.checks.push(
-                            self.bus.cycle,
-                            "RTU framing (seed 001, 3.1.7 and Modbus over serial line 2.5.1.1: a frame is sent as a continuous stream, silences inside it under t1.5, CRC-16)",
-                            format!("device {i} discarded the request {}", hex(&s.request)),
-                        );
-                    }
                     self.last[i] = Some(self.entries.len());
                     self.entries.push(Entry {
                         device: i,
@@ -207,7 +240,8 @@ impl Emulator for ModbusEmulator {
                 self.seen[i] = d.seen().len();
             }
         }
-        self.bus.end(drive)
+        self.out = self.bus.end(drive);
+        self.out
     }
 
     fn set_position(&mut self, device: usize, position: u64) -> Result<()> {
@@ -264,6 +298,7 @@ impl Emulator for ModbusEmulator {
             "requests": self.entries,
             "contention_cycles": self.bus.contention_cycles(),
             "violations": self.bus.checks.all(),
+            "notes": self.bus.checks.notes(),
         })
     }
 

@@ -8,7 +8,9 @@
 //! * `[random] count = N, seed = S`: each encoder's `positions` list becomes
 //!   `N` random positions below `2^bits` (a closed-loop test's source), from
 //!   the seed `S` (encoder `i` uses `S + i`).
-//! * `[checks]`: the limits the host is held to (see [`SarChecks`]).
+//! * `[checks]`: the limits the host is held to (see [`SarChecks`]): the
+//!   rule book [`model::sar58k24::rules`], fed every cycle exactly as the
+//!   monitor feeds it, so both print the same rule and text.
 //!
 //! The position an encoder reads is the next entry of its `positions` list
 //! (one per acquisition, the last holding), exactly as in the model, until
@@ -29,25 +31,78 @@ use serde::{Deserialize, Serialize};
 
 use model::bits::hex;
 use model::line::DelayLine;
+use model::sar58k24::rules::{HostPins, Limits, Settings, Watch};
 use model::sar58k24::{BenchConfig, Encoder, EncoderIn, Mode};
 
 use crate::check::Checks;
-use crate::config::Error;
-use crate::half_duplex::{randomize, uart_bench, wire, Bus, RandomPositions, IDLE};
+use crate::config::{self, Error};
+use crate::half_duplex::{
+    character_limits, randomize, receiver, rule_limit, uart_bench, wire, Bus, RandomPositions, IDLE,
+};
+use crate::monitor::{host_timeout_us, proto_table};
 use crate::{Emulator, Pins, Result};
 
-/// The limits the host is held to (`[checks]`).
-#[derive(Debug, Clone, PartialEq, Deserialize)]
+/// The limits the host is held to (`[checks]`, and `[monitor]` for a
+/// monitor's own: the first given wins), each optional: the rule book's
+/// defaults, the host's and the first encoder's settings.
+#[derive(Debug, Clone, PartialEq, Deserialize, Default)]
 #[serde(deny_unknown_fields, default)]
 pub struct SarChecks {
-    /// Two drivers on the line at once is a violation (bus modes).
-    pub contention: bool,
+    /// The host's answer timeout, µs (else `[host] timeout_us`, 5000).
+    pub timeout_us: Option<f64>,
+    /// The baud rate tolerance of the host's characters, % (2).
+    pub baud_tolerance_percent: Option<f64>,
+    /// The longest time from the command's last stop bit to DE off, bit times (1).
+    pub release_bits: Option<f64>,
+    /// The shortest trigger pulse, µs (else `encoders[0].trigger_min_low_us`).
+    pub t2_us: Option<f64>,
+    /// The shortest CLR pulse, µs (else `encoders[0].clr_min_low_us`).
+    pub clr_min_low_us: Option<f64>,
+    /// The longest silence inside a command, bit times (else `encoders[0].command_gap_bits`).
+    pub command_gap_bits: Option<f64>,
 }
 
-impl Default for SarChecks {
-    fn default() -> Self {
-        SarChecks { contention: true }
-    }
+/// The rule limits of the configuration `text`, set up as `cfg`: what the
+/// emulator and the monitor both hold the host to.
+pub(crate) fn rule_limits(text: &str, origin: &str, cfg: &BenchConfig) -> Result<Limits> {
+    let whole = proto_table(text, origin, "sar")?;
+    let mon: SarChecks = config::decode_in(&whole, "monitor", origin)?;
+    let chk: SarChecks = config::decode_in(&whole, "checks", origin)?;
+    let host = config::sub(&whole, "host", origin)?;
+    let enc = cfg.encoders.first().cloned().unwrap_or_default();
+    let timeout = host_timeout_us(mon.timeout_us.or(chk.timeout_us), &host, origin, 5000.0)?;
+    let pick =
+        |m, c, (field, v): (&'static str, f64)| rule_limit(origin, [m, c, (field, Some(v))], v);
+    let [tolerance_percent, release_bits] = character_limits(
+        origin,
+        [mon.baud_tolerance_percent, mon.release_bits],
+        [chk.baud_tolerance_percent, chk.release_bits],
+    )?;
+    let settings = Settings {
+        baud: cfg.baud,
+        parity: cfg.parity,
+        tolerance_percent,
+        command_gap_bits: pick(
+            ("monitor.command_gap_bits", mon.command_gap_bits),
+            ("checks.command_gap_bits", chk.command_gap_bits),
+            ("encoders[0].command_gap_bits", enc.command_gap_bits),
+        )?,
+        release_bits,
+        timeout_us: timeout,
+        t2_us: pick(
+            ("monitor.t2_us", mon.t2_us),
+            ("checks.t2_us", chk.t2_us),
+            ("encoders[0].trigger_min_low_us", enc.trigger_min_low_us),
+        )?,
+        clr_us: pick(
+            ("monitor.clr_min_low_us", mon.clr_min_low_us),
+            ("checks.clr_min_low_us", chk.clr_min_low_us),
+            ("encoders[0].clr_min_low_us", enc.clr_min_low_us),
+        )?,
+        handshake: matches!(cfg.mode, Mode::Handshake | Mode::HandshakeClear),
+        answer_zeroing: enc.answer_zeroing,
+    };
+    Limits::new(&settings).map_err(|e| Error::config(origin, e))
 }
 
 /// The tables the emulator reads.
@@ -55,6 +110,8 @@ impl Default for SarChecks {
 #[serde(deny_unknown_fields, default)]
 struct Own {
     random: RandomPositions,
+    /// Checked here for unknown fields; [`rule_limits`] reads it.
+    #[allow(dead_code)]
     checks: SarChecks,
 }
 
@@ -82,12 +139,15 @@ pub struct SarEmulator {
     addresses: Vec<u8>,
     encoders: Vec<Encoder>,
     seen: Vec<usize>,
-    glitches: Vec<usize>,
     bus: Bus,
     trigger: DelayLine,
     clr: DelayLine,
     entries: Vec<Entry>,
     last: Vec<Option<u64>>,
+    /// The rule book's watcher, fed the host's pins.
+    watch: Watch,
+    /// The pins out of the last step (the line at the host's receiver).
+    out: Pins,
 }
 
 impl SarEmulator {
@@ -119,27 +179,24 @@ impl SarEmulator {
             .collect::<Result<Vec<_>>>()?;
         let n = encoders.len();
         let delay = bench.cable.delay_cycles(&tb);
+        let limits = rule_limits(text, origin, &bench)?;
+        let mut bus = Bus::new(&bench.cable, &tb, bits, "encoder");
+        for note in model::rules::resolution_notes(f_emu_hz, &limits.least()) {
+            bus.checks.note(note);
+        }
         Ok(SarEmulator {
             f_emu_hz,
             mode: bench.mode,
             addresses: bench.encoders.iter().map(|e| e.address).collect(),
             encoders,
             seen: vec![0; n],
-            glitches: vec![0; n],
-            bus: Bus::new(
-                &bench.cable,
-                &tb,
-                bits,
-                "encoder",
-                own.checks.contention.then_some((
-                    "one driver at a time (seed 001, 3.1.5: half-duplex bus, the host releases the line before the encoder answers)",
-                    "the host and an encoder drive the line together",
-                )),
-            ),
+            bus,
             trigger: DelayLine::new(delay, true),
             clr: DelayLine::new(delay, true),
             entries: Vec::new(),
             last: vec![None; n],
+            watch: Watch::new(limits),
+            out: Pins(IDLE.level as u32),
         })
     }
 
@@ -155,6 +212,18 @@ impl Emulator for SarEmulator {
     }
 
     fn step(&mut self, pins: Pins) -> Pins {
+        let (tx, de) = (pins.0 & 2 != 0, pins.0 & 4 != 0);
+        let host = HostPins {
+            rx: receiver(tx, de, self.out),
+            tx,
+            de,
+            trigger: pins.0 & 1 != 0,
+            clr: pins.0 & 8 != 0,
+        };
+        let t_ps = model::rules::ps_at(self.bus.cycle, self.f_emu_hz);
+        for b in self.watch.sample(t_ps, host) {
+            self.bus.breach(self.f_emu_hz, &b);
+        }
         let input = EncoderIn {
             rx: self.bus.begin(pins),
             trigger: self.trigger.step(pins.0 & 1 != 0),
@@ -181,21 +250,12 @@ impl Emulator for SarEmulator {
                 }
                 self.seen[i] = e.sent().len();
             }
-            if e.glitches() > self.glitches[i] {
-                self.glitches[i] = e.glitches();
-                self.bus.checks.push(
-                    self.bus.cycle,
-                    "T2 (seed 001, 3.1.3: the trigger pulse is low for T2 >= 10 us)",
-                    format!(
-                        "encoder {i} ignored a trigger pulse shorter than its trigger_min_low_us"
-                    ),
-                );
-            }
         }
         if !self.mode.is_bus() {
             drive.enable = true;
         }
-        self.bus.end(drive)
+        self.out = self.bus.end(drive);
+        self.out
     }
 
     fn set_position(&mut self, device: usize, position: u64) -> Result<()> {
@@ -241,6 +301,7 @@ impl Emulator for SarEmulator {
             "frames": self.entries,
             "contention_cycles": self.bus.contention_cycles(),
             "violations": self.bus.checks.all(),
+            "notes": self.bus.checks.notes(),
         })
     }
 

@@ -661,7 +661,8 @@ fn each_endat_monitor_rule_fires_in_verilator() {
 /// with its rule; the clean transcripts are captures `tbgen check` reads
 /// (pass, and a flipped register or position bit is found).
 fn each_uart_rule_fires_once(sim: &str) {
-    use cosim::monitor::{modbus as mb, sar};
+    use model::modbus::rules as mb;
+    use model::sar58k24::rules as sar;
     let dir = root().join(format!(
         "build/cosim/monitor_rules/{sim}/tb_uart_monitor_rules/run"
     ));
@@ -672,20 +673,20 @@ fn each_uart_rule_fires_once(sim: &str) {
     let cmd = bench_of(sim, "tb_uart_monitor_rules");
     let cases: [(u32, usize, usize, &str); 15] = [
         (0, 0, 0, ""),
-        (1, 1, 0, mb::RULE_CHARACTER),
-        (2, 1, 0, mb::RULE_CHARACTER),
-        (3, 1, 0, mb::RULE_T15),
-        (4, 1, 0, mb::RULE_T35),
-        (5, 1, 0, mb::RULE_RELEASE),
-        (6, 1, 0, mb::RULE_ANSWER),
-        (7, 1, 0, mb::RULE_TIMEOUT),
-        (8, 0, 1, sar::RULE_CHARACTER),
-        (9, 0, 1, sar::RULE_GAP),
-        (10, 0, 1, sar::RULE_RELEASE),
-        (11, 0, 1, sar::RULE_ANSWER),
-        (12, 0, 1, sar::RULE_WAIT),
-        (13, 0, 1, sar::RULE_T2),
-        (14, 0, 1, sar::RULE_TRIGGER_BUSY),
+        (1, 1, 0, mb::CHARACTER.label()),
+        (2, 1, 0, mb::CHARACTER.label()),
+        (3, 1, 0, mb::T15.label()),
+        (4, 1, 0, mb::T35.label()),
+        (5, 1, 0, mb::RELEASE.label()),
+        (6, 1, 0, mb::ANSWER.label()),
+        (7, 1, 0, mb::TIMEOUT.label()),
+        (8, 0, 1, sar::CHARACTER.label()),
+        (9, 0, 1, sar::GAP.label()),
+        (10, 0, 1, sar::RELEASE.label()),
+        (11, 0, 1, sar::ANSWER.label()),
+        (12, 0, 1, sar::WAIT.label()),
+        (13, 0, 1, sar::T2.label()),
+        (14, 0, 1, sar::TRIGGER_BUSY.label()),
     ];
     for (case, n_mb, n_sar, rule) in cases {
         let (mon_m, mon_s) = (

@@ -54,6 +54,15 @@ pub enum Unit {
     KHz,
     /// Megahertz (a clock frequency, measured as its period).
     MHz,
+    /// Percent of a measured length (a tolerance): a ratio, with no length
+    /// of its own; the protocol's `Limits` apply it.
+    Percent,
+    /// Bit times at the configured baud rate: the protocol's `Limits`
+    /// scale it, [`Unit::ps`] cannot.
+    Bits,
+    /// Character times (start, data, parity, stop) at the configured baud
+    /// rate: the protocol's `Limits` scale it, [`Unit::ps`] cannot.
+    Chars,
 }
 
 impl Unit {
@@ -65,10 +74,14 @@ impl Unit {
             Unit::Ms => "ms",
             Unit::KHz => "kHz",
             Unit::MHz => "MHz",
+            Unit::Percent => "%",
+            Unit::Bits => "bits",
+            Unit::Chars => "characters",
         }
     }
 
-    /// `value` in this unit as picoseconds (a frequency as its period).
+    /// `value` in this unit as picoseconds (a frequency as its period; a
+    /// ratio or a count of bits or characters, which need the baud rate: 0).
     pub fn ps(self, value: f64) -> u64 {
         let ps = match self {
             Unit::Ns => value * 1e3,
@@ -76,6 +89,7 @@ impl Unit {
             Unit::Ms => value * 1e9,
             Unit::KHz => PS_PER_S as f64 / (value * 1e3),
             Unit::MHz => PS_PER_S as f64 / (value * 1e6),
+            Unit::Percent | Unit::Bits | Unit::Chars => 0.0,
         };
         ps.round().max(0.0) as u64
     }

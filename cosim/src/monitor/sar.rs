@@ -9,75 +9,25 @@
 //! decoder of `tbgen decode sar`) from the wire at the host (D while DE is
 //! on, else R) and DE, piece by piece: the line is cut wherever it has been
 //! idle for the host's gap after a character, and the piece before is
-//! decoded and dropped. The checks ([`super::uart`] for the shared ones),
-//! each with one monitor cycle of tolerance:
-//!
-//! * character timing of the host's commands: every edge within the baud
-//!   rate tolerance of the bit grid (`monitor.baud_tolerance_percent`, 2;
-//!   the seed gives none), the parity bit right, the stop bit high and a
-//!   full bit (seed 001: start, 8 data, "no parity check bit" or the
-//!   customer's parity, stop);
-//! * command gap: the three characters of `BC AA Bx` with at most the
-//!   encoder's `command_gap_bits` (15) of silence between them (the
-//!   project's reading, `docs/timing/sar58k24.md`: the encoder drops such a
-//!   command);
-//! * turnaround: DE off within `monitor.release_bits` (1) of the command's
-//!   last stop bit; never both drivers on; DE never switched on inside a
-//!   character of an encoder's frame;
-//! * answer wait: after a read command (and a zeroing command the encoder
-//!   answers, `answer_zeroing`) or a trigger, the next command or trigger
-//!   only once the answer began or the host's `timeout_us` passed;
-//! * T2 (3.1.3: "The falling edge of the external pulse signal triggers the
-//!   encoder to work, T2 ≥ 10 µs"): every trigger low pulse at least the
-//!   encoder's `trigger_min_low_us`; a trigger's falling edge not inside a
-//!   character of the encoder's frame ("T1-T3: data transmission time");
-//! * CLR: every CLR low pulse at least the encoder's `clr_min_low_us` (the
-//!   manual gives only the level; 10 µs is the project's reading).
+//! decoded and dropped. The rules are the rule book's,
+//! [`model::sar58k24::rules`] (characters, command gap, release, one
+//! driver, answer wait, T2, T1-T3, CLR): the monitor feeds its watcher the
+//! host's pins every cycle, as the emulator does, and prints what it
+//! returns; the limits are the emulator's ([`crate::sar58k24`]'s
+//! `rule_limits`: `[monitor]`, then `[checks]`, then the host's and the
+//! first encoder's settings).
 
-use serde::Deserialize;
 use serde_json::Value;
 
 use model::sar58k24::decode::{Decoder, Options};
-use model::sar58k24::{BenchConfig, Mode};
+use model::sar58k24::rules::{HostPins, Watch};
+use model::sar58k24::BenchConfig;
 
 use super::modbus::EmulatorOwn;
-use super::uart::{self, Limits, Line, Rules, Watch};
-use super::{field, first_given, host_timeout_us, limit, listens_only, proto_table, sub, Base};
-use crate::config::{self, Error};
+use super::uart::{self, Line};
+use super::{field, listens_only, proto_table, sub, Base};
+use crate::config::Error;
 use crate::{Emulator, Pins, Result};
-
-/// The rules, as the seed states them (or the project's reading).
-pub const RULE_CHARACTER: &str = "character timing (seed 001 3.1.5: commands BC AA Bx as characters of start, 8 data LSB first, the configured parity, stop; baud rate tolerance: the project's reading, docs/timing/sar58k24.md)";
-/// See [`RULE_CHARACTER`].
-pub const RULE_GAP: &str = "command gap (seed 001 3.1.5, 3.1.6: BC AA Bx as one command; the project's reading: at most command_gap_bits of silence between its characters)";
-/// See [`RULE_CHARACTER`].
-pub const RULE_RELEASE: &str =
-    "turnaround (seed 001 3.1.5: the host releases the shared RS-485 line after its command)";
-/// See [`RULE_CHARACTER`].
-pub const RULE_ANSWER: &str =
-    "turnaround (seed 001 3.1.5: one driver at a time; never during an encoder's answer)";
-/// See [`RULE_CHARACTER`].
-pub const RULE_WAIT: &str = "answer wait (seed 001 3.1.3, 3.1.5: one answer per trigger or command; the host waits for it or its timeout, [host] timeout_us)";
-/// See [`RULE_CHARACTER`].
-pub const RULE_T2: &str =
-    "T2 (seed 001 3.1.3: the falling edge of the external pulse triggers the encoder, T2 >= 10 us)";
-/// See [`RULE_CHARACTER`].
-pub const RULE_TRIGGER_BUSY: &str =
-    "T1-T3 (seed 001 3.1.3: the data transmission time; a trigger inside the encoder's frame)";
-/// See [`RULE_CHARACTER`].
-pub const RULE_CLR: &str = "CLR (seed 001 3.1.2, 3.1.4: a low level on CLR zeroes; the project's reading: at least clr_min_low_us)";
-
-/// The monitor's own table (`[monitor]`), every field optional.
-#[derive(Debug, Clone, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct MonitorTable {
-    timeout_us: Option<f64>,
-    baud_tolerance_percent: Option<f64>,
-    release_bits: Option<f64>,
-    t2_us: Option<f64>,
-    clr_min_low_us: Option<f64>,
-    command_gap_bits: Option<f64>,
-}
 
 /// A SAR58K24 monitor.
 pub struct SarMonitor {
@@ -96,12 +46,6 @@ pub struct SarMonitor {
     de: bool,
     /// The last character on the line is the encoder's and not yet cut after.
     uncut_answer: bool,
-    handshake: bool,
-    zero_answered: bool,
-    t2_ps: u64,
-    clr_ps: u64,
-    trigger: (bool, u64),
-    clr: (bool, u64),
     /// Frames in `base.done`.
     frames: u64,
 }
@@ -118,84 +62,16 @@ impl SarMonitor {
             115_200.0,
         )?;
         let whole = proto_table(text, origin, "sar")?;
-        let mon: MonitorTable = config::decode_in(&whole, "monitor", origin)?;
         let host = sub(&whole, "host", origin)?;
         let enc = cfg.encoders.first().cloned().unwrap_or_default();
-        let timeout = host_timeout_us(mon.timeout_us, &host, origin, 5000.0)?;
         let gap_bits: f64 = field(&host, "gap_bits", origin, "host.gap_bits")?.unwrap_or(15.0);
-        let tol = limit(
-            origin,
-            "monitor.baud_tolerance_percent",
-            mon.baud_tolerance_percent.unwrap_or(2.0),
-            "give the baud rate tolerance of the host's characters in percent (2)",
-        )?;
-        let release = limit(
-            origin,
-            "monitor.release_bits",
-            mon.release_bits.unwrap_or(1.0),
-            "give the longest time from the command's last stop bit to DE off, in bit times (1)",
-        )?;
-        let (t2, t2_field) = first_given(
-            [
-                ("monitor.t2_us", mon.t2_us),
-                (
-                    "encoders[0].trigger_min_low_us",
-                    Some(enc.trigger_min_low_us),
-                ),
-            ],
-            0.0,
-        );
-        let t2 = limit(
-            origin,
-            t2_field,
-            t2,
-            "give the shortest trigger pulse in µs (seed 001: T2 >= 10)",
-        )?;
-        let (clr, clr_field) = first_given(
-            [
-                ("monitor.clr_min_low_us", mon.clr_min_low_us),
-                ("encoders[0].clr_min_low_us", Some(enc.clr_min_low_us)),
-            ],
-            0.0,
-        );
-        let clr = limit(
-            origin,
-            clr_field,
-            clr,
-            "give the shortest CLR pulse in µs (10)",
-        )?;
-        let (cmd_gap, cmd_gap_field) = first_given(
-            [
-                ("monitor.command_gap_bits", mon.command_gap_bits),
-                ("encoders[0].command_gap_bits", Some(enc.command_gap_bits)),
-            ],
-            0.0,
-        );
-        let cmd_gap = limit(
-            origin,
-            cmd_gap_field,
-            cmd_gap,
-            "give the longest silence between two characters of a command in bit times (15)",
-        )?;
+        let limits = crate::sar58k24::rule_limits(text, origin, &cfg)?;
         let fb = cfg.parity.frame_bits() as f64;
         let bit_ps = 1e12 / cfg.baud;
-        let limits = Limits {
-            bit_ps,
-            parity: cfg.parity,
-            tolerance: tol / 100.0,
-            max_gap_ps: cmd_gap * bit_ps,
-            min_silence_ps: 0.0,
-            release_ps: release * bit_ps,
-            timeout_ps: timeout * 1e6,
-        };
-        let rules = Rules {
-            character: RULE_CHARACTER,
-            gap: RULE_GAP,
-            silence: RULE_GAP,
-            release: RULE_RELEASE,
-            answer: RULE_ANSWER,
-            wait: RULE_WAIT,
-        };
+        let mut base = Base::new(f_mon_hz);
+        for note in model::rules::resolution_notes(f_mon_hz, &limits.least()) {
+            base.checks.note(note);
+        }
         let options = Options {
             baud: cfg.baud,
             parity: cfg.parity,
@@ -205,8 +81,8 @@ impl SarMonitor {
             answer_tag: enc.answer_tag,
         };
         Ok(SarMonitor {
-            base: Base::new(f_mon_hz),
-            watch: Watch::new(limits, rules),
+            base,
+            watch: Watch::new(limits),
             line: Line::new(),
             decoder: Decoder::new(options),
             cut_after_ps: ((fb + gap_bits + 1.0) * bit_ps).ceil() as u64,
@@ -215,12 +91,6 @@ impl SarMonitor {
             wire: true,
             de: false,
             uncut_answer: false,
-            handshake: matches!(cfg.mode, Mode::Handshake | Mode::HandshakeClear),
-            zero_answered: enc.answer_zeroing,
-            t2_ps: (t2 * 1e6).round() as u64,
-            clr_ps: (clr * 1e6).round() as u64,
-            trigger: (true, 0),
-            clr: (true, 0),
             frames: 0,
         })
     }
@@ -272,50 +142,6 @@ impl SarMonitor {
             self.last_fall = None;
         }
     }
-
-    fn pulse(&mut self, now: u64, level: bool, clr: bool) {
-        let (last, since) = if clr { self.clr } else { self.trigger };
-        if level == last {
-            return;
-        }
-        if level {
-            let low = now - since;
-            let (min, rule, name) = if clr {
-                (self.clr_ps, RULE_CLR, "CLR")
-            } else {
-                (self.t2_ps, RULE_T2, "trigger")
-            };
-            if low + self.base.period_ps < min {
-                self.base.violation(
-                    now,
-                    rule,
-                    format!(
-                        "{name} low for {:.3} us; at least {:.3} us",
-                        low as f64 / 1e6,
-                        min as f64 / 1e6
-                    ),
-                );
-            }
-        } else if !clr {
-            if self.watch.device_busy(now) {
-                self.base.violation(
-                    now,
-                    RULE_TRIGGER_BUSY,
-                    "a trigger's falling edge while the encoder sends a character of its frame"
-                        .to_string(),
-                );
-            }
-            self.watch.check_wait(&mut self.base, now, "a trigger");
-            if self.handshake {
-                self.watch.expect_answer(now);
-            }
-        }
-        if clr {
-            self.clr = (level, now);
-        } else {
-            self.trigger = (level, now);
-        }
-    }
 }
 
 impl Emulator for SarMonitor {
@@ -355,18 +181,16 @@ impl Emulator for SarMonitor {
         self.wire = wire;
         self.de = de;
         self.line.step(now, tx, de, rx);
-        if let Some(r) = self.watch.step(&mut self.base, now, tx, de, rx) {
-            let answered = match model::sar58k24::frames::parse_command(&r.bytes) {
-                Some(model::sar58k24::frames::Command::Read(_)) => true,
-                Some(model::sar58k24::frames::Command::Zero(_)) => self.zero_answered,
-                None => false,
-            };
-            if answered {
-                self.watch.expect_answer(now);
-            }
+        let host = HostPins {
+            rx,
+            tx,
+            de,
+            trigger: pins.0 & 8 != 0,
+            clr: pins.0 & 16 != 0,
+        };
+        for b in self.watch.sample(self.base.exact_ps(), host) {
+            self.base.breach(&b);
         }
-        self.pulse(now, pins.0 & 8 != 0, false);
-        self.pulse(now, pins.0 & 16 != 0, true);
         self.base.step_out()
     }
 

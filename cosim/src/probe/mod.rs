@@ -21,8 +21,11 @@ pub mod biss;
 pub mod endat;
 pub mod esl;
 mod half_duplex;
+pub mod modbus;
+pub mod sar;
 pub mod ssi;
 pub mod tformat;
+mod uart;
 
 use serde_json::Value;
 
@@ -92,8 +95,7 @@ impl Src {
         match self {
             Src::Master(n) => bit(master, n),
             Src::Emulator(n) => bit(answer.0, n),
-            Src::Bus if answer.enable() => answer.data(),
-            Src::Bus => !bit(master, 2) || bit(master, 1),
+            Src::Bus => crate::half_duplex::receiver(bit(master, 1), bit(master, 2), answer),
             Src::WiredAnd(n) => bit(master, n) && answer.data(),
         }
     }
@@ -127,7 +129,7 @@ impl Kit {
 
 /// Every protocol's kit.
 pub fn kits() -> Vec<Kit> {
-    vec![ssi::KIT, tformat::KIT, biss::KIT, endat::KIT, esl::KIT]
+    vec![ssi::KIT, tformat::KIT, biss::KIT, endat::KIT, esl::KIT, sar::KIT, modbus::KIT]
 }
 
 /// Every probe of every protocol.

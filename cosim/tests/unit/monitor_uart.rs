@@ -142,7 +142,7 @@ fn each_modbus_rule_fires_once_with_its_time() {
     r2.quiet(T35);
     let v = r2.violations();
     assert_eq!(v.len(), 1, "{v:?}");
-    assert!(v[0].starts_with(cosim::monitor::modbus::RULE_T15), "{v:?}");
+    assert!(v[0].starts_with(model::modbus::rules::T15.label()), "{v:?}");
     // t3.5: the next request 200 cycles after the answer.
     let mut r = modbus();
     r.send(&READ2, 0, 0);
@@ -154,14 +154,14 @@ fn each_modbus_rule_fires_once_with_its_time() {
     r.quiet(T35);
     let v = r.violations();
     assert_eq!(v.len(), 1, "{v:?}");
-    assert!(v[0].starts_with(cosim::monitor::modbus::RULE_T35), "{v:?}");
+    assert!(v[0].starts_with(model::modbus::rules::T35.label()), "{v:?}");
     // DE held 3 bits after the request.
     let mut r = modbus();
     r.send(&READ2, 0, 48);
     r.quiet(T35);
     let v = r.violations();
     assert!(
-        v.len() == 1 && v[0].starts_with(cosim::monitor::modbus::RULE_RELEASE),
+        v.len() == 1 && v[0].starts_with(model::modbus::rules::RELEASE.label()),
         "{v:?}"
     );
     // A parity bit wrong, and a character 5 % slow.
@@ -175,7 +175,7 @@ fn each_modbus_rule_fires_once_with_its_time() {
         r.quiet(T35);
         let v = r.violations();
         assert!(
-            v.len() == 1 && v[0].starts_with(cosim::monitor::modbus::RULE_CHARACTER),
+            v.len() == 1 && v[0].starts_with(model::modbus::rules::CHARACTER.label()),
             "{v:?}"
         );
     }
@@ -191,7 +191,7 @@ fn each_modbus_rule_fires_once_with_its_time() {
     r.quiet(T35);
     let v = r.violations();
     assert!(
-        v.len() == 1 && v[0].starts_with(cosim::monitor::modbus::RULE_TIMEOUT),
+        v.len() == 1 && v[0].starts_with(model::modbus::rules::TIMEOUT.label()),
         "{v:?}"
     );
 }
@@ -199,16 +199,16 @@ fn each_modbus_rule_fires_once_with_its_time() {
 /// t3.5 before a request counts from the end of the last stop bit on the
 /// line, not from its middle: a broadcast (no answer, no timeout to wait
 /// for), then the read `silence` cycles after the broadcast's last stop bit
-/// ended. t3.5 is 616 cycles (3.5 × 11 bits × 16); the monitor allows one
-/// cycle, so 615 passes and 614 does not. Counted from the stop bit's
-/// middle, 614 cycles would pass as 622.
+/// ended. t3.5 is 616 cycles (3.5 × 11 bits × 16), held exactly: 616
+/// passes and 615 does not. Counted from the stop bit's middle, 615 cycles
+/// would pass as 623.
 #[test]
 fn the_modbus_t35_rule_counts_from_the_end_of_the_stop_bit() {
     let mut broadcast = READ2;
     broadcast[0] = 0;
     let crc = model::modbus::frames::crc_bytes(&broadcast[..6]);
     broadcast[6..].copy_from_slice(&crc);
-    for (silence, violations) in [(616, 0), (615, 0), (614, 1)] {
+    for (silence, violations) in [(617, 0), (616, 0), (615, 1)] {
         let mut r = modbus();
         r.send(&broadcast, 0, 0);
         // `send` ends with one cycle DE off; the next `send` drives DE a bit before its start bit.
@@ -219,7 +219,7 @@ fn the_modbus_t35_rule_counts_from_the_end_of_the_stop_bit() {
         assert_eq!(v.len(), violations, "{silence} cycles: {v:?}");
         assert!(
             v.iter()
-                .all(|v| v.starts_with(cosim::monitor::modbus::RULE_T35)),
+                .all(|v| v.starts_with(model::modbus::rules::T35.label())),
             "{v:?}"
         );
     }
@@ -296,7 +296,7 @@ fn each_sar_rule_fires_once_with_its_time() {
     r.quiet(400);
     let v = r.violations();
     assert!(
-        v.len() == 1 && v[0].starts_with(cosim::monitor::sar::RULE_GAP),
+        v.len() == 1 && v[0].starts_with(model::sar58k24::rules::GAP.label()),
         "{v:?}"
     );
     // A second command 2 ms after the first, before the answer (100 µs delay, 5.6 ms frame) ends: inside the answer.
@@ -310,7 +310,7 @@ fn each_sar_rule_fires_once_with_its_time() {
     assert!(
         !v.is_empty()
             && v.iter()
-                .all(|x| x.starts_with(cosim::monitor::sar::RULE_ANSWER)),
+                .all(|x| x.starts_with(model::sar58k24::rules::ANSWER.label())),
         "{v:?}"
     );
     // No answer from encoder 2: the next command 4 ms later, inside the 20 ms timeout.
@@ -323,7 +323,7 @@ fn each_sar_rule_fires_once_with_its_time() {
     r.quiet(400);
     let v = r.violations();
     assert!(
-        v.len() == 1 && v[0].starts_with(cosim::monitor::sar::RULE_WAIT),
+        v.len() == 1 && v[0].starts_with(model::sar58k24::rules::WAIT.label()),
         "{v:?}"
     );
     let time = r.mon.violations()[0].time_ns;
@@ -337,7 +337,97 @@ fn each_sar_rule_fires_once_with_its_time() {
     r.quiet(400);
     let v = r.violations();
     assert!(
-        v.len() == 1 && v[0].starts_with(cosim::monitor::sar::RULE_T2),
+        v.len() == 1 && v[0].starts_with(model::sar58k24::rules::T2.label()),
         "{v:?}"
     );
+}
+
+/// A limit of the SAR58K24 or Modbus rule book that a configuration sets
+/// outside its rule's range is refused with that range, by the emulator
+/// and the monitor alike (the two read one set of limits).
+#[test]
+fn a_sar_or_modbus_bound_outside_the_rules_range_is_refused_with_the_range() {
+    // (kind, configuration, the field named, the range given)
+    let cases = [
+        (
+            "sar58k24",
+            "[checks]\nbaud_tolerance_percent = 3\n",
+            "checks.baud_tolerance_percent",
+            "give 0 to 2 %",
+        ),
+        (
+            "sar58k24_monitor",
+            "[monitor]\nt2_us = 9.5\n",
+            "monitor.t2_us",
+            "give 10 to 1000000 us",
+        ),
+        (
+            "sar58k24",
+            "[[encoders]]\ntrigger_min_low_us = 5\n",
+            "encoders[0].trigger_min_low_us",
+            "give 10 to 1000000 us",
+        ),
+        (
+            "sar58k24_monitor",
+            "[monitor]\nrelease_bits = 1.5\n",
+            "monitor.release_bits",
+            "give 0 to 1 bits",
+        ),
+        (
+            "modbus",
+            "[checks]\nbaud_tolerance_percent = 2.5\n",
+            "checks.baud_tolerance_percent",
+            "give 0 to 2 %",
+        ),
+        (
+            "modbus_monitor",
+            "[monitor]\nrelease_bits = 2\n",
+            "monitor.release_bits",
+            "give 0 to 1 bits",
+        ),
+    ];
+    for (kind, toml, field, range) in cases {
+        let e = match open(kind, toml, "r.toml", 20_000_000) {
+            Err(e) => e.to_string(),
+            Ok(_) => panic!("{kind} took {toml}"),
+        };
+        for part in [
+            "r.toml",
+            field,
+            range,
+            "outside the seed's range",
+            "seed 001",
+        ] {
+            assert!(e.contains(part), "{kind}: no `{part}` in {e}");
+        }
+    }
+    let ok = open(
+        "modbus",
+        "[checks]\nbaud_tolerance_percent = 1.5\n",
+        "r.toml",
+        20_000_000,
+    );
+    assert!(ok.is_ok());
+}
+
+/// A clock too coarse for 2 % of a bit says so once, at time 0, on both
+/// sides, with the clock it needs; a fine one says nothing.
+#[test]
+fn a_clock_too_coarse_for_the_baud_tolerance_says_so_once() {
+    for kind in ["sar58k24", "sar58k24_monitor"] {
+        let e = open(kind, "", "r.toml", 2_304_000).unwrap();
+        let notes = e.transcript()["notes"].as_array().unwrap().clone();
+        assert_eq!(notes.len(), 1, "{kind}: {notes:?}");
+        let n = notes[0].as_str().unwrap();
+        assert!(
+            n.starts_with(model::sar58k24::rules::CHARACTER.label())
+                && n.contains("needs at least 11520008 Hz"),
+            "{kind}: {n}"
+        );
+        let fine = open(kind, "", "r.toml", 11_980_800).unwrap();
+        assert!(
+            fine.transcript()["notes"].as_array().unwrap().is_empty(),
+            "{kind}"
+        );
+    }
 }

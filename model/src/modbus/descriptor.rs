@@ -32,5 +32,5 @@ pub const PROTOCOL: Protocol = Protocol {
         title: "Modbus RTU: function 03 request and answer (SAR58K24 user's manual, 3.1.7)",
     }),
     historical: &[],
-    rules: &[],
+    rules: crate::modbus::rules::RULES,
 };

@@ -32,6 +32,7 @@ pub mod descriptor;
 mod device;
 pub mod frames;
 mod master;
+pub mod rules;
 pub mod timing;
 
 pub use bench::{Bench, BenchConfig, MasterSettings, OpKind, Operation, SecondDriver, Transaction};

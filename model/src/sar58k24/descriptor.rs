@@ -45,5 +45,5 @@ pub const PROTOCOL: Protocol = Protocol {
             why: "the Verilog monitor and its plusargs (`+sar58k24_monitor_config`), which users' testbenches set",
         },
     ],
-    rules: &[],
+    rules: crate::sar58k24::rules::RULES,
 };

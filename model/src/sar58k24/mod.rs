@@ -29,6 +29,7 @@ pub mod descriptor;
 mod encoder;
 pub mod frames;
 mod host;
+pub mod rules;
 pub mod timing;
 
 pub use crate::uart::{FaultKind, FrameFault};

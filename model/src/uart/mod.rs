@@ -47,6 +47,7 @@ mod receiver;
 mod second_driver;
 mod transmitter;
 mod tx;
+pub mod watch;
 mod wire_tap;
 
 use serde::{Deserialize, Serialize};
