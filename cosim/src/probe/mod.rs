@@ -18,6 +18,8 @@
 //! testbenches read too, so the wiring is written once.
 
 pub mod biss;
+pub mod can;
+pub mod canopen;
 pub mod ssi;
 
 use serde_json::Value;
@@ -123,7 +125,7 @@ impl Kit {
 
 /// Every protocol's kit.
 pub fn kits() -> Vec<Kit> {
-    vec![ssi::KIT, biss::KIT]
+    vec![ssi::KIT, biss::KIT, can::KIT, canopen::KIT]
 }
 
 /// Every probe of every protocol.

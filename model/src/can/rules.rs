@@ -413,7 +413,11 @@ impl Watch {
                 form.extend((n - 7..n).map(|k| (k, "EOF")));
             }
             Some("form") => form.push((d.bits - 1, "CRC delimiter, ACK delimiter or EOF")),
-            Some("stuff") if by_master && !self.error_flag(sof, lead, d.bits - 1) => {
+            Some("stuff")
+                if by_master
+                    && !self.error_flag(sof, lead, d.bits - 1)
+                    && !self.overlong(self.at(sof, d.bits - 1) - lead) =>
+            {
                 let k = d.bits - 1;
                 let t = self.at(sof, k);
                 breaches.push(STUFF.breach(
@@ -473,6 +477,23 @@ impl Watch {
             && (k + 1..=k + 7)
                 .find(|&j| tx(j))
                 .is_some_and(|j| (j..j + 7).all(tx))
+    }
+
+    /// TXD dominant at `t` in a stretch longer than an error flag: the
+    /// [`DOMINANT`] rule's (six dominant bits in it are not also a missing
+    /// stuff bit).
+    fn overlong(&self, t: u64) -> bool {
+        let edges = self.tx.edges();
+        let Some(&(fall, _)) = edges.iter().rev().find(|&&(e, l)| !l && e <= t) else {
+            return false;
+        };
+        let rise = edges
+            .iter()
+            .find(|&&(e, l)| l && e > fall)
+            .map_or(u64::MAX, |&(e, _)| e);
+        let lim = &self.limits;
+        rise > t
+            && (rise - fall) as f64 > lim.max_dominant_bits * lim.bit_ps * (1.0 + lim.tolerance)
     }
 
     /// The bit-time rule on the master's TXD edges from its SOF through
