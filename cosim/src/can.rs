@@ -35,6 +35,8 @@ use model::can::bus::Place;
 use model::can::emulator::Scripted;
 use model::can::frame::Frame;
 use model::can::rules::{Limits, Watch};
+
+use crate::monitor::can::Rules;
 use model::can::{BenchConfig, BitTiming, Bus, Emulator as Node};
 
 use crate::check::{Checks, VIOLATION_PENDING};
@@ -83,6 +85,42 @@ pub fn limits(text: &str, origin: &str, f_hz: u64) -> Result<Limits> {
     let bench: BenchConfig = config::decode(device, origin)?;
     let timing = bench.bit_timing().map_err(|e| Error::config(origin, e))?;
     given.limits(&timing, bench.f_sys_mhz * 1e6, origin)
+}
+
+/// A rule book's watcher fed from an emulator's side of the line: the
+/// master's TXD and the bus as the master's RXD shows it (its TXD and the
+/// emulator's last answer, wired-AND), as a monitor beside it sees them.
+pub struct MasterWatch<R: Rules> {
+    rules: R,
+    answered: bool,
+}
+
+impl<R: Rules> MasterWatch<R> {
+    /// A watcher feeding `rules`; the resolution notes of its limits go to
+    /// `checks` (the emulator clock `f_hz`).
+    pub fn new(rules: R, f_hz: u64, checks: &mut Checks) -> Self {
+        for note in model::rules::resolution_notes(f_hz, &rules.can().limits().least()) {
+            checks.note(note);
+        }
+        MasterWatch {
+            rules,
+            answered: true,
+        }
+    }
+
+    /// Emulator cycle `cycle` at `f_hz`: the master's TXD `tx`; what the
+    /// rules find goes to `checks`.
+    pub fn step(&mut self, cycle: u64, f_hz: u64, tx: bool, checks: &mut Checks) {
+        let t = model::rules::ps_at(cycle, f_hz);
+        for b in self.rules.sample(t, tx && self.answered, tx).breaches {
+            checks.breach(cycle, &b);
+        }
+    }
+
+    /// The bus level this cycle answers at the master's RXD.
+    pub fn answer(&mut self, rx: bool) {
+        self.answered = rx;
+    }
 }
 
 /// A frame scripted at run time.
@@ -153,9 +191,7 @@ pub struct CanEmulator {
     seen: Vec<(usize, usize)>,
     entries: Vec<Entry>,
     checks: Checks,
-    watch: Watch,
-    /// The bus at the master's RXD as the last step answered it.
-    answered: bool,
+    watch: MasterWatch<Watch>,
 }
 
 impl CanEmulator {
@@ -198,11 +234,12 @@ impl CanEmulator {
             nodes.push(Node::new(n, cfg, &tb).map_err(|e| Error::config(origin, e))?);
         }
         let n = nodes.len();
-        let limits = limits(text, origin, f_emu_hz)?;
         let mut checks = Checks::new(tb.period_ps());
-        for note in model::rules::resolution_notes(f_emu_hz, &limits.least()) {
-            checks.note(note);
-        }
+        let watch = MasterWatch::new(
+            Watch::new(limits(text, origin, f_emu_hz)?),
+            f_emu_hz,
+            &mut checks,
+        );
         Ok(CanEmulator {
             f_emu_hz,
             names: bench.nodes.iter().map(|n| n.name.clone()).collect(),
@@ -214,8 +251,7 @@ impl CanEmulator {
             seen: vec![(0, 0); n],
             entries: Vec::new(),
             checks,
-            watch: Watch::new(limits),
-            answered: true,
+            watch,
         })
     }
 
@@ -242,15 +278,9 @@ impl Emulator for CanEmulator {
     fn step(&mut self, pins: Pins) -> Pins {
         let rx_master = self.bus.rx(0);
         self.tx[0] = pins.0 & 2 != 0;
-        let t = model::rules::ps_at(self.cycle, self.f_emu_hz);
-        for b in self
-            .watch
-            .sample(t, self.tx[0] && self.answered, self.tx[0])
-            .breaches
-        {
-            self.checks.breach(self.cycle, &b);
-        }
-        self.answered = rx_master;
+        self.watch
+            .step(self.cycle, self.f_emu_hz, self.tx[0], &mut self.checks);
+        self.watch.answer(rx_master);
         for (i, node) in self.nodes.iter_mut().enumerate() {
             if let Some(f) = self.pending[i].first() {
                 if node.load(f) {

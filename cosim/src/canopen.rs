@@ -55,6 +55,8 @@ use model::can::frame::Frame;
 use model::can::Bus;
 use model::canopen::cob::{classify, Service};
 use model::canopen::rules::{Limits, Watch};
+
+use crate::can::MasterWatch;
 use model::canopen::sar58k24::{SarCan, CONFIG_ID};
 use model::canopen::{BenchConfig, Device, DeviceNode, EncoderNode, NodeTiming};
 use model::Timebase;
@@ -102,24 +104,30 @@ pub fn limits(text: &str, origin: &str, f_hz: u64) -> Result<Limits> {
     }
     .limits(&master.can.timing, bench.f_sys_mhz * 1e6, origin)?;
     let ps = |us: f64| (us * 1e6).round() as u64;
-    let sdo = limit(
-        origin,
-        "monitor.sdo_timeout_us",
-        mon.sdo_timeout_us.unwrap_or(bench.master.sdo_timeout_us),
-        "give the master's SDO timeout in µs",
-    )?;
-    let sync = limit(
-        origin,
-        "monitor.sync_period_us",
-        mon.sync_period_us.unwrap_or(bench.master.sync_period_us),
-        "give the master's SYNC period in µs (0: not checked)",
-    )?;
-    let guard_tol = limit(
-        origin,
-        "monitor.guard_tolerance_percent",
-        mon.guard_tolerance_percent.unwrap_or(10.0),
-        "give the guard period's tolerance in %",
-    )?;
+    let [sdo, sync, guard_tol, sar] = [
+        (
+            "monitor.sdo_timeout_us",
+            mon.sdo_timeout_us.unwrap_or(bench.master.sdo_timeout_us),
+            "give the master's SDO timeout in µs",
+        ),
+        (
+            "monitor.sync_period_us",
+            mon.sync_period_us.unwrap_or(bench.master.sync_period_us),
+            "give the master's SYNC period in µs (0: not checked)",
+        ),
+        (
+            "monitor.guard_tolerance_percent",
+            mon.guard_tolerance_percent.unwrap_or(10.0),
+            "give the guard period's tolerance in %",
+        ),
+        (
+            "monitor.sar_answer_timeout_us",
+            mon.sar_answer_timeout_us.unwrap_or(10_000.0),
+            "give the time after which a SAR58K24 command counts as unanswered, in µs",
+        ),
+    ]
+    .map(|(path, v, fix)| limit(origin, path, v, fix));
+    let (sdo, sync, guard_tol, sar) = (sdo?, sync?, guard_tol?, sar?);
     let guard_ms = match mon.guard_time_ms {
         Some(g) => Some(limit(
             origin,
@@ -129,12 +137,6 @@ pub fn limits(text: &str, origin: &str, f_hz: u64) -> Result<Limits> {
         )?),
         None => None,
     };
-    let sar = limit(
-        origin,
-        "monitor.sar_answer_timeout_us",
-        mon.sar_answer_timeout_us.unwrap_or(10_000.0),
-        "give the time after which a SAR58K24 command counts as unanswered, in µs",
-    )?;
     Ok(Limits {
         can,
         sdo_timeout_ps: ps(sdo),
@@ -320,9 +322,7 @@ pub struct CanopenEmulator {
     last_sent: Vec<Option<Frame>>,
     entries: Vec<Entry>,
     checks: Checks,
-    watch: Watch,
-    /// The bus at the master's RXD as the last step answered it.
-    answered: bool,
+    watch: MasterWatch<Watch>,
 }
 
 fn is_pdo(f: &Frame) -> bool {
@@ -457,11 +457,12 @@ impl CanopenEmulator {
             names.push(s.name.clone());
         }
         let n = slots.len();
-        let limits = limits(text, origin, f_emu_hz)?;
         let mut checks = Checks::new(tb.period_ps());
-        for note in model::rules::resolution_notes(f_emu_hz, &limits.can.least()) {
-            checks.note(note);
-        }
+        let watch = MasterWatch::new(
+            Watch::new(limits(text, origin, f_emu_hz)?),
+            f_emu_hz,
+            &mut checks,
+        );
         Ok(CanopenEmulator {
             f_emu_hz,
             tb,
@@ -477,8 +478,7 @@ impl CanopenEmulator {
             last_sent: vec![None; n],
             entries: Vec::new(),
             checks,
-            watch: Watch::new(limits),
-            answered: true,
+            watch,
         })
     }
 
@@ -533,15 +533,9 @@ impl Emulator for CanopenEmulator {
     fn step(&mut self, pins: Pins) -> Pins {
         let rx_master = self.bus.rx(0);
         self.tx[0] = pins.0 & 2 != 0;
-        let t = model::rules::ps_at(self.cycle, self.f_emu_hz);
-        for b in self
-            .watch
-            .sample(t, self.tx[0] && self.answered, self.tx[0])
-            .breaches
-        {
-            self.checks.breach(self.cycle, &b);
-        }
-        self.answered = rx_master;
+        self.watch
+            .step(self.cycle, self.f_emu_hz, self.tx[0], &mut self.checks);
+        self.watch.answer(rx_master);
         if self.motions.any() {
             for i in 0..self.slots.len() {
                 if let Ok(bits) = self.bits(i) {

@@ -4,10 +4,9 @@
 //! Pins in: bit 0 RXD, bit 1 TXD. Frames are read off RXD by the decode core
 //! of `tbgen decode can` ([`model::can::decode`]); a frame is the master's
 //! when its TXD was dominant at the SOF's sample point and equal to the bus
-//! at every sample point of the stuffed part (it did not lose arbitration).
-//! CAN itself is not restated in the seeds (`../shared/protocols.md`: "read
-//! its public descriptions"); the rules are ISO 11898-1's (classical CAN)
-//! as `docs/timing/can.md` cites them, each measured at the master's pins:
+//! at every sample point of the arbitration field (it did not lose
+//! arbitration). CAN itself is not restated in the seeds (seed 003 §1.3
+//! cites the Bosch CAN Specification 2.0, which the rules quote).
 //!
 //! The master is held to the CAN rule book ([`model::can::rules`]:
 //! stuffing, CRC, form, intermission, bit time, dominant length), decided
@@ -19,7 +18,8 @@
 //!
 //! Configuration (a whole scenario file will do): `[can]` `f_sys_mhz`
 //! (default: the monitor clock), `timing = { bit_rate_kbps, tq_per_bit,
-//! sample_point, sjw }`; `[monitor]` `bit_tolerance_percent` (default the
+//! sample_point, sjw }`; `[monitor]` (`[can.monitor]` in a scenario file)
+//! `bit_tolerance_percent` (default the
 //! oscillator tolerance the bit timing allows; 0 to 1.58 %) and
 //! `max_dominant_bits` (6; 6 to 12), read by [`crate::can::limits`].
 
