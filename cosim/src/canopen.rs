@@ -21,6 +21,12 @@
 //! Pins (`emu_step`): in bit 1 the master's TXD; out bit 0 the bus level at
 //! the master's RXD.
 //!
+//! The master is held to the CAN and CANopen rule books
+//! ([`model::can::rules`], [`model::canopen::rules`]) on its TXD and the bus
+//! as its RXD shows it, as the CANopen monitor holds it: the same rules,
+//! limits ([`limits`]) and words. The devices' own error counts are in the
+//! transcript (`encoders[].errors`).
+//!
 //! Values (`last_value(device + 16 × field)`):
 //!
 //! | field | DS 406 encoder | SAR58K24 |
