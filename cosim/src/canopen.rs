@@ -21,6 +21,12 @@
 //! Pins (`emu_step`): in bit 1 the master's TXD; out bit 0 the bus level at
 //! the master's RXD.
 //!
+//! The master is held to the CAN and CANopen rule books
+//! ([`model::can::rules`], [`model::canopen::rules`]) on its TXD and the bus
+//! as its RXD shows it, as the CANopen monitor holds it: the same rules,
+//! limits ([`limits`]) and words. The devices' own error counts are in the
+//! transcript (`encoders[].errors`).
+//!
 //! Values (`last_value(device + 16 × field)`):
 //!
 //! | field | DS 406 encoder | SAR58K24 |
@@ -47,13 +53,16 @@
 
 use std::collections::VecDeque;
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use model::can::bus::Place;
 use model::can::emulator::NodeSettings;
 use model::can::frame::Frame;
 use model::can::Bus;
 use model::canopen::cob::{classify, Service};
+use model::canopen::rules::{Limits, Watch};
+
+use crate::can::MasterWatch;
 use model::canopen::sar58k24::{SarCan, CONFIG_ID};
 use model::canopen::{BenchConfig, Device, DeviceNode, EncoderNode, NodeTiming};
 use model::Timebase;
@@ -62,6 +71,93 @@ use crate::check::{Checks, VIOLATION_PENDING};
 use crate::config::{self, Error};
 use crate::motion::Motions;
 use crate::{Emulator, Pins, Result};
+
+/// The CANopen rules' limits a configuration may set (`[monitor]`, every
+/// field optional): the CAN ones and the CANopen ones.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct MonitorTable {
+    bit_tolerance_percent: Option<f64>,
+    max_dominant_bits: Option<f64>,
+    sdo_timeout_us: Option<f64>,
+    sync_period_us: Option<f64>,
+    guard_time_ms: Option<f64>,
+    guard_tolerance_percent: Option<f64>,
+    sar_answer_timeout_us: Option<f64>,
+}
+
+/// The limits the emulator and the CANopen monitor hold the master to: its
+/// bit timing (`[canopen]` `f_sys_mhz`, default `f_hz`, `bit_rate_kbps`,
+/// `tq_per_bit`, `sample_point`, `sjw`), `[canopen.master]`
+/// `sdo_timeout_us` and `sync_period_us`, the devices on the bus, and
+/// `[monitor]`: the CAN fields of [`crate::can::CanLimits`] and
+/// `sdo_timeout_us`, `sync_period_us`, `guard_time_ms`,
+/// `guard_tolerance_percent` (10), `sar_answer_timeout_us` (10 000).
+pub fn limits(text: &str, origin: &str, f_hz: u64) -> Result<Limits> {
+    use crate::monitor::limit;
+    let whole = crate::monitor::proto_table(text, origin, "canopen")?;
+    let mon: MonitorTable = config::decode_in(&whole, "monitor", origin)?;
+    let mut device = crate::monitor::can::model_table(&whole, f_hz);
+    device.remove("tool");
+    device.remove("faults");
+    let bench: BenchConfig = config::decode(device, origin)?;
+    let master = bench
+        .master_config()
+        .map_err(|e| Error::config(origin, e))?;
+    let can = crate::can::CanLimits {
+        bit_tolerance_percent: mon.bit_tolerance_percent,
+        max_dominant_bits: mon.max_dominant_bits,
+    }
+    .limits(&master.can.timing, bench.f_sys_mhz * 1e6, origin)?;
+    let ps = |us: f64| (us * 1e6).round() as u64;
+    let [sdo, sync, guard_tol, sar] = [
+        (
+            "monitor.sdo_timeout_us",
+            mon.sdo_timeout_us.unwrap_or(bench.master.sdo_timeout_us),
+            "give the master's SDO timeout in µs",
+        ),
+        (
+            "monitor.sync_period_us",
+            mon.sync_period_us.unwrap_or(bench.master.sync_period_us),
+            "give the master's SYNC period in µs (0: not checked)",
+        ),
+        (
+            "monitor.guard_tolerance_percent",
+            mon.guard_tolerance_percent.unwrap_or(10.0),
+            "give the guard period's tolerance in %",
+        ),
+        (
+            "monitor.sar_answer_timeout_us",
+            mon.sar_answer_timeout_us.unwrap_or(10_000.0),
+            "give the time after which a SAR58K24 command counts as unanswered, in µs",
+        ),
+    ]
+    .map(|(path, v, fix)| limit(origin, path, v, fix));
+    let (sdo, sync, guard_tol, sar) = (sdo?, sync?, guard_tol?, sar?);
+    let guard_ms = match mon.guard_time_ms {
+        Some(g) => Some(limit(
+            origin,
+            "monitor.guard_time_ms",
+            g,
+            "give the guard time in ms (0: guarding off)",
+        )?),
+        None => None,
+    };
+    Ok(Limits {
+        can,
+        sdo_timeout_ps: ps(sdo),
+        sync_period_ps: ps(sync),
+        guard_ms,
+        guard_tolerance: guard_tol / 100.0,
+        sar_timeout_ps: ps(sar),
+        sar_bases: bench.sar.iter().map(|s| s.encoder.answer_base).collect(),
+        ds406: bench
+            .encoders
+            .iter()
+            .map(|e| e.encoder.node_switch)
+            .collect(),
+    })
+}
 
 /// The fastest CAN bit rate (1 Mbit/s).
 pub const MAX_BIT_RATE_KHZ: f64 = 1000.0;
@@ -227,11 +323,12 @@ pub struct CanopenEmulator {
     bus: Bus,
     tx: Vec<bool>,
     cycle: u64,
-    seen: Vec<(usize, usize, u64)>,
+    seen: Vec<(usize, usize)>,
     positions: Vec<(u64, Option<u64>)>,
     last_sent: Vec<Option<Frame>>,
     entries: Vec<Entry>,
     checks: Checks,
+    watch: MasterWatch<Watch>,
 }
 
 fn is_pdo(f: &Frame) -> bool {
@@ -366,6 +463,12 @@ impl CanopenEmulator {
             names.push(s.name.clone());
         }
         let n = slots.len();
+        let mut checks = Checks::new(tb.period_ps());
+        let watch = MasterWatch::new(
+            Watch::new(limits(text, origin, f_emu_hz)?),
+            f_emu_hz,
+            &mut checks,
+        );
         Ok(CanopenEmulator {
             f_emu_hz,
             tb,
@@ -376,11 +479,12 @@ impl CanopenEmulator {
             bus: Bus::new(&places, bench.ns_per_m, &tb),
             tx: vec![true; n + 1],
             cycle: 0,
-            seen: vec![(0, 0, 0); n],
+            seen: vec![(0, 0); n],
             positions: vec![(0, None); n],
             last_sent: vec![None; n],
             entries: Vec::new(),
-            checks: Checks::new(tb.period_ps()),
+            checks,
+            watch,
         })
     }
 
@@ -435,6 +539,9 @@ impl Emulator for CanopenEmulator {
     fn step(&mut self, pins: Pins) -> Pins {
         let rx_master = self.bus.rx(0);
         self.tx[0] = pins.0 & 2 != 0;
+        self.watch
+            .step(self.cycle, self.f_emu_hz, self.tx[0], &mut self.checks);
+        self.watch.answer(rx_master);
         if self.motions.any() {
             for i in 0..self.slots.len() {
                 if let Ok(bits) = self.bits(i) {
@@ -446,9 +553,9 @@ impl Emulator for CanopenEmulator {
         }
         for i in 0..self.slots.len() {
             let rx = self.bus.rx(i + 1);
-            let (r, s, e) = self.seen[i];
+            let (r, s) = self.seen[i];
             let name = &self.names[i];
-            let (level, errors) = match &mut self.slots[i] {
+            let level = match &mut self.slots[i] {
                 Slot::Ds406 { node, power_on } => {
                     if self.cycle < *power_on {
                         self.tx[i + 1] = true;
@@ -483,12 +590,8 @@ impl Emulator for CanopenEmulator {
                         }
                         self.last_sent[i] = Some(f.clone());
                     }
-                    self.seen[i] = (
-                        node.received().len(),
-                        node.sent().len(),
-                        node.can().errors(),
-                    );
-                    (level, node.can().errors())
+                    self.seen[i] = (node.received().len(), node.sent().len());
+                    level
                 }
                 Slot::Sar(slot) => {
                     if !slot.powered {
@@ -523,25 +626,11 @@ impl Emulator for CanopenEmulator {
                         }
                         self.last_sent[i] = Some(f);
                     }
-                    self.seen[i] = (
-                        slot.node.received().len(),
-                        slot.node.sent().len(),
-                        slot.node.can().errors(),
-                    );
-                    (level, slot.node.can().errors())
+                    self.seen[i] = (slot.node.received().len(), slot.node.sent().len());
+                    level
                 }
             };
             self.tx[i + 1] = level;
-            if errors > e {
-                self.checks.push(
-                    self.cycle,
-                    "CAN frame coding (ISO 11898-1: bit, stuff, CRC, form and ACK rules)",
-                    format!(
-                        "device `{}` detected an error ({errors} so far)",
-                        self.names[i]
-                    ),
-                );
-            }
         }
         self.bus.push(&self.tx);
         self.cycle += 1;
@@ -592,7 +681,7 @@ impl Emulator for CanopenEmulator {
                     s.sent_before += s.node.sent().len() as u64;
                     s.node = node;
                     if let Some(seen) = seen {
-                        *seen = (0, 0, 0);
+                        *seen = (0, 0);
                     }
                 }
                 s.powered = value;

@@ -860,7 +860,7 @@ fn each_can_rule_fires_once(sim: &str) {
         data: vec![],
     };
     let click = Frame::data(0x220, &[0x80, 0x20, 0, 0, 0, 0, 0, 0]);
-    let mut cases: Vec<(CanLine, usize, usize, &str)> = Vec::new();
+    let mut cases: Vec<(CanLine, usize, usize, String)> = Vec::new();
     // 0 clean: boot-up, SDO and answer, start, guarding at 10 ms, SYNC at 2 ms, a click and its answer.
     let mut l = CanLine::default();
     l.idle(20)
@@ -879,12 +879,20 @@ fn each_can_rule_fires_once(sim: &str) {
         .heard(&Frame::data(0x120, &[0x47, 0x26, 0, 0, 0, 0, 0, 0]))
         .sent(&f)
         .idle(20);
-    cases.push((l, 0, 0, ""));
+    cases.push((l, 0, 0, String::new()));
     // 1 stuffing: six recessive identifier bits with no stuff bit.
     let raw = Frame::data(0x7E5, &[0x55]).destuffed_bits();
     let mut l = CanLine::default();
     l.idle(20).bits(&raw, &raw).idle(30);
-    cases.push((l, 1, 1, "stuffing (ISO 11898-1 10.5: after five equal bits from SOF to the CRC's end the transmitter inserts one of the other level): six equal bits in the master's frame ending at wire bit 6"));
+    cases.push((
+        l,
+        1,
+        1,
+        format!(
+            "{}: six equal bits in the master's frame ending at wire bit 6",
+            model::can::rules::STUFF.label()
+        ),
+    ));
     // 2 form: the master's CRC delimiter dominant.
     let (mut tx, mut rx) = (f.wire_bits(false), f.wire_bits(true));
     let n = tx.len();
@@ -892,7 +900,15 @@ fn each_can_rule_fires_once(sim: &str) {
     rx[n - 10] = false;
     let mut l = CanLine::default();
     l.idle(20).bits(&tx, &rx).idle(30);
-    cases.push((l, 1, 1, "form (ISO 11898-1 10.4: CRC delimiter, ACK delimiter and EOF recessive; the transmitter's ACK slot recessive): TXD dominant in the CRC delimiter, ACK delimiter or EOF (wire bit"));
+    cases.push((
+        l,
+        1,
+        1,
+        format!(
+            "{}: TXD dominant in the CRC delimiter, ACK delimiter or EOF (wire bit",
+            model::can::rules::FORM.label()
+        ),
+    ));
     // 3 intermission: the next SOF after 2 bits of it.
     let mut l = CanLine::default();
     l.idle(20)
@@ -900,7 +916,15 @@ fn each_can_rule_fires_once(sim: &str) {
         .idle(2)
         .sent(&f)
         .idle(20);
-    cases.push((l, 1, 1, "intermission (ISO 11898-1 10.4.5: 3 recessive bits after EOF or an error delimiter before a SOF, 11 in all): the master's SOF 10.00 bits after"));
+    cases.push((
+        l,
+        1,
+        1,
+        format!(
+            "{}: the master's SOF 10.00 bits after",
+            model::can::rules::INTERMISSION.label()
+        ),
+    ));
     // 4 bit time: a frame 3 % fast.
     let mut l = CanLine::default();
     l.idle(20);
@@ -908,11 +932,24 @@ fn each_can_rule_fires_once(sim: &str) {
     l.bits(&f.wire_bits(false), &f.wire_bits(true));
     l.0.push('n');
     l.idle(30);
-    cases.push((l, 1, 1, "bit time (ISO 11898-1 11.3: the transmitter's edges on the nominal bit time of the configured bit rate, within the oscillator tolerance and SJW): a TXD edge"));
+    cases.push((
+        l,
+        1,
+        1,
+        format!("{}: a TXD edge", model::can::rules::BIT_TIME.label()),
+    ));
     // 5 dominant length: an error flag of 8 bits.
     let mut l = CanLine::default();
     l.idle(20).bits(&[false; 8], &[false; 8]).idle(30);
-    cases.push((l, 1, 1, "dominant length (ISO 11898-1 10.4.4: no dominant level longer than an error flag, 6 bits): TXD dominant for more than 6.00 bits"));
+    cases.push((
+        l,
+        1,
+        1,
+        format!(
+            "{}: TXD dominant for more than 6.00 bits",
+            model::can::rules::DOMINANT.label()
+        ),
+    ));
     // 6 SDO: a second request 100 us after the first, unanswered.
     let mut l = CanLine::default();
     l.idle(20)
@@ -920,18 +957,42 @@ fn each_can_rule_fires_once(sim: &str) {
         .idle(50)
         .sent(&sdo(0x6200, 2))
         .idle(20);
-    cases.push((l, 0, 1, "SDO (seed 003 §8 step 5: a request on 0x600 + node is confirmed on 0x580 + node; one request outstanding until its answer or the SDO timeout): SDO request to node 5"));
+    cases.push((
+        l,
+        0,
+        1,
+        format!(
+            "{}: SDO request to node 5",
+            model::canopen::rules::SDO.label()
+        ),
+    ));
     // 7 NMT start twice.
     let mut l = CanLine::default();
     l.idle(20).sent(&start).idle(50).sent(&start).idle(20);
-    cases.push((l, 0, 1, "NMT start (seed 003 §8 step 6: one NMT start remote node brings the node to operational; a second with no stop, reset or boot-up between): NMT start (node 5) while node 5 was already started"));
+    cases.push((
+        l,
+        0,
+        1,
+        format!(
+            "{}: NMT start (node 5) while node 5 was already started",
+            model::canopen::rules::NMT.label()
+        ),
+    ));
     // 8 guarding: 10 ms guard time, the third request 16 ms after the second.
     let mut l = CanLine::default();
     l.idle(20).sent(&sdo(0x100C, 10)).heard(&confirm(0x100C));
     for gap in [4900, 7900, 100] {
         l.sent(&guard).heard(&Frame::data(0x705, &[0x05])).idle(gap);
     }
-    cases.push((l, 0, 1, "node guarding (DS 301: the master guards each node at its guard time 100Ch; seed 003 §2.1 node guard 0x700 + node): guard request to node 5 16."));
+    cases.push((
+        l,
+        0,
+        1,
+        format!(
+            "{}: guard request to node 5 16.",
+            model::canopen::rules::GUARD.label()
+        ),
+    ));
     // 9 SYNC every 2 ms, one after 3 ms.
     let mut l = CanLine::default();
     l.idle(20);
@@ -939,7 +1000,15 @@ fn each_can_rule_fires_once(sim: &str) {
         l.sent(&sync).idle(gap);
     }
     l.sent(&sync).idle(20);
-    cases.push((l, 0, 1, "SYNC period (the master's configured SYNC period, `sync_period_us`; the seeds state none): SYNC 2982.000 us after the previous one; the period is 2000.000 us"));
+    cases.push((
+        l,
+        0,
+        1,
+        format!(
+            "{}: SYNC 2982.000 us after the previous one; the period is 2000.000 us",
+            model::canopen::rules::SYNC.label()
+        ),
+    ));
     // 10 SAR58K24: a click answered, then two clicks 100 us apart.
     let mut l = CanLine::default();
     l.idle(20)
@@ -949,7 +1018,15 @@ fn each_can_rule_fires_once(sim: &str) {
         .idle(50)
         .sent(&click)
         .idle(20);
-    cases.push((l, 0, 1, "SAR58K24 command (seed 001 §3.4 (3): each command is answered; the next command to the node after the answer or the answer timeout): command 80 to SAR58K24 node 0x20"));
+    cases.push((
+        l,
+        0,
+        1,
+        format!(
+            "{}: command 80 to SAR58K24 node 0x20",
+            model::canopen::rules::SAR.label()
+        ),
+    ));
     let cmd = bench_of(sim, "tb_can_monitor_rules");
     for (case, (line, n_can, n_canopen, rule)) in cases.iter().enumerate() {
         let (t_can, t_co) = (

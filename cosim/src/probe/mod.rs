@@ -18,6 +18,8 @@
 //! testbenches read too, so the wiring is written once.
 
 pub mod biss;
+pub mod can;
+pub mod canopen;
 pub mod endat;
 pub mod esl;
 mod half_duplex;
@@ -129,7 +131,17 @@ impl Kit {
 
 /// Every protocol's kit.
 pub fn kits() -> Vec<Kit> {
-    vec![ssi::KIT, tformat::KIT, biss::KIT, endat::KIT, esl::KIT, sar::KIT, modbus::KIT]
+    vec![
+        ssi::KIT,
+        tformat::KIT,
+        biss::KIT,
+        endat::KIT,
+        esl::KIT,
+        sar::KIT,
+        modbus::KIT,
+        can::KIT,
+        canopen::KIT,
+    ]
 }
 
 /// Every probe of every protocol.

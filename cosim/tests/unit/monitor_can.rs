@@ -4,8 +4,10 @@
 use model::can::frame::Frame;
 
 use cosim::monitor::can::*;
-use cosim::monitor::canopen::{self as co, CanopenMonitor};
+use cosim::monitor::canopen::CanopenMonitor;
 use cosim::{Emulator, Pins};
+use model::can::rules as can_rules;
+use model::canopen::rules as co_rules;
 
 /// 500 kbit/s, 16 quanta on an 8 MHz clock: 16 monitor cycles per bit.
 const CAN: &str = "[can]\nf_sys_mhz = 8\ntiming = { bit_rate_kbps = 500, tq_per_bit = 16, sample_point = 0.75, sjw = 1 }\n";
@@ -156,7 +158,10 @@ fn each_can_rule_fires_once() {
     let mut l = Line::default();
     let raw = Frame::data(0x7E5, &[0x55]).destuffed_bits();
     l.idle(20).bits(&raw, &raw, CPB).idle(30);
-    assert_eq!(check(&l, RULE_STUFF), ((20.0f64 + 6.75) * 2000.0).round());
+    assert_eq!(
+        check(&l, can_rules::STUFF.label()),
+        ((20.0f64 + 6.75) * 2000.0).round()
+    );
     // Form: the master's CRC delimiter dominant.
     let mut l = Line::default();
     let mut tx = f.wire_bits(false);
@@ -165,7 +170,7 @@ fn each_can_rule_fires_once() {
     let mut rx = f.wire_bits(true);
     rx[n - 10] = false;
     l.idle(20).bits(&tx, &rx, CPB).idle(30);
-    check(&l, RULE_FORM);
+    check(&l, can_rules::FORM.label());
     // Intermission: the next SOF after 2 bits of it.
     let mut l = Line::default();
     l.idle(20)
@@ -173,17 +178,17 @@ fn each_can_rule_fires_once() {
         .idle(2)
         .sent(&f)
         .idle(20);
-    check(&l, RULE_INTERMISSION);
+    check(&l, can_rules::INTERMISSION.label());
     // Bit time: a frame 3 % fast.
     let mut l = Line::default();
     l.idle(20)
         .bits(&f.wire_bits(false), &f.wire_bits(true), CPB * 0.97)
         .idle(30);
-    check(&l, RULE_BIT_TIME);
+    check(&l, can_rules::BIT_TIME.label());
     // Dominant length: an error flag of 8 bits after bus idle.
     let mut l = Line::default();
     l.idle(20).bits(&[false; 8], &[false; 8], CPB).idle(30);
-    check(&l, RULE_DOMINANT);
+    check(&l, can_rules::DOMINANT.label());
 }
 
 /// The master loses arbitration to another node: a receiver from then on, no violation.
@@ -278,11 +283,11 @@ fn each_canopen_rule_fires_once() {
         .idle(50)
         .sent(&sdo(5, 0x6200, 2))
         .idle(20);
-    assert_eq!(run(&l, "").0, vec![co::RULE_SDO]);
+    assert_eq!(run(&l, "").0, vec![co_rules::SDO.label()]);
     // NMT: start twice.
     let mut l = Line::default();
     l.idle(20).sent(&start).idle(50).sent(&start).idle(20);
-    assert_eq!(run(&l, "").0, vec![co::RULE_NMT]);
+    assert_eq!(run(&l, "").0, vec![co_rules::NMT.label()]);
     // Guarding: 10 ms guard time, the third request 16 ms after the second.
     let mut l = Line::default();
     l.idle(20)
@@ -291,14 +296,17 @@ fn each_canopen_rule_fires_once() {
     for gap in [4900, 7900, 100] {
         l.sent(&guard).heard(&Frame::data(0x705, &[0x05])).idle(gap);
     }
-    assert_eq!(run(&l, "").0, vec![co::RULE_GUARD]);
+    assert_eq!(run(&l, "").0, vec![co_rules::GUARD.label()]);
     // SYNC: every 2 ms, one after 3 ms.
     let mut l = Line::default();
     for gap in [940, 1440, 940] {
         l.sent(&sync).idle(gap);
     }
     l.sent(&sync).idle(20);
-    assert_eq!(run(&l, "sync_period_us = 2000\n").0, vec![co::RULE_SYNC]);
+    assert_eq!(
+        run(&l, "sync_period_us = 2000\n").0,
+        vec![co_rules::SYNC.label()]
+    );
     // SAR58K24: a click to node 0x20, and another before its answer.
     let click = Frame::data(0x220, &[0x80, 0x20, 0, 0, 0, 0, 0, 0]);
     let sar = "[[canopen.sar]]\n[canopen.sar.encoder]\nnode = 0x20\n";
@@ -310,7 +318,7 @@ fn each_canopen_rule_fires_once() {
         .idle(50)
         .sent(&click)
         .idle(20);
-    assert_eq!(run(&l, sar).0, vec![co::RULE_SAR]);
+    assert_eq!(run(&l, sar).0, vec![co_rules::SAR.label()]);
 }
 
 /// The monitor beside the CAN emulator, a model node as the master: every frame both ways decoded as sent, no violation.
@@ -357,6 +365,7 @@ fn beside_the_emulator_every_frame_is_read_as_sent() {
         }
     }
     assert!(mon.violations().is_empty(), "{:?}", mon.violations());
+    assert!(emu.violations().is_empty(), "{:?}", emu.violations());
     let t = mon.transcript();
     let got: Vec<Frame> = t["transactions"].as_array().unwrap().iter().map(|v| serde_json::from_value::<Frame>(serde_json::json!({"id": v["id"], "ide": v["ide"], "rtr": v["rtr"], "dlc": v["dlc"], "data": v["data"]})).unwrap()).collect();
     assert_eq!(got, sent);

@@ -206,3 +206,63 @@ fn every_rule_has_one_name() {
         );
     }
 }
+
+/// A CAN or CANopen limit a configuration sets outside the Bosch
+/// specification's range is refused with that range, by the emulators and
+/// the monitors alike.
+#[test]
+fn a_can_bound_outside_the_specifications_range_is_refused_with_the_range() {
+    let can = "[can]\nf_sys_mhz = 16\ntiming = { bit_rate_kbps = 500, tq_per_bit = 16, sample_point = 0.75, sjw = 2 }\n[[can.nodes]]\nname = \"a\"\n";
+    let canopen = "[canopen]\nf_sys_mhz = 16\nbit_rate_kbps = 500\ntq_per_bit = 16\nsample_point = 0.75\n[[canopen.encoders]]\nname = \"e\"\n[canopen.encoders.encoder]\nnode_switch = 1\nbit_rate_switch = 5\n";
+    for (kind, base, table, field, value, range) in [
+        (
+            "can",
+            can,
+            "can",
+            "bit_tolerance_percent",
+            "1.6",
+            "0 to 1.58",
+        ),
+        (
+            "can_monitor",
+            can,
+            "can",
+            "max_dominant_bits",
+            "13",
+            "6 to 12",
+        ),
+        (
+            "canopen",
+            canopen,
+            "canopen",
+            "max_dominant_bits",
+            "5.9",
+            "6 to 12",
+        ),
+        (
+            "canopen_monitor",
+            canopen,
+            "canopen",
+            "bit_tolerance_percent",
+            "2",
+            "0 to 1.58",
+        ),
+    ] {
+        let toml = format!("{base}[{table}.monitor]\n{field} = {value}\n");
+        let e = open(kind, &toml, "r.toml", 16_000_000)
+            .err()
+            .unwrap_or_else(|| panic!("{kind} took {field} = {value}"))
+            .to_string();
+        assert!(
+            e.contains("r.toml")
+                && e.contains(&format!("monitor.{field}"))
+                && e.contains("outside the seed's range")
+                && e.contains(range)
+                && e.contains("Bosch CAN Specification 2.0"),
+            "{kind}: {e}"
+        );
+    }
+    let ok = format!("{can}[can.monitor]\nbit_tolerance_percent = 1.58\nmax_dominant_bits = 12\n");
+    assert!(open("can", &ok, "r.toml", 16_000_000).is_ok());
+    assert!(open("can_monitor", &ok, "r.toml", 16_000_000).is_ok());
+}

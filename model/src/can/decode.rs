@@ -1,11 +1,11 @@
 //! The decode core of `tbgen decode can` and the CAN pin-level monitors
 //! (`cosim::monitor::can`): a line turned into frames. A frame starts at a
 //! falling edge after at least 10.5 recessive bits (bus idle, after EOF and
-//! intermission, or after an error delimiter and intermission); its bits are
-//! sampled at `(k + sample point)` bit times after that edge (hard
-//! synchronisation at SOF only: enough for captures from one clock domain
-//! and for frames at a few hundred ppm), and read by the destuffing parser
-//! [`super::frame::parse`].
+//! intermission, or after an error delimiter and intermission); each bit is
+//! sampled a bit time after the last sample, moved towards the falling edge
+//! that starts it (a receiver resynchronising on recessive-to-dominant
+//! edges, so a transmitter at the oscillator tolerance is read on its own
+//! grid), and read by the destuffing parser [`super::frame::parse`].
 
 use serde::Serialize;
 
@@ -51,7 +51,38 @@ impl Decoded {
     }
 }
 
-/// The frames of `line` at `bit_ps` per bit, sampled at `sample_point` of each bit.
+/// The first 200 bits of a frame whose SOF falls at `sof`: each read at the
+/// sample point, a bit time after the last, moved towards the falling edge
+/// that starts the bit when there is one (a receiver resynchronising on
+/// recessive-to-dominant edges, Bosch CAN 2.0 part A §9.1 [4]) by at most
+/// half the time from the sample point to the bit's end: enough to follow a
+/// transmitter at the oscillator tolerance (0.5 % drifts 0.05 bit between
+/// two stuff edges), while an acknowledgement that comes late by the bus's
+/// round trip cannot push the sample point out of the bit.
+fn sampled(line: &Signal, sof: u64, bit_ps: u64, sample_point: f64) -> Vec<bool> {
+    let into = (sample_point * bit_ps as f64) as u64;
+    let most = ((1.0 - sample_point) * bit_ps as f64 / 2.0) as i64;
+    let mut at = sof + into;
+    let mut bits = vec![line.level_at(at)];
+    while bits.len() < 200 {
+        let previous = bits[bits.len() - 1];
+        let next = at + bit_ps;
+        // A falling edge between the last sample point and the next one:
+        // the next bit's start, expected `bit - into` after the last sample.
+        at = match line.next_level(at + 1, false) {
+            Some(e) if previous && e <= next => {
+                let phase = e as i64 - (next - into) as i64;
+                (next as i64 + phase.clamp(-most, most)) as u64
+            }
+            _ => next,
+        };
+        bits.push(line.level_at(at));
+    }
+    bits
+}
+
+/// The frames of `line` at `bit_ps` per bit, sampled at `sample_point` of
+/// each bit (resynchronised as [`sampled`] says).
 pub fn frames(line: &Signal, bit_ps: u64, sample_point: f64) -> Vec<Decoded> {
     let mut frames = Vec::new();
     let mut idle_since = 0u64;
@@ -64,9 +95,7 @@ pub fn frames(line: &Signal, bit_ps: u64, sample_point: f64) -> Vec<Decoded> {
         if t < after || t - idle_since < 11 * bit_ps - bit_ps / 2 {
             continue;
         }
-        let bits: Vec<bool> = (0..200u64)
-            .map(|k| line.level_at(t + k * bit_ps + (sample_point * bit_ps as f64) as u64))
-            .collect();
+        let bits = sampled(line, t, bit_ps, sample_point);
         let d = match super::frame::parse(&bits) {
             Ok(p) => {
                 after = t + p.len as u64 * bit_ps;

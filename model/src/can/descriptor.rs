@@ -31,5 +31,5 @@ pub const PROTOCOL: Protocol = Protocol {
         title: "CAN 2.0: one data frame (Bosch CAN 2.0 / ISO 11898-1; SAR58K24 CAN mode)",
     }),
     historical: &[],
-    rules: &[],
+    rules: super::rules::RULES,
 };

@@ -29,6 +29,7 @@ pub mod decode;
 pub mod descriptor;
 pub mod emulator;
 pub mod frame;
+pub mod rules;
 pub mod timing;
 
 pub use bench::{Bench, BenchConfig, Transaction};

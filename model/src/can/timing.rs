@@ -54,7 +54,7 @@ impl BitTiming {
         (1 + self.tseg1()) as f64 / self.ntq() as f64
     }
 
-    /// Checks the ranges of ISO 11898-1 (8 to 25 quanta per bit) with the
+    /// Checks the ranges of Bosch CAN 2.0 part A §8 (8 to 25 quanta per bit) with the
     /// scenario's field names (`[can.timing]`).
     pub fn validate(&self) -> Result<()> {
         let range = |f: &str, v: u32, lo: u32, hi: u32| {
@@ -135,7 +135,7 @@ impl BitTiming {
             return Err(ConfigError::invalid(
                 "timing.tq_per_bit",
                 format!("{ntq}"),
-                "give 8 to 25 quanta per bit (ISO 11898-1)",
+                "give 8 to 25 quanta per bit (Bosch CAN 2.0 part A §8)",
             ));
         }
         let brp_f = f_sys_hz as f64 / bit_rate / ntq as f64;

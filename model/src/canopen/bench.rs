@@ -232,7 +232,7 @@ impl BenchConfig {
             return Err(ConfigError::invalid(
                 "tq_per_bit",
                 format!("{}", self.tq_per_bit),
-                "give 8 to 25 quanta per bit (ISO 11898-1)",
+                "give 8 to 25 quanta per bit (Bosch CAN 2.0 part A §8)",
             ));
         }
         if !(0.5..0.95).contains(&self.sample_point) {

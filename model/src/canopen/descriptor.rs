@@ -46,5 +46,5 @@ pub const PROTOCOL: Protocol = Protocol {
             why: "the SAR58K24 in CAN mode on the CANopen bus (`[[canopen.sar]]`): the emulator's alias, the closed loop `hdl/tb_cosim/sar58k24_can/` (can_controller and a command sequencer) and its cocotb test are named after the device, as its manual's CAN mode",
         },
     ],
-    rules: &[],
+    rules: super::rules::RULES,
 };

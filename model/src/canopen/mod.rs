@@ -28,6 +28,7 @@ pub mod interpret;
 pub mod master;
 pub mod node;
 pub mod od;
+pub mod rules;
 pub mod sar58k24;
 pub mod scaling;
 pub mod sdo;
