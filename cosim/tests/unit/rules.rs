@@ -266,3 +266,24 @@ fn a_can_bound_outside_the_specifications_range_is_refused_with_the_range() {
     assert!(open("can", &ok, "r.toml", 16_000_000).is_ok());
     assert!(open("can_monitor", &ok, "r.toml", 16_000_000).is_ok());
 }
+
+/// Every protocol with an emulator and a monitor has a rule book, and every
+/// one of them a probe kit: a protocol added without them fails here.
+#[test]
+fn every_protocol_with_an_emulator_has_a_rule_book_and_a_probe_kit() {
+    for p in model::protocol::PROTOCOLS {
+        let Some(e) = &p.emulator else { continue };
+        assert!(
+            !p.rules.is_empty(),
+            "{}: no rule book (model/src/{}/rules.rs, the descriptor's `rules`)",
+            p.stem,
+            p.module
+        );
+        assert!(
+            probe::kit(e.kind).is_some(),
+            "{}: no probe kit for `{}` (cosim/src/probe/)",
+            p.stem,
+            e.kind
+        );
+    }
+}
