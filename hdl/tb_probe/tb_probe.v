@@ -64,15 +64,19 @@ reg [15:0] master;
 wire [3:0] answer;
 wire [7:0] mon_pins;
 
-// One monitor pin from its source: `?:` merges both sides on an X
-// condition, so an unknown driver enable gives X on the bus unless both
-// sides agree, as a tristate bus would.
+// One monitor pin from its source (cosim::probe::Src, the byte
+// tbgen probes writes): a master pin, an emulator pin, the half-duplex bus
+// at the master's receiver, or the wired-AND CAN bus.
 function src_level(input [7:0] s, input [15:0] m, input [3:0] a);
     case (s[7:4])
         4'd0: src_level = m[s[3:0]];
         4'd1: src_level = a[s[1:0]];
-        4'd2: src_level = a[1] ? a[0] : (m[2] ? m[1] : 1'b1);
-        4'd3: src_level = m[s[3:0]] & a[0];
+        // The bus and the wired-AND are the testbench's, not a wrapper's
+        // input: an unknown master pin in them reads as 0, as the library's
+        // run reads it (an enable X or Z: not driving), so that they carry
+        // no X the master did not put on a wrapper's own pin.
+        4'd2: src_level = (a[1] === 1'b1) ? a[0] : ((m[2] === 1'b1) ? m[1] : 1'b1);
+        4'd3: src_level = (m[s[3:0]] === 1'b1) & a[0];
         default: src_level = 1'bx;
     endcase
 endfunction

@@ -5,7 +5,7 @@
 //! (`wire emu_line_in = i_ma;`, `wire emu_clk_in/emu_data_in/emu_oe_in = ...;`
 //! or `wire [3:0] emu_pins_in = {...};`, the library's input layout), the
 //! lines that drive its outputs (`assign o_slo = emu_line_out;`), and the
-//! monitor's `wire [7:0] mon_pins_now = {...};` (its pin order).
+//! monitor's `localparam MON_PIN_NAMES = "...";` (its pin order).
 //!
 //! From them [`Wiring::include`] writes the Verilog instantiation the
 //! testbench `hdl/tb_probe/tb_probe.v` includes, and [`Wiring::pins_module`]
@@ -74,6 +74,15 @@ fn wire_value<'a>(code: &'a str, name: &str) -> Option<&'a str> {
         };
         let (lhs, rhs) = rest.split_once('=')?;
         (lhs.trim() == name).then(|| rhs.trim())
+    })
+}
+
+/// The string of `localparam <name> = "<value>";` in `code`.
+fn localparam_string<'a>(code: &'a str, name: &str) -> Option<&'a str> {
+    statements(code).find_map(|s| {
+        let rest = s.strip_prefix("localparam")?.trim_start();
+        let (lhs, rhs) = rest.split_once('=')?;
+        (lhs.trim() == name).then(|| rhs.trim().strip_prefix('"')?.strip_suffix('"'))?
     })
 }
 
@@ -197,11 +206,15 @@ pub fn read(hdl: &Path, emulator: &str, monitor: &str) -> Result<Wiring> {
              the probe testbench reads the emulator's answer from them"
         )));
     }
-    let pins = wire_value(&mon, "mon_pins_now")
-        .and_then(concat_lsb_first)
+    // The monitor's pins in order, bit 0 first, as the wrapper declares them
+    // for its own messages (`localparam MON_PIN_NAMES = "a, b, ...";`): its
+    // `mon_pins_now` may read a pin through a wire (an enable whose X reads
+    // as 0), the names are the ports.
+    let pins: Vec<String> = localparam_string(&mon, "MON_PIN_NAMES")
+        .map(|names| names.split(',').map(|n| n.trim().to_string()).collect())
         .ok_or_else(|| {
             Error::Probes(format!(
-                "{mon_file}: no `wire [7:0] mon_pins_now = {{...}};` line: the probe testbench reads the \
+                "{mon_file}: no `localparam MON_PIN_NAMES = \"...\";` line: the probe testbench reads the \
                  monitor's pin order from it (hdl/emu/emu_monitor.vh)"
             ))
         })?;
@@ -213,7 +226,7 @@ pub fn read(hdl: &Path, emulator: &str, monitor: &str) -> Result<Wiring> {
             None if pins[i..].iter().all(|s| s.contains('\'')) => break,
             None => {
                 return Err(Error::Probes(format!(
-                    "{mon_file}: `{item}` is pin {i} of mon_pins_now: the probe testbench wires only ports there"
+                    "{mon_file}: `{item}` is pin {i} of MON_PIN_NAMES: the probe testbench wires only ports there"
                 )))
             }
         }
