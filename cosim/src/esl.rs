@@ -172,6 +172,24 @@ fn set_alarm(a: &mut Alarms, name: &str, v: bool) -> bool {
     true
 }
 
+/// The bit rate of a configuration (`[esl] baud`, the seed's 10 Mbit/s by
+/// default), 1 kbit/s to 50 Mbit/s: the emulator's and the monitor's one
+/// reading of it (a value of another type is refused, not taken for the
+/// default).
+pub(crate) fn baud(text: &str, origin: &str) -> Result<f64> {
+    let whole = crate::monitor::proto_table(text, origin, "esl")?;
+    let baud: f64 = crate::monitor::field::<f64>(&whole, "baud", origin, "baud")?.unwrap_or(10e6);
+    if !(1e3..=50e6).contains(&baud) {
+        return Err(Error::field(
+            origin,
+            "baud",
+            format!("{baud} bit/s"),
+            "give the bit rate in bit/s (seed 000: 10e6)",
+        ));
+    }
+    Ok(baud)
+}
+
 impl EslEmulator {
     /// An emulator from TOML text (`origin` names it in errors) at `f_emu_hz`.
     pub fn from_toml(text: &str, origin: &str, f_emu_hz: u64) -> Result<Self> {
@@ -179,19 +197,7 @@ impl EslEmulator {
         for key in ["ops", "repeat_ops", "request_flips", "intruders"] {
             tables.device.remove(key);
         }
-        let baud = match tables.device.get("baud") {
-            Some(toml::Value::Float(f)) => *f,
-            Some(toml::Value::Integer(i)) => *i as f64,
-            _ => 10e6,
-        };
-        if !(1e3..=50e6).contains(&baud) {
-            return Err(Error::field(
-                origin,
-                "baud",
-                format!("{baud} bit/s"),
-                "give the bit rate in bit/s (seed 000: 10e6)",
-            ));
-        }
+        let baud = baud(text, origin)?;
         if tables.emulator.max_line_clock_khz.is_none() {
             tables.emulator.max_line_clock_khz = Some(baud / 1e3);
         }

@@ -199,7 +199,7 @@ impl TformatEmulator {
 }
 
 /// The ALMC flags by name and bit (seed 002, Table 3).
-const ALARMS: [(&str, u8); 7] = [
+pub(crate) const ALARMS: [(&str, u8); 7] = [
     ("over_speed", 0),
     ("full_absolute", 1),
     ("counting_error", 2),

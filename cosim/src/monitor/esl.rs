@@ -96,15 +96,7 @@ impl EslMonitor {
     pub fn from_toml(text: &str, origin: &str, f_mon_hz: u64) -> Result<Self> {
         let tables = config::tables(text, origin, "esl")?;
         let whole = proto_table(text, origin, "esl")?;
-        let baud: f64 = field::<f64>(&whole, "baud", origin, "baud")?.unwrap_or(10e6);
-        if !(1e3..=50e6).contains(&baud) {
-            return Err(Error::field(
-                origin,
-                "baud",
-                format!("{baud} bit/s"),
-                "give the bit rate in bit/s (seed 000: 10e6)",
-            ));
-        }
+        let baud = crate::esl::baud(text, origin)?;
         let mut settings = tables.emulator.clone();
         settings.max_line_clock_khz = settings.max_line_clock_khz.or(Some(baud / 1e3));
         config::emulator_clock(

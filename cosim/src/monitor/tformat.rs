@@ -28,17 +28,6 @@ use super::{field, host_timeout_us, limit, listens_only, proto_table, sub, Base}
 use crate::config::{self, Error};
 use crate::{Emulator, Pins, Result};
 
-/// The ALMC flags by name and their bit (seed 002 6.3.4; the emulator's names).
-const ALMC: [(&str, u8); 7] = [
-    ("over_speed", 0),
-    ("full_absolute", 1),
-    ("counting_error", 2),
-    ("counter_overflow", 3),
-    ("multi_turn_error", 5),
-    ("battery_error", 6),
-    ("battery_alarm", 7),
-];
-
 /// The monitor's own table (`[monitor]`), every field optional.
 #[derive(Debug, Clone, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -183,7 +172,7 @@ impl Emulator for TformatMonitor {
             .side
             .last()
             .ok_or_else(|| Error::Usage("tformat_monitor: no transaction decoded yet".into()))?;
-        if let Some(&(_, bit)) = ALMC.iter().find(|a| a.0 == name) {
+        if let Some(&(_, bit)) = crate::tformat::ALARMS.iter().find(|a| a.0 == name) {
             return Ok(t["almc"].as_u64().unwrap_or(0) >> bit & 1 == 1);
         }
         match name {

@@ -155,3 +155,22 @@ fn clear_commands_must_come_8_times_within_the_repeat_window() {
     let r: Vec<&str> = emu.violations().iter().map(|v| v.rule).collect();
     assert_eq!(r, vec![READ.label()]);
 }
+
+/// The bit rate is read once for the emulator and the monitor: a value of
+/// another type is refused by both with the field (the emulator took it for
+/// the seed's 10 Mbit/s).
+#[test]
+fn a_baud_of_another_type_is_refused_by_the_emulator_and_the_monitor() {
+    for kind in ["esl", "esl_monitor"] {
+        let e = cosim::open(
+            kind,
+            "[esl]\nbaud = \"ten million\"\n",
+            "b.toml",
+            80_000_000,
+        )
+        .err()
+        .unwrap_or_else(|| panic!("{kind} took a string for the bit rate"))
+        .to_string();
+        assert!(e.contains("b.toml") && e.contains("baud"), "{kind}: {e}");
+    }
+}
