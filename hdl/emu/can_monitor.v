@@ -11,11 +11,12 @@
 // frame off RXD with the decoder of `tbgen decode can`
 // (model/src/can/decode.rs), tells the master's own frames (TXD dominant at
 // the SOF and equal to the bus through the CRC) from the others', and holds
-// the master to ISO 11898-1 (the seeds do not restate CAN): stuffing of its
-// frames, CRC delimiter / ACK delimiter / EOF recessive (and its own ACK
-// slot), 3 bits of intermission before its SOF (11 recessive bits), its
-// edges on the configured bit rate within the tolerance, no dominant TXD
-// longer than an error flag (6 bits). Each violation is printed with its
+// the master to the CAN rule book (model/src/can/rules.rs, docs/rules.md:
+// the Bosch CAN Specification 2.0, which seed 003 names): stuffing of its
+// frames, its CRC, CRC delimiter / ACK delimiter / EOF recessive (and its
+// own ACK slot), 3 bits of intermission before its SOF (11 recessive bits),
+// its edges on the configured bit rate within the tolerance, no dominant
+// TXD longer than an error flag (6 bits). Each violation is printed with its
 // time and rule and counted (u_mon.violations(0)); STOP_ON_VIOLATION = 1
 // stops the run.
 //
