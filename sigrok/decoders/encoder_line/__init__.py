@@ -1,0 +1,132 @@
+##
+## Helpers shared by the position-encoder decoders in this folder (ssi,
+## biss_c, endat, ...). Not a decoder itself: libsigrokdecode skips a
+## folder without a Decoder class, and the decoders import this one by name
+## because the decoders folder is on Python's path.
+##
+## Part of this repository; MIT OR Apache-2.0, as the repository.
+##
+
+import bisect
+
+
+class Line:
+    '''The changes of a set of channels over one frame, as recorded by
+    record(): a level of any channel at any sample of the frame, so that a
+    decoder can sample data a delay after a clock edge (a long cable, a
+    receiver's synchroniser) without waiting backwards.'''
+
+    def __init__(self, start, levels):
+        self.samples = [start]
+        self.levels = [tuple(levels)]
+
+    def add(self, sample, levels):
+        levels = tuple(levels)
+        if levels != self.levels[-1]:
+            self.samples.append(sample)
+            self.levels.append(levels)
+
+    def at(self, sample, channel):
+        i = bisect.bisect_right(self.samples, sample) - 1
+        return self.levels[max(i, 0)][channel]
+
+    def edges(self, channel, kind):
+        '''Samples where channel rises (kind 'r') or falls ('f').'''
+        out = []
+        for i in range(1, len(self.samples)):
+            a, b = self.levels[i - 1][channel], self.levels[i][channel]
+            if a != b and (b == 1) == (kind == 'r'):
+                out.append(self.samples[i])
+        return out
+
+    def next_change(self, channel, after):
+        '''The first sample > after where channel changes, or None.'''
+        i = bisect.bisect_right(self.samples, after)
+        level = self.at(after, channel)
+        for j in range(i, len(self.samples)):
+            if self.levels[j][channel] != level:
+                return self.samples[j]
+        return None
+
+
+def crc(bits, width, poly, init):
+    '''A bit-serial CRC register, MSB first: for each bit, the feedback is
+    the register's top bit XOR the input; shift left; XOR the polynomial
+    (without its x^width term) when the feedback is 1. Every protocol gives
+    its own width, polynomial and preset from its seed.'''
+    mask = (1 << width) - 1
+    reg = init & mask
+    for b in bits:
+        fb = ((reg >> (width - 1)) & 1) ^ (b & 1)
+        reg = (reg << 1) & mask
+        if fb:
+            reg ^= poly & mask
+    return reg
+
+
+def msb_first(bits):
+    v = 0
+    for b in bits:
+        v = (v << 1) | (b & 1)
+    return v
+
+
+def lsb_first(bits):
+    v = 0
+    for i, b in enumerate(bits):
+        v |= (b & 1) << i
+    return v
+
+
+def gray_to_binary(g):
+    b = g
+    shift = g >> 1
+    while shift:
+        b ^= shift
+        shift >>= 1
+    return b
+
+
+def bit_string(bits):
+    return ''.join(str(b) for b in bits)
+
+
+def samples_of(samplerate, seconds):
+    '''A time in whole samples (at least 0); needs the sample rate.'''
+    if not samplerate:
+        raise ValueError('the sample rate is unknown: give the capture one '
+                         '(sigrok-cli -I vcd:samplerate=... or :downsample=...)')
+    return max(0, int(round(seconds * samplerate)))
+
+
+
+def record_clocked(dec, pins, clk, idle_high):
+    '''Records one frame of a clock that idles high, from the falling edge
+    the caller has just matched (at dec.samplenum, with pins the levels
+    wait() returned) until the clock has stayed high for
+    idle_high(longest complete high phase) samples; before the first
+    complete high phase there is no limit. Returns (Line, end): end is the
+    sample of the clock's last rising edge.'''
+    n = len(pins)
+    line = Line(dec.samplenum, pins)
+    longest_high = 0
+    high_since = None
+    while True:
+        conds = [{i: 'e'} for i in range(n)]
+        limit = None
+        if high_since is not None and longest_high > 0:
+            limit = high_since + idle_high(longest_high)
+            if limit <= dec.samplenum:
+                return line, high_since
+            conds.append({'skip': limit - dec.samplenum})
+        pins = dec.wait(conds)
+        if limit is not None and not any(dec.matched[:n]):
+            return line, high_since
+        was = line.levels[-1][clk]
+        line.add(dec.samplenum, pins)
+        if pins[clk] == 1 and was == 0:
+            high_since = dec.samplenum
+        elif pins[clk] == 0 and was == 1:
+            if high_since is not None:
+                longest_high = max(longest_high, dec.samplenum - high_since)
+            high_since = None
