@@ -3,6 +3,7 @@ saying which committed waves it reads (vectors/<core>/), the decoder's
 options for a scenario, how its frames compare with the transcript's
 transactions, and which bit to invert in the bit-flip test."""
 
+import re
 
 
 class Mismatch(Exception):
@@ -129,4 +130,131 @@ class Ssi:
         return None
 
 
-ALL = [Ssi()]
+def packed(value, n):
+    """A transcript parameter that packs one byte per slave, slave 0 low."""
+    return [(value >> (8 * i)) & 0xFF for i in range(n)]
+
+
+def named_errors(frame, table):
+    """(transcript error names the decoder reported, decoder errors no
+    name explains)."""
+    names, other = [], []
+    for e in frame["errors"]:
+        hit = [k for k, text in table.items() if e.startswith(text)]
+        names += hit
+        if not hit:
+            other.append(e)
+    return sorted(names), other
+
+
+class Biss:
+    core = "biss_master"
+    decoder_id = "biss_c"
+    data_signal = "slo_master"
+    minimum_scenarios = 31
+    # What the decoder can see on the two lines; the master's delay
+    # judgements (delay_beyond_compensation, delay_departs_from_mean) and
+    # its wait for SLO (slo_not_released) are its own, not the line's.
+    line_errors = {"no_ack": "No acknowledge",
+                   "no_start_bit": "No start bit"}
+
+    def decoder(self, transcript, scenario):
+        p = transcript["parameters"]
+        n = p["SLAVES"]
+        join = lambda xs, f: "/".join(f(x) for x in xs)  # noqa: E731
+        return ("biss_c:ma=ma_master:slo=slo_master"
+                f":bits={join(packed(p['SLAVE_BITS'], n), str)}"
+                f":crc_bits={join(packed(p['SLAVE_CRC_WIDTH'], n), str)}"
+                f":crc_poly={join(packed(p['SLAVE_CRC_POLY'], n), hex)}")
+
+    def errors(self, t):
+        table = dict(self.line_errors)
+        for s in t["slaves"]:
+            table[f"crc_error_slave{s['slave']}"] = f"CRC error slave {s['slave']}"
+        return table
+
+    def compare(self, anns, transcript):
+        frames = frames_of(anns, "Frame: ")
+        # A start refused because SLO was low clocks nothing (its
+        # received_bits repeat the previous frame's: done == start tells).
+        on_wire = [t for t in transcript["transactions"]
+                   if t["done_cycle"] > t["start_cycle"]]
+        want = partial(anns, on_wire, transcript)
+        expect("frame count", len(frames), len(want), transcript["scenario"])
+        values = 0
+        for fr, t in zip(frames, want):
+            where = f"{transcript['scenario']} frame {t['index']} (cycle {fr['ss']})"
+            within(fr, t, where)
+            if not t["received_bits"] and not (set(t["errors"]) & set(self.line_errors)):
+                # The master gave up for a reason of its own (a delay
+                # beyond its range) before any bit: the line shows no data.
+                if "slave 0 position" in fr["text"] or not fr["errors"]:
+                    raise Mismatch(f"{where}: the master read nothing, the "
+                                   f"decoder read {fr['text']!r} {fr['errors']}")
+                continue
+            table = self.errors(t)
+            names, other = named_errors(fr, table)
+            expect("errors", names, sorted(e for e in t["errors"] if e in table), where)
+            expect("other errors", other, [], where)
+            if any(e in self.line_errors for e in t["errors"]):
+                continue
+            m = re.search(r"; bits ([01]+)$", fr["text"])
+            expect("bits", m and m.group(1), t["received_bits"], where)
+            got = re.findall(r"slave (\d+) position (\d+) nE (\d) nW (\d) CDS (\d) CRC (\w+)", fr["text"])
+            expect("slaves", len(got), len(t["slaves"]), where)
+            for g, s in zip(got, t["slaves"]):
+                w = f"{where} slave {s['slave']}"
+                expect("position", int(g[1]), s["position"], w)
+                expect("error (nE low)", g[2] == "0", s["error"], w)
+                expect("warning (nW low)", g[3] == "0", s["warning"], w)
+                expect("CDS", g[4] == "1", s["cds"], w)
+                expect("CRC verdict", g[5] == "ok", s["crc_ok"], w)
+                values += 5
+            cdm = re.search(r"; CDM (\d)", fr["text"])
+            expect("CDM", cdm and cdm.group(1) == "1", t["cdm"], where)
+            values += 2
+        values += self.compare_registers(anns, transcript)
+        return len(frames), values
+
+    def compare_registers(self, anns, transcript):
+        got = [t for _, _, t in anns if t.startswith("Control: Register ")]
+        # Accesses whose control frame was sent whole (33 CDM bits).
+        want = [t["register"] for t in transcript["transactions"]
+                if t["register"] and len(t["register"]["cdm"]) >= 33]
+        expect("register accesses", len(got), len(want), transcript["scenario"])
+        values = 0
+        for text, r in zip(got, want):
+            m = re.match(r"Control: Register (read|write): ID (\d+) address "
+                         r"0x(\w+) data 0x(\w+), address CRC (\w+), data CRC (\w+)", text)
+            where = f"{transcript['scenario']} register access {r}"
+            if not m:
+                raise Mismatch(f"{where}: decoder printed {text!r}")
+            expect("direction", m.group(1) == "write", r["write"], where)
+            expect("ID", int(m.group(2)), r["id"], where)
+            expect("address", int(m.group(3), 16), r["addr"], where)
+            data = r["wdata"] if r["write"] else r["rdata"]
+            expect("data", int(m.group(4), 16), data, where)
+            expect("address CRC", m.group(5), "ok", where)
+            expect("data CRC verdict", m.group(6) == "ok", r["crc4_ok"], where)
+            values += 6
+        got = [t for _, _, t in anns if t.startswith("Control: Command: ")]
+        want = [t["command"] for t in transcript["transactions"] if t["command"]]
+        expect("commands", len(got), len(want), transcript["scenario"])
+        for text, c in zip(got, want):
+            m = re.match(r"Control: Command: IDS 0x(\w+) code (\d+), CRC (\w+)", text)
+            where = f"{transcript['scenario']} command {c}"
+            expect("IDS", m and int(m.group(1), 16), c["ids"], where)
+            expect("code", int(m.group(2)), c["code"], where)
+            expect("CRC", m.group(3), "ok", where)
+            values += 3
+        return values
+
+    def flip(self, anns, transcript):
+        for fr in frames_of(anns, "Frame: "):
+            if not fr["errors"] and "slave 1" not in fr["text"]:
+                ss, es, _ = bits_of(fr)[5]
+                return ss, es, "CRC error slave 0"
+        return None
+
+
+ALL = [Ssi(), Biss()]

@@ -100,33 +100,34 @@ def samples_of(samplerate, seconds):
 
 
 
-def record_clocked(dec, pins, clk, idle_high):
+def record_clocked(dec, pins, clk, idle, either=False):
     '''Records one frame of a clock that idles high, from the falling edge
     the caller has just matched (at dec.samplenum, with pins the levels
-    wait() returned) until the clock has stayed high for
-    idle_high(longest complete high phase) samples; before the first
-    complete high phase there is no limit. Returns (Line, end): end is the
-    sample of the clock's last rising edge.'''
+    wait() returned) until the clock has stayed high (either=True: at
+    either level) for idle(longest complete phase) samples; before the
+    first complete phase there is no limit. Returns (Line, end): end is the
+    sample of the clock's last edge (either=True) or last rising edge.'''
     n = len(pins)
     line = Line(dec.samplenum, pins)
-    longest_high = 0
-    high_since = None
+    longest = 0
+    since = None  # the clock's last edge that starts a timed phase
+    last = dec.samplenum
     while True:
         conds = [{i: 'e'} for i in range(n)]
         limit = None
-        if high_since is not None and longest_high > 0:
-            limit = high_since + idle_high(longest_high)
+        if since is not None and longest > 0:
+            limit = since + idle(longest)
             if limit <= dec.samplenum:
-                return line, high_since
+                return line, since
             conds.append({'skip': limit - dec.samplenum})
         pins = dec.wait(conds)
         if limit is not None and not any(dec.matched[:n]):
-            return line, high_since
+            return line, since
         was = line.levels[-1][clk]
         line.add(dec.samplenum, pins)
-        if pins[clk] == 1 and was == 0:
-            high_since = dec.samplenum
-        elif pins[clk] == 0 and was == 1:
-            if high_since is not None:
-                longest_high = max(longest_high, dec.samplenum - high_since)
-            high_since = None
+        if pins[clk] == was:
+            continue
+        if either or was == 1:
+            longest = max(longest, dec.samplenum - last)
+        last = dec.samplenum
+        since = dec.samplenum if (either or pins[clk] == 1) else None
