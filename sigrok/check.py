@@ -157,7 +157,9 @@ def main():
                 if target:
                     flip_wave = (name, text, transcript, decoder, target)
             print(f"{proto.decoder_id:<9} {scenarios:>3} scenarios, {frames:>5} "
-                  f"frames, {values:>6} values agree with the transcripts")
+                  f"frames, {values:>6} values agree with the transcripts"
+                  + (f" ({proto.not_compared} master verdicts not compared)"
+                     if getattr(proto, "not_compared", 0) else ""))
             if scenarios < proto.minimum_scenarios:
                 failures += 1
                 print(f"FAIL {proto.decoder_id}: only {scenarios} scenarios "

@@ -45,11 +45,11 @@ def within(frame, t, where):
                        f"the transaction at {t['start_cycle']}..{t['done_cycle']}")
 
 
-def partial(anns, transactions, transcript):
+def partial(anns, transactions, transcript, start=lambda t: t["start_cycle"]):
     """The transactions a decoder can see whole: one that starts at the
     wave's first cycle has lost its first edge, and the decoder must say
     so (a `Partial:` frame) instead of decoding it."""
-    if transactions and transactions[0]["start_cycle"] == 0:
+    if transactions and start(transactions[0]) == 0:
         if not any(ss == 0 and t.startswith("Partial: ") for ss, _, t in anns):
             raise Mismatch(f"{transcript['scenario']}: the first transaction "
                            "starts at cycle 0 and the decoder did not report "
@@ -257,4 +257,154 @@ class Biss:
         return None
 
 
-ALL = [Ssi(), Biss()]
+SYNC_STAGES = 2
+
+
+class Endat:
+    # The master's delay counter stops when the start bit's edge leaves its
+    # two-flop synchroniser (the model's documented reading of seed 2.1.2).
+    core = "endat_master"
+    decoder_id = "endat"
+    data_signal = "endat_data_master"
+    minimum_scenarios = 33
+    # Errors the line shows; the rest (delay_drift,
+    # delay_measurement_inconsistent, not_calibrated: the master's delay
+    # judgements) are the master's own.
+    line_errors = {"crc": "CRC error: ", "ad1_crc": "AD1 CRC error",
+                   "ad2_crc": "AD2 CRC error", "f1_error": "F1: ",
+                   "f2_error": "F2: ", "no_start_bit": "No start bit",
+                   "line_not_driven": "Line not driven",
+                   "type_ii": "Type II:", "type_iii": "Type III:",
+                   "type_iv": "Type IV:",
+                   "acknowledgement_mismatch": "Acknowledgement differs",
+                   "type_i": "Mode command "}
+    # Type II and a wrong acknowledgement with type 2.2 commands: judged
+    # here only where the decoder judged (see acknowledge_22 in the
+    # decoder); the master's other judgements of additional datum 1 are
+    # counted as not compared.
+    ack_errors = ("type_ii", "acknowledgement_mismatch")
+    type21 = ("000111", "001110", "011100", "100011", "101010", "010101", "110001")
+    not_compared = 0
+
+    def decoder(self, transcript, scenario):
+        p = transcript["parameters"]
+        return ("endat:clk=endat_clk_master:data=endat_data_master"
+                f":pos_bits={p['POS_BITS']}")
+
+    def compare(self, anns, transcript):
+        frames = frames_of(anns, "Frame: ")
+        # Values of a continuous clock belong to their request's frame.
+        requests = []
+        for t in transcript["transactions"]:
+            if t["kind"] == "continuous_value":
+                requests[-1][1].append(t)
+            else:
+                requests.append((t, [t]))
+        values = 0
+        on_wire = [r for r in requests if r[0]["done_cycle"] > r[0]["start_cycle"]
+                   and r[0]["kind"] != "delay_measurement"]
+        partial(anns, on_wire, transcript, lambda r: r[0]["start_cycle"])
+        # Each request owns the frame that starts within its cycles.
+        pairs, rest = [], list(frames)
+        for t, vals in on_wire:
+            hit = [f for f in rest if t["start_cycle"] <= f["ss"] <= t["done_cycle"]]
+            if len(hit) != 1:
+                raise Mismatch(f"{transcript['scenario']} request {t['request']}: "
+                               f"{len(hit)} frames within its cycles "
+                               f"{t['start_cycle']}..{t['done_cycle']}")
+            rest.remove(hit[0])
+            pairs.append((hit[0], (t, vals)))
+        self.cut_first = any(s == 0 and x.startswith("Partial: ") for s, _, x in anns)
+        # A delay measurement is one summary (its mean, at its end) of
+        # the "Encoder send position values" frames before it.
+        for t, _ in requests:
+            if t["kind"] == "delay_measurement":
+                taken = [f for f in rest if f["ss"] <= t["done_cycle"]]
+                rest = rest[len(taken):]
+                values += self.compare_measurement(taken, t, transcript)
+        rest = [f for f in rest if not f["text"].startswith("Partial")]
+        if rest:
+            raise Mismatch(f"{transcript['scenario']}: frames at cycles "
+                           f"{[f['ss'] for f in rest]} are in no transaction")
+        for fr, (t, vals) in pairs:
+            where = f"{transcript['scenario']} request {t['request']} (cycle {fr['ss']})"
+            if not (t["start_cycle"] <= fr["ss"] <= t["done_cycle"]):
+                raise Mismatch(f"{where}: frame at {fr['ss']}, the request at "
+                               f"{t['start_cycle']}..{t['done_cycle']}")
+            errors = sorted({e for v in vals for e in v["errors"]})
+            if t["encoder_answer"] == "type_i":
+                errors.append("type_i")
+            if t["mode"] not in self.type21 and "acknowledgement " not in fr["text"]:
+                self.not_compared += len([e for e in errors if e in self.ack_errors])
+                errors = [e for e in errors if e not in self.ack_errors]
+            names, other = named_errors(fr, self.line_errors)
+            if "line_not_driven" in errors:
+                # A line stuck high reads as mode 111111 (type I) too.
+                names = [n for n in names if n != "type_i"]
+            expect("errors", sorted(set(names)),
+                   [e for e in errors if e in self.line_errors], where)
+            expect("other errors", other, [], where)
+            text = fr["text"]
+            if "line_not_driven" not in errors:
+                expect("mode", re.match(r"mode (\d+)", text).group(1), t["mode"], where)
+            values += 1 + len(errors)
+            if set(errors) & {"no_start_bit", "line_not_driven"}:
+                continue
+            pos = [int(x) for x in re.findall(r"(?:position|test values) (\d+)", text)]
+            wanted = [v["position"] for v in vals if v["position"] is not None]
+            expect("positions", pos, wanted, where)
+            f1 = [x == "1" for x in re.findall(r"F1 (\d)", text)]
+            expect("F1", f1, [v["f1"] for v in vals][:len(f1)] if wanted else [], where)
+            if " F2 " in text:
+                expect("F2", re.search(r"F2 (\d)", text).group(1) == "1", t["f2"], where)
+            for k in ("ad1", "ad2"):
+                m = re.search(k.upper() + r" (\w{6})", text)
+                expect(k, m and m.group(1), t[k], where)
+            m = re.search(r"block (\w\w) (\w{4})", text)
+            if m:
+                expect("MRS/address", int(m.group(1), 16), t["mrs"], where)
+                expect("parameter", int(m.group(2), 16), t["param"], where)
+                values += 2
+            m = re.search(r"ack (\w\w) (\w{4})", text)
+            if t.get("ack") is not None or m:
+                expect("acknowledgement", m and [int(m.group(1), 16), int(m.group(2), 16)],
+                       t.get("ack"), where)
+                values += 1
+            values += 2 * len(pos) + 2
+        return len(frames), values
+
+    def compare_measurement(self, frames, t, transcript):
+        """The measurement frames are position reads, and the master's
+        mean delay is the decoder's mean start-bit delay of the last
+        round, plus the master's synchroniser."""
+        where = f"{transcript['scenario']} delay measurement ending at {t['done_cycle']}"
+        p = transcript["parameters"]
+        rounds = p["MEAS_COUNT"]
+        if len(frames) < rounds and not (frames and self.cut_first):
+            raise Mismatch(f"{where}: {len(frames)} frames, a round is {rounds}")
+        delays = []
+        for fr in frames[-rounds:]:
+            expect("mode", re.match(r"mode (\d+)", fr["text"]).group(1), t["mode"], where)
+            m = re.search(r"delay (\d+)", fr["text"])
+            if m:
+                delays.append(int(m.group(1)))
+        mean = sum(delays) / max(1, len(delays))
+        # A delay beyond the counter's range is the master's own verdict.
+        consistent = "delay_measurement_inconsistent" not in t["errors"] and \
+            t["delay_cycles"] is not None and t["delay_cycles"] < p["DELAY_MAX"]
+        if consistent and abs(mean + SYNC_STAGES - t["delay_cycles"]) > 1:
+            raise Mismatch(f"{where}: the start bits came {delays} cycles after "
+                           f"their clock edges (+{SYNC_STAGES} synchroniser), the "
+                           f"master measured {t['delay_cycles']}")
+        return len(delays) + 1
+
+    def flip(self, anns, transcript):
+        for fr in frames_of(anns, "Frame: "):
+            if not fr["errors"] and "AD1" in fr["text"] and "AD2" not in fr["text"]:
+                # A bit of the position, a few after the start bit.
+                ss, es, _ = [b for b in bits_of(fr)][12]
+                return ss, es, "CRC error"
+        return None
+
+
+ALL = [Ssi(), Biss(), Endat()]

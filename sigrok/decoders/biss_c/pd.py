@@ -3,7 +3,8 @@
 ##
 
 import sigrokdecode as srd
-from encoder_line import record_clocked, crc, msb_first, bit_string
+from encoder_line import (record_clocked, clocked_frames, crc, msb_first,
+                          bit_string)
 
 MA, SLO = 0, 1
 
@@ -107,17 +108,16 @@ class Decoder(srd.Decoder):
 
     def decode(self):
         slaves = self.slaves()
-        pins = self.wait({'skip': 0})
-        if pins[MA] == 0:
-            line, end = record_clocked(self, pins, MA, lambda p: 4 * p + 2,
-                                       either=True)
-            self.ann(0, end, A_FRAME, ['Partial: the capture starts inside '
-                                       'a frame', 'Partial'])
-        while True:
-            pins = self.wait({MA: 'f'})
-            line, end = record_clocked(self, pins, MA, lambda p: 4 * p + 2,
-                                       either=True)
+        # A frame ends when MA rests (at either level: the CDM) for four
+        # of its phases.
+        record = lambda pins: record_clocked(  # noqa: E731
+            self, pins, MA, lambda p: 4 * p + 2, either=True)
+        for line, end in clocked_frames(self, MA, record, self.partial):
             self.frame(line, end, slaves)
+
+    def partial(self, ss, es, where):
+        self.ann(ss, es, A_FRAME, ['Partial: the capture %s inside a frame'
+                                   % where, 'Partial'])
 
     def frame(self, line, end, slaves):
         start = line.samples[0]

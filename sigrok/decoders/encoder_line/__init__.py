@@ -100,30 +100,54 @@ def samples_of(samplerate, seconds):
 
 
 
-def record_clocked(dec, pins, clk, idle, either=False):
+def record_clocked(dec, pins, clk, idle, either=False, linger=None):
     '''Records one frame of a clock that idles high, from the falling edge
     the caller has just matched (at dec.samplenum, with pins the levels
     wait() returned) until the clock has stayed high (either=True: at
     either level) for idle(longest complete phase) samples; before the
-    first complete phase there is no limit. Returns (Line, end): end is the
-    sample of the clock's last edge (either=True) or last rising edge.'''
+    first complete phase there is no limit. With linger, the other lines
+    are recorded on for linger(longest phase) samples after the clock's
+    last edge (data that a long cable delivers after the last clock),
+    unless the clock falls again first: that edge starts the next frame.
+    Returns (Line, end, next): end is the sample of the clock's last edge
+    (either=True) or last rising edge; next is None, or the levels at the
+    falling edge that starts the next frame (at dec.samplenum). When the
+    capture ends, dec.capture_ended is set, and end is None if the frame
+    was cut.'''
     n = len(pins)
     line = Line(dec.samplenum, pins)
     longest = 0
     since = None  # the clock's last edge that starts a timed phase
     last = dec.samplenum
+    ended = None  # the sample the frame was found to have ended
     while True:
         conds = [{i: 'e'} for i in range(n)]
         limit = None
-        if since is not None and longest > 0:
+        if ended is not None:
+            limit = since + max(idle(longest), linger(longest))
+        elif since is not None and longest > 0:
             limit = since + idle(longest)
+        if limit is not None:
             if limit <= dec.samplenum:
-                return line, since
+                return line, since, None
             conds.append({'skip': limit - dec.samplenum})
-        pins = dec.wait(conds)
+        try:
+            pins = dec.wait(conds)
+        except Exception:
+            # libsigrokdecode 0.5 ends a capture with an error from wait():
+            # the frame is whole if its clock had come to rest.
+            dec.capture_ended = True
+            whole = ended is not None or (since is not None and longest > 0)
+            return line, (since if whole else None), None
         if limit is not None and not any(dec.matched[:n]):
-            return line, since
+            if ended is None and linger is not None:
+                ended = dec.samplenum
+                continue
+            return line, since, None
         was = line.levels[-1][clk]
+        if ended is not None and pins[clk] != was:
+            # The clock moves again after the idle time: the next frame.
+            return line, since, pins
         line.add(dec.samplenum, pins)
         if pins[clk] == was:
             continue
@@ -131,3 +155,29 @@ def record_clocked(dec, pins, clk, idle, either=False):
             longest = max(longest, dec.samplenum - last)
         last = dec.samplenum
         since = dec.samplenum if (either or pins[clk] == 1) else None
+
+
+def clocked_frames(dec, clk, record, partial):
+    '''The frames of a clock that idles high, one (Line, end) at a time:
+    record(pins) records one from its first falling edge (record_clocked
+    with the protocol's limits); partial(ss, es, where) is told of a frame
+    the capture cuts, where = 'starts' (the capture starts inside it) or
+    'ends'.'''
+    pins = dec.wait({'skip': 0})
+    pending = None
+    if pins[clk] == 0:
+        line, end, pending = record(pins)
+        partial(0, end if end is not None else dec.samplenum, 'starts')
+    while not getattr(dec, 'capture_ended', False):
+        if pending is None:
+            try:
+                pins = dec.wait({clk: 'f'})
+            except Exception:
+                return  # the end of the capture (libsigrokdecode 0.5)
+        else:
+            pins = pending
+        line, end, pending = record(pins)
+        if end is None:
+            partial(line.samples[0], dec.samplenum, 'ends')
+            return
+        yield line, end

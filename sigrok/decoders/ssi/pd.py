@@ -3,7 +3,7 @@
 ##
 
 import sigrokdecode as srd
-from encoder_line import (record_clocked, msb_first, gray_to_binary,
+from encoder_line import (record_clocked, clocked_frames, msb_first, gray_to_binary,
                           bit_string, samples_of)
 
 CLK, DATA = 0, 1
@@ -83,17 +83,16 @@ class Decoder(srd.Decoder):
         delay = samples_of(self.samplerate,
                            self.options['sample_delay_ns'] * 1e-9)
         t_m = samples_of(self.samplerate, self.options['monoflop_us'] * 1e-6)
-        pins = self.wait({'skip': 0})
-        if pins[CLK] == 0:
-            # The capture starts inside a frame: its first bits are lost.
-            line, end = record_clocked(self, pins, CLK, lambda h: 2 * h + 2)
-            self.ann(0, end, A_FRAME, ['Partial: the capture starts inside '
-                                       'a read', 'Partial'])
-            self.last_end = end
-        while True:
-            pins = self.wait({CLK: 'f'})
-            self.frame(record_clocked(self, pins, CLK, lambda h: 2 * h + 2),
-                       bits, gray, double, wire, delay, t_m)
+        self.last_end = None
+        record = lambda pins: record_clocked(  # noqa: E731
+            self, pins, CLK, lambda h: 2 * h + 2)
+        for line, end in clocked_frames(self, CLK, record, self.partial):
+            self.frame((line, end), bits, gray, double, wire, delay, t_m)
+
+    def partial(self, ss, es, where):
+        self.ann(ss, es, A_FRAME, ['Partial: the capture %s inside a read'
+                                   % where, 'Partial'])
+        self.last_end = es
 
     def frame(self, recorded, bits, gray, double, wire, delay, t_m):
         line, end = recorded
