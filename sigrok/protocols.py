@@ -407,4 +407,74 @@ class Endat:
         return None
 
 
-ALL = [Ssi(), Biss(), Endat()]
+def hexes(text):
+    m = re.search(r"bytes ((?:[0-9a-f]{2} ?)+)", text)
+    return [int(x, 16) for x in m.group(1).split()] if m else []
+
+
+class Tformat:
+    core = "tformat_host"
+    decoder_id = "tformat"
+    data_signal = "line_at_host"
+    minimum_scenarios = 19
+    line_errors = {"crc": "CRC error", "frame": ("Byte ", "Answer of "),
+                   "cf_mismatch": "CF 0x", "comm_alarm": "Communication alarm",
+                   "timeout": "No answer"}
+
+    def decoder(self, transcript, scenario):
+        baud = transcript["f_sys_hz"] / transcript["parameters"]["CLOCKS_PER_BIT"]
+        timeout_us = transcript["parameters"]["TIMEOUT_CLOCKS"] * 1e6 / transcript["f_sys_hz"]
+        return (f"uart:rx=line_at_host:baudrate={round(baud)}:format=hex,"
+                f"tformat:timeout_us={timeout_us:g}")
+
+    def compare(self, anns, transcript):
+        msgs = [(ss, es, t) for ss, es, t in anns
+                if t.startswith(("Request: ", "Answer: ", "Answer continued: "))]
+        errs = [(ss, es, t[len("Error: "):]) for ss, es, t in anns if t.startswith("Error: ")]
+        values = 0
+        used = 0
+        ts = transcript["transactions"]
+        for i, t in enumerate(ts):
+            end = ts[i + 1]["start_cycle"] if i + 1 < len(ts) else float("inf")
+            where = f"{transcript['scenario']} transaction {t['index']}"
+            mine = [m for m in msgs if t["start_cycle"] <= m[0] < end]
+            used += len(mine)
+            reqs = [hexes(x) for _, _, x in mine if x.startswith("Request")]
+            answers = []
+            for _, _, x in mine:
+                if x.startswith("Answer continued") and answers:
+                    answers[-1] += hexes(x)
+                elif x.startswith("Answer"):
+                    answers.append(hexes(x))
+            expect("requests", reqs, t["wire_requests"], where)
+            expect("answers", answers, [a for a in t["wire_answers"] if a], where)
+            if t["wire_requests"] != [t["sent"]]:
+                # A request corrupted on the wire: what the host then
+                # received is its receiver's tale, not the line's.
+                values += len(reqs) + len(answers)
+                continue
+            got = {k for k, text in self.line_errors.items()
+                   for ss, _, e in errs if t["start_cycle"] <= ss < end and e.startswith(text)}
+            if "timeout" in t["errors"]:
+                # The host judged nothing of an answer after its timeout.
+                got &= {"timeout"}
+            expect("errors", sorted(got), sorted(set(t["errors"]) & set(self.line_errors)), where)
+            for _, _, x in mine:
+                if x.startswith("Answer") and "ABS " in x and "CRC ok" in x and t["abs"] is not None:
+                    expect("ABS", int(re.search(r"ABS (\d+)", x).group(1)), t["abs"], where)
+                    values += 1
+            values += len(reqs) + len(answers) + len(t["errors"])
+        expect("messages outside the transactions", used, len(msgs), transcript["scenario"])
+        return len(msgs), values
+
+    def flip(self, anns, transcript):
+        for ss, es, t in anns:
+            if t.startswith("Answer: ") and "CRC ok" in t:
+                # A data bit of the answer's third byte (the first data field).
+                bit = (es - ss) / len(hexes(t)) / 10
+                at = int(ss + bit * (2 * 10 + 1 + 3))
+                return at, int(at + bit), "CRC error"
+        return None
+
+
+ALL = [Ssi(), Biss(), Endat(), Tformat()]
