@@ -181,3 +181,108 @@ def clocked_frames(dec, clk, record, partial):
             partial(line.samples[0], dec.samplenum, 'ends')
             return
         yield line, end
+
+
+class HalfDuplex:
+    '''Requests and answers on one half-duplex line, from the packets of
+    sigrok's uart decoder (its RX channel) stacked below a decoder.
+
+    A request ends with its last field: request_length(first byte) bytes.
+    What the line carries after it, if it starts within the answer timeout,
+    is the answer; it ends at answer_length(first byte, request) bytes when
+    its first byte repeats the request's, else at a frame time of idle
+    line (uart's IDLE: libsigrokdecode 0.5 tells a stacked decoder nothing
+    at the end of a capture, so a whole answer is closed at once).
+    Bytes back to back with a closed answer are more of it. A glitch (an
+    invalid start bit) is no character. A byte after a request left
+    unanswered that cannot begin a request is that request's late answer.
+
+    The owner gets on_request(msg), on_answer(msg, request, late, more)
+    and on_no_answer(request), msg being [(ss, es, value, valid)].'''
+
+    def __init__(self, owner, request_length, answer_length, is_request,
+                 expects_answer):
+        self.owner = owner
+        self.request_length = request_length
+        self.answer_length = answer_length
+        self.is_request = is_request
+        self.expects_answer = expects_answer
+        self.message = []
+        self.expect = 'request'
+        self.request = None
+        self.deadline = None
+        self.answer_end = None
+        self.glitch = False
+        self.unanswered = False
+        self.late = False
+        self.timeout = 0
+
+    def packet(self, ss, es, data, timeout_samples):
+        '''One uart packet; timeout_samples: the answer timeout.'''
+        self.timeout = timeout_samples
+        ptype, rxtx, pdata = data
+        if rxtx != 0:
+            return
+        if ptype == 'IDLE':
+            if self.message:
+                self.close()
+            if self.expect == 'answer' and self.deadline is not None \
+                    and es > self.deadline:
+                self.no_answer()
+            return
+        if ptype == 'INVALID STARTBIT':
+            self.glitch = True
+            return
+        if ptype != 'FRAME':
+            return
+        if self.glitch:
+            self.glitch = False
+            return
+        value, valid = pdata
+        bit = (es - ss) / 10.0
+        if self.expect == 'request' and self.answer_end is not None \
+                and ss - self.answer_end < 2 * bit:
+            self.answer_end = es
+            self.owner.on_answer([(ss, es, value, valid)], self.request,
+                                 False, True)
+            return
+        self.answer_end = None
+        if self.expect == 'request' and not self.message and \
+                self.unanswered and not self.is_request(value, valid):
+            self.expect, self.late = 'answer', True
+        self.unanswered = False
+        if self.expect == 'answer' and not self.message \
+                and self.deadline is not None and ss > self.deadline:
+            if self.is_request(value, valid):
+                self.no_answer()
+            else:
+                self.late = True
+        self.message.append((ss, es, value, valid))
+        first = self.message[0][2]
+        if self.expect == 'request':
+            if len(self.message) >= self.request_length(first):
+                self.close()
+        elif self.request and first == self.request[0][2] and \
+                len(self.message) == self.answer_length(first, self.request):
+            self.answer_end = es
+            self.close()
+
+    def no_answer(self):
+        self.owner.on_no_answer(self.request)
+        self.expect = 'request'
+        self.deadline = None
+        self.unanswered = True
+
+    def close(self):
+        msg, self.message = self.message, []
+        if self.expect == 'request':
+            self.request = msg
+            self.owner.on_request(msg)
+            if self.expects_answer(msg):
+                self.expect = 'answer'
+                self.deadline = msg[-1][1] + self.timeout
+        else:
+            self.owner.on_answer(msg, self.request, self.late, False)
+            self.expect = 'request'
+            self.deadline = None
+            self.late = False

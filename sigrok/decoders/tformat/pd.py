@@ -3,6 +3,7 @@
 ##
 
 import sigrokdecode as srd
+from encoder_line import HalfDuplex
 
 (A_FIELD, A_REQUEST, A_ANSWER, A_ERROR) = range(4)
 
@@ -43,6 +44,11 @@ def answer_length(ident):
     return 2 + len(fields) + 1
 
 
+def looks_like_request(value, valid):
+    sink, _, parity_ok = parse_cf(value)
+    return valid and sink == SINK_CODE and parity_ok
+
+
 def xor(bs):
     v = 0
     for b in bs:
@@ -81,15 +87,12 @@ class Decoder(srd.Decoder):
 
     def reset(self):
         self.samplerate = None
-        self.message = []  # (ss, es, value, valid)
-        self.expect = 'request'
-        self.deadline = None
         self.request_cf = None
         self.want_answer = None
-        self.answer_end = None
-        self.glitch = False
-        self.unanswered = False
-        self.pending_request = None  # (ss, es) of a request awaiting answer
+        self.line = HalfDuplex(
+            self, lambda cf: request_length(parse_cf(cf)[1]),
+            lambda cf, request: answer_length(parse_cf(request[0][2])[1]),
+            looks_like_request, lambda request: True)
 
     def metadata(self, key, value):
         if key == srd.SRD_CONF_SAMPLERATE:
@@ -102,95 +105,28 @@ class Decoder(srd.Decoder):
         self.put(ss, max(es, ss + 1), self.out_ann, [cls, texts])
 
     def decode(self, ss, es, data):
-        ptype, rxtx, pdata = data
-        if rxtx != 0:
-            return
-        if ptype == 'IDLE':
-            # A frame time of idle line: an answer has ended; a request
-            # without one has timed out.
-            if self.message:
-                self.close()
-            if self.expect == 'answer' and self.deadline is not None \
-                    and es > self.deadline:
-                self.no_answer()
-            return
-        if ptype == 'INVALID STARTBIT':
-            # A low pulse shorter than half a bit: a glitch, no character
-            # (the uart decoder still passes a FRAME for it).
-            self.glitch = True
-            self.ann(ss, es, A_FIELD, ['Glitch (no start bit)', 'Glitch'])
-            return
-        if ptype != 'FRAME':
-            return
-        if self.glitch:
-            self.glitch = False
-            return
-        value, valid = pdata
-        bit = (es - ss) / 10.0
-        if self.expect == 'request' and self.answer_end is not None \
-                and ss - self.answer_end < 2 * bit:
-            # Back to back with a complete answer: more of the answer.
-            self.answer_end = es
-            self.ann(ss, es, A_ANSWER, ['Answer continued: bytes %02x' % value,
-                                        'More'])
+        timeout = self.options['timeout_us'] * 1e-6
+        self.line.packet(ss, es, data, int(timeout * (self.samplerate or 0)))
+
+    def on_no_answer(self, request):
+        self.ann(request[0][0], request[-1][1], A_ERROR,
+                 ['Error: No answer within the timeout', 'Error: no answer'])
+
+    def on_request(self, msg):
+        self.request(msg)
+
+    def on_answer(self, msg, request, late, more):
+        ss, es = msg[0][0], msg[-1][1]
+        if more:
+            self.ann(ss, es, A_ANSWER, ['Answer continued: bytes %s' % ' '.join(
+                '%02x' % m[2] for m in msg), 'More'])
             self.ann(ss, es, A_ERROR, ['Error: Answer of more bytes than its '
                                        'Data ID has', 'Error: too long'])
             return
-        self.answer_end = None
-        if self.expect == 'request' and not self.message and self.unanswered \
-                and not self.looks_like_request(value, valid):
-            # Not a request's CF after a request that had no answer: the
-            # encoder's answer, late.
+        if late:
             self.ann(ss, es, A_ERROR, ['Error: No answer within the timeout '
                                        '(this one comes late)', 'Error: late'])
-            self.expect = 'answer'
-            self.deadline = None
-        self.unanswered = False
-        if self.expect == 'answer' and not self.message \
-                and self.deadline is not None and ss > self.deadline:
-            if self.looks_like_request(value, valid):
-                self.no_answer()
-            else:
-                # Not a request's CF: the encoder's answer, late.
-                self.ann(ss, es, A_ERROR, ['Error: No answer within the '
-                                           'timeout (this one comes late)',
-                                           'Error: late'])
-                self.deadline = None
-        self.message.append((ss, es, value, valid))
-        _, ident, _ = parse_cf(self.message[0][2])
-        if self.expect == 'request' and len(self.message) >= request_length(ident):
-            self.close()
-        elif self.expect == 'answer' and len(self.message) == self.want_answer \
-                and self.message[0][2] == self.request_cf:
-            # The answer the request asked for, whole: close it now (the
-            # capture may end before the line has been idle a frame time).
-            self.answer_end = es
-            self.close()
-
-    def looks_like_request(self, value, valid):
-        sink, _, parity_ok = parse_cf(value)
-        return valid and sink == SINK_CODE and parity_ok
-
-    def no_answer(self):
-        ss, es = self.pending_request
-        self.ann(ss, es, A_ERROR, ['Error: No answer within the timeout',
-                                   'Error: no answer'])
-        self.expect = 'request'
-        self.deadline = None
-        self.unanswered = True
-
-    def close(self):
-        msg, self.message = self.message, []
-        if self.expect == 'request':
-            self.request(msg)
-            self.expect = 'answer'
-            timeout = self.options['timeout_us'] * 1e-6
-            self.deadline = msg[-1][1] + int(timeout * (self.samplerate or 0))
-            self.pending_request = (msg[0][0], msg[-1][1])
-        else:
-            self.answer(msg)
-            self.expect = 'request'
-            self.deadline = None
+        self.answer(msg)
 
     def common(self, msg, errors):
         '''CF annotation and framing checks; returns the Data ID.'''
