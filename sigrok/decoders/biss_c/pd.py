@@ -3,7 +3,7 @@
 ##
 
 import sigrokdecode as srd
-from encoder_line import (record_clocked, clocked_frames, crc, msb_first,
+from encoder_line import (Common, record_clocked, clocked_frames, crc, msb_first,
                           bit_string)
 
 MA, SLO = 0, 1
@@ -30,7 +30,7 @@ def ints(text, name, base=10):
                          'got %r' % (name, text))
 
 
-class Decoder(srd.Decoder):
+class Decoder(Common, srd.Decoder):
     api_version = 3
     id = 'biss_c'
     name = 'BiSS-C'
@@ -51,6 +51,7 @@ class Decoder(srd.Decoder):
         {'id': 'crc_poly', 'desc': 'CRC polynomials per slave (hex, '
          'without the top term)', 'default': '0x03'},
     )
+    FRAME_ANNOTATION = A_FRAME
     annotations = (
         ('bit', 'Bit'),
         ('ack', 'Acknowledge'),
@@ -74,9 +75,6 @@ class Decoder(srd.Decoder):
         ('errors', 'Errors', (A_ERROR,)),
     )
 
-    def __init__(self):
-        self.reset()
-
     def reset(self):
         self.samplerate = None
         self.control = []  # (ss, es, cdm, [cds per slave]) per frame
@@ -84,15 +82,6 @@ class Decoder(srd.Decoder):
         # without the idle run.
         self.chained = False
 
-    def metadata(self, key, value):
-        if key == srd.SRD_CONF_SAMPLERATE:
-            self.samplerate = value
-
-    def start(self):
-        self.out_ann = self.register(srd.OUTPUT_ANN)
-
-    def ann(self, ss, es, cls, texts):
-        self.put(ss, max(es, ss + 1), self.out_ann, [cls, texts])
 
     def slaves(self):
         bits = ints(self.options['bits'], 'bits')
@@ -114,10 +103,6 @@ class Decoder(srd.Decoder):
             self, pins, MA, lambda p: 4 * p + 2, either=True)
         for line, end in clocked_frames(self, MA, record, self.partial):
             self.frame(line, end, slaves)
-
-    def partial(self, ss, es, where):
-        self.ann(ss, es, A_FRAME, ['Partial: the capture %s inside a frame'
-                                   % where, 'Partial'])
 
     def frame(self, line, end, slaves):
         start = line.samples[0]

@@ -9,6 +9,8 @@
 
 import bisect
 
+import sigrokdecode as srd
+
 
 class Line:
     '''The changes of a set of channels over one frame, as recorded by
@@ -286,3 +288,45 @@ class HalfDuplex:
             self.expect = 'request'
             self.deadline = None
             self.late = False
+
+
+class Common:
+    '''What every decoder here does alike: reset() at construction, the
+    sample rate from metadata, one annotation output, and ann() that
+    puts an annotation of at least one sample. Listed before
+    sigrokdecode.Decoder in a decoder's bases.'''
+
+    def __init__(self):
+        self.reset()
+
+    def metadata(self, key, value):
+        if key == srd.SRD_CONF_SAMPLERATE:
+            self.samplerate = value
+
+    def start(self):
+        self.out_ann = self.register(srd.OUTPUT_ANN)
+
+    def ann(self, ss, es, cls, texts):
+        ss, es = int(ss), int(es)
+        self.put(ss, max(es, ss + 1), self.out_ann, [cls, texts])
+
+    def partial(self, ss, es, where):
+        '''A frame the capture cuts (clocked_frames' callback); the
+        decoder's FRAME_ANNOTATION class.'''
+        self.ann(ss, es, self.FRAME_ANNOTATION, [
+            'Partial: the capture %s inside a frame' % where, 'Partial'])
+
+
+# The annotations of the decoders stacked on uart: classes, then rows.
+REQUEST_ANSWER_ANNOTATIONS = (
+    ('field', 'Field'),
+    ('request', 'Request'),
+    ('answer', 'Answer'),
+    ('error', 'Error'),
+)
+A_FIELD, A_REQUEST, A_ANSWER, A_ERROR = range(4)
+REQUEST_ANSWER_ROWS = (
+    ('fields', 'Fields', (A_FIELD,)),
+    ('frames', 'Frames', (A_REQUEST, A_ANSWER)),
+    ('errors', 'Errors', (A_ERROR,)),
+)

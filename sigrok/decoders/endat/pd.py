@@ -6,7 +6,7 @@ import cmath
 import math
 
 import sigrokdecode as srd
-from encoder_line import (record_clocked, clocked_frames, crc, msb_first, lsb_first,
+from encoder_line import (Common, record_clocked, clocked_frames, crc, msb_first, lsb_first,
                           bit_string)
 
 CLK, DATA = 0, 1
@@ -76,7 +76,7 @@ def norm_crc(bits):
     return crc(bits, CRC_WIDTH, CRC_POLY, CRC_PRESET) ^ ((1 << CRC_WIDTH) - 1)
 
 
-class Decoder(srd.Decoder):
+class Decoder(Common, srd.Decoder):
     api_version = 3
     id = 'endat'
     name = 'EnDat'
@@ -98,6 +98,7 @@ class Decoder(srd.Decoder):
         {'id': 'ad2', 'desc': 'Additional datum 2 selected before the '
          'capture (I code 16..23, -1 none)', 'default': -1},
     )
+    FRAME_ANNOTATION = A_FRAME
     annotations = (
         ('bit', 'Bit'),
         ('mode', 'Mode command'),
@@ -120,21 +121,9 @@ class Decoder(srd.Decoder):
         ('errors', 'Errors', (A_ERROR,)),
     )
 
-    def __init__(self):
-        self.reset()
-
     def reset(self):
         self.samplerate = None
 
-    def metadata(self, key, value):
-        if key == srd.SRD_CONF_SAMPLERATE:
-            self.samplerate = value
-
-    def start(self):
-        self.out_ann = self.register(srd.OUTPUT_ANN)
-
-    def ann(self, ss, es, cls, texts):
-        self.put(int(ss), int(max(es, ss + 1)), self.out_ann, [cls, texts])
 
     def decode(self):
         self.pos_bits = self.options['pos_bits']
@@ -146,10 +135,6 @@ class Decoder(srd.Decoder):
         self.ad2 = ad2 if ad2 >= 0 else None
         for line, end in clocked_frames(self, CLK, self.record, self.partial):
             self.frame(line, end)
-
-    def partial(self, ss, es, where):
-        self.ann(ss, es, A_FRAME, ['Partial: the capture %s inside a frame'
-                                   % where, 'Partial'])
 
     def record(self, pins):
         # The frame ends when the clock stays high for two high phases;

@@ -3,9 +3,9 @@
 ##
 
 import sigrokdecode as srd
-from encoder_line import HalfDuplex, crc
-
-(A_FIELD, A_REQUEST, A_ANSWER, A_ERROR) = range(4)
+from encoder_line import (Common, HalfDuplex, crc, REQUEST_ANSWER_ANNOTATIONS,
+                          REQUEST_ANSWER_ROWS, A_FIELD, A_REQUEST,
+                          A_ANSWER, A_ERROR)
 
 # Table 12: Data ID -> (CH1 fields after CF and SF, CH1 CRC bits,
 # CH2 fields after CF2 and SF2 or None, CH2 CRC bits).
@@ -73,7 +73,7 @@ def answer_length(ident):
     return n
 
 
-class Decoder(srd.Decoder):
+class Decoder(Common, srd.Decoder):
     api_version = 3
     id = 'esl'
     name = 'ESL'
@@ -93,20 +93,8 @@ class Decoder(srd.Decoder):
         {'id': 'rs_tolerance', 'desc': 'Largest RS - ABS difference in RS '
          'steps', 'default': 1},
     )
-    annotations = (
-        ('field', 'Field'),
-        ('request', 'Request'),
-        ('answer', 'Answer'),
-        ('error', 'Error'),
-    )
-    annotation_rows = (
-        ('fields', 'Fields', (A_FIELD,)),
-        ('frames', 'Frames', (A_REQUEST, A_ANSWER)),
-        ('errors', 'Errors', (A_ERROR,)),
-    )
-
-    def __init__(self):
-        self.reset()
+    annotations = REQUEST_ANSWER_ANNOTATIONS
+    annotation_rows = REQUEST_ANSWER_ROWS
 
     def reset(self):
         self.samplerate = None
@@ -115,16 +103,6 @@ class Decoder(srd.Decoder):
             self, request_length,
             lambda cf, request: answer_length(parse_cf(request[0][2])[1]),
             self.looks_like_request, self.expects_answer)
-
-    def metadata(self, key, value):
-        if key == srd.SRD_CONF_SAMPLERATE:
-            self.samplerate = value
-
-    def start(self):
-        self.out_ann = self.register(srd.OUTPUT_ANN)
-
-    def ann(self, ss, es, cls, texts):
-        self.put(ss, max(es, ss + 1), self.out_ann, [cls, texts])
 
     def decode(self, ss, es, data):
         timeout = self.options['timeout_us'] * 1e-6

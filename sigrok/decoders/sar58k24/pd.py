@@ -3,8 +3,9 @@
 ##
 
 import sigrokdecode as srd
-
-(A_FIELD, A_REQUEST, A_ANSWER, A_ERROR) = range(4)
+from encoder_line import (Common, gray_to_binary, REQUEST_ANSWER_ANNOTATIONS,
+                          REQUEST_ANSWER_ROWS, A_FIELD, A_REQUEST,
+                          A_ANSWER, A_ERROR)
 
 HEADER = 0xFF
 TAG_FIXED = 0x81
@@ -17,16 +18,8 @@ def data_bytes(bits):
     return 2 if bits <= 16 else 3 if bits <= 24 else 4
 
 
-def gray_to_binary(g):
-    b = g
-    shift = g >> 1
-    while shift:
-        b ^= shift
-        shift >>= 1
-    return b
 
-
-class Decoder(srd.Decoder):
+class Decoder(Common, srd.Decoder):
     api_version = 3
     id = 'sar58k24'
     name = 'SAR58K24'
@@ -43,20 +36,8 @@ class Decoder(srd.Decoder):
         {'id': 'timeout_ms', 'desc': 'Answer timeout after a bus command '
          '(ms)', 'default': 5.0},
     )
-    annotations = (
-        ('field', 'Field'),
-        ('request', 'Command'),
-        ('answer', 'Position frame'),
-        ('error', 'Error'),
-    )
-    annotation_rows = (
-        ('fields', 'Fields', (A_FIELD,)),
-        ('frames', 'Frames', (A_REQUEST, A_ANSWER)),
-        ('errors', 'Errors', (A_ERROR,)),
-    )
-
-    def __init__(self):
-        self.reset()
+    annotations = REQUEST_ANSWER_ANNOTATIONS
+    annotation_rows = REQUEST_ANSWER_ROWS
 
     def reset(self):
         self.samplerate = None
@@ -66,15 +47,6 @@ class Decoder(srd.Decoder):
         self.pending = None  # (ss, es, address, zero) of a bus command
         self.deadline = None
 
-    def metadata(self, key, value):
-        if key == srd.SRD_CONF_SAMPLERATE:
-            self.samplerate = value
-
-    def start(self):
-        self.out_ann = self.register(srd.OUTPUT_ANN)
-
-    def ann(self, ss, es, cls, texts):
-        self.put(ss, max(es, ss + 1), self.out_ann, [cls, texts])
 
     def frame_length(self):
         return 2 + data_bytes(self.options['bits']) + 1

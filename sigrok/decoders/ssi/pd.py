@@ -3,7 +3,7 @@
 ##
 
 import sigrokdecode as srd
-from encoder_line import (record_clocked, clocked_frames, msb_first, gray_to_binary,
+from encoder_line import (Common, record_clocked, clocked_frames, msb_first, gray_to_binary,
                           bit_string, samples_of)
 
 CLK, DATA = 0, 1
@@ -12,7 +12,7 @@ CLK, DATA = 0, 1
 A_BIT, A_LATCH, A_POSITION, A_COPY, A_WIRE, A_FRAME, A_ERROR = range(7)
 
 
-class Decoder(srd.Decoder):
+class Decoder(Common, srd.Decoder):
     api_version = 3
     id = 'ssi'
     name = 'SSI'
@@ -40,6 +40,7 @@ class Decoder(srd.Decoder):
         {'id': 'monoflop_us', 'desc': 'Monoflop time T_m (us)',
          'default': 500},
     )
+    FRAME_ANNOTATION = A_FRAME
     annotations = (
         ('bit', 'Bit'),
         ('latch', 'Latch'),
@@ -56,22 +57,10 @@ class Decoder(srd.Decoder):
         ('errors', 'Errors', (A_ERROR,)),
     )
 
-    def __init__(self):
-        self.reset()
-
     def reset(self):
         self.samplerate = None
         self.last_end = None
 
-    def metadata(self, key, value):
-        if key == srd.SRD_CONF_SAMPLERATE:
-            self.samplerate = value
-
-    def start(self):
-        self.out_ann = self.register(srd.OUTPUT_ANN)
-
-    def ann(self, ss, es, cls, texts):
-        self.put(ss, max(es, ss + 1), self.out_ann, [cls, texts])
 
     def decode(self):
         bits = self.options['bits']
@@ -88,11 +77,6 @@ class Decoder(srd.Decoder):
             self, pins, CLK, lambda h: 2 * h + 2)
         for line, end in clocked_frames(self, CLK, record, self.partial):
             self.frame((line, end), bits, gray, double, wire, delay, t_m)
-
-    def partial(self, ss, es, where):
-        self.ann(ss, es, A_FRAME, ['Partial: the capture %s inside a read'
-                                   % where, 'Partial'])
-        self.last_end = es
 
     def frame(self, recorded, bits, gray, double, wire, delay, t_m):
         line, end = recorded

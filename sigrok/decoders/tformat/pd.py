@@ -3,9 +3,9 @@
 ##
 
 import sigrokdecode as srd
-from encoder_line import HalfDuplex
-
-(A_FIELD, A_REQUEST, A_ANSWER, A_ERROR) = range(4)
+from encoder_line import (Common, HalfDuplex, REQUEST_ANSWER_ANNOTATIONS,
+                          REQUEST_ANSWER_ROWS, A_FIELD, A_REQUEST,
+                          A_ANSWER, A_ERROR)
 
 SINK_CODE = 0b010
 # Table 1: Data ID -> application; the request's and answer's fields
@@ -56,7 +56,7 @@ def xor(bs):
     return v
 
 
-class Decoder(srd.Decoder):
+class Decoder(Common, srd.Decoder):
     api_version = 3
     id = 'tformat'
     name = 'T-format'
@@ -70,20 +70,8 @@ class Decoder(srd.Decoder):
         {'id': 'timeout_us', 'desc': 'Answer timeout after a request (us)',
          'default': 10.0},
     )
-    annotations = (
-        ('field', 'Field'),
-        ('request', 'Request'),
-        ('answer', 'Answer'),
-        ('error', 'Error'),
-    )
-    annotation_rows = (
-        ('fields', 'Fields', (A_FIELD,)),
-        ('frames', 'Frames', (A_REQUEST, A_ANSWER)),
-        ('errors', 'Errors', (A_ERROR,)),
-    )
-
-    def __init__(self):
-        self.reset()
+    annotations = REQUEST_ANSWER_ANNOTATIONS
+    annotation_rows = REQUEST_ANSWER_ROWS
 
     def reset(self):
         self.samplerate = None
@@ -93,16 +81,6 @@ class Decoder(srd.Decoder):
             self, lambda cf: request_length(parse_cf(cf)[1]),
             lambda cf, request: answer_length(parse_cf(request[0][2])[1]),
             looks_like_request, lambda request: True)
-
-    def metadata(self, key, value):
-        if key == srd.SRD_CONF_SAMPLERATE:
-            self.samplerate = value
-
-    def start(self):
-        self.out_ann = self.register(srd.OUTPUT_ANN)
-
-    def ann(self, ss, es, cls, texts):
-        self.put(ss, max(es, ss + 1), self.out_ann, [cls, texts])
 
     def decode(self, ss, es, data):
         timeout = self.options['timeout_us'] * 1e-6
