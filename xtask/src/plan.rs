@@ -157,10 +157,11 @@ pub const STAGES: &[Stage] = &[
     Stage {
         name: "sigrok",
         // Reads the committed waves and transcripts (the vectors stage
-        // holds them to the model), so it needs no build: about 6 s of CPU.
+        // holds them to the model), so it needs no build: about 9 s of CPU
+        // (sigrok-cli over 130 waves and six bit flips).
         argv: &[".venv/bin/python", "sigrok/check.py"],
         after: &[],
-        what: "our sigrok decoders (sigrok/decoders/) agree with every transcript; a flipped bit is caught",
+        what: "our sigrok decoders (sigrok/decoders/) agree with every transcript; an inverted bit is caught",
     },
 ];
 
