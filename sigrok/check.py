@@ -98,7 +98,10 @@ def run_sigrok(vcd, f_sys_hz, decoder):
     downsample = 1_000_000_000_000 // f_sys_hz
     cmd = ["sigrok-cli", "-I", f"vcd:downsample={downsample}", "-i", str(vcd),
            "-P", decoder, "--protocol-decoder-samplenum"]
-    out = subprocess.run(cmd, env=env, capture_output=True, text=True)
+    try:
+        out = subprocess.run(cmd, env=env, capture_output=True, text=True)
+    except FileNotFoundError:
+        sys.exit("sigrok/check.py: sigrok-cli is not on PATH (`make deps` installs it)")
     if out.returncode != 0 or "Traceback" in out.stderr or "srd:" in out.stderr:
         raise Mismatch(f"sigrok-cli failed: {' '.join(cmd)}\n{out.stderr}")
     anns = []
