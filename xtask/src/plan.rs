@@ -154,6 +154,15 @@ pub const STAGES: &[Stage] = &[
         after: &[],
         what: "every Rust file as rustfmt writes it (cargo fmt --all fixes it)",
     },
+    Stage {
+        name: "sigrok",
+        // Reads the committed waves and transcripts (the vectors stage
+        // holds them to the model), so it needs no build: about 9 s of CPU
+        // (sigrok-cli over 130 waves and six bit flips).
+        argv: &[".venv/bin/python", "sigrok/check.py"],
+        after: &[],
+        what: "our sigrok decoders (sigrok/decoders/) agree with every transcript; an inverted bit is caught",
+    },
 ];
 
 /// The stages named in `only` (each with what it waits for, transitively, so
