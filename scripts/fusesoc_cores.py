@@ -77,6 +77,7 @@ def core_file(module, modules, rel):
             "  tb:",
             "    files:",
             f"      - {rel}/hdl/tb/common/vector_player.vh: {{is_include_file: true}}",
+            f"      - {rel}/hdl/tb/{module}/tb_{module}_ports.vh: {{is_include_file: true}}",
             f"      - {rel}/hdl/tb/{module}/tb_{module}.v",
             "    file_type: verilogSource",
             "",

@@ -53,8 +53,12 @@ benches=0
 for tb in hdl/tb/*/tb_*.v; do
     module=$(basename "$tb" .v)
     runs=$((runs + 1)) benches=$((benches + 1))
-    out=$(verilator --lint-only --timing -Wall -Wno-fatal -Ihdl/tb/common -Ihdl/rtl --top-module "$module" "$tb" hdl/rtl/*.v 2>&1 || true)
-    if grep -q 'all_outputs\|outputs_checked' <<< "$out"; then
+    out=$(verilator --lint-only --timing -Wall -Wno-fatal -Ihdl/tb/common "-I$(dirname "$tb")" -Ihdl/rtl --top-module "$module" "$tb" hdl/rtl/*.v 2>&1 || true)
+    if grep -q '^%Error' <<< "$out"; then
+        echo "lint FAIL $tb: does not elaborate"
+        grep -A4 '^%Error' <<< "$out" | head -n 20
+        status=1
+    elif grep -q 'all_outputs\|outputs_checked' <<< "$out"; then
         echo "lint FAIL $tb: all_outputs"
         grep -B2 -A4 'all_outputs\|outputs_checked' <<< "$out" | head -n 20
         status=1

@@ -108,7 +108,9 @@ if [ "$sim" = verilator ]; then
     fi
     read -ra vflags <<< "$("$root/scripts/verilator_make_flags.sh")"
 fi
-key=$(printf '%s\n' "$params" "$half_fs" "$trace" "$max_words" "${cov_key[@]}" "${vflags[@]}" | cat - "$tb" "$root/hdl/tb/common/vector_player.vh" "${rtl[@]}" "${cov_files[@]}" | sha1sum | cut -c1-12)
+# The testbench's port half, written from the model (tbgen/src/testbench_ports.rs).
+ports_vh="$root/hdl/tb/$core/tb_${core}_ports.vh"
+key=$(printf '%s\n' "$params" "$half_fs" "$trace" "$max_words" "${cov_key[@]}" "${vflags[@]}" | cat - "$tb" "$ports_vh" "$root/hdl/tb/common/vector_player.vh" "${rtl[@]}" "${cov_files[@]}" | sha1sum | cut -c1-12)
 build="${SIM_BUILD_DIR:-$root/build/sim}/$core/$sim/$key"
 # Absolute, since Verilator runs from $root: a relative SIM_BUILD_DIR is the caller's.
 [[ "$build" = /* ]] || build="$PWD/$build"
@@ -133,7 +135,7 @@ icarus)
     if [ ! -f "$build/tb.vvp" ]; then
         pargs=()
         for p in $params; do pargs+=("-Ptb_$core.$p"); done
-        iverilog -g2005 -Wall -Wno-timescale -s "tb_$core" -I "$root/hdl/tb/common" \
+        iverilog -g2005 -Wall -Wno-timescale -s "tb_$core" -I "$root/hdl/tb/common" -I "$root/hdl/tb/$core" \
             "${pargs[@]}" "-Ptb_$core.HALF_PERIOD_FS=$half_fs" "-Ptb_$core.MAX_WORDS=$max_words" \
             -o "$build/tb.vvp.tmp" "$tb" "${rtl[@]}" > "$build/build.log" 2>&1 \
             || { cat "$build/build.log" >&2; exit 1; }
@@ -160,7 +162,7 @@ verilator)
         mkey=$(model_cache_key "$core" "$key" "$(in_repo "$tb")" "${rel_rtl[@]}" "$(in_repo "$cov_main")")
         if ! model_cache_get "$mkey" "$build/Vtb"; then
             (cd "$root" && verilator --timing -j 2 -Wno-fatal -Wno-lint -Wno-style "${vflags[@]}" "${targs[@]}" \
-                --top-module "tb_$core" -Ihdl/tb/common \
+                --top-module "tb_$core" -Ihdl/tb/common "-Ihdl/tb/$core" \
                 "${gargs[@]}" "-GHALF_PERIOD_FS=$half_fs" "-GMAX_WORDS=$max_words" \
                 --Mdir "$build/obj" -o Vtb "$(in_repo "$tb")" "${rel_rtl[@]}") > "$build/build.log" 2>&1 \
                 || { cat "$build/build.log" >&2; exit 1; }

@@ -3,18 +3,47 @@
 //! a VCD file.
 
 /// One port of a core: its Verilog name and its width in bits.
+///
+/// A core's port lists are written once, in its model (`input_ports` and
+/// `output_ports`); the replay testbenches' port declarations, drivers and
+/// checks (`hdl/tb/<core>/tb_<core>_ports.vh`) are generated from them.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Port {
     /// The Verilog port name, which is also the Rust field name.
     pub name: &'static str,
     /// Width in bits, 1 to 64.
     pub width: u32,
+    /// The Verilog parameter (of the core or its testbench) that sets the
+    /// width, where the configuration does; `None` for a fixed width.
+    pub width_param: Option<&'static str>,
+    /// The level an input rests at before the first vector drives it (while
+    /// reset is held): 1 for a line that idles high, which the core's
+    /// unreset synchroniser must see from the start; 0 otherwise.
+    pub idle: u64,
 }
 
 impl Port {
     /// A port of `width` bits.
     pub const fn new(name: &'static str, width: u32) -> Self {
-        Port { name, width }
+        Port {
+            name,
+            width,
+            width_param: None,
+            idle: 0,
+        }
+    }
+
+    /// The same port, its width set by the Verilog parameter `param`.
+    pub const fn width_from(self, param: &'static str) -> Self {
+        Port {
+            width_param: Some(param),
+            ..self
+        }
+    }
+
+    /// The same input, resting high (a line's idle level) until driven.
+    pub const fn idle_high(self) -> Self {
+        Port { idle: 1, ..self }
     }
 
     /// The mask of the port's bits in a `u64`.

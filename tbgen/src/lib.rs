@@ -42,6 +42,7 @@ pub mod probes;
 pub mod registry;
 pub mod rule_verdict;
 pub mod scenario;
+pub mod testbench_ports;
 pub mod transcript;
 
 // The per-cycle writers and the capture reader, compiled optimised in a

@@ -26,67 +26,7 @@ parameter CLR_LOW_CLOCKS = 200;
 parameter HALF_PERIOD_FS = 50_000_000;
 parameter MAX_WORDS = 1 << 22;
 
-localparam N_IN = 4;
-localparam N_OUT = 14;
-localparam OUT_BITS = 45;
-
-`include "vector_player.vh"
-
-reg i_start = 1'b0;
-reg i_zero = 1'b0;
-reg [3:0] i_address = 4'd0;
-reg i_rx = 1'b1;
-wire o_tx, o_tx_en, o_trigger, o_clr, o_busy, o_done, o_valid;
-wire [31:0] o_position;
-wire o_err_checksum, o_err_parity, o_err_frame, o_err_address, o_err_timeout, o_err_stale;
-
-// Port order = the model's sar58k24::Host::input_ports() / output_ports().
-task apply_inputs;
-    begin
-        i_start = `IN_WORD(0) & 1'b1;
-        i_zero = `IN_WORD(1) & 1'b1;
-        i_address = `IN_WORD(2) & 4'hF;
-        i_rx = `IN_WORD(3) & 1'b1;
-    end
-endtask
-
-// Every output in one vector, in check_outputs' order: the player runs
-// check_outputs again only when this or the expected record changes.
-wire [OUT_BITS-1:0] all_outputs = {
-    o_tx,
-    o_tx_en,
-    o_trigger,
-    o_clr,
-    o_busy,
-    o_done,
-    o_valid,
-    o_position,
-    o_err_checksum,
-    o_err_parity,
-    o_err_frame,
-    o_err_address,
-    o_err_timeout,
-    o_err_stale
-};
-
-task check_outputs;
-    begin
-        `CHECK(0, "o_tx", o_tx)
-        `CHECK(1, "o_tx_en", o_tx_en)
-        `CHECK(2, "o_trigger", o_trigger)
-        `CHECK(3, "o_clr", o_clr)
-        `CHECK(4, "o_busy", o_busy)
-        `CHECK(5, "o_done", o_done)
-        `CHECK(6, "o_valid", o_valid)
-        `CHECK(7, "o_position", o_position)
-        `CHECK(8, "o_err_checksum", o_err_checksum)
-        `CHECK(9, "o_err_parity", o_err_parity)
-        `CHECK(10, "o_err_frame", o_err_frame)
-        `CHECK(11, "o_err_address", o_err_address)
-        `CHECK(12, "o_err_timeout", o_err_timeout)
-        `CHECK(13, "o_err_stale", o_err_stale)
-    end
-endtask
+`include "tb_sar_async_host_ports.vh"
 
 sar_async_host #(
     .MODE(MODE),
@@ -104,24 +44,7 @@ sar_async_host #(
 ) dut (
     .i_clk(clk),
     .i_rst(rst),
-    .i_start(i_start),
-    .i_zero(i_zero),
-    .i_address(i_address),
-    .o_busy(o_busy),
-    .o_done(o_done),
-    .o_valid(o_valid),
-    .o_position(o_position),
-    .o_err_checksum(o_err_checksum),
-    .o_err_parity(o_err_parity),
-    .o_err_frame(o_err_frame),
-    .o_err_address(o_err_address),
-    .o_err_timeout(o_err_timeout),
-    .o_err_stale(o_err_stale),
-    .o_tx(o_tx),
-    .o_tx_en(o_tx_en),
-    .o_trigger(o_trigger),
-    .o_clr(o_clr),
-    .i_rx(i_rx)
+    `DUT_PORTS
 );
 
 // While reset is held the player compares nothing (vector_player.vh): here

@@ -24,53 +24,7 @@ parameter SAMPLE_DELAY = 0;
 parameter HALF_PERIOD_FS = 10_000_000;
 parameter MAX_WORDS = 1 << 22;
 
-localparam N_IN = 2;
-localparam N_OUT = 7;
-localparam OUT_BITS = 6 + BITS;
-
-`include "vector_player.vh"
-
-reg i_start = 1'b0;
-reg i_ssi_data = 1'b1;
-wire o_ssi_clk;
-wire o_busy;
-wire o_done;
-wire [BITS-1:0] o_position;
-wire o_err_idle;
-wire o_err_double;
-wire o_err_wire;
-
-// Port order = the model's ssi::Master::input_ports() / output_ports().
-task apply_inputs;
-    begin
-        i_start = `IN_WORD(0) & 1'b1;
-        i_ssi_data = `IN_WORD(1) & 1'b1;
-    end
-endtask
-
-// Every output in one vector, in check_outputs' order: the player runs
-// check_outputs again only when this or the expected record changes.
-wire [OUT_BITS-1:0] all_outputs = {
-    o_ssi_clk,
-    o_busy,
-    o_done,
-    o_position,
-    o_err_idle,
-    o_err_double,
-    o_err_wire
-};
-
-task check_outputs;
-    begin
-        `CHECK(0, "o_ssi_clk", o_ssi_clk)
-        `CHECK(1, "o_busy", o_busy)
-        `CHECK(2, "o_done", o_done)
-        `CHECK(3, "o_position", o_position)
-        `CHECK(4, "o_err_idle", o_err_idle)
-        `CHECK(5, "o_err_double", o_err_double)
-        `CHECK(6, "o_err_wire", o_err_wire)
-    end
-endtask
+`include "tb_ssi_master_ports.vh"
 
 ssi_master #(
     .BITS(BITS),
@@ -86,15 +40,7 @@ ssi_master #(
 ) dut (
     .i_clk(clk),
     .i_rst(rst),
-    .i_start(i_start),
-    .o_busy(o_busy),
-    .o_done(o_done),
-    .o_position(o_position),
-    .o_err_idle(o_err_idle),
-    .o_err_double(o_err_double),
-    .o_err_wire(o_err_wire),
-    .o_ssi_clk(o_ssi_clk),
-    .i_ssi_data(i_ssi_data)
+    `DUT_PORTS
 );
 
 // While reset is held the player compares nothing (vector_player.vh): here

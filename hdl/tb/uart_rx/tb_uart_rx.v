@@ -16,48 +16,7 @@ parameter PARITY = 0;
 parameter HALF_PERIOD_FS = 5_000_000;
 parameter MAX_WORDS = 1 << 22;
 
-localparam N_IN = 1;
-localparam N_OUT = 6;
-localparam OUT_BITS = 13;
-
-`include "vector_player.vh"
-
-reg i_rx = 1'b1;
-wire [7:0] o_data;
-wire o_valid;
-wire o_frame_err;
-wire o_start_err;
-wire o_busy;
-wire o_parity_err;
-
-// Port order = the model's uart::Receiver::input_ports() / output_ports(), then o_parity_err (uart::Bench).
-task apply_inputs;
-    begin
-        i_rx = `IN_WORD(0) & 1'b1;
-    end
-endtask
-
-// Every output in one vector, in check_outputs' order: the player runs
-// check_outputs again only when this or the expected record changes.
-wire [OUT_BITS-1:0] all_outputs = {
-    o_data,
-    o_valid,
-    o_frame_err,
-    o_start_err,
-    o_busy,
-    o_parity_err
-};
-
-task check_outputs;
-    begin
-        `CHECK(0, "o_data", o_data)
-        `CHECK(1, "o_valid", o_valid)
-        `CHECK(2, "o_frame_err", o_frame_err)
-        `CHECK(3, "o_start_err", o_start_err)
-        `CHECK(4, "o_busy", o_busy)
-        `CHECK(5, "o_parity_err", o_parity_err)
-    end
-endtask
+`include "tb_uart_rx_ports.vh"
 
 uart_rx #(
     .CLOCKS_PER_BIT(CLOCKS_PER_BIT),
@@ -65,13 +24,7 @@ uart_rx #(
 ) dut (
     .i_clk(clk),
     .i_rst(rst),
-    .i_rx(i_rx),
-    .o_data(o_data),
-    .o_valid(o_valid),
-    .o_frame_err(o_frame_err),
-    .o_start_err(o_start_err),
-    .o_busy(o_busy),
-    .o_parity_err(o_parity_err)
+    `DUT_PORTS
 );
 
 // While reset is held the player compares nothing (vector_player.vh): here

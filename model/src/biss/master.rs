@@ -517,7 +517,7 @@ impl Master {
     pub fn input_ports(&self) -> Vec<Port> {
         vec![
             Port::new("i_start", 1),
-            Port::new("i_slo", 1),
+            Port::new("i_slo", 1).idle_high(),
             Port::new("i_reg_start", 1),
             Port::new("i_reg_write", 1),
             Port::new("i_reg_id", 3),
@@ -543,7 +543,7 @@ impl Master {
             Port::new("o_delay", DELAY_BITS),
             Port::new("o_slave_valid", 1),
             Port::new("o_slave_index", 2),
-            Port::new("o_data", self.cfg.data_width()),
+            Port::new("o_data", self.cfg.data_width()).width_from("DATA_W"),
             Port::new("o_crc_err", 1),
             Port::new("o_error", 1),
             Port::new("o_warning", 1),

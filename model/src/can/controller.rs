@@ -369,7 +369,7 @@ impl Controller {
             Port::new("i_tx_data", 64),
             Port::new("i_filter_id", 29),
             Port::new("i_filter_mask", 29),
-            Port::new("i_can_rx", 1),
+            Port::new("i_can_rx", 1).idle_high(),
         ]
     }
 

@@ -551,7 +551,10 @@ impl Master {
     /// The input ports, in vector order (the Verilog port names).
     pub fn input_ports() -> Vec<crate::ports::Port> {
         use crate::ports::Port;
-        vec![Port::new("i_start", 1), Port::new("i_can_rx", 1)]
+        vec![
+            Port::new("i_start", 1),
+            Port::new("i_can_rx", 1).idle_high(),
+        ]
     }
 
     /// The output ports, in vector order (the Verilog port names).

@@ -414,7 +414,7 @@ pub fn input_ports() -> Vec<Port> {
         Port::new("i_param", 16),
         Port::new("i_cont_values", 8),
         Port::new("i_meas", 1),
-        Port::new("i_endat_data_in", 1),
+        Port::new("i_endat_data_in", 1).idle_high(),
     ]
 }
 

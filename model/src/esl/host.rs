@@ -232,7 +232,7 @@ impl Host {
             Port::new("i_broadcast", 1),
             Port::new("i_mem_address", 7),
             Port::new("i_wdata", 8),
-            Port::new("i_rx", 1),
+            Port::new("i_rx", 1).idle_high(),
         ]
     }
 

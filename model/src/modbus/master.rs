@@ -340,7 +340,7 @@ impl Master {
             Port::new("i_address", 8),
             Port::new("i_new_address", 8),
             Port::new("i_count", 2),
-            Port::new("i_rx", 1),
+            Port::new("i_rx", 1).idle_high(),
         ]
     }
 

@@ -303,7 +303,7 @@ impl Host {
             Port::new("i_start", 1),
             Port::new("i_zero", 1),
             Port::new("i_address", 4),
-            Port::new("i_rx", 1),
+            Port::new("i_rx", 1).idle_high(),
         ]
     }
 

@@ -260,7 +260,10 @@ impl Master {
 
     /// The input ports, in vector order.
     pub fn input_ports(&self) -> Vec<Port> {
-        vec![Port::new("i_start", 1), Port::new("i_ssi_data", 1)]
+        vec![
+            Port::new("i_start", 1),
+            Port::new("i_ssi_data", 1).idle_high(),
+        ]
     }
 
     /// The output ports, in vector order.
@@ -269,7 +272,7 @@ impl Master {
             Port::new("o_ssi_clk", 1),
             Port::new("o_busy", 1),
             Port::new("o_done", 1),
-            Port::new("o_position", self.cfg.bits),
+            Port::new("o_position", self.cfg.bits).width_from("BITS"),
             Port::new("o_err_idle", 1),
             Port::new("o_err_double", 1),
             Port::new("o_err_wire", 1),

@@ -183,7 +183,7 @@ impl Host {
             Port::new("i_data_id", 4),
             Port::new("i_address", 7),
             Port::new("i_wdata", 8),
-            Port::new("i_rx", 1),
+            Port::new("i_rx", 1).idle_high(),
         ]
     }
 

@@ -148,7 +148,7 @@ impl Receiver {
 
     /// The input ports, in vector order.
     pub fn input_ports() -> Vec<Port> {
-        vec![Port::new("i_rx", 1)]
+        vec![Port::new("i_rx", 1).idle_high()]
     }
 
     /// The output ports, in vector order.
