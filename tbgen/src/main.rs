@@ -89,11 +89,20 @@ enum Command {
         after_help = "Each protocol has its own options and examples: tbgen decode <protocol> --help.\nThe protocols: tbgen protocols."
     )]
     Decode(registry::Decode),
-    /// Time the model alone on a scenario (used by `make bench`).
-    #[command(after_help = "Example:\n  tbgen bench scenarios/bench/ssi_bench.toml")]
+    /// Time the model alone on a scenario, or `tbgen decode` on a logic-analyser capture it makes (used by `make bench`).
+    #[command(
+        after_help = "Examples:\n  tbgen bench scenarios/bench/ssi_bench.toml\n  tbgen bench --capture sr --samples 100000000"
+    )]
     Bench {
         /// Built-in scenario name or scenario .toml file.
-        scenario: String,
+        #[arg(required_unless_present = "capture", conflicts_with = "capture")]
+        scenario: Option<String>,
+        /// Decode a capture of this format instead (sr or csv), made of the SSI seed scenario's lines repeated.
+        #[arg(long, requires = "samples")]
+        capture: Option<String>,
+        /// Samples in the capture.
+        #[arg(long)]
+        samples: Option<u64>,
     },
     /// Write the electronic data sheet (CiA 306 EDS) of the emulated CANopen DS 406 encoder.
     #[command(
@@ -265,7 +274,18 @@ fn run(command: Command) -> Result<(), Error> {
                 );
             }
         }
-        Command::Bench { scenario } => bench(&scenario)?,
+        Command::Bench {
+            scenario,
+            capture,
+            samples,
+        } => match (scenario, capture) {
+            (_, Some(format)) => out!(
+                "{}",
+                tbgen::bench::capture::report(&format, samples.unwrap_or_default())?
+            ),
+            (Some(scenario), None) => bench(&scenario)?,
+            (None, None) => unreachable!("clap requires a scenario or --capture"),
+        },
         Command::Timing(call) => out!("{}", call.run()?),
         Command::Decode(call) => outln!("{}", call.run()?),
         Command::Fields { protocol, all } => match protocol {

@@ -45,8 +45,8 @@ struct Header {
 /// Reads the lines `names` (channel name, option) of the CSV file `path`.
 pub(crate) fn read(path: &Path, names: &[(&str, &str)]) -> Result<Vec<Signal>> {
     let file = path.display().to_string();
-    let mut reader = BufReader::new(open(path)?);
-    let mut raw = Vec::new();
+    let mut reader = BufReader::with_capacity(1 << 20, open(path)?);
+    let (mut raw, mut previous) = (Vec::new(), Vec::new());
     let (mut offset, mut lineno) = (0u64, 0usize);
     let mut comment_rate: Option<f64> = None;
     let mut comment_channels: Option<Vec<String>> = None;
@@ -68,6 +68,12 @@ pub(crate) fn read(path: &Path, names: &[(&str, &str)]) -> Result<Vec<Signal>> {
         let at = |what: String| Error::Decode(format!("{file}:{lineno}: byte {start}: {what}"));
         if raw.last() != Some(&b'\n') {
             return Err(at("the last row ends without a line break: the file is cut short; export the capture again".into()));
+        }
+        // A row of samples without a time column that repeats the row above
+        // (sigrok-cli writes one per sample): the same levels, one sample later.
+        if header.as_ref().is_some_and(|h| h.time_unit.is_none()) && raw == previous {
+            rows += 1;
+            continue;
         }
         let text = std::str::from_utf8(&raw)
             .map_err(|_| at("not text (UTF-8): not a CSV export".into()))?;
@@ -133,7 +139,9 @@ pub(crate) fn read(path: &Path, names: &[(&str, &str)]) -> Result<Vec<Signal>> {
         if t < last {
             return Err(at(format!("time `{}` is before the row above it: a capture's times only increase; the file is damaged", cells[0])));
         }
-        resolution = gcd(resolution, t - t0);
+        if h.time_unit.is_some() {
+            resolution = gcd(resolution, t - t0);
+        }
         last = t;
         rows += 1;
         let e = edges.as_mut().expect("made with the header");
@@ -150,6 +158,7 @@ pub(crate) fn read(path: &Path, names: &[(&str, &str)]) -> Result<Vec<Signal>> {
             };
             e.push(i, (t - t0) as u64, level);
         }
+        std::mem::swap(&mut raw, &mut previous);
     }
     let (Some(edges), true) = (edges, rows > 0) else {
         return Err(Error::Decode(format!(

@@ -237,13 +237,33 @@ impl Samples {
             self.partial = 0;
             self.one(u64::from_le_bytes(word), edges);
         }
-        let mut units = bytes.chunks_exact(self.unitsize);
         if self.unitsize == 1 {
-            // The common case (up to 8 channels), byte by byte.
-            for &b in units.by_ref().flatten() {
+            // The common case (up to 8 channels): from change to change,
+            // the run of samples between them skipped in one search.
+            let mask = self.mask as u8;
+            while let Some((&b, rest)) = bytes.split_first() {
+                if self.last != u64::MAX {
+                    let last = self.last as u8;
+                    match bytes.iter().position(|&b| b & mask != last) {
+                        Some(i) if i > 0 => {
+                            self.sample += i as u64;
+                            bytes = &bytes[i..];
+                            continue;
+                        }
+                        Some(_) => {}
+                        None => {
+                            self.sample += bytes.len() as u64;
+                            return;
+                        }
+                    }
+                }
                 self.one(b as u64, edges);
+                bytes = rest;
             }
-        } else {
+            return;
+        }
+        let mut units = bytes.chunks_exact(self.unitsize);
+        {
             for u in units.by_ref() {
                 let mut word = [0u8; 8];
                 word[..self.unitsize].copy_from_slice(u);
