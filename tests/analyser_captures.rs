@@ -513,3 +513,211 @@ fn a_misnamed_channel_lists_the_channels_present() {
         "{e}"
     );
 }
+
+/// The lines of `c` as GTKWave hands a Combine Down group of them to a
+/// Transaction Filter Process (gtkwave's vcd_saver.c, the docs' example):
+/// the `$comment` header, one `$var` per line numbered from 1 under its
+/// scopes, the changes, `$comment data_end`.
+fn gtkwave_block(c: &Case, id: &str) -> String {
+    let mut text = format!(
+        "$comment data_start {id} $end\n$comment name #{{{}}} $end\n$timescale 1ps $end\n$comment min_time 0 $end\n$comment max_time {} $end\n$comment max_seqn {} $end\n$scope module top $end\n$scope module line $end\n",
+        c.lines.iter().map(|(_, d)| d.as_str()).collect::<Vec<_>>().join(" "),
+        c.signals.iter().flat_map(|s| s.changes.last()).map(|&(t, _)| t).max().unwrap(),
+        c.lines.len()
+    );
+    for (i, (_, d)) in c.lines.iter().enumerate() {
+        text += &format!(
+            "$comment seqn {} {d} $end\n$var wire 1 {} {} $end\n",
+            i + 1,
+            i + 1,
+            d.rsplit('.').next().unwrap()
+        );
+    }
+    text += "$upscope $end\n$upscope $end\n$enddefinitions $end\n#0\n$dumpvars\n";
+    let mut changes: Vec<(u64, usize, bool)> = c
+        .signals
+        .iter()
+        .enumerate()
+        .flat_map(|(i, s)| s.changes.iter().map(move |&(t, l)| (t, i, l)))
+        .collect();
+    changes.sort();
+    let mut now = 0;
+    for (k, (t, i, l)) in changes.into_iter().enumerate() {
+        if t != now {
+            text += &format!("{}#{t}\n", if now == 0 && k > 0 { "$end\n" } else { "" });
+            now = t;
+        }
+        text += &format!("{}{}\n", l as u8, i + 1);
+    }
+    text + &format!("$comment data_end {id} $end\n")
+}
+
+/// GTKWave's side of the filter: a block written, the trace read back to
+/// `$finish` before the next block (a filter that waits for more input, or
+/// does not flush, hangs GTKWave: so does this test, up to its timeout).
+fn gtkwave_exchange(table: &str, args: &[&str], blocks: &[String]) -> Vec<String> {
+    use std::io::{BufRead, BufReader, Write};
+    let mut child = Command::new(env!("CARGO_BIN_EXE_tbgen"))
+        .args(["gtkwave-filter", table])
+        .args(args)
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let pid = child.id();
+    let watchdog = std::thread::spawn(move || {
+        std::thread::sleep(std::time::Duration::from_secs(60));
+        let _ = Command::new("kill").arg(pid.to_string()).status();
+    });
+    let mut stdin = child.stdin.take().unwrap();
+    let mut stdout = BufReader::new(child.stdout.take().unwrap());
+    let mut traces = Vec::new();
+    for b in blocks {
+        stdin.write_all(b.as_bytes()).unwrap();
+        stdin.flush().unwrap();
+        let mut trace = String::new();
+        loop {
+            let mut line = String::new();
+            assert!(
+                stdout.read_line(&mut line).unwrap() > 0,
+                "the filter ended before $finish: {trace}"
+            );
+            trace += &line;
+            if line == "$finish\n" {
+                break;
+            }
+        }
+        traces.push(trace);
+    }
+    drop(stdin);
+    assert!(child.wait().unwrap().success());
+    drop(watchdog);
+    traces
+}
+
+#[test]
+fn the_gtkwave_filter_answers_each_block_with_the_decoded_frames_at_their_times() {
+    for table in ["ssi", "can"] {
+        let c = case(tbgen::registry::by_table(table).unwrap());
+        let blocks = [gtkwave_block(&c, "0x1"), gtkwave_block(&c, "0x2")];
+        let traces = gtkwave_exchange(table, &[], &blocks);
+        assert_eq!(
+            traces[0], traces[1],
+            "{table}: the same block, the same trace"
+        );
+        let lines: Vec<&str> = traces[0].lines().collect();
+        assert_eq!(
+            lines[..2],
+            [format!("$name {table} (tbgen)").as_str(), "#0"],
+            "{table}"
+        );
+        // One labelled line per transaction, at its start, in ps (the block's timescale).
+        let labelled: Vec<&str> = lines
+            .iter()
+            .copied()
+            .filter(|l| l.starts_with('#') && l.contains(' '))
+            .collect();
+        assert_eq!(
+            labelled.len(),
+            c.transactions.len(),
+            "{table}: {}",
+            traces[0]
+        );
+        for (l, t) in labelled.iter().zip(&c.transactions) {
+            let start = t.get("start_ps").or_else(|| t.get("sof_ps")).unwrap();
+            assert!(l.starts_with(&format!("#{start} ")), "{table}: {l} for {t}");
+            let errors = t
+                .get("errors")
+                .and_then(Value::as_array)
+                .is_some_and(|e| !e.is_empty())
+                || t.get("error").is_some_and(|e| !e.is_null());
+            assert_eq!(l.contains(" ?red?"), errors, "{table}: {l} for {t}");
+        }
+    }
+    let c = case(tbgen::registry::by_table("ssi").unwrap());
+    let ssi = gtkwave_exchange("ssi", &["--bits", "13"], &[gtkwave_block(&c, "0x3")]);
+    assert!(
+        ssi[0].starts_with("$name ssi (tbgen)\n#0 ?red?")
+            && ssi[0].contains("--bits 13")
+            && ssi[0].ends_with("\n$finish\n"),
+        "{}",
+        ssi[0]
+    );
+}
+
+/// GTKWave itself (headless, under xvfb-run, driven by Tcl) runs the filter
+/// on a saved layout that groups the SSI lines under a Transaction Filter
+/// Process (`^<1` and the flags word with TR_TTRANSLATED, bit 28, as
+/// GTKWave's savefile writes them) and shows each read's position on the
+/// trace beside the lines, and nothing between reads.
+#[test]
+fn gtkwave_shows_the_decoded_frames_beside_the_lines() {
+    let dir = tempfile::tempdir().unwrap();
+    let c = case(tbgen::registry::by_table("ssi").unwrap());
+    let filter = dir.path().join("ssi-frames.sh");
+    std::fs::write(
+        &filter,
+        format!(
+            "#!/bin/sh\nexec '{}' gtkwave-filter ssi\n",
+            env!("CARGO_BIN_EXE_tbgen")
+        ),
+    )
+    .unwrap();
+    let mut mode = std::fs::metadata(&filter).unwrap().permissions();
+    std::os::unix::fs::PermissionsExt::set_mode(&mut mode, 0o755);
+    std::fs::set_permissions(&filter, mode).unwrap();
+    let lines: Vec<&str> = c.lines.iter().map(|(_, d)| d.as_str()).collect();
+    let gtkw = dir.path().join("frames.gtkw");
+    std::fs::write(
+        &gtkw,
+        format!(
+            "[dumpfile] \"{}\"\n@28\n{}\n@10000028\n^<1 {}\n#{{ssi_frames}} {}\n",
+            c.vcd.canonicalize().unwrap().display(),
+            lines.join("\n"),
+            filter.display(),
+            lines.join(" ")
+        ),
+    )
+    .unwrap();
+    // A marker inside each read, and one after the last read's end.
+    let mut at: Vec<(u64, Option<u64>)> = c
+        .transactions
+        .iter()
+        .map(|t| (t["start_ps"].as_u64().unwrap() + 1, t["position"].as_u64()))
+        .collect();
+    at.push((
+        c.transactions.last().unwrap()["end_ps"].as_u64().unwrap() + 1,
+        None,
+    ));
+    let mut tcl = String::new();
+    for (k, (t, _)) in at.iter().enumerate() {
+        tcl += &format!("gtkwave::setMarker {t}\nputs \"at {k}: [gtkwave::getTraceValueAtMarkerFromIndex 2]\"\n");
+    }
+    tcl += "puts \"trace: [gtkwave::getTraceNameFromIndex 2]\"\ngtkwave::/File/Quit\n";
+    let script = dir.path().join("q.tcl");
+    std::fs::write(&script, tcl).unwrap();
+    let out = Command::new("timeout")
+        .args(["120", "xvfb-run", "-a", "gtkwave", "-S"])
+        .arg(&script)
+        .arg(&gtkw)
+        .output()
+        .expect("xvfb-run and gtkwave run (make deps installs them)");
+    let text =
+        String::from_utf8_lossy(&out.stdout).to_string() + &String::from_utf8_lossy(&out.stderr);
+    assert!(text.contains("trace: ssi (tbgen)"), "{text}");
+    for (k, (_, position)) in at.iter().enumerate() {
+        let shown = text
+            .lines()
+            .find_map(|l| l.strip_prefix(&format!("at {k}: ")))
+            .unwrap_or_else(|| panic!("no answer {k}: {text}"));
+        match position {
+            Some(p) => assert!(
+                shown
+                    .split_whitespace()
+                    .any(|w| w == format!("position={p}")),
+                "read {k}: `{shown}`"
+            ),
+            None => assert_eq!(shown.trim(), "", "after the last read"),
+        }
+    }
+}

@@ -89,6 +89,22 @@ enum Command {
         after_help = "Each protocol has its own options and examples: tbgen decode <protocol> --help.\nThe protocols: tbgen protocols."
     )]
     Decode(registry::Decode),
+    /// A GTKWave Transaction Filter Process: the frames of a protocol's lines, decoded, as a trace beside them.
+    #[command(
+        name = "gtkwave-filter",
+        after_help = "GTKWave starts it (Edit > Data Format > Transaction Filter Process) on the highlighted lines, grouped with Combine Down;
+it reads GTKWave's blocks on stdin and answers each with a trace on stdout. GTKWave runs a filter without arguments,
+so give it a one-line script, e.g. ssi-frames.sh:
+  #!/bin/sh
+  exec tbgen gtkwave-filter ssi --bits 12"
+    )]
+    GtkwaveFilter {
+        /// The protocol (its table name, as `tbgen protocols` lists it).
+        protocol: String,
+        /// Options of the protocol's decoder (`tbgen decode <protocol> --help`), e.g. --bits 12 --map clk=D0,data=D1.
+        #[arg(trailing_var_arg = true, allow_hyphen_values = true)]
+        decoder_args: Vec<String>,
+    },
     /// Time the model alone on a scenario, or `tbgen decode` on a logic-analyser capture it makes (used by `make bench`).
     #[command(
         after_help = "Examples:\n  tbgen bench scenarios/bench/ssi_bench.toml\n  tbgen bench --capture sr --samples 100000000"
@@ -274,6 +290,15 @@ fn run(command: Command) -> Result<(), Error> {
                 );
             }
         }
+        Command::GtkwaveFilter {
+            protocol,
+            decoder_args,
+        } => tbgen::gtkwave_filter::serve(
+            &protocol,
+            &decoder_args,
+            std::io::stdin().lock(),
+            std::io::stdout().lock(),
+        )?,
         Command::Bench {
             scenario,
             capture,
