@@ -83,7 +83,7 @@ enum Command {
         after_help = "Each protocol has its own options and examples: tbgen timing <protocol> --help.\nThe protocols: tbgen protocols."
     )]
     Timing(registry::Timing),
-    /// Decode a captured waveform (VCD) into a JSON transcript on stdout.
+    /// Decode a captured waveform (VCD, sigrok session .sr, logic-analyser CSV) into a JSON transcript on stdout.
     #[command(
         subcommand,
         after_help = "Each protocol has its own options and examples: tbgen decode <protocol> --help.\nThe protocols: tbgen protocols."
@@ -189,12 +189,12 @@ so give it a one-line script, e.g. ssi-frames.sh:
         /// The expected transcript (`tbgen gen`/`tbgen decode` JSON, or an emulator's).
         #[arg(long)]
         expect: PathBuf,
-        /// What the master did: a VCD (decoded by `tbgen decode <protocol>`) or a JSON transcript.
+        /// What the master did: a capture (VCD, .sr, CSV; decoded by `tbgen decode <protocol>`) or a JSON transcript.
         capture: PathBuf,
         /// Longest time between the starts of two transactions, µs (a late frame is a difference).
         #[arg(long)]
         timeout_us: Option<f64>,
-        /// Options of the protocol's decoder for a VCD capture (port names, bits), after `--`.
+        /// Options of the protocol's decoder for a capture (port names, --map, bits), after `--`.
         #[arg(last = true)]
         decoder_args: Vec<String>,
     },
