@@ -339,6 +339,14 @@ fn csv_exports_decode_as_the_wave_on_its_grid_and_at_just_enough_rate() {
             "{}: Saleae CSV on the grid",
             p.table
         );
+        // The transcript names the channel each line was read from.
+        if let Some(signals) = got.get("signals").and_then(Value::as_object) {
+            let mut named: Vec<&str> = signals.values().map(|v| v.as_str().unwrap()).collect();
+            named.sort();
+            let channels: Vec<String> =
+                (0..c.lines.len()).map(|i| format!("Channel {i}")).collect();
+            assert_eq!(named, channels, "{}: {signals:?}", p.table);
+        }
         // Four samples to the fastest line's median pulse: the same transactions, times aside.
         let enough = fastest_median_ps(&c) / ENOUGH;
         let csv = dir.path().join(format!("{}_sigrok.csv", p.table));

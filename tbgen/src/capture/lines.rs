@@ -72,6 +72,8 @@ impl LineMap {
 thread_local! {
     /// The map of the decode under way on this thread ([`scoped`]).
     static CURRENT: RefCell<LineMap> = RefCell::new(LineMap::default());
+    /// `(name the decoder asked for, channel read instead)` in that decode.
+    static READ: RefCell<Vec<(String, String)>> = const { RefCell::new(Vec::new()) };
 }
 
 /// The `--map` option, added to every protocol's decode command.
@@ -85,8 +87,10 @@ pub fn with_map_option(cmd: Command) -> Command {
     )
 }
 
-/// Runs `decode` with the `--map` of `args` in force for [`resolve`].
-pub fn scoped<T>(args: &ArgMatches, decode: impl FnOnce() -> Result<T>) -> Result<T> {
+/// Runs `decode` with the `--map` of `args` in force for [`resolve`]; the
+/// transcript it returns names, under `signals`, the channel each mapped
+/// line was read from (the decoder names the line as its option gave it).
+pub fn scoped(args: &ArgMatches, decode: impl FnOnce() -> Result<String>) -> Result<String> {
     let map = LineMap::parse(
         args.get_many::<String>(MAP)
             .into_iter()
@@ -94,22 +98,55 @@ pub fn scoped<T>(args: &ArgMatches, decode: impl FnOnce() -> Result<T>) -> Resul
             .map(String::as_str),
     )?;
     let before = CURRENT.with(|c| c.replace(map));
+    let read_before = READ.with(|r| r.take());
     let out = decode();
     CURRENT.with(|c| c.replace(before));
-    out
+    let read = READ.with(|r| r.replace(read_before));
+    let json = out?;
+    if read.is_empty() {
+        return Ok(json);
+    }
+    let mut doc: serde_json::Value =
+        serde_json::from_str(&json).map_err(|e| Error::Decode(e.to_string()))?;
+    if let Some(signals) = doc
+        .get_mut("signals")
+        .and_then(serde_json::Value::as_object_mut)
+    {
+        for v in signals.values_mut() {
+            if let Some((_, channel)) = read
+                .iter()
+                .find(|(name, _)| v.as_str() == Some(name.as_str()))
+            {
+                *v = channel.as_str().into();
+            }
+        }
+    }
+    serde_json::to_string_pretty(&doc).map_err(|e| Error::Decode(e.to_string()))
 }
 
 /// The names to look up for the decoder's `(name, option)` lines, with the
 /// map in force applied.
 pub(crate) fn resolve(names: &[(&str, &str)]) -> Result<Vec<String>> {
-    CURRENT.with(|c| {
+    let resolved: Vec<String> = CURRENT.with(|c| {
         let map = c.borrow();
         map.check_keys(&names.iter().map(|&(_, o)| o).collect::<Vec<_>>())?;
-        Ok(names
-            .iter()
-            .map(|&(n, o)| map.channel(n, o).to_string())
-            .collect())
-    })
+        Ok::<_, Error>(
+            names
+                .iter()
+                .map(|&(n, o)| map.channel(n, o).to_string())
+                .collect(),
+        )
+    })?;
+    READ.with(|r| {
+        r.borrow_mut().extend(
+            names
+                .iter()
+                .zip(&resolved)
+                .filter(|((n, _), c)| n != c)
+                .map(|(&(n, _), c)| (n.to_string(), c.clone())),
+        )
+    });
+    Ok(resolved)
 }
 
 /// The index in `channels` of the channel named `name`: that name exactly,
