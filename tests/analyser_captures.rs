@@ -3,7 +3,8 @@
 //! For every protocol with a decoder, the smallest committed VCD of its core
 //! that decodes to two or more transactions with the decoder's defaults is
 //! turned into what a logic analyser would have saved: a sigrok session
-//! (`.sr`, converted by sigrok-cli, which `make deps` installs), a Saleae
+//! (`.sr`, converted by sigrok-cli, which `make deps` installs) and
+//! sigrok-cli's CSV exports of it, a Saleae
 //! Logic 2 CSV (one row per change, channels `Channel 0`.., read with
 //! `--map`) and a sigrok-cli CSV (one row per sample), sampled on the VCD's
 //! own time grid (every edge where it was), at just enough rate and too low
@@ -321,6 +322,35 @@ fn a_sigrok_session_converted_from_each_decoders_wave_decodes_as_the_wave() {
         );
         let r = check(&c, dir.path(), &sr, &[]);
         assert!(r.ok, "{}: {}", p.table, r.text);
+        // sigrok-cli's own CSV of the session: a row per sample, timed by
+        // its sample rate, reads the very same; a row per change reads the
+        // same but for the times (its time column is in whole units of its
+        // choosing, nanoseconds at these rates: 12.5 ns samples are cut).
+        for (options, timed) in [("csv", true), ("csv:time=true:dedup=true", false)] {
+            let csv = dir.path().join(format!("{}_sigrok_cli.csv", p.table));
+            let out = Command::new("sigrok-cli")
+                .arg("-i")
+                .arg(&sr)
+                .args(["-O", options, "-o"])
+                .arg(&csv)
+                .output()
+                .unwrap();
+            assert!(
+                out.status.success(),
+                "{}",
+                String::from_utf8_lossy(&out.stderr)
+            );
+            let got =
+                decode(p, &csv, &[]).unwrap_or_else(|e| panic!("{} -O {options}: {e}", p.table));
+            let (got, want): (Vec<Value>, Vec<Value>) = match timed {
+                true => (transactions(&got), c.transactions.clone()),
+                false => (
+                    transactions(&got).iter().map(untimed).collect(),
+                    c.transactions.iter().map(untimed).collect(),
+                ),
+            };
+            assert_eq!(got, want, "{}: sigrok-cli -O {options}", p.table);
+        }
     }
 }
 

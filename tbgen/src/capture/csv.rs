@@ -108,10 +108,11 @@ pub(crate) fn read(path: &Path, names: &[(&str, &str)]) -> Result<Vec<Signal>> {
                     lines::find(&channels, name, option, &file)? + time_unit.is_some() as usize,
                 );
             }
+            let offset = time_unit.is_some() as usize;
             edges = Some(sampled::Edges::new(
                 &columns
                     .iter()
-                    .map(|&c| cells[c].to_string())
+                    .map(|&c| channels[c - offset].clone())
                     .collect::<Vec<_>>(),
             ));
             header = Some(Header {

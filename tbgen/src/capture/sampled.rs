@@ -51,15 +51,17 @@ impl Edges {
             }
             let mid = (widths.len() - 1) / 2;
             let median = *widths.select_nth_unstable(mid).1 as f64;
-            if median < SAMPLES_PER_PULSE as f64 * period_ps * 0.999 {
+            // A pulse is a whole number of samples (an export may print its
+            // times rounded: 12.5 ns samples in whole nanoseconds).
+            let samples = (median / period_ps).round() as u64;
+            if samples < SAMPLES_PER_PULSE {
                 let rate = 1e12 / period_ps;
                 let needed = SAMPLES_PER_PULSE as f64 * 1e12 / median;
                 return Err(Error::Decode(format!(
-                    "{file}: sampled at {}, too slowly for line `{}`: it changes every {} (its median pulse, {:.1} samples), and decoding needs {SAMPLES_PER_PULSE} samples a pulse: capture at {} or faster",
+                    "{file}: sampled at {}, too slowly for line `{}`: it changes every {} (its median pulse, {samples} samples), and decoding needs {SAMPLES_PER_PULSE} samples a pulse: capture at {} or faster",
                     hz(rate),
                     s.name,
                     ns(median),
-                    median / period_ps,
                     hz(needed)
                 )));
             }
@@ -113,7 +115,7 @@ mod tests {
             .finish("c.csv", 250_000.0)
             .unwrap_err()
             .to_string();
-        assert_eq!(e, "c.csv: sampled at 4 MHz, too slowly for line `clk`: it changes every 500 ns (its median pulse, 2.0 samples), and decoding needs 4 samples a pulse: capture at 8 MHz or faster");
+        assert_eq!(e, "c.csv: sampled at 4 MHz, too slowly for line `clk`: it changes every 500 ns (its median pulse, 2 samples), and decoding needs 4 samples a pulse: capture at 8 MHz or faster");
     }
 
     #[test]
