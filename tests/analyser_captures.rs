@@ -521,6 +521,22 @@ fn a_cut_short_capture_is_refused_with_the_file_and_the_byte() {
             && e.contains("cut short"),
         "{e}"
     );
+    // Whole, but the samples damaged: the chunk's CRC (or its deflate
+    // stream) refuses them, with the byte where the chunk's data starts.
+    let chunk = bytes.windows(9).position(|w| w == b"logic-1-1").unwrap() + 9 + 8;
+    let mut damaged = bytes.clone();
+    for b in &mut damaged[chunk..chunk + 16] {
+        *b ^= 0x5A;
+    }
+    let bad = dir.path().join("damaged.sr");
+    std::fs::write(&bad, &damaged).unwrap();
+    let e = decode(p, &bad, &[]).unwrap_err();
+    assert!(
+        e.starts_with(&format!("{}: byte ", bad.display()))
+            && e.contains("chunk `logic-1-1`")
+            && e.contains("damaged"),
+        "{e}"
+    );
     let csv = dir.path().join("cut.csv");
     saleae_csv(&csv, &sample(&c, c.grid_ps, &[]), c.grid_ps);
     let text = std::fs::read_to_string(&csv).unwrap();
