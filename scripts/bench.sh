@@ -2,7 +2,7 @@
 # bench.sh: speed of the model, the VCD writer, the simulators replaying the
 # same vectors, the closed loop, and the corruption campaigns (`make bench`).
 #
-#   scripts/bench.sh [replay] [cosim] [campaigns]   (default: all three parts)
+#   scripts/bench.sh [replay] [cosim] [campaigns] [captures]   (default: all four parts)
 #   BENCH_OUT=DIR scripts/bench.sh ...              (vectors and logs; default build/bench)
 #
 # Every simulator model is built first, untimed (replays: SIM_BUILD_ONLY=1 of
@@ -50,6 +50,18 @@
 # and their ratio; `-` where a campaign has no such run (ESL and CAN are
 # bit-level: no cycle model in the loop, so no stepped run).
 #
+# Part 4, logic-analyser captures (`tbgen bench --capture`, tbgen/src/bench/capture.rs):
+# `tbgen decode ssi` on a capture the bench makes of the SSI seed scenario's
+# lines repeated, one sample per system clock, as a sigrok session (.sr) and
+# as sigrok-cli's CSV (a row per sample), at 10 M and 100 M samples:
+#   samples/s   samples over the wall time of the decode
+#   samples/cpu-s  the same over its CPU time (on a shared machine the wall
+#               time also counts other jobs' turns)
+#   peak RSS    resident memory at most during the decode; the 10 M and 100 M
+#               rows side by side show whether it grows with the capture
+#               (samples stream; the decoders keep each line's edges, 16
+#               bytes an edge)
+#
 # All figures of a run come from one machine at one time: quote the ratios,
 # not the absolute numbers, which depend on the machine and its load.
 set -euo pipefail
@@ -65,10 +77,10 @@ out=${BENCH_OUT:-$root/build/bench}   # logs, vectors (BENCH_OUT: another folder
 export LD_LIBRARY_PATH="${CARGO_TARGET_DIR:-$root/target}/release${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
 mkdir -p "$out"
 parts=("$@")
-[ ${#parts[@]} -gt 0 ] || parts=(replay cosim campaigns)
+[ ${#parts[@]} -gt 0 ] || parts=(replay cosim campaigns captures)
 want() { [[ " ${parts[*]} " == *" $1 "* ]]; }
 for p in "${parts[@]}"; do
-    case "$p" in replay|cosim|campaigns) ;; *) echo "usage: $0 [replay] [cosim] [campaigns]" >&2; exit 2 ;; esac
+    case "$p" in replay|cosim|campaigns|captures) ;; *) echo "usage: $0 [replay] [cosim] [campaigns] [captures]" >&2; exit 2 ;; esac
 done
 
 now() { date +%s.%N; }
@@ -178,6 +190,24 @@ if want campaigns; then
             [ "$stepped" != - ] && [ "$fast" != - ] && ratio=$(printf '%.2fx' "$(calc "$fast / $stepped")")
             printf '%-10s %-12s %12s %12s %8s\n' "$name" "$kind" "$stepped" "$fast" "$ratio"
         done
+    echo
+fi
+
+if want captures; then
+    echo "Part 4: tbgen decode on logic-analyser captures (the SSI seed scenario's lines, repeated)"
+    printf '%-6s %11s %12s %6s %12s %14s %10s\n' format samples "file MB" reads samples/s samples/cpu-s "peak RSS MB"
+    for format in sr csv; do
+        for samples in 10000000 100000000; do
+            report=$(TMPDIR="$out" "$tbgen" bench --capture "$format" --samples "$samples")
+            rss=$(echo "$report" | field peak_rss_bytes)
+            [ "$rss" = - ] || rss=$(printf '%.1f' "$(calc "$rss / 1000000")")
+            cpu=$(echo "$report" | field samples_per_cpu_second)
+            [ "$cpu" = - ] || cpu=$(printf '%.3g' "$cpu")
+            printf '%-6s %11d %12.1f %6d %12.3g %14s %10s\n' "$format" "$samples" \
+                "$(calc "$(echo "$report" | field file_bytes) / 1000000")" "$(echo "$report" | field reads)" \
+                "$(echo "$report" | field samples_per_second)" "$cpu" "$rss"
+        done
+    done
     echo
 fi
 

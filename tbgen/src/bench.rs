@@ -17,6 +17,8 @@
 //! in them; the VCD writer's run replays samples recorded beforehand (only
 //! the cycles where one changed are kept), so no model is in it.
 
+pub mod capture;
+
 use std::fs::{self, File};
 use std::io::BufWriter;
 use std::path::Path;

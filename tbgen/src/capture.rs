@@ -1,14 +1,21 @@
 //! Reading a captured waveform: the part every `tbgen decode` shares.
 //!
-//! A capture is a VCD file, written by `tbgen gen`, by a user's own
-//! simulation or by a logic analyser's export. The decoders only need a few
-//! scalars from it, each as the list of its value changes in picoseconds;
-//! this module finds them by dotted path (`top.line.ma_master`), converts the
-//! file's timescale to picoseconds and answers "what was the level at time
-//! t". It also holds the UART-style byte reader that the RS-485 frame
-//! protocols (ESL, T-format) decode their lines with.
+//! A capture is a VCD file (written by `tbgen gen` or a user's own
+//! simulation), a sigrok session (`.sr`, [`sigrok`]) or a logic analyser's
+//! CSV export (`.csv`, [`csv`]), told apart by the file's extension. The
+//! decoders only need a few lines from it, each as the list of its value
+//! changes in picoseconds: this module finds them by name (a VCD's dotted
+//! path, `top.line.ma_master`, or an analyser's channel, through
+//! [`lines`]), converts the file's time base to picoseconds and answers
+//! "what was the level at time t". It also holds the UART-style byte reader
+//! that the RS-485 frame protocols (ESL, T-format) decode their lines with.
 //!
 //! Errors name the file and the signal, and say how to fix the call.
+
+mod csv;
+pub mod lines;
+pub mod sampled;
+mod sigrok;
 
 use std::io::BufReader;
 use std::path::Path;
@@ -53,15 +60,62 @@ fn scalars(header: &vcd::Header) -> String {
     }
 }
 
-/// Reads the named scalars of a VCD file. `names` are dotted paths; the
-/// error for a missing one names the file, the path and `option` (the
-/// command-line flag that sets it).
-pub fn read(path: &Path, names: &[(&str, &str)]) -> Result<Vec<Signal>> {
-    let file = std::fs::File::open(path).map_err(|e| match e.kind() {
-        // Bad input like any other (exit status 2), said as such.
-        std::io::ErrorKind::NotFound => Error::Decode(format!("{}: no such capture file; give the path to a VCD (tbgen gen or make sim WAVES=1 writes one)", path.display())),
+/// The kinds of capture file, by extension.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Format {
+    Vcd,
+    Sigrok,
+    Csv,
+}
+
+impl Format {
+    fn of(path: &Path) -> Option<Format> {
+        let ext = path.extension()?.to_str()?.to_ascii_lowercase();
+        [
+            ("vcd", Format::Vcd),
+            ("sr", Format::Sigrok),
+            ("csv", Format::Csv),
+        ]
+        .into_iter()
+        .find_map(|(e, f)| (e == ext).then_some(f))
+    }
+}
+
+/// Whether `path` names a capture (`.vcd`, `.sr`, `.csv`) rather than a transcript.
+pub fn is_capture(path: &Path) -> bool {
+    Format::of(path).is_some()
+}
+
+/// Opens a capture file; a missing one is bad input (exit status 2), said as such.
+fn open(path: &Path) -> Result<std::fs::File> {
+    std::fs::File::open(path).map_err(|e| match e.kind() {
+        std::io::ErrorKind::NotFound => Error::Decode(format!("{}: no such capture file; give the path to a VCD (tbgen gen or make sim WAVES=1 writes one), a sigrok session (.sr) or a logic analyser's CSV export", path.display())),
         _ => Error::io(path, e),
-    })?;
+    })
+}
+
+/// Reads the lines of a capture the decoder names: `names` are `(name,
+/// option)`, the name a VCD's dotted path or an analyser's channel, unless
+/// the `--map` in force ([`lines`]) names the channel of `option`'s line.
+/// The error for a missing one names the file, the name, `option` (the
+/// command-line flag that sets it) and the capture's signals.
+pub fn read(path: &Path, names: &[(&str, &str)]) -> Result<Vec<Signal>> {
+    let resolved = lines::resolve(names)?;
+    let names: Vec<(&str, &str)> = resolved
+        .iter()
+        .zip(names)
+        .map(|(n, &(_, o))| (n.as_str(), o))
+        .collect();
+    match Format::of(path) {
+        Some(Format::Sigrok) => sigrok::read(path, &names),
+        Some(Format::Csv) => csv::read(path, &names),
+        Some(Format::Vcd) | None => read_vcd(path, &names),
+    }
+}
+
+/// Reads the named scalars of a VCD file.
+fn read_vcd(path: &Path, names: &[(&str, &str)]) -> Result<Vec<Signal>> {
+    let file = open(path)?;
     let mut parser = vcd::Parser::new(BufReader::new(file));
     let header = parser.parse_header().map_err(|e| not_vcd(path, e))?;
     let mut ids = Vec::with_capacity(names.len());

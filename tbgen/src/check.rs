@@ -7,7 +7,8 @@
 //! emulator's (`frames`, `reads`, `requests`; EnDat `transfers`, T-format
 //! and ESL `answers`, read under the decoders' names by
 //! `emulator_entries`). A
-//! capture that is a VCD (any timescale, 1 fs included) is first decoded
+//! capture that is a VCD (any timescale, 1 fs included), a sigrok session
+//! (`.sr`) or a logic analyser's CSV export is first decoded
 //! with the protocol's own decoder (`tbgen decode <protocol>`), whose
 //! options (the port names) follow `--`, so the check does not care what
 //! the master calls its pins.
@@ -61,12 +62,12 @@ fn read_json(path: &Path) -> Result<Value> {
     let text = std::fs::read_to_string(path).map_err(|e| match e.kind() {
         // Bad input (exit 2), as every missing file of tbgen's command line.
         std::io::ErrorKind::NotFound => Error::Decode(format!(
-            "{}: no such file; give the path of a transcript (JSON) or a capture (VCD)",
+            "{}: no such file; give the path of a transcript (JSON) or a capture (VCD, sigrok .sr, CSV)",
             path.display()
         )),
         _ => Error::io(path, e),
     })?;
-    serde_json::from_str(&text).map_err(|e| Error::Decode(format!("{}: not a JSON transcript ({e}); give a `tbgen gen`/`tbgen decode` transcript, an emulator transcript or a VCD", path.display())))
+    serde_json::from_str(&text).map_err(|e| Error::Decode(format!("{}: not a JSON transcript ({e}); give a `tbgen gen`/`tbgen decode` transcript, an emulator transcript or a capture (.vcd, .sr, .csv)", path.display())))
 }
 
 fn side(path: &Path, v: Value) -> Result<Side> {
@@ -229,12 +230,10 @@ fn same_protocol(protocol: &str, path: &Path, doc: &Value) -> Result<()> {
     )))
 }
 
-/// Reads a capture: a JSON transcript, or a VCD decoded by `protocol`'s decoder with `decoder_args`.
+/// Reads a capture: a JSON transcript, or a waveform (VCD, `.sr`, CSV)
+/// decoded by `protocol`'s decoder with `decoder_args`.
 fn capture(protocol: &str, path: &Path, decoder_args: &[String]) -> Result<Value> {
-    let is_vcd = path
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("vcd"));
-    if !is_vcd {
+    if !crate::capture::is_capture(path) {
         return read_json(path);
     }
     let entry = registry::by_table(protocol).ok_or_else(|| {
@@ -243,7 +242,7 @@ fn capture(protocol: &str, path: &Path, decoder_args: &[String]) -> Result<Value
         ))
     })?;
     let cmd = (entry.decode_command)().ok_or_else(|| {
-        Error::Decode(format!("check {protocol}: this protocol has no decoder yet, so a VCD cannot be read; give the monitor's or emulator's JSON transcript"))
+        Error::Decode(format!("check {protocol}: this protocol has no decoder yet, so a capture cannot be read; give the monitor's or emulator's JSON transcript"))
     })?;
     let mut argv = vec![format!("decode {protocol}"), path.display().to_string()];
     argv.extend(decoder_args.iter().cloned());

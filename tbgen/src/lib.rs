@@ -38,6 +38,7 @@ pub mod error;
 pub mod fields;
 pub mod generate;
 pub mod gtkw;
+pub mod gtkwave_filter;
 pub mod probes;
 pub mod registry;
 pub mod rule_verdict;

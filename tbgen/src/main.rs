@@ -83,17 +83,42 @@ enum Command {
         after_help = "Each protocol has its own options and examples: tbgen timing <protocol> --help.\nThe protocols: tbgen protocols."
     )]
     Timing(registry::Timing),
-    /// Decode a captured waveform (VCD) into a JSON transcript on stdout.
+    /// Decode a captured waveform (VCD, sigrok session .sr, logic-analyser CSV) into a JSON transcript on stdout.
     #[command(
         subcommand,
         after_help = "Each protocol has its own options and examples: tbgen decode <protocol> --help.\nThe protocols: tbgen protocols."
     )]
     Decode(registry::Decode),
-    /// Time the model alone on a scenario (used by `make bench`).
-    #[command(after_help = "Example:\n  tbgen bench scenarios/bench/ssi_bench.toml")]
+    /// A GTKWave Transaction Filter Process: the frames of a protocol's lines, decoded, as a trace beside them.
+    #[command(
+        name = "gtkwave-filter",
+        after_help = "GTKWave starts it (Edit > Data Format > Transaction Filter Process) on the highlighted lines, grouped with Combine Down;
+it reads GTKWave's blocks on stdin and answers each with a trace on stdout. GTKWave runs a filter without arguments,
+so give it a one-line script, e.g. ssi-frames.sh:
+  #!/bin/sh
+  exec tbgen gtkwave-filter ssi --bits 12"
+    )]
+    GtkwaveFilter {
+        /// The protocol (its table name, as `tbgen protocols` lists it).
+        protocol: String,
+        /// Options of the protocol's decoder (`tbgen decode <protocol> --help`), e.g. --bits 12 --map clk=D0,data=D1.
+        #[arg(trailing_var_arg = true, allow_hyphen_values = true)]
+        decoder_args: Vec<String>,
+    },
+    /// Time the model alone on a scenario, or `tbgen decode` on a logic-analyser capture it makes (used by `make bench`).
+    #[command(
+        after_help = "Examples:\n  tbgen bench scenarios/bench/ssi_bench.toml\n  tbgen bench --capture sr --samples 100000000"
+    )]
     Bench {
         /// Built-in scenario name or scenario .toml file.
-        scenario: String,
+        #[arg(required_unless_present = "capture", conflicts_with = "capture")]
+        scenario: Option<String>,
+        /// Decode a capture of this format instead (sr or csv), made of the SSI seed scenario's lines repeated.
+        #[arg(long, requires = "samples")]
+        capture: Option<String>,
+        /// Samples in the capture.
+        #[arg(long)]
+        samples: Option<u64>,
     },
     /// Write the electronic data sheet (CiA 306 EDS) of the emulated CANopen DS 406 encoder.
     #[command(
@@ -164,12 +189,12 @@ enum Command {
         /// The expected transcript (`tbgen gen`/`tbgen decode` JSON, or an emulator's).
         #[arg(long)]
         expect: PathBuf,
-        /// What the master did: a VCD (decoded by `tbgen decode <protocol>`) or a JSON transcript.
+        /// What the master did: a capture (VCD, .sr, CSV; decoded by `tbgen decode <protocol>`) or a JSON transcript.
         capture: PathBuf,
         /// Longest time between the starts of two transactions, µs (a late frame is a difference).
         #[arg(long)]
         timeout_us: Option<f64>,
-        /// Options of the protocol's decoder for a VCD capture (port names, bits), after `--`.
+        /// Options of the protocol's decoder for a capture (port names, --map, bits), after `--`.
         #[arg(last = true)]
         decoder_args: Vec<String>,
     },
@@ -265,7 +290,27 @@ fn run(command: Command) -> Result<(), Error> {
                 );
             }
         }
-        Command::Bench { scenario } => bench(&scenario)?,
+        Command::GtkwaveFilter {
+            protocol,
+            decoder_args,
+        } => tbgen::gtkwave_filter::serve(
+            &protocol,
+            &decoder_args,
+            std::io::stdin().lock(),
+            std::io::stdout().lock(),
+        )?,
+        Command::Bench {
+            scenario,
+            capture,
+            samples,
+        } => match (scenario, capture) {
+            (_, Some(format)) => out!(
+                "{}",
+                tbgen::bench::capture::report(&format, samples.unwrap_or_default())?
+            ),
+            (Some(scenario), None) => bench(&scenario)?,
+            (None, None) => unreachable!("clap requires a scenario or --capture"),
+        },
         Command::Timing(call) => out!("{}", call.run()?),
         Command::Decode(call) => outln!("{}", call.run()?),
         Command::Fields { protocol, all } => match protocol {

@@ -210,8 +210,8 @@ impl Entry {
             transaction_signals: P::TRANSACTION_SIGNALS,
             sigrok_decoder: P::SIGROK_DECODER,
             sigrok_minimum: P::SIGROK_MINIMUM,
-            decode_command: P::decode_command,
-            decode: P::decode,
+            decode_command: decode_command_of::<P>,
+            decode: decode_of::<P>,
             timing_command: P::timing_command,
             timing: P::timing,
             wave_names: P::wave_names,
@@ -219,6 +219,18 @@ impl Entry {
             config_type: std::any::type_name::<P>,
         }
     }
+}
+
+/// Protocol `P`'s decode command with what every decoder shares: `--map`,
+/// which names a logic analyser's channel for each line.
+fn decode_command_of<P: Protocol>() -> Option<Command> {
+    P::decode_command().map(crate::capture::lines::with_map_option)
+}
+
+/// Protocol `P`'s decoder, with the `--map` of `args` in force while it
+/// reads its capture.
+fn decode_of<P: Protocol>(args: &ArgMatches) -> Result<String> {
+    crate::capture::lines::scoped(args, || P::decode(args))
 }
 
 /// The registered protocol whose table is `table`.

@@ -96,6 +96,13 @@ pub fn frames(line: &Signal, bit_ps: u64, sample_point: f64) -> Vec<Decoded> {
             continue;
         }
         let bits = sampled(line, t, bit_ps, sample_point);
+        // A falling edge whose bit is recessive at its sample point is a
+        // glitch, not a start of frame: a bit's level is the bus level at
+        // its sample point (Bosch CAN 2.0, bit timing), so a node that
+        // synchronised on the edge reads no dominant SOF and stays idle.
+        if bits[0] {
+            continue;
+        }
         let d = match super::frame::parse(&bits) {
             Ok(p) => {
                 after = t + p.len as u64 * bit_ps;

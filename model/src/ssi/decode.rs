@@ -61,6 +61,15 @@ fn value(bits: &str, gray: bool) -> u64 {
 /// The bursts of `clk` as `(first falling edge, last edge, bits read)`, ps.
 pub fn bursts(clk: &Signal, data: &Signal) -> Vec<(u64, u64, String)> {
     let edges = clk.edges();
+    // The clock's typical half period, the median gap between its edges: a
+    // burst's own second gap is its half period, unless the capture opened
+    // inside a read and the burst has no second low phase (then that gap
+    // is the idle line, and every later read would join the burst).
+    let mut gaps: Vec<u64> = edges.windows(2).map(|w| w[1].0 - w[0].0).collect();
+    let typical = match gaps.len() {
+        0 => u64::MAX,
+        n => *gaps.select_nth_unstable((n - 1) / 2).1,
+    };
     let mut reads = Vec::new();
     let mut i = 0;
     while i < edges.len() {
@@ -75,7 +84,7 @@ pub fn bursts(clk: &Signal, data: &Signal) -> Vec<(u64, u64, String)> {
         let mut half: Option<u64> = None;
         while j < edges.len() {
             let gap = edges[j].0 - edges[j - 1].0;
-            if j > i + 1 && gap > 3 * *half.get_or_insert(gap) {
+            if j > i + 1 && gap > 3 * *half.get_or_insert(gap.min(typical)) {
                 break;
             }
             j += 1;
