@@ -1,0 +1,47 @@
+-- biss_monitor: a pin-level monitor and protocol checker of a BiSS-C master for a VHDL
+-- testbench, the twin of hdl/emu/biss_monitor.v (same generics, ports and
+-- behaviour; read its header): the encoder-tb library through emu_pkg.
+--
+-- Queries by instance label (emu_pkg): count("u_mon"), last_value("u_mon", slave),
+-- last_status("u_mon", slave, "crc_ok"), violations("u_mon").
+
+library ieee;
+use ieee.std_logic_1164.all;
+
+use work.emu_pkg.all;
+
+entity biss_monitor is
+    generic (
+        CONFIG : string := "";
+        PLUSARG : string := "biss_monitor_config";
+        F_MON_HZ : natural := 80000000;
+        TRANSCRIPT : string := "";
+        TRANSCRIPT_PLUSARG : string := "biss_monitor_transcript";
+        STOP_ON_X : integer := 1;
+        STOP_ON_VIOLATION : integer := 0
+    );
+    port (
+        /* Monitor clock */
+        i_mon_clk : in std_logic;
+
+        /* BiSS-C line at the master */
+        i_ma : in std_logic;
+        i_slo : in std_logic
+    );
+end entity;
+
+architecture emu of biss_monitor is
+    constant PATH : string := biss_monitor'path_name;
+    constant HANDLE : integer := emu_instance("biss_monitor", CONFIG, PLUSARG, TRANSCRIPT, TRANSCRIPT_PLUSARG, F_MON_HZ, PATH);
+begin
+    process (i_mon_clk)
+        -- Each input's level before reset ends: MA and SLO high
+        variable pins : emu_pins_t := emu_pins_init("00000011");
+        variable output : std_ulogic_vector(1 downto 0);
+    begin
+        if rising_edge(i_mon_clk) then
+            emu_clock(HANDLE, PATH, "monitor", "i_ma, i_slo", "000000" & i_slo & i_ma, -1, -1,
+                      STOP_ON_X, STOP_ON_VIOLATION, pins, output);
+        end if;
+    end process;
+end architecture;

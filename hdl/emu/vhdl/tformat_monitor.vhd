@@ -1,0 +1,48 @@
+-- tformat_monitor: a pin-level monitor and protocol checker of a T-format host for a VHDL
+-- testbench, the twin of hdl/emu/tformat_monitor.v (same generics, ports and
+-- behaviour; read its header): the encoder-tb library through emu_pkg.
+--
+-- Queries by instance label (emu_pkg): count("u_mon"), last_value("u_mon", 0) (abm << 17 | abs),
+-- last_status("u_mon", 0, "crc"), violations("u_mon").
+
+library ieee;
+use ieee.std_logic_1164.all;
+
+use work.emu_pkg.all;
+
+entity tformat_monitor is
+    generic (
+        CONFIG : string := "";
+        PLUSARG : string := "tformat_monitor_config";
+        F_MON_HZ : natural := 80000000;
+        TRANSCRIPT : string := "";
+        TRANSCRIPT_PLUSARG : string := "tformat_monitor_transcript";
+        STOP_ON_X : integer := 1;
+        STOP_ON_VIOLATION : integer := 0
+    );
+    port (
+        /* Monitor clock */
+        i_mon_clk : in std_logic;
+
+        /* The host's transceiver: D, DE, R */
+        i_tf_data : in std_logic;
+        i_tf_data_oe : in std_logic;
+        i_tf_rx : in std_logic
+    );
+end entity;
+
+architecture emu of tformat_monitor is
+    constant PATH : string := tformat_monitor'path_name;
+    constant HANDLE : integer := emu_instance("tformat_monitor", CONFIG, PLUSARG, TRANSCRIPT, TRANSCRIPT_PLUSARG, F_MON_HZ, PATH);
+begin
+    process (i_mon_clk)
+        -- Each input's level before reset ends: R and D high, driver off
+        variable pins : emu_pins_t := emu_pins_init("00000011");
+        variable output : std_ulogic_vector(1 downto 0);
+    begin
+        if rising_edge(i_mon_clk) then
+            emu_clock(HANDLE, PATH, "monitor", "i_tf_rx, i_tf_data, i_tf_data_oe", "00000" & i_tf_data_oe & i_tf_data & i_tf_rx, -1, -1,
+                      STOP_ON_X, STOP_ON_VIOLATION, pins, output);
+        end if;
+    end process;
+end architecture;
