@@ -149,6 +149,13 @@ pub const STAGES: &[Stage] = &[
         what: "every rule probe in Icarus, Verilator and cocotb, judged as the library's run is",
     },
     Stage {
+        name: "vhdl",
+        // The VHDL masters in GHDL, each 1000 reads then a planted misread.
+        argv: &["scripts/vhdl_examples.sh"],
+        after: &["build"],
+        what: "the VHDL masters of examples/*_vhdl in GHDL with the VHDL emulators and monitors",
+    },
+    Stage {
         name: "fmt",
         argv: &["cargo", "fmt", "--all", "--", "--check"],
         after: &[],
