@@ -41,12 +41,15 @@ package body emu_random_pkg is
             end if;
         end procedure;
 
+        -- Returned as (31 downto 0), not as the state's slice (63 downto 32).
         impure function random32 return unsigned is
+            variable r : unsigned(31 downto 0);
         begin
             state := state xor shift_left(state, 13);
             state := state xor shift_right(state, 7);
             state := state xor shift_left(state, 17);
-            return state(63 downto 32);
+            r := state(63 downto 32);
+            return r;
         end function;
 
         impure function random64 return unsigned is
