@@ -24,6 +24,35 @@ else
     failed=1
 fi
 
+# Bad input stops the run at time 0 with the file, the field and the fix; X
+# on an input is reported with its time and pin: tb_emu_errors, one case a
+# run, each run's exit status and the message it must print.
+export LD_LIBRARY_PATH=$root/target/release${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
+vhdl=$root/hdl/emu/vhdl
+(cd "$tmp" && ghdl -a --std=08 "$vhdl/emu_ffi.vhd" "$vhdl/emu_pkg.vhd" "$vhdl/ssi_encoder_emu.vhd" "$tb/tb_emu_errors.vhd" \
+    && ghdl -e --std=08 tb_emu_errors)
+printf '[encoder]\nbits = 12\n' > "$tmp/ok.toml"
+printf '[encoder]\nbitz = 12\n' > "$tmp/bad.toml"
+bad_input() {   # expected exit status ("fail" or "pass"), the text the output must hold, ghdl -r arguments...
+    local want=$1 text=$2 out rc=0
+    shift 2
+    out=$(cd "$tmp" && ghdl -r --std=08 tb_emu_errors "$@" 2>&1) || rc=1
+    if { [ "$want" = fail ] && [ $rc -eq 0 ]; } || { [ "$want" = pass ] && [ $rc -ne 0 ]; } || ! grep -qF -- "$text" <<<"$out"; then
+        echo "$out"
+        echo "vhdl: FAIL bad input ($*): wanted a $want with '$text'"
+        failed=1
+    else
+        echo "vhdl: bad input ($*): $(grep -m1 -oF -- "$text" <<<"$out")"
+    fi
+}
+bad_input fail "@0ms:(assertion failure): :tb_emu_errors:u_emu: opening the ssi emulator library failed: no configuration file"
+bad_input fail "@0ms:(assertion failure): :tb_emu_errors:u_emu: opening the ssi emulator library failed: nope.toml: cannot read" +ssi_emu_config=nope.toml
+bad_input fail 'bad.toml:1: unknown field `bitz`, expected one of `bits`' +ssi_emu_config=bad.toml
+bad_input fail "'X' on emulator input i_ssi_clk at 1062.5 ns, emulator cycle 8 (not read as data; STOP_ON_X = 1)" +ssi_emu_config=ok.toml -gX_AT_NS=1000
+bad_input pass "'X' on emulator input i_ssi_clk at 1062.5 ns, emulator cycle 8 (held at '1', not read as data)" +ssi_emu_config=ok.toml -gX_AT_NS=1000 -gSTOP_ON_X=0
+bad_input fail "no emulator or monitor instance is named u_enc" +ssi_emu_config=ok.toml -gCALL_NAME=u_enc
+bad_input fail "cannot find in top entity generic 'x_at_nz'" +ssi_emu_config=ok.toml -gX_AT_NZ=1
+
 for dir in "$root"/examples/*_vhdl; do
     name=$(basename "$dir")
     if out=$(make -s -C "$dir" 2>&1) && grep -q '^.*PASS ' <<<"$out"; then

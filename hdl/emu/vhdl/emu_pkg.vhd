@@ -106,6 +106,15 @@ package body emu_pkg is
         return r;
     end function;
 
+    -- An instance's path without the colon GHDL ends it with.
+    function instance_name(path : string) return string is
+    begin
+        if path'length > 1 and path(path'high) = ':' then
+            return path(path'low to path'high - 1);
+        end if;
+        return path;
+    end function;
+
     function from_c(c : emu_c_string) return string is
     begin
         for i in c'range loop
@@ -308,12 +317,12 @@ package body emu_pkg is
     begin
         handle := emu_open(c_str(kind), c_str(config_path), int64(f_hz));
         assert handle > 0
-            report path & ": opening the " & kind & " emulator library failed: " & last_error
+            report instance_name(path) & ": opening the " & kind & " emulator library failed: " & last_error
                    & " (the generic CONFIG, or the plusarg +" & plusarg & "=<file>)"
             severity failure;
         if handle > 0 and transcript_path /= "" then
             assert emu_transcript_at_exit(handle, c_str(transcript_path)) = 0
-                report path & ": transcript " & transcript_path & ": " & last_error severity failure;
+                report instance_name(path) & ": transcript " & transcript_path & ": " & last_error severity failure;
         end if;
         registry.add(path, handle);
         return handle;
@@ -349,11 +358,11 @@ package body emu_pkg is
         loop
             emu_take_violation_copy(handle, buf, buf'length, n);
             exit when n <= 0;
-            report "PROTOCOL VIOLATION by the master on " & path & " " & from_c(buf) severity warning;
+            report "PROTOCOL VIOLATION by the master on " & instance_name(path) & " " & from_c(buf) severity warning;
             shown := shown + 1;
         end loop;
         assert stop = 0 or shown = 0
-            report path & ": the master broke a timing rule of the protocol (STOP_ON_VIOLATION = 1)" severity failure;
+            report instance_name(path) & ": the master broke a timing rule of the protocol (STOP_ON_VIOLATION = 1)" severity failure;
     end procedure;
 
     procedure emu_clock(handle : integer; path, what, names : string;
@@ -379,8 +388,8 @@ package body emu_pkg is
                 -- warning, never a protocol report.
                 pins.level(k) := '0';
                 if pins.known(k) = '1' and pins.reported(k) = '0' then
-                    report path & ": " & std_ulogic'image(sampled(k)) & " on the driver enable " & pin_name(names, k)
-                           & " at " & time'image(now) & ", " & what & " cycle " & int64'image(pins.cycle)
+                    report instance_name(path) & ": " & std_ulogic'image(sampled(k)) & " on the driver enable " & pin_name(names, k)
+                           & " at " & to_string(now, ns) & ", " & what & " cycle " & int64'image(pins.cycle)
                            & ": read as 0, the master not driving" severity warning;
                 end if;
                 pins.reported(k) := '1';
@@ -390,12 +399,12 @@ package body emu_pkg is
             elsif pins.known(k) = '1' and pins.reported(k) = '0' then
                 pins.reported(k) := '1';
                 if stop_on_x /= 0 then
-                    report path & ": " & std_ulogic'image(sampled(k)) & " on " & what & " input " & pin_name(names, k)
-                           & " at " & time'image(now) & ", " & what & " cycle " & int64'image(pins.cycle)
+                    report instance_name(path) & ": " & std_ulogic'image(sampled(k)) & " on " & what & " input " & pin_name(names, k)
+                           & " at " & to_string(now, ns) & ", " & what & " cycle " & int64'image(pins.cycle)
                            & " (not read as data; STOP_ON_X = 1)" severity failure;
                 else
-                    report path & ": " & std_ulogic'image(sampled(k)) & " on " & what & " input " & pin_name(names, k)
-                           & " at " & time'image(now) & ", " & what & " cycle " & int64'image(pins.cycle)
+                    report instance_name(path) & ": " & std_ulogic'image(sampled(k)) & " on " & what & " input " & pin_name(names, k)
+                           & " at " & to_string(now, ns) & ", " & what & " cycle " & int64'image(pins.cycle)
                            & " (held at " & std_ulogic'image(pins.level(k)) & ", not read as data)" severity error;
                 end if;
             end if;
@@ -407,7 +416,7 @@ package body emu_pkg is
             end if;
         end loop;
         out_word := emu_step(handle, word);
-        assert out_word >= 0 report path & ": step: " & last_error severity failure;
+        assert out_word >= 0 report instance_name(path) & ": step: " & last_error severity failure;
         pins.cycle := pins.cycle + 1;
         if (out_word / 128) mod 2 = 1 then
             show_violations(handle, path, stop_on_violation);
