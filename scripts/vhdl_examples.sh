@@ -53,6 +53,16 @@ bad_input pass "'X' on emulator input i_ssi_clk at 1062.5 ns, emulator cycle 8 (
 bad_input fail "no emulator or monitor instance is named u_enc" +ssi_emu_config=ok.toml -gCALL_NAME=u_enc
 bad_input fail "cannot find in top entity generic 'x_at_nz'" +ssi_emu_config=ok.toml -gX_AT_NZ=1
 
+# Every emulator and monitor opens its kind and steps on idle lines.
+if out=$(cd "$tmp" && ghdl -a --std=08 "$vhdl"/*_emu.vhd "$vhdl"/*_monitor.vhd "$tb/tb_emu_all.vhd" \
+        && ghdl --elab-run --std=08 tb_emu_all -gCONFIGS="$root/hdl/cocotb/configs" 2>&1) && grep -q 'PASS tb_emu_all' <<<"$out"; then
+    echo "vhdl: $(grep -o 'PASS tb_emu_all.*' <<<"$out")"
+else
+    echo "$out"
+    echo "vhdl: FAIL tb_emu_all"
+    failed=1
+fi
+
 for dir in "$root"/examples/*_vhdl; do
     name=$(basename "$dir")
     if out=$(make -s -C "$dir" 2>&1) && grep -q '^.*PASS ' <<<"$out"; then

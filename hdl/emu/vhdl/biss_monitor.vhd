@@ -37,7 +37,7 @@ begin
     process (i_mon_clk)
         -- Each input's level before reset ends: MA and SLO high
         variable pins : emu_pins_t := emu_pins_init("00000011");
-        variable output : std_ulogic_vector(1 downto 0);
+        variable output : std_ulogic_vector(2 downto 0);
     begin
         if rising_edge(i_mon_clk) then
             emu_clock(HANDLE, PATH, "monitor", "i_ma, i_slo", "000000" & i_slo & i_ma, -1, -1,

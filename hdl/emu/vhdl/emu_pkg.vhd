@@ -68,7 +68,7 @@ package emu_pkg is
     -- reported with time and pin and never read as data: `stop_on_x` /= 0
     -- stops the run, else the last level holds; H and L read as 1 and 0),
     -- steps the library once and returns its output pins (bit 0 data, bit 1
-    -- driver enable); prints the master's violations (`stop_on_violation`
+    -- driver enable, bit 2 a half-duplex line's resolved level); prints the master's violations (`stop_on_violation`
     -- /= 0 stops the run). `oe_pin` >= 0 names a driver-enable input whose
     -- unknown level reads as 0, the master not driving (one warning), and
     -- `data_pin` the data of that driver, not read while it is unknown.
@@ -76,7 +76,7 @@ package emu_pkg is
     procedure emu_clock(handle : integer; path, what, names : string;
                         sampled : std_ulogic_vector(7 downto 0); oe_pin, data_pin : integer;
                         stop_on_x, stop_on_violation : integer;
-                        pins : inout emu_pins_t; output : out std_ulogic_vector(1 downto 0));
+                        pins : inout emu_pins_t; output : out std_ulogic_vector(2 downto 0));
 
 end package;
 
@@ -368,7 +368,7 @@ package body emu_pkg is
     procedure emu_clock(handle : integer; path, what, names : string;
                         sampled : std_ulogic_vector(7 downto 0); oe_pin, data_pin : integer;
                         stop_on_x, stop_on_violation : integer;
-                        pins : inout emu_pins_t; output : out std_ulogic_vector(1 downto 0)) is
+                        pins : inout emu_pins_t; output : out std_ulogic_vector(2 downto 0)) is
         variable v : std_ulogic;
         variable word : integer := 0;
         variable out_word : integer;
@@ -423,6 +423,7 @@ package body emu_pkg is
         end if;
         if out_word mod 2 = 1 then output(0) := '1'; else output(0) := '0'; end if;
         if (out_word / 2) mod 2 = 1 then output(1) := '1'; else output(1) := '0'; end if;
+        if (out_word / 4) mod 2 = 1 then output(2) := '1'; else output(2) := '0'; end if;
     end procedure;
 
 end package body;

@@ -42,7 +42,7 @@ begin
     process (i_emu_clk)
         -- Each input's level before reset ends: clock high, data high, driver off
         variable pins : emu_pins_t := emu_pins_init("00000011");
-        variable output : std_ulogic_vector(1 downto 0);
+        variable output : std_ulogic_vector(2 downto 0);
     begin
         if rising_edge(i_emu_clk) then
             emu_clock(HANDLE, PATH, "emulator", "i_endat_clk, i_endat_data, i_endat_data_oe", "00000" & i_endat_data_oe & i_endat_data & i_endat_clk, 2, 1,

@@ -44,7 +44,7 @@ begin
     process (i_mon_clk)
         -- Each input's level before reset ends: clock high, data high, driver off, receiver high
         variable pins : emu_pins_t := emu_pins_init("00001011");
-        variable output : std_ulogic_vector(1 downto 0);
+        variable output : std_ulogic_vector(2 downto 0);
     begin
         if rising_edge(i_mon_clk) then
             emu_clock(HANDLE, PATH, "monitor", "i_endat_clk, i_endat_data, i_endat_data_oe, i_endat_data_in", "0000" & i_endat_data_in & i_endat_data_oe & mon_data & i_endat_clk, 2, 1,

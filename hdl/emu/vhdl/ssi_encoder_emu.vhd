@@ -38,7 +38,7 @@ begin
     process (i_emu_clk)
         -- The clock idle high before reset ends.
         variable pins : emu_pins_t := emu_pins_init("00000001");
-        variable output : std_ulogic_vector(1 downto 0);
+        variable output : std_ulogic_vector(2 downto 0);
     begin
         if rising_edge(i_emu_clk) then
             emu_clock(HANDLE, PATH, "emulator", "i_ssi_clk", "0000000" & i_ssi_clk, -1, -1,

@@ -36,7 +36,7 @@ architecture emu of ssi_monitor is
 begin
     process (i_mon_clk)
         variable pins : emu_pins_t := emu_pins_init("00000011");
-        variable output : std_ulogic_vector(1 downto 0);
+        variable output : std_ulogic_vector(2 downto 0);
     begin
         if rising_edge(i_mon_clk) then
             emu_clock(HANDLE, PATH, "monitor", "i_ssi_clk, i_ssi_data", "000000" & i_ssi_data & i_ssi_clk, -1, -1,

@@ -39,7 +39,7 @@ begin
     process (i_emu_clk)
         -- Each input's level before reset ends: no clock (tied high), data high, driver off
         variable pins : emu_pins_t := emu_pins_init("00000011");
-        variable output : std_ulogic_vector(1 downto 0);
+        variable output : std_ulogic_vector(2 downto 0);
     begin
         if rising_edge(i_emu_clk) then
             emu_clock(HANDLE, PATH, "emulator", "(none), i_tf_data, i_tf_data_oe", "00000" & i_tf_data_oe & i_tf_data & '1', 2, 1,

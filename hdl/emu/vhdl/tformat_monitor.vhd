@@ -38,7 +38,7 @@ begin
     process (i_mon_clk)
         -- Each input's level before reset ends: R and D high, driver off
         variable pins : emu_pins_t := emu_pins_init("00000011");
-        variable output : std_ulogic_vector(1 downto 0);
+        variable output : std_ulogic_vector(2 downto 0);
     begin
         if rising_edge(i_mon_clk) then
             emu_clock(HANDLE, PATH, "monitor", "i_tf_rx, i_tf_data, i_tf_data_oe", "00000" & i_tf_data_oe & i_tf_data & i_tf_rx, -1, -1,

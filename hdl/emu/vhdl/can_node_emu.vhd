@@ -1,0 +1,48 @@
+-- can_node_emu: CAN nodes on a bus with the master for a VHDL
+-- testbench, the twin of hdl/emu/can_node_emu.v (same generics, ports and
+-- behaviour; read its header): the encoder-tb model through emu_pkg.
+--
+-- Controls by instance label (emu_pkg): set_position("u_emu", device, p), set_status,
+-- schedule_fault("u_emu", "[[send]] ..."), count("u_emu"), last_value("u_emu", node + 16 * field), last_status, violations("u_emu").
+-- CONFIG "" reads the plusarg +<PLUSARG>=<file>.
+
+library ieee;
+use ieee.std_logic_1164.all;
+
+use work.emu_pkg.all;
+
+entity can_node_emu is
+    generic (
+        CONFIG : string := "";
+        PLUSARG : string := "can_emu_config";
+        F_EMU_HZ : natural := 10000000;
+        TRANSCRIPT : string := "";
+        STOP_ON_X : integer := 1;
+        STOP_ON_VIOLATION : integer := 0
+    );
+    port (
+        /* Emulator clock */
+        i_emu_clk : in std_logic;
+
+        /* The master's transceiver pins */
+        i_can_tx : in std_logic;
+        o_can_rx : out std_logic := '1'
+    );
+end entity;
+
+architecture emu of can_node_emu is
+    constant PATH : string := can_node_emu'path_name;
+    constant HANDLE : integer := emu_instance("can", CONFIG, PLUSARG, TRANSCRIPT, "", F_EMU_HZ, PATH);
+begin
+    process (i_emu_clk)
+        -- Each input's level before reset ends: TXD recessive
+        variable pins : emu_pins_t := emu_pins_init("00001011");
+        variable output : std_ulogic_vector(2 downto 0);
+    begin
+        if rising_edge(i_emu_clk) then
+            emu_clock(HANDLE, PATH, "emulator", "(none), i_can_tx, (none), (none)", "000010" & i_can_tx & '1', -1, -1,
+                      STOP_ON_X, STOP_ON_VIOLATION, pins, output);
+            o_can_rx <= output(0);
+        end if;
+    end process;
+end architecture;
