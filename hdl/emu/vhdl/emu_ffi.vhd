@@ -23,9 +23,7 @@
 --                (hdl/emu/emu.mk's RUN_ENV; scripts/emu_lib.sh prints the
 --                directory as EMU_LIB_DIR). GHDL's llvm and gcc backends
 --                ignore the name and link instead: -Wl,-L<dir> -Wl,-lcosim.
---   For NVC (VHPI's foreign subprograms): the same C functions and
---   argument types; its attribute reads "VHPIDIRECT <function>" with the
---   library loaded by --load, and an array argument is passed the same way.
+--   NVC: docs/cosim.md, "VHDL in GHDL".
 --
 -- Each function's contract (return values, errors) is its comment in
 -- cosim/src/ffi.rs. The bodies below only run when the binding failed.
