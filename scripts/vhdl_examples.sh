@@ -2,7 +2,9 @@
 # vhdl_examples.sh: every VHDL master in examples/*_vhdl/ closed-loop in GHDL
 # against its emulator with its monitor (`make`: 1000 random reads, must
 # pass), then with a planted misread (`make FLIP_BIT=3`: the bench flips bit
-# 3 of read 500, and must fail there). make test's `vhdl` stage. First,
+# 3 of read 500, and must fail there), and from cocotb on GHDL where the
+# example has a cocotb test (`make cocotb`, the same two ways). make test's
+# `vhdl` stage. First,
 # emu_random_pkg.vhd must draw what emu_random.vh draws (both print the same
 # draws: GHDL's and Icarus's outputs compared).
 set -euo pipefail
@@ -81,6 +83,31 @@ for dir in "$root"/examples/*_vhdl; do
     else
         echo "$out"
         echo "vhdl: FAIL $name: the planted misread failed elsewhere than at read 500"
+        failed=1
+    fi
+done
+
+# cocotb on GHDL: each example with a cocotb test (`make cocotb`) passes, and
+# fails with a planted misread (COSIM_FLIP_BIT=3).
+for test in "$root"/examples/*_vhdl/test_*.py; do
+    dir=$(dirname "$test")
+    name=$(basename "$dir")
+    if out=$(make -s -C "$dir" cocotb 2>&1) && grep -q '^cocotb: pass' <<<"$out"; then
+        echo "vhdl: $name: $(grep -o 'cocotb: .* passed' <<<"$out")"
+    else
+        echo "$out"
+        echo "vhdl: FAIL $name: cocotb on GHDL did not pass"
+        failed=1
+    fi
+    if out=$(COSIM_FLIP_BIT=3 make -s -C "$dir" cocotb 2>&1); then
+        echo "$out"
+        echo "vhdl: FAIL $name: a planted misread (COSIM_FLIP_BIT=3) passed cocotb"
+        failed=1
+    elif grep -q 'AssertionError: read 0: reader' <<<"$out"; then
+        echo "vhdl: $name: cocotb on GHDL fails on the planted misread, as it must"
+    else
+        echo "$out"
+        echo "vhdl: FAIL $name: the planted misread failed cocotb elsewhere than at read 0"
         failed=1
     fi
 done
