@@ -65,6 +65,24 @@ else
     failed=1
 fi
 
+# The FuseSoC cores of the VHDL emulators (fusesoc/emu_vhdl/, written by
+# scripts/fusesoc_cores.py, whose output the fusesoc stage compares): each
+# one's `lint` target analyses, elaborates and opens it in GHDL.
+n=0
+for core in "$root"/fusesoc/emu_vhdl/*.core; do
+    name=$(basename "$core" .core)
+    grep -q '^  lint:' "$core" || continue
+    if out=$(cd "$root" && .venv/bin/fusesoc --cores-root fusesoc run --build-root "$tmp/fusesoc/$name" \
+            --target lint "encoder-tb:emu-vhdl:$name" 2>&1); then
+        n=$((n + 1))
+    else
+        echo "$out" | tail -n 15
+        echo "vhdl: FAIL fusesoc run --target lint encoder-tb:emu-vhdl:$name"
+        failed=1
+    fi
+done
+echo "vhdl: $n FuseSoC cores of fusesoc/emu_vhdl/ pass their lint target in GHDL"
+
 for dir in "$root"/examples/*_vhdl; do
     name=$(basename "$dir")
     if out=$(make -s -C "$dir" 2>&1) && grep -q '^.*PASS ' <<<"$out"; then
