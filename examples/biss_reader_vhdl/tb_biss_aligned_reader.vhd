@@ -96,7 +96,8 @@ begin
             report "the reader broke " & integer'image(violations("u_emu")) & " + " & integer'image(violations("u_mon"))
                    & " timing rule(s) of BiSS-C (PROTOCOL VIOLATION lines above)" severity failure;
         report "PASS biss_aligned_reader: " & integer'image(READS)
-               & " frames equal to what the emulator sent and the monitor decoded";
+               & " frames equal to what the emulator sent and the monitor decoded, "
+               & integer'image(now / PERIOD) & " cycles";
         std.env.finish;
     end process;
 end architecture;

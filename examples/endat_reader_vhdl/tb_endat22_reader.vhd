@@ -102,7 +102,8 @@ begin
             report "the reader broke " & integer'image(violations("u_emu")) & " + " & integer'image(violations("u_mon"))
                    & " timing rule(s) of EnDat (PROTOCOL VIOLATION lines above)" severity failure;
         report "PASS endat22_reader: " & integer'image(READS)
-               & " reads equal to what the emulator sent and the monitor decoded";
+               & " reads equal to what the emulator sent and the monitor decoded, "
+               & integer'image(now / PERIOD) & " cycles";
         std.env.finish;
     end process;
 end architecture;

@@ -86,7 +86,8 @@ begin
         assert violations("u_emu") = 0 and violations("u_mon") = 0
             report "the reader broke " & integer'image(violations("u_emu")) & " + " & integer'image(violations("u_mon"))
                    & " timing rule(s) of SSI (PROTOCOL VIOLATION lines above)" severity failure;
-        report "PASS ssi_gray_reader: " & integer'image(READS) & " reads equal to what the emulator sent and the monitor decoded";
+        report "PASS ssi_gray_reader: " & integer'image(READS) & " reads equal to what the emulator sent and the monitor decoded, "
+               & integer'image(now / PERIOD) & " cycles";
         std.env.finish;
     end process;
 end architecture;
