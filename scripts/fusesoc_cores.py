@@ -18,9 +18,10 @@ Each core file has
 And fusesoc/emu_vhdl/<entity>.core for every VHDL emulator and monitor of
 hdl/emu/vhdl/ (encoder-tb:emu-vhdl:<entity>), each depending on
 encoder-tb:emu-vhdl:emu_vhdl_pkg (the packages emu_ffi, emu_pkg and
-emu_random_pkg), with a target `lint`: GHDL analyses and elaborates the
-entity (VHDL-2008; libcosim.so's directory on LD_LIBRARY_PATH, as emu_ffi
-needs: scripts/vhdl_examples.sh runs it).
+emu_random_pkg, and the wrappers' shared body emu_core), with a target
+`lint`: GHDL analyses, elaborates and opens the entity (VHDL-2008;
+libcosim.so's directory on LD_LIBRARY_PATH, as emu_ffi needs:
+scripts/vhdl_examples.sh runs it).
 
 The files are generated, not edited: scripts/check_fusesoc.sh (make test)
 regenerates them and fails when the committed ones differ.
@@ -143,14 +144,15 @@ def core_file(module, modules, rel):
     return "\n".join(out) + "\n"
 
 
-VHDL_PACKAGES = ["emu_ffi", "emu_pkg", "emu_random_pkg"]
+# The files every VHDL wrapper needs: the packages and the shared body.
+VHDL_PACKAGES = ["emu_ffi", "emu_pkg", "emu_random_pkg", "emu_core"]
 
 
 def vhdl_core_file(name, rel):
     """The core of one VHDL emulator or monitor (or, for emu_vhdl_pkg, of the packages)."""
     package = name == "emu_vhdl_pkg"
     files = VHDL_PACKAGES if package else [name]
-    what = "the packages of encoder-tb's VHDL emulators (hdl/emu/vhdl/) - the library's C ABI, the controls, random numbers" \
+    what = "the packages of encoder-tb's VHDL emulators (hdl/emu/vhdl/) - the library's C ABI, the controls, random numbers, the wrappers' shared body" \
         if package else f"{name} from encoder-tb (hdl/emu/vhdl/{name}.vhd), the twin of hdl/emu/{name}.v"
     out = [
         "CAPI=2:",

@@ -31,7 +31,7 @@ fi
 # run, each run's exit status and the message it must print.
 export LD_LIBRARY_PATH=$root/target/release${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
 vhdl=$root/hdl/emu/vhdl
-(cd "$tmp" && ghdl -a --std=08 "$vhdl/emu_ffi.vhd" "$vhdl/emu_pkg.vhd" "$vhdl/ssi_encoder_emu.vhd" "$tb/tb_emu_errors.vhd" \
+(cd "$tmp" && ghdl -a --std=08 "$vhdl/emu_ffi.vhd" "$vhdl/emu_pkg.vhd" "$vhdl/emu_core.vhd" "$vhdl/ssi_encoder_emu.vhd" "$tb/tb_emu_errors.vhd" \
     && ghdl -e --std=08 tb_emu_errors)
 printf '[encoder]\nbits = 12\n' > "$tmp/ok.toml"
 printf '[encoder]\nbitz = 12\n' > "$tmp/bad.toml"

@@ -31,17 +31,11 @@ entity biss_monitor is
 end entity;
 
 architecture emu of biss_monitor is
-    constant PATH : string := biss_monitor'path_name;
-    constant HANDLE : integer := emu_instance("biss_monitor", CONFIG, PLUSARG, TRANSCRIPT, TRANSCRIPT_PLUSARG, F_MON_HZ, PATH);
 begin
-    process (i_mon_clk)
-        -- Each input's level before reset ends: MA and SLO high
-        variable pins : emu_pins_t := emu_pins_init("00000011");
-        variable output : std_ulogic_vector(2 downto 0);
-    begin
-        if rising_edge(i_mon_clk) then
-            emu_clock(HANDLE, PATH, "monitor", "i_ma, i_slo", "000000" & i_slo & i_ma, -1, -1,
-                      STOP_ON_X, STOP_ON_VIOLATION, pins, output);
-        end if;
-    end process;
+    -- Each input's level before reset ends: MA and SLO high
+    core : entity work.emu_core
+        generic map (KIND => "biss_monitor", CONFIG => CONFIG, PLUSARG => PLUSARG, F_HZ => F_MON_HZ, TRANSCRIPT => TRANSCRIPT,
+                     TRANSCRIPT_PLUSARG => TRANSCRIPT_PLUSARG, STOP_ON_X => STOP_ON_X, STOP_ON_VIOLATION => STOP_ON_VIOLATION,
+                     PATH => biss_monitor'path_name, WHAT => "monitor", PIN_NAMES => "i_ma, i_slo", IDLE => "00000011")
+        port map (i_clk => i_mon_clk, i_pins => "000000" & i_slo & i_ma);
 end architecture;

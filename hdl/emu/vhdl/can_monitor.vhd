@@ -31,17 +31,11 @@ entity can_monitor is
 end entity;
 
 architecture emu of can_monitor is
-    constant PATH : string := can_monitor'path_name;
-    constant HANDLE : integer := emu_instance("can_monitor", CONFIG, PLUSARG, TRANSCRIPT, TRANSCRIPT_PLUSARG, F_MON_HZ, PATH);
 begin
-    process (i_mon_clk)
-        -- Each input's level before reset ends: TXD and RXD recessive
-        variable pins : emu_pins_t := emu_pins_init("00000011");
-        variable output : std_ulogic_vector(2 downto 0);
-    begin
-        if rising_edge(i_mon_clk) then
-            emu_clock(HANDLE, PATH, "monitor", "i_can_rx, i_can_tx", "000000" & i_can_tx & i_can_rx, -1, -1,
-                      STOP_ON_X, STOP_ON_VIOLATION, pins, output);
-        end if;
-    end process;
+    -- Each input's level before reset ends: TXD and RXD recessive
+    core : entity work.emu_core
+        generic map (KIND => "can_monitor", CONFIG => CONFIG, PLUSARG => PLUSARG, F_HZ => F_MON_HZ, TRANSCRIPT => TRANSCRIPT,
+                     TRANSCRIPT_PLUSARG => TRANSCRIPT_PLUSARG, STOP_ON_X => STOP_ON_X, STOP_ON_VIOLATION => STOP_ON_VIOLATION,
+                     PATH => can_monitor'path_name, WHAT => "monitor", PIN_NAMES => "i_can_rx, i_can_tx", IDLE => "00000011")
+        port map (i_clk => i_mon_clk, i_pins => "000000" & i_can_tx & i_can_rx);
 end architecture;

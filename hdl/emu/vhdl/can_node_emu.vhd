@@ -31,18 +31,14 @@ entity can_node_emu is
 end entity;
 
 architecture emu of can_node_emu is
-    constant PATH : string := can_node_emu'path_name;
-    constant HANDLE : integer := emu_instance("can", CONFIG, PLUSARG, TRANSCRIPT, "", F_EMU_HZ, PATH);
+    signal answer : std_ulogic_vector(2 downto 0);
 begin
-    process (i_emu_clk)
-        -- Each input's level before reset ends: TXD recessive
-        variable pins : emu_pins_t := emu_pins_init("00001011");
-        variable output : std_ulogic_vector(2 downto 0);
-    begin
-        if rising_edge(i_emu_clk) then
-            emu_clock(HANDLE, PATH, "emulator", "(none), i_can_tx, (none), (none)", "000010" & i_can_tx & '1', -1, -1,
-                      STOP_ON_X, STOP_ON_VIOLATION, pins, output);
-            o_can_rx <= output(0);
-        end if;
-    end process;
+    -- Each input's level before reset ends: TXD recessive
+    core : entity work.emu_core
+        generic map (KIND => "can", CONFIG => CONFIG, PLUSARG => PLUSARG, F_HZ => F_EMU_HZ, TRANSCRIPT => TRANSCRIPT,
+                     TRANSCRIPT_PLUSARG => "", STOP_ON_X => STOP_ON_X, STOP_ON_VIOLATION => STOP_ON_VIOLATION,
+                     PATH => can_node_emu'path_name, WHAT => "emulator", PIN_NAMES => "(none), i_can_tx, (none), (none)", IDLE => "00001011")
+        port map (i_clk => i_emu_clk, i_pins => "000010" & i_can_tx & '1', o_pins => answer);
+
+    o_can_rx <= answer(0);
 end architecture;

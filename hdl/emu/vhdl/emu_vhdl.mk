@@ -14,7 +14,7 @@
 
 EMU_VHDL_DIR := $(EMU_HDL_DIR)/vhdl
 GHDL_FLAGS := --std=08 --workdir=build
-EMU_VHDL_SOURCES := $(EMU_VHDL_DIR)/emu_ffi.vhd $(EMU_VHDL_DIR)/emu_pkg.vhd $(EMU_VHDL_DIR)/emu_random_pkg.vhd \
+EMU_VHDL_SOURCES := $(EMU_VHDL_DIR)/emu_ffi.vhd $(EMU_VHDL_DIR)/emu_pkg.vhd $(EMU_VHDL_DIR)/emu_random_pkg.vhd $(EMU_VHDL_DIR)/emu_core.vhd \
     $(patsubst %,$(EMU_VHDL_DIR)/%.vhd,$(EMU_VHDL))
 
 build/$(TOP).stamp: $(EMU_VHDL_SOURCES) $(SOURCES) $(EMU_LIB_DIR)/libcosim.so

@@ -36,19 +36,16 @@ entity endat_encoder_emu is
 end entity;
 
 architecture emu of endat_encoder_emu is
-    constant PATH : string := endat_encoder_emu'path_name;
-    constant HANDLE : integer := emu_instance("endat", CONFIG, PLUSARG, TRANSCRIPT, "", F_EMU_HZ, PATH);
+    signal answer : std_ulogic_vector(2 downto 0);
 begin
-    process (i_emu_clk)
-        -- Each input's level before reset ends: clock high, data high, driver off
-        variable pins : emu_pins_t := emu_pins_init("00000011");
-        variable output : std_ulogic_vector(2 downto 0);
-    begin
-        if rising_edge(i_emu_clk) then
-            emu_clock(HANDLE, PATH, "emulator", "i_endat_clk, i_endat_data, i_endat_data_oe", "00000" & i_endat_data_oe & i_endat_data & i_endat_clk, 2, 1,
-                      STOP_ON_X, STOP_ON_VIOLATION, pins, output);
-            o_endat_data <= output(0);
-            o_endat_data_oe <= output(1);
-        end if;
-    end process;
+    -- Each input's level before reset ends: clock high, data high, driver off
+    core : entity work.emu_core
+        generic map (KIND => "endat", CONFIG => CONFIG, PLUSARG => PLUSARG, F_HZ => F_EMU_HZ, TRANSCRIPT => TRANSCRIPT,
+                     TRANSCRIPT_PLUSARG => "", STOP_ON_X => STOP_ON_X, STOP_ON_VIOLATION => STOP_ON_VIOLATION,
+                     PATH => endat_encoder_emu'path_name, WHAT => "emulator", PIN_NAMES => "i_endat_clk, i_endat_data, i_endat_data_oe", IDLE => "00000011",
+                     OE_PIN => 2, DATA_PIN => 1)
+        port map (i_clk => i_emu_clk, i_pins => "00000" & i_endat_data_oe & i_endat_data & i_endat_clk, o_pins => answer);
+
+    o_endat_data <= answer(0);
+    o_endat_data_oe <= answer(1);
 end architecture;

@@ -34,21 +34,16 @@ entity endat_monitor is
 end entity;
 
 architecture emu of endat_monitor is
-    constant PATH : string := endat_monitor'path_name;
-    constant HANDLE : integer := emu_instance("endat_monitor", CONFIG, PLUSARG, TRANSCRIPT, TRANSCRIPT_PLUSARG, F_MON_HZ, PATH);
     -- The data of a driver that is not on is not read (the line is R then).
     signal mon_data : std_logic;
 begin
     mon_data <= i_endat_data when i_endat_data_oe = '1' else '1';
 
-    process (i_mon_clk)
-        -- Each input's level before reset ends: clock high, data high, driver off, receiver high
-        variable pins : emu_pins_t := emu_pins_init("00001011");
-        variable output : std_ulogic_vector(2 downto 0);
-    begin
-        if rising_edge(i_mon_clk) then
-            emu_clock(HANDLE, PATH, "monitor", "i_endat_clk, i_endat_data, i_endat_data_oe, i_endat_data_in", "0000" & i_endat_data_in & i_endat_data_oe & mon_data & i_endat_clk, 2, 1,
-                      STOP_ON_X, STOP_ON_VIOLATION, pins, output);
-        end if;
-    end process;
+    -- Each input's level before reset ends: clock high, data high, driver off, receiver high
+    core : entity work.emu_core
+        generic map (KIND => "endat_monitor", CONFIG => CONFIG, PLUSARG => PLUSARG, F_HZ => F_MON_HZ, TRANSCRIPT => TRANSCRIPT,
+                     TRANSCRIPT_PLUSARG => TRANSCRIPT_PLUSARG, STOP_ON_X => STOP_ON_X, STOP_ON_VIOLATION => STOP_ON_VIOLATION,
+                     PATH => endat_monitor'path_name, WHAT => "monitor", PIN_NAMES => "i_endat_clk, i_endat_data, i_endat_data_oe, i_endat_data_in", IDLE => "00001011",
+                     OE_PIN => 2, DATA_PIN => 1)
+        port map (i_clk => i_mon_clk, i_pins => "0000" & i_endat_data_in & i_endat_data_oe & mon_data & i_endat_clk);
 end architecture;

@@ -33,19 +33,16 @@ entity esl_encoder_emu is
 end entity;
 
 architecture emu of esl_encoder_emu is
-    constant PATH : string := esl_encoder_emu'path_name;
-    constant HANDLE : integer := emu_instance("esl", CONFIG, PLUSARG, TRANSCRIPT, "", F_EMU_HZ, PATH);
+    signal answer : std_ulogic_vector(2 downto 0);
 begin
-    process (i_emu_clk)
-        -- Each input's level before reset ends: no clock (tied high), data high, driver off
-        variable pins : emu_pins_t := emu_pins_init("00000011");
-        variable output : std_ulogic_vector(2 downto 0);
-    begin
-        if rising_edge(i_emu_clk) then
-            emu_clock(HANDLE, PATH, "emulator", "(none), i_esl_data, i_esl_data_oe", "00000" & i_esl_data_oe & i_esl_data & '1', 2, 1,
-                      STOP_ON_X, STOP_ON_VIOLATION, pins, output);
-            o_esl_data <= output(0);
-            o_esl_data_oe <= output(1);
-        end if;
-    end process;
+    -- Each input's level before reset ends: no clock (tied high), data high, driver off
+    core : entity work.emu_core
+        generic map (KIND => "esl", CONFIG => CONFIG, PLUSARG => PLUSARG, F_HZ => F_EMU_HZ, TRANSCRIPT => TRANSCRIPT,
+                     TRANSCRIPT_PLUSARG => "", STOP_ON_X => STOP_ON_X, STOP_ON_VIOLATION => STOP_ON_VIOLATION,
+                     PATH => esl_encoder_emu'path_name, WHAT => "emulator", PIN_NAMES => "(none), i_esl_data, i_esl_data_oe", IDLE => "00000011",
+                     OE_PIN => 2, DATA_PIN => 1)
+        port map (i_clk => i_emu_clk, i_pins => "00000" & i_esl_data_oe & i_esl_data & '1', o_pins => answer);
+
+    o_esl_data <= answer(0);
+    o_esl_data_oe <= answer(1);
 end architecture;

@@ -32,17 +32,11 @@ entity esl_monitor is
 end entity;
 
 architecture emu of esl_monitor is
-    constant PATH : string := esl_monitor'path_name;
-    constant HANDLE : integer := emu_instance("esl_monitor", CONFIG, PLUSARG, TRANSCRIPT, TRANSCRIPT_PLUSARG, F_MON_HZ, PATH);
 begin
-    process (i_mon_clk)
-        -- Each input's level before reset ends: RO and DI high, driver off
-        variable pins : emu_pins_t := emu_pins_init("00000011");
-        variable output : std_ulogic_vector(2 downto 0);
-    begin
-        if rising_edge(i_mon_clk) then
-            emu_clock(HANDLE, PATH, "monitor", "i_esl_rx, i_esl_data, i_esl_data_oe", "00000" & i_esl_data_oe & i_esl_data & i_esl_rx, -1, -1,
-                      STOP_ON_X, STOP_ON_VIOLATION, pins, output);
-        end if;
-    end process;
+    -- Each input's level before reset ends: RO and DI high, driver off
+    core : entity work.emu_core
+        generic map (KIND => "esl_monitor", CONFIG => CONFIG, PLUSARG => PLUSARG, F_HZ => F_MON_HZ, TRANSCRIPT => TRANSCRIPT,
+                     TRANSCRIPT_PLUSARG => TRANSCRIPT_PLUSARG, STOP_ON_X => STOP_ON_X, STOP_ON_VIOLATION => STOP_ON_VIOLATION,
+                     PATH => esl_monitor'path_name, WHAT => "monitor", PIN_NAMES => "i_esl_rx, i_esl_data, i_esl_data_oe", IDLE => "00000011")
+        port map (i_clk => i_mon_clk, i_pins => "00000" & i_esl_data_oe & i_esl_data & i_esl_rx);
 end architecture;

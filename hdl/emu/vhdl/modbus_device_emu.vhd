@@ -34,20 +34,17 @@ entity modbus_device_emu is
 end entity;
 
 architecture emu of modbus_device_emu is
-    constant PATH : string := modbus_device_emu'path_name;
-    constant HANDLE : integer := emu_instance("modbus", CONFIG, PLUSARG, TRANSCRIPT, "", F_EMU_HZ, PATH);
+    signal answer : std_ulogic_vector(2 downto 0);
 begin
-    process (i_emu_clk)
-        -- Each input's level before reset ends: line high, driver off
-        variable pins : emu_pins_t := emu_pins_init("00001011");
-        variable output : std_ulogic_vector(2 downto 0);
-    begin
-        if rising_edge(i_emu_clk) then
-            emu_clock(HANDLE, PATH, "emulator", "(none), i_line, i_line_en, (none)", "00001" & i_line_en & i_line & '1', 2, 1,
-                      STOP_ON_X, STOP_ON_VIOLATION, pins, output);
-            o_line <= output(0);
-            o_line_en <= output(1);
-            o_bus <= output(2);
-        end if;
-    end process;
+    -- Each input's level before reset ends: line high, driver off
+    core : entity work.emu_core
+        generic map (KIND => "modbus", CONFIG => CONFIG, PLUSARG => PLUSARG, F_HZ => F_EMU_HZ, TRANSCRIPT => TRANSCRIPT,
+                     TRANSCRIPT_PLUSARG => "", STOP_ON_X => STOP_ON_X, STOP_ON_VIOLATION => STOP_ON_VIOLATION,
+                     PATH => modbus_device_emu'path_name, WHAT => "emulator", PIN_NAMES => "(none), i_line, i_line_en, (none)", IDLE => "00001011",
+                     OE_PIN => 2, DATA_PIN => 1)
+        port map (i_clk => i_emu_clk, i_pins => "00001" & i_line_en & i_line & '1', o_pins => answer);
+
+    o_line <= answer(0);
+    o_line_en <= answer(1);
+    o_bus <= answer(2);
 end architecture;

@@ -34,17 +34,11 @@ entity sar58k24_monitor is
 end entity;
 
 architecture emu of sar58k24_monitor is
-    constant PATH : string := sar58k24_monitor'path_name;
-    constant HANDLE : integer := emu_instance("sar58k24_monitor", CONFIG, PLUSARG, TRANSCRIPT, TRANSCRIPT_PLUSARG, F_MON_HZ, PATH);
 begin
-    process (i_mon_clk)
-        -- Each input's level before reset ends: R and D high, driver off, trigger and CLR high
-        variable pins : emu_pins_t := emu_pins_init("00011011");
-        variable output : std_ulogic_vector(2 downto 0);
-    begin
-        if rising_edge(i_mon_clk) then
-            emu_clock(HANDLE, PATH, "monitor", "i_rx, i_line, i_line_en, i_trigger, i_clr", "000" & i_clr & i_trigger & i_line_en & i_line & i_rx, -1, -1,
-                      STOP_ON_X, STOP_ON_VIOLATION, pins, output);
-        end if;
-    end process;
+    -- Each input's level before reset ends: R and D high, driver off, trigger and CLR high
+    core : entity work.emu_core
+        generic map (KIND => "sar58k24_monitor", CONFIG => CONFIG, PLUSARG => PLUSARG, F_HZ => F_MON_HZ, TRANSCRIPT => TRANSCRIPT,
+                     TRANSCRIPT_PLUSARG => TRANSCRIPT_PLUSARG, STOP_ON_X => STOP_ON_X, STOP_ON_VIOLATION => STOP_ON_VIOLATION,
+                     PATH => sar58k24_monitor'path_name, WHAT => "monitor", PIN_NAMES => "i_rx, i_line, i_line_en, i_trigger, i_clr", IDLE => "00011011")
+        port map (i_clk => i_mon_clk, i_pins => "000" & i_clr & i_trigger & i_line_en & i_line & i_rx);
 end architecture;

@@ -32,18 +32,14 @@ entity ssi_encoder_emu is
 end entity;
 
 architecture emu of ssi_encoder_emu is
-    constant PATH : string := ssi_encoder_emu'path_name;
-    constant HANDLE : integer := emu_instance("ssi", CONFIG, PLUSARG, TRANSCRIPT, "", F_EMU_HZ, PATH);
+    signal answer : std_ulogic_vector(2 downto 0);
 begin
-    process (i_emu_clk)
-        -- The clock idle high before reset ends.
-        variable pins : emu_pins_t := emu_pins_init("00000001");
-        variable output : std_ulogic_vector(2 downto 0);
-    begin
-        if rising_edge(i_emu_clk) then
-            emu_clock(HANDLE, PATH, "emulator", "i_ssi_clk", "0000000" & i_ssi_clk, -1, -1,
-                      STOP_ON_X, STOP_ON_VIOLATION, pins, output);
-            o_ssi_data <= output(0);
-        end if;
-    end process;
+    -- Each input's level before reset ends: the clock high
+    core : entity work.emu_core
+        generic map (KIND => "ssi", CONFIG => CONFIG, PLUSARG => PLUSARG, F_HZ => F_EMU_HZ, TRANSCRIPT => TRANSCRIPT,
+                     TRANSCRIPT_PLUSARG => "", STOP_ON_X => STOP_ON_X, STOP_ON_VIOLATION => STOP_ON_VIOLATION,
+                     PATH => ssi_encoder_emu'path_name, WHAT => "emulator", PIN_NAMES => "i_ssi_clk", IDLE => "00000001")
+        port map (i_clk => i_emu_clk, i_pins => "0000000" & i_ssi_clk, o_pins => answer);
+
+    o_ssi_data <= answer(0);
 end architecture;
