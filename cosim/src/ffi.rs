@@ -413,7 +413,7 @@ pub unsafe extern "C" fn emu_plusarg(
         let value = std::env::args_os()
             .filter_map(|a| a.into_string().ok())
             .filter_map(|a| a.strip_prefix(&prefix).map(str::to_string))
-            .last();
+            .next_back();
         // SAFETY: the caller's contract.
         Ok(value.map_or(-1, |v| unsafe {
             copy_out(v.as_bytes(), buf, len.max(0) as usize)

@@ -8,13 +8,19 @@
 use std::fs;
 use std::path::{Path, PathBuf};
 
+/// A module's or entity's header: its generics as (name, default) and its
+/// ports as (name, direction), in order.
+struct Header {
+    generics: Vec<(String, String)>,
+    ports: Vec<(String, String)>,
+}
+
 fn hdl_emu() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../hdl/emu")
 }
 
-/// (generics as (name, default), ports as (name, direction)) of a Verilog
-/// module header: `parameter NAME = V` and `input|output wire name` lines.
-fn verilog_header(text: &str) -> (Vec<(String, String)>, Vec<(String, String)>) {
+/// The header of a Verilog module: `parameter NAME = V` and `input|output wire name` lines.
+fn verilog_header(text: &str) -> Header {
     let mut generics = Vec::new();
     let mut ports = Vec::new();
     let header = text
@@ -32,12 +38,12 @@ fn verilog_header(text: &str) -> (Vec<(String, String)>, Vec<(String, String)>) 
             ports.push((name.to_string(), dir[..dir.len() - 3].to_string()));
         }
     }
-    (generics, ports)
+    Header { generics, ports }
 }
 
 /// The same of a VHDL entity: `NAME : type := V;` in its generic list and
 /// `name : in|out std_logic` in its port list.
-fn vhdl_header(text: &str) -> (Vec<(String, String)>, Vec<(String, String)>) {
+fn vhdl_header(text: &str) -> Header {
     let mut generics = Vec::new();
     let mut ports = Vec::new();
     let entity = text
@@ -59,7 +65,7 @@ fn vhdl_header(text: &str) -> (Vec<(String, String)>, Vec<(String, String)>) {
             }
         }
     }
-    (generics, ports)
+    Header { generics, ports }
 }
 
 #[test]
@@ -75,15 +81,15 @@ fn each_vhdl_wrapper_has_the_generics_and_ports_of_its_verilog_module() {
         let v = verilog_header(&fs::read_to_string(&verilog).unwrap());
         let h = vhdl_header(&fs::read_to_string(&path).unwrap());
         assert!(
-            !v.0.is_empty() && !v.1.is_empty(),
+            !v.generics.is_empty() && !v.ports.is_empty(),
             "{name}.v: no header read"
         );
         assert_eq!(
-            h.0, v.0,
+            h.generics, v.generics,
             "{name}.vhd's generics (left) differ from {name}.v's parameters (right)"
         );
         assert_eq!(
-            h.1, v.1,
+            h.ports, v.ports,
             "{name}.vhd's ports (left) differ from {name}.v's (right)"
         );
         compared.push(name);
@@ -107,14 +113,14 @@ fn each_vhdl_wrapper_has_the_generics_and_ports_of_its_verilog_module() {
 fn the_header_readers_see_a_missing_generic_and_a_port_direction() {
     let v = verilog_header("x\nmodule m #(\n    parameter A = 1,\n    parameter B = \"s\"\n) (\n    input  wire i_a,\n    output wire o_b\n);\n");
     assert_eq!(
-        v.0,
+        v.generics,
         [("A".into(), "1".into()), ("B".into(), "\"s\"".into())]
     );
     assert_eq!(
-        v.1,
+        v.ports,
         [("i_a".into(), "in".into()), ("o_b".into(), "out".into())]
     );
     let h = vhdl_header("x\nentity m is\n    generic (\n        A : integer := 1\n    );\n    port (\n        i_a : in std_logic;\n        o_b : in std_logic\n    );\nend entity;\n");
-    assert_eq!(h.0, [("A".into(), "1".into())]);
-    assert_ne!(h.1, v.1);
+    assert_eq!(h.generics, [("A".into(), "1".into())]);
+    assert_ne!(h.ports, v.ports);
 }
