@@ -47,11 +47,11 @@ bad_input() {   # expected exit status ("fail" or "pass"), the text the output m
         echo "vhdl: bad input ($*): $(grep -m1 -oF -- "$text" <<<"$out")"
     fi
 }
-bad_input fail "@0ms:(assertion failure): :tb_emu_errors:u_emu: opening the ssi emulator library failed: no configuration file"
-bad_input fail "@0ms:(assertion failure): :tb_emu_errors:u_emu: opening the ssi emulator library failed: nope.toml: cannot read" +ssi_emu_config=nope.toml
+bad_input fail "@0ms:(assertion failure): ERROR: :tb_emu_errors:u_emu: opening the ssi emulator library failed: no configuration file"
+bad_input fail "@0ms:(assertion failure): ERROR: :tb_emu_errors:u_emu: opening the ssi emulator library failed: nope.toml: cannot read" +ssi_emu_config=nope.toml
 bad_input fail 'bad.toml:1: unknown field `bitz`, expected one of `bits`' +ssi_emu_config=bad.toml
-bad_input fail "'X' on emulator input i_ssi_clk at 1062.5 ns, emulator cycle 8 (not read as data; STOP_ON_X = 1)" +ssi_emu_config=ok.toml -gX_AT_NS=1000
-bad_input pass "'X' on emulator input i_ssi_clk at 1062.5 ns, emulator cycle 8 (held at '1', not read as data)" +ssi_emu_config=ok.toml -gX_AT_NS=1000 -gSTOP_ON_X=0
+bad_input fail "emulator input i_ssi_clk is X or Z (STOP_ON_X = 1)" +ssi_emu_config=ok.toml -gX_AT_NS=1000
+bad_input pass "ERROR: :tb_emu_errors:u_emu: X or Z ('X') on emulator input i_ssi_clk at 1062.5 ns, emulator cycle 8 (held at '1', not read as data)" +ssi_emu_config=ok.toml -gX_AT_NS=1000 -gSTOP_ON_X=0
 bad_input fail "no emulator or monitor instance is named u_enc" +ssi_emu_config=ok.toml -gCALL_NAME=u_enc
 bad_input fail "cannot find in top entity generic 'x_at_nz'" +ssi_emu_config=ok.toml -gX_AT_NZ=1
 

@@ -317,7 +317,7 @@ package body emu_pkg is
     begin
         handle := emu_open(c_str(kind), c_str(config_path), int64(f_hz));
         assert handle > 0
-            report instance_name(path) & ": opening the " & kind & " emulator library failed: " & last_error
+            report "ERROR: " & instance_name(path) & ": opening the " & kind & " emulator library failed: " & last_error
                    & " (the generic CONFIG, or the plusarg +" & plusarg & "=<file>)"
             severity failure;
         if handle > 0 and transcript_path /= "" then
@@ -388,9 +388,9 @@ package body emu_pkg is
                 -- warning, never a protocol report.
                 pins.level(k) := '0';
                 if pins.known(k) = '1' and pins.reported(k) = '0' then
-                    report instance_name(path) & ": " & std_ulogic'image(sampled(k)) & " on the driver enable " & pin_name(names, k)
-                           & " at " & to_string(now, ns) & ", " & what & " cycle " & int64'image(pins.cycle)
-                           & ": read as 0, the master not driving" severity warning;
+                    report "WARNING: " & instance_name(path) & ": X or Z (" & std_ulogic'image(sampled(k))
+                           & ") on the driver enable " & pin_name(names, k) & " at " & to_string(now, ns) & ", " & what
+                           & " cycle " & int64'image(pins.cycle) & ": read as 0, the master not driving" severity warning;
                 end if;
                 pins.reported(k) := '1';
             elsif k = data_pin and oe_unknown then
@@ -398,15 +398,14 @@ package body emu_pkg is
                 pins.level(k) := '1';
             elsif pins.known(k) = '1' and pins.reported(k) = '0' then
                 pins.reported(k) := '1';
-                if stop_on_x /= 0 then
-                    report instance_name(path) & ": " & std_ulogic'image(sampled(k)) & " on " & what & " input " & pin_name(names, k)
-                           & " at " & to_string(now, ns) & ", " & what & " cycle " & int64'image(pins.cycle)
-                           & " (not read as data; STOP_ON_X = 1)" severity failure;
-                else
-                    report instance_name(path) & ": " & std_ulogic'image(sampled(k)) & " on " & what & " input " & pin_name(names, k)
-                           & " at " & to_string(now, ns) & ", " & what & " cycle " & int64'image(pins.cycle)
-                           & " (held at " & std_ulogic'image(pins.level(k)) & ", not read as data)" severity error;
-                end if;
+                -- The words of the Verilog wrappers' message (tbgen probes
+                -- --check counts them), with the value that was seen.
+                report "ERROR: " & instance_name(path) & ": X or Z (" & std_ulogic'image(sampled(k)) & ") on "
+                       & what & " input " & pin_name(names, k) & " at " & to_string(now, ns) & ", " & what & " cycle "
+                       & int64'image(pins.cycle) & " (held at " & std_ulogic'image(pins.level(k)) & ", not read as data)"
+                    severity error;
+                assert stop_on_x = 0
+                    report what & " input " & pin_name(names, k) & " is X or Z (STOP_ON_X = 1)" severity failure;
             end if;
         end loop;
         for k in 7 downto 0 loop
@@ -416,7 +415,7 @@ package body emu_pkg is
             end if;
         end loop;
         out_word := emu_step(handle, word);
-        assert out_word >= 0 report instance_name(path) & ": step: " & last_error severity failure;
+        assert out_word >= 0 report "ERROR: " & instance_name(path) & ": step: " & last_error severity failure;
         pins.cycle := pins.cycle + 1;
         if (out_word / 128) mod 2 = 1 then
             show_violations(handle, path, stop_on_violation);
