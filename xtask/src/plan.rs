@@ -146,7 +146,7 @@ pub const STAGES: &[Stage] = &[
         // judged by the library run's verdict (`tbgen probes --check`).
         argv: &["hdl/tb_probe/run.sh"],
         after: &["build"],
-        what: "every rule probe in Icarus, Verilator and cocotb, judged as the library's run is",
+        what: "every rule probe in Icarus, Verilator, cocotb and GHDL, judged as the library's run is",
     },
     Stage {
         name: "vhdl",
