@@ -16,7 +16,7 @@
 #   make soak        long runs: 100000 closed-loop transactions per core, the campaigns
 #   make coverage    RTL line/branch/toggle coverage of every core, against the baseline
 #   make mutate      mutation score of every core (long)
-#   make deps        install Icarus, Verilator, yosys, nextpnr, GTKWave, sigrok-cli if missing
+#   make deps        install Icarus, Verilator, GHDL, yosys, nextpnr, GTKWave, sigrok-cli if missing
 
 # Empty: make sim takes the core from a scenario file, else ssi_master.
 CORE ?=

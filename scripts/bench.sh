@@ -2,7 +2,7 @@
 # bench.sh: speed of the model, the VCD writer, the simulators replaying the
 # same vectors, the closed loop, and the corruption campaigns (`make bench`).
 #
-#   scripts/bench.sh [replay] [cosim] [campaigns] [captures]   (default: all four parts)
+#   scripts/bench.sh [replay] [cosim] [ghdl] [campaigns] [captures]   (default: all five parts)
 #   BENCH_OUT=DIR scripts/bench.sh ...              (vectors and logs; default build/bench)
 #
 # Every simulator model is built first, untimed (replays: SIM_BUILD_ONLY=1 of
@@ -45,6 +45,11 @@
 #               below 1 the closed loop is the faster; `-` when part 1 did
 #               not run)
 #
+# Part 2b, closed loop in GHDL: one row per VHDL master of examples/*_vhdl/
+# against the VHDL emulator and monitor (1000 reads, as `make` there; built
+# untimed): transactions and cycles (of the bench's clock) per second of one
+# `ghdl -r`.
+#
 # Part 3, campaigns (model/examples/campaign_speed.rs, 20 000 frames, best
 # of three): frames per second stepping every cycle and with fast-forward,
 # and their ratio; `-` where a campaign has no such run (ESL and CAN are
@@ -77,10 +82,10 @@ out=${BENCH_OUT:-$root/build/bench}   # logs, vectors (BENCH_OUT: another folder
 export LD_LIBRARY_PATH="${CARGO_TARGET_DIR:-$root/target}/release${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
 mkdir -p "$out"
 parts=("$@")
-[ ${#parts[@]} -gt 0 ] || parts=(replay cosim campaigns captures)
+[ ${#parts[@]} -gt 0 ] || parts=(replay cosim ghdl campaigns captures)
 want() { [[ " ${parts[*]} " == *" $1 "* ]]; }
 for p in "${parts[@]}"; do
-    case "$p" in replay|cosim|campaigns|captures) ;; *) echo "usage: $0 [replay] [cosim] [campaigns] [captures]" >&2; exit 2 ;; esac
+    case "$p" in replay|cosim|ghdl|campaigns|captures) ;; *) echo "usage: $0 [replay] [cosim] [ghdl] [campaigns] [captures]" >&2; exit 2 ;; esac
 done
 
 now() { date +%s.%N; }
@@ -176,6 +181,25 @@ if want cosim; then
         [ -n "${replay_rate[$core]:-}" ] && ratio=$(printf '%.2fx' "$(calc "${replay_rate[$core]} / $vrate")")
         printf '%-15s %-28s %5d %9.0f %10.3g %9.1f %10.3g %9s\n' "$core" "$(basename "${cfg_of[$core]}")" "$n" \
             "$(calc "$vt / $vs")" "$vrate" "$(calc "$it / $is")" "$(calc "$ic / $is")" "$ratio"
+    done
+    echo
+fi
+
+if want ghdl; then
+    echo "Part 2b: closed loop in GHDL (examples/*_vhdl: a VHDL master, the VHDL emulator and monitor)"
+    printf '%-22s %5s %10s %10s %10s\n' example N trans/s c/s cycles
+    for dir in "$root"/examples/*_vhdl; do
+        name=$(basename "$dir")
+        top=$(sed -n 's/^TOP := //p' "$dir/Makefile")
+        timed_build make -s -C "$dir" "build/$top.stamp"
+        t0=$(now)
+        (cd "$dir" && ghdl -r --std=08 --workdir=build "$top") > "$out/ghdl.$name.log" 2>&1 \
+            || { echo "bench: GHDL failed on $name (see $out/ghdl.$name.log)" >&2; exit 1; }
+        t1=$(now)
+        # "PASS <master>: <N> reads ... decoded, <C> cycles"
+        read -r reads cycles < <(sed -n 's/.*PASS [a-z0-9_]*: \([0-9]*\) .*, \([0-9]*\) cycles$/\1 \2/p' "$out/ghdl.$name.log")
+        printf '%-22s %5d %10.0f %10.3g %10d\n' "$name" "$reads" "$(calc "$reads / ($t1 - $t0)")" \
+            "$(calc "$cycles / ($t1 - $t0)")" "$cycles"
     done
     echo
 fi

@@ -4,9 +4,9 @@
 # test per closed loop (hdl/cocotb/closed_loops_test.py).
 #
 #   scripts/cocotb.sh [proto ...]        (default: every example)
-#   scripts/cocotb.sh --dir DIR --top TOP --config FILE [NAME=VALUE ...]
+#   scripts/cocotb.sh [--sim icarus|ghdl] --dir DIR --top TOP --config FILE [NAME=VALUE ...]
 #                                        (a master we did not write: DIR/test_<DIR's name>.py
-#                                         drives TOP, DIR's .v files but tb_*.v; an example's
+#                                         drives TOP, DIR's .v files but tb_*.v (.vhd with --sim ghdl); an example's
 #                                         `make cocotb`, examples/*/Makefile)
 #
 # Builds what they need when out of date, so it works on a fresh clone after

@@ -19,6 +19,12 @@
 #             nextpnr-ice40       [nextpnr-ice40]
 #             gtkwave             [gtkwave]
 #             xvfb-run, xauth     [xvfb, xauth]  GTKWave headless in make test
+#             ghdl                [ghdl-mcode]  the VHDL wrappers (hdl/emu/vhdl/) call the
+#                                               emulator library through VHPIDIRECT, and
+#                                               cocotb needs its VPI (libghdlvpi.so): both
+#                                               probed (check_ghdl). Debian's mcode backend
+#                                               (the default of its ghdl package) has both;
+#                                               so do ghdl-llvm and ghdl-gcc.
 #             sigrok-cli          [sigrok-cli]  + the protocol decoders for `-P uart`;
 #                                               on Debian they ship inside
 #                                               libsigrokdecode4 (/usr/share/libsigrokdecode/decoders)
@@ -56,6 +62,7 @@ REQUIRED_TOOLS=(
     "sigrok-cli:sigrok-cli"
     "xvfb-run:xvfb"
     "xauth:xauth"
+    "ghdl:ghdl-mcode"
 )
 OPTIONAL_TOOLS=(
     "icepack:fpga-icestorm"
@@ -103,6 +110,44 @@ check_verilator_version() {
         err "Verilator $ver found ($(command -v verilator || echo 'not in PATH')), but >= $VERILATOR_MIN is required."
         err "  Debian 12 (bookworm) ships 5.006: 'apt-get install verilator' there; on an older"
         err "  distribution install Verilator >= $VERILATOR_MIN from source (verilator.org) and put it first in PATH."
+        return 1
+    fi
+    return 0
+}
+
+# check_ghdl — succeed if GHDL can call a C function through VHPIDIRECT (a
+# foreign function bound to libc's abs, analysed and run in a scratch
+# directory: well under a second) and has its VPI library; otherwise say
+# which is missing and how to get a GHDL with it.
+check_ghdl() {
+    local dir out vpi_dir
+    dir=$(mktemp -d)
+    cat > "$dir/probe.vhd" <<'VHDL'
+entity ghdl_probe is end entity;
+architecture probe of ghdl_probe is
+    function c_abs(x : integer) return integer;
+    attribute foreign of c_abs : function is "VHPIDIRECT libc.so.6 abs";
+    function c_abs(x : integer) return integer is
+    begin
+        report "c_abs was not bound to libc's abs" severity failure;
+        return 0;
+    end function;
+begin
+    assert c_abs(-7) = 7 report "abs(-7) /= 7 through VHPIDIRECT" severity failure;
+end architecture;
+VHDL
+    if ! out=$(cd "$dir" && ghdl -a --std=08 probe.vhd 2>&1 && ghdl --elab-run --std=08 ghdl_probe 2>&1); then
+        rm -rf "$dir"
+        err "$(first_line ghdl --version) cannot call C through VHPIDIRECT, which the VHDL wrappers need:"
+        err "  ${out%%$'\n'*}"
+        err "  Fix: sudo apt-get install ghdl-mcode (or ghdl-llvm), then put that ghdl first in PATH."
+        return 1
+    fi
+    rm -rf "$dir"
+    vpi_dir=$(ghdl --vpi-library-dir 2>/dev/null) || vpi_dir=
+    if [[ -z $vpi_dir || ! -f $vpi_dir/libghdlvpi.so ]]; then
+        err "$(first_line ghdl --version) has no VPI library (libghdlvpi.so in '${vpi_dir:-ghdl --vpi-library-dir fails}'), which cocotb needs."
+        err "  Fix: sudo apt-get install ghdl-mcode (Debian's GHDL 2.0 ships /usr/lib/ghdl/mcode/libghdlvpi.so)."
         return 1
     fi
     return 0
@@ -190,6 +235,7 @@ print_versions() {
     ver_line nextpnr-ice40 "$(first_line nextpnr-ice40 --version)"
     # gtkwave --version needs a display (GTK init fails first): ask dpkg instead.
     ver_line gtkwave       "GTKWave $(pkg_version gtkwave) (Debian package)"
+    ver_line ghdl          "$(first_line ghdl --version), $(ghdl --version 2>/dev/null | grep -m1 'code generator' | sed 's/^ *//')"
     ver_line sigrok-cli    "$(first_line sigrok-cli --version), decoders: $SIGROK_DECODERS_PKG $(pkg_version "$SIGROK_DECODERS_PKG")"
     # xvfb-run lets make test open GTKWave headless (scripts/check_gtkw.sh).
     ver_line xvfb-run      "xvfb $(pkg_version xvfb)"
@@ -282,6 +328,9 @@ main() {
         fi
     done
     if have verilator && ! check_verilator_version "$(first_line verilator --version)"; then
+        failed=1
+    fi
+    if have ghdl && ! check_ghdl; then
         failed=1
     fi
     if have sigrok-cli && ! sigrok_has_uart_decoder; then

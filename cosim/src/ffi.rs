@@ -147,21 +147,34 @@ pub unsafe extern "C" fn emu_create(
             frequency(f_emu_hz)?,
         )?))
     });
-    if h < 0 && !err_buf.is_null() && err_len > 0 {
+    if h < 0 {
         let msg = LAST_ERROR
             .lock()
             .unwrap_or_else(|e| e.into_inner())
             .clone()
             .unwrap_or_default();
-        let bytes = msg.as_bytes();
-        let n = bytes.len().min(err_len - 1);
-        // SAFETY: the caller gives a buffer of at least err_len bytes.
-        unsafe {
-            std::ptr::copy_nonoverlapping(bytes.as_ptr() as *const c_char, err_buf, n);
-            *err_buf.add(n) = 0;
-        }
+        // SAFETY: the caller gives a buffer of at least err_len bytes, or null.
+        unsafe { copy_out(msg.as_bytes(), err_buf, err_len) };
     }
     h
+}
+
+/// Copies `bytes` into the caller's buffer, truncated to `len - 1` bytes and
+/// NUL-terminated; nothing when `buf` is null or `len` is 0. Returns the
+/// length of the whole text.
+///
+/// # Safety
+/// `buf` is null or points to at least `len` writable bytes.
+unsafe fn copy_out(bytes: &[u8], buf: *mut c_char, len: usize) -> i32 {
+    if !buf.is_null() && len > 0 {
+        let n = bytes.len().min(len - 1);
+        // SAFETY: n + 1 <= len bytes, writable by the caller's contract.
+        unsafe {
+            std::ptr::copy_nonoverlapping(bytes.as_ptr() as *const c_char, buf, n);
+            *buf.add(n) = 0;
+        }
+    }
+    i32::try_from(bytes.len()).unwrap_or(i32::MAX)
 }
 
 /// One rising edge of the emulator clock: `pins` in (bit 0 line clock, bit
@@ -327,6 +340,139 @@ pub extern "C" fn emu_close(handle: i32) -> i32 {
                 "emulator handle {handle} is not open"
             ))),
         }
+    })
+}
+
+// The *_copy functions and emu_plusarg hand back text by copying it into
+// the caller's buffer, and their result through `result`, not as a return
+// value: VHDL (VHDL-2008) has no function with an `out` parameter, so they
+// are foreign procedures there, whose `out` arguments GHDL passes by
+// address (a string(1 to N) as a pointer to its N characters, an integer
+// as a pointer to it).
+
+/// Writes `value` through `result` when it is not null.
+///
+/// # Safety
+/// `result` is null or points to a writable `i32`.
+unsafe fn put(result: *mut i32, value: i32) {
+    if !result.is_null() {
+        // SAFETY: not null, writable by the caller's contract.
+        unsafe { *result = value };
+    }
+}
+
+/// The message of the last failure copied into `buf` (see [`copy_out`]);
+/// `*result` its length (0 when none).
+/// # Safety
+/// `buf` is null or points to at least `len` writable bytes; `result` is null or writable.
+#[no_mangle]
+pub unsafe extern "C" fn emu_last_error_copy(buf: *mut c_char, len: i32, result: *mut i32) {
+    let slot = LAST_ERROR.lock().unwrap_or_else(|e| e.into_inner());
+    let bytes = slot.as_ref().map_or(&b""[..], |c| c.as_bytes());
+    // SAFETY: the caller's contract.
+    unsafe { put(result, copy_out(bytes, buf, len.max(0) as usize)) }
+}
+
+/// The next violation not yet shown (as [`emu_take_violation`]) copied into
+/// `buf`; `*result` its length, 0 when none waits, or -1.
+/// # Safety
+/// `buf` is null or points to at least `len` writable bytes; `result` is null or writable.
+#[no_mangle]
+pub unsafe extern "C" fn emu_take_violation_copy(
+    handle: i32,
+    buf: *mut c_char,
+    len: i32,
+    result: *mut i32,
+) {
+    let n = guard(-1, || {
+        let line = with(handle, |e| Ok(e.take_violation().unwrap_or_default()))?;
+        // SAFETY: the caller's contract.
+        Ok(unsafe { copy_out(line.as_bytes(), buf, len.max(0) as usize) })
+    });
+    // SAFETY: the caller's contract.
+    unsafe { put(result, n) }
+}
+
+/// The value of the simulator's command-line argument `+<name>=<value>`
+/// (the last one given) copied into `buf`; `*result` its length, or -1
+/// when there is none. For simulators whose language has no
+/// `$value$plusargs` (VHDL in GHDL, which hands `+` arguments through to
+/// the simulation's process).
+/// # Safety
+/// `name` is null or NUL-terminated; `buf` is null or points to at least `len` writable bytes; `result` is null or writable.
+#[no_mangle]
+pub unsafe extern "C" fn emu_plusarg(
+    name: *const c_char,
+    buf: *mut c_char,
+    len: i32,
+    result: *mut i32,
+) {
+    let n = guard(-1, || {
+        let name = unsafe { text(name, "plusarg name") }?;
+        let prefix = format!("+{name}=");
+        let value = std::env::args_os()
+            .filter_map(|a| a.into_string().ok())
+            .filter_map(|a| a.strip_prefix(&prefix).map(str::to_string))
+            .next_back();
+        // SAFETY: the caller's contract.
+        Ok(value.map_or(-1, |v| unsafe {
+            copy_out(v.as_bytes(), buf, len.max(0) as usize)
+        }))
+    });
+    // SAFETY: the caller's contract.
+    unsafe { put(result, n) }
+}
+
+/// Transcripts to write when the process exits: (handle, path).
+static AT_EXIT: Mutex<Vec<(i32, String)>> = Mutex::new(Vec::new());
+
+extern "C" {
+    /// The C library's exit hook (C99 7.20.4.2).
+    fn atexit(hook: extern "C" fn()) -> i32;
+}
+
+extern "C" fn write_transcripts_at_exit() {
+    let list = std::mem::take(&mut *AT_EXIT.lock().unwrap_or_else(|e| e.into_inner()));
+    for (handle, path) in list {
+        let Ok(c) = CString::new(path.clone()) else {
+            continue;
+        };
+        // SAFETY: a NUL-terminated string valid for the call.
+        if unsafe { emu_write_transcript(handle, c.as_ptr()) } < 0 {
+            let msg = LAST_ERROR
+                .lock()
+                .unwrap_or_else(|e| e.into_inner())
+                .clone()
+                .unwrap_or_default();
+            eprintln!("ERROR: emulator {handle}: {}", msg.to_string_lossy());
+        }
+    }
+}
+
+/// Writes the transcript of `handle` to `path` when the process exits, for
+/// simulators whose language has no end-of-simulation hook (VHDL: GHDL
+/// exits after `std.env.finish` or the last event). Returns 0 or -1.
+/// # Safety
+/// `path` is null or NUL-terminated and valid for the call.
+#[no_mangle]
+pub unsafe extern "C" fn emu_transcript_at_exit(handle: i32, path: *const c_char) -> i32 {
+    guard(-1, || {
+        let path = unsafe { text(path, "path") }?;
+        with(handle, |_| Ok(()))?;
+        let mut list = AT_EXIT.lock().unwrap_or_else(|e| e.into_inner());
+        if list.is_empty() {
+            static HOOKED: std::sync::Once = std::sync::Once::new();
+            let mut hooked = 0;
+            // SAFETY: registers a function that takes no arguments and never unwinds.
+            HOOKED.call_once(|| hooked = unsafe { atexit(write_transcripts_at_exit) });
+            if hooked != 0 {
+                return Err(Error::Usage(
+                    "the C library refused an exit hook: write the transcript with emu_write_transcript".into(),
+                ));
+            }
+        }
+        list.push((handle, path));
+        Ok(0)
     })
 }
 

@@ -5,7 +5,7 @@ per closed loop); or, with --dir, a master we did not write
 (examples/<dir>/test_<dir>.py, run by the example's `make cocotb`).
 
     .venv/bin/python -m pytest hdl/cocotb/closed_loops_test.py [-k proto]
-    .venv/bin/python hdl/cocotb/run.py --dir DIR --top TOP --config FILE [--test FILE.py] [NAME=VALUE ...]
+    .venv/bin/python hdl/cocotb/run.py [--sim icarus|ghdl] --dir DIR --top TOP --config FILE [--test FILE.py] [NAME=VALUE ...]
 
 The closed loops are the cocotb tests of the protocol descriptors
 (`tbgen protocols --json`: each loop's `cocotb` names the test module
@@ -36,11 +36,21 @@ def tests(lib_dir):
             for protocol in json.loads(out) for loop in protocol["closed_loops"] if loop["cocotb"]]
 
 
+# The simulators a master may run in: (its name in messages, its sources'
+# suffix, what cocotb's runner takes besides to build and to run).
+SIMULATORS = {
+    "icarus": ("Icarus", ".v", {"timescale": ("1ns", "1ps")}, {}),
+    # VHDL-2008, as the VHDL wrappers; GHDL's time resolution stays its own.
+    "ghdl": ("GHDL", ".vhd", {"build_args": ["--std=08"]}, {"test_args": ["--std=08"]}),
+}
+
+
 def run_master(argv):
-    """`--dir DIR --top TOP --config FILE [--test FILE.py] [NAME=VALUE ...]`:
+    """`[--sim icarus|ghdl] --dir DIR --top TOP --config FILE [--test FILE.py] [NAME=VALUE ...]`:
     the test module DIR/FILE.py (by default DIR/test_<DIR's name>.py) drives
-    TOP (every .v in DIR but the tb_*.v, with the parameters NAME=VALUE)
-    against the emulator made from DIR/FILE. This is how an example's
+    TOP (every .v in DIR but the tb_*.v, or every .vhd but the tb_*.vhd with
+    --sim ghdl, with the parameters or generics NAME=VALUE) against the
+    emulator made from DIR/FILE. This is how an example's
     Makefile (`make cocotb`) runs its master, in this checkout or in a copy
     anywhere else; DIR comes first on the simulator's Python path, so a
     module of the same name elsewhere does not shadow the test. Returns the
@@ -48,7 +58,7 @@ def run_master(argv):
     opts, parameters = {}, {}
     it = iter(argv)
     for a in it:
-        if a in ("--dir", "--top", "--config", "--test"):
+        if a in ("--dir", "--top", "--config", "--test", "--sim"):
             opts[a[2:]] = next(it, None)
         elif "=" in a:
             k, v = a.split("=", 1)
@@ -57,6 +67,10 @@ def run_master(argv):
             raise SystemExit(f"run.py: `{a}`: give --dir DIR --top TOP --config FILE [--test FILE.py] and parameters as NAME=VALUE")
     if None in opts.values() or not {"dir", "top", "config"} <= set(opts):
         raise SystemExit("run.py: give --dir DIR --top TOP --config FILE [--test FILE.py] (and parameters as NAME=VALUE)")
+    sim = opts.get("sim", "icarus")
+    if sim not in SIMULATORS:
+        raise SystemExit(f"run.py: --sim {sim}: give one of {', '.join(SIMULATORS)}")
+    shown, suffix, build_extra, test_extra = SIMULATORS[sim]
     src = Path(opts["dir"]).resolve()
     test = src / opts.get("test", f"test_{src.name}.py")
     config = src / opts["config"]
@@ -65,18 +79,19 @@ def run_master(argv):
     for f, what in ((test, "the test module (--test FILE.py; by default test_<directory name>.py)"), (config, "the configuration (--config FILE)")):
         if not f.is_file():
             raise SystemExit(f"run.py: {f}: no such file: {what}")
-    sources = sorted(str(p) for p in src.glob("*.v") if not p.name.startswith("tb_"))
+    sources = sorted(str(p) for p in src.glob(f"*{suffix}") if not p.name.startswith("tb_"))
     build = src / "build" / "cocotb"
-    runner = get_runner("icarus")
-    runner.build(verilog_sources=sources, hdl_toplevel=opts["top"], parameters=parameters, build_dir=build, always=True,
-                 timescale=("1ns", "1ps"))
+    runner = get_runner(sim)
+    kind = "vhdl_sources" if suffix == ".vhd" else "verilog_sources"
+    runner.build(**{kind: sources}, hdl_toplevel=opts["top"], parameters=parameters, build_dir=build, always=True,
+                 **build_extra)
     # The runner hands the simulator its own sys.path as PYTHONPATH: the test module's directory goes there.
     sys.path.insert(0, str(src))
     env = {"COSIM_CONFIG": str(config)}
     results = runner.test(hdl_toplevel=opts["top"], test_module=test.stem, test_dir=build, build_dir=build,
-                          extra_env=env, results_xml=str(build / "results.xml"))
+                          extra_env=env, results_xml=str(build / "results.xml"), **test_extra)
     total, fails = get_results(results)
-    print(f"cocotb: {src.name} ({opts['top']}, Icarus): {total - fails} of {total} passed")
+    print(f"cocotb: {src.name} ({opts['top']}, {shown}): {total - fails} of {total} passed")
     print(f"cocotb: {'pass' if fails == 0 and total > 0 else 'FAIL'}")
     return fails if total > 0 else 1
 

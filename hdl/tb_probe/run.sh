@@ -1,15 +1,18 @@
 #!/usr/bin/env bash
 # run.sh: every rule probe of every kit (cosim/src/probe/) in Icarus, in
-# Verilator and from cocotb, each run judged by `tbgen probes --check`, the
-# verdict of the library's own run (cosim/tests/unit/rules.rs).
+# Verilator, from cocotb and in GHDL (the VHDL wrappers), each run judged by
+# `tbgen probes --check`, the verdict of the library's own run
+# (cosim/tests/unit/rules.rs).
 #
-#   hdl/tb_probe/run.sh [--out DIR] [icarus] [verilator] [cocotb]   (default: all three)
+#   hdl/tb_probe/run.sh [--out DIR] [icarus] [verilator] [cocotb] [ghdl]   (default: all four)
 #
 # `tbgen probes --out DIR` (default build/probes) writes the probes; the
 # testbench hdl/tb_probe/tb_probe.v is built once per kind and emulator
 # clock for each simulator (the kit's wrappers come from DIR/<kind>/
 # probe_wiring.vh) and run in each probe's folder DIR/<kind>/<probe>/<sim>/;
-# hdl/cocotb/rule_probes.py runs each kit's probes in one cocotb simulation.
+# hdl/cocotb/rule_probes.py runs each kit's probes in one cocotb simulation;
+# GHDL analyses hdl/tb_probe/tb_probe.vhd with the kit's probe_wiring.vhd
+# and the VHDL wrappers once per kind, and runs each probe with its clock.
 # Exit status 0 only when every probe passed in every simulator asked for.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
@@ -18,11 +21,11 @@ sims=()
 while [ $# -gt 0 ]; do
     case "$1" in
     --out) out=$(realpath -m "$2"); shift 2 ;;
-    icarus|verilator|cocotb) sims+=("$1"); shift ;;
-    *) echo "usage: $0 [--out DIR] [icarus] [verilator] [cocotb]" >&2; exit 2 ;;
+    icarus|verilator|cocotb|ghdl) sims+=("$1"); shift ;;
+    *) echo "usage: $0 [--out DIR] [icarus] [verilator] [cocotb] [ghdl]" >&2; exit 2 ;;
     esac
 done
-[ ${#sims[@]} -gt 0 ] || sims=(icarus verilator cocotb)
+[ ${#sims[@]} -gt 0 ] || sims=(icarus verilator cocotb ghdl)
 # shellcheck source=scripts/verilator_ccache.sh
 . "$root/scripts/verilator_ccache.sh"
 eval "$("$root/scripts/emu_lib.sh")"
@@ -87,10 +90,30 @@ run_hdl() {
     done <<< "$groups"
 }
 
+# GHDL: one analysis per kind (the emulator clock is a generic of the run).
+run_ghdl() {
+    local kind build vhdl="$root/hdl/emu/vhdl"
+    for kind in $(awk -F'\t' '!/^#/ { print $1 }' "$out/probes.tsv" | sort -u); do
+        build="$root/build/tb_probe/ghdl/$kind"
+        rm -rf "$build"
+        mkdir -p "$build"
+        (cd "$build" && ghdl -a --std=08 "$vhdl/emu_ffi.vhd" "$vhdl/emu_pkg.vhd" "$vhdl/emu_core.vhd" \
+            "$vhdl"/*_emu.vhd "$vhdl"/*_monitor.vhd "$out/$kind/probe_wiring.vhd" "$root/hdl/tb_probe/tb_probe.vhd" \
+            && ghdl -e --std=08 tb_probe) > "$build/build.log" 2>&1 || { cat "$build/build.log" >&2; return 1; }
+        awk -F'\t' -v k="$kind" '$1 == k { print $2, $4 }' "$out/probes.tsv" \
+        | while read -r f probe; do
+            mkdir -p "$out/$probe/ghdl"
+            rm -f "$out/$probe/ghdl/emulator.json" "$out/$probe/ghdl/monitor.json"
+            (cd "$out/$probe/ghdl" && ghdl -r --std=08 --workdir="$build" tb_probe -gF_HZ="$f" > sim.log 2>&1) || true
+        done
+    done
+}
+
 for sim in "${sims[@]}"; do
     start=$(date +%s.%N)
     case "$sim" in
     icarus|verilator) run_hdl "$sim" || { status=1; continue; } ;;
+    ghdl) run_ghdl || { status=1; continue; } ;;
     cocotb)
         [ -x "$root/.venv/bin/python" ] || { echo "run.sh: .venv has no Python; run: make deps" >&2; exit 2; }
         "$root/.venv/bin/python" "$root/hdl/cocotb/rule_probes.py" "$out" > "$out/cocotb.log" 2>&1 || true

@@ -146,7 +146,14 @@ pub const STAGES: &[Stage] = &[
         // judged by the library run's verdict (`tbgen probes --check`).
         argv: &["hdl/tb_probe/run.sh"],
         after: &["build"],
-        what: "every rule probe in Icarus, Verilator and cocotb, judged as the library's run is",
+        what: "every rule probe in Icarus, Verilator, cocotb and GHDL, judged as the library's run is",
+    },
+    Stage {
+        name: "vhdl",
+        // The VHDL masters in GHDL, each 1000 reads then a planted misread.
+        argv: &["scripts/vhdl_examples.sh"],
+        after: &["build"],
+        what: "the VHDL masters of examples/*_vhdl in GHDL with the VHDL emulators and monitors",
     },
     Stage {
         name: "fmt",

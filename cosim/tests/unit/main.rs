@@ -27,6 +27,7 @@ mod rules;
 mod sar58k24;
 mod ssi;
 mod tformat;
+mod vhdl_wrappers;
 
 use model::uart::Parity;
 

@@ -86,6 +86,7 @@ fn files(hdl: &Path) -> Result<Files> {
         }
         let dir = PathBuf::from(kit.protocol);
         out.push((dir.join("probe_wiring.vh"), w.include(kit.protocol)));
+        out.push((dir.join("probe_wiring.vhd"), w.vhdl(kit.protocol)));
         out.push((dir.join("probe_pins.v"), w.pins_module(kit.protocol)));
         let table: Vec<u8> = kit.monitor.iter().map(|s| wiring::src_byte(*s)).collect();
         let json = serde_json::json!({

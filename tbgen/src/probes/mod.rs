@@ -6,6 +6,7 @@
 //! |---|---|
 //! | `probes.tsv` | one line per probe: kind, emulator clock (Hz), stimulus depth of the kind, folder |
 //! | `<kind>/probe_wiring.vh` | the emulator and monitor wrappers wired for `hdl/tb_probe/tb_probe.v` ([`wiring`]) |
+//! | `<kind>/probe_wiring.vhd` | their VHDL twins wired for `hdl/tb_probe/tb_probe.vhd` (GHDL) |
 //! | `<kind>/probe_pins.v` | the cocotb top level: the master's pins under the emulator's port names |
 //! | `<kind>/wiring.json` | the same wiring for Python: input ports by layout bit, the monitor's sources |
 //! | `<kind>/<NN>_<rule>_<legal\|illegal>/probe.toml` | the emulator's and monitor's configuration |
@@ -29,7 +30,7 @@ pub use export::{export, stimulus};
 pub const MANIFEST: &str = "probes.tsv";
 
 /// The simulators a probe run can come from (each its folder in a probe's).
-pub const SIMULATORS: &[&str] = &["icarus", "verilator", "cocotb"];
+pub const SIMULATORS: &[&str] = &["icarus", "verilator", "cocotb", "ghdl"];
 
 /// A probe's folder name: its index in the kit, its rule, legal or not.
 pub fn folder(index: usize, p: &cosim::probe::Probe) -> String {

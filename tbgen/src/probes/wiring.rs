@@ -308,6 +308,59 @@ impl Wiring {
         s
     }
 
+    /// The same wiring as a VHDL entity `probe_wiring`, which
+    /// `hdl/tb_probe/tb_probe.vhd` instantiates: the VHDL twins of the two
+    /// wrappers (`hdl/emu/vhdl/`, the same ports) on `master`, `answer` and
+    /// `mon_pins`.
+    pub fn vhdl(&self, kind: &str) -> String {
+        let mut s = format!(
+            "-- {kind}: the VHDL probe testbench's wrappers, written by `tbgen probes` from\n\
+             -- hdl/emu/{}.v and hdl/emu/{}.v (their pin lists); do not edit.\n\n\
+             library ieee;\nuse ieee.std_logic_1164.all;\n\n\
+             entity probe_wiring is\n    generic (F_HZ : natural);\n    port (\n        clk : in std_logic;\n        \
+             master : in std_logic_vector(15 downto 0);\n        answer : out std_logic_vector(3 downto 0);\n        \
+             mon_pins : in std_logic_vector(7 downto 0)\n    );\nend entity;\n\n\
+             architecture probe of probe_wiring is\nbegin\n",
+            self.emulator, self.monitor
+        );
+        let mut pins: Vec<String> = self
+            .inputs
+            .iter()
+            .map(|(b, p)| format!("{p} => master({b})"))
+            .collect();
+        pins.extend(
+            self.outputs
+                .iter()
+                .map(|(b, p)| format!("{p} => answer({b})")),
+        );
+        let _ = writeln!(
+            s,
+            "    u_emu : entity work.{}\n        generic map (CONFIG => \"../probe.toml\", F_EMU_HZ => F_HZ, \
+             TRANSCRIPT => \"emulator.json\", STOP_ON_X => 1)\n        port map (i_emu_clk => clk, {});",
+            self.emulator,
+            pins.join(", ")
+        );
+        for b in 0..4 {
+            if !self.outputs.iter().any(|(o, _)| *o == b) {
+                let _ = writeln!(s, "    answer({b}) <= '0';");
+            }
+        }
+        let pins: Vec<String> = self
+            .monitor_pins
+            .iter()
+            .enumerate()
+            .map(|(i, p)| format!("{p} => mon_pins({i})"))
+            .collect();
+        let _ = writeln!(
+            s,
+            "    u_mon : entity work.{}\n        generic map (CONFIG => \"../probe.toml\", F_MON_HZ => F_HZ, \
+             TRANSCRIPT => \"monitor.json\", STOP_ON_X => 1)\n        port map (i_mon_clk => clk, {});\nend architecture;",
+            self.monitor,
+            pins.join(", ")
+        );
+        s
+    }
+
     /// The cocotb top level of the kit's probes: the master's pins as
     /// ports named as the emulator's (so that `emu_common.bit` knows a
     /// driver enable by its name), nothing else.

@@ -1,0 +1,42 @@
+-- tformat_monitor: a pin-level monitor and protocol checker of a T-format host for a VHDL
+-- testbench, the twin of hdl/emu/tformat_monitor.v (same generics, ports and
+-- behaviour; read its header): the encoder-tb library through emu_pkg.
+--
+-- Queries by instance label (emu_pkg): count("u_mon"), last_value("u_mon", 0) (abm << 17 | abs),
+-- last_status("u_mon", 0, "crc"), violations("u_mon").
+
+library ieee;
+use ieee.std_logic_1164.all;
+
+use work.emu_pkg.all;
+
+entity tformat_monitor is
+    generic (
+        CONFIG : string := "";
+        PLUSARG : string := "tformat_monitor_config";
+        F_MON_HZ : natural := 80000000;
+        TRANSCRIPT : string := "";
+        TRANSCRIPT_PLUSARG : string := "tformat_monitor_transcript";
+        STOP_ON_X : integer := 1;
+        STOP_ON_VIOLATION : integer := 0
+    );
+    port (
+        /* Monitor clock */
+        i_mon_clk : in std_logic;
+
+        /* The host's transceiver: D, DE, R */
+        i_tf_data : in std_logic;
+        i_tf_data_oe : in std_logic;
+        i_tf_rx : in std_logic
+    );
+end entity;
+
+architecture emu of tformat_monitor is
+begin
+    -- Each input's level before reset ends: R and D high, driver off
+    core : entity work.emu_core
+        generic map (KIND => "tformat_monitor", CONFIG => CONFIG, PLUSARG => PLUSARG, F_HZ => F_MON_HZ, TRANSCRIPT => TRANSCRIPT,
+                     TRANSCRIPT_PLUSARG => TRANSCRIPT_PLUSARG, STOP_ON_X => STOP_ON_X, STOP_ON_VIOLATION => STOP_ON_VIOLATION,
+                     PATH => tformat_monitor'path_name, WHAT => "monitor", PIN_NAMES => "i_tf_rx, i_tf_data, i_tf_data_oe", IDLE => "00000011")
+        port map (i_clk => i_mon_clk, i_pins => "00000" & i_tf_data_oe & i_tf_data & i_tf_rx);
+end architecture;
