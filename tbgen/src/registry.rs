@@ -41,6 +41,15 @@ pub trait Protocol:
     /// for this protocol, so that a check that silently compares nothing fails.
     const SIGROK_MINIMUM: (usize, usize) = (0, 0);
 
+    /// The waveform's scalars that feed the protocol's monitor's pins, as
+    /// dotted paths below `top` (`line.ma_master`, a line signal;
+    /// `endat_master.o_endat_clk`, a port of the core), in the monitor's order (its
+    /// wrapper's `MON_PIN_NAMES`, `hdl/emu/<kind>_monitor.v`): what
+    /// [`crate::rule_verdict`] holds to the rule book, on the model's line
+    /// (`tbgen timing`) or a capture's (`tbgen decode`). Empty: the
+    /// protocol has no monitor.
+    const MONITOR_PINS: &'static [&'static str] = &[];
+
     /// `tbgen decode <table>`: the decoder's command line, if it has one.
     fn decode_command() -> Option<Command> {
         None
@@ -180,6 +189,8 @@ pub struct Entry {
     pub sigrok_decoder: Option<&'static str>,
     /// See [`Protocol::SIGROK_MINIMUM`].
     pub sigrok_minimum: (usize, usize),
+    /// See [`Protocol::MONITOR_PINS`].
+    pub monitor_pins: &'static [&'static str],
     /// See [`Protocol::decode_command`].
     pub decode_command: fn() -> Option<Command>,
     /// See [`Protocol::decode`].
@@ -210,6 +221,7 @@ impl Entry {
             transaction_signals: P::TRANSACTION_SIGNALS,
             sigrok_decoder: P::SIGROK_DECODER,
             sigrok_minimum: P::SIGROK_MINIMUM,
+            monitor_pins: P::MONITOR_PINS,
             decode_command: P::decode_command,
             decode: P::decode,
             timing_command: P::timing_command,
