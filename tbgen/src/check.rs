@@ -419,6 +419,27 @@ mod tests {
         vec!["--bits".into(), "16".into()]
     }
 
+    /// A capture that opens with the master's power-on delay measurement,
+    /// checked without --meas-khz: its 000111 frames at 200 kHz were read as
+    /// four pos21 reads of position 0 and the check failed on "f1 expected
+    /// null"; they are the measurement, found at their clock.
+    #[test]
+    fn a_capture_opening_with_a_delay_measurement_passes_without_meas_khz() {
+        let dir = tempfile::tempdir().unwrap();
+        let s = crate::builtin::find("endat_clock_4mhz").unwrap();
+        let summary = crate::generate::generate(&s, dir.path()).unwrap();
+        let file = |ext: &str| {
+            summary
+                .files
+                .iter()
+                .find(|f| f.extension().is_some_and(|e| e == ext))
+                .unwrap()
+                .clone()
+        };
+        let r = check("endat", &file("json"), &file("vcd"), &[], None).unwrap();
+        assert!(r.ok, "{}", r.text);
+    }
+
     #[test]
     fn a_clean_capture_passes_against_the_models_transcript() {
         let dir = tempfile::tempdir().unwrap();

@@ -827,7 +827,7 @@ fn a_round_trip_beyond_the_fixed_sample_point_is_refused_where_every_read_fails(
                 if late.is_some() { reads.len() } else { 0 },
                 "{what}: {late:?}"
             );
-            let Some(late) = late else {
+            let Some(_) = late else {
                 assert!(reads.iter().all(|t| t.errors.is_empty()), "{what}");
                 assert!(model::Setup::validate(&cfg).is_ok(), "{what}");
                 continue;

@@ -73,7 +73,11 @@ impl Protocol for BenchConfig {
     fn decode(args: &ArgMatches) -> Result<String> {
         let DecodeArgs { file, clk, data, pos_bits, meas_khz } = registry::parse_args(args)?;
         let opts = decode::Options { pos_bits, meas_khz };
-        let transactions = decode::decode(&file, &clk, &data, &opts)?;
+        let mut notes = Vec::new();
+        let transactions = decode::decode(&file, &clk, &data, &opts, &mut notes)?;
+        for n in notes {
+            eprintln!("NOTE: {n}");
+        }
         let envelope = crate::transcript::Decoded::new("endat", &file, &[("clk", clk.as_str()), ("data", data.as_str())], &transactions);
         serde_json::to_string_pretty(&envelope).map_err(|e| Error::Decode(e.to_string()))
     }
