@@ -278,6 +278,9 @@ impl ToolCall {
 /// Generates the `clap` glue of a per-protocol subcommand family from the registry.
 macro_rules! tool_family {
     ($name:ident, $command:ident, $run:ident, $doc:literal) => {
+        tool_family!($name, $command, $run, $doc, |_, cmd| cmd, |_, _| Ok(()));
+    };
+    ($name:ident, $command:ident, $run:ident, $doc:literal, $augment:expr, $after:expr) => {
         #[doc = $doc]
         #[derive(Debug, Clone)]
         pub struct $name(pub ToolCall);
@@ -287,7 +290,10 @@ macro_rules! tool_family {
             pub fn run(&self) -> Result<String> {
                 let entry =
                     by_table(&self.0.protocol).expect("clap only accepts registered protocols");
-                (entry.$run)(&self.0.args)
+                let out = (entry.$run)(&self.0.args)?;
+                let after: fn(&Entry, &ArgMatches) -> Result<()> = $after;
+                after(entry, &self.0.args)?;
+                Ok(out)
             }
         }
 
@@ -306,7 +312,12 @@ macro_rules! tool_family {
 
         impl clap::Subcommand for $name {
             fn augment_subcommands(cmd: Command) -> Command {
-                cmd.subcommands(crate::PROTOCOLS.iter().filter_map(|e| (e.$command)()))
+                let augment: fn(&Entry, Command) -> Command = $augment;
+                cmd.subcommands(
+                    crate::PROTOCOLS
+                        .iter()
+                        .filter_map(|e| (e.$command)().map(|c| augment(e, c))),
+                )
             }
             fn augment_subcommands_for_update(cmd: Command) -> Command {
                 Self::augment_subcommands(cmd)
@@ -324,8 +335,21 @@ tool_family!(
     Decode,
     decode_command,
     decode,
-    "`tbgen decode <protocol>`: one decoder per protocol that has one."
+    "`tbgen decode <protocol>`: one decoder per protocol that has one; the rule verdict of the captured master pins on stderr.",
+    crate::rule_verdict::with_capture_options,
+    |e, args| {
+        if let Some(v) = crate::rule_verdict::of_capture(e, args)? {
+            eprint!("{v}");
+        }
+        Ok(())
+    }
 );
+
+/// `tbgen decode <protocol>`'s command line of `e`, with the rule
+/// verdict's options: what `tbgen check` parses a VCD's decoder options with.
+pub fn decode_command(e: &Entry) -> Option<Command> {
+    (e.decode_command)().map(|c| crate::rule_verdict::with_capture_options(e, c))
+}
 tool_family!(
     Timing,
     timing_command,

@@ -9,6 +9,9 @@
 //! line signals that feed the monitor's pins ([`Protocol::MONITOR_PINS`]).
 
 use std::fmt::Write as _;
+use std::path::PathBuf;
+
+use clap::{Arg, ArgMatches, Command};
 
 use model::rules::{self, Rule};
 use model::testbench::{self, Testbench};
@@ -221,6 +224,148 @@ pub fn of_scenario(s: &Scenario) -> Result<String> {
     s.setup.accept(OfScenario(s))
 }
 
+/// The options `tbgen decode <protocol>` (and `tbgen check` after `--`)
+/// takes for the rule verdict of a capture, added to each decoder's own.
+pub fn with_capture_options(e: &Entry, cmd: Command) -> Command {
+    if e.monitor_pins.is_empty() {
+        return cmd;
+    }
+    let defaults: Vec<String> = e.monitor_pins.iter().map(|p| format!("top.{p}")).collect();
+    cmd.arg(
+        Arg::new(RULE_PINS)
+            .long(RULE_PINS)
+            .value_name("PATHS")
+            .help(format!(
+                "Rule verdict: the dotted paths of the master's pins the {} monitor reads, comma-separated in its order [default: {}]",
+                e.table,
+                defaults.join(",")
+            )),
+    )
+    .arg(
+        Arg::new(RULES_SCENARIO)
+            .long(RULES_SCENARIO)
+            .value_name("FILE")
+            .value_parser(clap::value_parser!(PathBuf))
+            .help("Rule verdict: the limits of this scenario file (delay compensation, recovery times, bit rate...) [default: the seed's]"),
+    )
+    .arg(
+        Arg::new(RULES_CLOCK)
+            .long(RULES_CLOCK)
+            .value_name("MHZ")
+            .value_parser(clap::value_parser!(f64))
+            .help("Rule verdict: the clock the pins are sampled at, MHz [default: two samples in the capture's shortest phase, 1 to 1000 MHz]"),
+    )
+}
+
+const RULE_PINS: &str = "rule-pins";
+/// The most samples a capture's verdict takes (a few seconds of the monitor).
+const MAX_SAMPLES: u128 = 200_000_000;
+const RULES_SCENARIO: &str = "rules-scenario";
+const RULES_CLOCK: &str = "rules-clock-mhz";
+
+/// The rule verdict of a capture (`tbgen decode <protocol> FILE`): the
+/// master's pins read from the VCD (`--rule-pins`, else the waveform
+/// `tbgen gen` writes), held to the rule book by the protocol's monitor
+/// with the limits of `--rules-scenario` (else the seed's), sampled at
+/// `--rules-clock-mhz`. `None` for a protocol without a monitor; a capture
+/// without the pins gets a verdict saying so and naming `--rule-pins`.
+pub fn of_capture(e: &Entry, args: &ArgMatches) -> Result<Option<String>> {
+    if e.monitor_pins.is_empty() {
+        return Ok(None);
+    }
+    let Some(file) = args.get_one::<PathBuf>("file") else {
+        return Ok(None);
+    };
+    let paths: Vec<String> = match args.try_get_one::<String>(RULE_PINS).ok().flatten() {
+        Some(list) => list.split(',').map(|p| p.trim().to_string()).collect(),
+        None => e.monitor_pins.iter().map(|p| format!("top.{p}")).collect(),
+    };
+    if paths.len() != e.monitor_pins.len() {
+        return Err(Error::Decode(format!(
+            "decode {}: --rule-pins {}: give {} dotted paths, the {} monitor's pins in order",
+            e.table,
+            paths.join(","),
+            e.monitor_pins.len(),
+            e.table
+        )));
+    }
+    let names: Vec<(&str, &str)> = paths.iter().map(|p| (p.as_str(), "--rule-pins")).collect();
+    let pins = match crate::capture::read(file, &names) {
+        Ok(p) => p,
+        Err(err) => {
+            return Ok(Some(format!(
+                "rules of the captured master pins: not judged: {err}\n"
+            )))
+        }
+    };
+    let (toml, origin, limits) = match args.try_get_one::<PathBuf>(RULES_SCENARIO).ok().flatten() {
+        Some(p) => (
+            std::fs::read_to_string(p).map_err(|err| Error::io(p, err))?,
+            p.display().to_string(),
+            format!("the limits of {}", p.display()),
+        ),
+        None => (
+            String::new(),
+            "the seed's limits".to_string(),
+            "the seed's limits (--rules-scenario FILE gives your set-up's)".to_string(),
+        ),
+    };
+    let end_ps = pins
+        .iter()
+        .filter_map(|s| s.changes.last())
+        .map(|c| c.0)
+        .max()
+        .unwrap_or(0);
+    let f_hz = match args.try_get_one::<f64>(RULES_CLOCK).ok().flatten() {
+        Some(&mhz) if mhz > 0.0 && mhz <= 10_000.0 => (mhz * 1e6).round() as u64,
+        Some(mhz) => {
+            return Err(Error::Decode(format!(
+                "decode {}: --rules-clock-mhz {mhz}: give a clock above 0 and at most 10000 MHz",
+                e.table
+            )))
+        }
+        None => sampling_clock(&pins),
+    };
+    // Time after the last edge for a transaction to end (a pause, a
+    // timeout), within which the monitor samples the quiet line.
+    let tail_ps = 10 * rules::ps_at(1, f_hz).max(1_000_000);
+    // A capture of hours (a timestamp far out) would take as long to
+    // sample: it is said, not run.
+    let samples = (end_ps + tail_ps) as u128 * f_hz as u128 / model::time::PS_PER_S as u128;
+    if samples > MAX_SAMPLES {
+        return Ok(Some(format!(
+            "rules of the captured master pins: not judged: {:.3} s of capture at {:.3} MHz is {samples} samples, more than {MAX_SAMPLES}; cut the capture or give a slower --rules-clock-mhz\n",
+            (end_ps + tail_ps) as f64 / 1e12,
+            f_hz as f64 / 1e6
+        )));
+    }
+    let v = judge(e, &toml, &origin, f_hz, &pins, end_ps + tail_ps)?;
+    Ok(Some(format!(
+        "rules of the captured master pins ({}, sampled at {:.3} MHz; {limits}):\n{}",
+        paths.join(", "),
+        f_hz as f64 / 1e6,
+        v.text.split_once('\n').map_or("", |(_, rest)| rest)
+    )))
+}
+
+/// The clock a capture's pins are sampled at: two samples within the
+/// shortest time between two changes (of any pins: a driver enable one
+/// system clock after the data), from 1 MHz to 1 GHz.
+fn sampling_clock(pins: &[Signal]) -> u64 {
+    let mut times: Vec<u64> = pins
+        .iter()
+        .flat_map(|s| s.changes.iter().map(|c| c.0))
+        .collect();
+    times.sort_unstable();
+    let shortest = times
+        .windows(2)
+        .map(|w| w[1] - w[0])
+        .filter(|&d| d > 0)
+        .min()
+        .unwrap_or(1_000_000);
+    (2 * model::time::PS_PER_S / shortest).clamp(1_000_000, 1_000_000_000)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -231,6 +376,14 @@ mod tests {
 
     fn broken(v: &str) -> Vec<&str> {
         v.lines().filter(|l| l.contains("BROKEN")).collect()
+    }
+
+    /// The broken rules' labels, without counts and times.
+    fn labels(v: &str) -> Vec<&str> {
+        broken(v)
+            .iter()
+            .map(|l| l.split(") (").next().unwrap_or(l))
+            .collect()
     }
 
     /// The seed's readers meet every rule; a reader clocked at 1 MHz with a
@@ -251,6 +404,43 @@ mod tests {
             "{v}"
         );
         assert!(v.contains("  met     T_m (seed 001"), "{v}");
+    }
+
+    struct FSys;
+    impl Visitor for FSys {
+        type Output = u64;
+        fn visit<S: Protocol>(self, setup: &S) -> u64 {
+            setup.timebase().unwrap().f_sys_hz()
+        }
+    }
+
+    /// The rule verdict `tbgen decode <table>` prints for the waveform
+    /// `tbgen gen` writes of `s`, with `s`'s limits, sampled at its system
+    /// clock.
+    fn decoded(s: &Scenario) -> String {
+        let dir = tempfile::tempdir().unwrap();
+        let summary = crate::generate::generate(s, dir.path()).unwrap();
+        let vcd = summary
+            .files
+            .iter()
+            .find(|f| f.extension().is_some_and(|e| e == "vcd"))
+            .unwrap();
+        let toml = dir.path().join("scenario.toml");
+        std::fs::write(&toml, s.text()).unwrap();
+        let entry = crate::registry::by_table(s.table()).unwrap();
+        let mhz = (s.setup.accept(FSys) as f64 / 1e6).to_string();
+        let m = crate::registry::decode_command(entry)
+            .unwrap()
+            .try_get_matches_from([
+                "decode",
+                vcd.to_str().unwrap(),
+                "--rules-scenario",
+                toml.to_str().unwrap(),
+                "--rules-clock-mhz",
+                &mhz,
+            ])
+            .unwrap();
+        of_capture(entry, &m).unwrap().unwrap()
     }
 
     /// An EnDat master at 2 MHz whose first low phase is `t_st_us`.
@@ -308,6 +498,15 @@ mod tests {
             ),
         ];
         for (table, legal, illegal, rule) in cases {
+            for s in [&legal, &illegal] {
+                let (t, d) = (of_scenario(s).unwrap(), decoded(s));
+                assert_eq!(
+                    labels(&t),
+                    labels(&d),
+                    "{table} {}: tbgen timing and tbgen decode of its waveform:\n{t}\n{d}",
+                    s.name
+                );
+            }
             let book = crate::registry::by_table(table).unwrap().protocol.rules;
             let v = of_scenario(&legal).unwrap();
             assert!(broken(&v).is_empty(), "{table} {}:\n{v}", legal.name);
