@@ -41,6 +41,15 @@ pub trait Protocol:
     /// for this protocol, so that a check that silently compares nothing fails.
     const SIGROK_MINIMUM: (usize, usize) = (0, 0);
 
+    /// The waveform's scalars that feed the protocol's monitor's pins, as
+    /// dotted paths below `top` (`line.ma_master`, a line signal;
+    /// `endat_master.o_endat_clk`, a port of the core), in the monitor's order (its
+    /// wrapper's `MON_PIN_NAMES`, `hdl/emu/<kind>_monitor.v`): what
+    /// [`crate::rule_verdict`] holds to the rule book, on the model's line
+    /// (`tbgen timing`) or a capture's (`tbgen decode`). Empty: the
+    /// protocol has no monitor.
+    const MONITOR_PINS: &'static [&'static str] = &[];
+
     /// `tbgen decode <table>`: the decoder's command line, if it has one.
     fn decode_command() -> Option<Command> {
         None
@@ -180,6 +189,8 @@ pub struct Entry {
     pub sigrok_decoder: Option<&'static str>,
     /// See [`Protocol::SIGROK_MINIMUM`].
     pub sigrok_minimum: (usize, usize),
+    /// See [`Protocol::MONITOR_PINS`].
+    pub monitor_pins: &'static [&'static str],
     /// See [`Protocol::decode_command`].
     pub decode_command: fn() -> Option<Command>,
     /// See [`Protocol::decode`].
@@ -210,6 +221,7 @@ impl Entry {
             transaction_signals: P::TRANSACTION_SIGNALS,
             sigrok_decoder: P::SIGROK_DECODER,
             sigrok_minimum: P::SIGROK_MINIMUM,
+            monitor_pins: P::MONITOR_PINS,
             decode_command: decode_command_of::<P>,
             decode: decode_of::<P>,
             timing_command: P::timing_command,
@@ -278,6 +290,9 @@ impl ToolCall {
 /// Generates the `clap` glue of a per-protocol subcommand family from the registry.
 macro_rules! tool_family {
     ($name:ident, $command:ident, $run:ident, $doc:literal) => {
+        tool_family!($name, $command, $run, $doc, |_, cmd| cmd, |_, _| Ok(()));
+    };
+    ($name:ident, $command:ident, $run:ident, $doc:literal, $augment:expr, $after:expr) => {
         #[doc = $doc]
         #[derive(Debug, Clone)]
         pub struct $name(pub ToolCall);
@@ -287,7 +302,10 @@ macro_rules! tool_family {
             pub fn run(&self) -> Result<String> {
                 let entry =
                     by_table(&self.0.protocol).expect("clap only accepts registered protocols");
-                (entry.$run)(&self.0.args)
+                let out = (entry.$run)(&self.0.args)?;
+                let after: fn(&Entry, &ArgMatches) -> Result<()> = $after;
+                after(entry, &self.0.args)?;
+                Ok(out)
             }
         }
 
@@ -306,7 +324,12 @@ macro_rules! tool_family {
 
         impl clap::Subcommand for $name {
             fn augment_subcommands(cmd: Command) -> Command {
-                cmd.subcommands(crate::PROTOCOLS.iter().filter_map(|e| (e.$command)()))
+                let augment: fn(&Entry, Command) -> Command = $augment;
+                cmd.subcommands(
+                    crate::PROTOCOLS
+                        .iter()
+                        .filter_map(|e| (e.$command)().map(|c| augment(e, c))),
+                )
             }
             fn augment_subcommands_for_update(cmd: Command) -> Command {
                 Self::augment_subcommands(cmd)
@@ -324,8 +347,21 @@ tool_family!(
     Decode,
     decode_command,
     decode,
-    "`tbgen decode <protocol>`: one decoder per protocol that has one."
+    "`tbgen decode <protocol>`: one decoder per protocol that has one; the rule verdict of the captured master pins on stderr.",
+    crate::rule_verdict::with_capture_options,
+    |e, args| {
+        if let Some(v) = crate::rule_verdict::of_capture(e, args)? {
+            eprint!("{v}");
+        }
+        Ok(())
+    }
 );
+
+/// `tbgen decode <protocol>`'s command line of `e`, with the rule
+/// verdict's options: what `tbgen check` parses a VCD's decoder options with.
+pub fn decode_command(e: &Entry) -> Option<Command> {
+    (e.decode_command)().map(|c| crate::rule_verdict::with_capture_options(e, c))
+}
 tool_family!(
     Timing,
     timing_command,

@@ -1,139 +1,389 @@
-//! `tbgen timing`'s rule verdict: the scenario's own master, as the model
-//! drives its line, held to its protocol's rule book (`model::<proto>::rules`)
-//! by the same edge watcher the emulator and the monitor feed, so that a
-//! scenario whose master breaks a seed's limit says so before any
-//! simulator runs, with the rule the emulator and the monitor would print.
+//! The rule verdict of `tbgen timing` and `tbgen decode`: a master's pins
+//! (the model's own line for a scenario, a capture's scalars for a VCD)
+//! held to its protocol's rule book (`model::<proto>::rules`) by the
+//! protocol's own monitor (`cosim::open("<kind>_monitor")`), which feeds
+//! the rule book's watcher with the limits the scenario file sets. So a
+//! break draws the rule label and text the emulator and the monitor print
+//! in a simulation, before any simulator runs, and the verdict is written
+//! once for every protocol: what differs between protocols is data, the
+//! line signals that feed the monitor's pins ([`Protocol::MONITOR_PINS`]).
 
 use std::fmt::Write as _;
+use std::path::PathBuf;
 
-use model::rules::{self, Breach, Rule};
-use model::testbench::{self, Setup};
+use clap::{Arg, ArgMatches, Command};
+
+use model::rules::{self, Rule};
+use model::testbench::{self, Testbench};
 use model::trace::{Layout, Sample, Sink};
-use model::ConfigError;
+use model::wire::Signal;
 
-/// Feeds the line signals `names` of every cycle to `watch` (time in ps at
-/// `f_sys_hz`, the levels in the order of `names`) and keeps the breaches.
-struct Watcher<'a, F: FnMut(u64, &[bool]) -> Vec<Breach>> {
-    columns: Vec<usize>,
-    f_sys_hz: u64,
-    levels: Vec<bool>,
-    watch: F,
-    breaches: &'a mut Vec<Breach>,
+use crate::registry::{Entry, Protocol, Visitor};
+use crate::scenario::Scenario;
+use crate::{Error, Result};
+
+/// The rule book's judgement of one run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Verdict {
+    /// Every rule met or broken, and what the clock cannot resolve.
+    pub text: String,
+    /// How many rules are broken.
+    pub broken: usize,
 }
 
-impl<F: FnMut(u64, &[bool]) -> Vec<Breach>> Sink for Watcher<'_, F> {
-    type Error = std::convert::Infallible;
-
-    fn sample(&mut self, cycle: u64, s: &Sample) -> Result<(), Self::Error> {
-        for (level, &c) in self.levels.iter_mut().zip(&self.columns) {
-            *level = s.line[c] != 0;
+/// Holds `pins` (the monitor's pins, in its order) to `entry`'s rule book:
+/// the protocol's monitor, its limits from `toml` (a scenario file, or ""
+/// for the seed's), stepped at `f_hz` from time 0 to `end_ps`, each pin at
+/// the level its signal has at the sample.
+pub fn judge(
+    entry: &Entry,
+    toml: &str,
+    origin: &str,
+    f_hz: u64,
+    pins: &[Signal],
+    end_ps: u64,
+) -> Result<Verdict> {
+    let kind = entry.protocol.monitor_kind().ok_or_else(|| {
+        Error::Decode(format!(
+            "{}: no monitor holds it to a rule book",
+            entry.table
+        ))
+    })?;
+    // A monitor that cannot watch at this clock (its least clock for the
+    // fastest line clock the configuration allows) says why: the rest of
+    // the report stands.
+    let mut monitor = match cosim::open(&kind, toml, origin, f_hz) {
+        Ok(m) => m,
+        Err(e) => {
+            return Ok(Verdict {
+                text: format!("rules: not judged: {e}\n"),
+                broken: 0,
+            })
         }
-        let t = rules::ps_at(cycle, self.f_sys_hz);
-        self.breaches.extend((self.watch)(t, &self.levels));
-        Ok(())
-    }
-}
-
-/// Runs `setup`'s bench, feeding the line signals `names` to `watch`.
-fn run<S: Setup>(
-    setup: &S,
-    names: &[&str],
-    watch: impl FnMut(u64, &[bool]) -> Vec<Breach>,
-) -> Result<Vec<Breach>, ConfigError> {
-    let bench = setup.bench()?;
-    let layout: &Layout = model::testbench::Testbench::layout(&bench);
-    let columns = names
-        .iter()
-        .map(|n| {
-            layout
-                .line
-                .iter()
-                .position(|p| p.name == *n)
-                .unwrap_or_else(|| panic!("the bench's line has no `{n}`"))
-        })
-        .collect();
-    let mut breaches = Vec::new();
-    let mut sink = Watcher {
-        columns,
-        f_sys_hz: setup.timebase()?.f_sys_hz(),
-        levels: vec![false; names.len()],
-        watch,
-        breaches: &mut breaches,
     };
-    let Ok(_) = testbench::run(bench, &mut sink);
-    Ok(breaches)
+    let mut next: Vec<usize> = vec![0; pins.len()];
+    let mut levels: Vec<bool> = vec![true; pins.len()];
+    for n in 0.. {
+        let t = rules::ps_at(n, f_hz);
+        if t > end_ps {
+            break;
+        }
+        let mut word = 0;
+        for (i, s) in pins.iter().enumerate() {
+            while let Some(&(_, level)) = s.changes.get(next[i]).filter(|c| c.0 <= t) {
+                levels[i] = level;
+                next[i] += 1;
+            }
+            word |= (levels[i] as u32) << i;
+        }
+        monitor.step(cosim::Pins(word));
+    }
+    let transcript = monitor.transcript();
+    let notes: Vec<String> = transcript["notes"]
+        .as_array()
+        .map(|a| {
+            a.iter()
+                .filter_map(|n| n.as_str().map(String::from))
+                .collect()
+        })
+        .unwrap_or_default();
+    let breaches: Vec<(&str, u64, String)> = monitor
+        .violations()
+        .iter()
+        .map(|v| (v.rule, rules::ps_at(v.cycle, f_hz), v.detail.clone()))
+        .collect();
+    Ok(render(entry.protocol.rules, &breaches, notes))
 }
 
 /// The verdict's lines: every rule of `book`, met or broken (its breaches
-/// counted, the first shown), and what the clock cannot resolve.
-fn render(book: &[&'static Rule], breaches: &[Breach], notes: Vec<String>) -> String {
-    let mut s = String::from(
-        "rules (the rule book the emulator and the monitor hold a master to, on the model's own line):\n",
-    );
-    for rule in book {
-        let mine: Vec<&Breach> = breaches
-            .iter()
-            .filter(|b| std::ptr::eq(b.rule, *rule))
-            .collect();
+/// counted, the first shown), then every other rule a report names (the
+/// CANopen monitor holds the bus to the CAN book as well), broken.
+fn render(book: &[&'static Rule], breaches: &[(&str, u64, String)], notes: Vec<String>) -> Verdict {
+    let mut labels: Vec<&str> = book.iter().map(|r| r.label()).collect();
+    for (label, _, _) in breaches {
+        if !labels.contains(label) {
+            labels.push(label);
+        }
+    }
+    let mut text =
+        String::from("rules (the rule book the emulator and the monitor hold a master to):\n");
+    let mut broken = 0;
+    for label in labels {
+        let mine: Vec<&(&str, u64, String)> = breaches.iter().filter(|b| b.0 == label).collect();
         match mine.first() {
             None => {
-                let _ = writeln!(s, "  met     {}", rule.label());
+                let _ = writeln!(text, "  met     {label}");
             }
-            Some(b) => {
+            Some((_, at, detail)) => {
+                broken += 1;
                 let _ = writeln!(
-                    s,
-                    "  BROKEN  {} ({} times; first at {:.3} us: {})",
-                    rule.label(),
+                    text,
+                    "  BROKEN  {label} ({} times; first at {:.3} us: {detail})",
                     mine.len(),
-                    rules::us(b.at_ps),
-                    b.detail
+                    rules::us(*at)
                 );
             }
         }
     }
     for n in notes {
-        let _ = writeln!(s, "  note    {n}");
+        let _ = writeln!(text, "  note    {n}");
     }
-    s
+    Verdict { text, broken }
 }
 
-/// An SSI scenario's reader, held to `model::ssi::rules` with its
-/// encoder's monoflop time.
-pub fn ssi(cfg: &model::ssi::BenchConfig) -> Result<String, ConfigError> {
-    use model::ssi::rules::{Limits, Watch, RULES};
-    let limits = Limits::seed(cfg.encoder.monoflop_us);
-    let notes = rules::resolution_notes(cfg.timebase()?.f_sys_hz(), &limits.least());
-    let mut w = Watch::new(limits);
-    let breaches = run(cfg, &["ssi_clk_master"], |t, l| w.sample(t, l[0]).breaches)?;
-    Ok(render(RULES, &breaches, notes))
+/// Where a monitor pin is in a bench's [`Sample`].
+#[derive(Debug, Clone, Copy)]
+enum Column {
+    Line(usize),
+    Input(usize),
+    Output(usize),
 }
 
-/// A BiSS-C scenario's master, held to `model::biss::rules` with its
-/// slaves' longest timeout.
-pub fn biss(cfg: &model::biss::BenchConfig) -> Result<String, ConfigError> {
-    use model::biss::rules::{Limits, Watch, RULES};
-    let timeout = cfg.slaves.iter().map(|s| s.timeout_us).fold(0.0, f64::max);
-    let limits = Limits::seed(timeout);
-    let notes = rules::resolution_notes(cfg.timebase()?.f_sys_hz(), &limits.least());
-    let mut w = Watch::new(limits);
-    let breaches = run(cfg, &["ma_master", "slo_master"], |t, l| {
-        w.sample(t, l[0], l[1]).breaches
-    })?;
-    Ok(render(RULES, &breaches, notes))
+/// The column of `path` (`line.<signal>` or `<core>.<port>`) in `layout`.
+fn column(layout: &Layout, core: &str, path: &str) -> Result<Column> {
+    let find = |list: &[model::ports::Port], name: &str| list.iter().position(|p| p.name == name);
+    let found = match path.split_once('.') {
+        Some(("line", name)) => find(&layout.line, name).map(Column::Line),
+        Some((scope, name)) if scope == core => find(&layout.inputs, name)
+            .map(Column::Input)
+            .or_else(|| find(&layout.outputs, name).map(Column::Output)),
+        _ => None,
+    };
+    found.ok_or_else(|| {
+        Error::Decode(format!(
+            "{core}: the bench has no `{path}` to feed its monitor"
+        ))
+    })
+}
+
+/// Keeps the named line signals of every cycle as level changes in ps.
+struct Recorder {
+    columns: Vec<Column>,
+    f_sys_hz: u64,
+    signals: Vec<Signal>,
+    end_ps: u64,
+}
+
+impl Sink for Recorder {
+    type Error = std::convert::Infallible;
+
+    fn sample(&mut self, cycle: u64, s: &Sample) -> std::result::Result<(), Self::Error> {
+        let t = rules::ps_at(cycle, self.f_sys_hz);
+        for (sig, &c) in self.signals.iter_mut().zip(&self.columns) {
+            let v = match c {
+                Column::Line(i) => s.line[i],
+                Column::Input(i) => s.inputs[i],
+                Column::Output(i) => s.outputs[i],
+            };
+            sig.push(t, v != 0);
+        }
+        self.end_ps = t;
+        Ok(())
+    }
+}
+
+/// The scenario's own master, as the model drives its line, held to its
+/// protocol's rule book.
+struct OfScenario<'a>(&'a Scenario);
+
+impl Visitor for OfScenario<'_> {
+    type Output = Result<String>;
+
+    fn visit<S: Protocol>(self, setup: &S) -> Result<String> {
+        let s = self.0;
+        let entry = crate::registry::by_table(S::TABLE).expect("a registered protocol");
+        let bench = setup.bench().map_err(|e| s.value_error(e))?;
+        let layout = bench.layout();
+        let columns = S::MONITOR_PINS
+            .iter()
+            .map(|path| column(layout, S::CORE, path))
+            .collect::<Result<Vec<Column>>>()?;
+        let f_sys_hz = setup.timebase().map_err(|e| s.value_error(e))?.f_sys_hz();
+        let mut rec = Recorder {
+            columns,
+            f_sys_hz,
+            signals: S::MONITOR_PINS.iter().map(|n| Signal::named(n)).collect(),
+            end_ps: 0,
+        };
+        let Ok(_) = testbench::run(bench, &mut rec);
+        let v = judge(
+            entry,
+            s.text(),
+            &s.origin,
+            f_sys_hz,
+            &rec.signals,
+            rec.end_ps,
+        )?;
+        Ok(v.text)
+    }
+}
+
+/// `tbgen timing`'s rule verdict of scenario `s`: its master, as the model
+/// drives the line, held to the rule book by the protocol's monitor.
+pub fn of_scenario(s: &Scenario) -> Result<String> {
+    s.setup.accept(OfScenario(s))
+}
+
+/// The options `tbgen decode <protocol>` (and `tbgen check` after `--`)
+/// takes for the rule verdict of a capture, added to each decoder's own.
+pub fn with_capture_options(e: &Entry, cmd: Command) -> Command {
+    if e.monitor_pins.is_empty() {
+        return cmd;
+    }
+    let defaults: Vec<String> = e.monitor_pins.iter().map(|p| format!("top.{p}")).collect();
+    cmd.arg(
+        Arg::new(RULE_PINS)
+            .long(RULE_PINS)
+            .value_name("PATHS")
+            .help(format!(
+                "Rule verdict: the dotted paths of the master's pins the {} monitor reads, comma-separated in its order [default: {}]",
+                e.table,
+                defaults.join(",")
+            )),
+    )
+    .arg(
+        Arg::new(RULES_SCENARIO)
+            .long(RULES_SCENARIO)
+            .value_name("FILE")
+            .value_parser(clap::value_parser!(PathBuf))
+            .help("Rule verdict: the limits of this scenario file (delay compensation, recovery times, bit rate...) [default: the seed's]"),
+    )
+    .arg(
+        Arg::new(RULES_CLOCK)
+            .long(RULES_CLOCK)
+            .value_name("MHZ")
+            .value_parser(clap::value_parser!(f64))
+            .help("Rule verdict: the clock the pins are sampled at, MHz [default: two samples in the capture's shortest phase, 1 to 1000 MHz]"),
+    )
+}
+
+const RULE_PINS: &str = "rule-pins";
+/// The most samples a capture's verdict takes (a few seconds of the monitor).
+const MAX_SAMPLES: u128 = 200_000_000;
+const RULES_SCENARIO: &str = "rules-scenario";
+const RULES_CLOCK: &str = "rules-clock-mhz";
+
+/// The rule verdict of a capture (`tbgen decode <protocol> FILE`): the
+/// master's pins read from the VCD (`--rule-pins`, else the waveform
+/// `tbgen gen` writes), held to the rule book by the protocol's monitor
+/// with the limits of `--rules-scenario` (else the seed's), sampled at
+/// `--rules-clock-mhz`. `None` for a protocol without a monitor; a capture
+/// without the pins gets a verdict saying so and naming `--rule-pins`.
+pub fn of_capture(e: &Entry, args: &ArgMatches) -> Result<Option<String>> {
+    if e.monitor_pins.is_empty() {
+        return Ok(None);
+    }
+    let Some(file) = args.get_one::<PathBuf>("file") else {
+        return Ok(None);
+    };
+    let paths: Vec<String> = match args.try_get_one::<String>(RULE_PINS).ok().flatten() {
+        Some(list) => list.split(',').map(|p| p.trim().to_string()).collect(),
+        None => e.monitor_pins.iter().map(|p| format!("top.{p}")).collect(),
+    };
+    if paths.len() != e.monitor_pins.len() {
+        return Err(Error::Decode(format!(
+            "decode {}: --rule-pins {}: give {} dotted paths, the {} monitor's pins in order",
+            e.table,
+            paths.join(","),
+            e.monitor_pins.len(),
+            e.table
+        )));
+    }
+    let names: Vec<(&str, &str)> = paths.iter().map(|p| (p.as_str(), "--rule-pins")).collect();
+    let pins = match crate::capture::read(file, &names) {
+        Ok(p) => p,
+        Err(err) => {
+            return Ok(Some(format!(
+                "rules of the captured master pins: not judged: {err}\n"
+            )))
+        }
+    };
+    let (toml, origin, limits) = match args.try_get_one::<PathBuf>(RULES_SCENARIO).ok().flatten() {
+        Some(p) => (
+            std::fs::read_to_string(p).map_err(|err| Error::io(p, err))?,
+            p.display().to_string(),
+            format!("the limits of {}", p.display()),
+        ),
+        None => (
+            String::new(),
+            "the seed's limits".to_string(),
+            "the seed's limits (--rules-scenario FILE gives your set-up's)".to_string(),
+        ),
+    };
+    let end_ps = pins
+        .iter()
+        .filter_map(|s| s.changes.last())
+        .map(|c| c.0)
+        .max()
+        .unwrap_or(0);
+    let f_hz = match args.try_get_one::<f64>(RULES_CLOCK).ok().flatten() {
+        Some(&mhz) if mhz > 0.0 && mhz <= 10_000.0 => (mhz * 1e6).round() as u64,
+        Some(mhz) => {
+            return Err(Error::Decode(format!(
+                "decode {}: --rules-clock-mhz {mhz}: give a clock above 0 and at most 10000 MHz",
+                e.table
+            )))
+        }
+        None => sampling_clock(&pins),
+    };
+    // Time after the last edge for a transaction to end (a pause, a
+    // timeout), within which the monitor samples the quiet line.
+    let tail_ps = 10 * rules::ps_at(1, f_hz).max(1_000_000);
+    // A capture of hours (a timestamp far out) would take as long to
+    // sample: it is said, not run.
+    let samples = (end_ps + tail_ps) as u128 * f_hz as u128 / model::time::PS_PER_S as u128;
+    if samples > MAX_SAMPLES {
+        return Ok(Some(format!(
+            "rules of the captured master pins: not judged: {:.3} s of capture at {:.3} MHz is {samples} samples, more than {MAX_SAMPLES}; cut the capture or give a slower --rules-clock-mhz\n",
+            (end_ps + tail_ps) as f64 / 1e12,
+            f_hz as f64 / 1e6
+        )));
+    }
+    let v = judge(e, &toml, &origin, f_hz, &pins, end_ps + tail_ps)?;
+    Ok(Some(format!(
+        "rules of the captured master pins ({}, sampled at {:.3} MHz; {limits}):\n{}",
+        paths.join(", "),
+        f_hz as f64 / 1e6,
+        v.text.split_once('\n').map_or("", |(_, rest)| rest)
+    )))
+}
+
+/// The clock a capture's pins are sampled at: two samples within the
+/// shortest time between two changes (of any pins: a driver enable one
+/// system clock after the data), from 1 MHz to 1 GHz.
+fn sampling_clock(pins: &[Signal]) -> u64 {
+    let mut times: Vec<u64> = pins
+        .iter()
+        .flat_map(|s| s.changes.iter().map(|c| c.0))
+        .collect();
+    times.sort_unstable();
+    let shortest = times
+        .windows(2)
+        .map(|w| w[1] - w[0])
+        .filter(|&d| d > 0)
+        .min()
+        .unwrap_or(1_000_000);
+    (2 * model::time::PS_PER_S / shortest).clamp(1_000_000, 1_000_000_000)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scenario::Setup as S;
 
     fn verdict(name: &str) -> String {
-        let s = crate::builtin::find(name).unwrap();
-        match &s.setup {
-            S::Ssi(cfg) => ssi(cfg).unwrap(),
-            S::Biss(cfg) => biss(cfg).unwrap(),
-            _ => panic!("{name}"),
-        }
+        of_scenario(&crate::builtin::find(name).unwrap()).unwrap()
+    }
+
+    fn broken(v: &str) -> Vec<&str> {
+        v.lines().filter(|l| l.contains("BROKEN")).collect()
+    }
+
+    /// The broken rules' labels, without counts and times.
+    fn labels(v: &str) -> Vec<&str> {
+        broken(v)
+            .iter()
+            .map(|l| l.split(") (").next().unwrap_or(l))
+            .collect()
     }
 
     /// The seed's readers meet every rule; a reader clocked at 1 MHz with a
@@ -147,12 +397,134 @@ mod tests {
             assert!(v.matches("  met ").count() >= 3, "{name}:\n{v}");
         }
         let v = verdict("ssi_long_cable_1mhz");
-        let broken: Vec<&str> = v.lines().filter(|l| l.contains("BROKEN")).collect();
+        let broken = broken(&v);
         assert_eq!(broken.len(), 2, "{v}");
         assert!(
             broken[0].contains("T_cs (seed 001") && broken[1].contains("f_clk (seed 001"),
             "{v}"
         );
         assert!(v.contains("  met     T_m (seed 001"), "{v}");
+    }
+
+    struct FSys;
+    impl Visitor for FSys {
+        type Output = u64;
+        fn visit<S: Protocol>(self, setup: &S) -> u64 {
+            setup.timebase().unwrap().f_sys_hz()
+        }
+    }
+
+    /// The rule verdict `tbgen decode <table>` prints for the waveform
+    /// `tbgen gen` writes of `s`, with `s`'s limits, sampled at its system
+    /// clock.
+    fn decoded(s: &Scenario) -> String {
+        let dir = tempfile::tempdir().unwrap();
+        let summary = crate::generate::generate(s, dir.path()).unwrap();
+        let vcd = summary
+            .files
+            .iter()
+            .find(|f| f.extension().is_some_and(|e| e == "vcd"))
+            .unwrap();
+        let toml = dir.path().join("scenario.toml");
+        std::fs::write(&toml, s.text()).unwrap();
+        let entry = crate::registry::by_table(s.table()).unwrap();
+        let mhz = (s.setup.accept(FSys) as f64 / 1e6).to_string();
+        let m = crate::registry::decode_command(entry)
+            .unwrap()
+            .try_get_matches_from([
+                "decode",
+                vcd.to_str().unwrap(),
+                "--rules-scenario",
+                toml.to_str().unwrap(),
+                "--rules-clock-mhz",
+                &mhz,
+            ])
+            .unwrap();
+        of_capture(entry, &m).unwrap().unwrap()
+    }
+
+    /// An EnDat master at 2 MHz whose first low phase is `t_st_us`.
+    fn endat_t_st(t_st_us: f64) -> Scenario {
+        let text = format!("name = \"endat_t_st\"\n[endat]\nf_sys_mhz = 32\npositions = [555]\n[endat.master]\nclock_khz = 2000\nt_st_us = {t_st_us}\n[[endat.commands]]\ncommand = \"pos22\"\nrepeat = 2\n");
+        Scenario::parse(&text, "endat_t_st.toml").unwrap()
+    }
+
+    /// Every protocol's verdict through the one path: a scenario whose
+    /// master meets every rule of its book (each rule listed as met), and
+    /// one that breaks exactly one, named by the label the emulator and the
+    /// monitor print. The breaking ones are the built-in fault scenarios
+    /// (a second request too early, a trigger outside the encoder's frame,
+    /// a missing ACK) and an EnDat master whose first low phase at 2 MHz is
+    /// 1.9 us, 0.1 us short of the seed's t_ST.
+    #[test]
+    fn each_protocols_legal_scenario_meets_every_rule_and_its_faulty_one_breaks_exactly_one() {
+        let cases: [(&str, Scenario, Scenario, &str); 7] = [
+            ("endat", endat_t_st(2.0), endat_t_st(1.9), "t_ST"),
+            (
+                "esl",
+                crate::builtin::find("esl_baud_minus_3").unwrap(),
+                crate::builtin::find("esl_fault_last_stop_bit_ca").unwrap(),
+                "repeat",
+            ),
+            (
+                "tformat",
+                crate::builtin::find("tformat_readout_all_ids").unwrap(),
+                crate::builtin::find("tformat_second_driver").unwrap(),
+                "jitter",
+            ),
+            (
+                "sar",
+                crate::builtin::find("sar_baud_19200").unwrap(),
+                crate::builtin::find("sar_baud_2400").unwrap(),
+                "T1-T3",
+            ),
+            (
+                "modbus",
+                crate::builtin::find("modbus_115200_faults").unwrap(),
+                crate::builtin::find("modbus_query_write_faults").unwrap(),
+                "t3.5",
+            ),
+            (
+                "can",
+                crate::builtin::find("can_arbitration_3_nodes").unwrap(),
+                crate::builtin::find("can_err_ack").unwrap(),
+                "form",
+            ),
+            (
+                "canopen",
+                crate::builtin::find("canopen_cyclic_1ms_1000k").unwrap(),
+                crate::builtin::find("canopen_sdo_no_answer").unwrap(),
+                "SDO",
+            ),
+        ];
+        for (table, legal, illegal, rule) in cases {
+            for s in [&legal, &illegal] {
+                let (t, d) = (of_scenario(s).unwrap(), decoded(s));
+                assert_eq!(
+                    labels(&t),
+                    labels(&d),
+                    "{table} {}: tbgen timing and tbgen decode of its waveform:\n{t}\n{d}",
+                    s.name
+                );
+            }
+            let book = crate::registry::by_table(table).unwrap().protocol.rules;
+            let v = of_scenario(&legal).unwrap();
+            assert!(broken(&v).is_empty(), "{table} {}:\n{v}", legal.name);
+            for r in book {
+                assert!(
+                    v.contains(&format!("  met     {}\n", r.label())),
+                    "{table}: {}\n{v}",
+                    r.name
+                );
+            }
+            let v = of_scenario(&illegal).unwrap();
+            let label = book.iter().find(|r| r.name == rule).unwrap().label();
+            assert_eq!(broken(&v).len(), 1, "{table} {}:\n{v}", illegal.name);
+            assert!(
+                broken(&v)[0].starts_with(&format!("  BROKEN  {label} (")),
+                "{table} {}:\n{v}",
+                illegal.name
+            );
+        }
     }
 }

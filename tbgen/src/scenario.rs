@@ -143,6 +143,12 @@ impl Scenario {
         Scenario::parse(&text, &origin)
     }
 
+    /// The scenario file's text (the emulators and monitors read their
+    /// limits from it).
+    pub fn text(&self) -> &str {
+        &self.text
+    }
+
     /// The core the scenario's vectors drive (`ssi_master`...).
     pub fn core(&self) -> &'static str {
         self.setup.accept(CoreAndTable).0

@@ -558,6 +558,31 @@ impl BenchConfig {
         Ok(2 * d + self.encoder_config()?.output_delay_clocks + 2 + master::SYNC_STAGES)
     }
 
+    /// Without delay compensation the master samples every bit at a fixed
+    /// point: `D` cycles (its synchroniser and `sample_delay_ns`) after each
+    /// falling clock edge, so a high phase plus `D` after the rising edge the
+    /// encoder answers on. The answer reaches the receiver the round trip
+    /// [`BenchConfig::expected_delay`] after that rising edge. `Some` when it
+    /// comes later than the sample point: the first sample after the
+    /// turnaround still sees the idle line and every read fails as
+    /// `line_not_driven`; `None` with delay compensation (the master
+    /// measures the round trip and samples after it).
+    pub fn late_answer(&self) -> Result<Option<LateAnswer>> {
+        let m = self.master_config()?;
+        if m.delay_comp {
+            return Ok(None);
+        }
+        let round_trip = self.expected_delay()?;
+        let sample_point = m.high_clocks + m.fixed_delay();
+        Ok((round_trip > sample_point).then(|| LateAnswer {
+            round_trip,
+            sample_point,
+            period_ps: self.timebase().map_or(0, |tb| tb.period_ps()),
+            sample_delay_cycles: round_trip - m.high_clocks - master::SYNC_STAGES,
+            sample_delay_max: m.delay_max.saturating_sub(master::SYNC_STAGES),
+        }))
+    }
+
     fn check(&self) -> Result<()> {
         self.cable.validate("cable")?;
         let m = self.master_config()?;
@@ -726,8 +751,17 @@ impl Setup for BenchConfig {
     type Bench = Bench;
     const PROTOCOL: &'static crate::protocol::Protocol = &super::descriptor::PROTOCOL;
 
+    /// The bench's own checks, and a set-up in which no read can succeed
+    /// ([`BenchConfig::late_answer`]): refused for a scenario, as the
+    /// `line_not_driven` on every read would be the set-up's, not a fault's
+    /// (an absent encoder is `faults.absent_from`). The bench still runs
+    /// such a set-up for a caller who builds it directly.
     fn validate(&self) -> Result<()> {
-        self.check()
+        self.check()?;
+        match self.late_answer()? {
+            Some(late) => Err(late.error()),
+            None => Ok(()),
+        }
     }
 
     fn timebase(&self) -> Result<Timebase> {
@@ -1211,5 +1245,61 @@ impl Testbench for Bench {
         self.pair.skip(n, master_drive, self.enc_drive);
         self.encoder.skip(n);
         self.cycle += n;
+    }
+}
+
+/// An answer later than the fixed sample point ([`BenchConfig::late_answer`]),
+/// in system clock cycles.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct LateAnswer {
+    /// The round trip: the clock cable, the encoder's registered output and
+    /// its output delay, the data cable, the master's input register and
+    /// synchroniser.
+    pub round_trip: u64,
+    /// The sample point after the rising clock edge: the high phase, the
+    /// synchroniser and `sample_delay_ns`.
+    pub sample_point: u64,
+    /// One cycle, ps.
+    pub period_ps: u64,
+    /// The least sample delay that reaches the round trip.
+    pub sample_delay_cycles: u64,
+    /// The greatest sample delay the frame schedule allows.
+    pub sample_delay_max: u64,
+}
+
+impl LateAnswer {
+    /// Cycles as ns.
+    fn ns(&self, cycles: u64) -> f64 {
+        cycles as f64 * self.period_ps as f64 / 1e3
+    }
+
+    /// What is wrong, in ns.
+    pub fn problem(&self) -> String {
+        format!(
+            "the round trip of {} cycles ({:.1} ns: cable both ways, the encoder's output delay, the master's input register and synchroniser) is longer than the fixed sample point, {} cycles ({:.1} ns) after the rising clock edge the encoder answers on: without delay compensation every read fails as line_not_driven",
+            self.round_trip,
+            self.ns(self.round_trip),
+            self.sample_point,
+            self.ns(self.sample_point)
+        )
+    }
+
+    /// How to fix it: delay compensation, or a sample delay that reaches
+    /// the round trip where the frame schedule allows one.
+    pub fn fix(&self) -> String {
+        let comp = "set master.delay_comp = true (the master measures the round trip at power-on and samples after it; seed 2.1.2)";
+        if self.sample_delay_cycles <= self.sample_delay_max {
+            format!(
+                "{comp}, or master.sample_delay_ns = {:.0} or more, or shorten the cable or lower the clock",
+                self.ns(self.sample_delay_cycles).ceil()
+            )
+        } else {
+            format!("{comp}, or shorten the cable or lower the clock (a sample delay of {:.0} ns would reach the round trip; the frame schedule allows at most {:.0} ns)", self.ns(self.sample_delay_cycles).ceil(), self.ns(self.sample_delay_max))
+        }
+    }
+
+    /// The refusal, on the cable's length.
+    pub fn error(&self) -> ConfigError {
+        ConfigError::invalid("cable.length_m", self.problem(), self.fix())
     }
 }

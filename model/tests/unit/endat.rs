@@ -585,6 +585,9 @@ fn recovery_short_alone_takes_a_short_t_m_instead_of_refusing_the_long_default()
     use model::Setup as _;
     let mut cfg = BenchConfig::example();
     cfg.master.clock_khz = 2000.0;
+    // At 2 MHz without delay compensation the example's 10 m and 200 ns
+    // output delay answer after the fixed sample point (a set-up refused).
+    cfg.cable.length_m = 0.0;
     cfg.master.recovery_short = true;
     cfg.encoder.recovery_short = true;
     assert_eq!(cfg.validate(), Ok(()));
@@ -792,4 +795,79 @@ fn an_early_start_bit_ends_the_read_sooner_and_fools_the_delay_counter_into_satu
         assert_eq!(e.field(), "faults.early_start");
         assert!(e.to_string().contains("give 1 or 2"), "{e}");
     }
+}
+
+/// Without delay compensation the master samples at a fixed point after each
+/// falling clock edge; a cable whose round trip comes later fails every read
+/// as `line_not_driven` (500 kHz and 1 MHz beyond about 100 m, 2 MHz sooner).
+/// The model's own runs, from 0 to 200 m, are the check of
+/// `late_answer`: it says "late" exactly where every read fails, the
+/// scenario is then refused on `cable.length_m` with `delay_comp` and the
+/// least `sample_delay_ns`, and with either fix every read is clean.
+#[test]
+fn a_round_trip_beyond_the_fixed_sample_point_is_refused_where_every_read_fails() {
+    let mut late_seen = 0;
+    for (f_sys, khz) in [(64.0, 500.0), (64.0, 1000.0), (50.0, 2000.0)] {
+        for len in (0..=200).step_by(5) {
+            let mut cfg = BenchConfig::example();
+            cfg.f_sys_mhz = f_sys;
+            cfg.master.clock_khz = khz;
+            cfg.cable.length_m = len as f64;
+            let reads = run(&cfg);
+            let reads = commands(&reads);
+            let what = format!("{khz} kHz, {len} m");
+            assert!(!reads.is_empty(), "{what}");
+            let failed = reads
+                .iter()
+                .filter(|t| t.errors.iter().any(|e| e == "line_not_driven"))
+                .count();
+            let late = cfg.late_answer().unwrap();
+            assert_eq!(
+                failed,
+                if late.is_some() { reads.len() } else { 0 },
+                "{what}: {late:?}"
+            );
+            let Some(_) = late else {
+                assert!(reads.iter().all(|t| t.errors.is_empty()), "{what}");
+                assert!(model::Setup::validate(&cfg).is_ok(), "{what}");
+                continue;
+            };
+            late_seen += 1;
+            let e = model::Setup::validate(&cfg).unwrap_err();
+            assert_eq!(e.field(), "cable.length_m", "{what}: {e}");
+            let text = e.to_string();
+            assert!(
+                text.contains("line_not_driven") && text.contains("master.delay_comp = true"),
+                "{text}"
+            );
+            let mut comp = cfg.clone();
+            comp.master.delay_comp = true;
+            assert!(model::Setup::validate(&comp).is_ok(), "{what}");
+            let ts = run(&comp);
+            assert!(
+                commands(&ts).iter().all(|t| t.errors.is_empty()),
+                "{what}: with delay compensation: {:?}",
+                ts.iter().map(|t| (&t.kind, &t.errors)).collect::<Vec<_>>()
+            );
+            if let Some(ns) = text.split("master.sample_delay_ns = ").nth(1) {
+                let ns: f64 = ns.split(' ').next().unwrap().parse().unwrap();
+                let mut later = cfg.clone();
+                later.master.sample_delay_ns = ns;
+                assert!(
+                    model::Setup::validate(&later).is_ok(),
+                    "{what}: sample_delay_ns = {ns}"
+                );
+                let reads = run(&later);
+                assert!(
+                    commands(&reads).iter().all(|t| t.errors.is_empty()),
+                    "{what}: sample_delay_ns = {ns}: {:?}",
+                    commands(&reads)
+                        .iter()
+                        .map(|t| &t.errors)
+                        .collect::<Vec<_>>()
+                );
+            }
+        }
+    }
+    assert!(late_seen >= 90, "{late_seen} late set-ups");
 }

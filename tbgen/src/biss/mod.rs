@@ -43,6 +43,9 @@ pub struct TimingArgs {
 }
 
 impl Protocol for BenchConfig {
+    /// The monitor's i_ma, i_slo: MA and SLO at the master.
+    const MONITOR_PINS: &'static [&'static str] = &["line.ma_master", "line.slo_master"];
+
     const TRANSACTION_SIGNALS: TransactionSignals = (&["o_done"], "o_delay", "delay_cycles");
 
     /// The state register's values by the model's [`model::biss::State`] (the RTL's state names).
@@ -77,6 +80,6 @@ impl Protocol for BenchConfig {
     fn timing(args: &ArgMatches) -> Result<String> {
         let TimingArgs { scenario } = registry::parse_args(args)?;
         let (s, cfg) = registry::scenario_of::<BenchConfig>(&scenario, "timing biss", "a BiSS-C")?;
-        tools::timing_report(&cfg, &s.name).map_err(|e| s.value_error(e))
+        Ok(tools::timing_report(&cfg, &s.name).map_err(|e| s.value_error(e))? + &crate::rule_verdict::of_scenario(&s)?)
     }
 }

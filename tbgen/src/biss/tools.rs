@@ -87,7 +87,6 @@ pub fn timing_report(cfg: &BenchConfig, name: &str) -> std::result::Result<Strin
         let _ = writeln!(s, "model: {what} (one host operation): {frames} frames, {cycles} cycles ({:.1} us)", cycles as f64 / f_sys * 1e6);
         first = run.transactions.iter().find(|u| u.start_cycle > t.done_cycle).map_or(first, |u| u.start_cycle);
     }
-    s += &crate::rule_verdict::biss(cfg)?;
     Ok(s)
 }
 

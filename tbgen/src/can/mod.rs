@@ -99,6 +99,9 @@ pub fn state_names() -> Vec<(u64, String)> {
 }
 
 impl Protocol for BenchConfig {
+    /// The monitor's i_can_rx, i_can_tx: the bus and the node's own TX.
+    const MONITOR_PINS: &'static [&'static str] = &["line.can_rx", "line.can_tx"];
+
     const TRANSACTION_SIGNALS: TransactionSignals = (&["o_tx_done", "o_rx_valid", "o_err_bit", "o_err_stuff", "o_err_crc", "o_err_form", "o_err_ack"], "o_rx_id", "rx_id");
     const SIGROK_DECODER: Option<&'static str> = Some("can");
     const SIGROK_MINIMUM: (usize, usize) = (17, 330);
@@ -131,7 +134,7 @@ impl Protocol for BenchConfig {
             return Err(Error::Decode(format!("timing can: --dlc {dlc} or --frames-per-s {frames_per_s}: give 0 to 8 bytes and a rate ≥ 0")));
         }
         let (s, cfg) = registry::scenario_of::<BenchConfig>(&scenario, "timing can", "a CAN")?;
-        timing::timing_report(&cfg, &s.name, dlc, frames_per_s).map_err(|e| s.value_error(e))
+        Ok(timing::timing_report(&cfg, &s.name, dlc, frames_per_s).map_err(|e| s.value_error(e))? + &crate::rule_verdict::of_scenario(&s)?)
     }
 
     /// sigrok's `can` decoder on `can_rx` (nominal bit rate and sample

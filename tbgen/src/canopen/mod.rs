@@ -36,7 +36,7 @@ pub struct DecodeArgs {
 
 /// CANopen: PDO frame time, latency, bus load per encoder and encoders per SYNC cycle at every bit rate.
 #[derive(Parser)]
-#[command(name = "canopen", after_help = "Examples:\n  tbgen timing canopen\n  tbgen timing canopen --period-ms 1 --cycle-us 500")]
+#[command(name = "canopen", after_help = "Examples:\n  tbgen timing canopen\n  tbgen timing canopen --period-ms 1 --cycle-us 500\n  tbgen timing canopen --scenario canopen_cyclic_1ms_1000k")]
 pub struct TimingArgs {
     /// Cyclic timer (6200h) of each encoder, ms, for the bus load.
     #[arg(long, default_value_t = 10.0)]
@@ -44,6 +44,9 @@ pub struct TimingArgs {
     /// SYNC cycle, µs, for the encoders that fit one.
     #[arg(long, default_value_t = 1000.0)]
     cycle_us: f64,
+    /// A built-in scenario or scenario .toml file with a [canopen] table: its master, as the model drives the bus, held to the rule book.
+    #[arg(long)]
+    scenario: Option<String>,
 }
 
 /// sigrok's `can` decoder option for a scenario: the master's nominal bit rate and sample point.
@@ -55,6 +58,9 @@ pub fn sigrok_decoder(cfg: &BenchConfig) -> Option<String> {
 }
 
 impl Protocol for BenchConfig {
+    /// The monitor's i_can_rx, i_can_tx: the bus and the node's own TX.
+    const MONITOR_PINS: &'static [&'static str] = &["line.can_rx", "line.can_tx"];
+
     const TRANSACTION_SIGNALS: TransactionSignals = (&["o_booted", "o_config_done", "o_sdo_abort", "o_node_lost", "o_pos_valid", "o_pos_timeout", "o_emcy_valid", "o_sync_sent"], "o_position", "position");
     const SIGROK_DECODER: Option<&'static str> = Some("can");
     const SIGROK_MINIMUM: (usize, usize) = (6, 300);
@@ -89,11 +95,16 @@ impl Protocol for BenchConfig {
     }
 
     fn timing(args: &ArgMatches) -> Result<String> {
-        let TimingArgs { period_ms, cycle_us } = registry::parse_args(args)?;
+        let TimingArgs { period_ms, cycle_us, scenario } = registry::parse_args(args)?;
         if !(period_ms > 0.0 && period_ms <= 65_535.0 && cycle_us > 0.0 && cycle_us <= 1e7) {
             return Err(Error::Decode(format!("timing canopen: --period-ms {period_ms} or --cycle-us {cycle_us}: give a cyclic timer of 1 to 65535 ms (6200h) and a SYNC cycle above 0 µs")));
         }
-        Ok(timing::report(period_ms, cycle_us))
+        let mut report = timing::report(period_ms, cycle_us);
+        if let Some(scenario) = scenario {
+            let (s, _) = registry::scenario_of::<BenchConfig>(&scenario, "timing canopen", "a CANopen")?;
+            report += &crate::rule_verdict::of_scenario(&s)?;
+        }
+        Ok(report)
     }
 
     /// sigrok's `can` decoder on `can_rx` must print, frame by frame, the

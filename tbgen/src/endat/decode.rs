@@ -11,15 +11,80 @@ use std::path::Path;
 pub use model::endat::decode::{Options, Transaction};
 
 use crate::capture;
+use model::wire::Signal;
 use crate::{Error, Result};
 
 /// Decodes the clock and data scalars (`clk`, `data`: dotted paths of the master's pins) of a VCD file.
-pub fn decode(path: &Path, clk: &str, data: &str, opts: &Options) -> Result<Vec<Transaction>> {
+/// Without `opts.meas_khz`, a power-on delay measurement the capture opens
+/// with ([`opening_measurement`]) is read at its own clock, and `notes` says so.
+pub fn decode(path: &Path, clk: &str, data: &str, opts: &Options, notes: &mut Vec<String>) -> Result<Vec<Transaction>> {
     if !(1..=48).contains(&opts.pos_bits) {
         return Err(Error::Decode(format!("decode endat: --pos-bits {} is not 1 to 48", opts.pos_bits)));
     }
     let signals = capture::read(path, &[(clk, "--clk"), (data, "--data")])?;
-    model::endat::decode::decode(&signals[0], &signals[1], opts).map_err(Error::Decode)
+    let mut opts = opts.clone();
+    if opts.meas_khz.is_none() {
+        match opening_measurement(&signals[0], &signals[1]) {
+            Some(m) if m.next_khz.is_none() => notes.push(format!(
+                "decode endat: {}: every one of the capture's {} frames is mode 000111 at {:.0} kHz, the clock of a delay measurement (seed 2.1.2): read as pos21 reads; if they are the master's power-on measurement (nothing follows it), give --meas-khz {:.0}",
+                path.display(),
+                m.frames,
+                m.khz,
+                m.khz
+            )),
+            Some(m) => {
+                notes.push(format!(
+                "decode endat: {}: the capture opens with {} frames of mode 000111 at {:.0} kHz before transfers at {:.0} kHz: the master's power-on delay measurement (seed 2.1.2), read as such at --meas-khz {:.0}; give --meas-khz to set its clock",
+                path.display(),
+                    m.frames,
+                    m.khz,
+                    m.next_khz.unwrap_or_default(),
+                    m.khz
+                ));
+                opts.meas_khz = Some(m.khz);
+            }
+            None => {}
+        }
+    }
+    model::endat::decode::decode(&signals[0], &signals[1], &opts).map_err(Error::Decode)
+}
+
+/// A power-on delay measurement as a capture shows it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Measurement {
+    /// Its clock, kHz (the first frame's, to the nearest kHz).
+    pub khz: f64,
+    /// Its frames.
+    pub frames: usize,
+    /// The clock of the first transfer after it, kHz (`None`: the capture
+    /// holds nothing else, and may as well be `pos21` reads at that clock).
+    pub next_khz: Option<f64>,
+}
+
+/// The delay measurement a capture opens with: a run of `000111` frames
+/// (mode `pos21`) at a clock within the seed's measurement clock
+/// (`model::endat::rules::MEAS_CLOCK`, 100 to 200 kHz, 3 % off it as the
+/// decoder reads a measurement clock) followed by a transfer at a clock at
+/// least twice as fast, or by nothing (then it may be `pos21` reads at that
+/// clock as well). A capture that starts after the measurement shows none.
+pub fn opening_measurement(clk: &Signal, data: &Signal) -> Option<Measurement> {
+    use model::rules::Bound;
+    let Bound::Within(lo, hi, _) = model::endat::rules::MEAS_CLOCK.bound else {
+        return None;
+    };
+    let khz = |b: &model::endat::decode::Burst| b.period().map(|p| 1e9 / p.max(1) as f64);
+    let bursts = model::endat::decode::bursts(clk);
+    let in_range = |k: f64| k >= lo * 0.97 && k <= hi * 1.03;
+    let run = bursts
+        .iter()
+        .take_while(|b| b.mode(data) == Some(model::endat::Command::Pos21.code()) && khz(b).is_some_and(in_range))
+        .count();
+    let first = khz(bursts.first()?)?;
+    let next = match bursts.get(run) {
+        None => None,
+        Some(b) => Some(khz(b).filter(|&k| k >= 2.0 * first)?),
+    };
+    (run > 0).then_some(Measurement { khz: first.round(), frames: run, next_khz: next })
 }
 
 #[cfg(test)]
@@ -38,6 +103,7 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let mut compared = 0;
         let mut scenarios = 0;
+        let mut without_flag = 0;
         for s in builtin::all().unwrap() {
             let Setup::Endat(cfg) = &s.setup else { continue };
             scenarios += 1;
@@ -48,7 +114,25 @@ mod tests {
                 pos_bits: cfg.encoder.singleturn_bits + cfg.encoder.multiturn_bits,
                 meas_khz: measures.then_some(cfg.master.meas_clock_khz),
             };
-            let decoded = decode(&summary.files[1], "top.line.endat_clk_master", "top.line.endat_data_master", &opts).unwrap();
+            let decoded = decode(&summary.files[1], "top.line.endat_clk_master", "top.line.endat_data_master", &opts, &mut Vec::new()).unwrap();
+            // Without --meas-khz: a master with delay compensation opens
+            // with its measurement, found at its clock and said so; one
+            // without reads the same with or without the flag.
+            // A capture of nothing but measurement frames (a measurement
+            // that never succeeds) could be pos21 reads at 200 kHz: it is
+            // read as such, and the note names the flag.
+            if cfg.master.delay_comp || !measures {
+                let mut notes = Vec::new();
+                let found = decode(&summary.files[1], "top.line.endat_clk_master", "top.line.endat_data_master", &Options { meas_khz: None, ..opts.clone() }, &mut notes).unwrap();
+                let only = decoded.iter().all(|t| t.kind == "delay_measurement");
+                if only {
+                    assert!(notes.len() == 1 && notes[0].contains("give --meas-khz 200"), "{}: {notes:?}", s.name);
+                } else {
+                    assert_eq!(found, decoded, "{}: without --meas-khz", s.name);
+                    assert_eq!(notes.len(), cfg.master.delay_comp as usize, "{}: {notes:?}", s.name);
+                }
+                without_flag += 1;
+            }
             let expected: Vec<&serde_json::Value> = gen["transactions"]
                 .as_array()
                 .unwrap()
@@ -75,6 +159,7 @@ mod tests {
             }
         }
         assert!(scenarios >= 24 && compared > 2000, "{scenarios} scenarios, {compared} fields");
+        assert!(without_flag >= 20, "{without_flag} scenarios decoded without --meas-khz");
         println!("{scenarios} EnDat scenarios, {compared} decoded fields equal to gen's");
     }
 
@@ -98,7 +183,7 @@ mod tests {
             }
             std::fs::write(&path, text).unwrap();
             let opts = Options { pos_bits, meas_khz: meas.then_some(200.0) };
-            let _ = decode(&path, "top.line.endat_clk_master", "top.line.endat_data_master", &opts);
+            let _ = decode(&path, "top.line.endat_clk_master", "top.line.endat_data_master", &opts, &mut Vec::new());
         }
     }
 
@@ -108,9 +193,9 @@ mod tests {
         let s = builtin::find("endat_pos21_1mhz").unwrap();
         let summary = generate::generate(&s, dir.path()).unwrap();
         let opts = Options { pos_bits: 25, meas_khz: None };
-        let e = decode(&summary.files[1], "top.line.clk", "top.line.endat_data_master", &opts).unwrap_err().to_string();
+        let e = decode(&summary.files[1], "top.line.clk", "top.line.endat_data_master", &opts, &mut Vec::new()).unwrap_err().to_string();
         assert!(e.contains("top.line.clk") && e.contains("--clk") && e.contains(".vcd"), "{e}");
-        let e = decode(&summary.files[1], "top.line.endat_clk_master", "top.endat_master.o_position", &opts).unwrap_err().to_string();
+        let e = decode(&summary.files[1], "top.line.endat_clk_master", "top.endat_master.o_position", &opts, &mut Vec::new()).unwrap_err().to_string();
         assert!(e.contains("--data") && e.contains("bits wide"), "{e}");
     }
 }

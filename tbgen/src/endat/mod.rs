@@ -51,6 +51,9 @@ pub struct TimingArgs {
 }
 
 impl Protocol for BenchConfig {
+    /// The monitor's i_endat_clk, i_endat_data, i_endat_data_oe, i_endat_data_in: the line at the master is its own data while it drives, the encoder's answer otherwise.
+    const MONITOR_PINS: &'static [&'static str] = &["line.endat_clk_master", "line.endat_data_master", "line.master_oe", "line.endat_data_master"];
+
     const TRANSACTION_SIGNALS: TransactionSignals = (&["o_done", "o_meas_done"], "o_position", "position");
 
     /// The state register's values by the model's [`model::endat::State`] (the RTL's state names).
@@ -70,7 +73,11 @@ impl Protocol for BenchConfig {
     fn decode(args: &ArgMatches) -> Result<String> {
         let DecodeArgs { file, clk, data, pos_bits, meas_khz } = registry::parse_args(args)?;
         let opts = decode::Options { pos_bits, meas_khz };
-        let transactions = decode::decode(&file, &clk, &data, &opts)?;
+        let mut notes = Vec::new();
+        let transactions = decode::decode(&file, &clk, &data, &opts, &mut notes)?;
+        for n in notes {
+            eprintln!("NOTE: {n}");
+        }
         let envelope = crate::transcript::Decoded::new("endat", &file, &[("clk", clk.as_str()), ("data", data.as_str())], &transactions);
         serde_json::to_string_pretty(&envelope).map_err(|e| Error::Decode(e.to_string()))
     }
@@ -82,7 +89,7 @@ impl Protocol for BenchConfig {
     fn timing(args: &ArgMatches) -> Result<String> {
         let TimingArgs { scenario, command, ads, diagram } = registry::parse_args(args)?;
         let s = builtin::resolve(&scenario)?;
-        timing::report(&s, &command, ads, diagram)
+        Ok(timing::report(&s, &command, ads, diagram)? + &crate::rule_verdict::of_scenario(&s)?)
     }
 
     /// The emulator's `motion` is no field of the master.

@@ -186,6 +186,32 @@ mod tests {
     use super::*;
     use crate::builtin;
 
+    /// 150 m at 500 kHz and 1 MHz without delay compensation: every read
+    /// failed as `line_not_driven` while `tbgen gen` exited 0 and `tbgen
+    /// timing endat --command pos21` printed a normal budget. Both read the
+    /// scenario through its check, which now refuses it (exit status 2) on
+    /// the cable's line, with the round trip, the sample point and both
+    /// fixes; with `delay_comp = true` the same cable is a normal budget.
+    #[test]
+    fn a_cable_whose_round_trip_passes_the_fixed_sample_point_is_refused_with_both_fixes() {
+        let dir = tempfile::tempdir().unwrap();
+        for khz in [500, 1000] {
+            let text = format!("name = \"endat_150m\"\n[endat]\nf_sys_mhz = 64\n[endat.master]\nclock_khz = {khz}\n[endat.cable]\nlength_m = 150\n[[endat.commands]]\ncommand = \"pos21\"\n");
+            let path = dir.path().join("endat_150m.toml");
+            std::fs::write(&path, &text).unwrap();
+            let e = builtin::resolve(path.to_str().unwrap()).unwrap_err();
+            assert_eq!(e.exit_code(), 2, "{e}");
+            let msg = e.to_string();
+            for part in ["endat_150m.toml:7: field `cable.length_m`", "is longer than the fixed sample point", "line_not_driven", "master.delay_comp = true", "master.sample_delay_ns = "] {
+                assert!(msg.contains(part), "{khz} kHz: `{part}` in {msg}");
+            }
+            std::fs::write(&path, text.replace("[endat.cable]", "delay_comp = true\n[endat.cable]")).unwrap();
+            let s = builtin::resolve(path.to_str().unwrap()).unwrap();
+            let r = report(&s, "pos21", 0, false).unwrap();
+            assert!(r.contains("scenario endat_150m"), "{r}");
+        }
+    }
+
     fn committed(name: &str) -> String {
         let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../vectors/endat_master").join(format!("{name}.hex"));
         std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))

@@ -50,6 +50,9 @@ pub struct TimingArgs {
 }
 
 impl Protocol for BenchConfig {
+    /// The monitor's i_esl_rx, i_esl_data, i_esl_data_oe: the line at the host is its own data while it drives.
+    const MONITOR_PINS: &'static [&'static str] = &["line.line_at_host", "line.line_at_host", "line.tx_en_host"];
+
     const TRANSACTION_SIGNALS: TransactionSignals = (&["o_done"], "o_abs", "abs");
 
     /// The state register's values by the model's [`model::esl::State`] (the RTL's state names).
@@ -85,7 +88,7 @@ impl Protocol for BenchConfig {
         let TimingArgs { scenario, data_id } = registry::parse_args(args)?;
         let (s, cfg) = registry::scenario_of::<BenchConfig>(&scenario, "timing esl", "an ESL")?;
         let id = if data_id == 0 { 1 } else { data_id };
-        tools::timing_report(&cfg, &s.name, id).map_err(|e| registry::tool_error("timing esl", &s, &[("data_id", "--data-id")], e))
+        Ok(tools::timing_report(&cfg, &s.name, id).map_err(|e| registry::tool_error("timing esl", &s, &[("data_id", "--data-id")], e))? + &crate::rule_verdict::of_scenario(&s)?)
     }
 
     /// sigrok's `uart` decoder at 10 Mbps on the line at the host must find,

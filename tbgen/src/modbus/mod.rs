@@ -91,6 +91,9 @@ pub fn timing_report(cfg: &BenchConfig, name: &str, registers: u8) -> std::resul
 }
 
 impl Protocol for BenchConfig {
+    /// The monitor's i_rx, i_line, i_line_en: the line at the master is its own data while it drives.
+    const MONITOR_PINS: &'static [&'static str] = &["line.line_at_master", "line.line_at_master", "line.tx_en_master"];
+
     const TRANSACTION_SIGNALS: TransactionSignals = (&["o_done"], "o_value", "value");
     const SIGROK_DECODER: Option<&'static str> = Some("uart");
     const SIGROK_MINIMUM: (usize, usize) = (2, 100);
@@ -121,7 +124,7 @@ impl Protocol for BenchConfig {
     fn timing(args: &ArgMatches) -> Result<String> {
         let TimingArgs { scenario, registers } = registry::parse_args(args)?;
         let (s, cfg) = registry::scenario_of::<BenchConfig>(&scenario, "timing modbus", "a Modbus")?;
-        timing_report(&cfg, &s.name, registers).map_err(|e| s.value_error(e))
+        Ok(timing_report(&cfg, &s.name, registers).map_err(|e| s.value_error(e))? + &crate::rule_verdict::of_scenario(&s)?)
     }
 
     /// sigrok's `uart` decoder on the line at the master must find, in

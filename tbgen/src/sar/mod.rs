@@ -103,6 +103,9 @@ pub fn timing_report(cfg: &BenchConfig, name: &str, t3_us: f64) -> std::result::
 }
 
 impl Protocol for BenchConfig {
+    /// The monitor's i_rx, i_line, i_line_en, i_trigger, i_clr: the line at the host is its own data while it drives; TRIGGER and CLR at the host's ports.
+    const MONITOR_PINS: &'static [&'static str] = &["line.line_at_host", "line.line_at_host", "line.tx_en_host", "sar_async_host.o_trigger", "sar_async_host.o_clr"];
+
     const TRANSACTION_SIGNALS: TransactionSignals = (&["o_done"], "o_position", "position");
     const SIGROK_DECODER: Option<&'static str> = Some("uart");
     const SIGROK_MINIMUM: (usize, usize) = (4, 100);
@@ -135,7 +138,7 @@ impl Protocol for BenchConfig {
     fn timing(args: &ArgMatches) -> Result<String> {
         let TimingArgs { scenario, t3_us } = registry::parse_args(args)?;
         let (s, cfg) = registry::scenario_of::<BenchConfig>(&scenario, "timing sar", "a SAR58K24")?;
-        timing_report(&cfg, &s.name, t3_us).map_err(|e| s.value_error(e))
+        Ok(timing_report(&cfg, &s.name, t3_us).map_err(|e| s.value_error(e))? + &crate::rule_verdict::of_scenario(&s)?)
     }
 
     /// sigrok's `uart` decoder on the line at the host must find, in order,

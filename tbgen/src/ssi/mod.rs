@@ -52,6 +52,9 @@ pub struct TimingArgs {
 }
 
 impl Protocol for BenchConfig {
+    /// The monitor's i_ssi_clk, i_ssi_data: the clock and the data at the reader.
+    const MONITOR_PINS: &'static [&'static str] = &["line.ssi_clk_master", "line.ssi_data_master"];
+
     const TRANSACTION_SIGNALS: TransactionSignals = (&["o_done"], "o_position", "position");
 
     /// The state register's values by the model's [`model::ssi::State`] (the RTL's state names).
@@ -85,7 +88,7 @@ impl Protocol for BenchConfig {
     fn timing(args: &ArgMatches) -> Result<String> {
         let TimingArgs { scenario } = registry::parse_args(args)?;
         let (s, cfg) = registry::scenario_of::<BenchConfig>(&scenario, "timing ssi", "an SSI")?;
-        timing::timing_report(&cfg, &s.name).map_err(|e| s.value_error(e))
+        Ok(timing::timing_report(&cfg, &s.name).map_err(|e| s.value_error(e))? + &crate::rule_verdict::of_scenario(&s)?)
     }
 
     /// One SPI word per read that clocked, at the encoder's pins: the level

@@ -33,7 +33,6 @@ pub fn timing_report(cfg: &BenchConfig, name: &str) -> Result<String, model::Con
     if let Some(t) = run.transactions.iter().find(|t| t.errors.is_empty()) {
         let _ = writeln!(s, "model: read {} start to o_done {} cycles ({:.1} ns, budget {:+} cycles)", t.index, t.done_cycle - t.start_cycle, ns(t.done_cycle - t.start_cycle), (t.done_cycle - t.start_cycle) as i64 - latency as i64);
     }
-    s += &crate::rule_verdict::ssi(cfg)?;
     Ok(s)
 }
 

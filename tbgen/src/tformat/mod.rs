@@ -47,6 +47,9 @@ pub struct TimingArgs {
 }
 
 impl Protocol for BenchConfig {
+    /// The monitor's i_tf_rx, i_tf_data, i_tf_data_oe: the line at the host is its own data while it drives.
+    const MONITOR_PINS: &'static [&'static str] = &["line.line_at_host", "line.line_at_host", "line.tx_en_host"];
+
     const TRANSACTION_SIGNALS: TransactionSignals = (&["o_done"], "o_abs", "abs");
 
     /// The state register's values by the model's [`model::tformat::State`] (the RTL's state names).
@@ -79,7 +82,7 @@ impl Protocol for BenchConfig {
     fn timing(args: &ArgMatches) -> Result<String> {
         let TimingArgs { scenario, data_id } = registry::parse_args(args)?;
         let (s, cfg) = registry::scenario_of::<BenchConfig>(&scenario, "timing tformat", "a T-format")?;
-        timing::timing_report(&cfg, &s.name, data_id).map_err(|e| registry::tool_error("timing tformat", &s, &[("data_id", "--data-id")], e))
+        Ok(timing::timing_report(&cfg, &s.name, data_id).map_err(|e| registry::tool_error("timing tformat", &s, &[("data_id", "--data-id")], e))? + &crate::rule_verdict::of_scenario(&s)?)
     }
 
     /// sigrok's `uart` decoder at 2.5 Mbps on the line at the host must find,
