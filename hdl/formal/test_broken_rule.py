@@ -22,16 +22,20 @@ import pytest
 ROOT = Path(__file__).resolve().parents[2]
 
 # (core, task, the line as the core has it, the line one count short,
-#  the property that must catch it).
+#  the property that must catch it, the core's output it is about).
 CASES = [
     ("ssi_master", "prove_plain",
      "localparam [31:0] T_CS_LAST_32 = T_CS_CLOCKS - 1;",
      "localparam [31:0] T_CS_LAST_32 = T_CS_CLOCKS - 2;",
-     "t_cs"),
+     "t_cs", "o_ssi_clk"),
     ("ssi_master", "prove_plain",
      "localparam [31:0] HIGH_LAST_32 = HIGH_CLOCKS - 1;",
      "localparam [31:0] HIGH_LAST_32 = HIGH_CLOCKS - 2;",
-     "clock_high"),
+     "clock_high", "o_ssi_clk"),
+    ("biss_master", "prove_ma",
+     "localparam [31:0] LOW_LAST_32 = LOW_CLOCKS - 1;",
+     "localparam [31:0] LOW_LAST_32 = LOW_CLOCKS - 2;",
+     "tmasl", "o_ma"),
 ]
 
 
@@ -55,8 +59,8 @@ def gtkwave_reads(vcd, work):
     return dump, facs, max_time
 
 
-@pytest.mark.parametrize("core,task,line,broken,prop", CASES, ids=[f"{c[0]}-{c[4]}" for c in CASES])
-def test_counter_one_short_fails_with_a_trace(tmp_path, core, task, line, broken, prop):
+@pytest.mark.parametrize("core,task,line,broken,prop,output", CASES, ids=[f"{c[0]}-{c[4]}" for c in CASES])
+def test_counter_one_short_fails_with_a_trace(tmp_path, core, task, line, broken, prop, output):
     rtl = tmp_path / "rtl"
     rtl.mkdir()
     for f in (ROOT / "hdl" / "rtl").glob("*.v"):
@@ -77,7 +81,7 @@ def test_counter_one_short_fails_with_a_trace(tmp_path, core, task, line, broken
 
     dump, facs, max_time = gtkwave_reads(vcd, tmp_path)
     assert Path(dump).name == vcd.name
-    assert any(f.endswith("dut.o_" + ("ssi_clk" if core == "ssi_master" else "done")) or f.endswith("o_done") for f in facs), \
-        f"GTKWave shows none of the core's outputs in {vcd}: {facs[:20]}"
+    assert any(f.endswith(f"dut.{output}") for f in facs), \
+        f"GTKWave does not show the core's {output} in {vcd}: {facs[:20]}"
     # smtbmc writes one step per 10 time units: the trace reaches the failing step.
     assert max_time >= 10 * step, f"GTKWave's trace ends at {max_time}, before step {step}"
