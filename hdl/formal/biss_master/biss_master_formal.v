@@ -187,6 +187,9 @@ localparam integer CNT_W = $clog2(TIMEOUT_CLOCKS + 3);
 (* keep *) wire [CNT_W-1:0] probe_cnt;
 (* keep *) wire             probe_slo_sync;
 (* keep *) wire             probe_slo_meta;
+`ifndef BOUNDED
+// Only for the induction: a bounded run needs none, and its first failure
+// should be a rule's.
 always @* if (f_past) begin
     inv_sync: assert (probe_slo_sync == slo_d2 && probe_slo_meta == slo_d1);
     inv_last_high: assert (last_high >= HIGH_CLOCKS && last_high <= LEN_MAX && len_q <= LEN_MAX);
@@ -202,6 +205,7 @@ always @* if (f_past) begin
     if (probe_state >= 4'd1 && probe_state <= 4'd7) inv_running: assert (probe_ma_run && !probe_ma_stop && o_busy);
     if (probe_state >= 4'd8) inv_stopping: assert (probe_ma_stop && o_busy && (!probe_ma_run || probe_cnt <= CLOCKS_PER_BIT));
 end
+`endif
 
 `ifndef MA_ONLY
 always @* if (f_past) begin
