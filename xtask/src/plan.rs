@@ -156,7 +156,7 @@ pub const STAGES: &[Stage] = &[
             "sh",
             "-c",
             ".venv/bin/python scripts/formal.py --quick \
-             && .venv/bin/python -m pytest -p no:cacheprovider -q hdl/formal/test_broken_rule.py -k 't_cs or tmasl'",
+             && .venv/bin/python -m pytest -p no:cacheprovider -q hdl/formal/test_broken_rule.py -k 'prove_plain-t_cs or prove_ma-tmasl'",
         ],
         after: &[],
         what: "each core's first formal proof; a core broken on purpose fails with a trace",
