@@ -37,6 +37,10 @@ CASES = [
      "localparam [31:0] LOW_LAST_32 = LOW_CLOCKS - 1;",
      "localparam [31:0] LOW_LAST_32 = LOW_CLOCKS - 2;",
      "tmasl", "o_ma"),
+    ("endat_master", "prove_clock",
+     "localparam [31:0] T_ST_LAST_32 = T_ST_CLOCKS - 1;",
+     "localparam [31:0] T_ST_LAST_32 = T_ST_CLOCKS - 2;",
+     "t_st", "o_endat_clk"),
     # A bounded task on abc bmc3: the failure replayed on smtbmc for its trace.
     ("biss_master", "frames",
      "localparam [31:0] LOW_LAST_32 = LOW_CLOCKS - 1;",
