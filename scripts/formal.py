@@ -264,6 +264,22 @@ def run_task(core, task, rtl_dir, out_dir, replay_depth=None):
     return result
 
 
+def depth_comments(sby):
+    """task -> the comment just above its `depth` option in the .sby file
+    (one comment serves the depth lines that follow it together)."""
+    out, comment, fresh = {}, "", False
+    for line in sections(sby.read_text()).get("options", []):
+        if line.startswith("#"):
+            comment = (comment + " " if fresh else "") + line.lstrip("# ").strip()
+            fresh = True
+            continue
+        fresh = False
+        m = re.match(r"^(\w+): depth \d+", line)
+        if m and comment:
+            out[m.group(1)] = comment
+    return out
+
+
 def table(results):
     """Markdown: per core, its tasks (configuration, mode, time), then one
     row per property with its verdict in each task."""
@@ -273,9 +289,10 @@ def table(results):
         harness = harness_of(FORMAL / core / f"{core}.sby")
         desc = descriptions(harness)
         lines += [f"### {core}", "", f"Harness `{harness.relative_to(ROOT)}`.", "",
-                  "| task | mode | parameters | time |", "| --- | --- | --- | --- |"]
+                  "| task | mode | what the depth covers | parameters | time |", "| --- | --- | --- | --- | --- |"]
+        covers = depth_comments(FORMAL / core / f"{core}.sby")
         for r in rs:
-            lines.append(f"| {r.task} | {r.mode}, depth {r.depth} | {r.params} | {r.seconds:.0f} s |")
+            lines.append(f"| {r.task} | {r.mode}, depth {r.depth} | {covers.get(r.task, '')} | {r.params} | {r.seconds:.0f} s |")
         lines += ["", "| property | what it states | " + " | ".join(r.task for r in rs) + " |",
                   "| --- | --- | " + " | ".join("---" for _ in rs) + " |"]
         labels = list(dict.fromkeys(v.label for r in rs for v in r.verdicts if not v.label.startswith(HELPER)))
@@ -308,9 +325,9 @@ failures the runner replays on smtbmc for the trace.
 
 Verdicts: *proven (k-induction, k=N)*: the property holds in every reachable
 state (the base case and the induction step of depth N closed); *bounded to
-depth N*: no input sequence breaks it within N cycles of reset (at least one
-whole frame, as each task's comment in the .sby file says); *failed at step
-N*: a counterexample, the VCD named (opens in GTKWave).
+depth N*: no input sequence breaks it within N cycles of reset (the tasks'
+table says what that depth covers, from the .sby file's comment on it);
+*failed at step N*: a counterexample, the VCD named (opens in GTKWave).
 
 The core's registers start from any value and reset is asserted in the
 first cycle only (the seed rules are about reads between resets); the
