@@ -103,6 +103,55 @@ mod tests {
         assert_eq!((t[15].outcome, t[15].rec, t[15].err_state), ("rx_valid", 119, 0));
     }
 
+    /// Rule 8 at its boundary: a frame received whole at REC 126, 127 and
+    /// 128 ("decreased by 1, if it was between 1 and 127 ... if it was
+    /// greater than 127, then it will be set to a value between 119 and
+    /// 127", the core's 119). Each scenario walks REC up with stuff errors
+    /// (`scenarios/can/rec_*_good.toml`), then receives one frame.
+    #[test]
+    fn a_good_reception_at_rec_126_127_and_128() {
+        // REC at each error pulse: 14 errors only the core flags (+ 1, then + 8 after
+        // its flag: 9k + 1 at the pulse, 126 after the 14th), then errors every node
+        // flags at once (+ 1 alone); the good frame's REC (`.., 125`, `.., 126`, `.., 119`).
+        for (name, shared, after) in [("can_rec_126_good", &[][..], 125), ("can_rec_127_good", &[127][..], 126), ("can_rec_128_good", &[127, 128][..], 119)] {
+            let (_, t) = run(name);
+            let (last, errs) = t.split_last().unwrap();
+            assert!(errs.iter().all(|t| t.outcome == "err_stuff" && t.tec == 0), "{name}: {:?}", outcomes(&t));
+            let recs: Vec<u16> = errs.iter().map(|t| t.rec).collect();
+            let want: Vec<u16> = (0..14).map(|k| 9 * k + 1).chain(shared.iter().copied()).collect();
+            assert_eq!(recs, want, "{name}: REC at every error");
+            assert_eq!(errs.last().unwrap().err_state, u8::from(recs.last() == Some(&128)), "{name}: error-passive from 128 only");
+            assert_eq!((last.outcome, last.rec, last.tec, last.err_state), ("rx_valid", after, 0, 0), "{name}: REC after the good frame");
+        }
+    }
+
+    /// Rule 3 exception 2 ends at RTR: "whereby the STUFFBIT is located
+    /// before the RTR bit". A recessive stuff bit after ID0 read dominant is
+    /// not counted; one right after RTR is (TEC + 8, then − 1 when sent).
+    #[test]
+    fn the_stuff_exemption_ends_at_the_rtr_bit() {
+        let (_, t) = run("can_stuff_exempt_last_id_bit");
+        assert_eq!(counters(&t), [("err_stuff", 0, 0), ("tx_done", 0, 0)]);
+        let (_, t) = run("can_stuff_after_rtr");
+        assert_eq!(counters(&t), [("err_stuff", 8, 0), ("tx_done", 7, 0)]);
+    }
+
+    /// The acceptance filter compares all 29 bits of an extended
+    /// identifier: identifiers one bit away from the filter's (bits 28, 18,
+    /// 17, 11, 10, 0) and a standard frame of its low 11 bits are rejected
+    /// (no transaction), the exact one accepted.
+    #[test]
+    fn the_filter_compares_every_bit_of_an_extended_identifier() {
+        let (cfg, t) = run("can_filter_extended");
+        let sent = &cfg.nodes[0].frames;
+        assert_eq!(sent.len(), 8);
+        let want = sent.last().unwrap().id;
+        assert!(sent[..7].iter().all(|f| f.id != want));
+        let got: Vec<_> = t.iter().map(|t| (t.outcome, t.rx_id, t.ide)).collect();
+        assert_eq!(got, [("rx_valid", Some(want), true)], "only the exact identifier is accepted");
+        assert_eq!(cfg.dut.filter_mask, 0x1FFF_FFFF);
+    }
+
     #[test]
     fn error_passive_bus_off_and_recovery() {
         let (_, t) = run("can_passive_suspend");
