@@ -130,6 +130,9 @@ impl Standard {
 }
 
 /// Every standard with a compliance matrix.
-pub fn standards() -> [&'static Standard; 1] {
-    [&crate::can::clauses::STANDARD]
+pub fn standards() -> [&'static Standard; 2] {
+    [
+        &crate::can::clauses::STANDARD,
+        &crate::canopen::clauses::STANDARD,
+    ]
 }

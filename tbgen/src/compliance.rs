@@ -50,13 +50,18 @@ pub(crate) use exercise;
 fn exercises(protocol: &str) -> &'static [Exercise] {
     match protocol {
         "can" => crate::can::families::tests::EXERCISES,
+        "canopen" => crate::canopen::tests::compliance::EXERCISES,
         _ => &[],
     }
 }
 
 /// Where a protocol's exercises are declared, for messages.
-fn declared_in(protocol: &str) -> String {
-    format!("tbgen/src/{protocol}/families.rs")
+fn declared_in(protocol: &str) -> &'static str {
+    match protocol {
+        "can" => "tbgen/src/can/families.rs",
+        "canopen" => "tbgen/src/canopen/compliance.rs",
+        _ => "nowhere (tbgen/src/compliance.rs: `exercises`)",
+    }
 }
 
 /// Checks every exercise against the standard and the built-in scenarios:
@@ -145,7 +150,7 @@ fn document(standard: &Standard, ex: &[Exercise]) -> String {
          `WRITE_COMPLIANCE_MD=1` with that command rewrites it, and the test fails while this file is stale.\n\n\
          Each test runs its scenarios through the model and asserts its transcript; every scenario named also has\n\
          vectors (`vectors/<core>/<scenario>.hex`) that the RTL replays in Icarus and Verilator, every output\n\
-         compared every cycle (TEC, REC and the error state among them), so what a test asserts of the model holds\n\
+         compared every cycle, so what a test asserts of the model holds\n\
          of the core. A clause the rule book quotes (`docs/rules.md`) is also watched on the master's pins by the\n\
          monitor and the emulator in every closed loop.\n\n\
          {n} clauses, {rows} rows: {done} exercised, {gaps} gaps.\n",
