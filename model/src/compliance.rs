@@ -73,6 +73,22 @@ pub struct Clause {
 }
 
 impl Clause {
+    /// A clause whose words are quoted here.
+    pub const fn quoted(
+        id: &'static str,
+        short: &'static str,
+        roles: Roles,
+        section: &'static str,
+        words: &'static str,
+    ) -> Clause {
+        Clause {
+            id,
+            short,
+            roles,
+            text: Text::Quoted { section, words },
+        }
+    }
+
     /// The section the words are from.
     pub fn section(&self) -> &'static str {
         match &self.text {

@@ -11,21 +11,6 @@
 use super::rules::{BIT_TIME, CRC, DOMINANT, FORM, INTERMISSION, STUFF};
 use crate::compliance::{Clause, Roles, Standard, Text};
 
-const fn quoted(
-    id: &'static str,
-    short: &'static str,
-    roles: Roles,
-    section: &'static str,
-    words: &'static str,
-) -> Clause {
-    Clause {
-        id,
-        short,
-        roles,
-        text: Text::Quoted { section, words },
-    }
-}
-
 /// A fault confinement rule of part B §8: held as transmitter and as receiver.
 const fn rule(
     n: &'static str,
@@ -33,14 +18,14 @@ const fn rule(
     short: &'static str,
     words: &'static str,
 ) -> Clause {
-    quoted(id, short, Roles::TransmitterAndReceiver, n, words)
+    Clause::quoted(id, short, Roles::TransmitterAndReceiver, n, words)
 }
 
 const ANY: Roles = Roles::Any;
 
 /// Error detection (part B §7.1, §7.2).
 static DETECTION: [Clause; 7] = [
-    quoted(
+    Clause::quoted(
         "bit-error",
         "a sender reads another level than it sends",
         ANY,
@@ -59,7 +44,7 @@ static DETECTION: [Clause; 7] = [
         roles: ANY,
         text: Text::Rule(&CRC),
     },
-    quoted(
+    Clause::quoted(
         "crc-error-flag",
         "the CRC error's flag follows the ACK delimiter",
         ANY,
@@ -72,14 +57,14 @@ static DETECTION: [Clause; 7] = [
         roles: ANY,
         text: Text::Rule(&FORM),
     },
-    quoted(
+    Clause::quoted(
         "form-error-last-eof",
         "a receiver's dominant last EOF bit is no form error",
         ANY,
         "part B §7.1, note",
         "for a Receiver a dominant bit during the last bit of END OF FRAME is not treated as FORM ERROR.",
     ),
-    quoted(
+    Clause::quoted(
         "ack-error",
         "a transmitter reads a recessive ACK slot",
         ANY,
@@ -90,7 +75,7 @@ static DETECTION: [Clause; 7] = [
 
 /// Fault confinement (part B §3.4 and §8, rules 1 to 12).
 static CONFINEMENT: [Clause; 13] = [
-    quoted(
+    Clause::quoted(
         "transmitter",
         "a node stays transmitter until the bus is idle",
         Roles::TransmitterAndReceiver,
@@ -173,7 +158,7 @@ static CONFINEMENT: [Clause; 13] = [
 
 /// Frames, flags and spacing (part A §3.1.3 to §3.1.5, §5).
 static FRAMING: [Clause; 7] = [
-    quoted(
+    Clause::quoted(
         "bit-stuffing",
         "a complementary bit after five equal bits",
         ANY,
@@ -186,14 +171,14 @@ static FRAMING: [Clause; 7] = [
         roles: ANY,
         text: Text::Rule(&DOMINANT),
     },
-    quoted(
+    Clause::quoted(
         "passive-error-flag",
         "complete after six equal bits",
         ANY,
         "part A §3.1.3, ERROR FLAG",
         "The PASSIVE ERROR FLAG is complete when these 6 equal bits have been detected.",
     ),
-    quoted(
+    Clause::quoted(
         "error-delimiter",
         "wait for a recessive bit, then seven more",
         ANY,
@@ -206,14 +191,14 @@ static FRAMING: [Clause; 7] = [
         roles: ANY,
         text: Text::Rule(&INTERMISSION),
     },
-    quoted(
+    Clause::quoted(
         "intermission-third-bit",
         "a dominant third intermission bit is a start of frame",
         ANY,
         "part A §3.1.4, OVERLOAD FLAG",
         "In case that there is a 'dominant' bit detected during the 3rd bit of INTERMISSION locally at some node, the other nodes will not interpret the OVERLOAD FLAG correctly, but interpret the first of these six 'dominant' bits as START OF FRAME.",
     ),
-    quoted(
+    Clause::quoted(
         "suspend",
         "an error-passive transmitter waits 8 more recessive bits",
         ANY,
@@ -224,21 +209,21 @@ static FRAMING: [Clause; 7] = [
 
 /// Overload (part A §3.1.4).
 static OVERLOAD: [Clause; 3] = [
-    quoted(
+    Clause::quoted(
         "overload-1",
         "a receiver's internal conditions delay the next frame",
         ANY,
         "part A §3.1.4, OVERLOAD condition 1",
         "The internal conditions of a receiver, which requires a delay of the next DATA FRAME or REMOTE FRAME. ... The start of an OVERLOAD FRAME due to OVERLOAD condition 1 is only allowed to be started at the first bit time of an expected INTERMISSION ... At most two OVERLOAD FRAMEs may be generated to delay the next DATA or REMOTE FRAME.",
     ),
-    quoted(
+    Clause::quoted(
         "overload-2",
         "a dominant bit in intermission starts an overload flag",
         ANY,
         "part A §3.1.4, OVERLOAD condition 2",
         "Detection of a 'dominant' bit during INTERMISSION. ... OVERLOAD FRAMEs due to OVERLOAD condition 2 start one bit after detecting the 'dominant' bit.",
     ),
-    quoted(
+    Clause::quoted(
         "overload-delimiter",
         "eight recessive bits after the flags",
         ANY,
@@ -255,35 +240,35 @@ static TIMING: [Clause; 6] = [
         roles: ANY,
         text: Text::Rule(&BIT_TIME),
     },
-    quoted(
+    Clause::quoted(
         "prop-seg",
         "PROP_SEG covers the network's delays",
         ANY,
         "part A §8, PROP SEG",
         "This part of the bit time is used to compensate for the physical delay times within the network.",
     ),
-    quoted(
+    Clause::quoted(
         "sync-1",
         "one synchronisation per bit time",
         ANY,
         "part A §8, SYNCHRONIZATION RULES, 1",
         "Only one SYNCHRONIZATION within one bit time is allowed.",
     ),
-    quoted(
+    Clause::quoted(
         "sync-2",
         "an edge counts only after the other level was sampled",
         ANY,
         "part A §8, SYNCHRONIZATION RULES, 2",
         "An edge will be used for SYNCHRONIZATION only if the value detected at the previous SAMPLE POINT (previous read bus value) differs from the bus value immediately after the edge.",
     ),
-    quoted(
+    Clause::quoted(
         "sync-3",
         "hard synchronisation on a falling edge in bus idle",
         ANY,
         "part A §8, SYNCHRONIZATION RULES, 3",
         "HARD SYNCHRONIZATION is performed whenever there is a 'recessive' to 'dominant' edge during BUS IDLE.",
     ),
-    quoted(
+    Clause::quoted(
         "sync-4",
         "resynchronisation on other falling edges, not by a node sending dominant",
         ANY,

@@ -3,20 +3,16 @@
 //! `docs/compliance/canopen.md` ([`crate::compliance`]). Sections are the
 //! note's; the words are its own, as the seed's text has them.
 
-use crate::compliance::{Clause, Roles, Standard, Text};
+use crate::compliance::{Clause, Roles, Standard};
 
+/// A clause of the note: held in one row.
 const fn note(
     id: &'static str,
     short: &'static str,
     section: &'static str,
     words: &'static str,
 ) -> Clause {
-    Clause {
-        id,
-        short,
-        roles: Roles::Any,
-        text: Text::Quoted { section, words },
-    }
+    Clause::quoted(id, short, Roles::Any, section, words)
 }
 
 /// The identifiers (§2.1) and the boot-up message (§2.2).
