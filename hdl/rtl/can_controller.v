@@ -479,9 +479,10 @@ always @* begin
             FRAME: begin
                 if (stuff_cnt_reg == 3'd5) begin
                     if (b == last_bit_reg) begin
-                        // Rule 3 exception 2: a recessive stuff bit in arbitration read dominant.
+                        // Rule 3 exception 2: a recessive stuff bit in arbitration read dominant,
+                        // "located before the RTR bit": the bit before it (pos_reg - 1) is not RTR.
                         e_kind = E_STUFF;
-                        e_exempt = tx_active_reg && pos_reg >= 7'd2 && (pos_reg - 7'd1) <= arb_end && sent && !b;
+                        e_exempt = tx_active_reg && pos_reg >= 7'd2 && pos_reg <= arb_end && sent && !b;
                     end else begin
                         stuff_cnt_next = 3'd1;
                         last_bit_next = b;

@@ -23,6 +23,7 @@ pub mod biss;
 pub mod bits;
 pub mod can;
 pub mod canopen;
+pub mod compliance;
 pub mod crc;
 pub mod endat;
 pub mod error;

@@ -31,6 +31,8 @@ pub mod builtin;
 pub mod capture;
 pub mod check;
 pub mod closed_loop;
+#[cfg(test)]
+mod compliance;
 pub mod crc_cmd;
 #[cfg(test)]
 mod descriptor_tests;

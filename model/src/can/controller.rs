@@ -983,8 +983,11 @@ impl Controller {
     fn frame_bit(&mut self, b: bool, sent: bool) {
         if self.stuff_cnt == 5 {
             if b == self.last_bit {
-                // Rule 3 exception: a recessive stuff bit in arbitration read dominant.
-                let arb = self.pos >= 2 && self.pos - 1 <= arbitration_end(self.tx.ide);
+                // Rule 3 exception 2: a recessive stuff bit in arbitration read
+                // dominant, "whereby the STUFFBIT is located before the RTR bit":
+                // the bit before it (at `pos - 1`) is an identifier bit (or SRR,
+                // IDE), not RTR, so `pos` is at most RTR's position.
+                let arb = self.pos >= 2 && self.pos <= arbitration_end(self.tx.ide);
                 let exempt = self.tx_active && arb && sent && !b;
                 self.error(ErrorKind::Stuff, exempt);
                 return;

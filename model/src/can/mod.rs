@@ -23,6 +23,7 @@
 pub mod bench;
 pub mod bus;
 pub mod campaign;
+pub mod clauses;
 
 pub mod controller;
 pub mod decode;

@@ -21,6 +21,7 @@
 //! ```
 
 pub mod bench;
+pub mod clauses;
 pub mod cob;
 pub mod descriptor;
 pub mod encoder;

@@ -3,7 +3,7 @@
 
 pub mod decode;
 #[cfg(test)]
-mod families;
+pub(crate) mod families;
 pub mod sigrok_errors;
 pub mod timing;
 

@@ -150,7 +150,10 @@ impl Protocol for BenchConfig {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
+    // What the tests below exercise of seed 003 (docs/compliance/canopen.md).
+    include!("compliance.rs");
+
     use model::canopen::bench::{Bench, BusFrame as BusFrameT, Transaction};
     use model::canopen::sdo::abort;
     use model::testbench::Testbench;
