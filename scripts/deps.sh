@@ -19,6 +19,7 @@
 #             nextpnr-ice40       [nextpnr-ice40]
 #             gtkwave             [gtkwave]
 #             xvfb-run, xauth     [xvfb, xauth]  GTKWave headless in make test
+#             xwd                 [x11-apps]    screenshots of GTKWave's window (check_gtkw.sh)
 #             sigrok-cli          [sigrok-cli]  + the protocol decoders for `-P uart`;
 #                                               on Debian they ship inside
 #                                               libsigrokdecode4 (/usr/share/libsigrokdecode/decoders)
@@ -56,6 +57,7 @@ REQUIRED_TOOLS=(
     "sigrok-cli:sigrok-cli"
     "xvfb-run:xvfb"
     "xauth:xauth"
+    "xwd:x11-apps"
 )
 OPTIONAL_TOOLS=(
     "icepack:fpga-icestorm"
@@ -193,6 +195,8 @@ print_versions() {
     ver_line sigrok-cli    "$(first_line sigrok-cli --version), decoders: $SIGROK_DECODERS_PKG $(pkg_version "$SIGROK_DECODERS_PKG")"
     # xvfb-run lets make test open GTKWave headless (scripts/check_gtkw.sh).
     ver_line xvfb-run      "xvfb $(pkg_version xvfb)"
+    # xwd takes the screenshots of GTKWave's window (scripts/check_gtkw.sh).
+    ver_line xwd           "x11-apps $(pkg_version x11-apps)"
     ver_line python        "$("$VENV/bin/python" --version 2>&1) in .venv: $("$VENV/bin/python" -m pip freeze 2>/dev/null | grep -E '^(cocotb|maturin|fusesoc|canopen)==' | tr '\n' ' ')"
     if have ccache; then
         ver_line ccache    "$(first_line ccache --version) (optional)"
