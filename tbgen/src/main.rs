@@ -4,6 +4,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
+use tbgen::progress::Mode;
 use tbgen::registry;
 use tbgen::{builtin, crc_cmd, generate, Error};
 
@@ -58,6 +59,10 @@ enum Command {
         /// Output folder.
         #[arg(long, short)]
         out: PathBuf,
+        /// Show progress and an estimate of size and time on stderr even when it is not a
+        /// terminal (a terminal always gets them).
+        #[arg(long)]
+        progress: bool,
     },
     /// Compute a CRC of the catalogue over a bit string given in wire order.
     #[command(
@@ -216,6 +221,7 @@ fn run(command: Command) -> Result<(), Error> {
             scenarios,
             all,
             out,
+            progress,
         } => {
             let chosen = if all {
                 builtin::all()?
@@ -229,7 +235,7 @@ fn run(command: Command) -> Result<(), Error> {
             };
             for s in &chosen {
                 let dir = if all { out.join(s.core()) } else { out.clone() };
-                let summary = generate::generate(s, &dir)?;
+                let summary = generate::generate_with(s, &dir, Mode::choose(progress))?;
                 outln!(
                     "{}: {} cycles, {} records, {} transactions -> {}",
                     s.name,

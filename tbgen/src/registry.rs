@@ -26,7 +26,7 @@ use crate::{Error, Result};
 /// Everything has a default, so a new protocol starts with
 /// `impl Protocol for BenchConfig { const TRANSACTION_SIGNALS: ... }`.
 pub trait Protocol:
-    model::Setup + serde::Serialize + serde::de::DeserializeOwned + 'static
+    model::Setup + serde::Serialize + serde::de::DeserializeOwned + Send + 'static
 {
     /// The output pulses that end a transaction, the output holding its
     /// result, and the transcript field that must equal it (the whole-flow
