@@ -117,15 +117,19 @@ enum Command {
     },
     /// Print the reference of a protocol's scenario fields: unit, default, values, meaning.
     #[command(
-        after_help = "Examples:\n  tbgen fields ssi\n  tbgen fields --all > docs/scenarios.md   # the committed reference"
+        after_help = "Examples:\n  tbgen fields ssi\n  tbgen fields endat --markdown\n  tbgen fields --all > docs/scenarios.md   # the committed reference"
     )]
     Fields {
         /// The protocol's table (tbgen protocols).
         #[arg(required_unless_present = "all")]
         protocol: Option<String>,
-        /// Every protocol: docs/scenarios.md.
+        /// Every protocol: docs/scenarios.md (Markdown).
         #[arg(long, conflicts_with = "protocol")]
         all: bool,
+        /// Markdown tables, as the docs hold them, instead of plain text wrapped to the
+        /// terminal's width ($COLUMNS, else 100).
+        #[arg(long)]
+        markdown: bool,
     },
     /// List the registered protocols: stem, core, emulator, closed loops,
     /// decoder, budget, sigrok decoder; with --json every descriptor whole
@@ -274,8 +278,19 @@ fn run(command: Command) -> Result<(), Error> {
         Command::Bench { scenario } => bench(&scenario)?,
         Command::Timing(call) => out!("{}", call.run()?),
         Command::Decode(call) => outln!("{}", call.run()?),
-        Command::Fields { protocol, all } => match protocol {
-            Some(p) if !all => out!("{}", tbgen::fields::protocol(&p)?),
+        Command::Fields {
+            protocol,
+            all,
+            markdown,
+        } => match protocol {
+            Some(p) if !all && markdown => out!("{}", tbgen::fields::protocol(&p)?),
+            Some(p) if !all => {
+                let width = std::env::var("COLUMNS")
+                    .ok()
+                    .and_then(|c| c.parse().ok())
+                    .unwrap_or(100);
+                out!("{}", tbgen::fields::plain(&p, width)?)
+            }
             _ => out!("{}", tbgen::fields::document()?),
         },
         Command::Protocols { json: false } => out!("{}", registry::table()),

@@ -28,7 +28,17 @@ pub const DEFAULT_PAGE: u8 = 8;
 pub const REGISTER_PAGE: u8 = 8;
 
 /// The Data IDs of Tables 3 and 12.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
+#[derive(
+    Debug,
+    Clone,
+    Copy,
+    PartialEq,
+    Eq,
+    Hash,
+    serde::Serialize,
+    serde::Deserialize,
+    schemars::JsonSchema,
+)]
 pub enum DataId {
     /// 1: position read, safety, with multi-turn.
     Id1,
@@ -328,7 +338,17 @@ pub const STATUS_CA_MASK: u8 = 0b11;
 pub const STATUS_CH2: u8 = 1 << 5;
 
 /// Encoder error flags (Table 7, ALM bit 0 first; Table 8 for how each is cleared).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[derive(
+    Debug,
+    Clone,
+    Copy,
+    PartialEq,
+    Eq,
+    Default,
+    serde::Serialize,
+    serde::Deserialize,
+    schemars::JsonSchema,
+)]
 #[serde(deny_unknown_fields, default)]
 pub struct Alarms {
     /// XC: multi-turn miss count (bit 0; cleared by C).

@@ -45,7 +45,17 @@ pub fn tag_byte(tag: AnswerTag, bus: bool, address: u8) -> u8 {
 /// for the bus modes alone, and only an echoed address lets a host on a
 /// shared line see that the wrong encoder answered. The default follows the
 /// text; `fixed81` follows the tables.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[derive(
+    Debug,
+    Clone,
+    Copy,
+    PartialEq,
+    Eq,
+    Default,
+    serde::Serialize,
+    serde::Deserialize,
+    schemars::JsonSchema,
+)]
 #[serde(rename_all = "snake_case")]
 pub enum AnswerTag {
     /// Bus answers carry `Bx`, the command byte (the text's reading).

@@ -20,7 +20,17 @@ pub const SINK_CODE: u8 = 0b010;
 pub const ENID: u8 = 0x11;
 
 /// The Data IDs of Table 1, with their uses.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
+#[derive(
+    Debug,
+    Clone,
+    Copy,
+    PartialEq,
+    Eq,
+    Hash,
+    serde::Serialize,
+    serde::Deserialize,
+    schemars::JsonSchema,
+)]
 #[serde(rename_all = "snake_case")]
 pub enum DataId {
     /// 0: single-turn data (ABS0..2).
@@ -170,7 +180,17 @@ impl Status {
 }
 
 /// ALMC (Table 3): the encoder's error flags, bit 0 first.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[derive(
+    Debug,
+    Clone,
+    Copy,
+    PartialEq,
+    Eq,
+    Default,
+    serde::Serialize,
+    serde::Deserialize,
+    schemars::JsonSchema,
+)]
 #[serde(deny_unknown_fields, default)]
 pub struct Alarms {
     /// OS: over-speed (d70).
