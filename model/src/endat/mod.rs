@@ -115,6 +115,7 @@ pub use master::{
 };
 
 use crate::crc::{BitSerial, ENDAT_CRC5};
+use schemars::JsonSchema;
 
 /// The raw LFSR register after a frame and its correct CRC field: what the
 /// RTL compares against (`ENDAT_CRC5.wire_residue()`).
@@ -135,15 +136,7 @@ pub const CONT_MAX_LOW_BITS: u64 = 7;
 
 /// The 14 mode commands of seed section 2.3.2.1.
 #[derive(
-    Debug,
-    Clone,
-    Copy,
-    PartialEq,
-    Eq,
-    Hash,
-    serde::Serialize,
-    serde::Deserialize,
-    schemars::JsonSchema,
+    Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize, JsonSchema,
 )]
 #[serde(rename_all = "snake_case")]
 pub enum Command {
