@@ -15,8 +15,14 @@ use crate::{Error, Result};
 
 /// Decodes the clock and data scalars (`clk`, `data`: dotted paths of the master's pins) of a VCD file.
 pub fn decode(path: &Path, clk: &str, data: &str, opts: &Options) -> Result<Vec<Transaction>> {
-    if !(1..=48).contains(&opts.pos_bits) {
-        return Err(Error::Decode(format!("decode endat: --pos-bits {} is not 1 to 48", opts.pos_bits)));
+    let range = model::endat::POSITION_BITS;
+    if !range.contains(&opts.pos_bits) {
+        return Err(Error::Decode(format!(
+            "decode endat: --pos-bits {} is not {} to {}",
+            opts.pos_bits,
+            range.start(),
+            range.end()
+        )));
     }
     let signals = capture::read(path, &[(clk, "--clk"), (data, "--data")])?;
     model::endat::decode::decode(&signals[0], &signals[1], opts).map_err(Error::Decode)
