@@ -108,7 +108,7 @@ fn an_interrupted_gen_leaves_nothing_in_out_and_dies_of_the_signal() {
 #[test]
 fn progress_is_shown_when_asked_and_only_then() {
     let dir = tempfile::tempdir().unwrap();
-    let scenario = long_scenario(dir.path(), 400);
+    let scenario = long_scenario(dir.path(), 600);
     let mut child = gen(&scenario, &dir.path().join("a"), &["--progress"]);
     let lines: Vec<String> = BufReader::new(child.stderr.take().unwrap())
         .lines()
