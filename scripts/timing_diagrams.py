@@ -12,9 +12,16 @@ differs (make test). Each diagram shows the line signals (the VCD's
 `top.line` scope) over the first transaction of the scenario, from its
 earliest to its latest `*_cycle` field in the transcript, so every line edge of the
 transaction is drawn (one column per tenth-percentile pulse of any one signal, at
-most 400 columns: a longer transaction shows its start, and the caption
-says so). The timing docs (docs/timing/*.md)
-link the SVGs.
+most 140 columns (WaveDrom draws 40 px a column: under MAX_WIDTH_PX): a longer transaction shows its start, and the caption
+says so). Below the line, one lane per state register the model names (the
+`top.decoded` signals with a `<core>.<signal>.filter` beside the VCD, which
+tbgen writes from the model's state enums): the frame's parts as the model
+itself walks them (BiSS-C's ACK, START, CDS, DATA, CRC, EnDat's receive
+phases ...), not a second hand-kept description; a register whose states
+mostly last one column (a clock's HIGH and LOW) is left out. A stretch where
+nothing changes for more than GAP columns (a timeout, an idle line) is
+drawn as a gap of two columns. The timing docs (docs/timing/*.md) link the
+SVGs.
 """
 import argparse
 import filecmp
@@ -42,12 +49,27 @@ def diagrams():
             for p in json.loads(out) if p["diagram"]]
 
 
-MAX_STEPS = 400
+MAX_STEPS = 140
+# A stretch of more unchanged columns than this is drawn as a gap.
+GAP = 8
 
 
-def read_vcd(path):
-    """The 1-bit signals of the `top.line` scope: {name: [(time, level)]}."""
+def read_filters(core):
+    """{decoded signal: {value: name}} of the core's named state registers
+    (vectors/<core>/<core>.<signal>.filter, "hex name" lines)."""
+    named = {}
+    for f in sorted((ROOT / "vectors" / core).glob(f"{core}.*.filter")):
+        signal = f.name[len(core) + 1: -len(".filter")]
+        named[signal] = {int(v, 16): n for v, n in (l.split() for l in f.read_text().splitlines() if l.strip())}
+    return named
+
+
+def read_vcd(path, named):
+    """The 1-bit signals of the `top.line` scope and the `top.decoded`
+    signals in `named`: (line order, named order, {name: [(time, value)]}),
+    a line's value "0", "1" or "x", a named register's its state's name."""
     codes, scope, changes = {}, [], {}
+    line_order, named_order = [], []
     t = 0
     in_defs = True
     for line in path.read_text().splitlines():
@@ -62,19 +84,30 @@ def read_vcd(path):
             elif parts[0] == "$var" and scope == ["top", "line"] and parts[2] == "1":
                 codes[parts[3]] = parts[4]
                 changes[parts[4]] = []
+                line_order.append(parts[4])
+            elif parts[0] == "$var" and scope == ["top", "decoded"] and parts[4] in named:
+                codes[parts[3]] = parts[4]
+                changes[parts[4]] = []
+                named_order.append(parts[4])
             elif parts[0] == "$enddefinitions":
                 in_defs = False
             continue
         head = parts[0]
         if head.startswith("#"):
             t = int(head[1:])
+            continue
+        if head[0] in "bB" and len(parts) == 2 and parts[1] in codes:
+            name = codes[parts[1]]
+            bits = head[1:]
+            value = named[name].get(int(bits, 2), "x") if set(bits) <= {"0", "1"} else "x"
         elif head[0] in "01xzXZ" and head[1:] in codes:
             name = codes[head[1:]]
-            level = "1" if head[0] == "1" else "0" if head[0] == "0" else "x"
-            if not changes[name] or changes[name][-1][1] != level:
-                changes[name].append((t, level))
-    order = list(dict.fromkeys(codes.values()))
-    return order, changes
+            value = "1" if head[0] == "1" else "0" if head[0] == "0" else "x"
+        else:
+            continue
+        if not changes[name] or changes[name][-1][1] != value:
+            changes[name].append((t, value))
+    return list(dict.fromkeys(line_order)), named_order, changes
 
 
 def level_at(changes, t):
@@ -94,10 +127,11 @@ def diagram(core, scenario, title):
     cycles = [v for k, v in first.items() if (k.endswith("_cycle") or k == "cycle") and isinstance(v, int)]
     if not cycles:
         raise SystemExit(f"{core}/{scenario}: the first transaction has no *_cycle field")
-    order, changes = read_vcd(vcd)
+    named = read_filters(core)
+    order, lanes, changes = read_vcd(vcd, named)
     lead = 4 * period_ps
     t0, t1 = round(min(cycles) * period_ps - lead), round(max(cycles) * period_ps + lead)
-    # One column = a short pulse of any one signal in the window, so
+    # One column = a short pulse of any one line signal in the window, so
     # nearly every pulse gets a column (offsets between signals, such as a cable's
     # delay, do not shrink it).
     pulses = []
@@ -109,21 +143,61 @@ def diagram(core, scenario, title):
     # The tenth percentile: a stray short pulse does not set the scale.
     step = sorted(pulses)[len(pulses) // 10] if pulses else (t1 - t0) / 40
     n = int((t1 - t0) / step) + 1
-    shown = min(n, MAX_STEPS)
-    cut = f"; the first {shown} of {n} columns" if shown < n else ""
-    n = shown
+    # Every column's values, line signals then named registers.
+    columns = [[level_at(changes[name], t0 + i * step + step / 2) for name in order + lanes] for i in range(n)]
+    # Long unchanged stretches become gaps: two columns kept, a gap mark
+    # after the first of them.
+    kept, gaps, i = [], set(), 0
+    while i < n:
+        j = i
+        while j + 1 < n and columns[j + 1] == columns[i]:
+            j += 1
+        if j - i + 1 > GAP:
+            kept += [i, j]
+            gaps.add(len(kept) - 1)
+        else:
+            kept += range(i, j + 1)
+        i = j + 1
+    shown = min(len(kept), MAX_STEPS)
+    cut = f"; the first {shown} of {len(kept)} columns" if shown < len(kept) else ""
+    compressed = f"; {len(gaps)} idle stretch{'es' if len(gaps) != 1 else ''} of more than {GAP} columns cut short (~)" if gaps else ""
+    kept = kept[:shown]
     signals = []
-    for name in order:
+    for k, name in enumerate(order):
         wave, last = "", None
-        for i in range(n):
-            v = level_at(changes[name], t0 + i * step + step / 2)
-            wave += "." if v == last else v
+        for c, i in enumerate(kept):
+            v = columns[i][k]
+            wave += ("|" if c in gaps else "") + ("." if v == last else v)
             last = v
         signals.append({"name": name, "wave": wave})
+    # The named registers: one data lane each, a segment per state, its
+    # name written in when it spans at least two columns.
+    for k, name in enumerate(lanes, start=len(order)):
+        wave, data, last = "", [], None
+        for c, i in enumerate(kept):
+            v = columns[i][k]
+            mark = "|" if c in gaps else ""
+            if v == last:
+                wave += mark + "."
+            elif v == "x":
+                wave += mark + "x"
+            else:
+                wave += mark + "="
+                data.append(v)
+            last = v
+        # A one-column segment's name would overprint its neighbours'.
+        marks = [ch for ch in wave if ch != "|"]
+        starts = [c for c, ch in enumerate(marks) if ch == "="]
+        widths = [next((e for e in range(c + 1, len(marks)) if marks[e] != "."), len(marks)) - c for c in starts]
+        data = [d if w >= 2 else "" for d, w in zip(data, widths)]
+        # A register that changes at every column names the clock's half
+        # periods (HIGH, LOW), not the frame's parts: left out.
+        if 3 * sum(1 for d in data if d) >= len(data):
+            signals.append({"name": name, "wave": wave, "data": data})
     return {
         "signal": signals,
         "head": {"text": title},
-        "foot": {"text": f"{scenario}: one column = {step / 1000:.4g} ns (f_sys {transcript['f_sys_hz'] / 1e6:g} MHz){cut}; from the model's waves"},
+        "foot": {"text": f"{scenario}: one column = {step / 1000:.4g} ns (f_sys {transcript['f_sys_hz'] / 1e6:g} MHz){compressed}{cut}; from the model's waves"},
         "config": {"hscale": 1},
     }
 
@@ -149,6 +223,33 @@ def generate(out):
         wavedrom.render(text).saveas(str(out / f"{stem}.svg"))
 
 
+# The widest diagram that a reader sees whole: WaveDrom centres the title
+# on the drawing, which a wider one pushes off the screen.
+MAX_WIDTH_PX = 6000
+
+# The BiSS-C frame's parts in the order the seed lists them (seed 001,
+# SAR58K24 user's manual, BiSS-C: Ack, Start, CDS, data, error, warning,
+# CRC): the labels the model's own states must show in its diagram.
+BISS_FRAME = ["ACK", "START", "CDS", "DATA", "ERR", "WARN", "CRC"]
+
+
+def readable(folder):
+    """What makes a drawn diagram unreadable: too wide for its title, or,
+    for BiSS-C, labels that are not the frame's parts in the seed's order."""
+    import re
+    problems = []
+    for stem, core, scenario, title in diagrams():
+        m = re.search(r'<svg[^>]*\swidth="(\d+)"', (folder / f"{stem}.svg").read_text())
+        if not m or int(m.group(1)) > MAX_WIDTH_PX:
+            problems.append(f"{stem}.svg is {m.group(1) if m else 'of no'} px wide (at most {MAX_WIDTH_PX}, or its title is off screen)")
+        if core == "biss_master":
+            labels = [d for s in json.loads((folder / f"{stem}.json").read_text())["signal"] for d in s.get("data", []) if d]
+            seen = [d for d in labels if d in BISS_FRAME]
+            if seen[:len(BISS_FRAME)] != BISS_FRAME:
+                problems.append(f"{stem}: the labels {labels} do not name the BiSS-C frame's parts {BISS_FRAME}")
+    return problems
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--out", default=str(ROOT / "docs" / "wavedrom"))
@@ -167,6 +268,10 @@ def main():
         bad += [f.name for f in pathlib.Path(tmp).iterdir() if (committed / f.name).is_file() and (committed / f.name).read_bytes() != f.read_bytes() and f.name not in bad]
         if bad:
             print(f"wavedrom: docs/wavedrom/ is not what scripts/timing_diagrams.py draws from the vectors: {', '.join(sorted(set(bad)))}; run scripts/timing_diagrams.py and commit")
+            sys.exit(1)
+        problems = readable(pathlib.Path(tmp))
+        if problems:
+            print("wavedrom: " + "; ".join(problems))
             sys.exit(1)
         print(f"wavedrom: {len(diagrams())} diagrams current")
 

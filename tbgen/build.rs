@@ -53,46 +53,4 @@ fn main() {
     let dest =
         Path::new(&std::env::var("OUT_DIR").expect("cargo sets OUT_DIR")).join("builtin_files.rs");
     std::fs::write(dest, out).expect("OUT_DIR is writable");
-    model_sources(&manifest);
-}
-
-/// Every `model/src/**/*.rs` as `(path under model/src, text)`: `tbgen
-/// fields` reads the scenario fields' doc comments from the configuration
-/// structs themselves (tbgen/src/fields.rs), so the reference has one source.
-fn model_sources(manifest: &str) {
-    let src = Path::new(manifest).join("../model/src");
-    println!("cargo:rerun-if-changed=../model/src");
-    let mut files = Vec::new();
-    let mut dirs = vec![src.clone()];
-    while let Some(dir) = dirs.pop() {
-        for e in std::fs::read_dir(&dir).expect("a readable model/src folder") {
-            let path = e.expect("a readable model/src entry").path();
-            if path.is_dir() {
-                println!("cargo:rerun-if-changed={}", path.display());
-                dirs.push(path);
-            } else if path.extension().is_some_and(|x| x == "rs") {
-                files.push(
-                    path.strip_prefix(&src)
-                        .unwrap()
-                        .to_str()
-                        .expect("a UTF-8 path")
-                        .to_string(),
-                );
-            }
-        }
-    }
-    files.sort();
-    let mut out = String::from("&[\n");
-    for rel in files {
-        writeln!(
-            out,
-            "    ({rel:?}, include_str!(concat!(env!(\"CARGO_MANIFEST_DIR\"), {:?}))),",
-            format!("/../model/src/{rel}")
-        )
-        .unwrap();
-    }
-    out.push(']');
-    let dest =
-        Path::new(&std::env::var("OUT_DIR").expect("cargo sets OUT_DIR")).join("model_sources.rs");
-    std::fs::write(dest, out).expect("OUT_DIR is writable");
 }

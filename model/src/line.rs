@@ -15,7 +15,7 @@ use serde::{Deserialize, Serialize};
 use crate::{ConfigError, Result, Timebase};
 
 /// A cable as a scenario file describes it.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct CableConfig {
     /// Length in metres (0 to 1000).

@@ -1,317 +1,489 @@
 //! `tbgen fields <protocol>` and `docs/scenarios.md`: the reference of every
-//! scenario field, made from one source, the model's configuration structs.
+//! scenario field, made from one source, the model's configuration types.
 //!
-//! - The fields, their nesting and their types are the structs' own
-//!   (`model::<proto>::BenchConfig` and the structs its fields name), read
-//!   from the model's source, which `build.rs` compiles in.
-//! - The meaning is the field's doc comment; the unit is the name's suffix
-//!   (`_khz`, `_us`, `_m` ...), the convention every scenario field follows;
-//!   the values a field takes come from its type (an enum's choices by their
-//!   serde names, a whole number's width) and the doc comment says any
-//!   tighter limit the seed sets.
-//! - The default is what the model itself fills in: the set-up a table left
-//!   empty deserialises to, serialised back.
+//! - The fields, their nesting, their types and their meanings are the
+//!   schema the types derive (`schemars::JsonSchema` beside `Deserialize`,
+//!   so it follows serde's names, defaults and flattening): a field's doc
+//!   comment is its meaning, an enum's variants are its choices.
+//! - The values a field takes are its type's as a scenario writes them (a
+//!   pair is `[a, b]`), narrowed by the range the type declares for it
+//!   (`#[schemars(range(...))]` on the same constant the model's check
+//!   reads), so the reference shows the limit `tbgen gen` enforces.
+//! - The unit is the name's suffix (`_khz`, `_us`, `_m` ...), the
+//!   convention every scenario field follows.
+//! - The default is what the model itself fills in (the types' `Default`,
+//!   serialised).
 //!
 //! A field without a doc comment is an error of the reference (tested), so
 //! a new field cannot slip in undocumented. `make test` holds the committed
 //! `docs/scenarios.md` to [`document`] (the `scenarios_md_is_current` test).
+//! On a terminal the reference is plain text wrapped to its width;
+//! `--markdown` gives the tables the docs hold.
 
 use std::fmt::Write as _;
 
-use crate::registry::{Protocol, Visitor};
-use crate::{Error, Result};
+use serde_json::{Map, Value};
 
-/// `(path under model/src, text)` of every model source file.
-const MODEL_SOURCES: &[(&str, &str)] = include!(concat!(env!("OUT_DIR"), "/model_sources.rs"));
+use crate::{Error, Result};
 
 /// The committed reference, relative to the repository root.
 pub const DOC_PATH: &str = "docs/scenarios.md";
 
-/// One field of a configuration struct, as its source declares it.
-#[derive(Debug, Clone)]
-struct Field {
-    /// The name in the scenario file (the field name, or its serde rename).
+/// One field of a table.
+#[derive(Debug, Clone, PartialEq)]
+struct Row {
+    /// The name in the scenario file.
     name: String,
-    /// The Rust type as written.
-    ty: String,
-    /// The doc comment, joined into one line.
-    doc: String,
-    /// `#[serde(flatten)]`: its fields sit in the parent table.
-    flatten: bool,
-    /// The field may be left out (`Option`, or a serde default).
-    optional: bool,
-    /// The field's own serde default, when it has one: `#[serde(default =
-    /// "f")]` gives `f`'s body, a bare `#[serde(default)]` the type's.
-    own_default: Option<String>,
+    /// The values it takes, as a scenario writes them.
+    values: String,
+    unit: &'static str,
+    default: String,
+    meaning: String,
 }
 
-/// The body of a one-line `fn name() -> T { literal }` in `text`.
-fn default_fn(lines: &[&str], name: &str) -> Option<String> {
-    let at = lines
-        .iter()
-        .position(|l| l.trim_start().starts_with(&format!("fn {name}() ->")))?;
-    let body = lines.get(at + 1)?.trim();
-    (lines.get(at + 2)?.trim() == "}").then(|| body.to_string())
-}
-
-/// The `Default` of a scalar type, as a scenario writes it.
-fn type_default(ty: &str) -> Option<String> {
-    Some(match ty {
-        "bool" => "false".into(),
-        "f32" | "f64" => "0.0".into(),
-        t if t.starts_with("Vec<") => "[]".into(),
-        t if values_of(t).is_some_and(|v| v.starts_with("whole")) => "0".into(),
-        _ => return None,
-    })
-}
-
-/// A configuration struct: its doc comment and fields.
+/// One table of the reference: its path, doc and rows.
 #[derive(Debug, Clone)]
-struct Struct {
+struct Section {
+    path: String,
+    array: bool,
     doc: String,
-    fields: Vec<Field>,
+    rows: Vec<Row>,
 }
 
-/// An enum's choices as a scenario writes them, with their doc comments.
-#[derive(Debug, Clone)]
-struct Enum {
-    choices: Vec<(String, String)>,
+/// A doc comment as one line.
+fn one_line(text: Option<&Value>) -> String {
+    text.and_then(Value::as_str)
+        .unwrap_or("")
+        .split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ")
 }
 
-/// The folder of a type path such as `model::ssi::bench::BenchConfig` (`ssi`).
-fn folder_of(type_name: &str) -> &str {
-    type_name.split("::").nth(1).unwrap_or("")
+/// The schema of the types, with its definitions to resolve `$ref`s in.
+struct Schema<'a> {
+    defs: &'a Map<String, Value>,
 }
 
-/// The model's source files split into lines once, and where each type is
-/// declared: `pub struct Name` and `pub enum Name` lines by name, as
-/// `(file, line)` in file order. tbgen is compiled unoptimised (Cargo.toml);
-/// looking types up here rather than walking every file for every field
-/// took the two reference tests from 11 s each to well under one.
-struct SourceIndex {
-    lines: Vec<Vec<&'static str>>,
-    declared: std::collections::HashMap<&'static str, Vec<(usize, usize)>>,
-}
+impl<'a> Schema<'a> {
+    /// `schema` with its `$ref` followed (the reference's own keys, such as
+    /// its description and default, are kept by the caller).
+    fn resolve(&self, schema: &'a Value) -> &'a Value {
+        match schema.get("$ref").and_then(Value::as_str) {
+            Some(r) => r
+                .rsplit('/')
+                .next()
+                .and_then(|name| self.defs.get(name))
+                .unwrap_or(schema),
+            None => schema,
+        }
+    }
 
-fn source_index() -> &'static SourceIndex {
-    static INDEX: std::sync::OnceLock<SourceIndex> = std::sync::OnceLock::new();
-    INDEX.get_or_init(|| {
-        let mut index = SourceIndex {
-            lines: Vec::new(),
-            declared: Default::default(),
+    /// `Option<T>`'s schema → `T`'s (`anyOf [T, null]`, or `type: [t, "null"]`).
+    fn non_null(&self, schema: &'a Value) -> std::borrow::Cow<'a, Value> {
+        if let Some(any) = schema.get("anyOf").and_then(Value::as_array) {
+            let rest: Vec<&Value> = any
+                .iter()
+                .filter(|v| v.get("type").and_then(Value::as_str) != Some("null"))
+                .collect();
+            if let [one] = rest.as_slice() {
+                return std::borrow::Cow::Borrowed(one);
+            }
+        }
+        if let Some(types) = schema.get("type").and_then(Value::as_array) {
+            let rest: Vec<&Value> = types.iter().filter(|t| *t != "null").collect();
+            if let [one] = rest.as_slice() {
+                let mut v = schema.clone();
+                v["type"] = (*one).clone();
+                return std::borrow::Cow::Owned(v);
+            }
+        }
+        std::borrow::Cow::Borrowed(schema)
+    }
+
+    /// A table's schema: one with properties.
+    fn table(&self, schema: &'a Value) -> Option<&'a Map<String, Value>> {
+        self.resolve(schema)
+            .get("properties")
+            .and_then(Value::as_object)
+    }
+
+    /// An enum's choices and their doc comments (`oneOf` of constants, or `enum`).
+    fn choices(&self, schema: &Value) -> Option<Vec<(String, String)>> {
+        let schema = match schema.get("$ref") {
+            Some(_) => self.resolve_owned(schema),
+            None => schema.clone(),
         };
-        for (file, (_, text)) in MODEL_SOURCES.iter().enumerate() {
-            let lines: Vec<&'static str> = text.lines().collect();
-            for (at, l) in lines.iter().enumerate() {
-                let t = l.trim_start();
-                if let Some(rest) = t
-                    .strip_prefix("pub struct ")
-                    .or_else(|| t.strip_prefix("pub enum "))
-                {
-                    let name = rest
-                        .split(|c: char| !(c.is_alphanumeric() || c == '_'))
-                        .next()
-                        .unwrap_or("");
-                    index.declared.entry(name).or_default().push((file, at));
-                }
-            }
-            index.lines.push(lines);
+        if let Some(e) = schema.get("enum").and_then(Value::as_array) {
+            return Some(e.iter().map(|c| (text_of(c), String::new())).collect());
         }
-        index
-    })
-}
-
-/// The files declaring a type `name` (a line that `is_declaration`), those
-/// in `folder` first, each with its lines and the first such line: where a
-/// type name is found in its protocol's folder before the shared modules.
-fn declarations(
-    name: &str,
-    folder: &str,
-    is_declaration: impl Fn(&str) -> bool,
-) -> Vec<(&'static [&'static str], usize)> {
-    let index = source_index();
-    let prefix = format!("{folder}/");
-    let mut found: Vec<(bool, usize, usize)> = Vec::new();
-    for &(file, at) in index.declared.get(name).map(Vec::as_slice).unwrap_or(&[]) {
-        if found.iter().any(|&(_, f, _)| f == file)
-            || !is_declaration(index.lines[file][at].trim_start())
-        {
-            continue;
-        }
-        found.push((!MODEL_SOURCES[file].0.starts_with(&prefix), file, at));
-    }
-    found.sort();
-    found
-        .into_iter()
-        .map(|(_, file, at)| (index.lines[file].as_slice(), at))
-        .collect()
-}
-
-/// The doc comment and attribute lines just above line `at`.
-fn preamble(lines: &[&str], at: usize) -> (String, Vec<String>) {
-    let mut doc = Vec::new();
-    let mut attrs = Vec::new();
-    let mut i = at;
-    while i > 0 {
-        let l = lines[i - 1].trim();
-        if let Some(d) = l.strip_prefix("///") {
-            doc.push(d.trim().to_string());
-        } else if l.starts_with("#[") {
-            attrs.push(l.to_string());
-        } else {
-            break;
-        }
-        i -= 1;
-    }
-    doc.reverse();
-    (doc.join(" "), attrs)
-}
-
-/// The value of `key = "..."` inside a `#[serde(...)]` attribute.
-fn serde_arg(attr: &str, key: &str) -> Option<String> {
-    let rest = attr.split(&format!("{key} = \"")).nth(1)?;
-    Some(rest.split('"').next()?.to_string())
-}
-
-/// A serde attribute list holds the bare word `word` (`default`, `flatten`).
-fn serde_word(attrs: &[String], word: &str) -> bool {
-    attrs.iter().filter(|a| a.starts_with("#[serde(")).any(|a| {
-        a.trim_start_matches("#[serde(")
-            .trim_end_matches(")]")
-            .split(',')
-            .any(|p| {
-                let p = p.trim();
-                p == word || p.starts_with(&format!("{word} ="))
+        let one_of = schema.get("oneOf")?.as_array()?;
+        one_of
+            .iter()
+            .map(|v| {
+                let c = v
+                    .get("const")
+                    .or_else(|| v.get("enum").and_then(|e| e.get(0)))?;
+                Some((text_of(c), one_line(v.get("description"))))
             })
-    })
-}
-
-/// The struct `name`, looked for in `folder` first.
-fn find_struct(name: &str, folder: &str) -> Option<Struct> {
-    let declaration = format!("pub struct {name} {{");
-    for (lines, at) in declarations(name, folder, |t| t.starts_with(&declaration)) {
-        let (doc, attrs) = preamble(lines, at);
-        if !attrs.iter().any(|a| a.contains("Deserialize")) {
-            continue;
-        }
-        let struct_default = serde_word(&attrs, "default");
-        let mut fields = Vec::new();
-        let mut field_doc = Vec::new();
-        let mut field_attrs: Vec<String> = Vec::new();
-        for l in &lines[at + 1..] {
-            let t = l.trim();
-            if t.starts_with('}') {
-                break;
-            }
-            if let Some(d) = t.strip_prefix("///") {
-                field_doc.push(d.trim().to_string());
-            } else if t.starts_with("#[") {
-                field_attrs.push(t.to_string());
-            } else if let Some(decl) = t.strip_prefix("pub ") {
-                let (fname, ty) = decl.split_once(':').unwrap_or((decl, ""));
-                let ty = ty.trim().trim_end_matches(',').trim().to_string();
-                let rename = field_attrs.iter().find_map(|a| serde_arg(a, "rename"));
-                let own_default = match field_attrs.iter().find_map(|a| serde_arg(a, "default")) {
-                    Some(f) => default_fn(lines, &f),
-                    None if serde_word(&field_attrs, "default") => type_default(&ty),
-                    None => None,
-                };
-                fields.push(Field {
-                    name: rename.unwrap_or_else(|| fname.trim().to_string()),
-                    optional: struct_default
-                        || serde_word(&field_attrs, "default")
-                        || ty.starts_with("Option<"),
-                    flatten: serde_word(&field_attrs, "flatten"),
-                    ty,
-                    own_default,
-                    doc: field_doc.join(" "),
-                });
-                field_doc.clear();
-                field_attrs.clear();
-            }
-        }
-        return Some(Struct { doc, fields });
+            .collect()
     }
-    None
-}
 
-/// `Variant` as serde writes it under `rename_all`.
-fn rename(variant: &str, rule: Option<&str>) -> String {
-    let snake = || {
-        let mut s = String::new();
-        for (i, c) in variant.chars().enumerate() {
-            if c.is_ascii_uppercase() && i > 0 {
-                s.push('_');
-            }
-            s.push(c.to_ascii_lowercase());
+    fn resolve_owned(&self, schema: &Value) -> Value {
+        match schema.get("$ref").and_then(Value::as_str) {
+            Some(r) => r
+                .rsplit('/')
+                .next()
+                .and_then(|name| self.defs.get(name))
+                .cloned()
+                .unwrap_or_else(|| schema.clone()),
+            None => schema.clone(),
         }
-        s
-    };
-    match rule {
-        Some("snake_case") => snake(),
-        Some("lowercase") => variant.to_lowercase(),
-        Some("SCREAMING_SNAKE_CASE") => snake().to_uppercase(),
-        Some("kebab-case") => snake().replace('_', "-"),
-        _ => variant.to_string(),
     }
-}
 
-/// The enum `name` that scenarios name by its variants, looked for in `folder` first.
-fn find_enum(name: &str, folder: &str) -> Option<Enum> {
-    let declaration = format!("pub enum {name} {{");
-    for (lines, at) in declarations(name, folder, |t| t == declaration) {
-        let (_, attrs) = preamble(lines, at);
-        if !attrs.iter().any(|a| a.contains("Deserialize")) {
-            continue;
+    /// The values a field of this schema takes, as a scenario writes them.
+    fn values(&self, schema: &Value) -> String {
+        let schema = self.non_null(schema).into_owned();
+        if let Some(choices) = self.choices(&schema) {
+            let each: Vec<String> = choices.iter().map(|(c, _)| format!("`\"{c}\"`")).collect();
+            return format!("one of {}", each.join(", "));
         }
-        let rule = attrs.iter().find_map(|a| serde_arg(a, "rename_all"));
-        let mut choices = Vec::new();
-        let mut doc = Vec::new();
-        let mut rename_one = None;
-        let mut depth = 0i32;
-        for l in &lines[at + 1..] {
-            let t = l.trim();
-            if depth == 0 && t.starts_with('}') {
-                break;
-            }
-            if depth == 0 {
-                if let Some(d) = t.strip_prefix("///") {
-                    doc.push(d.trim().to_string());
-                } else if t.starts_with("#[") {
-                    if let Some(r) = serde_arg(t, "rename") {
-                        rename_one = Some(r);
+        let schema = self.resolve_owned(&schema);
+        match schema.get("type").and_then(Value::as_str) {
+            Some("boolean") => "`true` or `false`".into(),
+            Some("string") => "text".into(),
+            Some("number") => match range(&schema) {
+                Some(r) => format!("number, {r}"),
+                None => "number".into(),
+            },
+            Some("integer") => match range(&schema) {
+                Some(r) => format!("whole number, {r}"),
+                None => "whole number".into(),
+            },
+            Some("array") => {
+                if let Some(items) = schema.get("prefixItems").and_then(Value::as_array) {
+                    // A tuple: TOML writes it as a list of its items.
+                    let each: Vec<String> = items.iter().map(|it| self.values(it)).collect();
+                    let marks = vec!["·"; items.len()].join(", ");
+                    format!("`[{marks}]`: {}", each.join("; "))
+                } else {
+                    match schema.get("items") {
+                        Some(items) => format!("list of: {}", self.values(items)),
+                        None => "list".into(),
                     }
-                } else if t.starts_with(|c: char| c.is_ascii_uppercase()) {
-                    let ident: String = t
-                        .chars()
-                        .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
-                        .collect();
-                    choices.push((
-                        rename_one
-                            .take()
-                            .unwrap_or_else(|| rename(&ident, rule.as_deref())),
-                        doc.join(" "),
-                    ));
-                    doc.clear();
                 }
             }
-            depth += t.matches('{').count() as i32 - t.matches('}').count() as i32;
+            Some("object") => "table".into(),
+            _ => "any".into(),
         }
-        return Some(Enum { choices });
     }
-    None
 }
 
-/// `Option<T>` → `T`, `Vec<T>` → `T` (with whether it was a list).
-fn inner(ty: &str) -> (&str, bool) {
-    let t = ty
-        .strip_prefix("Option<")
-        .and_then(|r| r.strip_suffix('>'))
-        .unwrap_or(ty);
-    match t.strip_prefix("Vec<").and_then(|r| r.strip_suffix('>')) {
-        Some(r) => (r, true),
-        None => (t, false),
+/// A JSON string or value as text.
+fn text_of(v: &Value) -> String {
+    v.as_str().map_or_else(|| v.to_string(), str::to_string)
+}
+
+/// The range a schema declares, beyond a whole number's sign: `1 to 64`,
+/// `at least 1`, `at most 48` (an unsigned type's bare `minimum: 0` says
+/// nothing a whole number does not).
+fn range(schema: &Value) -> Option<String> {
+    let num = |k: &str| {
+        schema
+            .get(k)
+            .filter(|v| v.is_number())
+            .map(Value::to_string)
+    };
+    let min = num("minimum")
+        .filter(|m| !(m == "0" && schema.get("type") == Some(&Value::from("integer"))));
+    match (min, num("maximum")) {
+        (Some(a), Some(b)) => Some(format!("{a} to {b}")),
+        (None, Some(b)) if schema.get("minimum").is_some() => Some(format!("0 to {b}")),
+        (None, Some(b)) => Some(format!("at most {b}")),
+        (Some(a), None) => Some(format!("at least {a}")),
+        (None, None) => None,
     }
+}
+
+/// A default as a scenario writes it (TOML), cut at 60 characters.
+fn show(v: &Value) -> String {
+    let s = toml_text(v);
+    if s.chars().count() > 60 {
+        format!("`{}…`", s.chars().take(57).collect::<String>())
+    } else {
+        format!("`{s}`")
+    }
+}
+
+/// A JSON value in TOML's inline notation.
+fn toml_text(v: &Value) -> String {
+    match v {
+        Value::String(s) => format!("{s:?}"),
+        Value::Array(a) => format!(
+            "[{}]",
+            a.iter().map(toml_text).collect::<Vec<_>>().join(", ")
+        ),
+        Value::Object(o) => format!(
+            "{{ {} }}",
+            o.iter()
+                .filter(|(_, v)| !v.is_null())
+                .map(|(k, v)| format!("{k} = {}", toml_text(v)))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+        Value::Number(n) if n.is_f64() => {
+            let f = n.as_f64().unwrap_or_default();
+            if f.fract() == 0.0 && f.abs() < 1e15 {
+                format!("{f:.1}")
+            } else {
+                f.to_string()
+            }
+        }
+        other => other.to_string(),
+    }
+}
+
+/// Walks the table `schema` at `path`, adding its section and those of the
+/// tables its fields hold.
+fn walk(
+    types: &Schema,
+    schema: &Value,
+    path: &str,
+    array: bool,
+    out: &mut Vec<Section>,
+) -> Result<()> {
+    let resolved = types.resolve(schema);
+    let props = types
+        .table(schema)
+        .ok_or_else(|| Error::Fields(format!("`[{path}]`: the schema has no fields")))?;
+    let required: Vec<&str> = resolved
+        .get("required")
+        .and_then(Value::as_array)
+        .map(|r| r.iter().filter_map(Value::as_str).collect())
+        .unwrap_or_default();
+    let mut section = Section {
+        path: path.to_string(),
+        array,
+        doc: one_line(resolved.get("description")),
+        rows: Vec::new(),
+    };
+    let mut nested = Vec::new();
+    for (name, field) in props {
+        let inner = types.non_null(field).into_owned();
+        let doc = one_line(field.get("description"));
+        if doc.is_empty() {
+            return Err(Error::Fields(format!("field `{name}` of `[{path}]` has no doc comment: write one on the field in model/src (it is the reference's meaning column)")));
+        }
+        let sub_path = format!("{path}.{name}");
+        let items = inner
+            .get("items")
+            .filter(|_| inner.get("type") == Some(&Value::from("array")));
+        let (values, sub) = if types.table(&inner).is_some() {
+            (
+                format!("table `[{sub_path}]`"),
+                Some((inner.clone(), false)),
+            )
+        } else if let Some(it) = items.filter(|it| types.table(it).is_some()) {
+            (
+                format!("list of tables `[[{sub_path}]]`"),
+                Some((it.clone(), true)),
+            )
+        } else {
+            (types.values(field), None)
+        };
+        let default = match field.get("default") {
+            Some(Value::Null) => "none".into(),
+            Some(Value::Object(_)) if sub.is_some() => "see below".into(),
+            Some(v) => show(v),
+            None if required.contains(&name.as_str()) => "required".into(),
+            None if field.get("type").and_then(Value::as_array).is_some()
+                || field.get("anyOf").is_some() =>
+            {
+                "none".into()
+            }
+            None => "—".into(),
+        };
+        let meaning = match types.choices(&inner) {
+            Some(c) if c.iter().any(|(_, d)| !d.is_empty()) => {
+                let each: Vec<String> = c
+                    .iter()
+                    .filter(|(_, d)| !d.is_empty())
+                    .map(|(c, d)| format!("`{c}`: {}", d.trim_end_matches('.')))
+                    .collect();
+                format!("{doc} ({})", each.join("; "))
+            }
+            _ => doc,
+        };
+        section.rows.push(Row {
+            name: name.clone(),
+            values,
+            unit: unit(name),
+            default,
+            meaning,
+        });
+        if let Some((s, list)) = sub {
+            nested.push((s, sub_path, list));
+        }
+    }
+    out.push(section);
+    for (s, sub_path, list) in nested {
+        walk(types, &s, &sub_path, list, out)?;
+    }
+    Ok(())
+}
+
+/// The sections of protocol `table`'s reference.
+fn sections(table: &str) -> Result<(&'static str, Vec<Section>)> {
+    let entry = crate::registry::by_table(table).ok_or_else(|| {
+        let tables: Vec<&str> = crate::PROTOCOLS.iter().map(|p| p.table).collect();
+        Error::Fields(format!(
+            "no protocol `{table}`: the protocols are {}",
+            tables.join(", ")
+        ))
+    })?;
+    let schema = (entry.schema)();
+    let root = schema.as_value();
+    let empty = Map::new();
+    let types = Schema {
+        defs: root
+            .get("$defs")
+            .and_then(Value::as_object)
+            .unwrap_or(&empty),
+    };
+    let mut out = Vec::new();
+    walk(&types, root, table, false, &mut out)?;
+    Ok((entry.core, out))
+}
+
+/// The reference of one protocol table, in Markdown.
+pub fn protocol(table: &str) -> Result<String> {
+    let (core, sections) = sections(table)?;
+    let mut out = String::new();
+    writeln!(out, "## `[{table}]`: core `{core}`\n").unwrap();
+    for s in sections {
+        writeln!(out, "### `{}`\n", head(&s)).unwrap();
+        if !s.doc.is_empty() {
+            writeln!(out, "{}\n", s.doc).unwrap();
+        }
+        writeln!(out, "| field | values | unit | default | meaning |").unwrap();
+        writeln!(out, "|---|---|---|---|---|").unwrap();
+        for r in s.rows {
+            let cells: Vec<String> = [
+                format!("`{}`", r.name),
+                r.values,
+                r.unit.to_string(),
+                r.default,
+                r.meaning,
+            ]
+            .iter()
+            .map(|c| c.replace('|', "\\|"))
+            .collect();
+            writeln!(out, "| {} |", cells.join(" | ")).unwrap();
+        }
+        writeln!(out).unwrap();
+    }
+    Ok(out)
+}
+
+fn head(s: &Section) -> String {
+    if s.array {
+        format!("[[{}]]", s.path)
+    } else {
+        format!("[{}]", s.path)
+    }
+}
+
+/// The reference of one protocol table as plain text for a terminal
+/// `width` columns wide: each field on a line of its own with its values,
+/// unit and default, its meaning below it, indented and wrapped.
+pub fn plain(table: &str, width: usize) -> Result<String> {
+    let (core, sections) = sections(table)?;
+    let width = width.max(40);
+    let mut out = String::new();
+    writeln!(out, "[{table}]: core {core}").unwrap();
+    for s in sections {
+        writeln!(out).unwrap();
+        writeln!(out, "{}", head(&s)).unwrap();
+        if !s.doc.is_empty() {
+            out.push_str(&wrap(&s.doc, 2, width, false));
+        }
+        for r in s.rows {
+            let mut facts = vec![plain_text(&r.values)];
+            if !r.unit.is_empty() {
+                facts.push(r.unit.to_string());
+            }
+            facts.push(format!("default {}", plain_text(&r.default)));
+            out.push_str(&wrap(
+                &format!("{} = {}", r.name, facts.join(", ")),
+                2,
+                width,
+                true,
+            ));
+            out.push_str(&wrap(&plain_text(&r.meaning), 6, width, false));
+        }
+    }
+    Ok(out)
+}
+
+/// Markdown's code marks dropped: `` `"gray"` `` reads `"gray"` on a terminal.
+fn plain_text(s: &str) -> String {
+    s.replace('`', "")
+}
+
+/// `text` wrapped at word boundaries to `width` columns, the first line
+/// indented by `indent`, the others by two more when `hang` (a word longer
+/// than a line stands alone).
+fn wrap(text: &str, indent: usize, width: usize, hang: bool) -> String {
+    let mut pad = " ".repeat(indent);
+    let mut out = String::new();
+    let mut line = String::new();
+    for word in text.split_whitespace() {
+        if !line.is_empty() && pad.len() + line.chars().count() + 1 + word.chars().count() > width {
+            writeln!(out, "{pad}{line}").unwrap();
+            line.clear();
+            if hang {
+                pad = " ".repeat(indent + 2);
+            }
+        }
+        if !line.is_empty() {
+            line.push(' ');
+        }
+        line.push_str(word);
+    }
+    if !line.is_empty() {
+        writeln!(out, "{pad}{line}").unwrap();
+    }
+    out
+}
+
+/// The whole reference, `docs/scenarios.md`.
+pub fn document() -> Result<String> {
+    let mut out = String::from(
+        "# Scenario fields\n\n\
+Generated by `tbgen fields --all` from the model's configuration types (the schema they derive: fields,\n\
+types, doc comments, declared limits, and the defaults the model fills in); `make test` checks that this\n\
+file is current. Do not edit it by hand: change the doc comment in `model/src/` and run\n\n\
+```sh\ntarget/release/tbgen fields --all > docs/scenarios.md\n```\n\n\
+A scenario file holds `name`, an optional `description` and exactly one protocol table below. A field left\n\
+out takes its default; \"required\" fields have none; \"none\" means the feature is off unless the field is\n\
+given. The unit is the field name's suffix. A range in the values column is the one `tbgen gen` enforces;\n\
+limits that depend on other fields are in the meaning, and `tbgen gen` checks every one with a message\n\
+that names the field.\n\n",
+    );
+    let tables: Vec<&str> = crate::PROTOCOLS.iter().map(|p| p.table).collect();
+    writeln!(
+        out,
+        "Protocols: {}.\n",
+        tables
+            .iter()
+            .map(|t| format!("`[{t}]`"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    )
+    .unwrap();
+    for t in tables {
+        out.push_str(&protocol(t)?);
+    }
+    Ok(out)
 }
 
 /// Units per unit that field names use (`ns_per_m`).
@@ -364,278 +536,6 @@ fn unit(name: &str) -> &'static str {
         .unwrap_or("")
 }
 
-/// The values a scalar type takes.
-fn values_of(ty: &str) -> Option<String> {
-    let whole = |bits: u32| {
-        if bits <= 16 {
-            format!("whole number, 0 to {}", (1u32 << bits) - 1)
-        } else {
-            format!("whole number, 0 to 2^{bits}−1")
-        }
-    };
-    Some(match ty {
-        "bool" => "`true` or `false`".into(),
-        "u8" => whole(8),
-        "u16" => whole(16),
-        "u32" => whole(32),
-        "u64" | "usize" => whole(64),
-        "i8" | "i16" | "i32" | "i64" => "whole number (signed)".into(),
-        "f32" | "f64" => "number".into(),
-        "String" => "text".into(),
-        _ => return None,
-    })
-}
-
-/// One table of the reference: its path, doc and rows.
-struct Section {
-    path: String,
-    array: bool,
-    doc: String,
-    rows: Vec<[String; 5]>,
-}
-
-/// A default value as a scenario writes it.
-fn show(v: &toml::Value) -> String {
-    let s = v.to_string();
-    if s.len() > 60 {
-        format!(
-            "`{}…`",
-            &s[..s
-                .char_indices()
-                .take(57)
-                .last()
-                .map(|(i, c)| i + c.len_utf8())
-                .unwrap_or(0)]
-        )
-    } else {
-        format!("`{s}`")
-    }
-}
-
-/// The defaults a table gets when it is written empty: the model's own
-/// `Default`, through the scenario reader. `chain` is the table and the
-/// tables above it below the protocol's, each with whether it is a list of
-/// tables (written once, empty). `None` when a table cannot be empty (a
-/// required field).
-fn defaults(table: &str, chain: &[(String, bool)]) -> Option<toml::Value> {
-    let mut text = format!("name = \"x\"\n[{table}]\n");
-    for (path, array) in chain {
-        text.push_str(&if *array {
-            format!("[[{path}]]\n")
-        } else {
-            format!("[{path}]\n")
-        });
-    }
-    let file: crate::ScenarioFile = toml::from_str(&text).ok()?;
-    let setup = file.setups().into_iter().next()?;
-    struct ToToml;
-    impl Visitor for ToToml {
-        type Output = Option<toml::Value>;
-        fn visit<S: Protocol>(self, setup: &S) -> Self::Output {
-            toml::Value::try_from(setup).ok()
-        }
-    }
-    let mut v = setup.accept(ToToml)?;
-    for (path, array) in chain {
-        let key = path.rsplit('.').next()?;
-        v = v.get(key)?.clone();
-        if *array {
-            v = v.as_array()?.first()?.clone();
-        }
-    }
-    Some(v)
-}
-
-/// The struct name of a config type path (`model::ssi::bench::BenchConfig` → `BenchConfig`).
-fn last(type_name: &str) -> &str {
-    type_name.rsplit("::").next().unwrap_or(type_name)
-}
-
-/// Walks struct `name` as the table at `path`, adding its section and those
-/// of the structs its fields name.
-fn walk(
-    table: &str,
-    folder: &str,
-    name: &str,
-    chain: &[(String, bool)],
-    out: &mut Vec<Section>,
-) -> Result<()> {
-    let (path, array) = chain
-        .last()
-        .map(|(p, a)| (p.as_str(), *a))
-        .unwrap_or((table, false));
-    let defaults_at = defaults(table, chain);
-    let s = find_struct(name, folder).ok_or_else(|| {
-        Error::Fields(format!(
-            "no configuration struct `{name}` deriving Deserialize in model/src (table `[{path}]`)"
-        ))
-    })?;
-    let mut section = Section {
-        path: path.into(),
-        array,
-        doc: s.doc.clone(),
-        rows: Vec::new(),
-    };
-    let mut nested = Vec::new();
-    let mut fields = s.fields.clone();
-    // Flattened structs lend their fields to this table.
-    while let Some(i) = fields.iter().position(|f| f.flatten) {
-        let f = fields.remove(i);
-        let (ty, _) = inner(&f.ty);
-        let sub = find_struct(ty, folder).ok_or_else(|| {
-            Error::Fields(format!(
-                "`[{path}]` flattens `{ty}`, which is not a configuration struct in model/src"
-            ))
-        })?;
-        for (k, g) in sub.fields.into_iter().enumerate() {
-            fields.insert(i + k, g);
-        }
-    }
-    for f in fields {
-        if f.doc.is_empty() {
-            return Err(Error::Fields(format!("field `{}` of `[{path}]` ({name}) has no doc comment: write one in model/src (it is the reference's meaning column)", f.name)));
-        }
-        let default = defaults_at.as_ref().and_then(|d| d.get(&f.name));
-        let (ty, list) = inner(&f.ty);
-        let is_table = find_struct(ty, folder).is_some() && values_of(ty).is_none();
-        let shown = match default {
-            Some(_) if is_table && !list => "see below".into(),
-            Some(v) => show(v),
-            None if f.own_default.is_some() => {
-                format!("`{}`", f.own_default.as_deref().unwrap_or_default())
-            }
-            None if f.ty.starts_with("Option<") => "none".into(),
-            None if !f.optional => "required".into(),
-            None => "—".into(),
-        };
-        let (values, sub) = if let Some(v) = values_of(ty) {
-            (v, None)
-        } else if let Some(e) = find_enum(ty, folder) {
-            let choices: Vec<String> = e
-                .choices
-                .iter()
-                .map(|(c, _)| format!("`\"{c}\"`"))
-                .collect();
-            (format!("one of {}", choices.join(", ")), None)
-        } else if find_struct(ty, folder).is_some() {
-            let sub_path = format!("{path}.{}", f.name);
-            let shape = if list {
-                format!("list of tables `[[{sub_path}]]`")
-            } else {
-                format!("table `[{sub_path}]`")
-            };
-            (shape, Some((ty.to_string(), sub_path, list)))
-        } else {
-            (format!("`{ty}`"), None)
-        };
-        let values = if list && sub.is_none() {
-            format!("list of: {values}")
-        } else {
-            values
-        };
-        let meaning = match find_enum(ty, folder) {
-            Some(e) if e.choices.iter().any(|(_, d)| !d.is_empty()) => {
-                let each: Vec<String> = e
-                    .choices
-                    .iter()
-                    .filter(|(_, d)| !d.is_empty())
-                    .map(|(c, d)| format!("`{c}`: {}", d.trim_end_matches('.')))
-                    .collect();
-                format!("{} ({})", f.doc, each.join("; "))
-            }
-            _ => f.doc.clone(),
-        };
-        section.rows.push([
-            format!("`{}`", f.name),
-            values,
-            unit(&f.name).to_string(),
-            shown,
-            meaning,
-        ]);
-        if let Some(n) = sub {
-            nested.push(n);
-        }
-    }
-    out.push(section);
-    for (ty, sub_path, list) in nested {
-        let mut sub = chain.to_vec();
-        sub.push((sub_path, list));
-        walk(table, folder, &ty, &sub, out)?;
-    }
-    Ok(())
-}
-
-/// The reference of one protocol table, in Markdown.
-pub fn protocol(table: &str) -> Result<String> {
-    let entry = crate::registry::by_table(table).ok_or_else(|| {
-        let tables: Vec<&str> = crate::PROTOCOLS.iter().map(|p| p.table).collect();
-        Error::Fields(format!(
-            "no protocol `{table}`: the protocols are {}",
-            tables.join(", ")
-        ))
-    })?;
-    let type_name = (entry.config_type)();
-    let mut sections = Vec::new();
-    walk(
-        table,
-        folder_of(type_name),
-        last(type_name),
-        &[],
-        &mut sections,
-    )?;
-    let mut out = String::new();
-    writeln!(out, "## `[{table}]`: core `{}`\n", entry.core).unwrap();
-    for s in sections {
-        let head = if s.array {
-            format!("[[{}]]", s.path)
-        } else {
-            format!("[{}]", s.path)
-        };
-        writeln!(out, "### `{head}`\n").unwrap();
-        if !s.doc.is_empty() {
-            writeln!(out, "{}\n", s.doc).unwrap();
-        }
-        writeln!(out, "| field | values | unit | default | meaning |").unwrap();
-        writeln!(out, "|---|---|---|---|---|").unwrap();
-        for r in s.rows {
-            let cells: Vec<String> = r.iter().map(|c| c.replace('|', "\\|")).collect();
-            writeln!(out, "| {} |", cells.join(" | ")).unwrap();
-        }
-        writeln!(out).unwrap();
-    }
-    Ok(out)
-}
-
-/// The whole reference, `docs/scenarios.md`.
-pub fn document() -> Result<String> {
-    let mut out = String::from(
-        "# Scenario fields\n\n\
-Generated by `tbgen fields --all` from the model's configuration structs (their fields, types and doc\n\
-comments, and the defaults the model fills in); `make test` checks that this file is current. Do not edit\n\
-it by hand: change the doc comment in `model/src/` and run\n\n\
-```sh\ntarget/release/tbgen fields --all > docs/scenarios.md\n```\n\n\
-A scenario file holds `name`, an optional `description` and exactly one protocol table below. A field left\n\
-out takes its default; \"required\" fields have none; \"none\" means the feature is off unless the field is\n\
-given. The unit is the field name's suffix. Limits a seed sets beyond the type's are in the meaning, and\n\
-`tbgen gen` checks every one with a message that names the field.\n\n",
-    );
-    let tables: Vec<&str> = crate::PROTOCOLS.iter().map(|p| p.table).collect();
-    writeln!(
-        out,
-        "Protocols: {}.\n",
-        tables
-            .iter()
-            .map(|t| format!("`[{t}]`"))
-            .collect::<Vec<_>>()
-            .join(", ")
-    )
-    .unwrap();
-    for t in tables {
-        out.push_str(&protocol(t)?);
-    }
-    Ok(out)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -657,14 +557,30 @@ mod tests {
         );
     }
 
-    /// Every field the model fills in by default is in the reference: the
-    /// source reading misses none (a field `serde` knows but the reference
-    /// does not would be a lie by omission).
+    /// The defaults a protocol's table gets when written empty, as the
+    /// scenario reader fills them in and serde writes them back: read
+    /// without the schema, so the reference is checked against the model.
+    fn defaults(table: &str) -> toml::Value {
+        let file: crate::ScenarioFile =
+            toml::from_str(&format!("name = \"x\"\n[{table}]\n")).unwrap();
+        struct ToToml;
+        impl crate::registry::Visitor for ToToml {
+            type Output = toml::Value;
+            fn visit<S: crate::registry::Protocol>(self, setup: &S) -> toml::Value {
+                toml::Value::try_from(setup).unwrap()
+            }
+        }
+        file.setups().into_iter().next().unwrap().accept(ToToml)
+    }
+
+    /// Every field the model fills in by default is in the reference
+    /// (a field serde knows but the reference does not would be a lie by
+    /// omission).
     #[test]
     fn every_default_field_of_every_protocol_is_listed() {
         for p in crate::PROTOCOLS {
             let text = protocol(p.table).unwrap();
-            let d = defaults(p.table, &[]).expect("an empty table deserialises");
+            let d = defaults(p.table);
             fn keys(v: &toml::Value, path: String, out: &mut Vec<(String, String)>) {
                 if let Some(t) = v.as_table() {
                     for (k, v) in t {
@@ -716,6 +632,75 @@ mod tests {
             text.contains("| `fault` | table `[ssi.fault]` |  | none |"),
             "{text}"
         );
+    }
+
+    /// A pair is shown as TOML writes it, not as the Rust tuple it is.
+    #[test]
+    fn a_pair_is_shown_in_its_toml_form() {
+        let text = protocol("endat").unwrap();
+        let row = text
+            .lines()
+            .find(|l| l.starts_with("| `errors_at` |"))
+            .unwrap();
+        assert!(
+            row.contains("`[·, ·]`: whole number, 0 to 65535; whole number"),
+            "{row}"
+        );
+        assert!(row.contains("errors_at = [word, request]"), "{row}");
+        assert!(
+            !text.contains("(u16, usize)") && !text.contains("2^"),
+            "Rust types or a type's range in the reference"
+        );
+    }
+
+    /// The reference's range for a BiSS-C slave's `bits` is the one `tbgen
+    /// gen` enforces: probed on both sides of each limit through the
+    /// scenario reader, which does not read the reference.
+    #[test]
+    fn a_declared_range_is_the_one_the_check_enforces() {
+        let text = protocol("biss").unwrap();
+        let row = text
+            .split("### `[[biss.slaves]]`")
+            .nth(1)
+            .and_then(|s| s.lines().find(|l| l.starts_with("| `bits` |")))
+            .unwrap();
+        let (lo, hi) = row
+            .split("whole number, ")
+            .nth(1)
+            .and_then(|r| r.split(" |").next())
+            .and_then(|r| r.split_once(" to "))
+            .unwrap_or_else(|| panic!("no range in {row}"));
+        let (lo, hi): (u32, u32) = (lo.parse().unwrap(), hi.parse().unwrap());
+        let refused = |bits: u32| {
+            crate::scenario::Scenario::parse(
+                &format!("name = \"x\"\n[biss]\n[[biss.slaves]]\nbits = {bits}\n"),
+                "x.toml",
+            )
+            .and_then(|s| {
+                crate::generate::generate(&s, tempfile::tempdir().unwrap().path()).map(|_| ())
+            })
+            .is_err()
+        };
+        assert!(refused(lo - 1) && !refused(lo), "lower limit {lo}");
+        assert!(!refused(hi) && refused(hi + 1), "upper limit {hi}");
+    }
+
+    /// On a terminal: no Markdown table, no line wider than asked but for
+    /// a single word too long for any line.
+    #[test]
+    fn plain_text_fits_the_terminal() {
+        for p in crate::PROTOCOLS {
+            let text = plain(p.table, 80).unwrap();
+            for l in text.lines() {
+                assert!(
+                    l.chars().count() <= 80 || !l.trim().contains(' '),
+                    "{}: {} columns: {l}",
+                    p.table,
+                    l.chars().count()
+                );
+                assert!(!l.starts_with('|'), "{}: a table row: {l}", p.table);
+            }
+        }
     }
 
     #[test]

@@ -2,7 +2,8 @@
 //!
 //! Every file is first written under a temporary name in the output folder
 //! and renamed into place only when all four are complete, so a failed run
-//! (bad scenario, full disk) leaves the folder as it was.
+//! (bad scenario, full disk) leaves the folder as it was; so does an
+//! interrupted one (Ctrl-C, SIGTERM: see [`crate::interrupt`]).
 
 use std::fs::{self, File};
 use std::io::{BufWriter, Write};
@@ -14,7 +15,7 @@ use model::trace::{Sample, Sink};
 use crate::scenario::{Scenario, Visitor};
 use crate::vectors::{Header, VectorWriter};
 use crate::wave::{signal_names, Waves};
-use crate::{gtkw, transcript, Error, Result};
+use crate::{gtkw, interrupt, progress, transcript, Error, Result};
 
 /// What a generation produced.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -68,15 +69,22 @@ impl Staged {
     }
 
     fn create(&self, i: usize) -> Result<BufWriter<File>> {
-        File::create(self.temp(i))
+        interrupt::locked(|pending| pending.create(self.temp(i)))
             .map(|f| BufWriter::with_capacity(1 << 20, f))
             .map_err(|e| Error::io(self.dest(i), e))
     }
 
     /// Renames the four files into place, all or none: a destination taken
     /// by a folder is refused before anything moves, and a rename that fails
-    /// midway puts back the files already replaced.
+    /// midway puts back the files already replaced. An interrupt waits
+    /// for the renames to finish.
     fn commit(mut self) -> Result<Vec<PathBuf>> {
+        interrupt::locked(|pending| self.rename_all(pending))?;
+        self.committed = true;
+        Ok(self.pairs.iter().take(4).map(|(_, d)| d.clone()).collect())
+    }
+
+    fn rename_all(&self, pending: &mut interrupt::Pending) -> Result<()> {
         for (_, dest) in &self.pairs {
             if dest.is_dir() {
                 return Err(Error::io(dest, std::io::Error::other("is a folder, where tbgen writes a file: move the folder or choose another --out")));
@@ -111,17 +119,22 @@ impl Staged {
         for b in done.into_iter().filter_map(|(_, b)| b) {
             let _ = fs::remove_file(b);
         }
-        self.committed = true;
-        Ok(self.pairs.iter().take(4).map(|(_, d)| d.clone()).collect())
+        for (temp, _) in &self.pairs {
+            pending.forget(temp);
+        }
+        Ok(())
     }
 }
 
 impl Drop for Staged {
     fn drop(&mut self) {
         if !self.committed {
-            for (temp, _) in &self.pairs {
-                let _ = fs::remove_file(temp);
-            }
+            interrupt::locked(|pending| {
+                for (temp, _) in &self.pairs {
+                    let _ = fs::remove_file(temp);
+                    pending.forget(temp);
+                }
+            });
         }
     }
 }
@@ -142,18 +155,28 @@ impl Sink for Both<'_> {
 
 /// Runs `scenario` and writes `<name>.hex`, `.vcd`, `.json` and `.gtkw` into `out_dir`.
 pub fn generate(scenario: &Scenario, out_dir: &Path) -> Result<Summary> {
-    scenario.setup.accept(Generate { scenario, out_dir })
+    generate_with(scenario, out_dir, progress::Mode::Off)
+}
+
+/// [`generate`], showing its progress as `mode` says.
+pub fn generate_with(scenario: &Scenario, out_dir: &Path, mode: progress::Mode) -> Result<Summary> {
+    scenario.setup.accept(Generate {
+        scenario,
+        out_dir,
+        mode,
+    })
 }
 
 struct Generate<'a> {
     scenario: &'a Scenario,
     out_dir: &'a Path,
+    mode: progress::Mode,
 }
 
 impl Visitor for Generate<'_> {
     type Output = Result<Summary>;
     fn visit<S: crate::registry::Protocol>(self, cfg: &S) -> Result<Summary> {
-        write_outputs(self.scenario, cfg, self.out_dir)
+        write_outputs(self.scenario, cfg, self.out_dir, self.mode)
     }
 }
 
@@ -161,6 +184,7 @@ fn write_outputs<S: crate::registry::Protocol>(
     scenario: &Scenario,
     cfg: &S,
     out_dir: &Path,
+    mode: progress::Mode,
 ) -> Result<Summary> {
     let value_error = |source| scenario.value_error(source);
     let tb = cfg.timebase().map_err(value_error)?;
@@ -175,7 +199,7 @@ fn write_outputs<S: crate::registry::Protocol>(
             ),
         ));
     }
-    fs::create_dir_all(out_dir).map_err(|e| Error::io(out_dir, e))?;
+    interrupt::create_dir_all(out_dir).map_err(|e| Error::io(out_dir, e))?;
     let layout = bench.layout().clone();
     let core = S::CORE;
     // State registers shown by name: one filter file per signal and core.
@@ -211,13 +235,25 @@ fn write_outputs<S: crate::registry::Protocol>(
     let vcd_path = staged.dest(1).to_path_buf();
     let mut waves = Waves::new(staged.create(1)?, core, &layout, tb, &comment)
         .map_err(|e| Error::io(&vcd_path, e))?;
-    let run = testbench::run(
-        bench,
-        &mut Both {
-            vectors: &mut vectors,
-            waves: &mut waves,
-        },
-    )
+    let mut both = Both {
+        vectors: &mut vectors,
+        waves: &mut waves,
+    };
+    let run = if mode == progress::Mode::Off {
+        testbench::run(bench, &mut both)
+    } else {
+        let mut shown = progress::Progress::new(
+            both,
+            mode,
+            &scenario.name,
+            tb.f_sys_hz(),
+            progress::Counter::start(cfg),
+            staged.temp(1).to_path_buf(),
+        );
+        let run = testbench::run(bench, &mut shown);
+        shown.finish();
+        run
+    }
     .map_err(|e| Error::io(&vcd_path, e))?;
     waves
         .finish(run.cycles)
@@ -287,7 +323,11 @@ fn write_outputs<S: crate::registry::Protocol>(
     .and_then(|_| gtkw_out.flush())
     .map_err(|e| Error::io(staged.dest(3), e))?;
     for (i, (_, _, text)) in filters.iter().enumerate() {
-        fs::write(staged.temp(4 + i), text).map_err(|e| Error::io(staged.dest(4 + i), e))?;
+        staged.create(4 + i).and_then(|mut f| {
+            f.write_all(text.as_bytes())
+                .and_then(|_| f.flush())
+                .map_err(|e| Error::io(staged.dest(4 + i), e))
+        })?;
     }
 
     drop((hex, json, gtkw_out));

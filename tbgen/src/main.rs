@@ -4,6 +4,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
+use tbgen::progress::Mode;
 use tbgen::registry;
 use tbgen::{builtin, crc_cmd, generate, Error};
 
@@ -58,6 +59,10 @@ enum Command {
         /// Output folder.
         #[arg(long, short)]
         out: PathBuf,
+        /// Show progress and an estimate of size and time on stderr even when it is not a
+        /// terminal (a terminal always gets them).
+        #[arg(long)]
+        progress: bool,
     },
     /// Compute a CRC of the catalogue over a bit string given in wire order.
     #[command(
@@ -137,15 +142,19 @@ so give it a one-line script, e.g. ssi-frames.sh:
     },
     /// Print the reference of a protocol's scenario fields: unit, default, values, meaning.
     #[command(
-        after_help = "Examples:\n  tbgen fields ssi\n  tbgen fields --all > docs/scenarios.md   # the committed reference"
+        after_help = "Examples:\n  tbgen fields ssi\n  tbgen fields endat --markdown\n  tbgen fields --all > docs/scenarios.md   # the committed reference"
     )]
     Fields {
         /// The protocol's table (tbgen protocols).
         #[arg(required_unless_present = "all")]
         protocol: Option<String>,
-        /// Every protocol: docs/scenarios.md.
+        /// Every protocol: docs/scenarios.md (Markdown).
         #[arg(long, conflicts_with = "protocol")]
         all: bool,
+        /// Markdown tables, as the docs hold them, instead of plain text wrapped to the
+        /// terminal's width ($COLUMNS, else 100).
+        #[arg(long)]
+        markdown: bool,
     },
     /// List the registered protocols: stem, core, emulator, closed loops,
     /// decoder, budget, sigrok decoder; with --json every descriptor whole
@@ -241,6 +250,7 @@ fn run(command: Command) -> Result<(), Error> {
             scenarios,
             all,
             out,
+            progress,
         } => {
             let chosen = if all {
                 builtin::all()?
@@ -254,7 +264,7 @@ fn run(command: Command) -> Result<(), Error> {
             };
             for s in &chosen {
                 let dir = if all { out.join(s.core()) } else { out.clone() };
-                let summary = generate::generate(s, &dir)?;
+                let summary = generate::generate_with(s, &dir, Mode::choose(progress))?;
                 outln!(
                     "{}: {} cycles, {} records, {} transactions -> {}",
                     s.name,
@@ -313,8 +323,19 @@ fn run(command: Command) -> Result<(), Error> {
         },
         Command::Timing(call) => out!("{}", call.run()?),
         Command::Decode(call) => outln!("{}", call.run()?),
-        Command::Fields { protocol, all } => match protocol {
-            Some(p) if !all => out!("{}", tbgen::fields::protocol(&p)?),
+        Command::Fields {
+            protocol,
+            all,
+            markdown,
+        } => match protocol {
+            Some(p) if !all && markdown => out!("{}", tbgen::fields::protocol(&p)?),
+            Some(p) if !all => {
+                let width = std::env::var("COLUMNS")
+                    .ok()
+                    .and_then(|c| c.parse().ok())
+                    .unwrap_or(100);
+                out!("{}", tbgen::fields::plain(&p, width)?)
+            }
             _ => out!("{}", tbgen::fields::document()?),
         },
         Command::Protocols { json: false } => out!("{}", registry::table()),

@@ -26,7 +26,12 @@ use crate::{Error, Result};
 /// Everything has a default, so a new protocol starts with
 /// `impl Protocol for BenchConfig { const TRANSACTION_SIGNALS: ... }`.
 pub trait Protocol:
-    model::Setup + serde::Serialize + serde::de::DeserializeOwned + 'static
+    model::Setup
+    + serde::Serialize
+    + serde::de::DeserializeOwned
+    + schemars::JsonSchema
+    + Send
+    + 'static
 {
     /// The output pulses that end a transaction, the output holding its
     /// result, and the transcript field that must equal it (the whole-flow
@@ -207,8 +212,9 @@ pub struct Entry {
         toml::Table,
         &str,
     ) -> std::result::Result<crate::closed_loop::LoopParameters, String>,
-    /// The configuration's type path (`model::ssi::bench::BenchConfig`): `tbgen fields` reads its struct.
-    pub config_type: fn() -> &'static str,
+    /// The schema of the protocol's table, derived from its configuration
+    /// types (fields, doc comments, defaults, limits): `tbgen fields` reads it.
+    pub schema: fn() -> schemars::Schema,
 }
 
 impl Entry {
@@ -228,7 +234,7 @@ impl Entry {
             timing: P::timing,
             wave_names: P::wave_names,
             closed_loop: P::closed_loop,
-            config_type: std::any::type_name::<P>,
+            schema: || schemars::SchemaGenerator::default().into_root_schema_for::<P>(),
         }
     }
 }

@@ -106,7 +106,7 @@ pub const STAGES: &[Stage] = &[
         name: "gtkw",
         argv: &["scripts/check_gtkw.sh"],
         after: &[],
-        what: "every .gtkw layout opened in headless GTKWave",
+        what: "every .gtkw layout opened in headless GTKWave, three judged from a screenshot",
     },
     Stage {
         name: "clippy",

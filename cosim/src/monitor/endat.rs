@@ -61,12 +61,17 @@ impl EndatMonitor {
             origin,
         )?;
         let rc = rule_config(text, origin)?;
-        if !(1..=48).contains(&rc.pos_bits) {
+        let range = model::endat::POSITION_BITS;
+        if !range.contains(&rc.pos_bits) {
             return Err(Error::field(
                 origin,
                 "monitor.pos_bits",
                 format!("{} bits", rc.pos_bits),
-                "give 1 to 48 position bits (default: encoder.singleturn_bits + multiturn_bits)",
+                format!(
+                    "give {} to {} position bits (default: encoder.singleturn_bits + multiturn_bits)",
+                    range.start(),
+                    range.end()
+                ),
             ));
         }
         let opts = Options {

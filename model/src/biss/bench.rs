@@ -26,7 +26,7 @@ use crate::trace::{Layout, Sample};
 use crate::{ConfigError, Result, Timebase};
 
 /// The master's settings in a scenario file's units (`[master]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct MasterSettings {
     /// MA frequency in kHz (seed: TMAS > 100 ns, so up to 10 000 kHz); f_sys divided by a whole number of at least 8, odd allowed (the high phase takes the extra cycle).
@@ -67,10 +67,11 @@ impl Default for MasterSettings {
 }
 
 /// One slave in a scenario file's units (`[[slaves]]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct SlaveSettings {
     /// Data bits.
+    #[schemars(range(min = *super::master::DATA_BITS.start(), max = *super::master::DATA_BITS.end()))]
     pub bits: u32,
     /// CRC width (BiSS-C: 6).
     pub crc_width: u32,
@@ -131,7 +132,7 @@ impl Default for SlaveSettings {
 }
 
 /// One register access the host asks for (`[[host.registers]]`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct RegOp {
     /// Write (`true`) or read.
@@ -148,7 +149,7 @@ pub struct RegOp {
 }
 
 /// One BiSS-C command the host sends (`[[host.commands]]`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct CmdOp {
     /// Slave-select bits IDS: bit `i` selects ID `i`; 0 is a broadcast.
@@ -159,7 +160,7 @@ pub struct CmdOp {
 }
 
 /// When the host starts frames and register accesses (`[host]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct HostSettings {
     /// The first start, µs after reset.
@@ -187,7 +188,7 @@ impl Default for HostSettings {
 }
 
 /// SLO held at one level at the master from a given frame on (`[stuck]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct StuckFault {
     /// `true`: stuck high (open RS-485 line, slave absent); `false`: stuck low.
@@ -197,7 +198,7 @@ pub struct StuckFault {
 }
 
 /// Bits of one slave's section corrupted on the wire in one frame (`[[flips]]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct FlipFault {
     /// The frame (0-based).
@@ -211,7 +212,7 @@ pub struct FlipFault {
 
 /// Extra SLO delay from a given frame on: the line changed after the
 /// master calibrated (`[delay_step]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct DelayStep {
     /// The first frame (0-based) that sees it.
@@ -221,7 +222,7 @@ pub struct DelayStep {
 }
 
 /// Everything a scenario says about a BiSS-C set-up.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct BenchConfig {
     /// System clock in MHz.

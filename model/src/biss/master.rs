@@ -7,6 +7,9 @@ use crate::ports::{Port, Ports};
 use crate::time::BitClock;
 use crate::{ConfigError, Result};
 
+/// The data bits a slave may send (the master's shift register).
+pub const DATA_BITS: std::ops::RangeInclusive<u32> = 1..=64;
+
 /// Synchroniser depth on `i_slo` (fixed, as in the RTL).
 pub const SYNC_STAGES: u64 = 2;
 /// Slaves one master serves in a chain (the RTL packs per-slave parameters 8 bits each).
@@ -97,11 +100,15 @@ impl MasterConfig {
             }
         }
         for i in 0..n {
-            if !(1..=64).contains(&self.slave_bits[i]) {
+            if !DATA_BITS.contains(&self.slave_bits[i]) {
                 return Err(ConfigError::invalid(
                     format!("master.bits[{i}]"),
                     format!("{} bits", self.slave_bits[i]),
-                    "give 1 to 64 data bits",
+                    format!(
+                        "give {} to {} data bits",
+                        DATA_BITS.start(),
+                        DATA_BITS.end()
+                    ),
                 ));
             }
             let w = self.slave_crc_width[i];

@@ -104,7 +104,7 @@ pub use bench::{
     Bench, BenchConfig, CmdOp, CmdResult, DelayStep, FlipFault, HostSettings, MasterSettings,
     RegOp, RegResult, SlaveResult, SlaveSettings, StuckFault, Transaction,
 };
-pub use master::{In, Master, MasterConfig, Out, State, MAX_SLAVES, SYNC_STAGES};
+pub use master::{In, Master, MasterConfig, Out, State, DATA_BITS, MAX_SLAVES, SYNC_STAGES};
 pub use slave::{Chain, Slave, SlaveConfig};
 
 /// A CRC of the BiSS-C family with another width or polynomial: initial value

@@ -30,11 +30,12 @@ pub struct SlaveConfig {
 impl SlaveConfig {
     /// Checks the configuration; `prefix` is the scenario table (`slaves[1]`).
     pub fn validate(&self, prefix: &str) -> Result<()> {
-        if !(1..=64).contains(&self.bits) {
+        let range = super::master::DATA_BITS;
+        if !range.contains(&self.bits) {
             return Err(ConfigError::invalid(
                 format!("{prefix}.bits"),
                 format!("{} bits", self.bits),
-                "give 1 to 64 data bits",
+                format!("give {} to {} data bits", range.start(), range.end()),
             ));
         }
         if !(1..=8).contains(&self.crc_width)

@@ -36,7 +36,7 @@ use crate::trace::{Layout, Sample};
 use crate::{ConfigError, Ports, Result, Timebase};
 
 /// Bit rate and bit timing (`[can.timing]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct TimingSettings {
     /// Nominal bit rate, kbit/s.
@@ -61,7 +61,7 @@ impl Default for TimingSettings {
 }
 
 /// The core under test (`[can.dut]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct DutSettings {
     /// Position along the cable, metres.
@@ -99,7 +99,7 @@ impl DutSettings {
 }
 
 /// A disturbance of receive lines (`[[can.faults]]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Fault {
     /// `flip` (the target reads the other level for one bit) or
@@ -162,7 +162,7 @@ impl Fault {
 }
 
 /// Kinds of [`Fault`].
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum FaultKind {
     /// One bit read inverted at the targets.
@@ -172,7 +172,7 @@ pub enum FaultKind {
 }
 
 /// Everything a scenario says about a CAN set-up (`[can]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct BenchConfig {
     /// System clock, MHz.

@@ -16,7 +16,7 @@ use serde::{Deserialize, Serialize};
 use crate::{ConfigError, Result, Timebase};
 
 /// Where a node sits and how slow its transceiver is.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Place {
     /// Position along the cable, metres from one end.

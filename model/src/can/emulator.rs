@@ -15,7 +15,7 @@ use super::frame::{unpack, Frame};
 use crate::{ConfigError, Result, Timebase};
 
 /// A frame a node sends at a time (`frames = [{ at_us, id, ... }]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Scripted {
     /// Earliest time, µs after reset (sent when the buffer is free).
@@ -62,7 +62,7 @@ impl Scripted {
 }
 
 /// An emulated node (`[[can.nodes]]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct NodeSettings {
     /// Name in transcripts.

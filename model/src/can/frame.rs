@@ -13,7 +13,9 @@
 use crate::crc::{BitSerial, CAN_CRC15};
 
 /// A data or remote frame.
-#[derive(Debug, Clone, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[derive(
+    Debug, Clone, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize, schemars::JsonSchema,
+)]
 #[serde(deny_unknown_fields)]
 pub struct Frame {
     /// Identifier: 11 bits (standard) or 29 bits (extended).

@@ -44,7 +44,7 @@ use crate::trace::{Layout, Sample};
 use crate::{ConfigError, Ports, Result, Timebase};
 
 /// The master (`[canopen.master]`); times in µs become the RTL's cycle counts.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct MasterSettings {
     /// The encoder's node number, 1 to 127 (`NODE`).
@@ -87,7 +87,7 @@ impl Default for MasterSettings {
 }
 
 /// One DS 406 encoder on the bus (`[[canopen.encoders]]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct EncoderSettings {
     /// Name in the transcript.
@@ -134,7 +134,7 @@ impl EncoderSettings {
 }
 
 /// One SAR58K24 in its CAN mode on the bus (`[[canopen.sar]]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct SarSettings {
     /// Name in the transcript.
@@ -159,7 +159,7 @@ impl Default for SarSettings {
 }
 
 /// Everything a scenario says about a CANopen set-up (`[canopen]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct BenchConfig {
     /// System clock, MHz.

@@ -152,7 +152,9 @@ impl NmtState {
 }
 
 /// How the encoder announces itself after power-on and reset.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, schemars::JsonSchema,
+)]
 #[serde(rename_all = "snake_case")]
 pub enum BootUp {
     /// The gateway note (seed 003 §2.2, §8 step 4): on the emergency

@@ -25,7 +25,9 @@ use crate::can::frame::Frame;
 use crate::{ConfigError, Result};
 
 /// The encoder types of seed 003 §7.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, schemars::JsonSchema,
+)]
 #[serde(rename_all = "snake_case")]
 pub enum EncoderKind {
     /// §7.1: 13-bit singleturn; range = scaled singleturn resolution.
@@ -81,7 +83,7 @@ impl EncoderKind {
 }
 
 /// The emulated encoder (`[canopen.encoders]` of a scenario).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct EncoderConfig {
     /// Address switch (seed 003 §5.4), 1 to 127.

@@ -33,7 +33,7 @@ use crate::{ConfigError, Result};
 pub const MAX_PARAMS: usize = 8;
 
 /// One SDO download of the configuration list (ROM of the RTL).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Param {
     /// Index.

@@ -44,7 +44,9 @@ pub fn bit_rate_of_code(code: u8) -> Option<u32> {
 
 /// What `22 NN` does (the manual prints the same code for "carry over" and
 /// "reverse carry").
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, schemars::JsonSchema,
+)]
 #[serde(rename_all = "snake_case")]
 pub enum Direction {
     /// Each `22 NN` toggles the counting direction (as `31 NN TT` both starts and stops).
@@ -55,7 +57,7 @@ pub enum Direction {
 }
 
 /// The SAR58K24 CAN-mode encoder (`[sar_can]` of a scenario).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct SarCanConfig {
     /// Node at power-on (factory 0x20).

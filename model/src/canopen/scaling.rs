@@ -16,7 +16,9 @@ use serde::{Deserialize, Serialize};
 
 /// What a non-cyclic encoder outputs outside its range (named configuration
 /// `non_cyclic_limit`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, schemars::JsonSchema,
+)]
 #[serde(rename_all = "snake_case")]
 pub enum NonCyclicLimit {
     /// The total measuring range value (the note's words, §3.2.1 B).

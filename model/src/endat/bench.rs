@@ -24,7 +24,7 @@ use crate::trace::{Layout, Sample};
 use crate::{ConfigError, Result, Timebase};
 
 /// The master's settings in a scenario's units (`[endat.master]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct MasterSettings {
     /// EnDat clock in kHz: 100 to 2000 without delay compensation, up to 8000 (16000) with it; f_sys divided by a whole number of at least 8, odd from 11 up (the high phase takes the extra cycle; each phase 45 to 55 % of the period).
@@ -70,7 +70,7 @@ impl Default for MasterSettings {
 }
 
 /// The encoder's settings in a scenario's units (`[endat.encoder]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct EncoderSettings {
     /// `singleturn`, `multiturn` or `linear`.
@@ -142,7 +142,7 @@ impl Default for EncoderSettings {
 }
 
 /// One request of the host (`[[endat.commands]]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct HostCommand {
     /// The mode command.
@@ -200,7 +200,7 @@ impl HostCommand {
 }
 
 /// When the host asks (`[endat.host]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct HostSettings {
     /// The first request, µs after reset (after the power-on measurement, if any).
@@ -219,7 +219,7 @@ impl Default for HostSettings {
 }
 
 /// A bit flip: frame bits (after the start bit, 0 = first) inverted by the encoder in request `request`.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Flip {
     /// 0-based request number.
@@ -234,7 +234,7 @@ pub struct Flip {
 /// `data` into the data, then computes the CRC over what it sends. Bit flips
 /// break the CRC; this fault reaches the master's content checks
 /// (o_err_type2 for the right address with the data inverted, o_err_ack).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct AckXor {
     /// 0-based request number.
@@ -248,7 +248,7 @@ pub struct AckXor {
 }
 
 /// Faults of the line and the encoder's electronics (`[endat.faults]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct CableFaults {
     /// The data line at the master's receiver stuck at this level from request `stuck_from` on.
@@ -262,7 +262,7 @@ pub struct CableFaults {
 }
 
 /// Encoder and line faults of a scenario (`[endat.faults]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct FaultSettings {
     /// Bit flips.
@@ -276,7 +276,8 @@ pub struct FaultSettings {
     pub absent_from: Option<usize>,
     /// In these requests the encoder cannot update its additional data (type IV).
     pub stale_ad: Vec<usize>,
-    /// Set the error word to this value before request `errors_at.1`.
+    /// `errors_at = [word, request]`: the encoder's error word is set to
+    /// `word` before request `request` (0-based).
     pub errors_at: Option<(u16, usize)>,
     /// Type 2.1 acknowledgements sent with other content and a correct CRC.
     pub ack_xor: Vec<AckXor>,
@@ -288,7 +289,7 @@ pub struct FaultSettings {
 }
 
 /// Everything a scenario says about an EnDat set-up (`[endat]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct BenchConfig {
     /// System clock in MHz.
@@ -354,6 +355,12 @@ impl BenchConfig {
     pub fn master_config(&self) -> Result<MasterConfig> {
         let tb = self.timebase()?;
         let m = &self.master;
+        // The master's `pos_bits` is the encoder's: a bad width is blamed on
+        // the encoder's fields, which the user wrote.
+        super::encoder::check_position_bits(
+            self.encoder.singleturn_bits,
+            self.encoder.multiturn_bits,
+        )?;
         if !(m.clock_khz >= 100.0 && m.clock_khz <= 16000.0) {
             return Err(ConfigError::invalid(
                 "master.clock_khz",

@@ -172,10 +172,13 @@ pub struct Decoder {
 impl Decoder {
     /// A decoder in the master's power-on state; fails when `opts.pos_bits` is not 1 to 48.
     pub fn new(opts: &Options) -> Result<Decoder, String> {
-        if !(1..=48).contains(&opts.pos_bits) {
+        let range = super::master::POSITION_BITS;
+        if !range.contains(&opts.pos_bits) {
             return Err(format!(
-                "decode endat: --pos-bits {} is not 1 to 48",
-                opts.pos_bits
+                "decode endat: --pos-bits {} is not {} to {}",
+                opts.pos_bits,
+                range.start(),
+                range.end()
             ));
         }
         Ok(Decoder {

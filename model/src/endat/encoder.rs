@@ -13,7 +13,9 @@ use crate::line::{DelayLine, Drive};
 use crate::{ConfigError, Result};
 
 /// What kind of encoder the emulator is (word 14 of the manufacturer parameters).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default, schemars::JsonSchema,
+)]
 #[serde(rename_all = "snake_case")]
 pub enum EncoderKind {
     /// Singleturn rotary encoder (`1100` in word 14).
@@ -76,6 +78,27 @@ pub struct EncoderConfig {
     pub t_cal_us: u16,
 }
 
+/// The position's width, `singleturn_bits + multiturn_bits` as a scenario's
+/// `[endat.encoder]` gives them: at least one measuring-step bit and
+/// [`super::master::POSITION_BITS`] in all. Checked before anything derived
+/// from them (the master's `pos_bits`), so that the error names the field
+/// the user wrote.
+pub fn check_position_bits(singleturn_bits: u32, multiturn_bits: u32) -> Result<()> {
+    let range = super::master::POSITION_BITS;
+    if singleturn_bits == 0 || !range.contains(&(singleturn_bits + multiturn_bits)) {
+        return Err(ConfigError::invalid(
+            "encoder.singleturn_bits",
+            format!("{singleturn_bits} + {multiturn_bits} bits"),
+            format!(
+                "give at least 1 singleturn bit and {} to {} position bits in total",
+                range.start(),
+                range.end()
+            ),
+        ));
+    }
+    Ok(())
+}
+
 impl EncoderConfig {
     /// Position bits (word 13).
     pub fn pos_bits(&self) -> u32 {
@@ -84,13 +107,7 @@ impl EncoderConfig {
 
     /// Checks the configuration; field names are those of `[endat.encoder]`.
     pub fn validate(&self) -> Result<()> {
-        if self.singleturn_bits == 0 || self.pos_bits() > 48 {
-            return Err(ConfigError::invalid(
-                "encoder.singleturn_bits",
-                format!("{} + {} bits", self.singleturn_bits, self.multiturn_bits),
-                "give 1 to 48 position bits in total",
-            ));
-        }
+        check_position_bits(self.singleturn_bits, self.multiturn_bits)?;
         if self.kind != EncoderKind::Multiturn && self.multiturn_bits != 0 {
             return Err(ConfigError::invalid(
                 "encoder.multiturn_bits",

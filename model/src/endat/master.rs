@@ -13,6 +13,10 @@ use crate::crc::ENDAT_CRC5;
 use crate::ports::{Port, Ports};
 use crate::{ConfigError, Result};
 
+/// The position's width the master reads (word 13 of the manufacturer
+/// parameters; the core's `POS_BITS`).
+pub const POSITION_BITS: std::ops::RangeInclusive<u32> = 1..=48;
+
 /// Synchroniser depth on `i_endat_data_in` (fixed, as in the RTL).
 pub const SYNC_STAGES: u64 = 2;
 
@@ -105,11 +109,15 @@ impl MasterConfig {
 
     /// Checks the configuration; field names are those of a scenario's `[endat.master]` table.
     pub fn validate(&self) -> Result<()> {
-        if !(1..=48).contains(&self.pos_bits) {
+        if !POSITION_BITS.contains(&self.pos_bits) {
             return Err(ConfigError::invalid(
                 "master.pos_bits",
                 format!("{} bits", self.pos_bits),
-                "give 1 to 48 position bits (word 13 of the manufacturer parameters)",
+                format!(
+                    "give {} to {} position bits (word 13 of the manufacturer parameters)",
+                    POSITION_BITS.start(),
+                    POSITION_BITS.end()
+                ),
             ));
         }
         if self.clocks_per_bit < 8 {

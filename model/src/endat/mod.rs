@@ -108,13 +108,14 @@ pub use bench::{
 };
 pub use encoder::{AdSource, Answer, Encoder, EncoderConfig, EncoderKind, Memory};
 #[doc(hidden)]
-pub use master::{catalogue_engine, lfsr_push_for_test};
+pub use master::{catalogue_engine, lfsr_push_for_test, POSITION_BITS};
 pub use master::{
     FrameChecker, FrameResult, In, LineJudge, Master, MasterConfig, Out, RxPhase, State,
     DELAY_COUNTER_MAX, SYNC_STAGES,
 };
 
 use crate::crc::{BitSerial, ENDAT_CRC5};
+use schemars::JsonSchema;
 
 /// The raw LFSR register after a frame and its correct CRC field: what the
 /// RTL compares against (`ENDAT_CRC5.wire_residue()`).
@@ -134,7 +135,9 @@ pub const TEST_VALUE_BITS: u32 = 40;
 pub const CONT_MAX_LOW_BITS: u64 = 7;
 
 /// The 14 mode commands of seed section 2.3.2.1.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize, JsonSchema,
+)]
 #[serde(rename_all = "snake_case")]
 pub enum Command {
     /// Encoder send position values, type 2.1, `000111`.

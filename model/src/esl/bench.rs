@@ -15,7 +15,7 @@ use crate::uart;
 use crate::{ConfigError, Result, Timebase};
 
 /// The host's settings in a scenario's units (`[esl.host]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct HostSettings {
     /// Answer timeout after the request, µs (the answer comes 2 µs after it).
@@ -52,7 +52,7 @@ impl Default for HostSettings {
 }
 
 /// One host operation (`[[esl.ops]]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Operation {
     /// The Data ID code (Table 3; others are sent as asked, to see that no
@@ -81,7 +81,7 @@ fn default_gap() -> f64 {
 
 /// One bit of one request inverted on the line at the encoders' end
 /// (`[[esl.request_flips]]`): wrong parity, bad stop bit, CRC errors.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct RequestFlip {
     /// Which request on the line (0 = the first the host sends).
@@ -93,7 +93,7 @@ pub struct RequestFlip {
 }
 
 /// A second driver that pulls the line low for a while (`[[esl.intruders]]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Intruder {
     /// Start, µs after the start of the run.
@@ -103,7 +103,7 @@ pub struct Intruder {
 }
 
 /// Everything a scenario says about an ESL set-up (`[esl]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct BenchConfig {
     /// System clock in MHz.

@@ -9,7 +9,7 @@ use super::frames::{self, Alarms, AnswerData, DataId, Status};
 use crate::line::Drive;
 
 /// What one emulated encoder holds, as a scenario sets it (`[[esl.encoders]]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct EncoderSettings {
     /// Encoder address 0..7 (EAD0..2).
@@ -56,7 +56,7 @@ pub struct EncoderSettings {
 }
 
 /// Initial memory bytes (`[[esl.encoders.memory]]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct MemoryInit {
     /// ESL page 0..15.
@@ -68,7 +68,7 @@ pub struct MemoryInit {
 }
 
 /// One bit of one answer inverted on the line (`[[esl.encoders.flips]]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct AnswerFlip {
     /// Which answer (0 = the first this encoder sends).
@@ -80,7 +80,7 @@ pub struct AnswerFlip {
 }
 
 /// An answer that stops after `fields` fields (`[[esl.encoders.truncations]]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Truncation {
     /// Which answer.
@@ -90,7 +90,7 @@ pub struct Truncation {
 }
 
 /// A sequence counter that jumps by 2 before an answer (`[[esl.encoders.sequence_jumps]]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct SequenceJump {
     /// Which answer.

@@ -5,6 +5,7 @@
 //! The bytes below are those 8 bits (bit 0 sent first).
 
 use crate::crc::{self, Algorithm};
+use schemars::JsonSchema;
 
 /// The non-safety CRC-8 (init 0 on both channels).
 pub const CRC8: &Algorithm = &crc::ESL_CRC8;
@@ -28,7 +29,9 @@ pub const DEFAULT_PAGE: u8 = 8;
 pub const REGISTER_PAGE: u8 = 8;
 
 /// The Data IDs of Tables 3 and 12.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize, JsonSchema,
+)]
 pub enum DataId {
     /// 1: position read, safety, with multi-turn.
     Id1,
@@ -328,7 +331,9 @@ pub const STATUS_CA_MASK: u8 = 0b11;
 pub const STATUS_CH2: u8 = 1 << 5;
 
 /// Encoder error flags (Table 7, ALM bit 0 first; Table 8 for how each is cleared).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize, JsonSchema,
+)]
 #[serde(deny_unknown_fields, default)]
 pub struct Alarms {
     /// XC: multi-turn miss count (bit 0; cleared by C).

@@ -18,7 +18,7 @@ use crate::uart::{self, Parity};
 use crate::{ConfigError, Result, Timebase};
 
 /// The master's settings in a scenario's units (`[modbus.master]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct MasterSettings {
     /// From the request's end to the answer's first start bit, µs.
@@ -32,7 +32,7 @@ impl Default for MasterSettings {
 }
 
 /// What a poll does.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum OpKind {
     /// Function 03 from register 0.
@@ -45,7 +45,7 @@ pub enum OpKind {
 }
 
 /// One poll (`[[modbus.ops]]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Operation {
     /// Read or query.
@@ -73,7 +73,7 @@ fn default_count() -> u8 {
 }
 
 /// Everything a scenario says about a Modbus set-up (`[modbus]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct BenchConfig {
     /// System clock, MHz.

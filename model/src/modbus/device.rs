@@ -18,7 +18,7 @@ use crate::uart::{self, FaultKind, FrameFault, Parity, Receiver, ReceiverConfig,
 use crate::{ConfigError, Result};
 
 /// The device's settings in a scenario's units (`[modbus.device]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct DeviceSettings {
     /// Station address (factory default 1).

@@ -18,7 +18,7 @@ use crate::uart::{self, Parity};
 use crate::{ConfigError, Result, Timebase};
 
 /// The host's settings in a scenario's units (`[sar.host]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct HostSettings {
     /// Answer timeout from entering `WAIT`, µs.
@@ -46,7 +46,7 @@ impl Default for HostSettings {
 }
 
 /// What one host operation does.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum OpKind {
     /// The next frame (timed), a trigger pulse (handshake) or `BC AA Bx` (bus).
@@ -56,7 +56,7 @@ pub enum OpKind {
 }
 
 /// One host operation (`[[sar.ops]]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Operation {
     /// What to do.
@@ -82,7 +82,7 @@ fn default_repeat() -> u32 {
 }
 
 /// Everything a scenario says about a SAR58K24 asynchronous set-up (`[sar]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct BenchConfig {
     /// System clock, MHz.

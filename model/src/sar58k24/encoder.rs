@@ -18,7 +18,9 @@ use crate::{ConfigError, Result};
 
 /// The six asynchronous modes of 2.4 ("timed send, timed + clear, pulse
 /// handshake, handshake + clear, bus command, bus + clear").
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, schemars::JsonSchema,
+)]
 #[serde(rename_all = "snake_case")]
 pub enum Mode {
     /// 3.1.1: a frame every refresh period.
@@ -65,7 +67,9 @@ impl Mode {
 }
 
 /// The output code (2.4: "Binary code, Gray code").
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, schemars::JsonSchema,
+)]
 #[serde(rename_all = "snake_case")]
 pub enum OutputCode {
     /// Plain binary.
@@ -84,7 +88,7 @@ pub const BAUD_RATES: [f64; 7] = [
 ];
 
 /// The emulator's settings in a scenario's units (`[sar.encoder]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct EncoderSettings {
     /// Bus address x of `BC AA Bx` (0..15).

@@ -4,6 +4,8 @@
 //! low byte of the sum of every byte before it; and the bus commands
 //! `BC AA Bx` (read encoder x) and `BC AA Cx` (zero encoder x).
 
+use schemars::JsonSchema;
+
 /// The two bytes every position frame starts with (every frame table of 3.1.x to 3.3.x).
 pub const HEADER: [u8; 2] = [0xFF, 0x81];
 
@@ -45,7 +47,9 @@ pub fn tag_byte(tag: AnswerTag, bus: bool, address: u8) -> u8 {
 /// for the bus modes alone, and only an echoed address lets a host on a
 /// shared line see that the wrong encoder answered. The default follows the
 /// text; `fixed81` follows the tables.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize, JsonSchema,
+)]
 #[serde(rename_all = "snake_case")]
 pub enum AnswerTag {
     /// Bus answers carry `Bx`, the command byte (the text's reading).

@@ -25,7 +25,7 @@ use crate::trace::{Layout, Sample};
 use crate::{ConfigError, Result, Timebase};
 
 /// The reader's settings in a scenario file's units (`[master]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct MasterSettings {
     /// Clocks to read (`BITS`).
@@ -62,7 +62,7 @@ impl Default for MasterSettings {
 }
 
 /// The encoder's settings in a scenario file's units (`[encoder]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct EncoderSettings {
     /// Resolution in bits.
@@ -90,7 +90,7 @@ impl Default for EncoderSettings {
 }
 
 /// When the host asks for reads (`[host]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct HostSettings {
     /// The first start, in µs after reset.
@@ -109,7 +109,7 @@ impl Default for HostSettings {
 }
 
 /// A data line held at one level from a given read on (`[fault]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct StuckFault {
     /// The level the line is stuck at at the master's receiver: `true` = high.
@@ -119,7 +119,7 @@ pub struct StuckFault {
 }
 
 /// Everything a scenario says about an SSI set-up.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct BenchConfig {
     /// System clock in MHz.

@@ -8,7 +8,9 @@ use crate::line::DelayLine;
 use crate::{ConfigError, Result};
 
 /// What the encoder puts on the line after its LSB while clocks keep coming.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default, schemars::JsonSchema,
+)]
 #[serde(rename_all = "snake_case")]
 pub enum AfterLsb {
     /// Zeros until the monoflop expires (a 12-bit value read with 14 clocks

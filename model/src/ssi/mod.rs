@@ -74,7 +74,9 @@ pub use master::{In, Master, MasterConfig, Out, State};
 use serde::{Deserialize, Serialize};
 
 /// How a position is coded on the wire.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default, schemars::JsonSchema,
+)]
 #[serde(rename_all = "lowercase")]
 pub enum Code {
     /// Plain binary, MSB first.

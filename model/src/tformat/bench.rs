@@ -15,7 +15,7 @@ use crate::uart;
 use crate::{ConfigError, Result, Timebase};
 
 /// The host's settings in a scenario's units (`[tformat.host]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct HostSettings {
     /// Answer timeout after the request, µs.
@@ -34,7 +34,7 @@ impl Default for HostSettings {
 }
 
 /// One host operation (`[[tformat.ops]]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Operation {
     /// The Data ID code: 0, 1, 2, 3, 6, 7, 8, 0xC or 0xD (others are sent as
@@ -56,7 +56,7 @@ fn default_gap() -> f64 {
 }
 
 /// A fault on the RS-485 pair (`[[tformat.line_faults]]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct LineFault {
     /// What happens: `stuck_low` or `stuck_high` (a shorted pair, a failed
@@ -73,7 +73,7 @@ pub struct LineFault {
 }
 
 /// The kinds of [`LineFault`].
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum LineFaultKind {
     /// The pair reads low at both ends.
@@ -87,7 +87,7 @@ pub enum LineFaultKind {
 }
 
 /// Everything a scenario says about a T-format set-up (`[tformat]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct BenchConfig {
     /// System clock in MHz.

@@ -11,7 +11,7 @@ use super::frames::{self, Alarms, DataId, Status};
 use crate::line::Drive;
 
 /// What the emulated encoder holds, as a scenario sets it (`[tformat.encoder]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct EncoderSettings {
     /// Single-turn position, 17 bits.
@@ -42,7 +42,7 @@ pub struct EncoderSettings {
 }
 
 /// One bit of one answer inverted on the line (`[[tformat.encoder.flips]]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct AnswerFlip {
     /// Which answer (0 = the first the encoder sends).
@@ -54,7 +54,7 @@ pub struct AnswerFlip {
 }
 
 /// One answer cut short (`[tformat.encoder.truncate]`): a truncated frame set.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct AnswerTruncation {
     /// Which answer (0 = the first the encoder sends).

@@ -5,6 +5,7 @@
 //! 1. The bytes below are those 8 bits (bit 0 sent first).
 
 use crate::crc::{self, Algorithm};
+use schemars::JsonSchema;
 
 /// The CRC of the frame sets: `G(X) = X^8 + 1` over every field but the CRC
 /// itself, without start bits and delimiters (seed 002, 6.3.4), which is the
@@ -20,7 +21,9 @@ pub const SINK_CODE: u8 = 0b010;
 pub const ENID: u8 = 0x11;
 
 /// The Data IDs of Table 1, with their uses.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize, JsonSchema,
+)]
 #[serde(rename_all = "snake_case")]
 pub enum DataId {
     /// 0: single-turn data (ABS0..2).
@@ -170,7 +173,9 @@ impl Status {
 }
 
 /// ALMC (Table 3): the encoder's error flags, bit 0 first.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize, JsonSchema,
+)]
 #[serde(deny_unknown_fields, default)]
 pub struct Alarms {
     /// OS: over-speed (d70).

@@ -13,7 +13,7 @@ use crate::{ConfigError, Result, Timebase};
 
 /// A low pulse forced onto the line: shorter than half a bit it is a glitch
 /// the receiver must reject; longer than a frame it is a break.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct LowPulse {
     /// Start, µs after reset.
@@ -23,7 +23,7 @@ pub struct LowPulse {
 }
 
 /// Everything a scenario says about a `uart_rx` set-up (`[uart]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct BenchConfig {
     /// System clock in MHz.

@@ -9,7 +9,7 @@ use super::{Parity, Transmitter};
 /// Something a device emulator does wrong to one of its frames (the
 /// scenario's `[[<table>.encoder.faults]]`): shared by the SAR58K24 modes
 /// and Modbus, whose emulators send byte strings through a [`Transmitter`].
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct FrameFault {
     /// 0-based number of the frame the encoder sends.
@@ -34,7 +34,7 @@ pub struct FrameFault {
 }
 
 /// The kinds of [`FrameFault`].
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum FaultKind {
     /// One level inverted: a data bit (checksum), the parity bit, the stop bit (framing).

@@ -87,7 +87,9 @@ pub fn tolerance_for(clocks_per_bit: u64, jitter_cycles: f64, parity: Parity) ->
 /// T-format) have none; the SAR58K24 manual sends 8N1 and adds "parity
 /// check or even check ... according to customer requirements" (seed 001,
 /// "Product communication"): the bit then follows the eighth data bit.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, schemars::JsonSchema,
+)]
 #[serde(rename_all = "snake_case")]
 pub enum Parity {
     /// No parity bit (10-bit frames).

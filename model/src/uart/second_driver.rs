@@ -8,7 +8,7 @@ use super::Parity;
 use crate::{ConfigError, Result, Timebase};
 
 /// Another driver on the line.
-#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct SecondDriver {
     /// Start, µs after reset.

@@ -871,3 +871,30 @@ fn a_round_trip_beyond_the_fixed_sample_point_is_refused_where_every_read_fails(
     }
     assert!(late_seen >= 90, "{late_seen} late set-ups");
 }
+
+/// A position of no bits is blamed on the encoder's fields the user wrote,
+/// not on the master's `pos_bits` derived from them, whether the set-up is
+/// validated whole or only the master's side is asked for (`tbgen timing`).
+#[test]
+fn no_position_bits_are_blamed_on_the_encoders_field() {
+    use model::Setup as _;
+    let mut cfg = BenchConfig::example();
+    cfg.encoder.singleturn_bits = 0;
+    cfg.encoder.multiturn_bits = 0;
+    assert_eq!(
+        cfg.validate().unwrap_err().field(),
+        "encoder.singleturn_bits"
+    );
+    assert_eq!(
+        cfg.master_config().unwrap_err().field(),
+        "encoder.singleturn_bits"
+    );
+    cfg.encoder.singleturn_bits = 13;
+    cfg.encoder.multiturn_bits = model::endat::POSITION_BITS.end() - 12;
+    assert_eq!(
+        cfg.master_config().unwrap_err().field(),
+        "encoder.singleturn_bits"
+    );
+    cfg.encoder.multiturn_bits -= 1;
+    assert!(cfg.master_config().is_ok());
+}

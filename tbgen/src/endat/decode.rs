@@ -18,8 +18,14 @@ use crate::{Error, Result};
 /// Without `opts.meas_khz`, a power-on delay measurement the capture opens
 /// with ([`opening_measurement`]) is read at its own clock, and `notes` says so.
 pub fn decode(path: &Path, clk: &str, data: &str, opts: &Options, notes: &mut Vec<String>) -> Result<Vec<Transaction>> {
-    if !(1..=48).contains(&opts.pos_bits) {
-        return Err(Error::Decode(format!("decode endat: --pos-bits {} is not 1 to 48", opts.pos_bits)));
+    let range = model::endat::POSITION_BITS;
+    if !range.contains(&opts.pos_bits) {
+        return Err(Error::Decode(format!(
+            "decode endat: --pos-bits {} is not {} to {}",
+            opts.pos_bits,
+            range.start(),
+            range.end()
+        )));
     }
     let signals = capture::read(path, &[(clk, "--clk"), (data, "--data")])?;
     let mut opts = opts.clone();
