@@ -1054,6 +1054,21 @@ fn odd_ma_dividers_split_high_first_keep_the_seed_timing_and_read_back() {
     }
 }
 
+/// A register access of slave 0 (`data` only for a write).
+fn access(write: bool, addr: u8, data: u8) -> RegOp {
+    RegOp {
+        write,
+        id: 0,
+        addr,
+        data,
+    }
+}
+
+/// The register results of a run, in order.
+fn accesses(cfg: &BenchConfig) -> Vec<RegResult> {
+    frames(cfg).into_iter().filter_map(|t| t.register).collect()
+}
+
 #[test]
 fn a_crc4_wrong_in_any_one_bit_of_the_read_answer_is_a_crc_error_with_the_data_right() {
     for bit in 0..4 {
@@ -1061,18 +1076,9 @@ fn a_crc4_wrong_in_any_one_bit_of_the_read_answer_is_a_crc_error_with_the_data_r
         cfg.slaves[0].registers = vec![0x5A];
         cfg.slaves[0].cds_crc_error = true;
         cfg.slaves[0].cds_crc_bit = bit;
-        cfg.host.registers = vec![RegOp {
-            write: false,
-            id: 0,
-            addr: 0,
-            data: 0,
-        }];
-        let r = frames(&cfg)
-            .iter()
-            .find_map(|t| t.register.clone())
-            .unwrap();
-        assert!(!r.ok && !r.crc4_ok, "bit {bit}: {r:?}");
-        assert_eq!(r.rdata, 0x5A, "bit {bit}");
+        cfg.host.registers = vec![access(false, 0, 0)];
+        let r = &accesses(&cfg)[0];
+        assert!(!r.ok && !r.crc4_ok && r.rdata == 0x5A, "bit {bit}: {r:?}");
     }
 }
 
@@ -1080,24 +1086,8 @@ fn a_crc4_wrong_in_any_one_bit_of_the_read_answer_is_a_crc_error_with_the_data_r
 fn a_wrong_write_echo_with_its_own_crc4_fails_the_write_without_a_crc_error_and_stores_nothing() {
     let mut cfg = BenchConfig::seed_example();
     cfg.slaves[0].cds_write_echo = Some(0x3D);
-    cfg.host.registers = vec![
-        RegOp {
-            write: true,
-            id: 0,
-            addr: 0x10,
-            data: 0x3C,
-        },
-        RegOp {
-            write: false,
-            id: 0,
-            addr: 0x10,
-            data: 0,
-        },
-    ];
-    let rs: Vec<_> = frames(&cfg)
-        .iter()
-        .filter_map(|t| t.register.clone())
-        .collect();
+    cfg.host.registers = vec![access(true, 0x10, 0x3C), access(false, 0x10, 0)];
+    let rs = accesses(&cfg);
     assert_eq!(rs.len(), 2, "{rs:?}");
     assert!(
         !rs[0].ok && rs[0].crc4_ok && rs[0].rdata == 0x3D,
@@ -1110,12 +1100,7 @@ fn a_wrong_write_echo_with_its_own_crc4_fails_the_write_without_a_crc_error_and_
 #[test]
 fn control_faults_that_cannot_happen_are_refused_with_the_field() {
     let mut cfg = BenchConfig::seed_example();
-    cfg.host.registers = vec![RegOp {
-        write: false,
-        id: 0,
-        addr: 0,
-        data: 0,
-    }];
+    cfg.host.registers = vec![access(false, 0, 0)];
     cfg.slaves[0].cds_crc_error = true;
     cfg.slaves[0].cds_crc_bit = 4;
     let e = cfg.validate().unwrap_err();
