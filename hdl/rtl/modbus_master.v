@@ -177,7 +177,10 @@ reg [GAP_W-1:0] gap_reg = 0, gap_next;
 // machine's block for the same reason as cnt. The block asks for a clear or a step and
 // reads gap_long (over t1.5) and gap_step_t35 (a step now reaches t3.5).
 reg             gap_clear, gap_count;
-wire            gap_long = gap_reg > T15;
+// The count runs from the cycle after the stop-bit pulse to the cycle before the
+// start bit's, one short of the silence from the stop bit's middle: over t1.5 is a
+// count of T15 or more.
+wire            gap_long = gap_reg >= T15;
 wire            gap_step_t35 = gap_reg == T35_LAST;
 always @* begin
     if (gap_clear) gap_next = 0;

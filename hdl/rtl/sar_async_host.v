@@ -190,6 +190,23 @@ always @* begin
     else stale_next = stale_reg;
 end
 
+// Cycles until the stop bit of the last character received ends on the line
+// (model::uart::stop_rest_clocks after its stop-bit pulse, loaded one less:
+// it is read the cycle after): the trigger falls only at 0, so never inside
+// the last frame's stop bit (seed 001 3.1.3: "T1-T3: Data transmission time").
+// It steps on most cycles, so it is counted here, outside the state machine's block.
+localparam integer STOP_REST = CLOCKS_PER_BIT - CLOCKS_PER_BIT / 2 - 3;
+localparam integer STOP_LOAD = (STOP_REST > 0) ? STOP_REST - 1 : 0;
+localparam integer STOP_W = $clog2(STOP_LOAD + 2);
+localparam [31:0] STOP_LOAD_32 = STOP_LOAD;
+reg [STOP_W-1:0] stop_left_reg = 0;
+wire             stop_ended = stop_left_reg == 0;
+always @(posedge i_clk) begin
+    if (rx_valid || rx_parity_err || rx_frame_err) stop_left_reg <= STOP_LOAD_32[STOP_W-1:0];
+    else if (!stop_ended) stop_left_reg <= stop_left_reg - 1'b1;
+    if (i_rst) stop_left_reg <= 0;
+end
+
 reg        trigger_reg = 1'b1, trigger_next;
 reg        clr_reg = 1'b1, clr_next;
 reg        busy_reg = 1'b0, busy_next;
@@ -351,7 +368,7 @@ always @* begin
                 end else if (i_start && IS_HANDSHAKE) begin
                     state_next = TRIGGER;
                     cnt_load = LOAD_TRIGGER;
-                    trigger_next = 1'b0;
+                    trigger_next = !stop_ended;
                     busy_next = 1'b1;
                 end else if ((i_start && IS_BUS) || (i_zero && BUS_CLEAR)) begin
                     cmd_next = {8'hBC, 8'hAA, i_start ? 4'hB : 4'hC, i_address};
@@ -369,7 +386,10 @@ always @* begin
                 end
             end
             TRIGGER: begin
-                if (cnt_zero) begin
+                if (trigger_reg) begin
+                    // Held high until the last stop bit has ended.
+                    trigger_next = !stop_ended;
+                end else if (cnt_zero) begin
                     trigger_next = 1'b1;
                     state_next = WAIT;
                     cnt_load = LOAD_TIMEOUT;

@@ -18,7 +18,7 @@ use serde::{Deserialize, Serialize};
 
 use super::control;
 use super::master::{In, Master, MasterConfig, Out, MAX_SLAVES};
-use super::slave::{Chain, Slave, SlaveConfig};
+use super::slave::{Chain, ControlFaults, Slave, SlaveConfig};
 use crate::line::{CableConfig, DelayLine};
 use crate::ports::{Port, Ports};
 use crate::testbench::{self, Setup, Testbench};
@@ -106,6 +106,13 @@ pub struct SlaveSettings {
     pub cdm_flip_at: Option<u32>,
     /// Fault: the slave answers its first register read with a wrong CRC-4.
     pub cds_crc_error: bool,
+    /// The CRC-4 bit `cds_crc_error` inverts: 0 = the first CRC bit sent
+    /// (the CRC's MSB), 3 = the last.
+    pub cds_crc_bit: u32,
+    /// Fault: the slave echoes this byte, with the right CRC-4 for it, in
+    /// place of the data of its first register write, and stores nothing:
+    /// only the master's comparison of the echo with the byte it wrote sees it.
+    pub cds_write_echo: Option<u8>,
 }
 
 impl Default for SlaveSettings {
@@ -127,6 +134,8 @@ impl Default for SlaveSettings {
             registers: Vec::new(),
             cdm_flip_at: None,
             cds_crc_error: false,
+            cds_crc_bit: 0,
+            cds_write_echo: None,
         }
     }
 }
@@ -475,6 +484,9 @@ impl BenchConfig {
                 ));
             }
         }
+        for (i, s) in self.slaves.iter().enumerate() {
+            self.check_control_faults(i, s)?;
+        }
         for (j, f) in self.flips.iter().enumerate() {
             if f.slave >= self.slaves.len() {
                 return Err(ConfigError::invalid(
@@ -522,6 +534,36 @@ impl BenchConfig {
                     "give a frame below host.frames (0-based), or raise host.frames",
                 ));
             }
+        }
+        Ok(())
+    }
+
+    /// Slave `i`'s control-frame faults: a CRC-4 bit that exists, and a
+    /// wrong echo only where the host writes to that slave (else it would
+    /// pass unnoticed).
+    fn check_control_faults(&self, i: usize, s: &SlaveSettings) -> Result<()> {
+        if s.cds_crc_bit > 3 {
+            return Err(ConfigError::invalid(
+                format!("slaves[{i}].cds_crc_bit"),
+                format!("bit {}", s.cds_crc_bit),
+                "give a CRC-4 bit from 0 (the first sent) to 3 (the last)",
+            ));
+        }
+        if s.cds_crc_bit != 0 && !s.cds_crc_error {
+            return Err(ConfigError::invalid(
+                format!("slaves[{i}].cds_crc_bit"),
+                format!("bit {} without cds_crc_error", s.cds_crc_bit),
+                "set cds_crc_error = true to corrupt that bit, or leave cds_crc_bit out",
+            ));
+        }
+        let id = s.id.unwrap_or(i as u8);
+        if s.cds_write_echo.is_some() && !self.host.registers.iter().any(|r| r.write && r.id == id)
+        {
+            return Err(ConfigError::invalid(
+                format!("slaves[{i}].cds_write_echo"),
+                format!("no register write to ID {id} in host.registers"),
+                format!("add {{ write = true, id = {id}, addr = .., data = .. }} to host.registers, or leave cds_write_echo out"),
+            ));
         }
         Ok(())
     }
@@ -700,7 +742,12 @@ impl Bench {
         let mut slaves = Vec::new();
         for i in 0..cfg.slaves.len() {
             let mut s = Slave::new(cfg.slave_config(i)?)?;
-            s.set_control_faults(cfg.slaves[i].cdm_flip_at, cfg.slaves[i].cds_crc_error);
+            let f = &cfg.slaves[i];
+            s.set_control_faults(ControlFaults {
+                cdm_flip_at: f.cdm_flip_at,
+                cds_crc_flip: f.cds_crc_error.then_some(f.cds_crc_bit),
+                cds_write_echo: f.cds_write_echo,
+            });
             slaves.push(s);
         }
         let chain = Chain::new(slaves, tb.cycles_nearest_ns(cfg.slaves[0].output_delay_ns));

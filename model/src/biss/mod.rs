@@ -105,7 +105,7 @@ pub use bench::{
     RegOp, RegResult, SlaveResult, SlaveSettings, StuckFault, Transaction,
 };
 pub use master::{In, Master, MasterConfig, Out, State, DATA_BITS, MAX_SLAVES, SYNC_STAGES};
-pub use slave::{Chain, Slave, SlaveConfig};
+pub use slave::{Chain, ControlFaults, Slave, SlaveConfig};
 
 /// A CRC of the BiSS-C family with another width or polynomial: initial value
 /// 0, sent inverted, MSB first, like [`crate::crc::BISS_CRC6`].

@@ -93,8 +93,7 @@ pub struct Slave {
     tx: Vec<bool>,
     wbits: Vec<bool>,
     cds_next: bool,
-    cdm_flip_at: Option<u32>,
-    cds_crc_error: bool,
+    faults: ControlFaults,
     last_section: Vec<bool>,
     command: bool,
     executed: Vec<u8>,
@@ -122,8 +121,7 @@ impl Slave {
             tx: Vec::new(),
             wbits: Vec::new(),
             cds_next: false,
-            cdm_flip_at: None,
-            cds_crc_error: false,
+            faults: ControlFaults::default(),
             last_section: Vec::new(),
             command: false,
             executed: Vec::new(),
@@ -162,11 +160,9 @@ impl Slave {
         self.flips = flips;
     }
 
-    /// Faults of the control side: the slave misreads CDM bit `k` of its
-    /// next control frame, and/or sends a wrong CRC-4 with its next read.
-    pub fn set_control_faults(&mut self, cdm_flip_at: Option<u32>, cds_crc_error: bool) {
-        self.cdm_flip_at = cdm_flip_at;
-        self.cds_crc_error = cds_crc_error;
+    /// Faults of the control side, each spent on its first occasion.
+    pub fn set_control_faults(&mut self, faults: ControlFaults) {
+        self.faults = faults;
     }
 
     /// The commands (`CTS = 0`) this slave carried out, in order.
@@ -213,10 +209,10 @@ impl Slave {
     /// CDS bit of the next frame (layout in [`control`]).
     pub fn take_cdm(&mut self, cdm: bool) {
         let mut bit = cdm;
-        if let (Some(k), Some(at)) = (self.ctl_k.map(|k| k + 1), self.cdm_flip_at) {
+        if let (Some(k), Some(at)) = (self.ctl_k.map(|k| k + 1), self.faults.cdm_flip_at) {
             if k == at {
                 bit = !bit;
-                self.cdm_flip_at = None;
+                self.faults.cdm_flip_at = None;
             }
         }
         let zeros_before = self.zeros;
@@ -288,18 +284,34 @@ impl Slave {
                             let value = self.register(self.addr());
                             let d = control::data_bits(value);
                             let mut crc = crc4.wire_bits(crc4.checksum_bits(&d));
-                            if self.cds_crc_error {
-                                crc[0] = !crc[0];
-                                self.cds_crc_error = false;
+                            if let Some(b) = self.faults.cds_crc_flip.take() {
+                                crc[b as usize] = !crc[b as usize];
                             }
                             self.tx = d;
                             self.tx.extend(crc);
                         }
                     }
-                    control::K_S2 => cds = self.accepted && bit,
+                    control::K_S2 => {
+                        cds = self.accepted && bit;
+                        if !self.read {
+                            self.tx.clear();
+                        }
+                        if self.accepted && !self.read {
+                            // A wrong echo carries its own right CRC-4, so
+                            // only the comparison with the written byte sees it.
+                            if let Some(echo) = self.faults.cds_write_echo.take() {
+                                let d = control::data_bits(echo);
+                                self.tx = crc4.wire_bits(crc4.checksum_bits(&d));
+                                self.tx.splice(0..0, d);
+                            }
+                        }
+                    }
                     19..=30 => {
                         if self.read {
                             cds = self.accepted && self.tx[(k - 19) as usize];
+                        } else if let Some(&echo) = self.tx.get((k - 19) as usize) {
+                            // The wrong echo: the slave stores nothing.
+                            cds = self.accepted && echo;
                         } else {
                             self.wbits.push(bit);
                             cds = self.accepted && bit;
@@ -328,6 +340,20 @@ impl Slave {
             .iter()
             .fold(0u8, |a, &b| (a << 1) | b as u8)
     }
+}
+
+/// Faults of a slave's side of the control frame, each spent on its first
+/// occasion.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct ControlFaults {
+    /// The slave misreads CDM bit `k` of its first control frame.
+    pub cdm_flip_at: Option<u32>,
+    /// The slave answers its first register read with this bit of the
+    /// CRC-4 inverted (0 = the first CRC bit sent, 3 = the last).
+    pub cds_crc_flip: Option<u32>,
+    /// The slave echoes this byte, with the right CRC-4 for it, in place of
+    /// the data of its first register write, and stores nothing.
+    pub cds_write_echo: Option<u8>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -451,7 +451,7 @@ impl Master {
             State::Wait => self.cnt -= n,
             State::Recv => {
                 if rx.o_busy {
-                    if self.nbytes > 0 && self.gap > self.cfg.t15_clocks {
+                    if self.nbytes > 0 && self.gap >= self.cfg.t15_clocks {
                         self.gap_seen = true;
                     }
                     self.gap = 0;
@@ -590,8 +590,12 @@ impl Master {
                     self.framing_seen |= rx.o_frame_err;
                     self.gap = 0;
                 } else if rx.o_busy {
-                    // A start bit: the silence before it is complete.
-                    if self.nbytes > 0 && self.gap > cfg.t15_clocks {
+                    // A start bit: the silence before it is complete. The
+                    // count runs from the cycle after the stop-bit pulse to
+                    // the cycle before this one, one short of the silence on
+                    // the line from the stop bit's middle: over t1.5 is a
+                    // count of t1.5 or more.
+                    if self.nbytes > 0 && self.gap >= cfg.t15_clocks {
                         self.gap_seen = true;
                     }
                     self.gap = 0;

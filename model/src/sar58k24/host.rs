@@ -115,7 +115,8 @@ impl HostConfig {
 pub enum State {
     /// No operation (frames are still found in every state).
     Idle = 0,
-    /// Driving the trigger low.
+    /// Driving the trigger low (first, held high, until the stop bit of the
+    /// last character received has ended).
     Trigger = 1,
     /// Driving CLR low.
     Clr = 2,
@@ -259,6 +260,10 @@ pub struct Host {
     idle: u64,
     stale: u64,
     cnt: u64,
+    /// Steps until the stop bit of the last character received has ended
+    /// on the line (loaded at its stop-bit pulse): a trigger falls only at
+    /// 0, outside the frame ("T1-T3: Data transmission time").
+    stop_left: u64,
     out: Out,
 }
 
@@ -291,6 +296,7 @@ impl Host {
             idle: 0,
             stale: 0,
             cnt: 0,
+            stop_left: 0,
             state: State::Idle,
             out: Out::default(),
             cfg,
@@ -378,6 +384,8 @@ impl Host {
         let fsm = match self.state {
             State::Idle if input.i_start || input.i_zero => return 0,
             State::Idle => u64::MAX,
+            // Waiting for the last stop bit to end before the trigger falls.
+            State::Trigger if o.o_trigger => self.stop_left,
             State::Trigger | State::Clr | State::Wait => self.cnt,
             State::Send => return 0,
         };
@@ -405,9 +413,12 @@ impl Host {
         if self.cfg.stale_clocks != 0 {
             self.stale += n;
         }
-        if matches!(self.state, State::Trigger | State::Clr | State::Wait) {
+        if self.state == State::Trigger && self.out.o_trigger {
+            // quiet() stops short of the step that reads 0.
+        } else if matches!(self.state, State::Trigger | State::Clr | State::Wait) {
             self.cnt -= n;
         }
+        self.stop_left = self.stop_left.saturating_sub(n);
         self.rx.skip(n);
     }
 
@@ -522,7 +533,9 @@ impl Host {
                 } else if input.i_start && cfg.mode.is_handshake() {
                     self.state = State::Trigger;
                     self.cnt = cfg.trigger_low_clocks - 1;
-                    next.o_trigger = false;
+                    // Not inside the last frame's stop bit: the trigger
+                    // falls once it has ended.
+                    next.o_trigger = self.stop_left != 0;
                     next.o_busy = true;
                 } else if (input.i_start && cfg.mode.is_bus()) || bus_zero {
                     let a = input.i_address & 0xF;
@@ -549,7 +562,9 @@ impl Host {
                 }
             }
             State::Trigger => {
-                if self.cnt == 0 {
+                if self.out.o_trigger {
+                    next.o_trigger = self.stop_left != 0;
+                } else if self.cnt == 0 {
                     next.o_trigger = true;
                     self.state = State::Wait;
                     self.cnt = cfg.timeout_clocks - 1;
@@ -607,6 +622,14 @@ impl Host {
                     self.cnt -= 1;
                 }
             }
+        }
+
+        // A stop-bit pulse: that stop bit ends STOP_REST steps later; the
+        // count is read one step after it is loaded, so it is loaded one less.
+        if rx.o_valid || rx.o_parity_err || rx.o_frame_err {
+            self.stop_left = uart::stop_rest_clocks(cfg.clocks_per_bit).saturating_sub(1);
+        } else {
+            self.stop_left = self.stop_left.saturating_sub(1);
         }
 
         // The receiver hears the line only while the driver is off; the

@@ -1053,3 +1053,72 @@ fn odd_ma_dividers_split_high_first_keep_the_seed_timing_and_read_back() {
         );
     }
 }
+
+/// A register access of slave 0 (`data` only for a write).
+fn access(write: bool, addr: u8, data: u8) -> RegOp {
+    RegOp {
+        write,
+        id: 0,
+        addr,
+        data,
+    }
+}
+
+/// The register results of a run, in order.
+fn accesses(cfg: &BenchConfig) -> Vec<RegResult> {
+    frames(cfg).into_iter().filter_map(|t| t.register).collect()
+}
+
+#[test]
+fn a_crc4_wrong_in_any_one_bit_of_the_read_answer_is_a_crc_error_with_the_data_right() {
+    for bit in 0..4 {
+        let mut cfg = BenchConfig::seed_example();
+        cfg.slaves[0].registers = vec![0x5A];
+        cfg.slaves[0].cds_crc_error = true;
+        cfg.slaves[0].cds_crc_bit = bit;
+        cfg.host.registers = vec![access(false, 0, 0)];
+        let r = &accesses(&cfg)[0];
+        assert!(!r.ok && !r.crc4_ok && r.rdata == 0x5A, "bit {bit}: {r:?}");
+    }
+}
+
+#[test]
+fn a_wrong_write_echo_with_its_own_crc4_fails_the_write_without_a_crc_error_and_stores_nothing() {
+    let mut cfg = BenchConfig::seed_example();
+    cfg.slaves[0].cds_write_echo = Some(0x3D);
+    cfg.host.registers = vec![access(true, 0x10, 0x3C), access(false, 0x10, 0)];
+    let rs = accesses(&cfg);
+    assert_eq!(rs.len(), 2, "{rs:?}");
+    assert!(
+        !rs[0].ok && rs[0].crc4_ok && rs[0].rdata == 0x3D,
+        "{:?}",
+        rs[0]
+    );
+    assert!(rs[1].ok && rs[1].rdata == 0, "{:?}", rs[1]);
+}
+
+#[test]
+fn control_faults_that_cannot_happen_are_refused_with_the_field() {
+    let mut cfg = BenchConfig::seed_example();
+    cfg.host.registers = vec![access(false, 0, 0)];
+    cfg.slaves[0].cds_crc_error = true;
+    cfg.slaves[0].cds_crc_bit = 4;
+    let e = cfg.validate().unwrap_err();
+    assert_eq!(e.field(), "slaves[0].cds_crc_bit");
+    assert!(
+        e.to_string().contains("from 0 (the first sent) to 3"),
+        "{e}"
+    );
+    cfg.slaves[0].cds_crc_error = false;
+    cfg.slaves[0].cds_crc_bit = 3;
+    let e = cfg.validate().unwrap_err();
+    assert_eq!(e.field(), "slaves[0].cds_crc_bit");
+    assert!(e.to_string().contains("set cds_crc_error = true"), "{e}");
+    cfg.slaves[0].cds_crc_bit = 0;
+    cfg.slaves[0].cds_write_echo = Some(0x11);
+    let e = cfg.validate().unwrap_err();
+    assert_eq!(e.field(), "slaves[0].cds_write_echo");
+    assert!(e.to_string().contains("no register write to ID 0"), "{e}");
+    cfg.host.registers[0].write = true;
+    assert!(cfg.validate().is_ok());
+}

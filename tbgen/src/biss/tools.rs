@@ -178,7 +178,7 @@ mod tests {
     #[test]
     fn every_field_the_decoder_prints_equals_the_gen_transcript_of_every_biss_scenario() {
         let names: Vec<String> = builtin::all().unwrap().into_iter().filter(|s| matches!(s.setup, S::Biss(_))).map(|s| s.name).collect();
-        assert_eq!(names.len(), 31);
+        assert_eq!(names.len(), 34);
         // biss_fault_timeout reads a 16-bit slave as 8 bits on purpose: its
         // frames fit no layout the master was given, which decode refuses
         // (a_wrong_bits_says_the_frame_does_not_fit_and_what_would).
@@ -248,8 +248,8 @@ mod tests {
         }
         assert_eq!(
             (registers, failed_registers, unseen),
-            (13, 7, 2),
-            "register read (and one more with an odd MA divider), write, two CRC-4 faults, three along a chain, two aborted mid-way, one failed in its sync frames, a missing R and a missing S echo; two refused starts"
+            (16, 9, 4),
+            "register read (and one more with an odd MA divider), write, a wrong write echo and its read back, three CRC-4 faults, three along a chain, two aborted mid-way, one failed in its sync frames, a missing R and a missing S echo; four refused starts (one with a pending read)"
         );
         assert_eq!((commands, failed_commands), (3, 1), "biss_command_chain: addressed, unacknowledged; biss_register_chain: broadcast");
         assert!(frames > 200 && flagged >= 10, "{frames} frames, {flagged} flagged");
