@@ -1122,6 +1122,25 @@ impl Bench {
     }
 }
 
+impl Bench {
+    /// One sample: the master's `input` and `out`, the clock at the
+    /// encoder, the pair and the decoded state as they stand now.
+    fn fill(&self, input: &In, out: &Out, clk_at_encoder: bool, sample: &mut Sample) {
+        input.write_values(&mut sample.inputs);
+        out.write_values(&mut sample.outputs);
+        sample.line[0] = out.o_endat_clk as u64;
+        sample.line[1] = clk_at_encoder as u64;
+        sample.line[2] = input.i_endat_data_in as u64;
+        sample.line[3] = self.enc_drive.level as u64;
+        sample.line[4] = out.o_endat_data_oe as u64;
+        sample.line[5] = self.enc_drive.enable as u64;
+        sample.decoded[0] = self.master.state() as u64;
+        sample.decoded[1] = self.master.rx_phase() as u64;
+        sample.decoded[2] = self.master.fall_idx();
+        sample.decoded[3] = self.encoder.latched_position;
+    }
+}
+
 fn answer_name(a: Answer) -> &'static str {
     match a {
         Answer::Ok => "ok",
@@ -1195,19 +1214,20 @@ impl Testbench for Bench {
         self.last_out = out;
         self.cycle += 1;
         let Some(sample) = sample else { return };
+        self.fill(&input, &out, clk_at_encoder, sample);
+    }
 
-        input.write_values(&mut sample.inputs);
-        out.write_values(&mut sample.outputs);
-        sample.line[0] = out.o_endat_clk as u64;
-        sample.line[1] = clk_at_encoder as u64;
-        sample.line[2] = input.i_endat_data_in as u64;
-        sample.line[3] = self.enc_drive.level as u64;
-        sample.line[4] = out.o_endat_data_oe as u64;
-        sample.line[5] = self.enc_drive.enable as u64;
-        sample.decoded[0] = self.master.state() as u64;
-        sample.decoded[1] = self.master.rx_phase() as u64;
-        sample.decoded[2] = self.master.fall_idx();
-        sample.decoded[3] = self.encoder.latched_position;
+    /// Before the first cycle: the master in its reset state (`last_out`,
+    /// clock high and driver off), the cable at rest carrying its clock,
+    /// the pair high at both ends (the encoder's idle level).
+    fn before_first_cycle(&self, sample: &mut Sample) -> bool {
+        if self.cycle != 0 {
+            return false;
+        }
+        let mut input = self.last_in.clone();
+        input.i_endat_data_in = self.data_at_master;
+        self.fill(&input, &self.last_out, self.last_out.o_endat_clk, sample);
+        true
     }
 
     fn quiet_cycles(&self) -> u64 {
