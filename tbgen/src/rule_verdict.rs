@@ -220,13 +220,7 @@ impl Visitor for OfScenario<'_> {
             .iter()
             .map(|path| column(layout, S::CORE, path))
             .collect::<Result<Vec<Column>>>()?;
-        let mut at_rest = Sample::for_layout(layout);
-        let rest = bench.before_first_cycle(&mut at_rest).then(|| {
-            columns
-                .iter()
-                .map(|&c| value(&at_rest, c) != 0)
-                .collect::<Vec<bool>>()
-        });
+        let rest = rest_levels(&bench, &columns);
         let f_sys_hz = setup.timebase().map_err(|e| s.value_error(e))?.f_sys_hz();
         let mut rec = Recorder {
             columns,
@@ -247,6 +241,77 @@ impl Visitor for OfScenario<'_> {
         )?;
         Ok(v.text)
     }
+}
+
+/// The levels of `columns` before `bench`'s first cycle, if it knows them
+/// ([`Testbench::before_first_cycle`]).
+fn rest_levels<B: Testbench>(bench: &B, columns: &[Column]) -> Option<Vec<bool>> {
+    let mut at_rest = Sample::for_layout(bench.layout());
+    bench
+        .before_first_cycle(&mut at_rest)
+        .then(|| columns.iter().map(|&c| value(&at_rest, c) != 0).collect())
+}
+
+/// The monitor pins' levels before the first cycle of a scenario's bench.
+struct RestOf;
+
+impl Visitor for RestOf {
+    type Output = Result<Option<Vec<bool>>>;
+
+    fn visit<S: Protocol>(self, setup: &S) -> Self::Output {
+        let bench = setup.bench().map_err(|e| Error::Decode(e.to_string()))?;
+        let columns = S::MONITOR_PINS
+            .iter()
+            .map(|path| column(bench.layout(), S::CORE, path))
+            .collect::<Result<Vec<Column>>>()?;
+        Ok(rest_levels(&bench, &columns))
+    }
+}
+
+/// The scenario a waveform `tbgen gen` wrote names in its `$comment`
+/// ("tbgen <version>: scenario <name> for <core>, ..."), if `path` is one.
+fn generated_from(path: &std::path::Path) -> Option<String> {
+    let file = std::fs::File::open(path).ok()?;
+    let mut parser = vcd::Parser::new(std::io::BufReader::new(file));
+    let header = parser.parse_header().ok()?;
+    header.items.iter().find_map(|i| match i {
+        vcd::ScopeItem::Comment(c) => c
+            .trim()
+            .strip_prefix("tbgen ")?
+            .split_once(": scenario ")?
+            .1
+            .split_once(" for ")
+            .map(|(name, _)| name.to_string()),
+        _ => None,
+    })
+}
+
+/// The levels before a capture's first sample: for the waveform `tbgen
+/// gen` wrote of a scenario (its `$comment` names it: the rules scenario
+/// of that name, else the built-in), read at the default pins, its bench's
+/// rest levels, for that waveform begins with the set-up's first cycle, a
+/// clock edge already taken; else each pin's level at time 0.
+fn capture_rest(
+    e: &Entry,
+    file: &std::path::Path,
+    default_pins: bool,
+    rules_scenario: Option<(&str, &str)>,
+    pins: &[Signal],
+) -> Result<Vec<bool>> {
+    let name = generated_from(file).filter(|_| default_pins);
+    let scenario = match (name, rules_scenario) {
+        (None, _) => None,
+        (Some(n), Some((text, origin))) => match Scenario::parse(text, origin) {
+            Ok(s) if s.name == n => Some(s),
+            _ => crate::builtin::find(&n).ok(),
+        },
+        (Some(n), None) => crate::builtin::find(&n).ok(),
+    };
+    let rest = match scenario.filter(|s| s.table() == e.table) {
+        Some(s) => s.setup.accept(RestOf)?,
+        None => None,
+    };
+    Ok(rest.unwrap_or_else(|| first_levels(pins)))
 }
 
 /// `tbgen timing`'s rule verdict of scenario `s`: its master, as the model
@@ -307,7 +372,8 @@ pub fn of_capture(e: &Entry, args: &ArgMatches) -> Result<Option<String>> {
     let Some(file) = args.get_one::<PathBuf>("file") else {
         return Ok(None);
     };
-    let paths: Vec<String> = match args.try_get_one::<String>(RULE_PINS).ok().flatten() {
+    let given_pins = args.try_get_one::<String>(RULE_PINS).ok().flatten();
+    let paths: Vec<String> = match given_pins {
         Some(list) => list.split(',').map(|p| p.trim().to_string()).collect(),
         None => e.monitor_pins.iter().map(|p| format!("top.{p}")).collect(),
     };
@@ -380,7 +446,9 @@ pub fn of_capture(e: &Entry, args: &ArgMatches) -> Result<Option<String>> {
             f_hz as f64 / 1e6
         )));
     }
-    let v = judge(e, &toml, &origin, f_hz, &pins, &first_levels(&pins), end_ps)?;
+    let rules_scenario = (!toml.is_empty()).then_some((toml.as_str(), origin.as_str()));
+    let before = capture_rest(e, file, given_pins.is_none(), rules_scenario, &pins)?;
+    let v = judge(e, &toml, &origin, f_hz, &pins, &before, end_ps)?;
     Ok(Some(format!(
         "rules of the captured master pins ({}, sampled at {:.3} MHz; {limits}):\n{}",
         paths.join(", "),
@@ -424,14 +492,6 @@ mod tests {
         broken(v)
             .iter()
             .map(|l| l.split(" times; ").next().unwrap_or(l))
-            .collect()
-    }
-
-    /// The broken rules' labels, without counts and times.
-    fn labels(v: &str) -> Vec<&str> {
-        broken(v)
-            .iter()
-            .map(|l| l.split(") (").next().unwrap_or(l))
             .collect()
     }
 
@@ -496,6 +556,13 @@ mod tests {
             }
         }
         assert!(seen >= 30, "{seen} EnDat scenarios");
+        // The waveform `tbgen gen` writes begins as the model's line does,
+        // one clock edge in: `tbgen decode` takes its rest levels from the
+        // scenario its `$comment` names.
+        for name in ["endat_clock_4mhz", "endat_pos22_ad_8mhz_100m"] {
+            let d = decoded(&crate::builtin::find(name).unwrap());
+            assert!(broken(&d).is_empty(), "{name}:\n{d}");
+        }
     }
 
     struct FSys;

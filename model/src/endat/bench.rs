@@ -1232,7 +1232,7 @@ impl Testbench for Bench {
         if self.cycle != 0 {
             return false;
         }
-        let mut input = self.last_in.clone();
+        let mut input = self.last_in;
         input.i_endat_data_in = self.data_at_master;
         self.fill(&input, &self.last_out, self.last_out.o_endat_clk, sample);
         true
