@@ -269,19 +269,13 @@ impl Visitor for RestOf {
 }
 
 /// The scenario a waveform `tbgen gen` wrote names in its `$comment`
-/// ("tbgen <version>: scenario <name> for <core>, ..."), if `path` is one.
+/// ([`crate::generate::waveform_comment`]), if `path` is one.
 fn generated_from(path: &std::path::Path) -> Option<String> {
     let file = std::fs::File::open(path).ok()?;
     let mut parser = vcd::Parser::new(std::io::BufReader::new(file));
     let header = parser.parse_header().ok()?;
     header.items.iter().find_map(|i| match i {
-        vcd::ScopeItem::Comment(c) => c
-            .trim()
-            .strip_prefix("tbgen ")?
-            .split_once(": scenario ")?
-            .1
-            .split_once(" for ")
-            .map(|(name, _)| name.to_string()),
+        vcd::ScopeItem::Comment(c) => crate::generate::scenario_of_comment(c).map(String::from),
         _ => None,
     })
 }
