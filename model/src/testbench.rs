@@ -30,6 +30,17 @@ pub trait Testbench {
     /// when there is one (a run that records nothing passes `None` and saves
     /// the copying).
     fn step(&mut self, sample: Option<&mut Sample>);
+    /// Fills `sample` with the set-up as it stands before its first cycle
+    /// (its master held in reset) and returns true, if the bench knows it.
+    /// Each sample of [`Testbench::step`] shows the set-up after a clock
+    /// edge, so a master that acts on its first edge (an EnDat master
+    /// starting its power-on delay measurement) shows no sample of its rest
+    /// levels; a reader that needs them (a monitor, which takes a clock low
+    /// from its first sample for a master held in reset) asks here. The
+    /// default: not known (false), the first sample stands for the rest.
+    fn before_first_cycle(&self, _sample: &mut Sample) -> bool {
+        false
+    }
     /// Whether the host is done and the tail has run.
     fn finished(&self) -> bool;
     /// Cycles stepped so far.

@@ -126,13 +126,8 @@ impl Visitor for Measure<'_> {
             .join(format!("{}.bench.vcd", self.scenario.name));
         let tb = cfg.timebase().map_err(value_error)?;
         // `gen`'s comment, so that the file is `gen`'s to the byte.
-        let comment = format!(
-            "tbgen {}: scenario {} for {}, f_sys {} Hz",
-            env!("CARGO_PKG_VERSION"),
-            self.scenario.name,
-            S::CORE,
-            tb.f_sys_hz()
-        );
+        let comment =
+            crate::generate::waveform_comment(&self.scenario.name, S::CORE, tb.f_sys_hz());
         let vcd_seconds = best_of(|| {
             let file = File::create(&path).map_err(|e| Error::io(&path, e))?;
             wave::write_changes(

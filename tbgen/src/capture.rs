@@ -100,6 +100,12 @@ fn open(path: &Path) -> Result<std::fs::File> {
 /// The error for a missing one names the file, the name, `option` (the
 /// command-line flag that sets it) and the capture's signals.
 pub fn read(path: &Path, names: &[(&str, &str)]) -> Result<Vec<Signal>> {
+    read_to_end(path, names).map(|(s, _)| s)
+}
+
+/// [`read`], and the capture's end in ps where the format records one (a
+/// VCD's last timestamp): the lines hold their last levels until then.
+pub fn read_to_end(path: &Path, names: &[(&str, &str)]) -> Result<(Vec<Signal>, Option<u64>)> {
     let resolved = lines::resolve(names)?;
     let names: Vec<(&str, &str)> = resolved
         .iter()
@@ -107,14 +113,14 @@ pub fn read(path: &Path, names: &[(&str, &str)]) -> Result<Vec<Signal>> {
         .map(|(n, &(_, o))| (n.as_str(), o))
         .collect();
     match Format::of(path) {
-        Some(Format::Sigrok) => sigrok::read(path, &names),
-        Some(Format::Csv) => csv::read(path, &names),
-        Some(Format::Vcd) | None => read_vcd(path, &names),
+        Some(Format::Sigrok) => sigrok::read(path, &names).map(|s| (s, None)),
+        Some(Format::Csv) => csv::read(path, &names).map(|s| (s, None)),
+        Some(Format::Vcd) | None => read_vcd(path, &names).map(|(s, end)| (s, Some(end))),
     }
 }
 
-/// Reads the named scalars of a VCD file.
-fn read_vcd(path: &Path, names: &[(&str, &str)]) -> Result<Vec<Signal>> {
+/// Reads the named scalars of a VCD file, and its last timestamp.
+fn read_vcd(path: &Path, names: &[(&str, &str)]) -> Result<(Vec<Signal>, u64)> {
     let file = open(path)?;
     let mut parser = vcd::Parser::new(BufReader::new(file));
     let header = parser.parse_header().map_err(|e| not_vcd(path, e))?;
@@ -135,7 +141,7 @@ fn read_vcd(path: &Path, names: &[(&str, &str)]) -> Result<Vec<Signal>> {
     }
     let scale = tracefile::capture::timescale_ps(&header);
     let wanted: Vec<(&str, vcd::IdCode)> = names.iter().map(|&(n, _)| n).zip(ids).collect();
-    tracefile::capture::read_scalars(parser, &wanted, scale).map_err(|e| match e {
+    tracefile::capture::read_scalars_to_end(parser, &wanted, scale).map_err(|e| match e {
         tracefile::capture::ScanError::Io(e) => not_vcd(path, e),
         tracefile::capture::ScanError::TimestampOverflow(ts) => Error::Decode(format!(
             "{}: timestamp #{ts} is beyond 2^62 ps (about 53 days), the longest capture the decoders read; cut the capture before it",

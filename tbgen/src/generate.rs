@@ -226,12 +226,7 @@ fn write_outputs<S: crate::registry::Protocol>(
     );
 
     let mut vectors = VectorWriter::new(&layout.inputs, &layout.outputs);
-    let comment = format!(
-        "tbgen {}: scenario {} for {core}, f_sys {} Hz",
-        env!("CARGO_PKG_VERSION"),
-        scenario.name,
-        tb.f_sys_hz()
-    );
+    let comment = waveform_comment(&scenario.name, core, tb.f_sys_hz());
     let vcd_path = staged.dest(1).to_path_buf();
     let mut waves = Waves::new(staged.create(1)?, core, &layout, tb, &comment)
         .map_err(|e| Error::io(&vcd_path, e))?;
@@ -338,6 +333,24 @@ fn write_outputs<S: crate::registry::Protocol>(
         transactions: run.transactions.len(),
         files,
     })
+}
+
+/// The `$comment` of the waveform `tbgen gen` writes of scenario `name`
+/// for `core` ([`scenario_of_comment`] reads it back).
+pub fn waveform_comment(name: &str, core: &str, f_sys_hz: u64) -> String {
+    format!(
+        "tbgen {}: scenario {name} for {core}, f_sys {f_sys_hz} Hz",
+        env!("CARGO_PKG_VERSION")
+    )
+}
+
+/// The scenario a [`waveform_comment`] names, if `comment` is one.
+pub fn scenario_of_comment(comment: &str) -> Option<&str> {
+    let (_, rest) = comment
+        .trim()
+        .strip_prefix("tbgen ")?
+        .split_once(": scenario ")?;
+    rest.split_once(" for ").map(|(name, _)| name)
 }
 
 #[cfg(test)]

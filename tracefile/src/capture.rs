@@ -65,6 +65,17 @@ pub fn read_scalars(
     signals: &[(&str, vcd::IdCode)],
     scale: (u64, u64),
 ) -> Result<Vec<Signal>, ScanError> {
+    read_scalars_to_end(parser, signals, scale).map(|(s, _)| s)
+}
+
+/// [`read_scalars`], and the capture's last timestamp in ps: until then
+/// every signal is known to hold its last level (`tbgen gen` ends its VCD
+/// with the run's last cycle, after the last change).
+pub fn read_scalars_to_end(
+    parser: Parser,
+    signals: &[(&str, vcd::IdCode)],
+    scale: (u64, u64),
+) -> Result<(Vec<Signal>, u64), ScanError> {
     let (mul, div) = scale;
     let mut out: Vec<Signal> = signals
         .iter()
@@ -102,5 +113,5 @@ pub fn read_scalars(
             _ => {}
         }
     }
-    Ok(out)
+    Ok((out, t))
 }

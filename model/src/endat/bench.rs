@@ -572,21 +572,29 @@ impl BenchConfig {
     /// [`BenchConfig::expected_delay`] after that rising edge. `Some` when it
     /// comes later than the sample point: the first sample after the
     /// turnaround still sees the idle line and every read fails as
-    /// `line_not_driven`; `None` with delay compensation (the master
-    /// measures the round trip and samples after it).
+    /// `line_not_driven`. With delay compensation the reads sample after
+    /// the measured round trip, but the delay measurement's own frames (at
+    /// `meas_clock_khz`) are sampled at the fixed point, a high phase of the
+    /// measurement clock plus `D`: `Some` when the round trip comes later
+    /// than that, for then every measurement fails as
+    /// `delay_measurement_inconsistent` and every read as `not_calibrated`.
     pub fn late_answer(&self) -> Result<Option<LateAnswer>> {
         let m = self.master_config()?;
-        if m.delay_comp {
-            return Ok(None);
-        }
         let round_trip = self.expected_delay()?;
-        let sample_point = m.high_clocks + m.fixed_delay();
+        let high = if m.delay_comp {
+            m.meas_high_clocks
+        } else {
+            m.high_clocks
+        };
+        let sample_point = high + m.fixed_delay();
         Ok((round_trip > sample_point).then(|| LateAnswer {
             round_trip,
             sample_point,
             period_ps: self.timebase().map_or(0, |tb| tb.period_ps()),
-            sample_delay_cycles: round_trip - m.high_clocks - master::SYNC_STAGES,
+            sample_delay_cycles: round_trip - high - master::SYNC_STAGES,
             sample_delay_max: m.delay_max.saturating_sub(master::SYNC_STAGES),
+            meas_clock_khz: m.delay_comp.then_some(self.master.meas_clock_khz),
+            high_needed: round_trip - m.fixed_delay(),
         }))
     }
 
@@ -1129,6 +1137,25 @@ impl Bench {
     }
 }
 
+impl Bench {
+    /// One sample: the master's `input` and `out`, the clock at the
+    /// encoder, the pair and the decoded state as they stand now.
+    fn fill(&self, input: &In, out: &Out, clk_at_encoder: bool, sample: &mut Sample) {
+        input.write_values(&mut sample.inputs);
+        out.write_values(&mut sample.outputs);
+        sample.line[0] = out.o_endat_clk as u64;
+        sample.line[1] = clk_at_encoder as u64;
+        sample.line[2] = input.i_endat_data_in as u64;
+        sample.line[3] = self.enc_drive.level as u64;
+        sample.line[4] = out.o_endat_data_oe as u64;
+        sample.line[5] = self.enc_drive.enable as u64;
+        sample.decoded[0] = self.master.state() as u64;
+        sample.decoded[1] = self.master.rx_phase() as u64;
+        sample.decoded[2] = self.master.fall_idx();
+        sample.decoded[3] = self.encoder.latched_position;
+    }
+}
+
 fn answer_name(a: Answer) -> &'static str {
     match a {
         Answer::Ok => "ok",
@@ -1202,19 +1229,20 @@ impl Testbench for Bench {
         self.last_out = out;
         self.cycle += 1;
         let Some(sample) = sample else { return };
+        self.fill(&input, &out, clk_at_encoder, sample);
+    }
 
-        input.write_values(&mut sample.inputs);
-        out.write_values(&mut sample.outputs);
-        sample.line[0] = out.o_endat_clk as u64;
-        sample.line[1] = clk_at_encoder as u64;
-        sample.line[2] = input.i_endat_data_in as u64;
-        sample.line[3] = self.enc_drive.level as u64;
-        sample.line[4] = out.o_endat_data_oe as u64;
-        sample.line[5] = self.enc_drive.enable as u64;
-        sample.decoded[0] = self.master.state() as u64;
-        sample.decoded[1] = self.master.rx_phase() as u64;
-        sample.decoded[2] = self.master.fall_idx();
-        sample.decoded[3] = self.encoder.latched_position;
+    /// Before the first cycle: the master in its reset state (`last_out`,
+    /// clock high and driver off), the cable at rest carrying its clock,
+    /// the pair high at both ends (the encoder's idle level).
+    fn before_first_cycle(&self, sample: &mut Sample) -> bool {
+        if self.cycle != 0 {
+            return false;
+        }
+        let mut input = self.last_in;
+        input.i_endat_data_in = self.data_at_master;
+        self.fill(&input, &self.last_out, self.last_out.o_endat_clk, sample);
+        true
     }
 
     fn quiet_cycles(&self) -> u64 {
@@ -1257,7 +1285,7 @@ impl Testbench for Bench {
 
 /// An answer later than the fixed sample point ([`BenchConfig::late_answer`]),
 /// in system clock cycles.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct LateAnswer {
     /// The round trip: the clock cable, the encoder's registered output and
     /// its output delay, the data cable, the master's input register and
@@ -1272,6 +1300,11 @@ pub struct LateAnswer {
     pub sample_delay_cycles: u64,
     /// The greatest sample delay the frame schedule allows.
     pub sample_delay_max: u64,
+    /// With delay compensation, the measurement clock whose frames are
+    /// sampled late, kHz; `None` without (the reads are).
+    pub meas_clock_khz: Option<f64>,
+    /// The least high phase whose fixed sample point reaches the round trip.
+    pub high_needed: u64,
 }
 
 impl LateAnswer {
@@ -1282,8 +1315,12 @@ impl LateAnswer {
 
     /// What is wrong, in ns.
     pub fn problem(&self) -> String {
+        let outcome = match self.meas_clock_khz {
+            None => "without delay compensation every read fails as line_not_driven".to_string(),
+            Some(khz) => format!("the delay measurement's frames at {khz} kHz are sampled there (the round trip is not known yet), so every measurement fails as delay_measurement_inconsistent and every read as not_calibrated"),
+        };
         format!(
-            "the round trip of {} cycles ({:.1} ns: cable both ways, the encoder's output delay, the master's input register and synchroniser) is longer than the fixed sample point, {} cycles ({:.1} ns) after the rising clock edge the encoder answers on: without delay compensation every read fails as line_not_driven",
+            "the round trip of {} cycles ({:.1} ns: cable both ways, the encoder's output delay, the master's input register and synchroniser) is longer than the fixed sample point, {} cycles ({:.1} ns) after the rising clock edge the encoder answers on: {outcome}",
             self.round_trip,
             self.ns(self.round_trip),
             self.sample_point,
@@ -1291,17 +1328,37 @@ impl LateAnswer {
         )
     }
 
-    /// How to fix it: delay compensation, or a sample delay that reaches
-    /// the round trip where the frame schedule allows one.
+    /// How to fix it: delay compensation (or, with it, a slower measurement
+    /// clock), or a sample delay that reaches the round trip where the
+    /// frame schedule allows one.
     pub fn fix(&self) -> String {
-        let comp = "set master.delay_comp = true (the master measures the round trip at power-on and samples after it; seed 2.1.2)";
+        let first = match self.meas_clock_khz {
+            None => "set master.delay_comp = true (the master measures the round trip at power-on and samples after it; seed 2.1.2)".to_string(),
+            Some(_) => {
+                // The fastest measurement clock whose high phase is
+                // `high_needed`: f_sys divided by twice that.
+                let cycles = 2 * self.high_needed;
+                let khz = 1e9 / (self.period_ps * cycles) as f64;
+                if khz >= 100.0 {
+                    format!("set master.meas_clock_khz = {khz} (f_sys / {cycles}) or slower (seed 2.1.2: \"reduced clock pulse frequency (100 kHz to 200 kHz)\")")
+                } else {
+                    "no measurement clock of the seed's 100 to 200 kHz (2.1.2) has a high phase that long".to_string()
+                }
+            }
+        };
+        // Without compensation a lower clock has a longer high phase; with
+        // it, the measurement clock is the one that counts.
+        let other = match self.meas_clock_khz {
+            None => "shorten the cable or lower the clock",
+            Some(_) => "shorten the cable",
+        };
         if self.sample_delay_cycles <= self.sample_delay_max {
             format!(
-                "{comp}, or master.sample_delay_ns = {:.0} or more, or shorten the cable or lower the clock",
+                "{first}, or master.sample_delay_ns = {:.0} or more, or {other}",
                 self.ns(self.sample_delay_cycles).ceil()
             )
         } else {
-            format!("{comp}, or shorten the cable or lower the clock (a sample delay of {:.0} ns would reach the round trip; the frame schedule allows at most {:.0} ns)", self.ns(self.sample_delay_cycles).ceil(), self.ns(self.sample_delay_max))
+            format!("{first}, or {other} (a sample delay of {:.0} ns would reach the round trip; the frame schedule allows at most {:.0} ns)", self.ns(self.sample_delay_cycles).ceil(), self.ns(self.sample_delay_max))
         }
     }
 

@@ -797,6 +797,80 @@ fn an_early_start_bit_ends_the_read_sooner_and_fools_the_delay_counter_into_satu
     }
 }
 
+/// With delay compensation the reads sample after the measured round trip,
+/// but the measurement's own frames (seed 2.1.2: "with reduced clock pulse
+/// frequency (100 kHz to 200 kHz)") are sampled at the fixed point, a high
+/// phase of the measurement clock after the rising edge: at 500 kHz and
+/// 200 kHz measuring, from 229 m at 32 MHz every measurement failed as
+/// `delay_measurement_inconsistent`, every read as `not_calibrated`, and
+/// the scenario was accepted. The model's own runs are the check of
+/// `late_answer`: it says "late" exactly where the measurement fails, the
+/// scenario is refused on `cable.length_m`, and each fix it gives (the
+/// measurement clock it names, the least `sample_delay_ns`) reads cleanly.
+#[test]
+fn a_round_trip_beyond_the_measurement_clocks_sample_point_is_refused_where_no_read_succeeds() {
+    let mut late_seen = 0;
+    for (f_sys, meas_khz, lengths) in [
+        (32.0, 200.0, (200..=260).step_by(3)),
+        (64.0, 200.0, (200..=260).step_by(3)),
+        (32.0, 100.0, (440..=500).step_by(3)),
+    ] {
+        for len in lengths {
+            let mut cfg = BenchConfig::example();
+            cfg.f_sys_mhz = f_sys;
+            cfg.master.clock_khz = 500.0;
+            cfg.master.delay_comp = true;
+            cfg.master.meas_clock_khz = meas_khz;
+            cfg.cable.length_m = len as f64;
+            let what = format!("{f_sys} MHz, measuring at {meas_khz} kHz, {len} m");
+            let ts = run(&cfg);
+            let measured = ts
+                .iter()
+                .any(|t| t.kind == "delay_measurement" && t.errors.is_empty());
+            let reads_ok = commands(&ts).iter().all(|t| t.errors.is_empty());
+            let late = cfg.late_answer().unwrap();
+            assert_eq!(late.is_none(), measured && reads_ok, "{what}: {late:?}");
+            let Some(_) = late else {
+                assert!(model::Setup::validate(&cfg).is_ok(), "{what}");
+                continue;
+            };
+            late_seen += 1;
+            assert!(
+                commands(&ts)
+                    .iter()
+                    .all(|t| t.errors.iter().any(|e| e == "not_calibrated")),
+                "{what}"
+            );
+            let e = model::Setup::validate(&cfg).unwrap_err();
+            assert_eq!(e.field(), "cable.length_m", "{what}: {e}");
+            let text = e.to_string();
+            assert!(text.contains("delay_measurement_inconsistent"), "{text}");
+            let mut fixes = Vec::new();
+            if let Some(k) = text.split("master.meas_clock_khz = ").nth(1) {
+                let mut c = cfg.clone();
+                c.master.meas_clock_khz = k.split(' ').next().unwrap().parse().unwrap();
+                fixes.push(c);
+            }
+            if let Some(ns) = text.split("master.sample_delay_ns = ").nth(1) {
+                let mut c = cfg.clone();
+                c.master.sample_delay_ns = ns.split(' ').next().unwrap().parse().unwrap();
+                fixes.push(c);
+            }
+            assert!(!fixes.is_empty(), "{what}: {text}");
+            for c in fixes {
+                assert!(model::Setup::validate(&c).is_ok(), "{what}: {text}");
+                let ts = run(&c);
+                assert!(
+                    ts.iter().all(|t| t.errors.is_empty()),
+                    "{what}: {text}: {:?}",
+                    ts.iter().map(|t| (&t.kind, &t.errors)).collect::<Vec<_>>()
+                );
+            }
+        }
+    }
+    assert!(late_seen >= 20, "{late_seen} late set-ups");
+}
+
 /// Without delay compensation the master samples at a fixed point after each
 /// falling clock edge; a cable whose round trip comes later fails every read
 /// as `line_not_driven` (500 kHz and 1 MHz beyond about 100 m, 2 MHz sooner).
