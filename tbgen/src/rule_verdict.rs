@@ -596,6 +596,14 @@ mod tests {
         of_capture(entry, &m).unwrap().unwrap()
     }
 
+    /// A SAR58K24 host whose timeout (400 us) ends before the encoder's
+    /// 32-bit answer at 19200 baud (about 3.6 ms): its next trigger falls
+    /// inside the frame.
+    fn sar_timeout_shorter_than_the_answer() -> Scenario {
+        let text = "name = \"sar_short_timeout\"\n[sar]\nf_sys_mhz = 1.0\nbaud = 19200.0\nparity = \"none\"\nmode = \"handshake\"\nhost = { timeout_us = 400.0 }\n[[sar.encoders]]\nbits = 32\ncode = \"binary\"\npositions = [383, 2147495993, 4294967295]\n[[sar.ops]]\nop = \"read\"\nrepeat = 3\n";
+        Scenario::parse(text, "sar_short_timeout.toml").unwrap()
+    }
+
     /// An EnDat master at 2 MHz whose first low phase is `t_st_us`.
     fn endat_t_st(t_st_us: f64) -> Scenario {
         let text = format!("name = \"endat_t_st\"\n[endat]\nf_sys_mhz = 32\npositions = [555]\n[endat.master]\nclock_khz = 2000\nt_st_us = {t_st_us}\n[[endat.commands]]\ncommand = \"pos22\"\nrepeat = 2\n");
@@ -628,7 +636,7 @@ mod tests {
             (
                 "sar",
                 crate::builtin::find("sar_baud_19200").unwrap(),
-                crate::builtin::find("sar_baud_2400").unwrap(),
+                sar_timeout_shorter_than_the_answer(),
                 "T1-T3",
             ),
             (
